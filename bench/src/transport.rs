@@ -1,0 +1,183 @@
+//! The transport benchmark: a client process streams to a daemon process (this binary,
+//! re-executed, running the real `strata_server::serve`).
+
+use std::path::PathBuf;
+use std::process::{Child, Command as Proc};
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use strata_client::{Calls, ConnectOptions, Connection};
+use strata_protocol::codec;
+use strata_protocol::wire::Blob;
+use strata_protocol::Command;
+
+/// Options of `strata-bench transport`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Print one JSON object as the last line.
+    #[arg(long)]
+    json: bool,
+    /// Small commands to stream.
+    #[arg(long, default_value_t = 10_000_000)]
+    small: u64,
+    /// 1 MiB payloads to stream.
+    #[arg(long, default_value_t = 4096)]
+    bulk: u64,
+}
+
+/// Runs the daemon half until killed.
+pub fn daemon(socket: PathBuf) -> Result<()> {
+    let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
+    let opts = strata_server::ServeOptions { socket, ..Default::default() };
+    rt.block_on(strata_server::serve(opts, std::future::pending()))?;
+    Ok(())
+}
+
+struct DaemonProc(Child, PathBuf);
+
+impl Drop for DaemonProc {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+        let _ = std::fs::remove_file(&self.1);
+    }
+}
+
+fn start_daemon() -> Result<DaemonProc> {
+    let socket = std::env::temp_dir().join(format!("strata-bench-{}.sock", std::process::id()));
+    let child = Proc::new(std::env::current_exe()?).arg("daemon").arg("--socket").arg(&socket).spawn()?;
+    let d = DaemonProc(child, socket);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while std::os::unix::net::UnixStream::connect(&d.1).is_err() {
+        if Instant::now() > deadline {
+            bail!("benchmark daemon did not start");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    Ok(d)
+}
+
+fn bar(len: u64, what: &str) -> ProgressBar {
+    let pb = ProgressBar::new(len);
+    pb.set_style(
+        ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} {per_sec} eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    pb.set_message(what.to_string());
+    pb
+}
+
+/// The small-command mix: real GLES state calls, each at most 32 bytes encoded.
+fn small_command(i: u64) -> Command<'static> {
+    let f = (i % 977) as f32 * 0.001;
+    match i % 6 {
+        0 => Command::Uniform4f { location: (i % 16) as i32, x: f, y: 1.0 - f, z: 0.5, w: 1.0 },
+        1 => Command::DrawArrays { mode: 4, first: 0, count: (i % 3000) as i32 + 3 },
+        2 => Command::BindBuffer { target: 0x8892, buffer: (i % 64) as u32 },
+        3 => Command::Enable { cap: 0x0B71 },
+        4 => Command::Viewport { x: 0, y: 0, width: 1920, height: 720 },
+        _ => Command::VertexAttribPointer {
+            index: (i % 8) as u32,
+            size: 3,
+            attrib_type: 0x1406,
+            normalized: false,
+            stride: 24,
+            offset: 12,
+        },
+    }
+}
+
+/// memcpy bandwidth over the same payload size and count, single thread.
+fn memcpy_gbps(payload: usize, count: u64, pb: &ProgressBar) -> f64 {
+    let src: Vec<u8> = (0..payload).map(|i| i as u8).collect();
+    let mut dst = vec![0u8; payload];
+    let start = Instant::now();
+    for i in 0..count {
+        dst.copy_from_slice(std::hint::black_box(&src));
+        std::hint::black_box(&mut dst);
+        if i % 64 == 0 {
+            pb.set_position(i);
+        }
+    }
+    let secs = start.elapsed().as_secs_f64();
+    pb.finish();
+    (payload as u64 * count) as f64 / secs / 1e9
+}
+
+/// Runs the benchmark and prints its report.
+pub fn run(args: &Args) -> Result<()> {
+    for i in 0..6 {
+        let n = codec::encoded_len(&small_command(i))?;
+        if n > 32 {
+            bail!("small command {i} encodes to {n} bytes, more than 32");
+        }
+    }
+    let daemon = start_daemon()?;
+    let opts = ConnectOptions { socket: daemon.1.clone(), name: "bench".into(), ..ConnectOptions::default() };
+    let mut conn = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
+
+    // Warm up both ends.
+    for i in 0..100_000 {
+        conn.send(&small_command(i))?;
+    }
+    conn.strataPing(0)?;
+
+    let pb = bar(args.small, "small cmds");
+    let start = Instant::now();
+    for i in 0..args.small {
+        conn.send(&small_command(i))?;
+        if i % 65536 == 0 {
+            pb.set_position(i);
+        }
+    }
+    conn.strataPing(1)?;
+    let small_secs = start.elapsed().as_secs_f64();
+    pb.finish();
+    let small_cmds_per_s = args.small as f64 / small_secs;
+
+    const MIB: usize = 1 << 20;
+    let payload: Vec<u8> = (0..MIB).map(|i| (i * 7) as u8).collect();
+    let pb = bar(args.bulk, "1 MiB bulk");
+    let start = Instant::now();
+    for i in 0..args.bulk {
+        conn.glBufferSubData(0x8892, 0, Blob::borrowed(&payload))?;
+        if i % 64 == 0 {
+            pb.set_position(i);
+        }
+    }
+    conn.strataPing(2)?;
+    let bulk_secs = start.elapsed().as_secs_f64();
+    pb.finish();
+    let bulk_gb_per_s = (MIB as u64 * args.bulk) as f64 / bulk_secs / 1e9;
+    drop(conn);
+    drop(daemon);
+
+    let memcpy_gb_per_s = memcpy_gbps(MIB, args.bulk, &bar(args.bulk, "memcpy"));
+    let bulk_vs_memcpy = bulk_gb_per_s / memcpy_gb_per_s;
+
+    println!("transport: client and daemon in separate processes, one shared-memory ring");
+    println!(
+        "  small commands (<= 32 B):  {:>8.2} M commands/s  ({} in {:.3} s)",
+        small_cmds_per_s / 1e6,
+        args.small,
+        small_secs
+    );
+    println!("  bulk 1 MiB payloads:        {:>8.2} GB/s        ({} in {:.3} s)", bulk_gb_per_s, args.bulk, bulk_secs);
+    println!("  memcpy 1 MiB, same run:     {:>8.2} GB/s", memcpy_gb_per_s);
+    println!("  bulk / memcpy:              {:>8.3}", bulk_vs_memcpy);
+    if args.json {
+        let report = serde_json::json!({
+            "small_cmds_per_s": small_cmds_per_s,
+            "bulk_gb_per_s": bulk_gb_per_s,
+            "memcpy_gb_per_s": memcpy_gb_per_s,
+            "bulk_vs_memcpy": bulk_vs_memcpy,
+            "small_commands": args.small,
+            "bulk_payloads": args.bulk,
+            "payload_bytes": MIB,
+        });
+        println!("{report}");
+    }
+    Ok(())
+}

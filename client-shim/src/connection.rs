@@ -1,0 +1,203 @@
+//! A connection to the daemon: handshake over the control socket, then commands through the
+//! segment's command ring and replies through its reply ring.
+//!
+//! Fire-and-forget commands are encoded in place into the ring and published in batches: at a
+//! synchronous call, at `flush`, or once the batch limit is pending.
+
+use std::os::fd::AsRawFd;
+use std::os::unix::net::UnixStream;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use strata_protocol::codec::{self, CodecError, MAX_MESSAGE_LEN};
+use strata_protocol::handshake::{
+    self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, PROTOCOL_VERSION,
+};
+use strata_protocol::ring::{Reader, RingError, Writer};
+use strata_protocol::segment::{Segment, SegmentError};
+use strata_protocol::tally::Tally;
+use strata_protocol::{Calls, Command, Reply, ReplyMismatch, StreamTally};
+
+/// How a client introduces itself.
+#[derive(Debug, Clone)]
+pub struct ConnectOptions {
+    /// Daemon socket.
+    pub socket: PathBuf,
+    /// Client name.
+    pub name: String,
+    /// Role, e.g. `ic` or `hu`.
+    pub role: String,
+    /// Requested placement.
+    pub placement: Option<Placement>,
+    /// Keep a count and CRC-32 of sent messages on both ends, for [`Connection::verify`].
+    pub tally: bool,
+    /// Bytes pending before the batch is published without an explicit flush.
+    pub batch_bytes: u32,
+    /// Protocol version to announce (tests set a wrong one on purpose).
+    pub version: u32,
+}
+
+impl Default for ConnectOptions {
+    fn default() -> Self {
+        let name = std::env::current_exe()
+            .ok()
+            .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .unwrap_or_else(|| "client".into());
+        ConnectOptions {
+            socket: handshake::default_socket_path(),
+            name,
+            role: "app".into(),
+            placement: None,
+            tally: false,
+            batch_bytes: 64 << 10,
+            version: PROTOCOL_VERSION,
+        }
+    }
+}
+
+/// A client-side failure.
+#[derive(Debug, thiserror::Error)]
+pub enum ClientError {
+    /// Could not reach the daemon.
+    #[error("cannot connect to stratad at {socket}: {source}")]
+    Connect {
+        /// The socket tried.
+        socket: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The handshake failed or was refused.
+    #[error(transparent)]
+    Handshake(#[from] HandshakeError),
+    /// The segment could not be mapped.
+    #[error(transparent)]
+    Segment(#[from] SegmentError),
+    /// The ring failed; `PeerGone` means the daemon went away.
+    #[error(transparent)]
+    Ring(#[from] RingError),
+    /// Encoding or decoding failed.
+    #[error(transparent)]
+    Codec(#[from] CodecError),
+    /// A reply did not match its call.
+    #[error(transparent)]
+    Mismatch(#[from] ReplyMismatch),
+    /// The daemon does not implement the call.
+    #[error("unsupported by stratad: {0}")]
+    Unsupported(String),
+    /// The daemon sent something out of place in the handshake.
+    #[error("unexpected handshake message: {0}")]
+    Unexpected(String),
+}
+
+/// A live connection to `stratad`.
+pub struct Connection {
+    stream: UnixStream,
+    commands: Writer,
+    replies: Reader,
+    tally: Option<Tally>,
+    client_id: u64,
+    _segment: Segment,
+}
+
+/// Whether the daemon's end of the control socket is still open.
+fn socket_alive(fd: i32) -> bool {
+    let mut b = 0u8;
+    // SAFETY: peeks at most one byte into a local; the fd is owned by the connection.
+    let n = unsafe { libc::recv(fd, (&mut b as *mut u8).cast(), 1, libc::MSG_PEEK | libc::MSG_DONTWAIT) };
+    n > 0 || (n < 0 && std::io::Error::last_os_error().kind() == std::io::ErrorKind::WouldBlock)
+}
+
+impl Connection {
+    /// Connects, performs the handshake and maps the segment.
+    pub fn connect(opts: &ConnectOptions) -> Result<Connection, ClientError> {
+        let mut stream = UnixStream::connect(&opts.socket)
+            .map_err(|source| ClientError::Connect { socket: opts.socket.clone(), source })?;
+        stream.set_read_timeout(Some(Duration::from_secs(10))).map_err(HandshakeError::Io)?;
+        use std::io::Write;
+        stream.write_all(&handshake::preamble(opts.version)).map_err(HandshakeError::Io)?;
+        let hello = Hello {
+            name: opts.name.clone(),
+            role: opts.role.clone(),
+            placement: opts.placement,
+            tally: opts.tally,
+            purpose: Purpose::Render,
+        };
+        handshake::write_message(&mut stream, &hello)?;
+        let (client_id, name, cmd_capacity, reply_capacity) = match handshake::read_message(&mut stream, "welcome")? {
+            ServerMessage::Welcome { client_id, segment, cmd_capacity, reply_capacity } => {
+                (client_id, segment, cmd_capacity, reply_capacity)
+            }
+            ServerMessage::Refused { reason } => return Err(HandshakeError::Refused(reason).into()),
+        };
+        let segment = Segment::open(&name, cmd_capacity, reply_capacity)?;
+        handshake::write_message(&mut stream, &ClientMessage::Mapped)?;
+        stream.set_read_timeout(None).map_err(HandshakeError::Io)?;
+        Ok(Connection {
+            commands: Writer::new(segment.command_ring()?, opts.batch_bytes),
+            replies: Reader::new(segment.reply_ring()?, MAX_MESSAGE_LEN),
+            stream,
+            tally: opts.tally.then(Tally::default),
+            client_id,
+            _segment: segment,
+        })
+    }
+
+    /// The daemon's number for this client.
+    pub fn client_id(&self) -> u64 {
+        self.client_id
+    }
+
+    /// Publishes every queued command.
+    pub fn flush(&mut self) {
+        self.commands.publish();
+    }
+
+    /// Asks the daemon to compare its count and CRC-32 of this stream with ours.
+    /// Requires [`ConnectOptions::tally`].
+    pub fn verify(&mut self) -> Result<StreamTally, ClientError> {
+        let (commands, crc32) = self.tally.as_ref().map(|t| (t.commands(), t.crc32())).unwrap_or((0, 0));
+        self.strataVerify(commands, crc32)
+    }
+
+    /// Messages sent so far, if tallying.
+    pub fn sent(&self) -> Option<u64> {
+        self.tally.as_ref().map(Tally::commands)
+    }
+}
+
+impl Calls for Connection {
+    type Error = ClientError;
+
+    fn send(&mut self, cmd: &Command<'_>) -> Result<(), ClientError> {
+        let fd = self.stream.as_raw_fd();
+        let alive = move || socket_alive(fd);
+        let len = codec::encoded_len(cmd)?;
+        let tally = &mut self.tally;
+        self.commands.write::<ClientError>(len, &alive, |buf| {
+            codec::encode_into(cmd, buf)?;
+            if let Some(t) = tally {
+                t.add(buf);
+            }
+            Ok(())
+        })
+    }
+
+    fn call(&mut self, cmd: &Command<'_>) -> Result<Reply, ClientError> {
+        self.send(cmd)?;
+        self.commands.publish();
+        let fd = self.stream.as_raw_fd();
+        let alive = move || socket_alive(fd);
+        let mut reply = None;
+        while reply.is_none() {
+            self.replies.recv_batch::<ClientError>(&alive, |bytes| {
+                reply = Some(codec::decode_reply(bytes)?);
+                Ok(())
+            })?;
+        }
+        match reply {
+            Some(Reply::Unsupported(why)) => Err(ClientError::Unsupported(why)),
+            Some(r) => Ok(r),
+            None => Err(ClientError::Unexpected("no reply".into())),
+        }
+    }
+}

@@ -1,0 +1,9 @@
+//! The client side of Strata: connect to `stratad`, then call typed EGL/GLES methods (from
+//! [`strata_protocol::Calls`]) that are encoded straight into the shared-memory ring.
+#![warn(missing_docs)]
+
+pub mod connection;
+pub mod workload;
+
+pub use connection::{ClientError, ConnectOptions, Connection};
+pub use strata_protocol::Calls;

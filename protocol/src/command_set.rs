@@ -1,0 +1,144 @@
+//! The generator behind the command table: one `macro_rules!` expansion yields the `Command`
+//! enum, `Opcode`, `Reply`, the typed `Calls` methods and (with `arbitrary`) test strategies.
+
+/// Expands the command table (see `commands.rs`) into every derived item.
+macro_rules! command_set {
+    (
+        async {
+            $( $(#[doc = $adoc:literal])* $agl:ident => $av:ident { $( $af:ident : $aty:ty ),* $(,)? } ; )*
+        }
+        sync {
+            $( $(#[doc = $sdoc:literal])* $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
+        }
+    ) => {
+        /// One call a client streams to the daemon, decoded in place from the ring.
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(bound(deserialize = "'de: 'a"))]
+        #[allow(missing_docs)]
+        pub enum Command<'a> {
+            $( #[doc = concat!("`", stringify!($agl), "`, fire-and-forget.")] $(#[doc = $adoc])* $av { $( $af: $aty ),* }, )*
+            $( #[doc = concat!("`", stringify!($sgl), "`, answered with a reply.")] $(#[doc = $sdoc])* $sv { $( $sf: $sty ),* }, )*
+        }
+
+        /// The number of each command on the wire; its position in the table.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        #[repr(u16)]
+        pub enum Opcode {
+            $( #[doc = concat!("`", stringify!($agl), "`")] $av, )*
+            $( #[doc = concat!("`", stringify!($sgl), "`")] $sv, )*
+        }
+
+        impl Opcode {
+            /// Every opcode, in wire order.
+            pub const ALL: &'static [Opcode] = &[ $(Opcode::$av,)* $(Opcode::$sv,)* ];
+            /// How many commands the protocol defines.
+            pub const COUNT: usize = Self::ALL.len();
+
+            /// The EGL/GL entry point's name, e.g. `glDrawArrays`.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $( Opcode::$av => stringify!($agl), )*
+                    $( Opcode::$sv => stringify!($sgl), )*
+                }
+            }
+
+            /// Whether the caller waits for a reply.
+            pub fn is_sync(self) -> bool {
+                match self {
+                    $( Opcode::$av => false, )*
+                    $( Opcode::$sv => true, )*
+                }
+            }
+
+            /// The opcode with wire number `index`, if the protocol defines one.
+            pub fn from_index(index: u32) -> Option<Opcode> {
+                Self::ALL.get(index as usize).copied()
+            }
+        }
+
+        impl Command<'_> {
+            /// Which command this is.
+            pub fn opcode(&self) -> Opcode {
+                match self {
+                    $( Command::$av { .. } => Opcode::$av, )*
+                    $( Command::$sv { .. } => Opcode::$sv, )*
+                }
+            }
+        }
+
+        /// The daemon's answer to a synchronous command: one variant per synchronous call.
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        pub enum Reply {
+            $( #[doc = concat!("Result of `", stringify!($sgl), "`.")] $sv($ret), )*
+            /// The daemon does not implement this call; the text says why.
+            Unsupported(String),
+        }
+
+        impl Reply {
+            /// The command this reply answers, or `None` for `Unsupported`.
+            pub fn opcode(&self) -> Option<Opcode> {
+                match self {
+                    $( Reply::$sv(_) => Some(Opcode::$sv), )*
+                    Reply::Unsupported(_) => None,
+                }
+            }
+        }
+
+        /// Typed EGL/GLES methods, one per command, over a transport that can send and call.
+        #[allow(non_snake_case, clippy::too_many_arguments, clippy::extra_unused_lifetimes, clippy::needless_lifetimes)]
+        pub trait Calls {
+            /// The transport's error type.
+            type Error: From<crate::ReplyMismatch>;
+            /// Queues a fire-and-forget command.
+            fn send(&mut self, cmd: &Command<'_>) -> Result<(), Self::Error>;
+            /// Sends a synchronous command and waits for its reply.
+            fn call(&mut self, cmd: &Command<'_>) -> Result<Reply, Self::Error>;
+
+            $(
+                #[doc = concat!("Queues `", stringify!($agl), "`.")]
+                fn $agl<'a>(&mut self, $( $af: $aty ),*) -> Result<(), Self::Error> {
+                    self.send(&Command::$av { $( $af ),* })
+                }
+            )*
+            $(
+                #[doc = concat!("Calls `", stringify!($sgl), "` and waits for its result.")]
+                fn $sgl<'a>(&mut self, $( $sf: $sty ),*) -> Result<$ret, Self::Error> {
+                    match self.call(&Command::$sv { $( $sf ),* })? {
+                        Reply::$sv(v) => Ok(v),
+                        other => Err(crate::ReplyMismatch { expected: Opcode::$sv, got: other }.into()),
+                    }
+                }
+            )*
+        }
+
+        #[cfg(feature = "arbitrary")]
+        impl Opcode {
+            /// A proptest strategy producing arbitrary commands with this opcode.
+            pub fn strategy<'a>(self) -> proptest::strategy::BoxedStrategy<Command<'a>>
+            where
+                'a: 'static,
+            {
+                use proptest::prelude::*;
+                match self {
+                    $( Opcode::$av => (Just(()), $( any::<$aty>(), )*)
+                        .prop_map(|((), $( $af, )*)| Command::$av { $( $af ),* })
+                        .boxed(), )*
+                    $( Opcode::$sv => (Just(()), $( any::<$sty>(), )*)
+                        .prop_map(|((), $( $sf, )*)| Command::$sv { $( $sf ),* })
+                        .boxed(), )*
+                }
+            }
+
+            /// A proptest strategy producing arbitrary replies to this opcode (`None` if async).
+            pub fn reply_strategy(self) -> Option<proptest::strategy::BoxedStrategy<Reply>> {
+                use proptest::prelude::*;
+                match self {
+                    $( Opcode::$av => None, )*
+                    $( Opcode::$sv => Some(any::<$ret>().prop_map(Reply::$sv).boxed()), )*
+                }
+            }
+        }
+    };
+}
+
+pub(crate) use command_set;

@@ -1,0 +1,272 @@
+//! The command set, defined once: every EGL 1.4 call an application makes, every GLES 2.0
+//! entry point, and Strata's own calls. Wire order is table order; append, never reorder.
+//!
+//! Pointer arguments become owned data or offsets: arrays travel as [`Slice`], bulk data as
+//! [`Blob`], strings as [`Text`]. Object names are allocated by the client, so `glGen*`
+//! and `glCreate*` carry the chosen names and need no reply.
+
+use serde::{Deserialize, Serialize};
+
+use crate::command_set::command_set;
+use crate::wire::*;
+
+/// Result of an EGL call: the value, or the EGL error code (`EGL_BAD_*`).
+pub type EglResult<T> = Result<T, EGLint>;
+
+/// What `glGetActiveAttrib` / `glGetActiveUniform` report about one variable.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ActiveVariable {
+    /// Array size (1 for non-arrays).
+    pub size: GLint,
+    /// GL type enum, e.g. `GL_FLOAT_VEC4`.
+    pub ty: GLenum,
+    /// The name as the application sees it.
+    pub name: String,
+}
+
+/// The daemon's count and CRC-32 of the messages it has decoded from one client.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct StreamTally {
+    /// Messages decoded before the verify call.
+    pub commands: u64,
+    /// CRC-32 over the encoded bytes of those messages, in order.
+    pub crc32: u32,
+    /// Whether they equal what the client said it sent.
+    pub matches: bool,
+}
+
+/// Owned raw bytes in a reply (e.g. `glReadPixels`), encoded without per-element framing.
+#[derive(Clone, PartialEq, Eq, Default)]
+pub struct Bytes(pub Vec<u8>);
+
+impl std::fmt::Debug for Bytes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Bytes({} bytes)", self.0.len())
+    }
+}
+
+impl Serialize for Bytes {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_bytes(&self.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for Bytes {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Blob::deserialize(d).map(|b| Bytes(b.0.into_owned()))
+    }
+}
+
+command_set! {
+    async {
+        glActiveTexture => ActiveTexture { texture: GLenum };
+        glAttachShader => AttachShader { program: GLuint, shader: GLuint };
+        glBindAttribLocation => BindAttribLocation { program: GLuint, index: GLuint, name: Text<'a> };
+        glBindBuffer => BindBuffer { target: GLenum, buffer: GLuint };
+        glBindFramebuffer => BindFramebuffer { target: GLenum, framebuffer: GLuint };
+        glBindRenderbuffer => BindRenderbuffer { target: GLenum, renderbuffer: GLuint };
+        glBindTexture => BindTexture { target: GLenum, texture: GLuint };
+        glBlendColor => BlendColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
+        glBlendEquation => BlendEquation { mode: GLenum };
+        glBlendEquationSeparate => BlendEquationSeparate { mode_rgb: GLenum, mode_alpha: GLenum };
+        glBlendFunc => BlendFunc { sfactor: GLenum, dfactor: GLenum };
+        glBlendFuncSeparate => BlendFuncSeparate { src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum };
+        /// `data` is `None` when the application passed NULL (allocate only).
+        glBufferData => BufferData { target: GLenum, size: i64, data: Option<Blob<'a>>, usage: GLenum };
+        glBufferSubData => BufferSubData { target: GLenum, offset: i64, data: Blob<'a> };
+        glClear => Clear { mask: GLbitfield };
+        glClearColor => ClearColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
+        glClearDepthf => ClearDepthf { depth: GLfloat };
+        glClearStencil => ClearStencil { s: GLint };
+        glColorMask => ColorMask { red: bool, green: bool, blue: bool, alpha: bool };
+        glCompileShader => CompileShader { shader: GLuint };
+        glCompressedTexImage2D => CompressedTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, data: Blob<'a> };
+        glCompressedTexSubImage2D => CompressedTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, data: Blob<'a> };
+        glCopyTexImage2D => CopyTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint };
+        glCopyTexSubImage2D => CopyTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        /// `name` is the program name the client allocated.
+        glCreateProgram => CreateProgram { name: GLuint };
+        /// `name` is the shader name the client allocated.
+        glCreateShader => CreateShader { shader_type: GLenum, name: GLuint };
+        glCullFace => CullFace { mode: GLenum };
+        glDeleteBuffers => DeleteBuffers { names: Slice<'a, GLuint> };
+        glDeleteFramebuffers => DeleteFramebuffers { names: Slice<'a, GLuint> };
+        glDeleteProgram => DeleteProgram { program: GLuint };
+        glDeleteRenderbuffers => DeleteRenderbuffers { names: Slice<'a, GLuint> };
+        glDeleteShader => DeleteShader { shader: GLuint };
+        glDeleteTextures => DeleteTextures { names: Slice<'a, GLuint> };
+        glDepthFunc => DepthFunc { func: GLenum };
+        glDepthMask => DepthMask { flag: bool };
+        glDepthRangef => DepthRangef { near: GLfloat, far: GLfloat };
+        glDetachShader => DetachShader { program: GLuint, shader: GLuint };
+        glDisable => Disable { cap: GLenum };
+        glDisableVertexAttribArray => DisableVertexAttribArray { index: GLuint };
+        glDrawArrays => DrawArrays { mode: GLenum, first: GLint, count: GLsizei };
+        /// `offset` is the byte offset into the bound `GL_ELEMENT_ARRAY_BUFFER`.
+        glDrawElements => DrawElements { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64 };
+        glEnable => Enable { cap: GLenum };
+        glEnableVertexAttribArray => EnableVertexAttribArray { index: GLuint };
+        glFlush => Flush {};
+        glFramebufferRenderbuffer => FramebufferRenderbuffer { target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint };
+        glFramebufferTexture2D => FramebufferTexture2D { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint };
+        glFrontFace => FrontFace { mode: GLenum };
+        glGenBuffers => GenBuffers { names: Slice<'a, GLuint> };
+        glGenerateMipmap => GenerateMipmap { target: GLenum };
+        glGenFramebuffers => GenFramebuffers { names: Slice<'a, GLuint> };
+        glGenRenderbuffers => GenRenderbuffers { names: Slice<'a, GLuint> };
+        glGenTextures => GenTextures { names: Slice<'a, GLuint> };
+        glHint => Hint { target: GLenum, mode: GLenum };
+        glLineWidth => LineWidth { width: GLfloat };
+        glLinkProgram => LinkProgram { program: GLuint };
+        glPixelStorei => PixelStorei { pname: GLenum, param: GLint };
+        glPolygonOffset => PolygonOffset { factor: GLfloat, units: GLfloat };
+        glReleaseShaderCompiler => ReleaseShaderCompiler {};
+        glRenderbufferStorage => RenderbufferStorage { target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei };
+        glSampleCoverage => SampleCoverage { value: GLfloat, invert: bool };
+        glScissor => Scissor { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        glShaderBinary => ShaderBinary { shaders: Slice<'a, GLuint>, binary_format: GLenum, binary: Blob<'a> };
+        /// The client joins the application's string array into one source.
+        glShaderSource => ShaderSource { shader: GLuint, source: Text<'a> };
+        glStencilFunc => StencilFunc { func: GLenum, reference: GLint, mask: GLuint };
+        glStencilFuncSeparate => StencilFuncSeparate { face: GLenum, func: GLenum, reference: GLint, mask: GLuint };
+        glStencilMask => StencilMask { mask: GLuint };
+        glStencilMaskSeparate => StencilMaskSeparate { face: GLenum, mask: GLuint };
+        glStencilOp => StencilOp { fail: GLenum, zfail: GLenum, zpass: GLenum };
+        glStencilOpSeparate => StencilOpSeparate { face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum };
+        /// `pixels` is `None` when the application passed NULL (allocate only).
+        glTexImage2D => TexImage2D { target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
+        glTexParameterf => TexParameterf { target: GLenum, pname: GLenum, param: GLfloat };
+        glTexParameterfv => TexParameterfv { target: GLenum, pname: GLenum, params: Slice<'a, GLfloat> };
+        glTexParameteri => TexParameteri { target: GLenum, pname: GLenum, param: GLint };
+        glTexParameteriv => TexParameteriv { target: GLenum, pname: GLenum, params: Slice<'a, GLint> };
+        glTexSubImage2D => TexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
+        glUniform1f => Uniform1f { location: GLint, x: GLfloat };
+        glUniform1fv => Uniform1fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform1i => Uniform1i { location: GLint, x: GLint };
+        glUniform1iv => Uniform1iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform2f => Uniform2f { location: GLint, x: GLfloat, y: GLfloat };
+        glUniform2fv => Uniform2fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform2i => Uniform2i { location: GLint, x: GLint, y: GLint };
+        glUniform2iv => Uniform2iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform3f => Uniform3f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat };
+        glUniform3fv => Uniform3fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform3i => Uniform3i { location: GLint, x: GLint, y: GLint, z: GLint };
+        glUniform3iv => Uniform3iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform4f => Uniform4f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
+        glUniform4fv => Uniform4fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform4i => Uniform4i { location: GLint, x: GLint, y: GLint, z: GLint, w: GLint };
+        glUniform4iv => Uniform4iv { location: GLint, values: Slice<'a, GLint> };
+        glUniformMatrix2fv => UniformMatrix2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix3fv => UniformMatrix3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix4fv => UniformMatrix4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUseProgram => UseProgram { program: GLuint };
+        glValidateProgram => ValidateProgram { program: GLuint };
+        glVertexAttrib1f => VertexAttrib1f { index: GLuint, x: GLfloat };
+        glVertexAttrib1fv => VertexAttrib1fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib2f => VertexAttrib2f { index: GLuint, x: GLfloat, y: GLfloat };
+        glVertexAttrib2fv => VertexAttrib2fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib3f => VertexAttrib3f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat };
+        glVertexAttrib3fv => VertexAttrib3fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib4f => VertexAttrib4f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
+        glVertexAttrib4fv => VertexAttrib4fv { index: GLuint, values: Slice<'a, GLfloat> };
+        /// `offset` is the byte offset into the bound `GL_ARRAY_BUFFER`.
+        glVertexAttribPointer => VertexAttribPointer { index: GLuint, size: GLint, attrib_type: GLenum, normalized: bool, stride: GLsizei, offset: u64 };
+        glViewport => Viewport { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        /// Flips the surface's back and front targets; back-pressure comes as events.
+        eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle };
+    }
+    sync {
+        glCheckFramebufferStatus => CheckFramebufferStatus { target: GLenum } -> GLenum;
+        glFinish => Finish {} -> ();
+        glGetActiveAttrib => GetActiveAttrib { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
+        glGetActiveUniform => GetActiveUniform { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
+        glGetAttachedShaders => GetAttachedShaders { program: GLuint } -> Vec<GLuint>;
+        glGetAttribLocation => GetAttribLocation { program: GLuint, name: Text<'a> } -> GLint;
+        glGetBooleanv => GetBooleanv { pname: GLenum } -> Vec<bool>;
+        glGetBufferParameteriv => GetBufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
+        glGetError => GetError {} -> GLenum;
+        glGetFloatv => GetFloatv { pname: GLenum } -> Vec<GLfloat>;
+        glGetFramebufferAttachmentParameteriv => GetFramebufferAttachmentParameteriv { target: GLenum, attachment: GLenum, pname: GLenum } -> GLint;
+        glGetIntegerv => GetIntegerv { pname: GLenum } -> Vec<GLint>;
+        glGetProgramiv => GetProgramiv { program: GLuint, pname: GLenum } -> GLint;
+        glGetProgramInfoLog => GetProgramInfoLog { program: GLuint } -> String;
+        glGetRenderbufferParameteriv => GetRenderbufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
+        glGetShaderiv => GetShaderiv { shader: GLuint, pname: GLenum } -> GLint;
+        glGetShaderInfoLog => GetShaderInfoLog { shader: GLuint } -> String;
+        /// Reply: (range, precision).
+        glGetShaderPrecisionFormat => GetShaderPrecisionFormat { shader_type: GLenum, precision_type: GLenum } -> ([GLint; 2], GLint);
+        glGetShaderSource => GetShaderSource { shader: GLuint } -> String;
+        /// `None` stands for the NULL a driver returns on error.
+        glGetString => GetString { name: GLenum } -> Option<String>;
+        glGetTexParameterfv => GetTexParameterfv { target: GLenum, pname: GLenum } -> Vec<GLfloat>;
+        glGetTexParameteriv => GetTexParameteriv { target: GLenum, pname: GLenum } -> Vec<GLint>;
+        glGetUniformfv => GetUniformfv { program: GLuint, location: GLint } -> Vec<GLfloat>;
+        glGetUniformiv => GetUniformiv { program: GLuint, location: GLint } -> Vec<GLint>;
+        glGetUniformLocation => GetUniformLocation { program: GLuint, name: Text<'a> } -> GLint;
+        glGetVertexAttribfv => GetVertexAttribfv { index: GLuint, pname: GLenum } -> Vec<GLfloat>;
+        glGetVertexAttribiv => GetVertexAttribiv { index: GLuint, pname: GLenum } -> Vec<GLint>;
+        glGetVertexAttribPointerv => GetVertexAttribPointerv { index: GLuint, pname: GLenum } -> u64;
+        glIsBuffer => IsBuffer { name: GLuint } -> bool;
+        glIsEnabled => IsEnabled { cap: GLenum } -> bool;
+        glIsFramebuffer => IsFramebuffer { name: GLuint } -> bool;
+        glIsProgram => IsProgram { name: GLuint } -> bool;
+        glIsRenderbuffer => IsRenderbuffer { name: GLuint } -> bool;
+        glIsShader => IsShader { name: GLuint } -> bool;
+        glIsTexture => IsTexture { name: GLuint } -> bool;
+        glReadPixels => ReadPixels { x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum } -> Bytes;
+        eglGetDisplay => GetDisplay { native_display: u64 } -> EglHandle;
+        eglGetPlatformDisplay => GetPlatformDisplay { platform: GLenum, native_display: u64, attribs: Slice<'a, EGLint> } -> EglHandle;
+        /// Reply: (major, minor) version.
+        eglInitialize => Initialize { display: EglHandle } -> EglResult<(EGLint, EGLint)>;
+        eglChooseConfig => ChooseConfig { display: EglHandle, attribs: Slice<'a, EGLint>, config_size: EGLint } -> EglResult<Vec<EglHandle>>;
+        eglGetConfigAttrib => GetConfigAttrib { display: EglHandle, config: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        /// Placement (x, y, z, width, height) of the daemon-owned surface.
+        eglCreateWindowSurface => CreateWindowSurface { display: EglHandle, config: EglHandle, native_window: u64, x: GLint, y: GLint, z: GLfloat, width: GLsizei, height: GLsizei, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglCreatePbufferSurface => CreatePbufferSurface { display: EglHandle, config: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglCreateContext => CreateContext { display: EglHandle, config: EglHandle, share_context: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglMakeCurrent => MakeCurrent { display: EglHandle, draw: EglHandle, read: EglHandle, context: EglHandle } -> EglResult<()>;
+        eglSwapInterval => SwapInterval { display: EglHandle, interval: EGLint } -> EglResult<()>;
+        eglQuerySurface => QuerySurface { display: EglHandle, surface: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        eglDestroySurface => DestroySurface { display: EglHandle, surface: EglHandle } -> EglResult<()>;
+        eglDestroyContext => DestroyContext { display: EglHandle, context: EglHandle } -> EglResult<()>;
+        eglTerminate => Terminate { display: EglHandle } -> EglResult<()>;
+        /// Round trip: every earlier command has been decoded when the token comes back.
+        strataPing => Ping { token: u64 } -> u64;
+        /// The daemon compares the client's count and CRC-32 of all earlier messages with its own.
+        strataVerify => Verify { commands: u64, crc32: u32 } -> StreamTally;
+    }
+}
+
+#[cfg(feature = "arbitrary")]
+mod arbitrary {
+    use super::*;
+    use proptest::prelude::*;
+
+    impl Arbitrary for ActiveVariable {
+        type Parameters = ();
+        type Strategy = BoxedStrategy<Self>;
+        fn arbitrary_with(_: ()) -> Self::Strategy {
+            (any::<GLint>(), any::<GLenum>(), any::<String>())
+                .prop_map(|(size, ty, name)| ActiveVariable { size, ty, name })
+                .boxed()
+        }
+    }
+
+    impl Arbitrary for StreamTally {
+        type Parameters = ();
+        type Strategy = BoxedStrategy<Self>;
+        fn arbitrary_with(_: ()) -> Self::Strategy {
+            (any::<u64>(), any::<u32>(), any::<bool>())
+                .prop_map(|(commands, crc32, matches)| StreamTally { commands, crc32, matches })
+                .boxed()
+        }
+    }
+
+    impl Arbitrary for Bytes {
+        type Parameters = ();
+        type Strategy = BoxedStrategy<Self>;
+        fn arbitrary_with(_: ()) -> Self::Strategy {
+            proptest::collection::vec(any::<u8>(), 0..300).prop_map(Bytes).boxed()
+        }
+    }
+}

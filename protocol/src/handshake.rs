@@ -1,0 +1,207 @@
+//! The control-socket conversation: preamble and version check, hello, welcome or refusal,
+//! and the client's confirmation that it mapped the segment.
+//!
+//! Wire: the client first sends 8 raw bytes, `b"STRT"` then its protocol version as `u32` LE,
+//! so that any version can be refused by name. After that both sides exchange messages framed
+//! as `[len: u32 LE][codec bytes]`, each at most [`MAX_CONTROL_MESSAGE`] bytes.
+
+use std::io::{Read, Write};
+use std::path::PathBuf;
+
+use serde::{de::DeserializeOwned, Deserialize, Serialize};
+
+use crate::codec::{self, CodecError};
+
+/// The protocol version this build speaks.
+pub const PROTOCOL_VERSION: u32 = 1;
+/// The first four bytes a client sends.
+pub const PREAMBLE_MAGIC: [u8; 4] = *b"STRT";
+/// Largest framed control message.
+pub const MAX_CONTROL_MESSAGE: usize = 1 << 20;
+
+/// Where a client's window goes in the output: position, depth layer and size in pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Placement {
+    /// Left edge in output pixels.
+    pub x: i32,
+    /// Top edge in output pixels.
+    pub y: i32,
+    /// Depth layer; groups are drawn far (large z) to near.
+    pub z: f32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+/// What a connection is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Purpose {
+    /// A rendering client that streams commands through a segment.
+    Render,
+    /// An administrative connection (`stratad ctl`).
+    Control,
+}
+
+/// The client's introduction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Hello {
+    /// Client name, by default the process name.
+    pub name: String,
+    /// Role, e.g. `ic` or `hu`.
+    pub role: String,
+    /// Requested placement, if the client has one.
+    pub placement: Option<Placement>,
+    /// Whether the daemon should keep a count and CRC-32 of decoded messages for `strataVerify`.
+    pub tally: bool,
+    /// What the connection is for.
+    pub purpose: Purpose,
+}
+
+/// The daemon's messages on the control socket.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ServerMessage {
+    /// Accepted: map this segment, then answer `Mapped`.
+    Welcome {
+        /// The daemon's number for this client.
+        client_id: u64,
+        /// Shared-memory name of the segment.
+        segment: String,
+        /// Command ring capacity in bytes.
+        cmd_capacity: u32,
+        /// Reply ring capacity in bytes.
+        reply_capacity: u32,
+    },
+    /// Refused, with the reason.
+    Refused {
+        /// Why.
+        reason: String,
+    },
+}
+
+/// The client's messages on the control socket after the hello.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ClientMessage {
+    /// The segment is mapped; the daemon may unlink it.
+    Mapped,
+}
+
+/// A handshake failure.
+#[derive(Debug, thiserror::Error)]
+pub enum HandshakeError {
+    /// The peer is not speaking this protocol at all.
+    #[error("not a Strata client: preamble {0:02x?}")]
+    NotStrata([u8; 4]),
+    /// Versions differ.
+    #[error("protocol version mismatch: client speaks version {client}, daemon speaks version {daemon}")]
+    VersionMismatch {
+        /// The client's version.
+        client: u32,
+        /// The daemon's version.
+        daemon: u32,
+    },
+    /// A control message announced an absurd size.
+    #[error("control message of {0} bytes exceeds the {MAX_CONTROL_MESSAGE}-byte limit")]
+    TooLarge(usize),
+    /// The daemon said no.
+    #[error("refused by daemon: {0}")]
+    Refused(String),
+    /// The message did not decode.
+    #[error(transparent)]
+    Codec(#[from] CodecError),
+    /// The socket failed.
+    #[error("control socket: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// The 8 bytes a client opens with.
+pub fn preamble(version: u32) -> [u8; 8] {
+    let mut p = [0u8; 8];
+    p[..4].copy_from_slice(&PREAMBLE_MAGIC);
+    p[4..].copy_from_slice(&version.to_le_bytes());
+    p
+}
+
+/// Checks a client's preamble against this build's version.
+pub fn check_preamble(p: [u8; 8]) -> Result<(), HandshakeError> {
+    let mut magic = [0u8; 4];
+    magic.copy_from_slice(&p[..4]);
+    if magic != PREAMBLE_MAGIC {
+        return Err(HandshakeError::NotStrata(magic));
+    }
+    let client = u32::from_le_bytes([p[4], p[5], p[6], p[7]]);
+    if client != PROTOCOL_VERSION {
+        return Err(HandshakeError::VersionMismatch { client, daemon: PROTOCOL_VERSION });
+    }
+    Ok(())
+}
+
+/// Frames a control message: `[len: u32 LE][bytes]`.
+pub fn frame<T: Serialize>(msg: &T) -> Result<Vec<u8>, HandshakeError> {
+    let body = codec::encode_to_vec(msg)?;
+    if body.len() > MAX_CONTROL_MESSAGE {
+        return Err(HandshakeError::TooLarge(body.len()));
+    }
+    let mut out = Vec::with_capacity(4 + body.len());
+    out.extend_from_slice(&(body.len() as u32).to_le_bytes());
+    out.extend_from_slice(&body);
+    Ok(out)
+}
+
+/// Validates a frame's length prefix.
+pub fn frame_len(prefix: [u8; 4]) -> Result<usize, HandshakeError> {
+    let len = u32::from_le_bytes(prefix) as usize;
+    if len > MAX_CONTROL_MESSAGE {
+        return Err(HandshakeError::TooLarge(len));
+    }
+    Ok(len)
+}
+
+/// Writes one framed message to a blocking stream.
+pub fn write_message<T: Serialize>(w: &mut impl Write, msg: &T) -> Result<(), HandshakeError> {
+    w.write_all(&frame(msg)?)?;
+    Ok(())
+}
+
+/// Reads one framed message from a blocking stream.
+pub fn read_message<T: DeserializeOwned>(r: &mut impl Read, what: &'static str) -> Result<T, HandshakeError> {
+    let mut prefix = [0u8; 4];
+    r.read_exact(&mut prefix)?;
+    let mut body = vec![0u8; frame_len(prefix)?];
+    r.read_exact(&mut body)?;
+    Ok(codec::decode_owned(&body, what)?)
+}
+
+/// The socket path when none is given: `$STRATA_SOCKET`, else `$XDG_RUNTIME_DIR/strata.sock`,
+/// else `/tmp/strata-$UID.sock`.
+pub fn default_socket_path() -> PathBuf {
+    if let Some(p) = std::env::var_os("STRATA_SOCKET").filter(|p| !p.is_empty()) {
+        return PathBuf::from(p);
+    }
+    if let Some(dir) = std::env::var_os("XDG_RUNTIME_DIR").filter(|p| !p.is_empty()) {
+        return PathBuf::from(dir).join("strata.sock");
+    }
+    // SAFETY: getuid cannot fail.
+    let uid = unsafe { libc::getuid() };
+    PathBuf::from(format!("/tmp/strata-{uid}.sock"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn version_mismatch_names_both_versions() {
+        let e = check_preamble(preamble(PROTOCOL_VERSION + 41)).expect_err("mismatch");
+        let msg = e.to_string();
+        assert!(msg.contains(&format!("version {}", PROTOCOL_VERSION + 41)), "{msg}");
+        assert!(msg.contains(&format!("version {PROTOCOL_VERSION}")), "{msg}");
+        assert!(matches!(check_preamble(*b"GET / HT"), Err(HandshakeError::NotStrata(_))));
+        check_preamble(preamble(PROTOCOL_VERSION)).expect("same version");
+    }
+
+    #[test]
+    fn oversized_frame_is_refused() {
+        assert!(matches!(frame_len(u32::MAX.to_le_bytes()), Err(HandshakeError::TooLarge(_))));
+    }
+}

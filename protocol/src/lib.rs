@@ -1,0 +1,26 @@
+//! Strata's wire protocol: the command set (defined once, in [`commands`]), the codec, the
+//! shared-memory ring and segment, and the control-socket handshake.
+#![warn(missing_docs)]
+
+pub mod codec;
+mod command_set;
+pub mod commands;
+pub mod futex;
+pub mod handshake;
+pub mod ring;
+pub mod segment;
+pub mod tally;
+pub mod wire;
+
+pub use commands::{ActiveVariable, Bytes, Calls, Command, EglResult, Opcode, Reply, StreamTally};
+pub use wire::{Blob, Slice, Text};
+
+/// A reply that does not answer the call it was read for.
+#[derive(Debug, thiserror::Error)]
+#[error("reply mismatch: expected the answer to {}, got {got:?}", expected.name())]
+pub struct ReplyMismatch {
+    /// The call that was waiting.
+    pub expected: Opcode,
+    /// What arrived instead.
+    pub got: Reply,
+}

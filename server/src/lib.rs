@@ -1,0 +1,9 @@
+//! stratad: accepts clients on a Unix socket, gives each a shared-memory segment and a decoder
+//! thread, and runs their command streams.
+#![warn(missing_docs)]
+
+pub mod executor;
+pub mod listener;
+pub mod session;
+
+pub use listener::{serve, ServeOptions, ServerError};

@@ -1,0 +1,283 @@
+//! The daemon's front door: claims the Unix socket, performs each client's handshake, creates
+//! its segment, starts its session thread, and shuts everything down on request.
+
+use std::collections::HashMap;
+use std::os::unix::fs::{FileTypeExt, PermissionsExt};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use strata_protocol::codec::MAX_MESSAGE_LEN;
+use strata_protocol::handshake::{self, ClientMessage, HandshakeError, Hello, Purpose, ServerMessage};
+use strata_protocol::ring::{Reader, Writer};
+use strata_protocol::segment::{Segment, SegmentError};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::{UnixListener, UnixStream};
+use tokio::sync::{oneshot, watch};
+use tracing::{debug, info, warn, Instrument};
+
+use crate::executor::Drain;
+use crate::session::{Session, SessionEnd};
+
+/// How long a client may take over each handshake step.
+const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// Daemon settings.
+#[derive(Debug, Clone)]
+pub struct ServeOptions {
+    /// Socket path to listen on.
+    pub socket: PathBuf,
+    /// Command ring capacity per client, bytes (power of two).
+    pub cmd_ring: u32,
+    /// Reply ring capacity per client, bytes (power of two).
+    pub reply_ring: u32,
+}
+
+impl Default for ServeOptions {
+    fn default() -> Self {
+        ServeOptions { socket: handshake::default_socket_path(), cmd_ring: 8 << 20, reply_ring: 1 << 20 }
+    }
+}
+
+/// Why the daemon could not serve.
+#[derive(Debug, thiserror::Error)]
+pub enum ServerError {
+    /// Another daemon answers on the socket.
+    #[error("another stratad is already serving on {0}")]
+    AlreadyServing(PathBuf),
+    /// Something other than a socket sits at the path.
+    #[error("{0} exists and is not a socket; refusing to replace it")]
+    NotASocket(PathBuf),
+    /// Ring sizes are unusable.
+    #[error("ring capacity {0} must be a power of two between 4 KiB and 1 GiB")]
+    BadRing(u32),
+    /// Socket I/O failed.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was being done.
+        context: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+}
+
+fn io_err(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> ServerError {
+    let context = context.into();
+    move |source| ServerError::Io { context, source }
+}
+
+/// Claims `path`: refuses a live socket, replaces a stale one.
+fn claim_socket(path: &Path) -> Result<UnixListener, ServerError> {
+    if let Ok(meta) = std::fs::symlink_metadata(path) {
+        if !meta.file_type().is_socket() {
+            return Err(ServerError::NotASocket(path.into()));
+        }
+        if std::os::unix::net::UnixStream::connect(path).is_ok() {
+            return Err(ServerError::AlreadyServing(path.into()));
+        }
+        info!(socket = %path.display(), "replacing stale socket");
+        std::fs::remove_file(path).map_err(io_err(format!("removing stale socket {}", path.display())))?;
+    }
+    let listener = UnixListener::bind(path).map_err(io_err(format!("binding {}", path.display())))?;
+    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
+        .map_err(io_err(format!("restricting {}", path.display())))?;
+    Ok(listener)
+}
+
+/// What the daemon knows about a connected client.
+#[derive(Debug, Clone)]
+pub struct ClientInfo {
+    /// Name from the hello.
+    pub name: String,
+    /// Role from the hello.
+    pub role: String,
+}
+
+struct Shared {
+    opts: ServeOptions,
+    next_id: AtomicU64,
+    clients: Mutex<HashMap<u64, ClientInfo>>,
+    shutdown: watch::Receiver<bool>,
+}
+
+/// Serves clients on `opts.socket` until `shutdown` resolves, then stops every session and
+/// removes the socket.
+pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output = ()>) -> Result<(), ServerError> {
+    for cap in [opts.cmd_ring, opts.reply_ring] {
+        if !cap.is_power_of_two() || !(4096..=1 << 30).contains(&cap) {
+            return Err(ServerError::BadRing(cap));
+        }
+    }
+    let listener = claim_socket(&opts.socket)?;
+    info!(socket = %opts.socket.display(), "stratad serving");
+    let (stop_tx, stop_rx) = watch::channel(false);
+    let shared = Arc::new(Shared { opts, next_id: AtomicU64::new(1), clients: Mutex::default(), shutdown: stop_rx });
+    let mut tasks = tokio::task::JoinSet::new();
+    tokio::pin!(shutdown);
+    loop {
+        tokio::select! {
+            _ = &mut shutdown => break,
+            accepted = listener.accept() => match accepted {
+                Ok((stream, _)) => {
+                    let shared = shared.clone();
+                    tasks.spawn(async move { handle_connection(stream, shared).await });
+                }
+                Err(e) => warn!("accept failed: {e}"),
+            },
+            Some(_) = tasks.join_next(), if !tasks.is_empty() => {}
+        }
+    }
+    info!("shutting down: closing {} connection(s)", tasks.len());
+    let _ = stop_tx.send(true);
+    while tasks.join_next().await.is_some() {}
+    let _ = std::fs::remove_file(&shared.opts.socket);
+    info!("stratad stopped");
+    Ok(())
+}
+
+async fn send(stream: &mut UnixStream, msg: &ServerMessage) -> Result<(), HandshakeError> {
+    stream.write_all(&handshake::frame(msg)?).await?;
+    Ok(())
+}
+
+async fn recv<T: serde::de::DeserializeOwned>(
+    stream: &mut UnixStream,
+    what: &'static str,
+) -> Result<T, HandshakeError> {
+    let mut prefix = [0u8; 4];
+    stream.read_exact(&mut prefix).await?;
+    let mut body = vec![0u8; handshake::frame_len(prefix)?];
+    stream.read_exact(&mut body).await?;
+    Ok(strata_protocol::codec::decode_owned(&body, what)?)
+}
+
+async fn timed<T>(f: impl std::future::Future<Output = Result<T, HandshakeError>>) -> Result<T, HandshakeError> {
+    tokio::time::timeout(HANDSHAKE_TIMEOUT, f).await.unwrap_or_else(|_| {
+        Err(HandshakeError::Io(std::io::Error::new(std::io::ErrorKind::TimedOut, "handshake timed out")))
+    })
+}
+
+/// Reads the preamble and hello; refusals are sent to the client before the error returns.
+async fn greet(stream: &mut UnixStream) -> Result<Hello, HandshakeError> {
+    let mut pre = [0u8; 8];
+    timed(async { Ok(stream.read_exact(&mut pre).await?) }).await?;
+    if let Err(e) = handshake::check_preamble(pre) {
+        let _ = send(stream, &ServerMessage::Refused { reason: e.to_string() }).await;
+        return Err(e);
+    }
+    timed(recv::<Hello>(stream, "hello")).await
+}
+
+async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
+    let id = shared.next_id.fetch_add(1, Ordering::Relaxed);
+    let hello = match greet(&mut stream).await {
+        Ok(h) => h,
+        Err(HandshakeError::Io(e)) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            debug!(client = id, "connection closed before the handshake finished");
+            return;
+        }
+        Err(e) => {
+            warn!(client = id, "handshake refused: {e}");
+            return;
+        }
+    };
+    if hello.purpose != Purpose::Render {
+        let reason = "control connections are not served by this daemon build".to_string();
+        let _ = send(&mut stream, &ServerMessage::Refused { reason: reason.clone() }).await;
+        warn!(client = id, name = %hello.name, "refused: {reason}");
+        return;
+    }
+    let span = tracing::info_span!("client", id, name = %hello.name, role = %hello.role);
+    match run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
+        Ok(end) => match end {
+            SessionEnd::Violation(_) => span.in_scope(|| warn!("disconnected: {end}")),
+            _ => span.in_scope(|| info!("{end}")),
+        },
+        Err(e) => span.in_scope(|| warn!("session setup failed: {e}")),
+    }
+    shared.clients.lock().map(|mut c| c.remove(&id)).ok();
+}
+
+#[derive(Debug, thiserror::Error)]
+enum SetupError {
+    #[error(transparent)]
+    Handshake(#[from] HandshakeError),
+    #[error(transparent)]
+    Segment(#[from] SegmentError),
+    #[error("starting the session thread: {0}")]
+    Thread(std::io::Error),
+}
+
+async fn run_client(
+    stream: &mut UnixStream,
+    shared: &Shared,
+    id: u64,
+    hello: &Hello,
+) -> Result<SessionEnd, SetupError> {
+    let opts = &shared.opts;
+    let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
+    let welcome = ServerMessage::Welcome {
+        client_id: id,
+        segment: segment.name().to_string(),
+        cmd_capacity: opts.cmd_ring,
+        reply_capacity: opts.reply_ring,
+    };
+    timed(send(stream, &welcome)).await?;
+    let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
+    let ClientMessage::Mapped = mapped;
+    segment.unlink()?;
+    let cmd_ring = segment.command_ring()?;
+    let reply_ring = segment.reply_ring()?;
+    let waker = cmd_ring.clone();
+    let closed = Arc::new(AtomicBool::new(false));
+    let session = Session::new(
+        Reader::new(cmd_ring, MAX_MESSAGE_LEN),
+        Writer::new(reply_ring, 0),
+        hello.tally,
+        Box::new(Drain::default()),
+        closed.clone(),
+    );
+    shared
+        .clients
+        .lock()
+        .map(|mut c| c.insert(id, ClientInfo { name: hello.name.clone(), role: hello.role.clone() }))
+        .ok();
+    info!(segment = segment.name(), "client connected");
+    let (done_tx, mut done_rx) = oneshot::channel();
+    std::thread::Builder::new()
+        .name(format!("session-{id}"))
+        .spawn(move || {
+            let _keep = segment;
+            let _ = done_tx.send(session.run());
+        })
+        .map_err(SetupError::Thread)?;
+
+    let mut shutdown = shared.shutdown.clone();
+    let mut buf = [0u8; 64];
+    let mut socket_open = true;
+    let mut forced: Option<SessionEnd> = None;
+    loop {
+        tokio::select! {
+            done = &mut done_rx => {
+                let (end, stats) = done.unwrap_or((SessionEnd::Violation("session thread panicked".into()), Default::default()));
+                info!(commands = stats.commands, bytes = stats.bytes, "session ended");
+                return Ok(forced.unwrap_or(end));
+            }
+            read = stream.read(&mut buf), if socket_open => {
+                socket_open = false;
+                if let Ok(n @ 1..) = read {
+                    forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the control socket")));
+                }
+                closed.store(true, Ordering::Release);
+                waker.wake_reader();
+                waker.wake_writer();
+            }
+            _ = shutdown.changed() => {
+                closed.store(true, Ordering::Release);
+                waker.wake_reader();
+                waker.wake_writer();
+            }
+        }
+    }
+}

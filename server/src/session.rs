@@ -1,0 +1,121 @@
+//! One client's decoder loop, on its own thread: read frames from the command ring, decode and
+//! validate them, hand them to the executor, and write replies to the reply ring.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use strata_protocol::codec::{self, CodecError};
+use strata_protocol::ring::{Reader, RingError, Writer};
+use strata_protocol::tally::Tally;
+use strata_protocol::{Command, Reply, StreamTally};
+
+use crate::executor::{ExecError, Executor};
+
+/// Why a session's decoder stopped.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum SessionEnd {
+    /// The client disconnected between commands.
+    ClientLeft,
+    /// The client disconnected in the middle of a command.
+    LeftMidCommand,
+    /// The client broke the protocol; the text is the logged reason.
+    Violation(String),
+}
+
+impl std::fmt::Display for SessionEnd {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SessionEnd::ClientLeft => f.write_str("client disconnected"),
+            SessionEnd::LeftMidCommand => f.write_str("client disconnected in the middle of a command"),
+            SessionEnd::Violation(r) => write!(f, "protocol violation: {r}"),
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+enum Stop {
+    #[error(transparent)]
+    Ring(#[from] RingError),
+    #[error(transparent)]
+    Codec(#[from] CodecError),
+    #[error(transparent)]
+    Exec(#[from] ExecError),
+}
+
+/// Summary of what a session decoded.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SessionStats {
+    /// Messages decoded.
+    pub commands: u64,
+    /// Encoded bytes decoded.
+    pub bytes: u64,
+}
+
+/// A client's decoder state.
+pub struct Session {
+    reader: Reader,
+    replies: Writer,
+    tally: Option<Tally>,
+    executor: Box<dyn Executor>,
+    closed: Arc<AtomicBool>,
+    stats: SessionStats,
+}
+
+impl Session {
+    /// Assembles a session from its ring ends; `closed` is raised when the client's socket
+    /// closes or the daemon shuts down.
+    pub fn new(
+        reader: Reader,
+        replies: Writer,
+        tally: bool,
+        executor: Box<dyn Executor>,
+        closed: Arc<AtomicBool>,
+    ) -> Self {
+        Session { reader, replies, tally: tally.then(Tally::default), executor, closed, stats: SessionStats::default() }
+    }
+
+    /// Decodes and executes until the client leaves or misbehaves.
+    pub fn run(mut self) -> (SessionEnd, SessionStats) {
+        let closed = self.closed.clone();
+        let alive = move || !closed.load(Ordering::Acquire);
+        let Session { reader, replies, tally, executor, stats, .. } = &mut self;
+        loop {
+            let r = reader.recv_batch::<Stop>(&alive, |bytes| {
+                stats.commands += 1;
+                stats.bytes += bytes.len() as u64;
+                let cmd = codec::decode_command(bytes)?;
+                let op = cmd.opcode();
+                let reply = match cmd {
+                    Command::Verify { commands, crc32 } => Some(Reply::Verify(match tally {
+                        Some(t) => StreamTally {
+                            commands: t.commands(),
+                            crc32: t.crc32(),
+                            matches: t.commands() == commands && t.crc32() == crc32,
+                        },
+                        None => StreamTally { commands: 0, crc32: 0, matches: false },
+                    })),
+                    cmd => executor.execute(cmd)?,
+                };
+                if let Some(t) = tally {
+                    t.add(bytes);
+                }
+                if op.is_sync() {
+                    let reply =
+                        reply.unwrap_or_else(|| Reply::Unsupported(format!("{} is not implemented", op.name())));
+                    let len = codec::encoded_len(&reply)?;
+                    replies.write::<Stop>(len, &alive, |buf| Ok(codec::encode_into(&reply, buf).map(|_| ())?))?;
+                    replies.publish();
+                }
+                Ok(())
+            });
+            match r {
+                Ok(_) => {}
+                Err(Stop::Ring(RingError::PeerGone)) => {
+                    let end = if reader.mid_message() { SessionEnd::LeftMidCommand } else { SessionEnd::ClientLeft };
+                    return (end, *stats);
+                }
+                Err(e) => return (SessionEnd::Violation(e.to_string()), *stats),
+            }
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! Shared helpers for multi-process tests: a real `stratad` in its own process, sample-client
+//! processes, and raw clients that speak the protocol by hand.
+#![allow(dead_code)]
+
+use std::io::Write;
+use std::os::unix::net::UnixStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use strata_protocol::handshake::{self, ClientMessage, Hello, Purpose, ServerMessage, PROTOCOL_VERSION};
+use strata_protocol::ring::Writer;
+use strata_protocol::segment::Segment;
+
+/// The daemon binary under test.
+pub fn stratad() -> &'static str {
+    env!("CARGO_BIN_EXE_stratad")
+}
+
+/// A private temporary directory, removed on drop.
+pub struct TempDir(pub PathBuf);
+
+impl TempDir {
+    pub fn new(tag: &str) -> TempDir {
+        let p = std::env::temp_dir().join(format!("strata-test-{tag}-{}-{:08x}", std::process::id(), rand_u32()));
+        std::fs::create_dir_all(&p).expect("temp dir");
+        TempDir(p)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn rand_u32() -> u32 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.subsec_nanos()).unwrap_or(0)
+}
+
+/// A `stratad serve` process with its log captured to a file.
+pub struct Daemon {
+    pub child: Child,
+    pub socket: PathBuf,
+    pub log: PathBuf,
+    pub dir: TempDir,
+}
+
+impl Daemon {
+    pub fn start(tag: &str, extra: &[&str]) -> Daemon {
+        let dir = TempDir::new(tag);
+        let socket = dir.0.join("strata.sock");
+        let log = dir.0.join("stratad.log");
+        let child = Command::new(stratad())
+            .arg("serve")
+            .arg("--socket")
+            .arg(&socket)
+            .args(extra)
+            .env("RUST_LOG", "info")
+            .stderr(std::fs::File::create(&log).expect("log file"))
+            .spawn()
+            .expect("spawn stratad");
+        let d = Daemon { child, socket, log, dir };
+        d.wait_listening();
+        d
+    }
+
+    fn wait_listening(&self) {
+        let deadline = Instant::now() + Duration::from_secs(20);
+        while UnixStream::connect(&self.socket).is_err() {
+            assert!(Instant::now() < deadline, "stratad did not listen; log:\n{}", self.log_text());
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    pub fn log_text(&self) -> String {
+        std::fs::read_to_string(&self.log).unwrap_or_default()
+    }
+
+    /// Waits until the log contains `needle`.
+    pub fn wait_log(&self, needle: &str) {
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while !self.log_text().contains(needle) {
+            assert!(Instant::now() < deadline, "log never said {needle:?}; log:\n{}", self.log_text());
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    pub fn assert_running(&mut self) {
+        assert!(self.child.try_wait().expect("try_wait").is_none(), "stratad exited; log:\n{}", self.log_text());
+    }
+
+    /// Sends SIGTERM and waits for a clean exit.
+    pub fn stop(mut self) -> std::process::ExitStatus {
+        // SAFETY: kill(2) on our own child.
+        unsafe { libc::kill(self.child.id() as i32, libc::SIGTERM) };
+        self.child.wait().expect("wait stratad")
+    }
+}
+
+impl Drop for Daemon {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `stratad client` streaming `commands` verified commands.
+pub fn sample_client(socket: &Path, name: &str, commands: u64, verify_every: u64, seed: u64) -> Child {
+    Command::new(stratad())
+        .args(["client", "--name", name, "--role", "test"])
+        .args(["--commands", &commands.to_string(), "--verify-every", &verify_every.to_string()])
+        .args(["--seed", &seed.to_string(), "--socket"])
+        .arg(socket)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn sample client")
+}
+
+/// Waits for a sample client and checks that the daemon verified its whole stream.
+pub fn expect_verified(child: Child, commands: u64) {
+    let out = child.wait_with_output().expect("wait client");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains(&format!("{commands} commands verified by stratad")),
+        "client failed: {}\nstdout: {stdout}\nstderr: {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// A client that performs the handshake by hand and then writes raw bytes into its ring.
+pub struct RawClient {
+    pub stream: UnixStream,
+    pub writer: Writer,
+    pub segment: Segment,
+}
+
+impl RawClient {
+    pub fn connect(socket: &Path, name: &str) -> RawClient {
+        let mut stream = UnixStream::connect(socket).expect("connect");
+        stream.set_read_timeout(Some(Duration::from_secs(10))).expect("timeout");
+        stream.write_all(&handshake::preamble(PROTOCOL_VERSION)).expect("preamble");
+        let hello =
+            Hello { name: name.into(), role: "raw".into(), placement: None, tally: false, purpose: Purpose::Render };
+        handshake::write_message(&mut stream, &hello).expect("hello");
+        let ServerMessage::Welcome { segment, cmd_capacity, reply_capacity, .. } =
+            handshake::read_message(&mut stream, "welcome").expect("welcome")
+        else {
+            panic!("refused");
+        };
+        let segment = Segment::open(&segment, cmd_capacity, reply_capacity).expect("open segment");
+        handshake::write_message(&mut stream, &ClientMessage::Mapped).expect("mapped");
+        let writer = Writer::new(segment.command_ring().expect("ring"), 1 << 16);
+        RawClient { stream, writer, segment }
+    }
+
+    /// True once the daemon has closed our control socket.
+    pub fn wait_disconnected(&mut self) -> bool {
+        use std::io::Read;
+        let mut b = [0u8; 16];
+        loop {
+            match self.stream.read(&mut b) {
+                Ok(0) => return true,
+                Ok(_) => continue,
+                // Unread bytes on a closed Unix socket surface as a reset, not EOF.
+                Err(e) => return e.kind() == std::io::ErrorKind::ConnectionReset,
+            }
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! Multi-process transport tests: a real `stratad`, real client processes, and hostile clients.
+
+mod support;
+
+use std::io::Write;
+use std::time::Duration;
+
+use strata_client::workload::Workload;
+use strata_client::{Calls, ClientError, ConnectOptions, Connection};
+use strata_protocol::handshake::HandshakeError;
+use strata_protocol::ring::{KIND_CHUNK_FIRST, KIND_WHOLE};
+use strata_protocol::wire::Blob;
+use support::*;
+
+#[test]
+fn two_clients_stream_a_million_commands_each() {
+    let daemon = Daemon::start("million", &[]);
+    let a = sample_client(&daemon.socket, "ic-load", 1_000_000, 250_000, 11);
+    let b = sample_client(&daemon.socket, "hu-load", 1_000_000, 250_000, 12);
+    expect_verified(a, 1_000_000);
+    expect_verified(b, 1_000_000);
+    assert!(daemon.stop().success());
+}
+
+#[test]
+fn version_mismatch_is_refused_naming_both_versions() {
+    let daemon = Daemon::start("version", &[]);
+    let opts = ConnectOptions { socket: daemon.socket.clone(), version: 99, ..ConnectOptions::default() };
+    match Connection::connect(&opts) {
+        Err(ClientError::Handshake(HandshakeError::Refused(reason))) => {
+            assert!(reason.contains("version 99") && reason.contains("version 1"), "{reason}");
+        }
+        Err(e) => panic!("expected a refusal, got {e}"),
+        Ok(_) => panic!("a client with the wrong version was accepted"),
+    }
+    daemon.wait_log("protocol version mismatch");
+}
+
+fn header(len: u32, kind: u32) -> Vec<u8> {
+    [len.to_le_bytes(), kind.to_le_bytes()].concat()
+}
+
+fn framed(payload: &[u8]) -> (Vec<u8>, u32) {
+    let mut f = header(payload.len() as u32, KIND_WHOLE);
+    f.extend_from_slice(payload);
+    let size = ((f.len() + 7) & !7) as u32;
+    f.resize(size as usize, 0);
+    (f, size)
+}
+
+/// Each kind of bad input is disconnected with a logged reason while a well-behaved client
+/// keeps streaming; the daemon survives all of them.
+#[test]
+fn bad_clients_are_disconnected_and_others_unaffected() {
+    let mut daemon = Daemon::start("bad", &[]);
+    let good = sample_client(&daemon.socket, "bystander", 400_000, 20_000, 5);
+    // A second bystander in this process, connected for the whole test, streams and verifies
+    // between every bad client.
+    let opts = ConnectOptions { socket: daemon.socket.clone(), tally: true, ..ConnectOptions::default() };
+    let mut watcher = Connection::connect(&opts).expect("watcher");
+    let mut load = Workload::new(3, 2048);
+    let mut stream_and_verify = |what: &str| {
+        for _ in 0..20_000 {
+            watcher.send(&load.next_command()).expect("watcher send");
+        }
+        let t = watcher.verify().expect("watcher verify");
+        assert!(t.matches, "bystander stream damaged after {what}: {t:?}");
+    };
+
+    let garbage: Vec<u8> = (0..256u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    let (garbage_frame, garbage_size) = framed(&garbage[..37]);
+    let (unknown_frame, unknown_size) = framed(&[251, 0x60, 0xEA]);
+    let mut truncated = header(100, KIND_WHOLE);
+    truncated.extend_from_slice(&[7; 20]);
+    let mut chunk = header(24, KIND_CHUNK_FIRST);
+    chunk.extend_from_slice(&(1u64 << 20).to_le_bytes());
+    chunk.extend_from_slice(&[1; 16]);
+
+    // Each case lists the reasons any one of which the log must give.
+    type Case = (&'static str, Vec<u8>, u32, &'static [&'static str]);
+    let cases: Vec<Case> = vec![
+        ("garbage-bytes", garbage.clone(), 256, &["does not fit", "truncated frame", "unknown frame kind"]),
+        ("garbage-frame", garbage_frame, garbage_size, &["malformed", "trailing bytes", "unknown command opcode"]),
+        ("truncated-frame", truncated, 28, &["truncated frame: it needs 112 bytes but only 28"]),
+        ("absurd-length", header(0x7fff_fff0, KIND_WHOLE), 64, &["frame length 2147483632 does not fit"]),
+        ("unknown-command", unknown_frame, unknown_size, &["unknown command opcode 60000"]),
+    ];
+    for (name, bytes, advance, reasons) in cases {
+        let mut raw = RawClient::connect(&daemon.socket, name);
+        raw.writer.inject(&bytes, advance);
+        assert!(raw.wait_disconnected(), "{name}: daemon did not disconnect");
+        daemon.wait_log(&format!("name={name} role=raw}}: strata_server::listener: disconnected: protocol violation"));
+        let log = daemon.log_text();
+        let line = log
+            .lines()
+            .find(|l| l.contains(&format!("name={name} role=raw")) && l.contains("disconnected"))
+            .unwrap_or("");
+        assert!(reasons.iter().any(|r| line.contains(r)), "{name}: none of {reasons:?} logged:\n{log}");
+        daemon.assert_running();
+        stream_and_verify(name);
+    }
+
+    // Closing the socket in the middle of a (chunked) command.
+    let mut raw = RawClient::connect(&daemon.socket, "mid-command");
+    raw.writer.inject(&chunk, 32);
+    std::thread::sleep(Duration::from_millis(50));
+    drop(raw);
+    daemon.wait_log(
+        "name=mid-command role=raw}: strata_server::listener: client disconnected in the middle of a command",
+    );
+    stream_and_verify("mid-command");
+
+    // Garbage instead of a handshake, and garbage on the socket after it.
+    let mut s = std::os::unix::net::UnixStream::connect(&daemon.socket).expect("connect");
+    s.write_all(b"GET / HTTP/1.1\r\n\r\n").expect("write");
+    daemon.wait_log("not a Strata client");
+    let mut raw = RawClient::connect(&daemon.socket, "socket-garbage");
+    raw.stream.write_all(&garbage).expect("write");
+    assert!(raw.wait_disconnected(), "socket garbage: daemon did not disconnect");
+    daemon.wait_log("unexpected bytes on the control socket");
+    stream_and_verify("socket garbage");
+
+    expect_verified(good, 400_000);
+    daemon.assert_running();
+    let mut conn = Connection::connect(&ConnectOptions { socket: daemon.socket.clone(), ..ConnectOptions::default() })
+        .expect("a new client after the bad ones");
+    assert_eq!(conn.strataPing(42).expect("ping"), 42);
+    let log = daemon.log_text();
+    assert!(!log.contains("panicked"), "daemon panicked:\n{log}");
+    assert!(daemon.stop().success());
+}
+
+/// Payloads several times larger than the command ring arrive whole (chunked transfer).
+#[test]
+fn payload_larger_than_the_ring() {
+    let daemon = Daemon::start("large", &["--cmd-ring", "65536"]);
+    let opts = ConnectOptions { socket: daemon.socket.clone(), tally: true, ..ConnectOptions::default() };
+    let mut conn = Connection::connect(&opts).expect("connect");
+    let big: Vec<u8> = (0..3 * 1024 * 1024 + 13).map(|i: u32| (i % 251) as u8).collect();
+    conn.glBufferData(0x8892, big.len() as i64, Some(Blob::borrowed(&big)), 0x88E4).expect("buffer data");
+    conn.glTexImage2D(0x0DE1, 0, 0x1908, 1024, 256, 0, 0x1908, 0x1401, Some(Blob::borrowed(&big[..1 << 20])))
+        .expect("tex");
+    conn.glClear(0x4000).expect("clear");
+    let tally = conn.verify().expect("verify");
+    assert!(tally.matches, "{tally:?}");
+    assert_eq!(tally.commands, 3);
+}
+
+#[test]
+fn live_socket_is_refused_stale_socket_replaced_and_removed_on_exit() {
+    let dir = TempDir::new("claim");
+    let socket = dir.0.join("s.sock");
+    drop(std::os::unix::net::UnixListener::bind(&socket).expect("stale socket"));
+    assert!(socket.exists());
+    let log = dir.0.join("a.log");
+    let first = std::process::Command::new(stratad())
+        .args(["serve", "--socket"])
+        .arg(&socket)
+        .stderr(std::fs::File::create(&log).expect("log"))
+        .spawn()
+        .expect("spawn");
+    let mut daemon = Daemon { child: first, socket: socket.clone(), log, dir: TempDir::new("claim-log") };
+    daemon.wait_log("replacing stale socket");
+    daemon.wait_log("stratad serving");
+    let second =
+        std::process::Command::new(stratad()).args(["serve", "--socket"]).arg(&socket).output().expect("second daemon");
+    assert!(!second.status.success());
+    assert!(String::from_utf8_lossy(&second.stderr).contains("already serving"), "{second:?}");
+    daemon.assert_running();
+    assert!(daemon.stop().success());
+    assert!(!socket.exists(), "socket left behind after SIGTERM");
+}
