@@ -12,8 +12,11 @@ const MESSAGES: u64 = 50_000;
 const RING: u32 = 1 << 16;
 
 fn message(seq: u64, rng: &mut rand::rngs::StdRng) -> Vec<u8> {
-    let len =
-        if seq.is_multiple_of(1009) { rng.random_range(RING as usize..3 * RING as usize) } else { rng.random_range(0..5000) };
+    let len = if seq.is_multiple_of(1009) {
+        rng.random_range(RING as usize..3 * RING as usize)
+    } else {
+        rng.random_range(0..5000)
+    };
     let mut m = seq.to_le_bytes().to_vec();
     m.extend((0..len).map(|_| rng.random::<u8>()));
     m
