@@ -29,7 +29,8 @@ pub struct Args {
 /// Runs the daemon half until killed.
 pub fn daemon(socket: PathBuf) -> Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
-    let opts = strata_server::ServeOptions { socket, ..Default::default() };
+    let opts =
+        strata_server::ServeOptions { socket, executor: strata_server::ExecutorKind::Drain, ..Default::default() };
     rt.block_on(strata_server::serve(opts, std::future::pending()))?;
     Ok(())
 }

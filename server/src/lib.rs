@@ -6,4 +6,6 @@ pub mod executor;
 pub mod listener;
 pub mod session;
 
-pub use listener::{serve, ServeOptions, ServerError};
+pub use listener::{serve, ExecutorKind, ServeOptions, ServerError};
+pub mod gles;
+pub mod gpu;

@@ -18,6 +18,8 @@ use tokio::sync::{oneshot, watch};
 use tracing::{debug, info, warn, Instrument};
 
 use crate::executor::Drain;
+use crate::gles::GlesExecutor;
+use crate::gpu::Gpu;
 use crate::session::{Session, SessionEnd};
 
 /// How long a client may take over each handshake step.
@@ -32,11 +34,28 @@ pub struct ServeOptions {
     pub cmd_ring: u32,
     /// Reply ring capacity per client, bytes (power of two).
     pub reply_ring: u32,
+    /// What runs each client's commands.
+    pub executor: ExecutorKind,
+}
+
+/// The executor each client session gets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum ExecutorKind {
+    /// The GLES 2.0 executor on the GPU (Vulkan; lavapipe without a GPU).
+    #[default]
+    Gles,
+    /// Transport only: decode, stage bulk data, execute nothing (for transport benchmarks).
+    Drain,
 }
 
 impl Default for ServeOptions {
     fn default() -> Self {
-        ServeOptions { socket: handshake::default_socket_path(), cmd_ring: 8 << 20, reply_ring: 1 << 20 }
+        ServeOptions {
+            socket: handshake::default_socket_path(),
+            cmd_ring: 8 << 20,
+            reply_ring: 1 << 20,
+            executor: ExecutorKind::Gles,
+        }
     }
 }
 
@@ -49,6 +68,9 @@ pub enum ServerError {
     /// Something other than a socket sits at the path.
     #[error("{0} exists and is not a socket; refusing to replace it")]
     NotASocket(PathBuf),
+    /// No GPU device could be opened.
+    #[error(transparent)]
+    Gpu(#[from] crate::gpu::GpuError),
     /// Ring sizes are unusable.
     #[error("ring capacity {0} must be a power of two between 4 KiB and 1 GiB")]
     BadRing(u32),
@@ -96,6 +118,7 @@ pub struct ClientInfo {
 
 struct Shared {
     opts: ServeOptions,
+    gpu: Option<Arc<Gpu>>,
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
     shutdown: watch::Receiver<bool>,
@@ -109,10 +132,15 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
             return Err(ServerError::BadRing(cap));
         }
     }
+    let gpu = match opts.executor {
+        ExecutorKind::Gles => Some(Gpu::open()?),
+        ExecutorKind::Drain => None,
+    };
     let listener = claim_socket(&opts.socket)?;
     info!(socket = %opts.socket.display(), "stratad serving");
     let (stop_tx, stop_rx) = watch::channel(false);
-    let shared = Arc::new(Shared { opts, next_id: AtomicU64::new(1), clients: Mutex::default(), shutdown: stop_rx });
+    let shared =
+        Arc::new(Shared { opts, gpu, next_id: AtomicU64::new(1), clients: Mutex::default(), shutdown: stop_rx });
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
     loop {
@@ -235,7 +263,12 @@ async fn run_client(
         Reader::new(cmd_ring, MAX_MESSAGE_LEN),
         Writer::new(reply_ring, 0),
         hello.tally,
-        Box::new(Drain::default()),
+        match &shared.gpu {
+            Some(gpu) => {
+                Box::new(GlesExecutor::new(gpu.clone(), hello.name.clone())) as Box<dyn crate::executor::Executor>
+            }
+            None => Box::new(Drain::default()),
+        },
         closed.clone(),
     );
     shared

@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::handshake::default_socket_path;
-use strata_server::{serve, ServeOptions};
+use strata_server::{serve, ExecutorKind, ServeOptions};
 use tracing::info;
 
 /// Strata: a consolidated 3D compositing window manager daemon.
@@ -33,6 +33,9 @@ enum Cmd {
         /// Reply ring bytes per client (power of two).
         #[arg(long, default_value_t = 1 << 20)]
         reply_ring: u32,
+        /// What executes client commands.
+        #[arg(long, value_enum, default_value_t = ExecutorKind::Gles)]
+        executor: ExecutorKind,
     },
     /// Sample client: stream a seeded mix of GLES commands and have the daemon verify them.
     Client {
@@ -79,8 +82,9 @@ fn init_logging() {
 fn main() -> Result<()> {
     init_logging();
     match Cli::parse().command {
-        Cmd::Serve { socket, cmd_ring, reply_ring } => {
-            let opts = ServeOptions { socket: socket.unwrap_or_else(default_socket_path), cmd_ring, reply_ring };
+        Cmd::Serve { socket, cmd_ring, reply_ring, executor } => {
+            let opts =
+                ServeOptions { socket: socket.unwrap_or_else(default_socket_path), cmd_ring, reply_ring, executor };
             run_daemon(opts)
         }
         Cmd::Client { socket, name, role, commands, verify_every, max_upload, seed } => {

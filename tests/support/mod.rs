@@ -170,3 +170,4 @@ impl RawClient {
         }
     }
 }
+pub mod mesa;

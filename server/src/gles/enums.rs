@@ -1,0 +1,319 @@
+//! The GL ES 2.0 and EGL 1.4 enumerants the executor interprets (values from Khronos' headers).
+#![allow(missing_docs)]
+
+// Errors.
+pub const NO_ERROR: u32 = 0;
+pub const INVALID_ENUM: u32 = 0x0500;
+pub const INVALID_VALUE: u32 = 0x0501;
+pub const INVALID_OPERATION: u32 = 0x0502;
+pub const OUT_OF_MEMORY: u32 = 0x0505;
+pub const INVALID_FRAMEBUFFER_OPERATION: u32 = 0x0506;
+
+// Primitives.
+pub const POINTS: u32 = 0x0000;
+pub const LINES: u32 = 0x0001;
+pub const LINE_LOOP: u32 = 0x0002;
+pub const LINE_STRIP: u32 = 0x0003;
+pub const TRIANGLES: u32 = 0x0004;
+pub const TRIANGLE_STRIP: u32 = 0x0005;
+pub const TRIANGLE_FAN: u32 = 0x0006;
+
+// Types.
+pub const BYTE: u32 = 0x1400;
+pub const UNSIGNED_BYTE: u32 = 0x1401;
+pub const SHORT: u32 = 0x1402;
+pub const UNSIGNED_SHORT: u32 = 0x1403;
+pub const INT: u32 = 0x1404;
+pub const UNSIGNED_INT: u32 = 0x1405;
+pub const FLOAT: u32 = 0x1406;
+pub const FIXED: u32 = 0x140C;
+pub const HALF_FLOAT_OES: u32 = 0x8D61;
+pub const UNSIGNED_SHORT_4_4_4_4: u32 = 0x8033;
+pub const UNSIGNED_SHORT_5_5_5_1: u32 = 0x8034;
+pub const UNSIGNED_SHORT_5_6_5: u32 = 0x8363;
+
+// Buffers.
+pub const ARRAY_BUFFER: u32 = 0x8892;
+pub const ELEMENT_ARRAY_BUFFER: u32 = 0x8893;
+pub const ARRAY_BUFFER_BINDING: u32 = 0x8894;
+pub const ELEMENT_ARRAY_BUFFER_BINDING: u32 = 0x8895;
+pub const STREAM_DRAW: u32 = 0x88E0;
+pub const STATIC_DRAW: u32 = 0x88E4;
+pub const DYNAMIC_DRAW: u32 = 0x88E8;
+pub const BUFFER_SIZE: u32 = 0x8764;
+pub const BUFFER_USAGE: u32 = 0x8765;
+
+// Capabilities.
+pub const CULL_FACE: u32 = 0x0B44;
+pub const BLEND: u32 = 0x0BE2;
+pub const DITHER: u32 = 0x0BD0;
+pub const STENCIL_TEST: u32 = 0x0B90;
+pub const DEPTH_TEST: u32 = 0x0B71;
+pub const SCISSOR_TEST: u32 = 0x0C11;
+pub const POLYGON_OFFSET_FILL: u32 = 0x8037;
+pub const SAMPLE_ALPHA_TO_COVERAGE: u32 = 0x809E;
+pub const SAMPLE_COVERAGE: u32 = 0x80A0;
+
+// Faces and winding.
+pub const FRONT: u32 = 0x0404;
+pub const BACK: u32 = 0x0405;
+pub const FRONT_AND_BACK: u32 = 0x0408;
+pub const CW: u32 = 0x0900;
+pub const CCW: u32 = 0x0901;
+
+// Comparison.
+pub const NEVER: u32 = 0x0200;
+pub const LESS: u32 = 0x0201;
+pub const EQUAL: u32 = 0x0202;
+pub const LEQUAL: u32 = 0x0203;
+pub const GREATER: u32 = 0x0204;
+pub const NOTEQUAL: u32 = 0x0205;
+pub const GEQUAL: u32 = 0x0206;
+pub const ALWAYS: u32 = 0x0207;
+
+// Blending.
+pub const ZERO: u32 = 0;
+pub const ONE: u32 = 1;
+pub const SRC_COLOR: u32 = 0x0300;
+pub const ONE_MINUS_SRC_COLOR: u32 = 0x0301;
+pub const SRC_ALPHA: u32 = 0x0302;
+pub const ONE_MINUS_SRC_ALPHA: u32 = 0x0303;
+pub const DST_ALPHA: u32 = 0x0304;
+pub const ONE_MINUS_DST_ALPHA: u32 = 0x0305;
+pub const DST_COLOR: u32 = 0x0306;
+pub const ONE_MINUS_DST_COLOR: u32 = 0x0307;
+pub const SRC_ALPHA_SATURATE: u32 = 0x0308;
+pub const CONSTANT_COLOR: u32 = 0x8001;
+pub const ONE_MINUS_CONSTANT_COLOR: u32 = 0x8002;
+pub const CONSTANT_ALPHA: u32 = 0x8003;
+pub const ONE_MINUS_CONSTANT_ALPHA: u32 = 0x8004;
+pub const FUNC_ADD: u32 = 0x8006;
+pub const FUNC_SUBTRACT: u32 = 0x800A;
+pub const FUNC_REVERSE_SUBTRACT: u32 = 0x800B;
+
+// Stencil ops.
+pub const KEEP: u32 = 0x1E00;
+pub const REPLACE: u32 = 0x1E01;
+pub const INCR: u32 = 0x1E02;
+pub const DECR: u32 = 0x1E03;
+pub const INVERT: u32 = 0x150A;
+pub const INCR_WRAP: u32 = 0x8507;
+pub const DECR_WRAP: u32 = 0x8508;
+
+// Clear bits.
+pub const DEPTH_BUFFER_BIT: u32 = 0x0100;
+pub const STENCIL_BUFFER_BIT: u32 = 0x0400;
+pub const COLOR_BUFFER_BIT: u32 = 0x4000;
+
+// Pixel formats.
+pub const DEPTH_COMPONENT: u32 = 0x1902;
+pub const ALPHA: u32 = 0x1906;
+pub const RGB: u32 = 0x1907;
+pub const RGBA: u32 = 0x1908;
+pub const LUMINANCE: u32 = 0x1909;
+pub const LUMINANCE_ALPHA: u32 = 0x190A;
+pub const UNPACK_ALIGNMENT: u32 = 0x0CF5;
+pub const PACK_ALIGNMENT: u32 = 0x0D05;
+
+// Textures.
+pub const TEXTURE: u32 = 0x1702;
+pub const TEXTURE_2D: u32 = 0x0DE1;
+pub const TEXTURE_CUBE_MAP: u32 = 0x8513;
+pub const TEXTURE_CUBE_MAP_POSITIVE_X: u32 = 0x8515;
+pub const TEXTURE_MAG_FILTER: u32 = 0x2800;
+pub const TEXTURE_MIN_FILTER: u32 = 0x2801;
+pub const TEXTURE_WRAP_S: u32 = 0x2802;
+pub const TEXTURE_WRAP_T: u32 = 0x2803;
+pub const NEAREST: u32 = 0x2600;
+pub const LINEAR: u32 = 0x2601;
+pub const NEAREST_MIPMAP_NEAREST: u32 = 0x2700;
+pub const LINEAR_MIPMAP_NEAREST: u32 = 0x2701;
+pub const NEAREST_MIPMAP_LINEAR: u32 = 0x2702;
+pub const LINEAR_MIPMAP_LINEAR: u32 = 0x2703;
+pub const REPEAT: u32 = 0x2901;
+pub const CLAMP_TO_EDGE: u32 = 0x812F;
+pub const MIRRORED_REPEAT: u32 = 0x8370;
+pub const TEXTURE0: u32 = 0x84C0;
+
+// Shaders and programs.
+pub const FRAGMENT_SHADER: u32 = 0x8B30;
+pub const VERTEX_SHADER: u32 = 0x8B31;
+pub const SHADER_TYPE: u32 = 0x8B4F;
+pub const DELETE_STATUS: u32 = 0x8B80;
+pub const COMPILE_STATUS: u32 = 0x8B81;
+pub const LINK_STATUS: u32 = 0x8B82;
+pub const VALIDATE_STATUS: u32 = 0x8B83;
+pub const INFO_LOG_LENGTH: u32 = 0x8B84;
+pub const ATTACHED_SHADERS: u32 = 0x8B85;
+pub const ACTIVE_UNIFORMS: u32 = 0x8B86;
+pub const ACTIVE_UNIFORM_MAX_LENGTH: u32 = 0x8B87;
+pub const SHADER_SOURCE_LENGTH: u32 = 0x8B88;
+pub const ACTIVE_ATTRIBUTES: u32 = 0x8B89;
+pub const ACTIVE_ATTRIBUTE_MAX_LENGTH: u32 = 0x8B8A;
+pub const CURRENT_PROGRAM: u32 = 0x8B8D;
+pub const LOW_FLOAT: u32 = 0x8DF0;
+pub const HIGH_INT: u32 = 0x8DF5;
+
+// Uniform types.
+pub const FLOAT_VEC2: u32 = 0x8B50;
+pub const FLOAT_VEC3: u32 = 0x8B51;
+pub const FLOAT_VEC4: u32 = 0x8B52;
+pub const INT_VEC2: u32 = 0x8B53;
+pub const INT_VEC3: u32 = 0x8B54;
+pub const INT_VEC4: u32 = 0x8B55;
+pub const BOOL: u32 = 0x8B56;
+pub const BOOL_VEC2: u32 = 0x8B57;
+pub const BOOL_VEC3: u32 = 0x8B58;
+pub const BOOL_VEC4: u32 = 0x8B59;
+pub const FLOAT_MAT2: u32 = 0x8B5A;
+pub const FLOAT_MAT3: u32 = 0x8B5B;
+pub const FLOAT_MAT4: u32 = 0x8B5C;
+pub const SAMPLER_2D: u32 = 0x8B5E;
+pub const SAMPLER_CUBE: u32 = 0x8B60;
+
+// Vertex attribute queries.
+pub const VERTEX_ATTRIB_ARRAY_ENABLED: u32 = 0x8622;
+pub const VERTEX_ATTRIB_ARRAY_SIZE: u32 = 0x8623;
+pub const VERTEX_ATTRIB_ARRAY_STRIDE: u32 = 0x8624;
+pub const VERTEX_ATTRIB_ARRAY_TYPE: u32 = 0x8625;
+pub const CURRENT_VERTEX_ATTRIB: u32 = 0x8626;
+pub const VERTEX_ATTRIB_ARRAY_NORMALIZED: u32 = 0x886A;
+pub const VERTEX_ATTRIB_ARRAY_POINTER: u32 = 0x8645;
+pub const VERTEX_ATTRIB_ARRAY_BUFFER_BINDING: u32 = 0x889F;
+
+// Framebuffers.
+pub const FRAMEBUFFER: u32 = 0x8D40;
+pub const RENDERBUFFER: u32 = 0x8D41;
+pub const RGBA4: u32 = 0x8056;
+pub const RGB5_A1: u32 = 0x8057;
+pub const RGB565: u32 = 0x8D62;
+pub const DEPTH_COMPONENT16: u32 = 0x81A5;
+pub const STENCIL_INDEX8: u32 = 0x8D48;
+pub const DEPTH24_STENCIL8_OES: u32 = 0x88F0;
+pub const DEPTH_COMPONENT24_OES: u32 = 0x81A6;
+pub const RGBA8_OES: u32 = 0x8058;
+pub const RGB8_OES: u32 = 0x8051;
+pub const COLOR_ATTACHMENT0: u32 = 0x8CE0;
+pub const DEPTH_ATTACHMENT: u32 = 0x8D00;
+pub const STENCIL_ATTACHMENT: u32 = 0x8D20;
+pub const FRAMEBUFFER_COMPLETE: u32 = 0x8CD5;
+pub const FRAMEBUFFER_INCOMPLETE_ATTACHMENT: u32 = 0x8CD6;
+pub const FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: u32 = 0x8CD7;
+pub const FRAMEBUFFER_INCOMPLETE_DIMENSIONS: u32 = 0x8CD9;
+pub const FRAMEBUFFER_UNSUPPORTED: u32 = 0x8CDD;
+pub const FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE: u32 = 0x8CD0;
+pub const FRAMEBUFFER_ATTACHMENT_OBJECT_NAME: u32 = 0x8CD1;
+pub const FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL: u32 = 0x8CD2;
+pub const FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE: u32 = 0x8CD3;
+pub const RENDERBUFFER_WIDTH: u32 = 0x8D42;
+pub const RENDERBUFFER_HEIGHT: u32 = 0x8D43;
+pub const RENDERBUFFER_INTERNAL_FORMAT: u32 = 0x8D44;
+pub const NONE: u32 = 0;
+
+// Strings and limits.
+pub const VENDOR: u32 = 0x1F00;
+pub const RENDERER: u32 = 0x1F01;
+pub const VERSION: u32 = 0x1F02;
+pub const EXTENSIONS: u32 = 0x1F03;
+pub const SHADING_LANGUAGE_VERSION: u32 = 0x8B8C;
+pub const MAX_TEXTURE_SIZE: u32 = 0x0D33;
+pub const MAX_VIEWPORT_DIMS: u32 = 0x0D3A;
+pub const VIEWPORT: u32 = 0x0BA2;
+pub const SCISSOR_BOX: u32 = 0x0C10;
+pub const COLOR_CLEAR_VALUE: u32 = 0x0C22;
+pub const DEPTH_CLEAR_VALUE: u32 = 0x0B73;
+pub const DEPTH_RANGE: u32 = 0x0B70;
+pub const DEPTH_FUNC: u32 = 0x0B74;
+pub const DEPTH_WRITEMASK: u32 = 0x0B72;
+pub const COLOR_WRITEMASK: u32 = 0x0C23;
+pub const BLEND_COLOR: u32 = 0x8005;
+pub const MAX_VERTEX_ATTRIBS: u32 = 0x8869;
+pub const MAX_VERTEX_UNIFORM_VECTORS: u32 = 0x8DFB;
+pub const MAX_VARYING_VECTORS: u32 = 0x8DFC;
+pub const MAX_COMBINED_TEXTURE_IMAGE_UNITS: u32 = 0x8B4D;
+pub const MAX_VERTEX_TEXTURE_IMAGE_UNITS: u32 = 0x8B4C;
+pub const MAX_TEXTURE_IMAGE_UNITS: u32 = 0x8872;
+pub const MAX_FRAGMENT_UNIFORM_VECTORS: u32 = 0x8DFD;
+pub const MAX_CUBE_MAP_TEXTURE_SIZE: u32 = 0x851C;
+pub const MAX_RENDERBUFFER_SIZE: u32 = 0x84E8;
+pub const ALIASED_POINT_SIZE_RANGE: u32 = 0x846D;
+pub const ALIASED_LINE_WIDTH_RANGE: u32 = 0x846E;
+pub const RED_BITS: u32 = 0x0D52;
+pub const GREEN_BITS: u32 = 0x0D53;
+pub const BLUE_BITS: u32 = 0x0D54;
+pub const ALPHA_BITS: u32 = 0x0D55;
+pub const DEPTH_BITS: u32 = 0x0D56;
+pub const STENCIL_BITS: u32 = 0x0D57;
+pub const SUBPIXEL_BITS: u32 = 0x0D50;
+pub const IMPLEMENTATION_COLOR_READ_TYPE: u32 = 0x8B9A;
+pub const IMPLEMENTATION_COLOR_READ_FORMAT: u32 = 0x8B9B;
+pub const NUM_COMPRESSED_TEXTURE_FORMATS: u32 = 0x86A2;
+pub const NUM_SHADER_BINARY_FORMATS: u32 = 0x8DF9;
+pub const SHADER_COMPILER: u32 = 0x8DFA;
+pub const FRAMEBUFFER_BINDING: u32 = 0x8CA6;
+pub const RENDERBUFFER_BINDING: u32 = 0x8CA7;
+pub const TEXTURE_BINDING_2D: u32 = 0x8069;
+pub const TEXTURE_BINDING_CUBE_MAP: u32 = 0x8514;
+pub const ACTIVE_TEXTURE: u32 = 0x84E0;
+pub const CULL_FACE_MODE: u32 = 0x0B45;
+pub const FRONT_FACE: u32 = 0x0B46;
+pub const LINE_WIDTH: u32 = 0x0B21;
+pub const GENERATE_MIPMAP_HINT: u32 = 0x8192;
+pub const DONT_CARE: u32 = 0x1100;
+pub const FASTEST: u32 = 0x1101;
+pub const NICEST: u32 = 0x1102;
+
+// EGL.
+pub const EGL_SUCCESS: i32 = 0x3000;
+pub const EGL_NOT_INITIALIZED: i32 = 0x3001;
+pub const EGL_BAD_ALLOC: i32 = 0x3003;
+pub const EGL_BAD_ATTRIBUTE: i32 = 0x3004;
+pub const EGL_BAD_CONFIG: i32 = 0x3005;
+pub const EGL_BAD_CONTEXT: i32 = 0x3006;
+pub const EGL_BAD_DISPLAY: i32 = 0x3008;
+pub const EGL_BAD_MATCH: i32 = 0x3009;
+pub const EGL_BAD_NATIVE_WINDOW: i32 = 0x300B;
+pub const EGL_BAD_PARAMETER: i32 = 0x300C;
+pub const EGL_BAD_SURFACE: i32 = 0x300D;
+pub const EGL_BUFFER_SIZE: i32 = 0x3020;
+pub const EGL_ALPHA_SIZE: i32 = 0x3021;
+pub const EGL_BLUE_SIZE: i32 = 0x3022;
+pub const EGL_GREEN_SIZE: i32 = 0x3023;
+pub const EGL_RED_SIZE: i32 = 0x3024;
+pub const EGL_DEPTH_SIZE: i32 = 0x3025;
+pub const EGL_STENCIL_SIZE: i32 = 0x3026;
+pub const EGL_CONFIG_CAVEAT: i32 = 0x3027;
+pub const EGL_CONFIG_ID: i32 = 0x3028;
+pub const EGL_LEVEL: i32 = 0x3029;
+pub const EGL_MAX_PBUFFER_HEIGHT: i32 = 0x302A;
+pub const EGL_MAX_PBUFFER_PIXELS: i32 = 0x302B;
+pub const EGL_MAX_PBUFFER_WIDTH: i32 = 0x302C;
+pub const EGL_NATIVE_RENDERABLE: i32 = 0x302D;
+pub const EGL_NATIVE_VISUAL_ID: i32 = 0x302E;
+pub const EGL_NATIVE_VISUAL_TYPE: i32 = 0x302F;
+pub const EGL_SAMPLES: i32 = 0x3031;
+pub const EGL_SAMPLE_BUFFERS: i32 = 0x3032;
+pub const EGL_SURFACE_TYPE: i32 = 0x3033;
+pub const EGL_TRANSPARENT_TYPE: i32 = 0x3034;
+pub const EGL_NONE: i32 = 0x3038;
+pub const EGL_BIND_TO_TEXTURE_RGB: i32 = 0x3039;
+pub const EGL_BIND_TO_TEXTURE_RGBA: i32 = 0x303A;
+pub const EGL_MIN_SWAP_INTERVAL: i32 = 0x303B;
+pub const EGL_MAX_SWAP_INTERVAL: i32 = 0x303C;
+pub const EGL_LUMINANCE_SIZE: i32 = 0x303D;
+pub const EGL_ALPHA_MASK_SIZE: i32 = 0x303E;
+pub const EGL_COLOR_BUFFER_TYPE: i32 = 0x303F;
+pub const EGL_RENDERABLE_TYPE: i32 = 0x3040;
+pub const EGL_CONFORMANT: i32 = 0x3042;
+pub const EGL_RGB_BUFFER: i32 = 0x308E;
+pub const EGL_HEIGHT: i32 = 0x3056;
+pub const EGL_WIDTH: i32 = 0x3057;
+pub const EGL_PBUFFER_BIT: i32 = 0x0001;
+pub const EGL_WINDOW_BIT: i32 = 0x0004;
+pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
+pub const EGL_DONT_CARE: i32 = -1;
+pub const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
+pub const EGL_RENDER_BUFFER: i32 = 0x3086;
+pub const EGL_BACK_BUFFER: i32 = 0x3084;
+pub const EGL_SWAP_BEHAVIOR: i32 = 0x3093;
+pub const EGL_BUFFER_DESTROYED: i32 = 0x3095;

@@ -1,0 +1,238 @@
+//! Small GLES 2.0 programs, each exercising part of the executor, written once against `Calls`
+//! and run by `gles_oracle.rs` through both Strata and Mesa.
+#![allow(dead_code)]
+
+use strata_client::{Calls, ClientError};
+use strata_protocol::{Blob, Slice, Text};
+
+/// Framebuffer width.
+pub const W: i32 = 64;
+/// Framebuffer height.
+pub const H: i32 = 64;
+
+/// A backend-neutral GL.
+pub type Gl<'a> = &'a mut dyn Calls<Error = ClientError>;
+type R = Result<(), ClientError>;
+
+/// Per-case tolerance and why it is what it is.
+#[derive(Clone, Copy)]
+pub struct Tol {
+    /// Largest per-channel difference that counts as equal.
+    pub max_diff: u8,
+    /// Fraction of pixels that must be equal.
+    pub min_fraction: f64,
+}
+
+/// The default: ≤ 1/255 per channel on ≥ 99.9 % of pixels (rounding of the last bit).
+pub const DEFAULT: Tol = Tol { max_diff: 1, min_fraction: 0.999 };
+
+/// One program of the suite.
+pub struct Case {
+    /// Name (also the failure image prefix).
+    pub name: &'static str,
+    /// The program.
+    pub run: fn(Gl<'_>, &mut Names) -> R,
+    /// Its tolerance.
+    pub tol: Tol,
+    /// Whether it deliberately leaves a GL error behind.
+    pub expects_error: bool,
+}
+
+/// Client-side name allocation, as an application's shim does it.
+#[derive(Default)]
+pub struct Names(u32);
+
+impl Names {
+    /// A fresh object name.
+    pub fn next(&mut self) -> u32 {
+        self.0 += 1;
+        self.0 + 100
+    }
+}
+
+// GL enums used below.
+pub const TRIANGLES: u32 = 0x0004;
+pub const TRIANGLE_STRIP: u32 = 0x0005;
+pub const TRIANGLE_FAN: u32 = 0x0006;
+pub const LINES: u32 = 0x0001;
+pub const LINE_LOOP: u32 = 0x0002;
+pub const LINE_STRIP: u32 = 0x0003;
+pub const FLOAT: u32 = 0x1406;
+pub const BYTE: u32 = 0x1400;
+pub const UNSIGNED_BYTE: u32 = 0x1401;
+pub const SHORT: u32 = 0x1402;
+pub const UNSIGNED_SHORT: u32 = 0x1403;
+pub const UNSIGNED_INT: u32 = 0x1405;
+pub const FIXED: u32 = 0x140C;
+pub const HALF_FLOAT_OES: u32 = 0x8D61;
+pub const ARRAY_BUFFER: u32 = 0x8892;
+pub const ELEMENT_ARRAY_BUFFER: u32 = 0x8893;
+pub const STATIC_DRAW: u32 = 0x88E4;
+pub const COLOR_BUFFER_BIT: u32 = 0x4000;
+pub const DEPTH_BUFFER_BIT: u32 = 0x0100;
+pub const STENCIL_BUFFER_BIT: u32 = 0x0400;
+pub const DEPTH_TEST: u32 = 0x0B71;
+pub const CULL_FACE: u32 = 0x0B44;
+pub const BLEND: u32 = 0x0BE2;
+pub const SCISSOR_TEST: u32 = 0x0C11;
+pub const STENCIL_TEST: u32 = 0x0B90;
+pub const POLYGON_OFFSET_FILL: u32 = 0x8037;
+pub const TEXTURE_2D: u32 = 0x0DE1;
+pub const TEXTURE_CUBE_MAP: u32 = 0x8513;
+pub const TEXTURE_CUBE_MAP_POSITIVE_X: u32 = 0x8515;
+pub const TEXTURE0: u32 = 0x84C0;
+pub const RGBA: u32 = 0x1908;
+pub const RGB: u32 = 0x1907;
+pub const ALPHA: u32 = 0x1906;
+pub const LUMINANCE: u32 = 0x1909;
+pub const LUMINANCE_ALPHA: u32 = 0x190A;
+pub const NEAREST: i32 = 0x2600;
+pub const LINEAR: i32 = 0x2601;
+pub const LINEAR_MIPMAP_LINEAR: i32 = 0x2703;
+pub const NEAREST_MIPMAP_NEAREST: i32 = 0x2700;
+pub const TEXTURE_MAG_FILTER: u32 = 0x2800;
+pub const TEXTURE_MIN_FILTER: u32 = 0x2801;
+pub const TEXTURE_WRAP_S: u32 = 0x2802;
+pub const TEXTURE_WRAP_T: u32 = 0x2803;
+pub const REPEAT: i32 = 0x2901;
+pub const CLAMP_TO_EDGE: i32 = 0x812F;
+pub const MIRRORED_REPEAT: i32 = 0x8370;
+pub const FRAMEBUFFER: u32 = 0x8D40;
+pub const RENDERBUFFER: u32 = 0x8D41;
+pub const COLOR_ATTACHMENT0: u32 = 0x8CE0;
+pub const DEPTH_ATTACHMENT: u32 = 0x8D00;
+pub const DEPTH_COMPONENT16: u32 = 0x81A5;
+pub const UNPACK_ALIGNMENT: u32 = 0x0CF5;
+
+/// Compiles and links `vs` + `fs` with `attribs` bound to locations 0, 1, …, and uses it.
+pub fn program(gl: Gl<'_>, names: &mut Names, vs: &str, fs: &str, attribs: &[&str]) -> Result<u32, ClientError> {
+    let p = names.next();
+    gl.glCreateProgram(p)?;
+    for (ty, src) in [(0x8B31u32, vs), (0x8B30, fs)] {
+        let s = names.next();
+        gl.glCreateShader(ty, s)?;
+        gl.glShaderSource(s, Text::borrowed(src))?;
+        gl.glCompileShader(s)?;
+        if gl.glGetShaderiv(s, 0x8B81)? == 0 {
+            return Err(ClientError::Unsupported(format!("compile failed: {}", gl.glGetShaderInfoLog(s)?)));
+        }
+        gl.glAttachShader(p, s)?;
+    }
+    for (i, a) in attribs.iter().enumerate() {
+        gl.glBindAttribLocation(p, i as u32, Text::borrowed(a))?;
+    }
+    gl.glLinkProgram(p)?;
+    if gl.glGetProgramiv(p, 0x8B82)? == 0 {
+        return Err(ClientError::Unsupported(format!("link failed: {}", gl.glGetProgramInfoLog(p)?)));
+    }
+    gl.glUseProgram(p)?;
+    Ok(p)
+}
+
+/// A buffer holding `data`, left bound to `target`.
+pub fn buffer(gl: Gl<'_>, names: &mut Names, target: u32, data: &[u8]) -> Result<u32, ClientError> {
+    let b = names.next();
+    gl.glGenBuffers(Slice::new(&[b]))?;
+    gl.glBindBuffer(target, b)?;
+    gl.glBufferData(target, data.len() as i64, Some(Blob::borrowed(data)), STATIC_DRAW)?;
+    Ok(b)
+}
+
+/// Floats as bytes.
+pub fn f32s(v: &[f32]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_ne_bytes()).collect()
+}
+
+/// Binds attribute `index` to the bound array buffer with `size` floats per vertex.
+pub fn attrib(gl: Gl<'_>, index: u32, size: i32, ty: u32, normalized: bool, stride: i32, offset: u64) -> R {
+    gl.glVertexAttribPointer(index, size, ty, normalized, stride, offset)?;
+    gl.glEnableVertexAttribArray(index)
+}
+
+/// An axis-aligned quad as two triangles at depth `z`, in clip space.
+pub fn quad(x0: f32, y0: f32, x1: f32, y1: f32, z: f32) -> Vec<f32> {
+    vec![x0, y0, z, x1, y0, z, x1, y1, z, x0, y0, z, x1, y1, z, x0, y1, z]
+}
+
+/// Draws `verts` (xyz triples) with the bound program, attribute 0 = position.
+pub fn draw_positions(gl: Gl<'_>, names: &mut Names, verts: &[f32], mode: u32) -> R {
+    buffer(gl, names, ARRAY_BUFFER, &f32s(verts))?;
+    attrib(gl, 0, 3, FLOAT, false, 0, 0)?;
+    gl.glDrawArrays(mode, 0, (verts.len() / 3) as i32)
+}
+
+/// Sets the `color` uniform of program `p`.
+pub fn color(gl: Gl<'_>, p: u32, c: [f32; 4]) -> R {
+    let loc = gl.glGetUniformLocation(p, Text::borrowed("color"))?;
+    gl.glUniform4f(loc, c[0], c[1], c[2], c[3])
+}
+
+/// A 2D texture from RGBA8 pixels, bound to unit 0, with the given filters and wraps.
+#[allow(clippy::too_many_arguments)]
+pub fn texture(
+    gl: Gl<'_>,
+    names: &mut Names,
+    w: i32,
+    h: i32,
+    format: u32,
+    ty: u32,
+    px: &[u8],
+    filter: i32,
+    wrap: i32,
+) -> Result<u32, ClientError> {
+    let t = names.next();
+    gl.glGenTextures(Slice::new(&[t]))?;
+    gl.glActiveTexture(TEXTURE0)?;
+    gl.glBindTexture(TEXTURE_2D, t)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, format as i32, w, h, 0, format, ty, Some(Blob::borrowed(px)))?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, filter)?;
+    gl.glTexParameteri(
+        TEXTURE_2D,
+        TEXTURE_MAG_FILTER,
+        if filter == LINEAR || filter == LINEAR_MIPMAP_LINEAR { LINEAR } else { NEAREST },
+    )?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_WRAP_S, wrap)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_WRAP_T, wrap)?;
+    Ok(t)
+}
+
+/// A deterministic test pattern of `w`×`h` RGBA8 pixels.
+pub fn pattern(w: i32, h: i32) -> Vec<u8> {
+    let mut v = Vec::with_capacity((w * h * 4) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            v.extend_from_slice(&[
+                (x * 255 / (w - 1).max(1)) as u8,
+                (y * 255 / (h - 1).max(1)) as u8,
+                ((x ^ y) * 37 % 256) as u8,
+                255,
+            ]);
+        }
+    }
+    v
+}
+
+pub const VS_POS: &str = "attribute vec4 pos; void main() { gl_Position = pos; }";
+pub const FS_COLOR: &str = "precision mediump float; uniform vec4 color; void main() { gl_FragColor = color; }";
+pub const VS_COLOR: &str =
+    "attribute vec4 pos; attribute vec4 col; varying vec4 v; void main() { v = col; gl_Position = pos; }";
+pub const FS_VARY: &str = "precision mediump float; varying vec4 v; void main() { gl_FragColor = v; }";
+pub const VS_TEX: &str =
+    "attribute vec4 pos; attribute vec2 uv; varying vec2 t; void main() { t = uv; gl_Position = pos; }";
+pub const FS_TEX: &str =
+    "precision mediump float; uniform sampler2D s; varying vec2 t; void main() { gl_FragColor = texture2D(s, t); }";
+
+/// A full-screen quad with texture coordinates `uv0..uv1` drawn with the bound texture program.
+pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
+    let v = [
+        -1.0, -1.0, uv0, uv0, 1.0, -1.0, uv1, uv0, 1.0, 1.0, uv1, uv1, -1.0, -1.0, uv0, uv0, 1.0, 1.0, uv1, uv1, -1.0,
+        1.0, uv0, uv1,
+    ];
+    buffer(gl, names, ARRAY_BUFFER, &f32s(&v))?;
+    attrib(gl, 0, 2, FLOAT, false, 16, 0)?;
+    attrib(gl, 1, 2, FLOAT, false, 16, 8)?;
+    gl.glDrawArrays(TRIANGLES, 0, 6)
+}
+
+mod cases;
+pub use cases::all;
