@@ -174,6 +174,11 @@ command_set! {
         glViewport => Viewport { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
         /// Flips the surface's back and front targets; back-pressure comes as events.
         eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle };
+        /// A client-side vertex array, copied at draw time: the bytes of attribute `index`
+        /// from the array's start through the last vertex the next draw reads.
+        strataVertexAttribData => VertexAttribData { index: GLuint, data: Blob<'a> };
+        /// `glDrawElements` with a client-side index array.
+        strataDrawElementsData => DrawElementsData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a> };
     }
     sync {
         glCheckFramebufferStatus => CheckFramebufferStatus { target: GLenum } -> GLenum;

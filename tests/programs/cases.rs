@@ -688,6 +688,37 @@ fn read_pixels_after_errors(gl: Gl<'_>, n: &mut Names) -> R {
     triangle_flat(gl, n)
 }
 
+fn client_arrays(gl: Gl<'_>, n: &mut Names) -> R {
+    program(gl, n, VS_COLOR, FS_VARY, &["pos", "col"])?;
+    gl.glBindBuffer(ARRAY_BUFFER, 0)?;
+    // Interleaved client memory: xy as floats, then RGBA as normalised bytes.
+    let mut mem = Vec::new();
+    for (x, y, c) in
+        [(-0.9f32, -0.9f32, [255u8, 0, 0, 255]), (0.9, -0.9, [0, 255, 0, 255]), (0.0, 0.9, [0, 0, 255, 255])]
+    {
+        mem.extend_from_slice(&x.to_ne_bytes());
+        mem.extend_from_slice(&y.to_ne_bytes());
+        mem.extend_from_slice(&c);
+    }
+    gl.glVertexAttribPointer(0, 2, FLOAT, false, 12, 0)?;
+    gl.glEnableVertexAttribArray(0)?;
+    gl.glVertexAttribPointer(1, 4, UNSIGNED_BYTE, true, 12, 0)?;
+    gl.glEnableVertexAttribArray(1)?;
+    gl.strataVertexAttribData(0, Blob::borrowed(&mem))?;
+    gl.strataVertexAttribData(1, Blob::borrowed(&mem[8..]))?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)
+}
+
+fn client_indices(gl: Gl<'_>, n: &mut Names) -> R {
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    color(gl, p, [0.9, 0.4, 0.7, 1.0])?;
+    let verts = [-0.9f32, -0.9, 0.0, 0.9, -0.9, 0.0, 0.9, 0.9, 0.0, -0.9, 0.9, 0.0];
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&verts))?;
+    attrib(gl, 0, 3, FLOAT, false, 0, 0)?;
+    gl.glBindBuffer(ELEMENT_ARRAY_BUFFER, 0)?;
+    gl.strataDrawElementsData(TRIANGLE_STRIP, 4, UNSIGNED_BYTE, Blob::borrowed(&[0, 1, 3, 2]))
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -748,6 +779,8 @@ pub fn all() -> Vec<Case> {
         c("preprocessor_and_builtins", preprocessor_and_builtins, math_tol),
         c("attrib_location_query", attrib_location_query, DEFAULT),
         c("buffer_sub_data", buffer_sub_data, DEFAULT),
+        c("client_arrays", client_arrays, DEFAULT),
+        c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),
         Case { name: "read_pixels_after_errors", run: read_pixels_after_errors, tol: DEFAULT, expects_error: true },
     ]

@@ -27,6 +27,8 @@ pub struct MesaGl {
     gles: Library,
     fns: HashMap<&'static str, Ptr>,
     shaders: HashMap<u32, u32>,
+    /// Per attribute: the last pointer parameters and the client bytes they point at.
+    client: HashMap<u32, ((i32, u32, bool, i32), Vec<u8>)>,
     display: Ptr,
     pub renderer: String,
 }
@@ -100,6 +102,7 @@ impl MesaGl {
             gles,
             fns: HashMap::new(),
             shaders: HashMap::new(),
+            client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),
         };
@@ -537,17 +540,49 @@ impl Calls for MesaGl {
             C::VertexAttrib4f { index, x, y, z, w } => {
                 call!(self, "glVertexAttrib4f", fn(u32, f32, f32, f32, f32) -> (), *index, *x, *y, *z, *w)
             }
-            C::VertexAttribPointer { index, size, attrib_type, normalized, stride, offset } => call!(
-                self,
-                "glVertexAttribPointer",
-                fn(u32, i32, u32, u8, i32, usize) -> (),
-                *index,
-                *size,
-                *attrib_type,
-                u8::from(*normalized),
-                *stride,
-                *offset as usize
-            ),
+            C::VertexAttribData { index, data } => {
+                let Some(((size, ty, norm, stride), bytes)) = self.client.get_mut(index) else {
+                    return Err(unsupported("client data for an attribute without a pointer"));
+                };
+                *bytes = data.as_bytes().to_vec();
+                let (size, ty, norm, stride, ptr) = (*size, *ty, *norm, *stride, bytes.as_ptr());
+                call!(
+                    self,
+                    "glVertexAttribPointer",
+                    fn(u32, i32, u32, u8, i32, *const u8) -> (),
+                    *index,
+                    size,
+                    ty,
+                    u8::from(norm),
+                    stride,
+                    ptr
+                )
+            }
+            C::DrawElementsData { mode, count, index_type, indices } => {
+                call!(
+                    self,
+                    "glDrawElements",
+                    fn(u32, i32, u32, *const u8) -> (),
+                    *mode,
+                    *count,
+                    *index_type,
+                    indices.as_bytes().as_ptr()
+                )
+            }
+            C::VertexAttribPointer { index, size, attrib_type, normalized, stride, offset } => {
+                self.client.insert(*index, ((*size, *attrib_type, *normalized, *stride), Vec::new()));
+                call!(
+                    self,
+                    "glVertexAttribPointer",
+                    fn(u32, i32, u32, u8, i32, usize) -> (),
+                    *index,
+                    *size,
+                    *attrib_type,
+                    u8::from(*normalized),
+                    *stride,
+                    *offset as usize
+                )
+            }
             C::Viewport { x, y, width, height } => {
                 call!(self, "glViewport", fn(i32, i32, i32, i32) -> (), *x, *y, *width, *height)
             }

@@ -38,6 +38,16 @@ struct Attrib {
     offset: u64,
     buffer: u32,
     current: [f32; 4],
+    /// A client-side array's bytes for the next draw (`buffer` is 0).
+    client: Option<Vec<u8>>,
+}
+
+/// Where a draw's indices come from.
+enum Indices {
+    /// The bound element array buffer, at a byte offset.
+    Buffer(u32, u64),
+    /// A client-side index array sent with the draw.
+    Client(u32, Vec<u8>),
 }
 
 impl Default for Attrib {
@@ -51,6 +61,7 @@ impl Default for Attrib {
             offset: 0,
             buffer: 0,
             current: [0.0, 0.0, 0.0, 1.0],
+            client: None,
         }
     }
 }
@@ -770,7 +781,15 @@ impl GlesExecutor {
                 if count < 0 {
                     self.ctx(cid).err(INVALID_VALUE);
                 } else {
-                    self.draw(mode, count as u32, Some((index_type, offset)), 0);
+                    self.draw(mode, count as u32, Some(Indices::Buffer(index_type, offset)), 0);
+                }
+                return None;
+            }
+            Command::DrawElementsData { mode, count, index_type, indices } => {
+                if count < 0 {
+                    self.ctx(cid).err(INVALID_VALUE);
+                } else {
+                    self.draw(mode, count as u32, Some(Indices::Client(index_type, indices.as_bytes().to_vec())), 0);
                 }
                 return None;
             }
@@ -1110,7 +1129,7 @@ impl GlesExecutor {
         gpu.queue.submit([enc.finish()]);
     }
 
-    fn draw(&mut self, mode: u32, count: u32, indices: Option<(u32, u64)>, first: u32) {
+    fn draw(&mut self, mode: u32, count: u32, indices: Option<Indices>, first: u32) {
         let Some((cid, _)) = self.current else { return };
         let topology = match mode {
             POINTS => wgpu::PrimitiveTopology::PointList,
@@ -1120,8 +1139,8 @@ impl GlesExecutor {
             TRIANGLE_STRIP => wgpu::PrimitiveTopology::TriangleStrip,
             _ => return self.ctx(cid).err(INVALID_ENUM),
         };
-        if let Some((ty, _)) = indices {
-            if !matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT) {
+        if let Some(Indices::Buffer(ty, _) | Indices::Client(ty, _)) = &indices {
+            if !matches!(*ty, UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT) {
                 return self.ctx(cid).err(INVALID_ENUM);
             }
         }
@@ -1138,8 +1157,15 @@ impl GlesExecutor {
         let mut index: Option<(Source, wgpu::IndexFormat)> = None;
         let mut list: Option<Vec<u32>> = None;
         let vertex_count: u64;
-        if let Some((ty, offset)) = indices {
-            let Some(buf) = ctx.buffers.get(&ctx.element_buffer) else { return ctx.err(INVALID_OPERATION) };
+        if let Some(indices) = &indices {
+            let (ty, offset, gpu, data): (u32, u64, Option<&wgpu::Buffer>, &[u8]) = match indices {
+                Indices::Buffer(ty, offset) => {
+                    let Some(buf) = ctx.buffers.get(&ctx.element_buffer) else { return ctx.err(INVALID_OPERATION) };
+                    (*ty, *offset, buf.gpu.as_ref(), &buf.data)
+                }
+                // Client indices are always rewritten into the per-pass ring below.
+                Indices::Client(ty, bytes) => (*ty, 0, None, bytes),
+            };
             let size = if ty == UNSIGNED_BYTE {
                 1
             } else if ty == UNSIGNED_SHORT {
@@ -1148,7 +1174,7 @@ impl GlesExecutor {
                 4
             };
             let end = offset.checked_add(u64::from(count) * size);
-            let Some(bytes) = end.and_then(|e| buf.data.get(offset as usize..e as usize)) else {
+            let Some(bytes) = end.and_then(|e| data.get(offset as usize..e as usize)) else {
                 return ctx.err(INVALID_OPERATION);
             };
             let values: Vec<u32> = match size {
@@ -1161,11 +1187,14 @@ impl GlesExecutor {
             // restart value no validated index can reach.
             let strip = matches!(mode, LINE_STRIP | TRIANGLE_STRIP);
             let restart_hazard = strip && size == 2 && values.contains(&0xFFFF);
-            let direct =
-                size != 1 && offset % size == 0 && !matches!(mode, LINE_LOOP | TRIANGLE_FAN) && !restart_hazard;
+            let direct = size != 1
+                && offset.is_multiple_of(size)
+                && !matches!(mode, LINE_LOOP | TRIANGLE_FAN)
+                && !restart_hazard
+                && gpu.is_some();
             if direct {
                 let fmt = if size == 2 { wgpu::IndexFormat::Uint16 } else { wgpu::IndexFormat::Uint32 };
-                index = buf.gpu.clone().map(|g| (Source::Buffer(g, offset), fmt));
+                index = gpu.cloned().map(|g| (Source::Buffer(g, offset), fmt));
             } else {
                 list = Some(values);
             }
@@ -1202,30 +1231,40 @@ impl GlesExecutor {
                 continue;
             }
             let _ = var;
-            let Some(buf) = ctx.buffers.get(&a.buffer) else { return ctx.err(INVALID_OPERATION) };
+            // A buffer object's shadow, or the client array sent for this draw (offset 0).
+            let (data, gpu, offset): (&[u8], Option<&wgpu::Buffer>, u64) = if a.buffer == 0 {
+                match &a.client {
+                    Some(bytes) => (bytes, None, 0),
+                    None => return ctx.err(INVALID_OPERATION),
+                }
+            } else {
+                match ctx.buffers.get(&a.buffer) {
+                    Some(buf) => (&buf.data, buf.gpu.as_ref(), a.offset),
+                    None => return ctx.err(INVALID_OPERATION),
+                }
+            };
             let elem = type_size(a.ty).unwrap_or(4) * a.size as usize;
             let stride = if a.stride == 0 { elem } else { a.stride as usize };
-            let need = a.offset as usize + (vertex_count as usize - 1) * stride + elem;
-            if need > buf.data.len() {
+            let need = offset as usize + (vertex_count as usize - 1) * stride + elem;
+            if need > data.len() {
                 return ctx.err(INVALID_OPERATION);
             }
             match native_format(a.ty, a.size, a.normalized) {
-                Some(fmt) if a.offset.is_multiple_of(4) && stride % 4 == 0 && buf.gpu.is_some() => {
-                    inputs.push(VertexInput {
-                        location: *loc,
-                        format: fmt,
-                        stride: stride as u64,
-                        source: Source::Buffer(buf.gpu.clone().expect("checked"), a.offset),
-                    });
+                Some(fmt) if offset.is_multiple_of(4) && stride.is_multiple_of(4) => {
+                    let source = match gpu {
+                        Some(g) => Source::Buffer(g.clone(), offset),
+                        None => Source::Bytes(data[..need].to_vec()),
+                    };
+                    inputs.push(VertexInput { location: *loc, format: fmt, stride: stride as u64, source });
                 }
                 _ => {
                     let ts = type_size(a.ty).unwrap_or(4);
                     let mut out = Vec::with_capacity(vertex_count as usize * a.size as usize * 4);
                     for v in 0..vertex_count as usize {
-                        let base = a.offset as usize + v * stride;
+                        let base = offset as usize + v * stride;
                         for c in 0..a.size as usize {
                             let at = base + c * ts;
-                            out.extend_from_slice(&component(&buf.data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
+                            out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
                         }
                     }
                     inputs.push(VertexInput {
@@ -1661,10 +1700,8 @@ fn ctx_command(ctx: &mut Context, gpu: &Gpu, uid: u64, cmd: Command<'_>) -> Opti
             if type_size(attrib_type).is_none() {
                 return err(ctx, INVALID_ENUM);
             }
-            if ctx.array_buffer == 0 {
-                // Client-side arrays arrive as data at draw time; a bare pointer is not one.
-                return err(ctx, INVALID_OPERATION);
-            }
+            // With no array buffer bound the pointer names a client-side array, whose bytes
+            // arrive with `strataVertexAttribData` before each draw.
             let buffer = ctx.array_buffer;
             let a = &mut ctx.attribs[index as usize];
             a.size = size;
@@ -1674,6 +1711,11 @@ fn ctx_command(ctx: &mut Context, gpu: &Gpu, uid: u64, cmd: Command<'_>) -> Opti
             a.offset = offset;
             a.buffer = buffer;
         }
+        C::VertexAttribData { index, data } => match ctx.attribs.get_mut(index as usize) {
+            Some(a) if a.buffer == 0 => a.client = Some(data.as_bytes().to_vec()),
+            Some(_) => ctx.err(INVALID_OPERATION),
+            None => ctx.err(INVALID_VALUE),
+        },
         C::EnableVertexAttribArray { index } | C::DisableVertexAttribArray { index } => {
             let on = matches!(cmd, C::EnableVertexAttribArray { .. });
             match ctx.attribs.get_mut(index as usize) {
