@@ -21,6 +21,9 @@ pub fn lib_dir() -> String {
     format!("/usr/lib/{triple}")
 }
 
+/// `glVertexAttribPointer`'s size, type, normalized and stride.
+type PointerParams = (i32, u32, bool, i32);
+
 /// A current Mesa ES2 context on a pbuffer.
 pub struct MesaGl {
     _egl: Library,
@@ -28,7 +31,7 @@ pub struct MesaGl {
     fns: HashMap<&'static str, Ptr>,
     shaders: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
-    client: HashMap<u32, ((i32, u32, bool, i32), Vec<u8>)>,
+    client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
     pub renderer: String,
 }
