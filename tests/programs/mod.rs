@@ -43,6 +43,11 @@ pub struct Case {
 pub struct Names(u32);
 
 impl Names {
+    /// An allocator whose names start above `base`.
+    pub fn starting_at(base: u32) -> Names {
+        Names(base)
+    }
+
     /// A fresh object name.
     pub fn next(&mut self) -> u32 {
         self.0 += 1;
@@ -235,4 +240,5 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 }
 
 mod cases;
+pub mod harness;
 pub use cases::all;

@@ -1,0 +1,197 @@
+//! GL misuse against the executor: every invalid call records the GL error a driver would and
+//! changes nothing; draws that would read past a buffer or index beyond the vertex data are
+//! refused with GL_INVALID_OPERATION before reaching the GPU; a malformed shader yields an info
+//! log. Meanwhile a second client keeps drawing, and its images must keep matching Mesa's.
+
+mod programs;
+mod support;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use programs::harness::{compare, render, render_with, strata_context};
+use programs::*;
+use strata_client::ClientError;
+use strata_protocol::{Blob, Slice, Text};
+use support::mesa::MesaGl;
+use support::Daemon;
+
+const NO_ERROR: u32 = 0;
+const INVALID_ENUM: u32 = 0x0500;
+const INVALID_VALUE: u32 = 0x0501;
+const INVALID_OPERATION: u32 = 0x0502;
+const INVALID_FRAMEBUFFER_OPERATION: u32 = 0x0506;
+
+fn expect(gl: Gl<'_>, what: &str, want: u32) {
+    let got = gl.glGetError().expect("glGetError");
+    assert_eq!(got, want, "{what}: expected GL error {want:#x}, got {got:#x}");
+}
+
+fn misuse(gl: Gl<'_>) -> Result<(), ClientError> {
+    let n = &mut Names::default();
+    expect(gl, "fresh context", NO_ERROR);
+
+    // Invalid enums and values: the error is recorded and the state is unchanged.
+    gl.glEnable(0x1234)?;
+    expect(gl, "glEnable(bad)", INVALID_ENUM);
+    assert!(!gl.glIsEnabled(DEPTH_TEST)?);
+    gl.glDepthFunc(0x9999)?;
+    expect(gl, "glDepthFunc(bad)", INVALID_ENUM);
+    assert_eq!(gl.glGetIntegerv(0x0B74)?[0], 0x0201, "depth func unchanged");
+    gl.glBlendFunc(0x9999, 1)?;
+    expect(gl, "glBlendFunc(bad)", INVALID_ENUM);
+    gl.glViewport(0, 0, -1, 10)?;
+    expect(gl, "glViewport(negative)", INVALID_VALUE);
+    assert_eq!(gl.glGetIntegerv(0x0BA2)?[..4], [0, 0, W, H], "viewport unchanged");
+    // Only the first error is kept until it is read.
+    gl.glCullFace(0x7777)?;
+    gl.glLineWidth(-1.0)?;
+    expect(gl, "first of two errors", INVALID_ENUM);
+    expect(gl, "flag cleared after reading", NO_ERROR);
+
+    // Draw validation.
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    color(gl, p, [1.0, 0.0, 0.0, 1.0])?;
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&[-1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 0.0, 1.0, 0.0]))?;
+    attrib(gl, 0, 3, FLOAT, false, 0, 0)?;
+    gl.glDrawArrays(0x77, 0, 3)?;
+    expect(gl, "glDrawArrays(bad mode)", INVALID_ENUM);
+    gl.glDrawArrays(TRIANGLES, 0, -1)?;
+    expect(gl, "glDrawArrays(negative count)", INVALID_VALUE);
+    gl.glDrawArrays(TRIANGLES, 0, 300)?;
+    expect(gl, "glDrawArrays past the end of the buffer", INVALID_OPERATION);
+    gl.glDrawArrays(TRIANGLES, 2, 3)?;
+    expect(gl, "glDrawArrays with first past the data", INVALID_OPERATION);
+    let idx: Vec<u8> = [0u16, 1, 500].iter().flat_map(|i| i.to_ne_bytes()).collect();
+    buffer(gl, n, ELEMENT_ARRAY_BUFFER, &idx)?;
+    gl.glDrawElements(TRIANGLES, 3, UNSIGNED_SHORT, 0)?;
+    expect(gl, "glDrawElements with an index beyond the vertices", INVALID_OPERATION);
+    gl.glDrawElements(TRIANGLES, 100, UNSIGNED_SHORT, 0)?;
+    expect(gl, "glDrawElements past the end of the index buffer", INVALID_OPERATION);
+    gl.glDrawElements(TRIANGLES, 3, UNSIGNED_SHORT, 1 << 40)?;
+    expect(gl, "glDrawElements at an absurd offset", INVALID_OPERATION);
+    gl.glDrawElements(TRIANGLES, 3, FLOAT, 0)?;
+    expect(gl, "glDrawElements(bad type)", INVALID_ENUM);
+    gl.glBindBuffer(ELEMENT_ARRAY_BUFFER, 0)?;
+    gl.glDrawElements(TRIANGLES, 3, UNSIGNED_SHORT, 0)?;
+    expect(gl, "glDrawElements with no index buffer", INVALID_OPERATION);
+    gl.glBindBuffer(ARRAY_BUFFER, 0)?;
+    gl.glVertexAttribPointer(0, 3, FLOAT, false, 0, 0)?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)?;
+    expect(gl, "client array without data", INVALID_OPERATION);
+    gl.strataVertexAttribData(0, Blob::borrowed(&[0u8; 12]))?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)?;
+    expect(gl, "client array shorter than the draw", INVALID_OPERATION);
+
+    // Shaders: a malformed one yields an info log, and so does linking it.
+    let s = n.next();
+    gl.glCreateShader(0x8B30, s)?;
+    gl.glShaderSource(s, Text::borrowed("void main() { gl_FragColor = vec4(1.0) }"))?;
+    gl.glCompileShader(s)?;
+    assert_eq!(gl.glGetShaderiv(s, 0x8B81)?, 0, "compile status");
+    assert!(!gl.glGetShaderInfoLog(s)?.is_empty(), "compile log");
+    let bad = n.next();
+    gl.glCreateProgram(bad)?;
+    gl.glAttachShader(bad, s)?;
+    gl.glLinkProgram(bad)?;
+    assert_eq!(gl.glGetProgramiv(bad, 0x8B82)?, 0, "link status");
+    assert!(!gl.glGetProgramInfoLog(bad)?.is_empty(), "link log");
+    gl.glUseProgram(bad)?;
+    expect(gl, "glUseProgram(unlinked)", INVALID_OPERATION);
+    assert_eq!(gl.glGetIntegerv(0x8B8D)?[0], p as i32, "current program unchanged");
+    gl.glCompileShader(987_654)?;
+    expect(gl, "glCompileShader(unknown)", INVALID_VALUE);
+    gl.glAttachShader(bad, bad)?;
+    expect(gl, "glAttachShader(program as shader)", INVALID_OPERATION);
+
+    // Uniforms of the wrong type or shape.
+    let loc = gl.glGetUniformLocation(p, Text::borrowed("color"))?;
+    gl.glUniform1i(loc, 3)?;
+    expect(gl, "glUniform1i on a vec4", INVALID_OPERATION);
+    gl.glUniform4fv(loc, Slice::new(&[0.0; 8]))?;
+    expect(gl, "two vec4s into a non-array", INVALID_OPERATION);
+    gl.glUniform4f(loc + 1000, 0.0, 0.0, 0.0, 0.0)?;
+    expect(gl, "unknown location", INVALID_OPERATION);
+    gl.glUniformMatrix4fv(loc, true, Slice::new(&[0.0; 16]))?;
+    expect(gl, "transposed matrix in ES 2.0", INVALID_VALUE);
+    gl.glUniform4f(-1, 0.0, 0.0, 0.0, 0.0)?;
+    expect(gl, "location -1 is silently ignored", NO_ERROR);
+
+    // Textures and buffers.
+    let t = n.next();
+    gl.glBindTexture(TEXTURE_2D, t)?;
+    gl.glBindTexture(TEXTURE_CUBE_MAP, t)?;
+    expect(gl, "texture rebound to another target", INVALID_OPERATION);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 2, 2, 1, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0; 16])))?;
+    expect(gl, "non-zero border", INVALID_VALUE);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGB as i32, 2, 2, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0; 16])))?;
+    expect(gl, "format differs from internal format", INVALID_OPERATION);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 2, 2, 0, RGBA, FLOAT, Some(Blob::borrowed(&[0; 64])))?;
+    expect(gl, "float textures are not supported", INVALID_ENUM);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0; 16])))?;
+    expect(gl, "pixel data shorter than the image", INVALID_OPERATION);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 1 << 20, 1, 0, RGBA, UNSIGNED_BYTE, None)?;
+    expect(gl, "texture beyond the maximum size", INVALID_VALUE);
+    buffer(gl, n, ARRAY_BUFFER, &[0; 8])?;
+    gl.glBufferSubData(ARRAY_BUFFER, 4, Blob::borrowed(&[0; 8]))?;
+    expect(gl, "glBufferSubData past the end", INVALID_VALUE);
+    gl.glBufferData(ARRAY_BUFFER, -5, None, STATIC_DRAW)?;
+    expect(gl, "negative buffer size", INVALID_VALUE);
+
+    // An incomplete framebuffer refuses to draw or clear.
+    let fb = n.next();
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    assert_eq!(gl.glCheckFramebufferStatus(FRAMEBUFFER)?, 0x8CD7, "missing attachment");
+    gl.glClear(COLOR_BUFFER_BIT)?;
+    expect(gl, "glClear on an incomplete framebuffer", INVALID_FRAMEBUFFER_OPERATION);
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glFinish()?;
+    Ok(())
+}
+
+#[test]
+fn gl_misuse_records_errors_while_another_client_draws_correctly() {
+    let cases = programs::all();
+    let case = cases.iter().find(|c| c.name == "many_draws_one_pass").expect("bystander program");
+    let expected = match MesaGl::open(W, H).map_err(ClientError::Unsupported).and_then(|mut m| render(&mut m, case)) {
+        Ok(e) => e,
+        Err(e) if std::env::var_os("STRATA_REQUIRE_ORACLES").is_none() => {
+            eprintln!("SKIPPED: Mesa GLES2 unavailable ({e}); install libegl-mesa0 libgles2 to run this test");
+            return;
+        }
+        Err(e) => panic!("Mesa GLES2 unavailable ({e}) and STRATA_REQUIRE_ORACLES is set"),
+    };
+    let final_case = cases.iter().find(|c| c.name == "triangle_flat").expect("final program");
+    let final_expected = MesaGl::open(W, H)
+        .map_err(ClientError::Unsupported)
+        .and_then(|mut m| render(&mut m, final_case))
+        .expect("mesa");
+
+    let daemon = Daemon::start("gles-bad", &[]);
+    let socket = daemon.socket.clone();
+    let done = Arc::new(AtomicBool::new(false));
+    let stop = done.clone();
+    let bystander = std::thread::spawn(move || {
+        let cases = programs::all();
+        let case = cases.iter().find(|c| c.name == "many_draws_one_pass").expect("case");
+        let mut rounds = 0;
+        while rounds < 3 || !stop.load(Ordering::Acquire) {
+            let img =
+                strata_context(&socket, "bystander").and_then(|mut c| render(&mut c, case)).expect("bystander render");
+            if let Some(why) = compare(case, &img, &expected) {
+                panic!("bystander image damaged in round {rounds}: {why}");
+            }
+            rounds += 1;
+        }
+        rounds
+    });
+    let mut gl = strata_context(&daemon.socket, "misuse").expect("misuse client");
+    misuse(&mut gl).expect("misuse sequence");
+    // The misbehaving client itself still renders correctly afterwards.
+    let img = render_with(&mut gl, final_case, &mut Names::starting_at(50_000)).expect("final render");
+    assert!(compare(final_case, &img, &final_expected).is_none(), "misuse client's later rendering differs from Mesa");
+    done.store(true, Ordering::Release);
+    let rounds = bystander.join().expect("bystander");
+    assert!(rounds >= 3);
+    assert!(!daemon.log_text().contains("panicked"), "daemon panicked:\n{}", daemon.log_text());
+}
