@@ -1,6 +1,8 @@
 //! `strata-bench`: throughput benchmarks for Strata. Every figure is reported beside a baseline
 //! measured in the same run, because shared machines are noisy.
 
+mod execute;
+mod mesh;
 mod transport;
 
 use anyhow::Result;
@@ -19,12 +21,18 @@ enum Cmd {
     /// Command-stream transport: small commands/s and bulk GB/s through a separate daemon
     /// process, against memcpy measured in the same run.
     Transport(transport::Args),
+    /// GLES execution: the glmark2 horse through stratad against the same drawing in plain
+    /// wgpu, measured in the same run.
+    Execute(execute::Args),
     /// Runs the daemon half of a benchmark (started by the benchmark itself).
     #[command(hide = true)]
     Daemon {
         /// Socket to serve on.
         #[arg(long)]
         socket: std::path::PathBuf,
+        /// Executor for client sessions.
+        #[arg(long, value_enum, default_value_t = strata_server::ExecutorKind::Drain)]
+        executor: strata_server::ExecutorKind,
     },
 }
 
@@ -33,6 +41,7 @@ fn main() -> Result<()> {
     tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).init();
     match Cli::parse().command {
         Cmd::Transport(args) => transport::run(&args),
-        Cmd::Daemon { socket } => transport::daemon(socket),
+        Cmd::Execute(args) => execute::run(&args),
+        Cmd::Daemon { socket, executor } => transport::daemon(socket, executor),
     }
 }

@@ -27,15 +27,15 @@ pub struct Args {
 }
 
 /// Runs the daemon half until killed.
-pub fn daemon(socket: PathBuf) -> Result<()> {
+pub fn daemon(socket: PathBuf, executor: strata_server::ExecutorKind) -> Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
-    let opts =
-        strata_server::ServeOptions { socket, executor: strata_server::ExecutorKind::Drain, ..Default::default() };
+    let opts = strata_server::ServeOptions { socket, executor, ..Default::default() };
     rt.block_on(strata_server::serve(opts, std::future::pending()))?;
     Ok(())
 }
 
-struct DaemonProc(Child, PathBuf);
+/// A benchmark daemon process and its socket; killed on drop.
+pub struct DaemonProc(Child, pub PathBuf);
 
 impl Drop for DaemonProc {
     fn drop(&mut self) {
@@ -45,9 +45,15 @@ impl Drop for DaemonProc {
     }
 }
 
-fn start_daemon() -> Result<DaemonProc> {
+/// Starts this binary's daemon half with `executor` and waits until it listens.
+pub fn start_daemon(executor: strata_server::ExecutorKind) -> Result<DaemonProc> {
     let socket = std::env::temp_dir().join(format!("strata-bench-{}.sock", std::process::id()));
-    let child = Proc::new(std::env::current_exe()?).arg("daemon").arg("--socket").arg(&socket).spawn()?;
+    let kind = match executor {
+        strata_server::ExecutorKind::Gles => "gles",
+        strata_server::ExecutorKind::Drain => "drain",
+    };
+    let child =
+        Proc::new(std::env::current_exe()?).args(["daemon", "--executor", kind, "--socket"]).arg(&socket).spawn()?;
     let d = DaemonProc(child, socket);
     let deadline = Instant::now() + Duration::from_secs(10);
     while std::os::unix::net::UnixStream::connect(&d.1).is_err() {
@@ -59,7 +65,8 @@ fn start_daemon() -> Result<DaemonProc> {
     Ok(d)
 }
 
-fn bar(len: u64, what: &str) -> ProgressBar {
+/// A progress bar on stderr.
+pub fn bar(len: u64, what: &str) -> ProgressBar {
     let pb = ProgressBar::new(len);
     pb.set_style(
         ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} {per_sec} eta {eta}")
@@ -115,7 +122,7 @@ pub fn run(args: &Args) -> Result<()> {
             bail!("small command {i} encodes to {n} bytes, more than 32");
         }
     }
-    let daemon = start_daemon()?;
+    let daemon = start_daemon(strata_server::ExecutorKind::Drain)?;
     let opts = ConnectOptions { socket: daemon.1.clone(), name: "bench".into(), ..ConnectOptions::default() };
     let mut conn = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
 

@@ -35,6 +35,17 @@ pub struct StreamTally {
     pub matches: bool,
 }
 
+/// Counters an executor keeps about one client, for benchmarks and diagnostics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct ExecStats {
+    /// Render pipelines created because none in the cache matched.
+    pub pipeline_cache_misses: u64,
+    /// Render passes submitted.
+    pub render_passes: u64,
+    /// Draw calls recorded.
+    pub draws: u64,
+}
+
 /// Owned raw bytes in a reply (e.g. `glReadPixels`), encoded without per-element framing.
 #[derive(Clone, PartialEq, Eq, Default)]
 pub struct Bytes(pub Vec<u8>);
@@ -239,6 +250,8 @@ command_set! {
         strataPing => Ping { token: u64 } -> u64;
         /// The daemon compares the client's count and CRC-32 of all earlier messages with its own.
         strataVerify => Verify { commands: u64, crc32: u32 } -> StreamTally;
+        /// The executor's counters for this client.
+        strataStats => Stats {} -> ExecStats;
     }
 }
 
@@ -263,6 +276,20 @@ mod arbitrary {
         fn arbitrary_with(_: ()) -> Self::Strategy {
             (any::<u64>(), any::<u32>(), any::<bool>())
                 .prop_map(|(commands, crc32, matches)| StreamTally { commands, crc32, matches })
+                .boxed()
+        }
+    }
+
+    impl Arbitrary for ExecStats {
+        type Parameters = ();
+        type Strategy = BoxedStrategy<Self>;
+        fn arbitrary_with(_: ()) -> Self::Strategy {
+            (any::<u64>(), any::<u64>(), any::<u64>())
+                .prop_map(|(pipeline_cache_misses, render_passes, draws)| ExecStats {
+                    pipeline_cache_misses,
+                    render_passes,
+                    draws,
+                })
                 .boxed()
         }
     }

@@ -176,6 +176,10 @@ pub struct Renderer {
     samplers: HashMap<SamplerState, wgpu::Sampler>,
     /// Pipelines created because none matched.
     pub pipeline_misses: u64,
+    /// Render passes submitted.
+    pub passes: u64,
+    /// Draws recorded.
+    pub draws: u64,
     pass: Option<Pass>,
     staging: Vec<u8>,
     ring: Option<(wgpu::Buffer, u64)>,
@@ -285,6 +289,8 @@ impl Renderer {
             clear_pipelines: HashMap::new(),
             samplers: HashMap::new(),
             pipeline_misses: 0,
+            passes: 0,
+            draws: 0,
             pass: None,
             staging: Vec::new(),
             ring: None,
@@ -592,6 +598,7 @@ impl Renderer {
                 (Source::Bytes(Vec::new()), off, fmt)
             }
         });
+        self.draws += 1;
         let rec = Recorded {
             pipeline,
             bind: Bind::Program { program: spec.program, uniform, textures },
@@ -610,6 +617,7 @@ impl Renderer {
     /// Encodes and submits the open pass. Returns the GPU validation error, if any.
     pub fn flush(&mut self) -> Option<String> {
         let pass = self.pass.take()?;
+        self.passes += 1;
         let guard = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let d = &self.gpu.device;
         // Upload this pass's uniforms and generated vertex data in one write.

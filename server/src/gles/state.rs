@@ -2858,6 +2858,11 @@ impl Executor for GlesExecutor {
                 Command::Ping { token } => Some(Reply::Ping(token)),
                 _ => None,
             },
+            O::Stats => Some(Reply::Stats(strata_protocol::ExecStats {
+                pipeline_cache_misses: self.r.pipeline_misses,
+                render_passes: self.r.passes,
+                draws: self.r.draws,
+            })),
             O::GetDisplay
             | O::GetPlatformDisplay
             | O::Initialize
