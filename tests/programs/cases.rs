@@ -719,6 +719,25 @@ fn client_indices(gl: Gl<'_>, n: &mut Names) -> R {
     gl.strataDrawElementsData(TRIANGLE_STRIP, 4, UNSIGNED_BYTE, Blob::borrowed(&[0, 1, 3, 2]))
 }
 
+fn vertex_texture_fetch(gl: Gl<'_>, n: &mut Names) -> R {
+    // Each vertex reads its colour and a height from a texture, as glmark2's terrain does.
+    let vs = "attribute vec4 pos; attribute vec2 uv; uniform sampler2D s; varying vec4 v;
+        void main() { vec4 t = texture2D(s, uv); v = t; gl_Position = pos + vec4(0.0, t.r * 0.3, 0.0, 0.0); }";
+    program(gl, n, vs, FS_VARY, &["pos", "uv"])?;
+    texture(gl, n, 4, 4, RGBA, UNSIGNED_BYTE, &pattern(4, 4), NEAREST, CLAMP_TO_EDGE)?;
+    let v = [-0.9f32, -0.9, 0.1, 0.1, 0.9, -0.9, 0.9, 0.1, 0.0, 0.5, 0.4, 0.9];
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
+    attrib(gl, 0, 2, FLOAT, false, 16, 0)?;
+    attrib(gl, 1, 2, FLOAT, false, 16, 8)?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)
+}
+
+fn precision_high_branch(gl: Gl<'_>, n: &mut Names) -> R {
+    let fs = "#ifdef GL_FRAGMENT_PRECISION_HIGH\nprecision highp float;\n#define K 1.0\n#else\nprecision mediump float;\n#define K 0.0\n#endif\nvoid main() { gl_FragColor = vec4(K, 0.5, 1.0 - K, 1.0); }";
+    program(gl, n, VS_POS, fs, &["pos"])?;
+    draw_positions(gl, n, &quad(-0.5, -0.5, 0.5, 0.5, 0.0), TRIANGLES)
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -780,6 +799,8 @@ pub fn all() -> Vec<Case> {
         c("attrib_location_query", attrib_location_query, DEFAULT),
         c("buffer_sub_data", buffer_sub_data, DEFAULT),
         c("client_arrays", client_arrays, DEFAULT),
+        c("vertex_texture_fetch", vertex_texture_fetch, DEFAULT),
+        c("precision_high_branch", precision_high_branch, DEFAULT),
         c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),
         Case { name: "read_pixels_after_errors", run: read_pixels_after_errors, tol: DEFAULT, expects_error: true },

@@ -214,7 +214,7 @@ pub struct Shader {
     pub uniforms: Vec<Var>,
 }
 
-fn parse(source: &str) -> Result<ast::TranslationUnit, String> {
+fn parse(stage: Stage, source: &str) -> Result<ast::TranslationUnit, String> {
     // `#version 100` is the only version ES 2.0 has; drop it (keeping line numbers) so the
     // parser uses its default grammar.
     let mut text = String::with_capacity(source.len());
@@ -231,7 +231,12 @@ fn parse(source: &str) -> Result<ast::TranslationUnit, String> {
         }
     }
     let gl_es = "1".parse::<DefineObject>().map_err(|e| format!("internal: {e:?}"))?;
-    let state = ProcessorState::builder().definition(Define::object("GL_ES".into(), gl_es, true)).finish();
+    let mut state = ProcessorState::builder().definition(Define::object("GL_ES".into(), gl_es.clone(), true));
+    if stage == Stage::Fragment {
+        // Fragment shaders get real f32 precision, so highp is supported (as on Mesa).
+        state = state.definition(Define::object("GL_FRAGMENT_PRECISION_HIGH".into(), gl_es, true));
+    }
+    let state = state.finish();
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
     match parsed {
@@ -274,7 +279,14 @@ fn storage_of(q: Option<&ast::TypeQualifier>) -> Option<Storage> {
 
 /// Compiles (parses and checks) a GLSL ES 1.00 shader. The error is the info log.
 pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
-    let tu = parse(source)?;
+    // The parser and rewriter are third-party code fed client text: a panic there must become
+    // a failed compile, never a dead session.
+    std::panic::catch_unwind(|| compile_inner(stage, source))
+        .unwrap_or_else(|_| Err("0: internal error: the GLSL ES front end failed on this shader".into()))
+}
+
+fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String> {
+    let tu = parse(stage, source)?;
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),
@@ -393,6 +405,17 @@ struct Rewrite {
     stage: Stage,
 }
 
+/// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
+/// (an empty qualifier list is not valid GLSL, and the transpiler rejects it).
+fn strip_precision(q: &mut Option<ast::TypeQualifier>) {
+    if let Some(tq) = q {
+        tq.qualifiers.retain(|s| !matches!(s.content, TypeQualifierSpecData::Precision(_)));
+        if tq.qualifiers.is_empty() {
+            *q = None;
+        }
+    }
+}
+
 fn var(name: &str) -> ast::Expr {
     ExprData::Variable(ast::IdentifierData(name.into()).into()).into()
 }
@@ -425,8 +448,16 @@ fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
 }
 
 impl VisitorMut for Rewrite {
-    fn visit_type_qualifier(&mut self, q: &mut ast::TypeQualifier) -> Visit {
-        q.qualifiers.retain(|s| !matches!(s.content, TypeQualifierSpecData::Precision(_)));
+    fn visit_full_specified_type(&mut self, t: &mut ast::FullySpecifiedType) -> Visit {
+        strip_precision(&mut t.qualifier);
+        Visit::Children
+    }
+
+    fn visit_function_parameter_declaration(&mut self, p: &mut ast::FunctionParameterDeclaration) -> Visit {
+        match &mut p.content {
+            ast::FunctionParameterDeclarationData::Named(q, _)
+            | ast::FunctionParameterDeclarationData::Unnamed(q, _) => strip_precision(q),
+        }
         Visit::Children
     }
 
@@ -474,10 +505,15 @@ impl VisitorMut for Rewrite {
                 }
                 _ => None,
             },
-            ExprData::FunCall(fun, _) => {
+            ExprData::FunCall(fun, args) => {
                 if let FunIdentifierData::Expr(f) = &mut fun.content {
                     if let ExprData::Variable(id) = &mut f.content {
+                        // A vertex shader has no derivatives: ES defines its implicit-LOD
+                        // lookups as level 0, so they become explicit-LOD lookups.
+                        let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
                         let renamed = match id.0.as_str() {
+                            "texture2D" | "textureCube" if vertex_implicit => Some("textureLod"),
+                            "texture2DProj" if vertex_implicit => Some("textureProjLod"),
                             "texture2D" | "textureCube" => Some("texture"),
                             "texture2DProj" => Some("textureProj"),
                             "texture2DLod" | "textureCubeLod" => Some("textureLod"),
@@ -485,6 +521,9 @@ impl VisitorMut for Rewrite {
                             _ => None,
                         };
                         if let Some(r) = renamed {
+                            if vertex_implicit && r.ends_with("Lod") {
+                                args.push(ExprData::FloatConst(0.0).into());
+                            }
                             *id = ast::IdentifierData(r.into()).into();
                         }
                     }
@@ -556,6 +595,11 @@ fn naga_module(stage: naga::ShaderStage, src: &str) -> Result<naga::Module, Stri
 /// Links a vertex and a fragment shader. `bindings` are `glBindAttribLocation` requests;
 /// `max_attribs` bounds locations. The error is the program info log.
 pub fn link(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Linked, String> {
+    std::panic::catch_unwind(|| link_inner(vs, fs, bindings, max_attribs))
+        .unwrap_or_else(|_| Err("error: internal error: translating this program failed".into()))
+}
+
+fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Linked, String> {
     // Uniforms: one program-wide namespace.
     let mut uniforms: Vec<UniformSlot> = Vec::new();
     let mut samplers = Vec::new();
@@ -696,6 +740,13 @@ mod tests {
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "uv").map(|x| x.1), Some(0));
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "position").map(|x| x.1), Some(1));
         assert_eq!(l.samplers, vec![(Ty::Sampler2D, 1)]);
+    }
+
+    #[test]
+    fn precision_only_qualifiers_are_dropped() {
+        let vs = compile(Stage::Vertex, "attribute highp vec4 p; varying lowp vec4 c; void main() { highp float k = 1.0; c = p * k; gl_Position = p; }").expect("vs");
+        let fs = compile(Stage::Fragment, "varying lowp vec4 c; mediump vec4 f(in lowp vec4 x, mediump float k) { return x * k; } void main() { gl_FragColor = f(c, 1.0); }").expect("fs");
+        link(&vs, &fs, &HashMap::new(), 16).expect("link");
     }
 
     #[test]
