@@ -738,6 +738,57 @@ fn precision_high_branch(gl: Gl<'_>, n: &mut Names) -> R {
     draw_positions(gl, n, &quad(-0.5, -0.5, 0.5, 0.5, 0.0), TRIANGLES)
 }
 
+const FS_DEPTH: &str = "precision highp float; uniform sampler2D s; varying vec2 t;
+    void main() { float d = texture2D(s, t).r; gl_FragColor = vec4(d, fract(d * 16.0), 0.0, 1.0); }";
+
+fn depth_texture_render_and_sample(gl: Gl<'_>, n: &mut Names) -> R {
+    // A shadow-map pass: depth only into a DEPTH_COMPONENT texture, then sample it.
+    let (fb, tex) = (n.next(), n.next());
+    gl.glBindTexture(TEXTURE_2D, tex)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, 32, 32, 0, 0x1902, UNSIGNED_INT, None)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    gl.glFramebufferTexture2D(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_2D, tex, 0)?;
+    if gl.glCheckFramebufferStatus(FRAMEBUFFER)? != 0x8CD5 {
+        return Err(ClientError::Unsupported("depth-only framebuffer incomplete".into()));
+    }
+    gl.glViewport(0, 0, 32, 32)?;
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glClear(DEPTH_BUFFER_BIT)?;
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    color(gl, p, [1.0; 4])?;
+    draw_positions(gl, n, &[-1.0, -1.0, -0.8, 1.0, -1.0, 0.0, -1.0, 1.0, 0.9], TRIANGLES)?;
+    draw_positions(gl, n, &quad(0.0, 0.0, 0.8, 0.8, -0.5), TRIANGLES)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glDisable(DEPTH_TEST)?;
+    gl.glViewport(0, 0, W, H)?;
+    program(gl, n, VS_TEX, FS_DEPTH, &["pos", "uv"])?;
+    gl.glBindTexture(TEXTURE_2D, tex)?;
+    textured_quad(gl, n, 0.0, 1.0)
+}
+
+fn depth_texture_upload(gl: Gl<'_>, n: &mut Names) -> R {
+    let tex = n.next();
+    gl.glBindTexture(TEXTURE_2D, tex)?;
+    let values: Vec<u8> = (0..16 * 16).flat_map(|i: u32| ((i * 257) as u16).to_ne_bytes()).collect();
+    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, 16, 16, 0, 0x1902, UNSIGNED_SHORT, Some(Blob::borrowed(&values)))?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+    program(gl, n, VS_TEX, FS_DEPTH, &["pos", "uv"])?;
+    textured_quad(gl, n, 0.0, 1.0)
+}
+
+fn points(gl: Gl<'_>, n: &mut Names) -> R {
+    let vs = "attribute vec4 pos; void main() { gl_PointSize = 1.0; gl_Position = pos; }";
+    let p = program(gl, n, vs, FS_COLOR, &["pos"])?;
+    color(gl, p, [1.0, 1.0, 0.2, 1.0])?;
+    // Points at pixel centres.
+    let c = |px: f32| (px + 0.5) / 32.0 - 1.0;
+    let v: Vec<f32> = (0..20).flat_map(|i| [c((i * 3) as f32), c((i * 2 + 5) as f32), 0.0]).collect();
+    draw_positions(gl, n, &v, 0x0000)
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -750,6 +801,10 @@ pub fn all() -> Vec<Case> {
     // Transcendentals (pow, normalize) in mediump differ in the last bits between the two
     // shader compilers.
     let math_tol = Tol { max_diff: 3, min_fraction: 0.995 };
+    // FS_DEPTH shows fract(16·d) to make depth errors visible: it magnifies the difference
+    // between Mesa's unorm depth storage and wgpu's Depth32Float sixteenfold, so the last
+    // bit of that channel may round either way (at most 2/255).
+    let depth_tol = Tol { max_diff: 2, min_fraction: 0.999 };
     vec![
         c("clear_color", clear_color, DEFAULT),
         c("scissor_clear", scissor_clear, DEFAULT),
@@ -800,6 +855,9 @@ pub fn all() -> Vec<Case> {
         c("buffer_sub_data", buffer_sub_data, DEFAULT),
         c("client_arrays", client_arrays, DEFAULT),
         c("vertex_texture_fetch", vertex_texture_fetch, DEFAULT),
+        c("depth_texture_render_and_sample", depth_texture_render_and_sample, depth_tol),
+        c("depth_texture_upload", depth_texture_upload, depth_tol),
+        c("points", points, DEFAULT),
         c("precision_high_branch", precision_high_branch, DEFAULT),
         c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),

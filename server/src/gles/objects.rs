@@ -106,6 +106,8 @@ pub struct Texture {
     pub format: u32,
     /// Unique id for caches; changes when the image is recreated.
     pub uid: u64,
+    /// A `DEPTH_COMPONENT` texture (`OES_depth_texture`), stored as Depth32Float.
+    pub depth: bool,
 }
 
 /// A texture's GPU image.
@@ -120,6 +122,8 @@ pub struct TextureImage {
     pub height: u32,
     /// Mip levels allocated.
     pub mips: u32,
+    /// Levels of GL's full mip chain for this size (completeness is judged against these).
+    pub levels: u32,
 }
 
 impl Texture {
@@ -127,7 +131,7 @@ impl Texture {
     pub fn complete(&self) -> bool {
         let Some(img) = &self.gpu else { return false };
         let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let need = if self.sampler.uses_mipmaps() { (1u32 << img.mips) - 1 } else { 1 };
+        let need = if self.sampler.uses_mipmaps() { ((1u64 << img.levels) - 1) as u32 } else { 1 };
         self.defined[..faces].iter().all(|d| d & need == need)
     }
 }

@@ -100,8 +100,9 @@ pub struct DrawSpec<'a> {
     pub program: Arc<LinkedProgram>,
     /// Uniform block bytes.
     pub uniforms: &'a [u8],
-    /// Per sampler: texture view, its uid, and sampling state (`None`: incomplete, sample black).
-    pub textures: Vec<Option<(wgpu::TextureView, u64, SamplerState)>>,
+    /// Per sampler: texture view, its uid, sampling state, and whether it is a depth texture
+    /// (`None`: incomplete, sample black).
+    pub textures: Vec<Option<(wgpu::TextureView, u64, SamplerState, bool)>>,
     /// Vertex inputs.
     pub inputs: Vec<VertexInput>,
     /// Indices, if indexed.
@@ -125,6 +126,7 @@ pub struct DrawSpec<'a> {
 #[derive(Clone, PartialEq, Eq, Hash)]
 struct PipelineKey {
     program: u64,
+    depth_mask: u32,
     inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
     raster: RasterState,
     color: bool,
@@ -141,6 +143,7 @@ struct ClearKey {
 enum Bind {
     Program {
         program: Arc<LinkedProgram>,
+        layout: wgpu::BindGroupLayout,
         uniform: Option<u32>,
         textures: Vec<(wgpu::TextureView, u64, wgpu::Sampler, SamplerState)>,
     },
@@ -192,6 +195,55 @@ pub struct Renderer {
     mip_module: wgpu::ShaderModule,
     mip_bgl: wgpu::BindGroupLayout,
     mip_pipeline: Option<wgpu::RenderPipeline>,
+    layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
+    depth_upload: Option<(wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
+}
+
+/// A program's bind group layout entries: the uniform block at 0, then a texture and a sampler
+/// per sampler uniform. Samplers in `depth_mask` take depth textures, which bind as
+/// unfilterable float with a non-filtering sampler.
+pub fn layout_entries(info: &super::glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut entries = Vec::new();
+    if info.block_size > 0 {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(u64::from(info.block_size)),
+            },
+            count: None,
+        });
+    }
+    for (i, (ty, b)) in info.samplers.iter().enumerate() {
+        let depth = depth_mask & (1 << i) != 0;
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: *b,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
+                view_dimension: if *ty == super::glsl::Ty::SamplerCube {
+                    wgpu::TextureViewDimension::Cube
+                } else {
+                    wgpu::TextureViewDimension::D2
+                },
+                multisampled: false,
+            },
+            count: None,
+        });
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: b + 1,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Sampler(if depth {
+                wgpu::SamplerBindingType::NonFiltering
+            } else {
+                wgpu::SamplerBindingType::Filtering
+            }),
+            count: None,
+        });
+    }
+    entries
 }
 
 fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
@@ -301,6 +353,8 @@ impl Renderer {
             mip_module,
             mip_bgl,
             mip_pipeline: None,
+            layouts: HashMap::new(),
+            depth_upload: None,
         }
     }
 
@@ -477,9 +531,34 @@ impl Renderer {
         x
     }
 
-    fn pipeline(&mut self, spec: &DrawSpec<'_>, target: &Target) -> wgpu::RenderPipeline {
+    /// The bind group and pipeline layouts of `program` with the samplers in `mask` taking depth
+    /// textures.
+    fn layouts(&mut self, program: &LinkedProgram, mask: u32) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+        if mask == 0 {
+            return (program.bgl.clone(), program.layout.clone());
+        }
+        let d = &self.gpu.device;
+        self.layouts
+            .entry((program.id, mask))
+            .or_insert_with(|| {
+                let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("gles depth-sampling"),
+                    entries: &layout_entries(&program.info, mask),
+                });
+                let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: None,
+                    bind_group_layouts: &[Some(&bgl)],
+                    immediate_size: 0,
+                });
+                (bgl, layout)
+            })
+            .clone()
+    }
+
+    fn pipeline(&mut self, spec: &DrawSpec<'_>, target: &Target, depth_mask: u32) -> wgpu::RenderPipeline {
         let key = PipelineKey {
             program: spec.program.id,
+            depth_mask,
             inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride)).collect(),
             raster: spec.raster.clone(),
             color: target.color.is_some(),
@@ -489,6 +568,7 @@ impl Renderer {
             return p.clone();
         }
         self.pipeline_misses += 1;
+        let (_, pipeline_layout) = self.layouts(&spec.program, depth_mask);
         let attrs: Vec<[wgpu::VertexAttribute; 1]> = spec
             .inputs
             .iter()
@@ -532,7 +612,7 @@ impl Renderer {
         let front_face = if r.front_ccw { wgpu::FrontFace::Cw } else { wgpu::FrontFace::Ccw };
         let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("gles"),
-            layout: Some(&spec.program.layout),
+            layout: Some(&pipeline_layout),
             vertex: wgpu::VertexState {
                 module: &spec.program.vs,
                 entry_point: Some("main"),
@@ -565,14 +645,25 @@ impl Renderer {
 
     /// Records a validated draw into the target's pass.
     pub fn draw(&mut self, target: &Target, spec: DrawSpec<'_>) {
-        let pipeline = self.pipeline(&spec, target);
+        let depth_mask = spec
+            .textures
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.as_ref().is_some_and(|t| t.3))
+            .fold(0u32, |m, (i, _)| m | (1 << i));
+        let pipeline = self.pipeline(&spec, target, depth_mask);
+        let (layout, _) = self.layouts(&spec.program, depth_mask);
         let uniform =
             (!spec.uniforms.is_empty()).then(|| offset_of(&mut self.staging, spec.uniforms, self.align) as u32);
         let mut textures = Vec::with_capacity(spec.textures.len());
         for (i, t) in spec.textures.iter().enumerate() {
             let cube = spec.program.info.samplers.get(i).is_some_and(|s| s.0 == super::glsl::Ty::SamplerCube);
             match t {
-                Some((view, uid, state)) => textures.push((view.clone(), *uid, self.sampler(*state), *state)),
+                Some((view, uid, state, depth)) => {
+                    // Depth textures are read with a non-filtering sampler: nearest filters.
+                    let state = if *depth { SamplerState { min: NEAREST, mag: NEAREST, ..*state } } else { *state };
+                    textures.push((view.clone(), *uid, self.sampler(state), state))
+                }
                 None => {
                     let view = if cube { self.black_cube.clone() } else { self.black_2d.clone() };
                     let s = SamplerState::default();
@@ -601,7 +692,7 @@ impl Renderer {
         self.draws += 1;
         let rec = Recorded {
             pipeline,
-            bind: Bind::Program { program: spec.program, uniform, textures },
+            bind: Bind::Program { program: spec.program, layout, uniform, textures },
             vertex,
             index,
             count: spec.count,
@@ -667,7 +758,7 @@ impl Renderer {
                     }
                     clear_group.clone()
                 }
-                Bind::Program { program, uniform, textures } => {
+                Bind::Program { program, layout, uniform, textures } => {
                     if uniform.is_none() && textures.is_empty() {
                         None
                     } else {
@@ -699,7 +790,7 @@ impl Renderer {
                             }
                             let g = d.create_bind_group(&wgpu::BindGroupDescriptor {
                                 label: None,
-                                layout: &program.bgl,
+                                layout,
                                 entries: &entries,
                             });
                             cache.insert(key, g.clone());
@@ -840,6 +931,110 @@ impl Renderer {
     pub fn finish(&mut self) {
         self.flush();
         let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+    }
+
+    /// Writes depth values (normalised, rows bottom-up) into a Depth32Float texture.
+    pub fn upload_depth(&mut self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
+        self.flush();
+        let d = &self.gpu.device;
+        let (bgl, pipeline) = self
+            .depth_upload
+            .get_or_insert_with(|| {
+                let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("depth upload"),
+                    source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/depth_upload.wgsl").into()),
+                });
+                let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("depth upload"),
+                    entries: &[wgpu::BindGroupLayoutEntry {
+                        binding: 0,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        count: None,
+                    }],
+                });
+                let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: None,
+                    bind_group_layouts: &[Some(&bgl)],
+                    immediate_size: 0,
+                });
+                let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("depth upload"),
+                    layout: Some(&layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vs"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: wgpu::TextureFormat::Depth32Float,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Always),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs"),
+                        compilation_options: Default::default(),
+                        targets: &[],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                });
+                (bgl, pipeline)
+            })
+            .clone();
+        let size = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
+        let src = d.create_texture(&wgpu::TextureDescriptor {
+            label: Some("depth upload source"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        self.gpu.queue.write_texture(
+            src.as_image_copy(),
+            bytemuck::cast_slice(values),
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(width * 4), rows_per_image: None },
+            size,
+        );
+        let src_view = src.create_view(&Default::default());
+        let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &bgl,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src_view) }],
+        });
+        let dst = tex.create_view(&Default::default());
+        let mut enc = d.create_command_encoder(&Default::default());
+        {
+            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("depth upload"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &dst,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            rp.set_pipeline(&pipeline);
+            rp.set_bind_group(0, &group, &[]);
+            rp.draw(0..3, 0..1);
+        }
+        self.gpu.queue.submit([enc.finish()]);
     }
 
     /// Fills levels 1.. of every face from level 0 with a 2×2 box filter.

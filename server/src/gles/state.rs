@@ -659,6 +659,9 @@ impl GlesExecutor {
             Attachment::Texture { name, level, face } => {
                 let t = ctx.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
                 let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                if t.depth {
+                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                }
                 if t.defined[face as usize] & (1 << level) == 0 {
                     return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
                 }
@@ -688,7 +691,14 @@ impl GlesExecutor {
         let ds = |a: Attachment, ok: &[u32]| -> Result<Option<DepthAttachment>, u32> {
             match a {
                 Attachment::None => Ok(None),
-                Attachment::Texture { .. } => Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT),
+                Attachment::Texture { name, .. } => {
+                    let t = ctx.textures.get(&name).filter(|t| t.depth).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                    if !ok.contains(&DEPTH_COMPONENT16) {
+                        return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                    }
+                    let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                    Ok(Some((img.view.clone(), wgpu::TextureFormat::Depth32Float, t.uid, img.width, img.height)))
+                }
                 Attachment::Renderbuffer(name) => {
                     let rb = ctx.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
                     let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
@@ -735,9 +745,10 @@ impl GlesExecutor {
         });
         let dim = if layers == 6 { wgpu::TextureViewDimension::Cube } else { wgpu::TextureViewDimension::D2 };
         let view = texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() });
-        t.gpu = Some(TextureImage { texture, view, width, height, mips });
+        t.gpu = Some(TextureImage { texture, view, width, height, mips, levels: mips });
         t.defined = [0; 6];
         t.uid = uid;
+        t.depth = false;
     }
 
     fn gl(&mut self, cmd: Command<'_>) -> Option<Reply> {
@@ -827,6 +838,10 @@ impl GlesExecutor {
                     return None;
                 };
                 let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+                if t.depth {
+                    ctx.err(INVALID_OPERATION);
+                    return None;
+                }
                 let Some(img) = &t.gpu else {
                     ctx.err(INVALID_OPERATION);
                     return None;
@@ -853,6 +868,29 @@ impl GlesExecutor {
             }
             Command::LinkProgram { program } => {
                 self.link(program);
+                return None;
+            }
+            Command::TexImage2D {
+                target,
+                level,
+                internalformat,
+                width,
+                height,
+                border,
+                format: DEPTH_COMPONENT,
+                pixel_type,
+                pixels,
+            } => {
+                self.depth_tex_image(
+                    target,
+                    level,
+                    internalformat,
+                    width,
+                    height,
+                    border,
+                    pixel_type,
+                    pixels.as_ref().map(|p| p.as_bytes()),
+                );
                 return None;
             }
             _ => {}
@@ -898,41 +936,7 @@ impl GlesExecutor {
                     label: Some("fs"),
                     source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(info.fragment.clone())),
                 });
-                let mut entries = Vec::new();
-                if info.block_size > 0 {
-                    entries.push(wgpu::BindGroupLayoutEntry {
-                        binding: 0,
-                        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: true,
-                            min_binding_size: wgpu::BufferSize::new(u64::from(info.block_size)),
-                        },
-                        count: None,
-                    });
-                }
-                for (ty, b) in &info.samplers {
-                    entries.push(wgpu::BindGroupLayoutEntry {
-                        binding: *b,
-                        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                            view_dimension: if *ty == Ty::SamplerCube {
-                                wgpu::TextureViewDimension::Cube
-                            } else {
-                                wgpu::TextureViewDimension::D2
-                            },
-                            multisampled: false,
-                        },
-                        count: None,
-                    });
-                    entries.push(wgpu::BindGroupLayoutEntry {
-                        binding: b + 1,
-                        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                        count: None,
-                    });
-                }
+                let entries = super::render::layout_entries(&info, 0);
                 let bgl =
                     d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: None, entries: &entries });
                 let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -961,6 +965,83 @@ impl GlesExecutor {
                 p.link_ok = false;
                 p.log = log;
             }
+        }
+    }
+
+    /// `glTexImage2D` of a `DEPTH_COMPONENT` texture (OES_depth_texture): 2D and level 0 only,
+    /// 16- or 32-bit unsigned data, stored as Depth32Float.
+    #[allow(clippy::too_many_arguments)]
+    fn depth_tex_image(
+        &mut self,
+        target: u32,
+        level: i32,
+        internal: i32,
+        width: i32,
+        height: i32,
+        border: i32,
+        ty: u32,
+        pixels: Option<&[u8]>,
+    ) {
+        let Some((cid, _)) = self.current else { return };
+        let gpu = self.gpu.clone();
+        let uid = self.next_uid();
+        let ctx = self.ctx(cid);
+        let Some((_, cube)) = face_of(target) else { return ctx.err(INVALID_ENUM) };
+        if !matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT) {
+            return ctx.err(INVALID_ENUM);
+        }
+        if internal as u32 != DEPTH_COMPONENT || cube || level != 0 {
+            return ctx.err(INVALID_OPERATION);
+        }
+        if width < 0 || height < 0 || border != 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
+            return ctx.err(INVALID_VALUE);
+        }
+        let (w, h) = (width as u32, height as u32);
+        let values: Option<Vec<f32>> = match pixels {
+            Some(b) => {
+                let align = ctx.unpack_alignment as usize;
+                let bpp = if ty == UNSIGNED_SHORT { 2 } else { 4 };
+                if b.len() < upload_size(w as usize, h as usize, bpp, align) {
+                    return ctx.err(INVALID_OPERATION);
+                }
+                let row = (w as usize * bpp).div_ceil(align) * align;
+                let mut v = Vec::with_capacity((w * h) as usize);
+                for y in 0..h as usize {
+                    for x in 0..w as usize {
+                        let at = y * row + x * bpp;
+                        v.push(if bpp == 2 {
+                            f32::from(u16::from_ne_bytes([b[at], b[at + 1]])) / 65535.0
+                        } else {
+                            (f64::from(u32::from_ne_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]]))
+                                / f64::from(u32::MAX)) as f32
+                        });
+                    }
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        let Some(name) = ctx.bound_texture(TEXTURE_2D) else { return };
+        let Some(t) = ctx.textures.get_mut(&name).filter(|_| name != 0) else { return ctx.err(INVALID_OPERATION) };
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("gl depth texture"),
+            size: wgpu::Extent3d { width: w.max(1), height: h.max(1), depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Depth32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let levels = 32 - w.max(h).max(1).leading_zeros();
+        t.gpu = Some(TextureImage { texture: texture.clone(), view, width: w, height: h, mips: 1, levels });
+        t.defined = [1, 0, 0, 0, 0, 0];
+        t.format = DEPTH_COMPONENT;
+        t.depth = true;
+        t.uid = uid;
+        if let Some(v) = values.filter(|_| w > 0 && h > 0) {
+            self.r.upload_depth(&texture, w, h, &v);
         }
     }
 
@@ -1290,7 +1371,7 @@ impl GlesExecutor {
                 if t.target != want || !t.complete() {
                     return None;
                 }
-                t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler))
+                t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, t.depth))
             })
             .collect();
         let mut raster = raster_state(ctx, topology, &target);
@@ -2538,7 +2619,7 @@ fn ctx_command(ctx: &mut Context, gpu: &Gpu, uid: u64, cmd: Command<'_>) -> Opti
 
 /// Extensions advertised in `GL_EXTENSIONS`: only what the executor implements.
 const EXTENSIONS_STRING: &str = "GL_OES_element_index_uint GL_OES_vertex_half_float GL_OES_texture_npot \
-GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil";
+GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_texture";
 
 fn err(ctx: &mut Context, e: u32) -> Option<Reply> {
     ctx.err(e);
