@@ -145,6 +145,23 @@ fn misuse(gl: Gl<'_>) -> Result<(), ClientError> {
     gl.glClear(COLOR_BUFFER_BIT)?;
     expect(gl, "glClear on an incomplete framebuffer", INVALID_FRAMEBUFFER_OPERATION);
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+
+    // A feedback loop passes GL validation (GL leaves its result undefined) but is a usage
+    // conflict for wgpu: the GPU error must be caught and charged to this client.
+    let (fb, dt) = (n.next(), n.next());
+    gl.glBindTexture(TEXTURE_2D, dt)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, 16, 16, 0, 0x1902, UNSIGNED_SHORT, None)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    gl.glFramebufferTexture2D(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_2D, dt, 0)?;
+    gl.glEnable(DEPTH_TEST)?;
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    textured_quad(gl, n, 0.0, 1.0)?;
+    gl.glFinish()?;
+    let e = gl.glGetError()?;
+    assert!(e == NO_ERROR || e == 0x0505, "feedback loop: unexpected GL error {e:#x}");
+    gl.glDisable(DEPTH_TEST)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glFinish()?;
     Ok(())
 }
@@ -193,5 +210,86 @@ fn gl_misuse_records_errors_while_another_client_draws_correctly() {
     done.store(true, Ordering::Release);
     let rounds = bystander.join().expect("bystander");
     assert!(rounds >= 3);
+    daemon.wait_log("name=misuse role=app}: strata_server::gles::state: GPU validation error charged to this client");
     assert!(!daemon.log_text().contains("panicked"), "daemon panicked:\n{}", daemon.log_text());
+}
+
+/// The limits `glGetIntegerv` advertises meet ES 2.0's minimums and are real: a program that
+/// uses every attribute, varying, sampler and uniform vector it claims links and draws.
+#[test]
+fn advertised_limits_are_es2_minimums_and_usable() {
+    let daemon = Daemon::start("limits", &[]);
+    let mut c = strata_context(&daemon.socket, "limits").expect("context");
+    let gl: Gl<'_> = &mut c;
+    let get = |gl: Gl<'_>, pname: u32| gl.glGetIntegerv(pname).expect("glGetIntegerv")[0];
+    let attribs = get(gl, 0x8869);
+    let varyings = get(gl, 0x8DFC);
+    let units = get(gl, 0x8872);
+    let vertex_vectors = get(gl, 0x8DFB);
+    for (what, have, min) in [
+        ("MAX_VERTEX_ATTRIBS", attribs, 8),
+        ("MAX_VARYING_VECTORS", varyings, 8),
+        ("MAX_TEXTURE_IMAGE_UNITS", units, 8),
+        ("MAX_COMBINED_TEXTURE_IMAGE_UNITS", get(gl, 0x8B4D), 8),
+        ("MAX_VERTEX_UNIFORM_VECTORS", vertex_vectors, 128),
+        ("MAX_FRAGMENT_UNIFORM_VECTORS", get(gl, 0x8DFD), 16),
+        ("MAX_TEXTURE_SIZE", get(gl, 0x0D33), 64),
+        ("MAX_CUBE_MAP_TEXTURE_SIZE", get(gl, 0x851C), 16),
+        ("MAX_RENDERBUFFER_SIZE", get(gl, 0x84E8), 1),
+    ] {
+        assert!(have >= min, "{what} is {have}, below ES 2.0's minimum {min}");
+    }
+    let version = gl.glGetString(0x1F02).expect("version").unwrap_or_default();
+    assert!(version.starts_with("OpenGL ES 2.0"), "{version}");
+    let glsl = gl.glGetString(0x8B8C).expect("glsl").unwrap_or_default();
+    assert!(glsl.starts_with("OpenGL ES GLSL ES 1.00"), "{glsl}");
+
+    // One program at every limit at once.
+    let names: Vec<String> = (0..attribs).map(|i| format!("a{i}")).collect();
+    let mut vs = String::new();
+    for n in &names {
+        vs.push_str(&format!("attribute vec4 {n};\n"));
+    }
+    for i in 0..varyings {
+        vs.push_str(&format!("varying vec4 v{i};\n"));
+    }
+    vs.push_str(&format!(
+        "uniform vec4 big[{}];\nvoid main() {{\n    vec4 s = big[{}];\n",
+        vertex_vectors - 8,
+        vertex_vectors - 9
+    ));
+    for n in &names {
+        vs.push_str(&format!("    s += {n} * 0.001;\n"));
+    }
+    for i in 0..varyings {
+        vs.push_str(&format!("    v{i} = s * {}.0;\n", i + 1));
+    }
+    vs.push_str("    gl_Position = vec4(a0.xy, 0.0, 1.0);\n}\n");
+    let mut fs = String::from("precision mediump float;\n");
+    for i in 0..varyings {
+        fs.push_str(&format!("varying vec4 v{i};\n"));
+    }
+    for i in 0..units {
+        fs.push_str(&format!("uniform sampler2D t{i};\n"));
+    }
+    fs.push_str("void main() {\n    vec4 c = vec4(0.0);\n");
+    for i in 0..varyings {
+        fs.push_str(&format!("    c += v{i} * 0.01;\n"));
+    }
+    for i in 0..units {
+        fs.push_str(&format!("    c += texture2D(t{i}, vec2(0.5)) * 0.01;\n"));
+    }
+    fs.push_str("    gl_FragColor = c;\n}\n");
+    let n = &mut Names::default();
+    let attrib_refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let p = program(gl, n, &vs, &fs, &attrib_refs).expect("a program at every advertised limit links");
+    for i in 0..units {
+        let l = gl.glGetUniformLocation(p, Text::borrowed(&format!("t{i}"))).expect("loc");
+        gl.glUniform1i(l, i).expect("unit");
+    }
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&quad(-1.0, -1.0, 1.0, 1.0, 0.0))).expect("buffer");
+    attrib(gl, 0, 3, FLOAT, false, 0, 0).expect("attrib");
+    gl.glDrawArrays(TRIANGLES, 0, 6).expect("draw");
+    gl.glFinish().expect("finish");
+    expect(gl, "drawing at every limit", NO_ERROR);
 }

@@ -114,7 +114,6 @@ impl Connection {
             .map_err(|source| ClientError::Connect { socket: opts.socket.clone(), source })?;
         stream.set_read_timeout(Some(Duration::from_secs(10))).map_err(HandshakeError::Io)?;
         use std::io::Write;
-        stream.write_all(&handshake::preamble(opts.version)).map_err(HandshakeError::Io)?;
         let hello = Hello {
             name: opts.name.clone(),
             role: opts.role.clone(),
@@ -122,8 +121,19 @@ impl Connection {
             tally: opts.tally,
             purpose: Purpose::Render,
         };
-        handshake::write_message(&mut stream, &hello)?;
-        let (client_id, name, cmd_capacity, reply_capacity) = match handshake::read_message(&mut stream, "welcome")? {
+        let mut opening = handshake::preamble(opts.version).to_vec();
+        opening.extend_from_slice(&handshake::frame(&hello)?);
+        // The daemon may refuse after the preamble and close before the hello arrives; its
+        // reason is then waiting to be read, and it explains more than a broken pipe.
+        let sent = stream.write_all(&opening);
+        let reply = handshake::read_message(&mut stream, "welcome");
+        if let Err(e) = sent {
+            return match reply {
+                Ok(ServerMessage::Refused { reason }) => Err(HandshakeError::Refused(reason).into()),
+                _ => Err(HandshakeError::Io(e).into()),
+            };
+        }
+        let (client_id, name, cmd_capacity, reply_capacity) = match reply? {
             ServerMessage::Welcome { client_id, segment, cmd_capacity, reply_capacity } => {
                 (client_id, segment, cmd_capacity, reply_capacity)
             }

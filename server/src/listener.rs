@@ -264,9 +264,7 @@ async fn run_client(
         Writer::new(reply_ring, 0),
         hello.tally,
         match &shared.gpu {
-            Some(gpu) => {
-                Box::new(GlesExecutor::new(gpu.clone(), hello.name.clone())) as Box<dyn crate::executor::Executor>
-            }
+            Some(gpu) => Box::new(GlesExecutor::new(gpu.clone())) as Box<dyn crate::executor::Executor>,
             None => Box::new(Drain::default()),
         },
         closed.clone(),
@@ -278,9 +276,12 @@ async fn run_client(
         .ok();
     info!(segment = segment.name(), "client connected");
     let (done_tx, mut done_rx) = oneshot::channel();
+    let span = tracing::Span::current();
     std::thread::Builder::new()
         .name(format!("session-{id}"))
         .spawn(move || {
+            // Everything the session logs (GPU errors included) carries the client's identity.
+            let _span = span.enter();
             let _keep = segment;
             let _ = done_tx.send(session.run());
         })

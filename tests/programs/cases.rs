@@ -789,6 +789,111 @@ fn points(gl: Gl<'_>, n: &mut Names) -> R {
     draw_positions(gl, n, &v, 0x0000)
 }
 
+fn uniform_variants(gl: Gl<'_>, n: &mut Names) -> R {
+    let fs =
+        "precision highp float; uniform ivec3 a; uniform ivec4 b; uniform vec2 c[2]; uniform vec3 d; uniform vec4 e[2];
+        uniform int f[3]; uniform ivec2 g; uniform bvec2 h;
+        void main() {
+            vec4 o = vec4(float(a.x + a.y + a.z) / 30.0, float(b.w - b.x) / 20.0, c[1].y, 1.0);
+            o.rgb += d * 0.25 + e[1].xyz * 0.25;
+            o.r += float(f[2]) / 50.0 + float(g.y) / 40.0;
+            if (h.y) o.b = 1.0 - o.b;
+            gl_FragData[0] = clamp(o, 0.0, 1.0);
+        }";
+    let p = program(gl, n, VS_POS, fs, &["pos"])?;
+    let l = |gl: Gl<'_>, name: &str| gl.glGetUniformLocation(p, Text::borrowed(name));
+    let x = l(gl, "a")?;
+    gl.glUniform3i(x, 3, 4, 5)?;
+    let x = l(gl, "b")?;
+    gl.glUniform4iv(x, Slice::new(&[1, 2, 3, 9]))?;
+    let x = l(gl, "c")?;
+    gl.glUniform2fv(x, Slice::new(&[0.1, 0.2, 0.3, 0.6]))?;
+    let x = l(gl, "d")?;
+    gl.glUniform3fv(x, Slice::new(&[0.4, 0.2, 0.8]))?;
+    let x = l(gl, "e[1]")?;
+    gl.glUniform4fv(x, Slice::new(&[0.9, 0.1, 0.5, 1.0]))?;
+    let x = l(gl, "f")?;
+    gl.glUniform1iv(x, Slice::new(&[1, 2, 7]))?;
+    let x = l(gl, "g")?;
+    gl.glUniform2iv(x, Slice::new(&[0, 8]))?;
+    let x = l(gl, "h")?;
+    gl.glUniform2i(x, 0, 1)?;
+    draw_positions(gl, n, &quad(-0.9, -0.9, 0.9, 0.9, 0.0), TRIANGLES)
+}
+
+fn points_coord(gl: Gl<'_>, n: &mut Names) -> R {
+    let vs = "attribute vec4 pos; void main() { gl_PointSize = 1.0; gl_Position = pos; }";
+    let fs = "precision mediump float; void main() { gl_FragColor = vec4(gl_PointCoord, 0.5, 1.0); }";
+    program(gl, n, vs, fs, &["pos"])?;
+    let c = |px: f32| (px + 0.5) / 32.0 - 1.0;
+    let v: Vec<f32> = (0..16).flat_map(|i| [c((i * 4) as f32), c(((i * 7) % 60) as f32), 0.0]).collect();
+    draw_positions(gl, n, &v, 0x0000)
+}
+
+fn mipmap_filters(gl: Gl<'_>, n: &mut Names) -> R {
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    for (i, filter) in [0x2701i32, 0x2702].into_iter().enumerate() {
+        texture(gl, n, 16, 16, RGBA, UNSIGNED_BYTE, &pattern(16, 16), filter, REPEAT)?;
+        gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+        gl.glGenerateMipmap(TEXTURE_2D)?;
+        let (x0, x1) = if i == 0 { (-1.0, 0.0) } else { (0.0, 1.0) };
+        let v = [
+            x0, -1.0, 0.0, 0.0, x1, -1.0, 3.0, 0.0, x1, 1.0, 3.0, 6.0, x0, -1.0, 0.0, 0.0, x1, 1.0, 3.0, 6.0, x0, 1.0,
+            0.0, 6.0,
+        ];
+        buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
+        attrib(gl, 0, 2, FLOAT, false, 16, 0)?;
+        attrib(gl, 1, 2, FLOAT, false, 16, 8)?;
+        gl.glDrawArrays(TRIANGLES, 0, 6)?;
+    }
+    Ok(())
+}
+
+fn depth_and_color_masks(gl: Gl<'_>, n: &mut Names) -> R {
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glClearColor(0.2, 0.2, 0.2, 1.0)?;
+    gl.glClear(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT)?;
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    // Drawn without depth writes: the later, farther quad still covers it.
+    gl.glDepthMask(false)?;
+    color(gl, p, [1.0, 0.0, 0.0, 1.0])?;
+    draw_positions(gl, n, &quad(-0.8, -0.8, 0.3, 0.3, -0.5), TRIANGLES)?;
+    gl.glDepthMask(true)?;
+    gl.glColorMask(false, true, true, false)?;
+    color(gl, p, [1.0, 0.7, 0.4, 1.0])?;
+    draw_positions(gl, n, &quad(-0.5, -0.5, 0.8, 0.8, 0.5), TRIANGLES)
+}
+
+fn attrib_ushort(gl: Gl<'_>, n: &mut Names) -> R {
+    let vs = "attribute vec4 pos; attribute vec4 col; varying vec4 v; void main() { v = vec4(col.xy / 1000.0, col.z, 1.0); gl_Position = pos; }";
+    program(gl, n, vs, FS_VARY, &["pos", "col"])?;
+    let pos: Vec<u8> = [0u16, 0, 65535, 0, 32768, 65535].iter().flat_map(|v| v.to_ne_bytes()).collect();
+    buffer(gl, n, ARRAY_BUFFER, &pos)?;
+    gl.glVertexAttribPointer(0, 2, UNSIGNED_SHORT, true, 0, 0)?;
+    gl.glEnableVertexAttribArray(0)?;
+    // Unnormalised shorts, three components (converted), plus a constant w.
+    let col: Vec<u8> = [900u16, 100, 1, 100, 900, 0, 500, 500, 1].iter().flat_map(|v| v.to_ne_bytes()).collect();
+    buffer(gl, n, ARRAY_BUFFER, &col)?;
+    attrib(gl, 1, 3, UNSIGNED_SHORT, false, 0, 0)?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)
+}
+
+fn read_pixels_round_trip(gl: Gl<'_>, n: &mut Names) -> R {
+    triangle_varying(gl, n)?;
+    // Read a sub-rectangle back and show it, enlarged, in the corner.
+    let px = gl.glReadPixels(10, 12, 20, 16, 0x1908, UNSIGNED_BYTE)?.0;
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    texture(gl, n, 20, 16, RGBA, UNSIGNED_BYTE, &px, NEAREST, CLAMP_TO_EDGE)?;
+    let v = [
+        0.2f32, 0.2, 0.0, 0.0, 1.0, 0.2, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.2, 0.2, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.2,
+        1.0, 0.0, 1.0,
+    ];
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
+    attrib(gl, 0, 2, FLOAT, false, 16, 0)?;
+    attrib(gl, 1, 2, FLOAT, false, 16, 8)?;
+    gl.glDrawArrays(TRIANGLES, 0, 6)
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -858,6 +963,12 @@ pub fn all() -> Vec<Case> {
         c("depth_texture_render_and_sample", depth_texture_render_and_sample, depth_tol),
         c("depth_texture_upload", depth_texture_upload, depth_tol),
         c("points", points, DEFAULT),
+        c("points_coord", points_coord, DEFAULT),
+        c("uniform_variants", uniform_variants, DEFAULT),
+        c("mipmap_filters", mipmap_filters, mip_tol),
+        c("depth_and_color_masks", depth_and_color_masks, DEFAULT),
+        c("attrib_ushort", attrib_ushort, DEFAULT),
+        c("read_pixels_round_trip", read_pixels_round_trip, DEFAULT),
         c("precision_high_branch", precision_high_branch, DEFAULT),
         c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),

@@ -493,6 +493,18 @@ impl Calls for MesaGl {
                 let v = values.to_vec();
                 call!(self, "glUniform1iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32, v.as_ptr())
             }
+            C::Uniform2iv { location, values } => {
+                let v = values.to_vec();
+                call!(self, "glUniform2iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 2, v.as_ptr())
+            }
+            C::Uniform3iv { location, values } => {
+                let v = values.to_vec();
+                call!(self, "glUniform3iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 3, v.as_ptr())
+            }
+            C::Uniform4iv { location, values } => {
+                let v = values.to_vec();
+                call!(self, "glUniform4iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 4, v.as_ptr())
+            }
             C::UniformMatrix2fv { location, transpose, values } => {
                 let v = values.to_vec();
                 call!(

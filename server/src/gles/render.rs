@@ -183,6 +183,8 @@ pub struct Renderer {
     pub passes: u64,
     /// Draws recorded.
     pub draws: u64,
+    /// GPU validation errors caught since the executor last charged them to its client.
+    pub errors: Vec<String>,
     pass: Option<Pass>,
     staging: Vec<u8>,
     ring: Option<(wgpu::Buffer, u64)>,
@@ -343,6 +345,7 @@ impl Renderer {
             pipeline_misses: 0,
             passes: 0,
             draws: 0,
+            errors: Vec::new(),
             pass: None,
             staging: Vec::new(),
             ring: None,
@@ -705,9 +708,9 @@ impl Renderer {
         self.pass_for(target).draws.push(rec);
     }
 
-    /// Encodes and submits the open pass. Returns the GPU validation error, if any.
-    pub fn flush(&mut self) -> Option<String> {
-        let pass = self.pass.take()?;
+    /// Encodes and submits the open pass. A GPU validation error is queued in `errors`.
+    pub fn flush(&mut self) {
+        let Some(pass) = self.pass.take() else { return };
         self.passes += 1;
         let guard = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let d = &self.gpu.device;
@@ -875,7 +878,9 @@ impl Renderer {
             }
         }
         self.gpu.queue.submit([enc.finish()]);
-        pollster::block_on(guard.pop()).map(|e| error_chain(&e))
+        if let Some(e) = pollster::block_on(guard.pop()) {
+            self.errors.push(error_chain(&e));
+        }
     }
 
     /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom

@@ -239,7 +239,6 @@ impl Context {
 pub struct GlesExecutor {
     gpu: Arc<Gpu>,
     r: Renderer,
-    client: String,
     initialized: bool,
     surfaces: HashMap<u32, Surface>,
     contexts: HashMap<u32, Context>,
@@ -400,12 +399,11 @@ enum Value {
 }
 
 impl GlesExecutor {
-    /// An executor for client `client` (used in logs) on `gpu`.
-    pub fn new(gpu: Arc<Gpu>, client: String) -> Self {
+    /// An executor drawing on `gpu`; it logs within its session's span.
+    pub fn new(gpu: Arc<Gpu>) -> Self {
         GlesExecutor {
             r: Renderer::new(gpu.clone()),
             gpu,
-            client,
             initialized: false,
             surfaces: HashMap::new(),
             contexts: HashMap::new(),
@@ -431,8 +429,16 @@ impl GlesExecutor {
     }
 
     fn flush(&mut self) {
-        if let Some(e) = self.r.flush() {
-            warn!(client = %self.client, "GPU validation error charged to this client: {e}");
+        self.r.flush();
+    }
+
+    /// Logs every GPU error caught since the last command against this client and records
+    /// `GL_OUT_OF_MEMORY` (after which GL leaves the state undefined, as a lost GPU would).
+    fn charge(&mut self, extra: Option<wgpu::Error>) {
+        let mut errors = std::mem::take(&mut self.r.errors);
+        errors.extend(extra.map(|e| super::render::error_chain(&e)));
+        for e in errors {
+            warn!("GPU validation error charged to this client: {e}");
             if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
                 ctx.err(OUT_OF_MEMORY);
             }
@@ -1206,7 +1212,7 @@ impl GlesExecutor {
             },
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
         );
-        self.r.flush();
+        self.flush();
         gpu.queue.submit([enc.finish()]);
     }
 
@@ -2934,6 +2940,8 @@ impl Executor for GlesExecutor {
     fn execute(&mut self, cmd: Command<'_>) -> Result<Option<Reply>, ExecError> {
         use strata_protocol::Opcode as O;
         let op = cmd.opcode();
+        // Everything a command does on the device is charged to this client.
+        let scope = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let reply = match op {
             O::Ping => match cmd {
                 Command::Ping { token } => Some(Reply::Ping(token)),
@@ -2961,6 +2969,10 @@ impl Executor for GlesExecutor {
             | O::SwapBuffers => self.egl(cmd),
             _ => self.gl(cmd),
         };
+        let caught = pollster::block_on(scope.pop());
+        if caught.is_some() || !self.r.errors.is_empty() {
+            self.charge(caught);
+        }
         Ok(reply)
     }
 }
