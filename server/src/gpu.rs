@@ -17,6 +17,8 @@ pub enum GpuError {
 
 /// The device and queue every executor draws with.
 pub struct Gpu {
+    /// Lazily built pipeline for `write_depth`.
+    depth_writer: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
     /// The device.
     pub device: wgpu::Device,
     /// Its queue.
@@ -28,6 +30,154 @@ pub struct Gpu {
 }
 
 impl Gpu {
+    /// Writes depth values (in [0, 1], rows in memory order) into a Depth32Float texture.
+    /// wgpu cannot copy into depth images, so the values pass through a float texture and a
+    /// pass that sets `frag_depth`.
+    pub fn write_depth(&self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
+        let d = &self.device;
+        let (bgl, pipeline) = self.depth_writer.get_or_init(|| {
+            let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("depth upload"),
+                source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/depth_upload.wgsl").into()),
+            });
+            let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("depth upload"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                }],
+            });
+            let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: None,
+                bind_group_layouts: &[Some(&bgl)],
+                immediate_size: 0,
+            });
+            let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("depth upload"),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: wgpu::TextureFormat::Depth32Float,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            });
+            (bgl, pipeline)
+        });
+        let size = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
+        let src = d.create_texture(&wgpu::TextureDescriptor {
+            label: Some("depth upload source"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        self.queue.write_texture(
+            src.as_image_copy(),
+            bytemuck::cast_slice(values),
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(width * 4), rows_per_image: None },
+            size,
+        );
+        let src_view = src.create_view(&Default::default());
+        let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: bgl,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src_view) }],
+        });
+        let dst = tex.create_view(&Default::default());
+        let mut enc = d.create_command_encoder(&Default::default());
+        {
+            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("depth upload"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &dst,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            rp.set_pipeline(pipeline);
+            rp.set_bind_group(0, &group, &[]);
+            rp.draw(0..3, 0..1);
+        }
+        self.queue.submit([enc.finish()]);
+    }
+
+    /// Reads `[x, y, w, h]` of an RGBA8 texture as tightly packed rows in memory order.
+    pub fn read_rgba8(&self, tex: &wgpu::Texture, rect: [u32; 4]) -> Option<Vec<u8>> {
+        let [x, y, w, h] = rect;
+        if w == 0 || h == 0 {
+            return Some(Vec::new());
+        }
+        let row = (w * 4).div_ceil(256) * 256;
+        let buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(row * h),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: tex,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x, y, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buf,
+                layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },
+            },
+            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        );
+        self.queue.submit([enc.finish()]);
+        let slice = buf.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        let _ = self.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+        rx.recv().ok()?.ok()?;
+        let data = slice.get_mapped_range().ok()?;
+        let mut out = Vec::with_capacity((w * h * 4) as usize);
+        for r in 0..h {
+            let start = (r * row) as usize;
+            out.extend_from_slice(&data[start..start + (w * 4) as usize]);
+        }
+        drop(data);
+        buf.unmap();
+        Some(out)
+    }
+
     /// Opens the first Vulkan adapter (lavapipe on machines without a GPU). The uncaptured
     /// error handler only logs: errors are charged to clients through error scopes.
     pub fn open() -> Result<Arc<Gpu>, GpuError> {
@@ -57,6 +207,6 @@ impl Gpu {
         }))?;
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| error!("uncaptured GPU error: {e}")));
         info!(adapter = %info.name, driver = %info.driver, "GPU opened");
-        Ok(Arc::new(Gpu { device, queue, info, limits }))
+        Ok(Arc::new(Gpu { depth_writer: std::sync::OnceLock::new(), device, queue, info, limits }))
     }
 }

@@ -7,5 +7,6 @@ pub mod listener;
 pub mod session;
 
 pub use listener::{serve, ExecutorKind, ServeOptions, ServerError};
+pub mod compositor;
 pub mod gles;
 pub mod gpu;

@@ -1,0 +1,118 @@
+//! The reference compositor: plain f64 code written from the thesis (§4.5–4.6), used as the
+//! oracle for the GPU compositor. Deliberately simple: one loop over output pixels.
+
+use super::{Lighting, NormalSource};
+
+/// One surface as the reference sees it: CPU copies of its images.
+#[derive(Debug, Clone)]
+pub struct RefLayer {
+    /// x, y (from the output's top), width, height in output pixels.
+    pub rect: [i32; 4],
+    /// Depth layer: larger is farther; equal values form one group.
+    pub z: f32,
+    /// RGBA8 rows, bottom row first (GL order), straight alpha.
+    pub color: Vec<u8>,
+    /// Depth rows (bottom first) in [0, 1], or `None` for a surface without depth (depth 1).
+    pub depth: Option<Vec<f32>>,
+    /// The per-surface normal.
+    pub normal: [f32; 3],
+}
+
+fn normalize(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if l == 0.0 {
+        return [0.0, 0.0, 0.0];
+    }
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Depth of `l` at surface pixel (sx, sy) (sy counted from the bottom), 1 without depth.
+fn depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
+    let w = l.rect[2];
+    match &l.depth {
+        Some(d) => f64::from(d[(sy * w + sx) as usize]),
+        None => 1.0,
+    }
+}
+
+/// The normal reconstructed from depth: central differences, one-sided at the edges.
+fn depth_normal(l: &RefLayer, sx: i32, sy: i32, scale: f64) -> [f64; 3] {
+    let (w, h) = (l.rect[2], l.rect[3]);
+    let d = |x: i32, y: i32| depth_at(l, x.clamp(0, w - 1), y.clamp(0, h - 1));
+    let (x0, x1) = ((sx - 1).max(0), (sx + 1).min(w - 1));
+    let (y0, y1) = ((sy - 1).max(0), (sy + 1).min(h - 1));
+    let dzdx = if x1 > x0 { (d(x1, sy) - d(x0, sy)) / f64::from(x1 - x0) } else { 0.0 };
+    let dzdy = if y1 > y0 { (d(sx, y1) - d(sx, y0)) / f64::from(y1 - y0) } else { 0.0 };
+    normalize([-dzdx * scale, -dzdy * scale, 1.0])
+}
+
+/// Composites `layers` (in stacking order) into a `width`×`height` RGBA8 image, top row first.
+pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32; 4], light: &Lighting) -> Vec<u8> {
+    let mut zs: Vec<f32> = layers.iter().map(|l| l.z).collect();
+    zs.sort_by(|a, b| b.total_cmp(a));
+    zs.dedup();
+    let mut out = Vec::with_capacity((width * height * 4) as usize);
+    for py in 0..height as i32 {
+        for px in 0..width as i32 {
+            let bg = background.map(f64::from);
+            // Premultiplied accumulation.
+            let mut acc = [bg[0] * bg[3], bg[1] * bg[3], bg[2] * bg[3], bg[3]];
+            for &z in &zs {
+                // Within the group: nearest depth wins; on a tie the later surface wins.
+                let mut best: Option<(f64, &RefLayer, i32, i32)> = None;
+                for l in layers.iter().filter(|l| l.z == z) {
+                    let (lx, ly) = (px - l.rect[0], py - l.rect[1]);
+                    if lx < 0 || ly < 0 || lx >= l.rect[2] || ly >= l.rect[3] {
+                        continue;
+                    }
+                    let sy = l.rect[3] - 1 - ly;
+                    let d = depth_at(l, lx, sy);
+                    if best.is_none_or(|b| d <= b.0) {
+                        best = Some((d, l, lx, sy));
+                    }
+                }
+                let Some((_, l, sx, sy)) = best else { continue };
+                let at = ((sy * l.rect[2] + sx) * 4) as usize;
+                let c: Vec<f64> = l.color[at..at + 4].iter().map(|&v| f64::from(v) / 255.0).collect();
+                let mut rgb = [c[0], c[1], c[2]];
+                if light.enabled {
+                    let n = match light.normals {
+                        NormalSource::PerSurface => normalize(l.normal.map(f64::from)),
+                        NormalSource::FromDepth => depth_normal(l, sx, sy, f64::from(light.depth_normal_scale)),
+                    };
+                    let frag = [
+                        (f64::from(px) + 0.5) / f64::from(width) * 2.0 - 1.0,
+                        1.0 - (f64::from(py) + 0.5) / f64::from(height) * 2.0,
+                        0.0,
+                    ];
+                    let lp = light.position.map(f64::from);
+                    let vp = light.view.map(f64::from);
+                    let ld = normalize([lp[0] - frag[0], lp[1] - frag[1], lp[2] - frag[2]]);
+                    let vd = normalize([vp[0] - frag[0], vp[1] - frag[1], vp[2] - frag[2]]);
+                    let diffuse = dot(n, ld).max(0.0);
+                    // reflect(-L, n) = -L + 2 (n·L) n
+                    let nl = dot(n, ld);
+                    let r = [-ld[0] + 2.0 * nl * n[0], -ld[1] + 2.0 * nl * n[1], -ld[2] + 2.0 * nl * n[2]];
+                    let specular = dot(vd, r).max(0.0).powf(f64::from(light.shininess));
+                    let f = f64::from(light.ambient) + diffuse + specular;
+                    for (i, ch) in rgb.iter_mut().enumerate() {
+                        *ch = (*ch * f * f64::from(light.color[i])).clamp(0.0, 1.0);
+                    }
+                }
+                let a = c[3];
+                for i in 0..3 {
+                    acc[i] = rgb[i] * a + acc[i] * (1.0 - a);
+                }
+                acc[3] = a + acc[3] * (1.0 - a);
+            }
+            for v in acc {
+                out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
+            }
+        }
+    }
+    out
+}
