@@ -5,5 +5,5 @@
 pub mod connection;
 pub mod workload;
 
-pub use connection::{ClientError, ConnectOptions, Connection};
+pub use connection::{ClientError, ConnectOptions, Connection, ControlConnection};
 pub use strata_protocol::Calls;

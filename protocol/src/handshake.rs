@@ -16,8 +16,10 @@ use crate::codec::{self, CodecError};
 pub const PROTOCOL_VERSION: u32 = 2;
 /// The first four bytes a client sends.
 pub const PREAMBLE_MAGIC: [u8; 4] = *b"STRT";
-/// Largest framed control message.
+/// Largest framed control message the daemon accepts.
 pub const MAX_CONTROL_MESSAGE: usize = 1 << 20;
+/// Largest framed reply a control client accepts (screenshots are large).
+pub const MAX_CONTROL_REPLY: usize = 256 << 20;
 
 /// Where a client's window goes in the output: position, depth layer and size in pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -77,6 +79,53 @@ pub enum ServerMessage {
         /// Why.
         reason: String,
     },
+    /// A control connection is accepted; send `ControlRequest`s.
+    ControlReady,
+}
+
+/// What `stratad ctl` asks.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ControlRequest {
+    /// Every window surface.
+    List,
+    /// Composite every surface into a `width`×`height` image.
+    Screenshot {
+        /// Output width.
+        width: u32,
+        /// Output height.
+        height: u32,
+    },
+}
+
+/// One row of `stratad ctl list`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceRow {
+    /// Owning client's name.
+    pub client: String,
+    /// x, y, width, height.
+    pub rect: [i32; 4],
+    /// Depth layer.
+    pub z: f32,
+    /// Frames swapped.
+    pub frames: u64,
+}
+
+/// The daemon's answer to a `ControlRequest`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ControlReply {
+    /// Every window surface, in stacking order.
+    List(Vec<SurfaceRow>),
+    /// A composited image: RGBA8, top row first.
+    Image {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+        /// Pixels.
+        rgba: crate::Bytes,
+    },
+    /// The request failed.
+    Error(String),
 }
 
 /// The client's messages on the control socket after the hello.
@@ -138,8 +187,13 @@ pub fn check_preamble(p: [u8; 8]) -> Result<(), HandshakeError> {
 
 /// Frames a control message: `[len: u32 LE][bytes]`.
 pub fn frame<T: Serialize>(msg: &T) -> Result<Vec<u8>, HandshakeError> {
+    frame_limited(msg, MAX_CONTROL_MESSAGE)
+}
+
+/// Frames a control message of at most `limit` bytes.
+pub fn frame_limited<T: Serialize>(msg: &T, limit: usize) -> Result<Vec<u8>, HandshakeError> {
     let body = codec::encode_to_vec(msg)?;
-    if body.len() > MAX_CONTROL_MESSAGE {
+    if body.len() > limit {
         return Err(HandshakeError::TooLarge(body.len()));
     }
     let mut out = Vec::with_capacity(4 + body.len());
@@ -165,9 +219,22 @@ pub fn write_message<T: Serialize>(w: &mut impl Write, msg: &T) -> Result<(), Ha
 
 /// Reads one framed message from a blocking stream.
 pub fn read_message<T: DeserializeOwned>(r: &mut impl Read, what: &'static str) -> Result<T, HandshakeError> {
+    read_message_limited(r, what, MAX_CONTROL_MESSAGE)
+}
+
+/// Reads one framed message of at most `limit` bytes from a blocking stream.
+pub fn read_message_limited<T: DeserializeOwned>(
+    r: &mut impl Read,
+    what: &'static str,
+    limit: usize,
+) -> Result<T, HandshakeError> {
     let mut prefix = [0u8; 4];
     r.read_exact(&mut prefix)?;
-    let mut body = vec![0u8; frame_len(prefix)?];
+    let len = u32::from_le_bytes(prefix) as usize;
+    if len > limit {
+        return Err(HandshakeError::TooLarge(len));
+    }
+    let mut body = vec![0u8; len];
     r.read_exact(&mut body)?;
     Ok(codec::decode_owned(&body, what)?)
 }

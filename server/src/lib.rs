@@ -8,5 +8,7 @@ pub mod session;
 
 pub use listener::{serve, ExecutorKind, ServeOptions, ServerError};
 pub mod compositor;
+pub mod demo;
 pub mod gles;
 pub mod gpu;
+pub mod scene;

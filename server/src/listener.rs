@@ -9,7 +9,9 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use strata_protocol::codec::MAX_MESSAGE_LEN;
-use strata_protocol::handshake::{self, ClientMessage, HandshakeError, Hello, Purpose, ServerMessage};
+use strata_protocol::handshake::{
+    self, ClientMessage, ControlReply, ControlRequest, HandshakeError, Hello, Purpose, ServerMessage, SurfaceRow,
+};
 use strata_protocol::ring::{Reader, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -36,6 +38,10 @@ pub struct ServeOptions {
     pub reply_ring: u32,
     /// What runs each client's commands.
     pub executor: ExecutorKind,
+    /// Sampled textures per compositor pass (`None`: the device's limit).
+    pub max_textures: Option<u32>,
+    /// Uniform lighting of composited output.
+    pub lighting: crate::compositor::Lighting,
 }
 
 /// The executor each client session gets.
@@ -55,6 +61,8 @@ impl Default for ServeOptions {
             cmd_ring: 8 << 20,
             reply_ring: 1 << 20,
             executor: ExecutorKind::Gles,
+            max_textures: None,
+            lighting: crate::compositor::Lighting::default(),
         }
     }
 }
@@ -119,6 +127,8 @@ pub struct ClientInfo {
 struct Shared {
     opts: ServeOptions,
     gpu: Option<Arc<Gpu>>,
+    scene: Arc<crate::scene::Scene>,
+    compositor: Mutex<Option<crate::compositor::Compositor>>,
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
     shutdown: watch::Receiver<bool>,
@@ -139,8 +149,15 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     let listener = claim_socket(&opts.socket)?;
     info!(socket = %opts.socket.display(), "stratad serving");
     let (stop_tx, stop_rx) = watch::channel(false);
-    let shared =
-        Arc::new(Shared { opts, gpu, next_id: AtomicU64::new(1), clients: Mutex::default(), shutdown: stop_rx });
+    let shared = Arc::new(Shared {
+        opts,
+        gpu,
+        scene: Arc::default(),
+        compositor: Mutex::new(None),
+        next_id: AtomicU64::new(1),
+        clients: Mutex::default(),
+        shutdown: stop_rx,
+    });
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
     loop {
@@ -210,10 +227,10 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
             return;
         }
     };
-    if hello.purpose != Purpose::Render {
-        let reason = "control connections are not served by this daemon build".to_string();
-        let _ = send(&mut stream, &ServerMessage::Refused { reason: reason.clone() }).await;
-        warn!(client = id, name = %hello.name, "refused: {reason}");
+    if hello.purpose == Purpose::Control {
+        if let Err(e) = serve_control(&mut stream, &shared).await {
+            debug!(client = id, "control connection ended: {e}");
+        }
         return;
     }
     let span = tracing::info_span!("client", id, name = %hello.name, role = %hello.role);
@@ -225,6 +242,86 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
         Err(e) => span.in_scope(|| warn!("session setup failed: {e}")),
     }
     shared.clients.lock().map(|mut c| c.remove(&id)).ok();
+}
+
+/// Answers `stratad ctl` requests until the connection closes.
+async fn serve_control(stream: &mut UnixStream, shared: &Arc<Shared>) -> Result<(), HandshakeError> {
+    send(stream, &ServerMessage::ControlReady).await?;
+    loop {
+        let req: ControlRequest = recv(stream, "control request").await?;
+        let shared2 = shared.clone();
+        let reply = tokio::task::spawn_blocking(move || control(&shared2, req))
+            .await
+            .unwrap_or_else(|e| ControlReply::Error(format!("control request failed: {e}")));
+        stream.write_all(&handshake::frame_limited(&reply, handshake::MAX_CONTROL_REPLY)?).await?;
+    }
+}
+
+fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
+    match req {
+        ControlRequest::List => ControlReply::List(
+            shared
+                .scene
+                .with(|s| {
+                    s.iter()
+                        .map(|x| SurfaceRow { client: x.client.clone(), rect: x.rect, z: x.z, frames: x.frames })
+                        .collect()
+                })
+                .unwrap_or_default(),
+        ),
+        ControlRequest::Screenshot { width, height } => {
+            let Some(gpu) = shared.gpu.clone() else {
+                return ControlReply::Error("this daemon runs without a GPU".into());
+            };
+            if width == 0 || height == 0 || width > 8192 || height > 8192 {
+                return ControlReply::Error(format!("output size {width}x{height} is not within 1..=8192"));
+            }
+            let Ok(mut comp) = shared.compositor.lock() else {
+                return ControlReply::Error("compositor unavailable".into());
+            };
+            if comp.is_none() {
+                match crate::compositor::Compositor::new(gpu.clone(), shared.opts.max_textures) {
+                    Ok(c) => *comp = Some(c),
+                    Err(e) => return ControlReply::Error(e.to_string()),
+                }
+            }
+            let Some(comp) = comp.as_mut() else { return ControlReply::Error("compositor unavailable".into()) };
+            let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("screenshot"),
+                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let light = shared.opts.lighting;
+            // Composite and submit under the scene lock: no swap can interleave.
+            let done = shared.scene.with(|surfaces| {
+                let layers: Vec<crate::compositor::Layer<'_>> = surfaces
+                    .iter()
+                    .filter_map(|s| {
+                        Some(crate::compositor::Layer {
+                            rect: s.rect,
+                            z: s.z,
+                            color: s.color.as_ref()?,
+                            depth: s.depth.as_ref(),
+                            normal: [0.0, 0.0, 1.0],
+                        })
+                    })
+                    .collect();
+                comp.composite(&layers, &light, &out, [0.0, 0.0, 0.0, 1.0]);
+            });
+            if done.is_none() {
+                return ControlReply::Error("scene unavailable".into());
+            }
+            match gpu.read_rgba8(&out, [0, 0, width, height]) {
+                Some(rgba) => ControlReply::Image { width, height, rgba: strata_protocol::Bytes(rgba) },
+                None => ControlReply::Error("reading the composited image back failed".into()),
+            }
+        }
+    }
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -264,7 +361,8 @@ async fn run_client(
         Writer::new(reply_ring, 0),
         hello.tally,
         match &shared.gpu {
-            Some(gpu) => Box::new(GlesExecutor::new(gpu.clone())) as Box<dyn crate::executor::Executor>,
+            Some(gpu) => Box::new(GlesExecutor::new(gpu.clone()).with_scene(shared.scene.clone(), id, &hello.name))
+                as Box<dyn crate::executor::Executor>,
             None => Box::new(Drain::default()),
         },
         closed.clone(),

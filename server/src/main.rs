@@ -7,8 +7,10 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
-use strata_client::{Calls, ConnectOptions, Connection};
+use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::default_socket_path;
+use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_server::compositor::{Lighting, NormalSource};
 use strata_server::{serve, ExecutorKind, ServeOptions};
 use tracing::info;
 
@@ -36,6 +38,39 @@ enum Cmd {
         /// What executes client commands.
         #[arg(long, value_enum, default_value_t = ExecutorKind::Gles)]
         executor: ExecutorKind,
+        /// Sampled textures per compositor pass (at least 4; default: the device's limit).
+        #[arg(long)]
+        max_textures: Option<u32>,
+        /// Uniform Phong lighting of the composited output.
+        #[arg(long, value_enum, default_value_t = Switch::On)]
+        lighting: Switch,
+        /// Where lighting takes normals from.
+        #[arg(long, value_enum, default_value_t = Normals::PerSurface)]
+        normals: Normals,
+    },
+    /// Administer a running daemon.
+    Ctl {
+        /// Socket path [default: as for serve].
+        #[arg(long, env = "STRATA_SOCKET")]
+        socket: Option<PathBuf>,
+        /// Answer in JSON.
+        #[arg(long)]
+        json: bool,
+        #[command(subcommand)]
+        what: CtlCmd,
+    },
+    /// Run a built-in demo client (started by `stratad demo`).
+    #[command(hide = true)]
+    DemoClient {
+        /// Socket path.
+        #[arg(long)]
+        socket: PathBuf,
+        /// `ic` or `hu`.
+        #[arg(long)]
+        role: String,
+        /// Frames to render before reporting ready.
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
     },
     /// Sample client: stream a seeded mix of GLES commands and have the daemon verify them.
     Client {
@@ -61,12 +96,45 @@ enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
-    /// Start a daemon and two sample clients (IC and HU) that stream and verify, then stop.
+    /// Start a daemon with two built-in client processes, an instrument cluster and a head
+    /// unit whose 3D geometry intersects, and write the composited, lit output as a PNG.
     Demo {
-        /// Commands each client streams.
-        #[arg(long, default_value_t = 1_000_000)]
-        commands: u64,
+        /// Frames each client renders before the screenshot.
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
+        /// Where to write the PNG.
+        #[arg(long, default_value = "strata-demo.png")]
+        out: PathBuf,
     },
+}
+
+#[derive(Subcommand)]
+enum CtlCmd {
+    /// List every window surface.
+    List,
+    /// Composite every surface and save the output as a PNG.
+    Screenshot {
+        /// The PNG to write.
+        file: PathBuf,
+        /// Output width.
+        #[arg(long, default_value_t = strata_server::demo::OUTPUT.0)]
+        width: u32,
+        /// Output height.
+        #[arg(long, default_value_t = strata_server::demo::OUTPUT.1)]
+        height: u32,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Switch {
+    On,
+    Off,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Normals {
+    PerSurface,
+    FromDepth,
 }
 
 fn init_logging() {
@@ -82,11 +150,32 @@ fn init_logging() {
 fn main() -> Result<()> {
     init_logging();
     match Cli::parse().command {
-        Cmd::Serve { socket, cmd_ring, reply_ring, executor } => {
-            let opts =
-                ServeOptions { socket: socket.unwrap_or_else(default_socket_path), cmd_ring, reply_ring, executor };
+        Cmd::Serve { socket, cmd_ring, reply_ring, executor, max_textures, lighting, normals } => {
+            let lighting = Lighting {
+                enabled: matches!(lighting, Switch::On),
+                normals: match normals {
+                    Normals::PerSurface => NormalSource::PerSurface,
+                    Normals::FromDepth => NormalSource::FromDepth,
+                },
+                ..Lighting::default()
+            };
+            if let Some(m) = max_textures {
+                if m < 4 {
+                    bail!("{}", strata_server::compositor::CompositorError::TooFewTextures(m));
+                }
+            }
+            let opts = ServeOptions {
+                socket: socket.unwrap_or_else(default_socket_path),
+                cmd_ring,
+                reply_ring,
+                executor,
+                max_textures,
+                lighting,
+            };
             run_daemon(opts)
         }
+        Cmd::Ctl { socket, json, what } => ctl(&socket.unwrap_or_else(default_socket_path), json, what),
+        Cmd::DemoClient { socket, role, frames } => Ok(strata_server::demo::run_client(&socket, &role, frames)?),
         Cmd::Client { socket, name, role, commands, verify_every, max_upload, seed } => {
             let opts = ConnectOptions {
                 socket: socket.unwrap_or_else(default_socket_path),
@@ -97,7 +186,7 @@ fn main() -> Result<()> {
             };
             sample_client(&opts, commands, verify_every, max_upload, seed)
         }
-        Cmd::Demo { commands } => demo(commands),
+        Cmd::Demo { frames, out } => demo(frames, &out),
     }
 }
 
@@ -159,7 +248,54 @@ fn check(t: strata_protocol::StreamTally, name: &str) -> Result<()> {
     Ok(())
 }
 
-fn demo(commands: u64) -> Result<()> {
+fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Vec<u8>) -> Result<()> {
+    let img = image::RgbaImage::from_raw(width, height, rgba).context("screenshot has the wrong size")?;
+    img.save(path).with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
+}
+
+fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
+    let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
+    match what {
+        CtlCmd::List => match c.request(&ControlRequest::List)? {
+            ControlReply::List(rows) => {
+                if json {
+                    let v: Vec<_> = rows
+                        .iter()
+                        .map(|r| serde_json::json!({"client": r.client, "rect": r.rect, "z": r.z, "frames": r.frames}))
+                        .collect();
+                    println!("{}", serde_json::Value::Array(v));
+                } else {
+                    println!("{:<24} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8}", "client", "x", "y", "w", "h", "z", "frames");
+                    for r in rows {
+                        println!(
+                            "{:<24} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8}",
+                            r.client, r.rect[0], r.rect[1], r.rect[2], r.rect[3], r.z, r.frames
+                        );
+                    }
+                }
+                Ok(())
+            }
+            ControlReply::Error(e) => bail!("{e}"),
+            other => bail!("unexpected reply {other:?}"),
+        },
+        CtlCmd::Screenshot { file, width, height } => match c.request(&ControlRequest::Screenshot { width, height })? {
+            ControlReply::Image { width, height, rgba } => {
+                save_png(&file, width, height, rgba.0)?;
+                if json {
+                    println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
+                } else {
+                    println!("wrote {} ({width}x{height})", file.display());
+                }
+                Ok(())
+            }
+            ControlReply::Error(e) => bail!("{e}"),
+            other => bail!("unexpected reply {other:?}"),
+        },
+    }
+}
+
+fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
     let dir = std::env::temp_dir().join(format!("strata-demo-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let socket = dir.join("strata.sock");
@@ -169,37 +305,56 @@ fn demo(commands: u64) -> Result<()> {
         .arg(&socket)
         .spawn()
         .context("starting the daemon")?;
-    let deadline = Instant::now() + std::time::Duration::from_secs(10);
+    let deadline = Instant::now() + std::time::Duration::from_secs(20);
     while std::os::unix::net::UnixStream::connect(&socket).is_err() {
-        if Instant::now() > deadline {
+        if Instant::now() > deadline || daemon.try_wait()?.is_some() {
             let _ = daemon.kill();
             bail!("daemon did not start listening on {}", socket.display());
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    let clients: Vec<_> = [("instrument-cluster", "ic", 1), ("head-unit", "hu", 2)]
-        .into_iter()
-        .map(|(name, role, seed)| {
-            std::process::Command::new(&exe)
-                .args(["client", "--name", name, "--role", role, "--seed", &seed.to_string()])
-                .args(["--commands", &commands.to_string(), "--verify-every", "100000", "--socket"])
+    let result = (|| -> Result<()> {
+        let mut clients = Vec::new();
+        for role in ["ic", "hu"] {
+            let child = std::process::Command::new(&exe)
+                .args(["demo-client", "--role", role, "--frames", &frames.to_string(), "--socket"])
                 .arg(&socket)
-                .stdout(Stdio::inherit())
+                .stdin(Stdio::piped())
+                .stdout(Stdio::piped())
                 .spawn()
-                .with_context(|| format!("starting the {role} client"))
-        })
-        .collect::<Result<_>>()?;
-    let mut ok = true;
-    for mut c in clients {
-        ok &= c.wait()?.success();
-    }
+                .with_context(|| format!("starting the {role} client"))?;
+            clients.push(child);
+        }
+        for c in &mut clients {
+            use std::io::BufRead;
+            let stdout = c.stdout.take().context("client stdout")?;
+            let mut line = String::new();
+            std::io::BufReader::new(stdout).read_line(&mut line)?;
+            if line.trim() != "ready" {
+                bail!("a demo client failed before rendering its frames");
+            }
+        }
+        let (w, h) = strata_server::demo::OUTPUT;
+        let mut c = ControlConnection::connect(&socket)?;
+        let reply = c.request(&ControlRequest::Screenshot { width: w, height: h })?;
+        for mut child in clients {
+            drop(child.stdin.take());
+            let _ = child.wait();
+        }
+        match reply {
+            ControlReply::Image { width, height, rgba } => save_png(out, width, height, rgba.0)?,
+            ControlReply::Error(e) => bail!("screenshot failed: {e}"),
+            other => bail!("unexpected reply {other:?}"),
+        }
+        println!(
+            "demo: instrument cluster and head unit at the same z, composited per fragment with uniform lighting: {}",
+            out.display()
+        );
+        Ok(())
+    })();
     // SAFETY: plain kill(2) on our own child.
     unsafe { libc::kill(daemon.id() as i32, libc::SIGTERM) };
-    ok &= daemon.wait()?.success();
+    let _ = daemon.wait();
     let _ = std::fs::remove_dir_all(&dir);
-    if !ok {
-        bail!("demo failed");
-    }
-    println!("demo: both clients' streams arrived complete and in order");
-    Ok(())
+    result
 }

@@ -894,6 +894,31 @@ fn read_pixels_round_trip(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glDrawArrays(TRIANGLES, 0, 6)
 }
 
+fn respecified_buffer_between_draws(gl: Gl<'_>, n: &mut Names) -> R {
+    // One buffer re-specified with glBufferData between draws, a uniform changed each time.
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glClear(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT)?;
+    let vs = "attribute vec2 pos; attribute vec3 col; uniform vec3 plane; varying vec3 v;
+        void main() { v = col; gl_Position = vec4(pos, plane.x * pos.x + plane.y * pos.y + plane.z, 1.0); }";
+    let fs = "precision mediump float; varying vec3 v; void main() { gl_FragColor = vec4(v, 1.0); }";
+    let p = program(gl, n, vs, fs, &["pos", "col"])?;
+    let loc = gl.glGetUniformLocation(p, Text::borrowed("plane"))?;
+    let b = n.next();
+    gl.glBindBuffer(ARRAY_BUFFER, b)?;
+    gl.glVertexAttribPointer(0, 2, FLOAT, false, 20, 0)?;
+    gl.glVertexAttribPointer(1, 3, FLOAT, false, 20, 8)?;
+    gl.glEnableVertexAttribArray(0)?;
+    gl.glEnableVertexAttribArray(1)?;
+    let base = [-0.9f32, -0.9, 1.0, 0.5, 0.1, 0.9, -0.9, 1.0, 0.5, 0.1, 0.0, 0.9, 1.0, 0.5, 0.1];
+    let needle = [-0.05f32, -0.01, 1.0, 0.1, 0.1, 0.05, 0.01, 1.0, 0.1, 0.1, -0.2, 0.78, 1.0, 0.9, 0.9];
+    for (verts, lift) in [(&base[..], 0.0f32), (&needle[..], 0.03)] {
+        gl.glUniform3f(loc, 0.0, 0.5, -lift)?;
+        gl.glBufferData(ARRAY_BUFFER, (verts.len() * 4) as i64, Some(Blob::borrowed(&f32s(verts))), 0x88E8)?;
+        gl.glDrawArrays(TRIANGLES, 0, 3)?;
+    }
+    Ok(())
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -969,6 +994,7 @@ pub fn all() -> Vec<Case> {
         c("depth_and_color_masks", depth_and_color_masks, DEFAULT),
         c("attrib_ushort", attrib_ushort, DEFAULT),
         c("read_pixels_round_trip", read_pixels_round_trip, DEFAULT),
+        c("respecified_buffer_between_draws", respecified_buffer_between_draws, DEFAULT),
         c("precision_high_branch", precision_high_branch, DEFAULT),
         c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),

@@ -20,8 +20,12 @@ const MAX_TEXTURE: u32 = 8192;
 
 /// A daemon-owned EGL surface: its colour and optional depth/stencil images.
 pub struct Surface {
-    /// The render target framebuffer 0 resolves to.
+    /// The render target framebuffer 0 resolves to (the back buffer of a window surface).
     pub target: Target,
+    /// A depth-only view of the target's depth, for the compositor.
+    depth_sample: Option<wgpu::TextureView>,
+    /// A window surface's front buffer: the last completed frame.
+    front: Option<(Target, Option<wgpu::TextureView>)>,
     /// The config it was made with.
     pub config: Config,
     /// Window surface (composited) rather than pbuffer.
@@ -245,6 +249,17 @@ pub struct GlesExecutor {
     next_handle: u32,
     current: Option<(u32, u32)>,
     uid: u64,
+    /// Where window surfaces are shown: the scene, this client's id and name.
+    scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
+}
+
+impl Drop for GlesExecutor {
+    fn drop(&mut self) {
+        // A client that leaves, even mid-frame, disappears from the next composite.
+        if let Some((scene, client, _)) = &self.scene {
+            scene.remove(*client, None);
+        }
+    }
 }
 
 fn valid_func(f: u32) -> bool {
@@ -410,7 +425,14 @@ impl GlesExecutor {
             next_handle: 1,
             current: None,
             uid: 1,
+            scene: None,
         }
+    }
+
+    /// Shows this client's window surfaces in `scene` as client `id` named `name`.
+    pub fn with_scene(mut self, scene: Arc<crate::scene::Scene>, id: u64, name: &str) -> Self {
+        self.scene = Some((scene, id, name.to_string()));
+        self
     }
 
     /// Pipelines created because none in the cache matched.
@@ -445,14 +467,9 @@ impl GlesExecutor {
         }
     }
 
-    fn make_surface(&mut self, config: Config, width: i32, height: i32, window: bool) -> Result<u32, i32> {
-        if width < 0 || height < 0 {
-            return Err(EGL_BAD_PARAMETER);
-        }
-        if width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
-            return Err(if window { EGL_BAD_NATIVE_WINDOW } else { EGL_BAD_PARAMETER });
-        }
-        let (w, h) = ((width as u32).max(1), (height as u32).max(1));
+    /// One colour (+ depth) render target of a surface, cleared to transparent black as Mesa's
+    /// are, with a depth-only view for sampling.
+    fn make_target(&mut self, config: Config, w: u32, h: u32) -> (Target, Option<wgpu::TextureView>) {
         let d = &self.gpu.device;
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::TEXTURE_BINDING
@@ -470,6 +487,7 @@ impl GlesExecutor {
             view_formats: &[],
         });
         let color_view = color.create_view(&Default::default());
+        let mut sample = None;
         let depth = (config.depth > 0 || config.stencil > 0).then(|| {
             let format = match (config.depth, config.stencil) {
                 (16, 0) => wgpu::TextureFormat::Depth16Unorm,
@@ -483,16 +501,17 @@ impl GlesExecutor {
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
                 view_formats: &[],
             });
+            sample = Some(t.create_view(&wgpu::TextureViewDescriptor {
+                aspect: wgpu::TextureAspect::DepthOnly,
+                ..Default::default()
+            }));
             (t.create_view(&Default::default()), format)
         });
-        let id = self.next_handle;
-        self.next_handle += 1;
         let uid = self.next_uid();
         let target = Target { key: (uid, 0), color: Some((color, color_view)), depth, width: w, height: h };
-        // A new surface starts cleared to transparent black, as Mesa's do.
         self.r.clear(
             &target,
             Some(([0.0; 4], wgpu::ColorWrites::ALL)),
@@ -500,8 +519,37 @@ impl GlesExecutor {
             target.has_stencil().then_some((0, 0xff)),
             None,
         );
-        self.surfaces.insert(id, Surface { target, config, window });
+        (target, sample)
+    }
+
+    fn make_surface(&mut self, config: Config, width: i32, height: i32, window: bool) -> Result<u32, i32> {
+        if width < 0 || height < 0 {
+            return Err(EGL_BAD_PARAMETER);
+        }
+        if width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
+            return Err(if window { EGL_BAD_NATIVE_WINDOW } else { EGL_BAD_PARAMETER });
+        }
+        let (w, h) = ((width as u32).max(1), (height as u32).max(1));
+        let (target, depth_sample) = self.make_target(config, w, h);
+        // Window surfaces are double-buffered: a front buffer holds the last completed frame.
+        let front = window.then(|| self.make_target(config, w, h));
+        let id = self.next_handle;
+        self.next_handle += 1;
+        self.surfaces.insert(id, Surface { target, depth_sample, front, config, window });
         Ok(id)
+    }
+
+    /// `eglSwapBuffers`: the back buffer becomes the front (and is shown), the old front
+    /// becomes the next back buffer.
+    fn swap(&mut self, surface: u32) {
+        self.flush();
+        let Some(s) = self.surfaces.get_mut(&surface) else { return };
+        let Some((front, front_depth)) = &mut s.front else { return };
+        std::mem::swap(&mut s.target, front);
+        std::mem::swap(&mut s.depth_sample, front_depth);
+        if let (Some(scene), Some((_, view))) = (&self.scene, &front.color) {
+            scene.0.present(scene.1, surface, view.clone(), front_depth.clone());
+        }
     }
 
     fn egl(&mut self, cmd: Command<'_>) -> Option<Reply> {
@@ -541,13 +589,17 @@ impl GlesExecutor {
                     self.make_surface(c, w, h, false)
                 }))
             }
-            Command::CreateWindowSurface { display, config, z, width, height, .. } => {
+            Command::CreateWindowSurface { display, config, x, y, z, width, height, .. } => {
                 Reply::CreateWindowSurface(self.check_display(display).and_then(|()| {
                     let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
                     if !z.is_finite() || width <= 0 || height <= 0 {
                         return Err(EGL_BAD_NATIVE_WINDOW);
                     }
-                    self.make_surface(c, width, height, true)
+                    let id = self.make_surface(c, width, height, true)?;
+                    if let Some((scene, client, name)) = &self.scene {
+                        scene.add(*client, id, name, [x, y, width, height], z);
+                    }
+                    Ok(id)
                 }))
             }
             Command::CreateContext { display, config, attribs, .. } => {
@@ -624,8 +676,8 @@ impl GlesExecutor {
                     self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)
                 }))
             }
-            Command::SwapBuffers { .. } => {
-                self.flush();
+            Command::SwapBuffers { surface, .. } => {
+                self.swap(surface);
                 return None;
             }
             _ => return None,
