@@ -69,6 +69,10 @@ impl Source {
         self.add(&format!("const vec3 {name} = vec3({:.6}, {:.6}, {:.6});\n", v[0], v[1], v[2]))
     }
 
+    fn vec2(&mut self, name: &str, v: [f32; 2]) -> &mut Self {
+        self.add(&format!("const vec2 {name} = vec2({:.6}, {:.6});\n", v[0], v[1]))
+    }
+
     fn float(&mut self, name: &str, v: f32) -> &mut Self {
         self.add(&format!("const float {name} = {v:.6};\n"))
     }
@@ -198,6 +202,20 @@ fn corpus() -> Vec<(String, String, String)> {
     let mut add = |name: &str, vs: String, fs: String| v.push((name.to_string(), vs, fs));
     add("build", light_basic_vs([1.0; 4], LSP), plain("light-basic.frag"));
     add("texture", light_basic_vs([1.0; 4], LSP), plain("light-basic-tex.frag"));
+    add(
+        "texture:linear-shader",
+        light_basic_vs([1.0; 4], LSP),
+        Source::file("light-basic-tex-bilinear.frag").vec2("TextureSize", [512.0, 512.0]).str(),
+    );
+    add(
+        "texture:texgen",
+        Source::file("light-basic-texgen.vert")
+            .float("PI", std::f32::consts::PI)
+            .vec4("LightSourcePosition", LSP)
+            .vec4("MaterialDiffuse", [1.0; 4])
+            .str(),
+        plain("light-basic-tex.frag"),
+    );
     add("shading:gouraud", light_basic_vs([0.0, 0.0, 1.0, 1.0], LSP), plain("light-basic.frag"));
     add(
         "shading:blinn-phong-inf",
@@ -206,7 +224,9 @@ fn corpus() -> Vec<(String, String, String)> {
     );
     add("shading:phong", plain("light-phong.vert"), phong_fs());
     add("shading:cel", plain("light-phong.vert"), plain("light-cel.frag"));
-    for (variant, base) in [("high-poly", "bump-poly"), ("normals", "bump-normals")] {
+    for (variant, base) in
+        [("high-poly", "bump-poly"), ("normals", "bump-normals"), ("normals-tangent", "bump-normals-tangent")]
+    {
         let fs = Source::file(&format!("{base}.frag"))
             .vec4("LightSourcePosition", LSP)
             .vec3("LightSourceHalfVector", HALF)
@@ -223,6 +243,13 @@ fn corpus() -> Vec<(String, String, String)> {
     add("effect2d:edge", plain("effect-2d.vert"), effect2d(&[&[0.0, 1.0, 0.0], &[1.0, -4.0, 1.0], &[0.0, 1.0, 0.0]]));
     add("effect2d:blur", plain("effect-2d.vert"), effect2d(&[&[1.0; 5], &[1.0; 5], &[1.0; 5]]));
     add("pulsar", plain("pulsar.vert"), plain("light-basic.frag"));
+    add(
+        "pulsar:light",
+        Source::file("pulsar-light.vert").vec4("LightSourcePosition", [-20.0, 20.0, -20.0, 1.0]).str(),
+        plain("light-basic.frag"),
+    );
+    add("pulsar:texture", plain("pulsar.vert"), plain("light-basic-tex.frag"));
+    add("text-renderer", plain("text-renderer.vert"), plain("text-renderer.frag"));
     add("desktop", plain("desktop.vert"), plain("desktop.frag"));
     let desk = [0.239365, 0.199935, 0.116512, 0.047370, 0.013437, 0.002659];
     add("desktop:blur-h", plain("desktop.vert"), blur("desktop-blur.frag", &desk, true, 1.0 / 800.0, None));
@@ -371,7 +398,22 @@ fn every_glmark2_shader_translates_validates_and_links() {
             Err(e) => failures.push(format!("{name}: {e}")),
         }
     }
-    assert!(corpus.len() >= 40, "corpus has only {} programs", corpus.len());
+    assert!(corpus.len() >= 50, "corpus has only {} programs", corpus.len());
+    // Every installed shader file is part of some program: its first code line appears.
+    let used: String = corpus.iter().map(|(_, v, f)| format!("{v}\n{f}")).collect();
+    let mut unused = Vec::new();
+    for entry in std::fs::read_dir(DIR).expect("shader dir").flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !(name.ends_with(".vert") || name.ends_with(".frag") || name.ends_with(".all")) {
+            continue;
+        }
+        let text = file(&name);
+        let line = text.lines().map(str::trim_end).find(|l| !l.trim().is_empty() && !l.contains('$')).unwrap_or("");
+        if !line.is_empty() && !used.contains(line) {
+            unused.push(name);
+        }
+    }
+    assert!(unused.is_empty(), "installed shader files no rebuilt program uses: {unused:?}");
     assert!(
         failures.is_empty(),
         "{} of {} glmark2 programs fail:\n{}",

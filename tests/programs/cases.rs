@@ -919,6 +919,29 @@ fn respecified_buffer_between_draws(gl: Gl<'_>, n: &mut Names) -> R {
     Ok(())
 }
 
+fn sampler_parameter_function(gl: Gl<'_>, n: &mut Names) -> R {
+    let fs = "precision mediump float; uniform sampler2D s; varying vec2 t;
+        vec4 blend2(sampler2D tex, vec2 uv) { return texture2D(tex, uv) * 0.5 + texture2D(tex, uv.yx) * 0.5; }
+        void main() { gl_FragColor = blend2(s, t); }";
+    program(gl, n, VS_TEX, fs, &["pos", "uv"])?;
+    texture(gl, n, 8, 8, RGBA, UNSIGNED_BYTE, &pattern(8, 8), NEAREST, CLAMP_TO_EDGE)?;
+    textured_quad(gl, n, 0.0, 1.0)
+}
+
+fn matrix_varying(gl: Gl<'_>, n: &mut Names) -> R {
+    let vs = "attribute vec4 pos; attribute vec4 col; varying mat3 m; varying vec2 p;
+        void main() { m = mat3(col.xyz, col.yzx, vec3(0.2, 0.4, 0.6)); p = pos.xy; gl_Position = pos; }";
+    let fs = "precision mediump float; varying mat3 m; varying vec2 p;
+        void main() { gl_FragColor = vec4(m * vec3(0.5 + 0.5 * p.x, 0.3, 0.5 - 0.5 * p.y) * 0.6, 1.0); }";
+    program(gl, n, vs, fs, &["pos", "col"])?;
+    let v =
+        [-0.9f32, -0.9, 0.0, 1.0, 0.2, 0.1, 1.0, 0.9, -0.9, 0.0, 0.1, 1.0, 0.3, 1.0, 0.0, 0.9, 0.0, 0.4, 0.2, 1.0, 1.0];
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
+    attrib(gl, 0, 3, FLOAT, false, 28, 0)?;
+    attrib(gl, 1, 4, FLOAT, false, 28, 12)?;
+    gl.glDrawArrays(TRIANGLES, 0, 3)
+}
+
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -995,6 +1018,8 @@ pub fn all() -> Vec<Case> {
         c("attrib_ushort", attrib_ushort, DEFAULT),
         c("read_pixels_round_trip", read_pixels_round_trip, DEFAULT),
         c("respecified_buffer_between_draws", respecified_buffer_between_draws, DEFAULT),
+        c("sampler_parameter_function", sampler_parameter_function, DEFAULT),
+        c("matrix_varying", matrix_varying, DEFAULT),
         c("precision_high_branch", precision_high_branch, DEFAULT),
         c("client_indices", client_indices, DEFAULT),
         c("many_draws_one_pass", many_draws_one_pass, DEFAULT),

@@ -365,8 +365,45 @@ fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String> {
     if !has_main {
         return Err("0: no function 'main' defined".into());
     }
+    // Functions taking samplers: naga accepts no combined sampler parameters, so each becomes a
+    // texture and a sampler parameter, and every call passes both halves.
+    let mut sampler_fns: HashMap<String, Vec<bool>> = HashMap::new();
+    let mut sampler_params: HashMap<String, Ty> = HashMap::new();
+    for decl in &shader.body.0 {
+        let proto = match &decl.content {
+            ast::ExternalDeclarationData::FunctionDefinition(f) => &f.prototype,
+            ast::ExternalDeclarationData::Declaration(d) => match &d.content {
+                ast::DeclarationData::FunctionPrototype(p) => p,
+                _ => continue,
+            },
+            _ => continue,
+        };
+        let flags: Vec<bool> = proto
+            .parameters
+            .iter()
+            .map(|p| match &p.content {
+                ast::FunctionParameterDeclarationData::Named(_, d) => match Ty::from_spec(&d.ty.ty.content) {
+                    Some(t) if t.is_sampler() => {
+                        sampler_params.insert(d.ident.ident.0.to_string(), t);
+                        true
+                    }
+                    _ => false,
+                },
+                ast::FunctionParameterDeclarationData::Unnamed(_, t) => {
+                    Ty::from_spec(&t.ty.content).is_some_and(Ty::is_sampler)
+                }
+            })
+            .collect();
+        if flags.iter().any(|f| *f) {
+            sampler_fns.insert(proto.name.0.to_string(), flags);
+        }
+    }
+    let mut samplers: HashMap<String, Ty> =
+        shader.uniforms.iter().filter(|u| u.ty.is_sampler()).map(|u| (u.name.clone(), u.ty)).collect();
+    samplers.extend(sampler_params);
     let mut rewrite = Rewrite {
-        samplers: shader.uniforms.iter().filter(|u| u.ty.is_sampler()).map(|u| (u.name.clone(), u.ty)).collect(),
+        sampler_fns,
+        samplers,
         bools: shader
             .uniforms
             .iter()
@@ -397,6 +434,8 @@ fn type_name(t: &ast::TypeSpecifier) -> String {
 
 /// The AST rewrite applied to every function body and remaining global.
 struct Rewrite {
+    /// Functions with sampler parameters: which positions are samplers.
+    sampler_fns: HashMap<String, Vec<bool>>,
     samplers: HashMap<String, Ty>,
     /// `mat2` uniforms (naga cannot lay out `matCx2` in std140): stored as `vec4[2]` per matrix.
     mat2s: HashMap<String, bool>,
@@ -465,6 +504,36 @@ impl VisitorMut for Rewrite {
         if p.name.0 == "main" {
             p.name = ast::IdentifierData("strata_main".into()).into();
         }
+        if self.sampler_fns.contains_key(p.name.0.as_str()) {
+            let mut params = Vec::with_capacity(p.parameters.len() + 2);
+            for param in std::mem::take(&mut p.parameters) {
+                let split = match &param.content {
+                    ast::FunctionParameterDeclarationData::Named(_, d) => Ty::from_spec(&d.ty.ty.content)
+                        .filter(|t| t.is_sampler())
+                        .map(|t| (t, d.ident.ident.0.to_string())),
+                    _ => None,
+                };
+                match split {
+                    Some((t, name)) => {
+                        let tex = if t == Ty::SamplerCube { T::TextureCube } else { T::Texture2D };
+                        for (ty, suffix) in [(tex, "__t"), (T::Sampler, "__s")] {
+                            let spec: ast::TypeSpecifier =
+                                ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
+                            let ident: ast::ArrayedIdentifier = ast::ArrayedIdentifierData {
+                                ident: ast::IdentifierData(format!("{name}{suffix}").into()).into(),
+                                array_spec: None,
+                            }
+                            .into();
+                            let decl: ast::FunctionParameterDeclarator =
+                                ast::FunctionParameterDeclaratorData { ty: spec, ident }.into();
+                            params.push(ast::FunctionParameterDeclarationData::Named(None, decl).into());
+                        }
+                    }
+                    None => params.push(param),
+                }
+            }
+            p.parameters = params;
+        }
         Visit::Children
     }
 
@@ -508,6 +577,22 @@ impl VisitorMut for Rewrite {
             ExprData::FunCall(fun, args) => {
                 if let FunIdentifierData::Expr(f) = &mut fun.content {
                     if let ExprData::Variable(id) = &mut f.content {
+                        if let Some(flags) = self.sampler_fns.get(id.0.as_str()) {
+                            // Pass a sampler argument as its texture and sampler halves.
+                            let mut expanded = Vec::with_capacity(args.len() + 2);
+                            for (arg, is_sampler) in
+                                std::mem::take(args).into_iter().zip(flags.iter().chain(std::iter::repeat(&false)))
+                            {
+                                match (&arg.content, is_sampler) {
+                                    (ExprData::Variable(v), true) if self.samplers.contains_key(v.0.as_str()) => {
+                                        expanded.push(var(&format!("{}__t", v.0)));
+                                        expanded.push(var(&format!("{}__s", v.0)));
+                                    }
+                                    _ => expanded.push(arg),
+                                }
+                            }
+                            *args = expanded;
+                        }
                         // A vertex shader has no derivatives: ES defines its implicit-LOD
                         // lookups as level 0, so they become explicit-LOD lookups.
                         let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
@@ -692,22 +777,75 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
     for (a, loc) in &attributes {
         let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
     }
-    for (i, v) in vs.varyings.iter().enumerate() {
-        let _ = writeln!(vsrc, "layout(location = {}) out {} {};", i, v.ty.glsl(false), v.name);
+    // Varying locations: one per vector, one per column of a matrix. Matrices cannot cross
+    // stages in naga, so a matrix varying is a private global in each stage, copied through
+    // column vectors in the generated `main`s.
+    let mut locations: HashMap<&str, u32> = HashMap::new();
+    let mut next = 0u32;
+    for v in &vs.varyings {
+        locations.insert(v.name.as_str(), next);
+        next += v.ty.columns().max(1) as u32;
+    }
+    let column_ty = |ty: Ty| match ty {
+        Ty::Mat2 => "vec2",
+        Ty::Mat3 => "vec3",
+        _ => "vec4",
+    };
+    let mut vs_copy = String::new();
+    for v in &vs.varyings {
+        let loc = locations[v.name.as_str()];
+        match v.ty.columns() {
+            0 => {
+                let _ = writeln!(vsrc, "layout(location = {loc}) out {} {};", v.ty.glsl(false), v.name);
+            }
+            cols => {
+                let _ = writeln!(vsrc, "{} {};", v.ty.glsl(false), v.name);
+                for c in 0..cols {
+                    let _ = writeln!(
+                        vsrc,
+                        "layout(location = {}) out {} {}__c{c};",
+                        loc + c as u32,
+                        column_ty(v.ty),
+                        v.name
+                    );
+                    let _ = writeln!(vs_copy, "    {}__c{c} = {}[{c}];", v.name, v.name);
+                }
+            }
+        }
     }
     vsrc.push_str(&transpile(&vs.body)?);
-    vsrc.push_str(
-        "\nvoid main() {\n    strata_main();\n    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n}\n",
-    );
+    vsrc.push_str(&format!(
+        "\nvoid main() {{\n    strata_main();\n{vs_copy}    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n}}\n"
+    ));
 
     let mut fsrc = common;
+    let mut fs_copy = String::new();
     for v in &fs.varyings {
-        let loc = vs.varyings.iter().position(|o| o.name == v.name).unwrap_or(0);
-        let _ = writeln!(fsrc, "layout(location = {loc}) in {} {};", v.ty.glsl(false), v.name);
+        let loc = locations.get(v.name.as_str()).copied().unwrap_or(0);
+        match v.ty.columns() {
+            0 => {
+                let _ = writeln!(fsrc, "layout(location = {loc}) in {} {};", v.ty.glsl(false), v.name);
+            }
+            cols => {
+                let _ = writeln!(fsrc, "{} {};", v.ty.glsl(false), v.name);
+                let mut parts = Vec::new();
+                for c in 0..cols {
+                    let _ = writeln!(
+                        fsrc,
+                        "layout(location = {}) in {} {}__c{c};",
+                        loc + c as u32,
+                        column_ty(v.ty),
+                        v.name
+                    );
+                    parts.push(format!("{}__c{c}", v.name));
+                }
+                let _ = writeln!(fs_copy, "    {} = {}({});", v.name, v.ty.glsl(false), parts.join(", "));
+            }
+        }
     }
     fsrc.push_str("layout(location = 0) out vec4 strata_FragColor;\n");
     fsrc.push_str(&transpile(&fs.body)?);
-    fsrc.push_str("\nvoid main() {\n    strata_main();\n}\n");
+    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n}}\n"));
 
     let vertex = naga_module(naga::ShaderStage::Vertex, &vsrc).map_err(|e| format!("vertex shader:\n{e}"))?;
     let fragment = naga_module(naga::ShaderStage::Fragment, &fsrc).map_err(|e| format!("fragment shader:\n{e}"))?;
