@@ -322,31 +322,9 @@ fn native(mesh: &Mesh, args: &Args) -> Result<(f64, Vec<u8>)> {
     let secs = start.elapsed().as_secs_f64();
     pb.finish();
     frame(args.frames - 1);
-    let row = (args.size * 4).div_ceil(256) * 256;
-    let buf = d.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size: u64::from(row * args.size),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut enc = d.create_command_encoder(&Default::default());
-    enc.copy_texture_to_buffer(
-        color_tex.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buf,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },
-        },
-        size,
-    );
-    gpu.queue.submit([enc.finish()]);
-    buf.slice(..).map_async(wgpu::MapMode::Read, |_| {});
-    wait()?;
-    let mapped = buf.slice(..).get_mapped_range().map_err(|e| anyhow!("{e:?}"))?;
-    let mut image = Vec::with_capacity((args.size * args.size * 4) as usize);
-    for r in 0..args.size {
-        let at = (r * row) as usize;
-        image.extend_from_slice(&mapped[at..at + (args.size * 4) as usize]);
-    }
+    let image = gpu
+        .read_rgba8(&color_tex, [0, 0, args.size, args.size])
+        .ok_or_else(|| anyhow!("reading the frame back failed"))?;
     Ok((f64::from(args.frames) / secs, image))
 }
 

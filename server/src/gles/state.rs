@@ -2445,22 +2445,10 @@ fn ctx_command(ctx: &mut Context, gpu: &Gpu, uid: u64, cmd: Command<'_>) -> Opti
             return Some(Reply::GetShaderiv(v.unwrap_or(0)));
         }
         C::GetShaderInfoLog { shader } => {
-            return Some(Reply::GetShaderInfoLog(ctx.shaders.get(&shader).map(|s| s.log.clone()).unwrap_or_else(
-                || {
-                    let e = shader_or_program_error(ctx, shader);
-                    ctx.err(e);
-                    String::new()
-                },
-            )))
+            return Some(Reply::GetShaderInfoLog(with_shader(ctx, shader, String::new(), |s| s.log.clone())));
         }
         C::GetShaderSource { shader } => {
-            return Some(Reply::GetShaderSource(ctx.shaders.get(&shader).map(|s| s.source.clone()).unwrap_or_else(
-                || {
-                    let e = shader_or_program_error(ctx, shader);
-                    ctx.err(e);
-                    String::new()
-                },
-            )))
+            return Some(Reply::GetShaderSource(with_shader(ctx, shader, String::new(), |s| s.source.clone())));
         }
         C::GetShaderPrecisionFormat { shader_type, precision_type } => {
             if !matches!(shader_type, VERTEX_SHADER | FRAGMENT_SHADER)
@@ -2510,22 +2498,10 @@ fn ctx_command(ctx: &mut Context, gpu: &Gpu, uid: u64, cmd: Command<'_>) -> Opti
             return Some(Reply::GetProgramiv(v.unwrap_or(0)));
         }
         C::GetProgramInfoLog { program } => {
-            return Some(Reply::GetProgramInfoLog(ctx.programs.get(&program).map(|p| p.log.clone()).unwrap_or_else(
-                || {
-                    let e = shader_or_program_error(ctx, program);
-                    ctx.err(e);
-                    String::new()
-                },
-            )))
+            return Some(Reply::GetProgramInfoLog(with_program(ctx, program, String::new(), |p| p.log.clone())));
         }
         C::GetAttachedShaders { program } => {
-            return Some(Reply::GetAttachedShaders(
-                ctx.programs.get(&program).map(|p| p.attached.clone()).unwrap_or_else(|| {
-                    let e = shader_or_program_error(ctx, program);
-                    ctx.err(e);
-                    vec![]
-                }),
-            ))
+            return Some(Reply::GetAttachedShaders(with_program(ctx, program, vec![], |p| p.attached.clone())));
         }
         C::GetAttribLocation { program, name } => {
             let v = match ctx.programs.get(&program) {
@@ -2689,6 +2665,30 @@ fn shader_or_program_error(ctx: &Context, name: u32) -> u32 {
         INVALID_OPERATION
     } else {
         INVALID_VALUE
+    }
+}
+
+/// `f` of shader `name`, or `default` after recording the error GL gives for a bad name.
+fn with_shader<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&ShaderObj) -> T) -> T {
+    match ctx.shaders.get(&name) {
+        Some(s) => f(s),
+        None => {
+            let e = shader_or_program_error(ctx, name);
+            ctx.err(e);
+            default
+        }
+    }
+}
+
+/// `f` of program `name`, or `default` after recording the error GL gives for a bad name.
+fn with_program<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&Program) -> T) -> T {
+    match ctx.programs.get(&name) {
+        Some(p) => f(p),
+        None => {
+            let e = shader_or_program_error(ctx, name);
+            ctx.err(e);
+            default
+        }
     }
 }
 
