@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{Mat4, Vec3};
+use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::{Blob, Slice, Text};
 use strata_server::gles::glsl;
@@ -61,10 +62,6 @@ fn matrices(f: u32, aspect: f32) -> ([f32; 16], [f32; 16]) {
     ((proj * mv).to_cols_array(), mv.inverse().transpose().to_cols_array())
 }
 
-fn egl<T>(r: Result<T, i32>, what: &str) -> Result<T> {
-    r.map_err(|e| anyhow!("{what} failed with EGL error {e:#x}"))
-}
-
 /// Frames per second, the executor's counters, and the last frame (RGBA8, bottom row first).
 type StrataRun = (f64, strata_protocol::ExecStats, Vec<u8>);
 
@@ -72,38 +69,10 @@ fn strata(mesh: &Mesh, args: &Args) -> Result<StrataRun> {
     let daemon = start_daemon(strata_server::ExecutorKind::Gles)?;
     let opts = ConnectOptions { socket: daemon.1.clone(), name: "execute-bench".into(), ..ConnectOptions::default() };
     let mut gl = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
-    let d = gl.eglGetDisplay(0)?;
-    egl(gl.eglInitialize(d)?, "eglInitialize")?;
-    let attribs = [0x3033, 1, 0x3040, 4, 0x3024, 8, 0x3023, 8, 0x3022, 8, 0x3021, 8, 0x3025, 24, 0x3038];
-    let config = *egl(gl.eglChooseConfig(d, Slice::new(&attribs), 1)?, "eglChooseConfig")?
-        .first()
-        .ok_or_else(|| anyhow!("no config"))?;
     let size = args.size as i32;
-    let s = egl(
-        gl.eglCreatePbufferSurface(d, config, Slice::new(&[0x3057, size, 0x3056, size, 0x3038]))?,
-        "eglCreatePbufferSurface",
-    )?;
-    let ctx = egl(gl.eglCreateContext(d, config, 0, Slice::new(&[0x3098, 2, 0x3038]))?, "eglCreateContext")?;
-    egl(gl.eglMakeCurrent(d, s, s, ctx)?, "eglMakeCurrent")?;
-
-    let (p, vs, fs) = (1, 2, 3);
-    gl.glCreateProgram(p)?;
-    for (name, ty, src) in [(vs, 0x8B31, VS), (fs, 0x8B30, FS)] {
-        gl.glCreateShader(ty, name)?;
-        gl.glShaderSource(name, Text::borrowed(src))?;
-        gl.glCompileShader(name)?;
-        if gl.glGetShaderiv(name, 0x8B81)? == 0 {
-            bail!("shader failed: {}", gl.glGetShaderInfoLog(name)?);
-        }
-        gl.glAttachShader(p, name)?;
-    }
-    gl.glBindAttribLocation(p, 0, Text::borrowed("position"))?;
-    gl.glBindAttribLocation(p, 1, Text::borrowed("normal"))?;
-    gl.glLinkProgram(p)?;
-    if gl.glGetProgramiv(p, 0x8B82)? == 0 {
-        bail!("link failed: {}", gl.glGetProgramInfoLog(p)?);
-    }
-    gl.glUseProgram(p)?;
+    let cur = egl_context(&mut gl, 24, 0, SurfaceKind::Pbuffer { width: size, height: size })?;
+    let (d, s) = (cur.display, cur.surface);
+    let p = link_program(&mut gl, (1, 2, 3), VS, FS, &["position", "normal"])?;
     let mvp_loc = gl.glGetUniformLocation(p, Text::borrowed("ModelViewProjectionMatrix"))?;
     let nm_loc = gl.glGetUniformLocation(p, Text::borrowed("NormalMatrix"))?;
     let vbytes: &[u8] = bytemuck::cast_slice(&mesh.vertices);

@@ -3,6 +3,7 @@
 #![warn(missing_docs)]
 
 pub mod connection;
+pub mod setup;
 pub mod workload;
 
 pub use connection::{ClientError, ConnectOptions, Connection, ControlConnection};

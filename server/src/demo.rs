@@ -4,6 +4,7 @@
 
 use std::io::Write;
 
+use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ClientError, ConnectOptions, Connection};
 use strata_protocol::{Blob, Slice, Text};
 
@@ -24,10 +25,6 @@ const FS: &str = "precision mediump float; varying vec3 v; void main() { gl_Frag
 pub const IC_PLANE: [f32; 3] = [0.0, 0.5, 0.0];
 /// Clip-space depth plane of the map block: z = 0.6·x + 0.2 (its right side leans away).
 pub const HU_PLANE: [f32; 3] = [0.6, 0.0, 0.2];
-
-fn egl<T>(r: Result<T, i32>, what: &str) -> Result<T, ClientError> {
-    r.map_err(|e| ClientError::Unsupported(format!("{what} failed with EGL error {e:#x}")))
-}
 
 /// The client's geometry for `frame`: (base, overlay). The overlay (the dial's needle) is drawn
 /// slightly in front of the base.
@@ -87,33 +84,9 @@ pub fn run_client(socket: &std::path::Path, role: &str, frames: u32) -> Result<(
         ..ConnectOptions::default()
     };
     let mut gl = Connection::connect(&opts)?;
-    let d = gl.eglGetDisplay(0)?;
-    egl(gl.eglInitialize(d)?, "eglInitialize")?;
-    let attribs = [0x3033, 4, 0x3040, 4, 0x3024, 8, 0x3023, 8, 0x3022, 8, 0x3021, 8, 0x3025, 24, 0x3038];
-    let config = *egl(gl.eglChooseConfig(d, Slice::new(&attribs), 1)?, "eglChooseConfig")?
-        .first()
-        .ok_or_else(|| ClientError::Unsupported("no config".into()))?;
-    let s = egl(
-        gl.eglCreateWindowSurface(d, config, 0, rect[0], rect[1], Z, rect[2], rect[3], Slice::new(&[0x3038]))?,
-        "eglCreateWindowSurface",
-    )?;
-    let ctx = egl(gl.eglCreateContext(d, config, 0, Slice::new(&[0x3098, 2, 0x3038]))?, "eglCreateContext")?;
-    egl(gl.eglMakeCurrent(d, s, s, ctx)?, "eglMakeCurrent")?;
-    let (p, vs, fs) = (1, 2, 3);
-    gl.glCreateProgram(p)?;
-    for (name, ty, src) in [(vs, 0x8B31, VS), (fs, 0x8B30, FS)] {
-        gl.glCreateShader(ty, name)?;
-        gl.glShaderSource(name, Text::borrowed(src))?;
-        gl.glCompileShader(name)?;
-        gl.glAttachShader(p, name)?;
-    }
-    gl.glBindAttribLocation(p, 0, Text::borrowed("pos"))?;
-    gl.glBindAttribLocation(p, 1, Text::borrowed("col"))?;
-    gl.glLinkProgram(p)?;
-    if gl.glGetProgramiv(p, 0x8B82)? == 0 {
-        return Err(ClientError::Unsupported(format!("demo program: {}", gl.glGetProgramInfoLog(p)?)));
-    }
-    gl.glUseProgram(p)?;
+    let cur = egl_context(&mut gl, 24, 0, SurfaceKind::Window { rect, z: Z })?;
+    let (d, s) = (cur.display, cur.surface);
+    let p = link_program(&mut gl, (1, 2, 3), VS, FS, &["pos", "col"])?;
     let loc = gl.glGetUniformLocation(p, Text::borrowed("plane"))?;
     gl.glEnable(0x0B71)?;
     gl.glGenBuffers(Slice::new(&[10]))?;

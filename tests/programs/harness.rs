@@ -4,26 +4,16 @@ use strata_client::{Calls, ClientError, ConnectOptions, Connection};
 
 use super::{Case, Names, H, W};
 
-const EGL_NONE: i32 = 0x3038;
-
 /// Sets up a W×H RGBA8 D24S8 pbuffer with a current ES2 context through Strata's EGL.
 pub fn strata_context(socket: &std::path::Path, name: &str) -> Result<Connection, ClientError> {
     let opts = ConnectOptions { socket: socket.to_path_buf(), name: name.into(), ..ConnectOptions::default() };
     let mut c = Connection::connect(&opts)?;
-    let d = c.eglGetDisplay(0)?;
-    c.eglInitialize(d)?.map_err(|e| ClientError::Unsupported(format!("eglInitialize: {e:#x}")))?;
-    let attribs = [0x3033, 1, 0x3040, 4, 0x3024, 8, 0x3023, 8, 0x3022, 8, 0x3021, 8, 0x3025, 24, 0x3026, 8, EGL_NONE];
-    let configs = c
-        .eglChooseConfig(d, strata_protocol::Slice::new(&attribs), 1)?
-        .map_err(|e| ClientError::Unsupported(format!("eglChooseConfig: {e:#x}")))?;
-    let config = *configs.first().ok_or_else(|| ClientError::Unsupported("no config".into()))?;
-    let s = c
-        .eglCreatePbufferSurface(d, config, strata_protocol::Slice::new(&[0x3057, W, 0x3056, H, EGL_NONE]))?
-        .map_err(|e| ClientError::Unsupported(format!("eglCreatePbufferSurface: {e:#x}")))?;
-    let ctx = c
-        .eglCreateContext(d, config, 0, strata_protocol::Slice::new(&[0x3098, 2, EGL_NONE]))?
-        .map_err(|e| ClientError::Unsupported(format!("eglCreateContext: {e:#x}")))?;
-    c.eglMakeCurrent(d, s, s, ctx)?.map_err(|e| ClientError::Unsupported(format!("eglMakeCurrent: {e:#x}")))?;
+    strata_client::setup::egl_context(
+        &mut c,
+        24,
+        8,
+        strata_client::setup::SurfaceKind::Pbuffer { width: W, height: H },
+    )?;
     Ok(c)
 }
 

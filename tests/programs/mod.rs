@@ -111,27 +111,8 @@ pub const UNPACK_ALIGNMENT: u32 = 0x0CF5;
 
 /// Compiles and links `vs` + `fs` with `attribs` bound to locations 0, 1, …, and uses it.
 pub fn program(gl: Gl<'_>, names: &mut Names, vs: &str, fs: &str, attribs: &[&str]) -> Result<u32, ClientError> {
-    let p = names.next();
-    gl.glCreateProgram(p)?;
-    for (ty, src) in [(0x8B31u32, vs), (0x8B30, fs)] {
-        let s = names.next();
-        gl.glCreateShader(ty, s)?;
-        gl.glShaderSource(s, Text::borrowed(src))?;
-        gl.glCompileShader(s)?;
-        if gl.glGetShaderiv(s, 0x8B81)? == 0 {
-            return Err(ClientError::Unsupported(format!("compile failed: {}", gl.glGetShaderInfoLog(s)?)));
-        }
-        gl.glAttachShader(p, s)?;
-    }
-    for (i, a) in attribs.iter().enumerate() {
-        gl.glBindAttribLocation(p, i as u32, Text::borrowed(a))?;
-    }
-    gl.glLinkProgram(p)?;
-    if gl.glGetProgramiv(p, 0x8B82)? == 0 {
-        return Err(ClientError::Unsupported(format!("link failed: {}", gl.glGetProgramInfoLog(p)?)));
-    }
-    gl.glUseProgram(p)?;
-    Ok(p)
+    let ids = (names.next(), names.next(), names.next());
+    strata_client::setup::link_program(gl, ids, vs, fs, attribs)
 }
 
 /// A buffer holding `data`, left bound to `target`.
