@@ -95,7 +95,7 @@ fn strata(mesh: &Mesh, args: &Args) -> Result<StrataRun> {
         gl.glUniformMatrix4fv(mvp_loc, false, Slice::new(&mvp))?;
         gl.glUniformMatrix4fv(nm_loc, false, Slice::new(&nm))?;
         gl.glDrawElements(0x0004, count, 0x1405, 0)?;
-        gl.eglSwapBuffers(d, s)?;
+        gl.eglSwapBuffers(d, s)?.map_err(|e| anyhow::anyhow!("eglSwapBuffers failed with EGL error {e:#x}"))?;
         Ok(())
     };
     for f in 0..10 {

@@ -183,8 +183,6 @@ command_set! {
         /// `offset` is the byte offset into the bound `GL_ARRAY_BUFFER`.
         glVertexAttribPointer => VertexAttribPointer { index: GLuint, size: GLint, attrib_type: GLenum, normalized: bool, stride: GLsizei, offset: u64 };
         glViewport => Viewport { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
-        /// Flips the surface's back and front targets; back-pressure comes as events.
-        eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle };
         /// A client-side vertex array, copied at draw time: the bytes of attribute `index`
         /// from the array's start through the last vertex the next draw reads.
         strataVertexAttribData => VertexAttribData { index: GLuint, data: Blob<'a> };
@@ -252,6 +250,9 @@ command_set! {
         strataVerify => Verify { commands: u64, crc32: u32 } -> StreamTally;
         /// The executor's counters for this client.
         strataStats => Stats {} -> ExecStats;
+        /// Blocks while the surface has K frames in flight (and, with a swap interval n ≥ 1,
+        /// until n output frames have passed since the previous swap).
+        eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle } -> EglResult<()>;
     }
 }
 

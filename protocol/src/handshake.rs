@@ -13,7 +13,7 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 use crate::codec::{self, CodecError};
 
 /// The protocol version this build speaks.
-pub const PROTOCOL_VERSION: u32 = 2;
+pub const PROTOCOL_VERSION: u32 = 3;
 /// The first four bytes a client sends.
 pub const PREAMBLE_MAGIC: [u8; 4] = *b"STRT";
 /// Largest framed control message the daemon accepts.

@@ -108,7 +108,8 @@ pub fn run_client(socket: &std::path::Path, role: &str, frames: u32) -> Result<(
             gl.glBufferData(0x8892, bytes.len() as i64, Some(Blob::borrowed(bytes)), 0x88E8)?;
             gl.glDrawArrays(0x0004, 0, (verts.len() / 5) as i32)?;
         }
-        gl.eglSwapBuffers(d, s)?;
+        gl.eglSwapBuffers(d, s)?
+            .map_err(|e| ClientError::Unsupported(format!("eglSwapBuffers failed with EGL error {e:#x}")))?;
     }
     gl.glFinish()?;
     println!("ready");

@@ -541,15 +541,16 @@ impl GlesExecutor {
 
     /// `eglSwapBuffers`: the back buffer becomes the front (and is shown), the old front
     /// becomes the next back buffer.
-    fn swap(&mut self, surface: u32) {
+    fn swap(&mut self, surface: u32) -> Result<(), i32> {
         self.flush();
-        let Some(s) = self.surfaces.get_mut(&surface) else { return };
-        let Some((front, front_depth)) = &mut s.front else { return };
+        let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
+        let Some((front, front_depth)) = &mut s.front else { return Ok(()) };
         std::mem::swap(&mut s.target, front);
         std::mem::swap(&mut s.depth_sample, front_depth);
         if let (Some(scene), Some((_, view))) = (&self.scene, &front.color) {
             scene.0.present(scene.1, surface, view.clone(), front_depth.clone());
         }
+        Ok(())
     }
 
     fn egl(&mut self, cmd: Command<'_>) -> Option<Reply> {
@@ -676,9 +677,8 @@ impl GlesExecutor {
                     self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)
                 }))
             }
-            Command::SwapBuffers { surface, .. } => {
-                self.swap(surface);
-                return None;
+            Command::SwapBuffers { display, surface } => {
+                Reply::SwapBuffers(self.check_display(display).and_then(|()| self.swap(surface)))
             }
             _ => return None,
         })
