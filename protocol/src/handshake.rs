@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
 use crate::codec::{self, CodecError};
+pub use crate::control::{ControlReply, ControlRequest, SurfaceRow};
 
 /// The protocol version this build speaks.
 pub const PROTOCOL_VERSION: u32 = 3;
@@ -81,51 +82,6 @@ pub enum ServerMessage {
     },
     /// A control connection is accepted; send `ControlRequest`s.
     ControlReady,
-}
-
-/// What `stratad ctl` asks.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum ControlRequest {
-    /// Every window surface.
-    List,
-    /// Composite every surface into a `width`×`height` image.
-    Screenshot {
-        /// Output width.
-        width: u32,
-        /// Output height.
-        height: u32,
-    },
-}
-
-/// One row of `stratad ctl list`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SurfaceRow {
-    /// Owning client's name.
-    pub client: String,
-    /// x, y, width, height.
-    pub rect: [i32; 4],
-    /// Depth layer.
-    pub z: f32,
-    /// Frames swapped.
-    pub frames: u64,
-}
-
-/// The daemon's answer to a `ControlRequest`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum ControlReply {
-    /// Every window surface, in stacking order.
-    List(Vec<SurfaceRow>),
-    /// A composited image: RGBA8, top row first.
-    Image {
-        /// Width.
-        width: u32,
-        /// Height.
-        height: u32,
-        /// Pixels.
-        rgba: crate::Bytes,
-    },
-    /// The request failed.
-    Error(String),
 }
 
 /// The client's messages on the control socket after the hello.

@@ -5,6 +5,7 @@
 pub mod codec;
 mod command_set;
 pub mod commands;
+pub mod control;
 pub mod futex;
 pub mod handshake;
 pub mod ring;

@@ -11,4 +11,5 @@ pub mod compositor;
 pub mod demo;
 pub mod gles;
 pub mod gpu;
+pub mod root;
 pub mod scene;

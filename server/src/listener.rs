@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use strata_protocol::codec::MAX_MESSAGE_LEN;
 use strata_protocol::handshake::{
-    self, ClientMessage, ControlReply, ControlRequest, HandshakeError, Hello, Purpose, ServerMessage, SurfaceRow,
+    self, ClientMessage, ControlReply, ControlRequest, HandshakeError, Hello, Purpose, ServerMessage,
 };
 use strata_protocol::ring::{Reader, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
@@ -40,8 +40,14 @@ pub struct ServeOptions {
     pub executor: ExecutorKind,
     /// Sampled textures per compositor pass (`None`: the device's limit).
     pub max_textures: Option<u32>,
-    /// Uniform lighting of composited output.
+    /// Uniform lighting of composited output (initially; `stratad ctl light` changes it).
     pub lighting: crate::compositor::Lighting,
+    /// The outputs the compositor draws.
+    pub outputs: Vec<crate::root::OutputSpec>,
+    /// Most composites per second.
+    pub refresh_hz: f64,
+    /// Frames a window surface may have swapped but not yet shown before its swap blocks.
+    pub frames_in_flight: u32,
 }
 
 /// The executor each client session gets.
@@ -63,6 +69,9 @@ impl Default for ServeOptions {
             executor: ExecutorKind::Gles,
             max_textures: None,
             lighting: crate::compositor::Lighting::default(),
+            outputs: vec![crate::root::OutputSpec::default()],
+            refresh_hz: 60.0,
+            frames_in_flight: 2,
         }
     }
 }
@@ -79,6 +88,12 @@ pub enum ServerError {
     /// No GPU device could be opened.
     #[error(transparent)]
     Gpu(#[from] crate::gpu::GpuError),
+    /// The compositor cannot run as configured.
+    #[error(transparent)]
+    Compositor(#[from] crate::compositor::CompositorError),
+    /// No outputs, or two with one name.
+    #[error("{0}")]
+    Outputs(String),
     /// Ring sizes are unusable.
     #[error("ring capacity {0} must be a power of two between 4 KiB and 1 GiB")]
     BadRing(u32),
@@ -128,7 +143,7 @@ struct Shared {
     opts: ServeOptions,
     gpu: Option<Arc<Gpu>>,
     scene: Arc<crate::scene::Scene>,
-    compositor: Mutex<Option<crate::compositor::Compositor>>,
+    root: Option<Arc<crate::root::Root>>,
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
     shutdown: watch::Receiver<bool>,
@@ -146,14 +161,33 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         ExecutorKind::Gles => Some(Gpu::open()?),
         ExecutorKind::Drain => None,
     };
+    if opts.outputs.is_empty() {
+        return Err(ServerError::Outputs("at least one output is needed".into()));
+    }
+    for (i, o) in opts.outputs.iter().enumerate() {
+        if opts.outputs[..i].iter().any(|p| p.name == o.name) {
+            return Err(ServerError::Outputs(format!("two outputs are named {:?}", o.name)));
+        }
+    }
+    let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
+    let root = match &gpu {
+        Some(gpu) => {
+            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), &opts.outputs, opts.max_textures)?))
+        }
+        None => None,
+    };
     let listener = claim_socket(&opts.socket)?;
+    let compositor_thread = match &root {
+        Some(r) => Some(r.spawn(opts.refresh_hz).map_err(io_err("starting the compositor thread"))?),
+        None => None,
+    };
     info!(socket = %opts.socket.display(), "stratad serving");
     let (stop_tx, stop_rx) = watch::channel(false);
     let shared = Arc::new(Shared {
         opts,
         gpu,
-        scene: Arc::default(),
-        compositor: Mutex::new(None),
+        scene,
+        root,
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
         shutdown: stop_rx,
@@ -175,7 +209,13 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     }
     info!("shutting down: closing {} connection(s)", tasks.len());
     let _ = stop_tx.send(true);
+    if let Some(r) = &shared.root {
+        r.stop();
+    }
     while tasks.join_next().await.is_some() {}
+    if let Some(t) = compositor_thread {
+        let _ = tokio::task::spawn_blocking(move || t.join()).await;
+    }
     let _ = std::fs::remove_file(&shared.opts.socket);
     info!("stratad stopped");
     Ok(())
@@ -259,68 +299,41 @@ async fn serve_control(stream: &mut UnixStream, shared: &Arc<Shared>) -> Result<
 
 fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
     match req {
-        ControlRequest::List => ControlReply::List(
-            shared
-                .scene
-                .with(|s| {
-                    s.iter()
-                        .map(|x| SurfaceRow { client: x.client.clone(), rect: x.rect, z: x.z, frames: x.frames })
-                        .collect()
-                })
-                .unwrap_or_default(),
-        ),
-        ControlRequest::Screenshot { width, height } => {
-            let Some(gpu) = shared.gpu.clone() else {
-                return ControlReply::Error("this daemon runs without a GPU".into());
+        ControlRequest::List => ControlReply::List {
+            outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
+            surfaces: shared.scene.rows(),
+        },
+        ControlRequest::Screenshot { output } => {
+            let Some(root) = &shared.root else {
+                return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
             };
-            if width == 0 || height == 0 || width > 8192 || height > 8192 {
-                return ControlReply::Error(format!("output size {width}x{height} is not within 1..=8192"));
-            }
-            let Ok(mut comp) = shared.compositor.lock() else {
-                return ControlReply::Error("compositor unavailable".into());
-            };
-            if comp.is_none() {
-                match crate::compositor::Compositor::new(gpu.clone(), shared.opts.max_textures) {
-                    Ok(c) => *comp = Some(c),
-                    Err(e) => return ControlReply::Error(e.to_string()),
-                }
-            }
-            let Some(comp) = comp.as_mut() else { return ControlReply::Error("compositor unavailable".into()) };
-            let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("screenshot"),
-                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
-            let light = shared.opts.lighting;
-            // Composite and submit under the scene lock: no swap can interleave.
-            let done = shared.scene.with(|surfaces| {
-                let layers: Vec<crate::compositor::Layer<'_>> = surfaces
-                    .iter()
-                    .filter_map(|s| {
-                        Some(crate::compositor::Layer {
-                            rect: s.rect,
-                            z: s.z,
-                            color: s.color.as_ref()?,
-                            depth: s.depth.as_ref(),
-                            normal: [0.0, 0.0, 1.0],
-                        })
-                    })
-                    .collect();
-                comp.composite(&layers, &light, &out, [0.0, 0.0, 0.0, 1.0]);
-            });
-            if done.is_none() {
-                return ControlReply::Error("scene unavailable".into());
-            }
-            match gpu.read_rgba8(&out, [0, 0, width, height]) {
-                Some(rgba) => ControlReply::Image { width, height, rgba: strata_protocol::Bytes(rgba) },
-                None => ControlReply::Error("reading the composited image back failed".into()),
+            match root.screenshot(&output) {
+                Ok((width, height, rgba)) => ControlReply::Image { width, height, rgba: strata_protocol::Bytes(rgba) },
+                Err(e) => ControlReply::Error(e),
             }
         }
+        ControlRequest::Move { surface, x, y, z } => {
+            if !z.is_finite() {
+                return ControlReply::Error(format!("z {z} is not a finite number"));
+            }
+            match shared.scene.move_surface(surface, x, y, z) {
+                Some(row) => {
+                    info!(surface, x, y, z, "surface moved");
+                    ControlReply::Moved(row)
+                }
+                None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
+            }
+        }
+        ControlRequest::Light(change) => match change.validate() {
+            Ok(()) => {
+                let light = shared.scene.change_lighting(&change);
+                if change != Default::default() {
+                    info!(?light, "lighting changed");
+                }
+                ControlReply::Light(light)
+            }
+            Err(e) => ControlReply::Error(e),
+        },
     }
 }
 

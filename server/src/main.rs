@@ -8,9 +8,11 @@ use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
+use strata_protocol::control::LightChange;
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_server::compositor::{Lighting, NormalSource};
+use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
 use tracing::info;
 
@@ -47,6 +49,16 @@ enum Cmd {
         /// Where lighting takes normals from.
         #[arg(long, value_enum, default_value_t = Normals::PerSurface)]
         normals: Normals,
+        /// An output: NAME=WxH[+X+Y], the part of the output space it shows (repeatable)
+        /// [default: headless-0=1920x720].
+        #[arg(long = "output")]
+        outputs: Vec<OutputSpec>,
+        /// Most composites per second (the refresh rate paced swaps follow).
+        #[arg(long, default_value_t = 60.0)]
+        refresh_hz: f64,
+        /// Frames a window surface may have swapped but not yet shown before eglSwapBuffers blocks.
+        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
+        frames_in_flight: u32,
     },
     /// Administer a running daemon.
     Ctl {
@@ -110,19 +122,71 @@ enum Cmd {
 
 #[derive(Subcommand)]
 enum CtlCmd {
-    /// List every window surface.
+    /// List every output and window surface.
     List,
-    /// Composite every surface and save the output as a PNG.
+    /// Save an output's current image as a PNG.
     Screenshot {
+        /// Output name (as `list` shows it).
+        output: String,
         /// The PNG to write.
         file: PathBuf,
-        /// Output width.
-        #[arg(long, default_value_t = strata_server::demo::OUTPUT.0)]
-        width: u32,
-        /// Output height.
-        #[arg(long, default_value_t = strata_server::demo::OUTPUT.1)]
-        height: u32,
     },
+    /// Move a window surface in the output space.
+    Move {
+        /// Surface id (as `list` shows it).
+        surface: u64,
+        /// New left edge.
+        #[arg(allow_negative_numbers = true)]
+        x: i32,
+        /// New top edge.
+        #[arg(allow_negative_numbers = true)]
+        y: i32,
+        /// New depth layer (larger is farther).
+        #[arg(allow_negative_numbers = true)]
+        z: f32,
+    },
+    /// Show or change the uniform lighting.
+    Light {
+        #[command(subcommand)]
+        what: LightCmd,
+    },
+}
+
+#[derive(Subcommand)]
+enum LightCmd {
+    /// Turn lighting on.
+    On,
+    /// Turn lighting off.
+    Off,
+    /// Show the lighting in force.
+    Show,
+    /// Change lighting parameters.
+    Set {
+        /// Light position X,Y,Z (output space: x, y in [-1, 1], y up, the output at z = 0).
+        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
+        position: Option<[f32; 3]>,
+        /// Viewer position X,Y,Z.
+        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
+        view: Option<[f32; 3]>,
+        /// Light colour R,G,B in [0, 1].
+        #[arg(long, value_parser = vec3)]
+        color: Option<[f32; 3]>,
+        /// Ambient factor in [0, 1].
+        #[arg(long)]
+        ambient: Option<f32>,
+        /// Specular exponent.
+        #[arg(long)]
+        shininess: Option<f32>,
+        /// Where normals come from.
+        #[arg(long, value_enum)]
+        normals: Option<Normals>,
+    },
+}
+
+fn vec3(s: &str) -> Result<[f32; 3], String> {
+    let v: Vec<f32> =
+        s.split(',').map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p:?}: {e}"))).collect::<Result<_, _>>()?;
+    <[f32; 3]>::try_from(v).map_err(|_| format!("{s:?} is not three comma-separated numbers"))
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -135,6 +199,15 @@ enum Switch {
 enum Normals {
     PerSurface,
     FromDepth,
+}
+
+impl From<Normals> for NormalSource {
+    fn from(n: Normals) -> Self {
+        match n {
+            Normals::PerSurface => NormalSource::PerSurface,
+            Normals::FromDepth => NormalSource::FromDepth,
+        }
+    }
 }
 
 fn init_logging() {
@@ -150,15 +223,23 @@ fn init_logging() {
 fn main() -> Result<()> {
     init_logging();
     match Cli::parse().command {
-        Cmd::Serve { socket, cmd_ring, reply_ring, executor, max_textures, lighting, normals } => {
-            let lighting = Lighting {
-                enabled: matches!(lighting, Switch::On),
-                normals: match normals {
-                    Normals::PerSurface => NormalSource::PerSurface,
-                    Normals::FromDepth => NormalSource::FromDepth,
-                },
-                ..Lighting::default()
-            };
+        Cmd::Serve {
+            socket,
+            cmd_ring,
+            reply_ring,
+            executor,
+            max_textures,
+            lighting,
+            normals,
+            outputs,
+            refresh_hz,
+            frames_in_flight,
+        } => {
+            let lighting =
+                Lighting { enabled: matches!(lighting, Switch::On), normals: normals.into(), ..Lighting::default() };
+            if !(refresh_hz.is_finite() && (1.0..=1000.0).contains(&refresh_hz)) {
+                bail!("--refresh-hz {refresh_hz} must lie in 1..=1000");
+            }
             if let Some(m) = max_textures {
                 if m < 4 {
                     bail!("{}", strata_server::compositor::CompositorError::TooFewTextures(m));
@@ -171,6 +252,9 @@ fn main() -> Result<()> {
                 executor,
                 max_textures,
                 lighting,
+                outputs: if outputs.is_empty() { vec![OutputSpec::default()] } else { outputs },
+                refresh_hz,
+                frames_in_flight,
             };
             run_daemon(opts)
         }
@@ -256,42 +340,99 @@ fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Vec<u8>) -> R
 
 fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
-    match what {
-        CtlCmd::List => match c.request(&ControlRequest::List)? {
-            ControlReply::List(rows) => {
-                if json {
-                    let v: Vec<_> = rows
-                        .iter()
-                        .map(|r| serde_json::json!({"client": r.client, "rect": r.rect, "z": r.z, "frames": r.frames}))
-                        .collect();
-                    println!("{}", serde_json::Value::Array(v));
-                } else {
-                    println!("{:<24} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8}", "client", "x", "y", "w", "h", "z", "frames");
-                    for r in rows {
-                        println!(
-                            "{:<24} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8}",
-                            r.client, r.rect[0], r.rect[1], r.rect[2], r.rect[3], r.z, r.frames
-                        );
-                    }
-                }
-                Ok(())
+    let request = match &what {
+        CtlCmd::List => ControlRequest::List,
+        CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
+        CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
+        CtlCmd::Light { what } => ControlRequest::Light(match what {
+            LightCmd::On => LightChange { enabled: Some(true), ..Default::default() },
+            LightCmd::Off => LightChange { enabled: Some(false), ..Default::default() },
+            LightCmd::Show => LightChange::default(),
+            LightCmd::Set { position, view, color, ambient, shininess, normals } => LightChange {
+                enabled: None,
+                ambient: *ambient,
+                shininess: *shininess,
+                position: *position,
+                view: *view,
+                color: *color,
+                normals: normals.map(Into::into),
+            },
+        }),
+    };
+    match (c.request(&request)?, what) {
+        (ControlReply::Error(e), _) => bail!("{e}"),
+        (ControlReply::List { outputs, surfaces }, _) => {
+            if json {
+                println!("{}", serde_json::json!({"outputs": outputs, "surfaces": surfaces}));
+                return Ok(());
             }
-            ControlReply::Error(e) => bail!("{e}"),
-            other => bail!("unexpected reply {other:?}"),
-        },
-        CtlCmd::Screenshot { file, width, height } => match c.request(&ControlRequest::Screenshot { width, height })? {
-            ControlReply::Image { width, height, rgba } => {
-                save_png(&file, width, height, rgba.0)?;
-                if json {
-                    println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
-                } else {
-                    println!("wrote {} ({width}x{height})", file.display());
-                }
-                Ok(())
+            println!(
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}",
+                "output", "kind", "x", "y", "w", "h", "composites", "passes"
+            );
+            for o in outputs {
+                println!(
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}",
+                    o.name, o.kind, o.rect[0], o.rect[1], o.rect[2], o.rect[3], o.composites, o.passes
+                );
             }
-            ControlReply::Error(e) => bail!("{e}"),
-            other => bail!("unexpected reply {other:?}"),
-        },
+            println!();
+            println!(
+                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8}",
+                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval"
+            );
+            for r in surfaces {
+                println!(
+                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8}",
+                    r.id,
+                    format!("{} ({})", r.client, r.client_id),
+                    r.rect[0],
+                    r.rect[1],
+                    r.rect[2],
+                    r.rect[3],
+                    r.z,
+                    r.frames,
+                    r.shown,
+                    r.interval
+                );
+            }
+            Ok(())
+        }
+        (ControlReply::Image { width, height, rgba }, CtlCmd::Screenshot { file, .. }) => {
+            save_png(&file, width, height, rgba.0)?;
+            if json {
+                println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
+            } else {
+                println!("wrote {} ({width}x{height})", file.display());
+            }
+            Ok(())
+        }
+        (ControlReply::Moved(r), _) => {
+            if json {
+                println!("{}", serde_json::json!(r));
+            } else {
+                println!("surface {} now at x {} y {} z {}", r.id, r.rect[0], r.rect[1], r.z);
+            }
+            Ok(())
+        }
+        (ControlReply::Light(l), _) => {
+            if json {
+                println!("{}", serde_json::json!(l));
+            } else {
+                println!(
+                    "lighting {}: ambient {} shininess {} position {:?} view {:?} color {:?} normals {:?}",
+                    if l.enabled { "on" } else { "off" },
+                    l.ambient,
+                    l.shininess,
+                    l.position,
+                    l.view,
+                    l.color,
+                    l.normals
+                );
+            }
+            Ok(())
+        }
+        (other, _) => bail!("unexpected reply {other:?}"),
     }
 }
 
@@ -301,7 +442,9 @@ fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
     let socket = dir.join("strata.sock");
     let exe = std::env::current_exe()?;
     let mut daemon = std::process::Command::new(&exe)
-        .args(["serve", "--socket"])
+        .args(["serve", "--output"])
+        .arg(format!("demo={}x{}", strata_server::demo::OUTPUT.0, strata_server::demo::OUTPUT.1))
+        .arg("--socket")
         .arg(&socket)
         .spawn()
         .context("starting the daemon")?;
@@ -334,9 +477,8 @@ fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
                 bail!("a demo client failed before rendering its frames");
             }
         }
-        let (w, h) = strata_server::demo::OUTPUT;
         let mut c = ControlConnection::connect(&socket)?;
-        let reply = c.request(&ControlRequest::Screenshot { width: w, height: h })?;
+        let reply = c.request(&ControlRequest::Screenshot { output: "demo".into() })?;
         for mut child in clients {
             drop(child.stdin.take());
             let _ = child.wait();

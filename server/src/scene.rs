@@ -1,16 +1,35 @@
 //! What the compositor sees: every client's window surfaces with their placement and the
-//! front images of their last completed frame. Executors publish on swap; the compositor
-//! reads under the same lock, so a frame is either wholly visible or not at all.
+//! front images of their last completed frame, and the lighting. Executors publish on swap;
+//! the compositor reads under the same lock, so a frame is either wholly visible or not at all.
+//!
+//! The scene also carries the pacing between the two sides. Every change that needs a new
+//! composite bumps a damage counter; the compositor thread ("root") sleeps until it moves.
+//! A swap blocks while its surface has K frames in flight (swapped but not yet composited),
+//! and with a swap interval n ≥ 1 also until n output refreshes have passed since the
+//! surface's previous swap. Interval 0 never blocks.
 
 use std::collections::BTreeMap;
-use std::sync::Mutex;
+use std::sync::{Condvar, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+use strata_protocol::control::{LightChange, Lighting, SurfaceRow};
+use tracing::warn;
+
+/// Longest a swap waits for the compositor before giving up on pacing (a wedged compositor
+/// must not wedge its clients).
+const MAX_SWAP_WAIT: Duration = Duration::from_secs(2);
 
 /// A window surface's front images and placement.
 #[derive(Clone)]
 pub struct SceneSurface {
+    /// Surface id, unique for the daemon's lifetime; also the stacking order (later on top
+    /// when depths tie).
+    pub id: u64,
+    /// Owning client's number.
+    pub client_id: u64,
     /// Owning client's name.
     pub client: String,
-    /// x, y (from the output's top), width, height in output pixels.
+    /// x, y (from the output space's top), width, height in pixels.
     pub rect: [i32; 4],
     /// Depth layer: larger is farther.
     pub z: f32,
@@ -18,58 +37,278 @@ pub struct SceneSurface {
     pub color: Option<wgpu::TextureView>,
     /// Front depth (depth aspect only), if the surface has depth.
     pub depth: Option<wgpu::TextureView>,
-    /// Stacking order: creation order, later on top when depths tie.
-    pub stack: u64,
     /// Frames swapped so far.
     pub frames: u64,
+    /// The newest frame a composite has taken.
+    pub shown: u64,
+    /// Swap interval (EGL default 1).
+    pub interval: i32,
+    /// The refresh count at the surface's previous swap.
+    last_swap_refresh: u64,
 }
 
-/// The surfaces by (client, surface handle), and the last stacking number handed out.
-type Surfaces = (BTreeMap<(u64, u32), SceneSurface>, u64);
+impl SceneSurface {
+    /// The row `stratad ctl list` shows.
+    pub fn row(&self) -> SurfaceRow {
+        SurfaceRow {
+            id: self.id,
+            client_id: self.client_id,
+            client: self.client.clone(),
+            rect: self.rect,
+            z: self.z,
+            frames: self.frames,
+            shown: self.shown,
+            interval: self.interval,
+        }
+    }
+}
 
-/// Every window surface of every client.
-#[derive(Default)]
+struct State {
+    surfaces: BTreeMap<(u64, u32), SceneSurface>,
+    next_id: u64,
+    damage: u64,
+    refreshes: u64,
+    /// A compositor thread consumes frames; without one, swaps never wait.
+    root: bool,
+    /// Swaps waiting for a refresh to pass.
+    pacing_waiters: usize,
+    lighting: Lighting,
+}
+
+/// Every window surface of every client, and the lighting.
 pub struct Scene {
-    inner: Mutex<Surfaces>,
+    state: Mutex<State>,
+    changed: Condvar,
+    frames_in_flight: u64,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene::new(2, Lighting::default())
+    }
+}
+
+/// What the compositor thread should do next.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Work {
+    /// Something changed since the given damage count, or a swap waits for a refresh.
+    Refresh,
+    /// The daemon is stopping.
+    Stop,
 }
 
 impl Scene {
-    /// Registers a new window surface (visible once it has swapped).
-    pub fn add(&self, client: u64, surface: u32, name: &str, rect: [i32; 4], z: f32) {
-        if let Ok(mut g) = self.inner.lock() {
-            g.1 += 1;
-            let stack = g.1;
-            g.0.insert(
-                (client, surface),
-                SceneSurface { client: name.to_string(), rect, z, color: None, depth: None, stack, frames: 0 },
-            );
+    /// An empty scene allowing `frames_in_flight` (at least 1) unshown frames per surface.
+    pub fn new(frames_in_flight: u32, lighting: Lighting) -> Scene {
+        Scene {
+            state: Mutex::new(State {
+                surfaces: BTreeMap::new(),
+                next_id: 0,
+                damage: 0,
+                refreshes: 0,
+                root: false,
+                pacing_waiters: 0,
+                lighting,
+            }),
+            changed: Condvar::new(),
+            frames_in_flight: u64::from(frames_in_flight.max(1)),
         }
+    }
+
+    fn lock(&self) -> Option<MutexGuard<'_, State>> {
+        self.state.lock().ok()
+    }
+
+    fn damaged(&self, mut g: MutexGuard<'_, State>) {
+        g.damage += 1;
+        drop(g);
+        self.changed.notify_all();
+    }
+
+    /// Registers a new window surface (visible once it has swapped); returns its id.
+    pub fn add(&self, client: u64, surface: u32, name: &str, rect: [i32; 4], z: f32) -> u64 {
+        let Some(mut g) = self.lock() else { return 0 };
+        g.next_id += 1;
+        let id = g.next_id;
+        g.surfaces.insert(
+            (client, surface),
+            SceneSurface {
+                id,
+                client_id: client,
+                client: name.to_string(),
+                rect,
+                z,
+                color: None,
+                depth: None,
+                frames: 0,
+                shown: 0,
+                interval: 1,
+                last_swap_refresh: 0,
+            },
+        );
+        id
     }
 
     /// Publishes a completed frame's front images.
     pub fn present(&self, client: u64, surface: u32, color: wgpu::TextureView, depth: Option<wgpu::TextureView>) {
-        if let Ok(mut g) = self.inner.lock() {
-            if let Some(s) = g.0.get_mut(&(client, surface)) {
-                s.color = Some(color);
-                s.depth = depth;
-                s.frames += 1;
+        let Some(mut g) = self.lock() else { return };
+        if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
+            s.color = Some(color);
+            s.depth = depth;
+            s.frames += 1;
+            self.damaged(g);
+        }
+    }
+
+    /// Sets a surface's swap interval (clamped to 0..=10).
+    pub fn set_interval(&self, client: u64, surface: u32, interval: i32) {
+        if let Some(mut g) = self.lock() {
+            if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
+                s.interval = interval.clamp(0, 10);
             }
+        }
+    }
+
+    /// Blocks the swapping client while its surface has K frames in flight, and with a swap
+    /// interval n ≥ 1 until n refreshes have passed since its previous swap.
+    pub fn throttle(&self, client: u64, surface: u32) {
+        let Some(mut g) = self.lock() else { return };
+        let start = Instant::now();
+        let mut waiting_refresh = false;
+        loop {
+            let root = g.root;
+            let refreshes = g.refreshes;
+            let Some(s) = g.surfaces.get_mut(&(client, surface)) else { break };
+            if !root || s.interval == 0 {
+                break;
+            }
+            let in_flight = s.frames - s.shown;
+            let due = s.last_swap_refresh + s.interval as u64;
+            if in_flight < self.frames_in_flight && refreshes >= due {
+                s.last_swap_refresh = refreshes;
+                break;
+            }
+            let left = MAX_SWAP_WAIT.saturating_sub(start.elapsed());
+            if left.is_zero() {
+                warn!(surface, in_flight, "the compositor did not take a frame in time; swapping without pacing");
+                s.last_swap_refresh = refreshes;
+                break;
+            }
+            if !waiting_refresh {
+                waiting_refresh = true;
+                g.pacing_waiters += 1;
+                self.changed.notify_all();
+            }
+            g = match self.changed.wait_timeout(g, left) {
+                Ok((g, _)) => g,
+                Err(_) => return,
+            };
+        }
+        if waiting_refresh {
+            g.pacing_waiters -= 1;
         }
     }
 
     /// Removes one surface, or with `surface == None` all of a client's.
     pub fn remove(&self, client: u64, surface: Option<u32>) {
-        if let Ok(mut g) = self.inner.lock() {
-            g.0.retain(|k, _| k.0 != client || surface.is_some_and(|s| s != k.1));
+        let Some(mut g) = self.lock() else { return };
+        let before = g.surfaces.len();
+        g.surfaces.retain(|k, _| k.0 != client || surface.is_some_and(|s| s != k.1));
+        if g.surfaces.len() != before {
+            self.damaged(g);
         }
     }
 
-    /// Runs `f` on the surfaces in stacking order while holding the lock, so no swap can
-    /// interleave with what `f` submits.
-    pub fn with<R>(&self, f: impl FnOnce(&[SceneSurface]) -> R) -> Option<R> {
-        let g = self.inner.lock().ok()?;
-        let mut v: Vec<SceneSurface> = g.0.values().cloned().collect();
-        v.sort_by_key(|s| s.stack);
-        Some(f(&v))
+    /// Moves surface `id`; returns its new row, or `None` if there is no such surface.
+    pub fn move_surface(&self, id: u64, x: i32, y: i32, z: f32) -> Option<SurfaceRow> {
+        let mut g = self.lock()?;
+        let s = g.surfaces.values_mut().find(|s| s.id == id)?;
+        s.rect[0] = x;
+        s.rect[1] = y;
+        s.z = z;
+        let row = s.row();
+        self.damaged(g);
+        Some(row)
+    }
+
+    /// The lighting in force.
+    pub fn lighting(&self) -> Lighting {
+        self.lock().map(|g| g.lighting).unwrap_or_default()
+    }
+
+    /// Applies a lighting change; returns the lighting now in force.
+    pub fn change_lighting(&self, change: &LightChange) -> Lighting {
+        let Some(mut g) = self.lock() else { return Lighting::default() };
+        let new = change.apply(g.lighting);
+        if new != g.lighting {
+            g.lighting = new;
+            self.damaged(g);
+        }
+        new
+    }
+
+    /// Every surface's row, in stacking order.
+    pub fn rows(&self) -> Vec<SurfaceRow> {
+        let mut rows: Vec<SurfaceRow> =
+            self.lock().map(|g| g.surfaces.values().map(SceneSurface::row).collect()).unwrap_or_default();
+        rows.sort_by_key(|r| r.id);
+        rows
+    }
+
+    /// The damage count: it moves whenever a new composite would differ.
+    pub fn damage(&self) -> u64 {
+        self.lock().map(|g| g.damage).unwrap_or(0)
+    }
+
+    /// Runs `f` on the surfaces (in stacking order) and the lighting while holding the lock,
+    /// so no swap can interleave with what `f` submits; the frames it saw count as shown.
+    /// Returns `f`'s result and the damage count it reflects.
+    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting) -> R) -> Option<(R, u64)> {
+        let mut g = self.lock()?;
+        let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
+        v.sort_by_key(|s| s.id);
+        let r = f(&v, &g.lighting);
+        for s in g.surfaces.values_mut() {
+            s.shown = s.frames;
+        }
+        let damage = g.damage;
+        drop(g);
+        self.changed.notify_all();
+        Some((r, damage))
+    }
+
+    /// Marks that a compositor thread consumes frames (or, with `false`, that none does any
+    /// more, which releases every waiting swap).
+    pub fn set_root(&self, running: bool) {
+        if let Some(mut g) = self.lock() {
+            g.root = running;
+        }
+        self.changed.notify_all();
+    }
+
+    /// Counts one output refresh and wakes swaps waiting for it.
+    pub fn refreshed(&self) {
+        if let Some(mut g) = self.lock() {
+            g.refreshes += 1;
+        }
+        self.changed.notify_all();
+    }
+
+    /// For the compositor thread: waits until the damage count differs from `seen` or a swap
+    /// waits for a refresh, or until the root is stopped.
+    pub fn wait_for_work(&self, seen: u64) -> Work {
+        let Some(mut g) = self.lock() else { return Work::Stop };
+        loop {
+            if !g.root {
+                return Work::Stop;
+            }
+            if g.damage != seen || g.pacing_waiters > 0 {
+                return Work::Refresh;
+            }
+            g = match self.changed.wait(g) {
+                Ok(g) => g,
+                Err(_) => return Work::Stop,
+            };
+        }
     }
 }

@@ -19,50 +19,7 @@ use std::sync::Arc;
 
 use crate::gpu::Gpu;
 
-/// Where lighting takes a fragment's normal from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NormalSource {
-    /// One normal per surface (the thesis' method, and the default).
-    PerSurface,
-    /// Reconstructed from the selected surface's depth by central differences.
-    FromDepth,
-}
-
-/// Uniform Phong lighting (§4.6): `(ambient + diffuse + specular) · light colour · colour`.
-#[derive(Debug, Clone, Copy)]
-pub struct Lighting {
-    /// Whether lighting is applied at all.
-    pub enabled: bool,
-    /// Ambient factor (thesis: 0.1).
-    pub ambient: f32,
-    /// Specular exponent (thesis: 32).
-    pub shininess: f32,
-    /// Light position in output space: x, y in [-1, 1] (y up), the output plane at z = 0.
-    pub position: [f32; 3],
-    /// Viewer position in the same space.
-    pub view: [f32; 3],
-    /// Light colour (thesis: white).
-    pub color: [f32; 3],
-    /// Normal source.
-    pub normals: NormalSource,
-    /// For `FromDepth`: depth units per pixel that count as a 45° slope's inverse.
-    pub depth_normal_scale: f32,
-}
-
-impl Default for Lighting {
-    fn default() -> Self {
-        Lighting {
-            enabled: true,
-            ambient: 0.1,
-            shininess: 32.0,
-            position: [1.0, 1.0, 2.0],
-            view: [0.0, 0.0, 2.0],
-            color: [1.0; 3],
-            normals: NormalSource::PerSurface,
-            depth_normal_scale: 64.0,
-        }
-    }
-}
+pub use strata_protocol::control::{Lighting, NormalSource};
 
 /// One surface to composite.
 pub struct Layer<'a> {

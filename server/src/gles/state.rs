@@ -549,6 +549,7 @@ impl GlesExecutor {
         std::mem::swap(&mut s.depth_sample, front_depth);
         if let (Some(scene), Some((_, view))) = (&self.scene, &front.color) {
             scene.0.present(scene.1, surface, view.clone(), front_depth.clone());
+            scene.0.throttle(scene.1, surface);
         }
         Ok(())
     }
@@ -650,7 +651,16 @@ impl GlesExecutor {
                     Ok(())
                 }))
             }
-            Command::SwapInterval { display, .. } => Reply::SwapInterval(self.check_display(display)),
+            Command::SwapInterval { display, interval } => {
+                Reply::SwapInterval(self.check_display(display).and_then(|()| {
+                    // EGL: the interval applies to the window surface bound to the current context.
+                    let (_, surface) = self.current.ok_or(EGL_BAD_CONTEXT)?;
+                    if let Some((scene, client, _)) = &self.scene {
+                        scene.set_interval(*client, surface, interval);
+                    }
+                    Ok(())
+                }))
+            }
             Command::QuerySurface { display, surface, attribute } => {
                 Reply::QuerySurface(self.check_display(display).and_then(|()| {
                     let s = self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?;
@@ -664,10 +674,15 @@ impl GlesExecutor {
                     }
                 }))
             }
-            Command::DestroySurface { display, surface } => Reply::DestroySurface(
-                self.check_display(display)
-                    .and_then(|()| self.surfaces.remove(&surface).map(|_| ()).ok_or(EGL_BAD_SURFACE)),
-            ),
+            Command::DestroySurface { display, surface } => {
+                Reply::DestroySurface(self.check_display(display).and_then(|()| {
+                    self.surfaces.remove(&surface).ok_or(EGL_BAD_SURFACE)?;
+                    if let Some((scene, client, _)) = &self.scene {
+                        scene.remove(*client, Some(surface));
+                    }
+                    Ok(())
+                }))
+            }
             Command::DestroyContext { display, context } => {
                 Reply::DestroyContext(self.check_display(display).and_then(|()| {
                     if self.current.is_some_and(|(c, _)| c == context) {

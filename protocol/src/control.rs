@@ -1,0 +1,203 @@
+//! `stratad ctl`: the requests an administrator sends over a control connection and the
+//! daemon's answers, plus the lighting settings they read and change.
+
+use serde::{Deserialize, Serialize};
+
+/// Where lighting takes a fragment's normal from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum NormalSource {
+    /// One normal per surface (the thesis' method, and the default).
+    PerSurface,
+    /// Reconstructed from the selected surface's depth by central differences.
+    FromDepth,
+}
+
+/// Uniform Phong lighting (§4.6): `(ambient + diffuse + specular) · light colour · colour`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Lighting {
+    /// Whether lighting is applied at all.
+    pub enabled: bool,
+    /// Ambient factor (thesis: 0.1).
+    pub ambient: f32,
+    /// Specular exponent (thesis: 32).
+    pub shininess: f32,
+    /// Light position in output space: x, y in [-1, 1] (y up), the output plane at z = 0.
+    pub position: [f32; 3],
+    /// Viewer position in the same space.
+    pub view: [f32; 3],
+    /// Light colour (thesis: white).
+    pub color: [f32; 3],
+    /// Normal source.
+    pub normals: NormalSource,
+    /// For `FromDepth`: depth units per pixel that count as a 45° slope's inverse.
+    pub depth_normal_scale: f32,
+}
+
+impl Default for Lighting {
+    fn default() -> Self {
+        Lighting {
+            enabled: true,
+            ambient: 0.1,
+            shininess: 32.0,
+            position: [1.0, 1.0, 2.0],
+            view: [0.0, 0.0, 2.0],
+            color: [1.0; 3],
+            normals: NormalSource::PerSurface,
+            depth_normal_scale: 64.0,
+        }
+    }
+}
+
+/// A change to the lighting: every `Some` field replaces the current value.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct LightChange {
+    /// Turn lighting on or off.
+    pub enabled: Option<bool>,
+    /// Ambient factor.
+    pub ambient: Option<f32>,
+    /// Specular exponent.
+    pub shininess: Option<f32>,
+    /// Light position.
+    pub position: Option<[f32; 3]>,
+    /// Viewer position.
+    pub view: Option<[f32; 3]>,
+    /// Light colour.
+    pub color: Option<[f32; 3]>,
+    /// Normal source.
+    pub normals: Option<NormalSource>,
+}
+
+impl LightChange {
+    /// Checks that every given value is finite and in range (ambient and colour in [0, 1],
+    /// shininess positive).
+    pub fn validate(&self) -> Result<(), String> {
+        let finite = |name: &str, v: &[f32]| {
+            if v.iter().all(|x| x.is_finite()) {
+                Ok(())
+            } else {
+                Err(format!("{name} must be finite"))
+            }
+        };
+        for (name, v) in [("position", self.position), ("view", self.view), ("color", self.color)] {
+            if let Some(v) = v {
+                finite(name, &v)?;
+            }
+        }
+        if let Some(c) = self.color {
+            if c.iter().any(|x| !(0.0..=1.0).contains(x)) {
+                return Err("color components must lie in [0, 1]".into());
+            }
+        }
+        if let Some(a) = self.ambient {
+            if !(0.0..=1.0).contains(&a) {
+                return Err(format!("ambient {a} must lie in [0, 1]"));
+            }
+        }
+        if let Some(s) = self.shininess {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(format!("shininess {s} must be a positive number"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `light` with this change applied.
+    pub fn apply(&self, mut light: Lighting) -> Lighting {
+        light.enabled = self.enabled.unwrap_or(light.enabled);
+        light.ambient = self.ambient.unwrap_or(light.ambient);
+        light.shininess = self.shininess.unwrap_or(light.shininess);
+        light.position = self.position.unwrap_or(light.position);
+        light.view = self.view.unwrap_or(light.view);
+        light.color = self.color.unwrap_or(light.color);
+        light.normals = self.normals.unwrap_or(light.normals);
+        light
+    }
+}
+
+/// What `stratad ctl` asks.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ControlRequest {
+    /// Every output and window surface.
+    List,
+    /// The output's last composited image (composited first if anything changed).
+    Screenshot {
+        /// Output name; empty for the first output.
+        output: String,
+    },
+    /// Moves a window surface.
+    Move {
+        /// Surface id, as `List` shows it.
+        surface: u64,
+        /// New left edge.
+        x: i32,
+        /// New top edge.
+        y: i32,
+        /// New depth layer.
+        z: f32,
+    },
+    /// Changes the lighting (an empty change just reports it).
+    Light(LightChange),
+}
+
+/// One row of `stratad ctl list`: a window surface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceRow {
+    /// Surface id, unique for the daemon's lifetime; also the stacking order.
+    pub id: u64,
+    /// Owning client's number.
+    pub client_id: u64,
+    /// Owning client's name.
+    pub client: String,
+    /// x, y, width, height.
+    pub rect: [i32; 4],
+    /// Depth layer.
+    pub z: f32,
+    /// Frames swapped.
+    pub frames: u64,
+    /// The newest frame the compositor has shown.
+    pub shown: u64,
+    /// Swap interval (0: unthrottled).
+    pub interval: i32,
+}
+
+/// One output of `stratad ctl list`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OutputRow {
+    /// Output name.
+    pub name: String,
+    /// `headless` or `window`.
+    pub kind: String,
+    /// The part of the global output space it shows: x, y, width, height.
+    pub rect: [i32; 4],
+    /// Frames composited into it so far (only when something changed).
+    pub composites: u64,
+    /// Passes the last composite drew.
+    pub passes: u64,
+}
+
+/// The daemon's answer to a `ControlRequest`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ControlReply {
+    /// Every output, and every window surface in stacking order.
+    List {
+        /// Outputs.
+        outputs: Vec<OutputRow>,
+        /// Window surfaces.
+        surfaces: Vec<SurfaceRow>,
+    },
+    /// A composited image: RGBA8, top row first.
+    Image {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+        /// Pixels.
+        rgba: crate::Bytes,
+    },
+    /// The moved surface, as it is now.
+    Moved(SurfaceRow),
+    /// The lighting now in force.
+    Light(Lighting),
+    /// The request failed.
+    Error(String),
+}
