@@ -1,8 +1,10 @@
 //! `strata-bench`: throughput benchmarks for Strata. Every figure is reported beside a baseline
 //! measured in the same run, because shared machines are noisy.
 
+mod composite;
 mod execute;
 mod mesh;
+mod plot;
 mod transport;
 
 use anyhow::Result;
@@ -24,6 +26,9 @@ enum Cmd {
     /// GLES execution: the glmark2 horse through stratad against the same drawing in plain
     /// wgpu, measured in the same run.
     Execute(execute::Args),
+    /// Compositor: ms per output frame for k = 1…16 surfaces at a chaining limit and at the
+    /// device's limit, against a memory-bandwidth floor measured in the same run.
+    Composite(composite::Args),
     /// Runs the daemon half of a benchmark (started by the benchmark itself).
     #[command(hide = true)]
     Daemon {
@@ -42,6 +47,7 @@ fn main() -> Result<()> {
     match Cli::parse().command {
         Cmd::Transport(args) => transport::run(&args),
         Cmd::Execute(args) => execute::run(&args),
+        Cmd::Composite(args) => composite::run(&args),
         Cmd::Daemon { socket, executor } => transport::daemon(socket, executor),
     }
 }

@@ -98,7 +98,7 @@ fn small_command(i: u64) -> Command<'static> {
 }
 
 /// memcpy bandwidth over the same payload size and count, single thread.
-fn memcpy_gbps(payload: usize, count: u64, pb: &ProgressBar) -> f64 {
+pub fn memcpy_gbps(payload: usize, count: u64, pb: &ProgressBar) -> f64 {
     let src: Vec<u8> = (0..payload).map(|i| i as u8).collect();
     let mut dst = vec![0u8; payload];
     let start = Instant::now();
