@@ -27,6 +27,10 @@ pub struct Gpu {
     pub info: wgpu::AdapterInfo,
     /// The device's limits.
     pub limits: wgpu::Limits,
+    /// The instance, for window surfaces.
+    pub instance: wgpu::Instance,
+    /// The adapter, for window surfaces' capabilities.
+    pub adapter: wgpu::Adapter,
 }
 
 impl Gpu {
@@ -207,6 +211,6 @@ impl Gpu {
         }))?;
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| error!("uncaptured GPU error: {e}")));
         info!(adapter = %info.name, driver = %info.driver, "GPU opened");
-        Ok(Arc::new(Gpu { depth_writer: std::sync::OnceLock::new(), device, queue, info, limits }))
+        Ok(Arc::new(Gpu { depth_writer: std::sync::OnceLock::new(), device, queue, info, limits, instance, adapter }))
     }
 }

@@ -13,3 +13,4 @@ pub mod gles;
 pub mod gpu;
 pub mod root;
 pub mod scene;
+pub mod window;

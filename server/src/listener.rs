@@ -88,9 +88,9 @@ pub enum ServerError {
     /// No GPU device could be opened.
     #[error(transparent)]
     Gpu(#[from] crate::gpu::GpuError),
-    /// The compositor cannot run as configured.
+    /// The compositor or an output cannot run as configured.
     #[error(transparent)]
-    Compositor(#[from] crate::compositor::CompositorError),
+    Root(#[from] crate::root::RootError),
     /// No outputs, or two with one name.
     #[error("{0}")]
     Outputs(String),

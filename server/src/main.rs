@@ -49,8 +49,9 @@ enum Cmd {
         /// Where lighting takes normals from.
         #[arg(long, value_enum, default_value_t = Normals::PerSurface)]
         normals: Normals,
-        /// An output: NAME=WxH[+X+Y], the part of the output space it shows (repeatable)
-        /// [default: headless-0=1920x720].
+        /// An output: [window:|headless:]NAME=WxH[+X+Y], the part of the output space it shows
+        /// (repeatable; headless unless `window:`) [default: main=1920x720, in a window when
+        /// $DISPLAY is set, else headless].
         #[arg(long = "output")]
         outputs: Vec<OutputSpec>,
         /// Most composites per second (the refresh rate paced swaps follow).

@@ -18,11 +18,24 @@ use crate::scene::{Scene, Work};
 /// Default output: the width and height of a typical automotive centre display.
 pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
 
+/// Where an output's image goes besides the daemon's memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputKind {
+    /// Off-screen only (screenshots).
+    Headless,
+    /// Also shown in a desktop window; failing to open one is an error.
+    Window,
+    /// A window when a display exists and one opens, else headless.
+    Auto,
+}
+
 /// One output: a name and the rectangle of the global output space it shows.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct OutputSpec {
     /// Name used by `stratad ctl screenshot`.
     pub name: String,
+    /// Headless, window, or whichever the environment allows.
+    pub kind: OutputKind,
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
@@ -35,25 +48,38 @@ pub struct OutputSpec {
 
 impl Default for OutputSpec {
     fn default() -> Self {
-        OutputSpec { name: "headless-0".into(), width: DEFAULT_OUTPUT.0, height: DEFAULT_OUTPUT.1, x: 0, y: 0 }
+        OutputSpec {
+            name: "main".into(),
+            kind: OutputKind::Auto,
+            width: DEFAULT_OUTPUT.0,
+            height: DEFAULT_OUTPUT.1,
+            x: 0,
+            y: 0,
+        }
     }
 }
 
 /// An output specification that does not parse.
 #[derive(Debug, thiserror::Error)]
-#[error("output {0:?} is not NAME=WxH[+X+Y] with sizes 1..=8192 (e.g. headless-0=1920x720+0+0)")]
+#[error("output {0:?} is not [window:|headless:]NAME=WxH[+X+Y] with sizes 1..=8192 (e.g. main=1920x720+0+0)")]
 pub struct BadOutputSpec(String);
 
 impl FromStr for OutputSpec {
     type Err = BadOutputSpec;
 
-    /// Parses `NAME=WxH[+X+Y]` (or `WxH`, named `headless-0`).
+    /// Parses `[window:|headless:]NAME=WxH[+X+Y]` (or `WxH`, named `main`); headless unless
+    /// `window:` is given.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let bad = || BadOutputSpec(s.to_string());
-        let (name, geom) = match s.split_once('=') {
+        let (kind, rest) = if let Some(r) = s.strip_prefix("window:") {
+            (OutputKind::Window, r)
+        } else {
+            (OutputKind::Headless, s.strip_prefix("headless:").unwrap_or(s))
+        };
+        let (name, geom) = match rest.split_once('=') {
             Some((n, g)) if !n.is_empty() => (n.to_string(), g),
             Some(_) => return Err(bad()),
-            None => ("headless-0".to_string(), s),
+            None => ("main".to_string(), rest),
         };
         let mut parts = geom.split('+');
         let size = parts.next().ok_or_else(bad)?;
@@ -65,13 +91,14 @@ impl FromStr for OutputSpec {
         if parts.next().is_some() || !(1..=8192).contains(&width) || !(1..=8192).contains(&height) {
             return Err(bad());
         }
-        Ok(OutputSpec { name, width, height, x, y })
+        Ok(OutputSpec { name, kind, width, height, x, y })
     }
 }
 
 struct Output {
     spec: OutputSpec,
     texture: wgpu::Texture,
+    window: Option<crate::window::WindowOutput>,
     composites: u64,
     passes: u64,
 }
@@ -90,21 +117,50 @@ pub struct Root {
     inner: Mutex<Inner>,
 }
 
+/// Why the root surface could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum RootError {
+    /// The compositor cannot run as configured.
+    #[error(transparent)]
+    Compositor(#[from] CompositorError),
+    /// A window output could not open.
+    #[error(transparent)]
+    Window(#[from] crate::window::WindowError),
+}
+
 /// Background of every output: opaque black.
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 impl Root {
-    /// Creates the outputs; fails if the texture limit cannot chain or exceeds the device's.
+    /// Creates the outputs; fails if the texture limit cannot chain or exceeds the device's,
+    /// or a window output cannot open.
     pub fn new(
         gpu: Arc<Gpu>,
         scene: Arc<Scene>,
         outputs: &[OutputSpec],
         max_textures: Option<u32>,
-    ) -> Result<Root, CompositorError> {
+    ) -> Result<Root, RootError> {
         let compositor = Compositor::new(gpu.clone(), max_textures)?;
-        let outputs = outputs
-            .iter()
-            .map(|spec| Output {
+        let mut made = Vec::new();
+        for spec in outputs {
+            let window = match spec.kind {
+                OutputKind::Headless => None,
+                OutputKind::Window => {
+                    Some(crate::window::WindowOutput::open(&gpu, &spec.name, spec.width, spec.height)?)
+                }
+                OutputKind::Auto if crate::window::display_available() => {
+                    match crate::window::WindowOutput::open(&gpu, &spec.name, spec.width, spec.height) {
+                        Ok(w) => Some(w),
+                        Err(e) => {
+                            warn!(output = %spec.name, "{e}; the output is headless");
+                            None
+                        }
+                    }
+                }
+                OutputKind::Auto => None,
+            };
+            made.push(Output {
+                window,
                 texture: gpu.device.create_texture(&wgpu::TextureDescriptor {
                     label: Some("output"),
                     size: wgpu::Extent3d { width: spec.width, height: spec.height, depth_or_array_layers: 1 },
@@ -112,15 +168,17 @@ impl Root {
                     sample_count: 1,
                     dimension: wgpu::TextureDimension::D2,
                     format: wgpu::TextureFormat::Rgba8Unorm,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::COPY_SRC
+                        | wgpu::TextureUsages::TEXTURE_BINDING,
                     view_formats: &[],
                 }),
                 spec: spec.clone(),
                 composites: 0,
                 passes: 0,
-            })
-            .collect();
-        Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs, composited: None }) })
+            });
+        }
+        Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs: made, composited: None }) })
     }
 
     /// Composites every output if the scene changed since the last composite; returns the
@@ -155,6 +213,11 @@ impl Root {
             }
         })?;
         inner.composited = Some(seen);
+        for out in inner.outputs.iter_mut() {
+            if let Some(w) = &mut out.window {
+                w.present(&self.gpu, &out.texture);
+            }
+        }
         let _ = self.gpu.device.poll(wgpu::PollType::wait_indefinitely());
         Some(seen)
     }
@@ -167,7 +230,7 @@ impl Root {
             .iter()
             .map(|o| OutputRow {
                 name: o.spec.name.clone(),
-                kind: "headless".into(),
+                kind: if o.window.is_some() { "window" } else { "headless" }.into(),
                 rect: [o.spec.x, o.spec.y, o.spec.width as i32, o.spec.height as i32],
                 composites: o.composites,
                 passes: o.passes,

@@ -48,6 +48,11 @@ pub struct Daemon {
 
 impl Daemon {
     pub fn start(tag: &str, extra: &[&str]) -> Daemon {
+        Daemon::start_with_env(tag, extra, &[])
+    }
+
+    /// Like `start`, with extra environment variables for the daemon.
+    pub fn start_with_env(tag: &str, extra: &[&str], env: &[(&str, &str)]) -> Daemon {
         let dir = TempDir::new(tag);
         let socket = dir.0.join("strata.sock");
         let log = dir.0.join("stratad.log");
@@ -57,6 +62,7 @@ impl Daemon {
             .arg(&socket)
             .args(extra)
             .env("RUST_LOG", "info")
+            .envs(env.iter().copied())
             .stderr(std::fs::File::create(&log).expect("log file"))
             .spawn()
             .expect("spawn stratad");
@@ -171,3 +177,50 @@ impl RawClient {
     }
 }
 pub mod mesa;
+
+/// Whether a missing oracle (Mesa, Xvfb, glmark2) must fail the test instead of skipping it.
+pub fn oracles_required() -> bool {
+    std::env::var_os("STRATA_REQUIRE_ORACLES").is_some()
+}
+
+/// An Xvfb server on a free display, killed on drop.
+pub struct Xvfb {
+    pub child: Child,
+    /// The `DISPLAY` value, e.g. `:123`.
+    pub display: String,
+}
+
+impl Xvfb {
+    /// Starts Xvfb with one `width`x`height` 24-bit screen, or returns why it cannot.
+    pub fn start(width: u32, height: u32) -> Result<Xvfb, String> {
+        let base = 100 + std::process::id() % 700;
+        let n = (base..base + 100)
+            .find(|n| {
+                !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() && !Path::new(&format!("/tmp/.X{n}-lock")).exists()
+            })
+            .ok_or("no free X display number")?;
+        let child = Command::new("Xvfb")
+            .arg(format!(":{n}"))
+            .args(["-screen", "0", &format!("{width}x{height}x24"), "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(|e| format!("Xvfb could not start ({e}); install the xvfb package"))?;
+        let x = Xvfb { child, display: format!(":{n}") };
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+            if Instant::now() > deadline {
+                return Err("Xvfb did not create its socket".into());
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        Ok(x)
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
