@@ -70,7 +70,18 @@ pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<
     }
     let state::Process { conn: Some(conn), contexts, next_name, .. } = p else { return default };
     let Some(ctx) = contexts.get_mut(&cur.context) else { return default };
-    let result = f(&mut Gl { conn, st: &mut ctx.gl, next_name });
+    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name });
+    if check_errors() && name != "glGetError" && result.is_ok() {
+        // Debugging aid: name the call that raised each GL error (one round trip per call).
+        match conn.glGetError() {
+            Ok(GL_NO_ERROR) => {}
+            Ok(e) => {
+                tracing::warn!("strata-egl: {name} raised GL error {e:#x}");
+                ctx.gl.err(e);
+            }
+            Err(e) => result = Err(e),
+        }
+    }
     match result {
         Ok(r) => r,
         Err(ClientError::Unsupported(why)) => {
@@ -83,6 +94,12 @@ pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<
             default
         }
     }
+}
+
+/// Whether `STRATA_CHECK_ERRORS=1` asks for every GL error to be logged with its call.
+fn check_errors() -> bool {
+    static ON: LazyLock<bool> = LazyLock::new(|| std::env::var_os("STRATA_CHECK_ERRORS").is_some_and(|v| v == "1"));
+    *ON
 }
 
 /// Converts a C argument to the protocol's type.
