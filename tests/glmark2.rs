@@ -197,6 +197,55 @@ fn glmark2_validates_through_stratad() {
     });
 }
 
+/// Names a Khronos header declares with `prefix` (`GL_APICALL`, `EGLAPI`), up to `end`.
+fn declared(header: &str, prefix: &str, end: Option<&str>) -> Option<Vec<String>> {
+    let text = std::fs::read_to_string(header).ok()?;
+    let text = match end {
+        Some(e) => &text[..text.find(e)?],
+        None => &text[..],
+    };
+    let names = text
+        .lines()
+        .filter(|l| l.starts_with(prefix))
+        .filter_map(|l| Some(l.split('(').next()?.split_whitespace().last()?.to_string()))
+        .collect();
+    Some(names)
+}
+
+/// The built shared object's dynamic symbol table (what the loader sees) has every GLES 2.0
+/// and EGL 1.4 entry point, and its `eglGetProcAddress` resolves each of them to that symbol.
+#[test]
+fn shared_object_exports_every_entry_point() {
+    let gl = declared("/usr/include/GLES2/gl2.h", "GL_APICALL", None);
+    let egl = declared("/usr/include/EGL/egl.h", "EGLAPI", Some("#ifndef EGL_VERSION_1_5"));
+    let (Some(gl), Some(egl)) = (gl, egl) else {
+        let why = "Khronos headers not installed (libgles-dev, libegl-dev)";
+        assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "STRATA_REQUIRE_ORACLES is set: {why}");
+        eprintln!("skipping: {why}");
+        return;
+    };
+    assert_eq!((gl.len(), egl.len()), (142, 34), "gl2.h: 142 ES 2.0 calls; egl.h: 34 EGL 1.4 calls");
+    let tmp = TempDir::new("symbols");
+    let lib_path = shim_dir(&tmp).join("libGLESv2.so.2");
+    // SAFETY: loading the shim runs no initialisers; symbols are only compared, never called,
+    // except eglGetProcAddress, whose prototype is declared exactly.
+    unsafe {
+        let lib = libloading::Library::new(&lib_path).expect("dlopen the shim");
+        type GetProc = unsafe extern "C" fn(*const std::ffi::c_char) -> *const std::ffi::c_void;
+        let get_proc: libloading::Symbol<GetProc> = lib.get(b"eglGetProcAddress").expect("eglGetProcAddress");
+        for name in gl.iter().chain(&egl) {
+            let sym: libloading::Symbol<*const std::ffi::c_void> =
+                lib.get(name.as_bytes()).unwrap_or_else(|e| panic!("{name} is not exported: {e}"));
+            let c = std::ffi::CString::new(name.as_str()).expect("name");
+            let p = get_proc(c.as_ptr());
+            assert!(!p.is_null(), "eglGetProcAddress({name}) is null");
+            assert_eq!(p, *sym as *const std::ffi::c_void, "eglGetProcAddress({name}) is not the exported symbol");
+        }
+        let c = std::ffi::CString::new("glNotAnEntryPoint").expect("name");
+        assert!(get_proc(c.as_ptr()).is_null(), "unknown names resolve to null");
+    }
+}
+
 /// Lines of `stderr` that come from the shim.
 fn shim_lines(stderr: &str) -> Vec<&str> {
     stderr.lines().filter(|l| l.contains("strata-egl")).collect()
