@@ -239,7 +239,7 @@ fn shared_object_exports_every_entry_point() {
             let c = std::ffi::CString::new(name.as_str()).expect("name");
             let p = get_proc(c.as_ptr());
             assert!(!p.is_null(), "eglGetProcAddress({name}) is null");
-            assert_eq!(p, *sym as *const std::ffi::c_void, "eglGetProcAddress({name}) is not the exported symbol");
+            assert_eq!(p, *sym, "eglGetProcAddress({name}) is not the exported symbol");
         }
         let c = std::ffi::CString::new("glNotAnEntryPoint").expect("name");
         assert!(get_proc(c.as_ptr()).is_null(), "unknown names resolve to null");
