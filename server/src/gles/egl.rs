@@ -59,6 +59,8 @@ impl Config {
             | EGL_BIND_TO_TEXTURE_RGB
             | EGL_BIND_TO_TEXTURE_RGBA => 0,
             EGL_NATIVE_RENDERABLE => 0,
+            // Meaningful only with a transparent type, which no config has (EGL 1.4 §3.4).
+            EGL_TRANSPARENT_RED_VALUE | EGL_TRANSPARENT_GREEN_VALUE | EGL_TRANSPARENT_BLUE_VALUE => 0,
             _ => return None,
         })
     }
@@ -88,6 +90,9 @@ pub fn choose(attribs: &[i32]) -> Result<Vec<u32>, i32> {
                 | EGL_COLOR_BUFFER_TYPE
                 | EGL_CONFIG_CAVEAT
                 | EGL_TRANSPARENT_TYPE
+                | EGL_TRANSPARENT_RED_VALUE
+                | EGL_TRANSPARENT_GREEN_VALUE
+                | EGL_TRANSPARENT_BLUE_VALUE
                 | EGL_LEVEL
                 | EGL_NATIVE_VISUAL_TYPE => have == v,
                 EGL_NATIVE_VISUAL_ID | EGL_MAX_PBUFFER_WIDTH | EGL_MAX_PBUFFER_HEIGHT | EGL_MAX_PBUFFER_PIXELS => true,

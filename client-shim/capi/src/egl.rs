@@ -1,0 +1,830 @@
+//! The EGL 1.4 entry points (plus `eglGetPlatformDisplay` and `EGL_EXT_platform_base`).
+//!
+//! Displays are the shim's own (so that `eglGetDisplay` works before the daemon is reached);
+//! `eglInitialize` connects to `stratad`. Configs, surfaces and contexts are the daemon's
+//! handles. Each thread has its own current context and EGL error.
+
+use std::ffi::{c_char, c_void, CStr};
+
+use strata_client::{ClientError, ConnectOptions, Connection};
+use strata_protocol::{Calls, EglResult, Slice};
+
+use crate::state::{self, process, ContextInfo, Current, DisplayInfo, GlState, Process, SurfaceInfo};
+use crate::types::*;
+use crate::x11;
+
+/// `EGL_SWAP_BEHAVIOR`.
+const EGL_SWAP_BEHAVIOR: EGLint = 0x3093;
+/// `EGL_BUFFER_DESTROYED`.
+const EGL_BUFFER_DESTROYED: EGLint = 0x3095;
+
+/// Client extensions (`eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)`): only what is implemented.
+const CLIENT_EXTENSIONS: &CStr =
+    c"EGL_EXT_client_extensions EGL_EXT_platform_base EGL_KHR_platform_x11 EGL_EXT_platform_x11";
+
+/// Longest attribute list read from the application (pairs), against unterminated lists.
+const MAX_ATTRIBS: usize = 256;
+
+/// Sets the thread's EGL error from `r` and converts it to an `EGLBoolean`.
+fn boolean(r: Result<(), EGLint>) -> EGLBoolean {
+    match r {
+        Ok(()) => {
+            state::set_egl_error(EGL_SUCCESS);
+            EGL_TRUE
+        }
+        Err(e) => {
+            state::set_egl_error(e);
+            EGL_FALSE
+        }
+    }
+}
+
+/// Sets the thread's EGL error from `r` and converts a handle to a pointer (null on error).
+fn handle_ptr(r: Result<u32, EGLint>) -> *mut c_void {
+    match r {
+        Ok(h) => {
+            state::set_egl_error(EGL_SUCCESS);
+            h as usize as *mut c_void
+        }
+        Err(e) => {
+            state::set_egl_error(e);
+            std::ptr::null_mut()
+        }
+    }
+}
+
+/// A handle the application passed back, as the daemon's number.
+fn handle(p: *mut c_void) -> u32 {
+    u32::try_from(p as usize).unwrap_or(u32::MAX)
+}
+
+/// Reads an `EGL_NONE`-terminated list of `EGLint` pairs (a null list is empty).
+unsafe fn attrib_list(list: *const EGLint) -> Result<Vec<EGLint>, EGLint> {
+    let mut out = Vec::new();
+    if list.is_null() {
+        out.push(EGL_NONE);
+        return Ok(out);
+    }
+    for i in 0..MAX_ATTRIBS {
+        // SAFETY: the application promises an EGL_NONE-terminated list of pairs.
+        let a = unsafe { *list.add(2 * i) };
+        out.push(a);
+        if a == EGL_NONE {
+            return Ok(out);
+        }
+        // SAFETY: as above; a non-NONE attribute is followed by its value.
+        out.push(unsafe { *list.add(2 * i + 1) });
+    }
+    Err(EGL_BAD_ATTRIBUTE)
+}
+
+/// Reads an `EGL_NONE`-terminated list of `EGLAttrib` pairs as `EGLint`s.
+unsafe fn attrib_list_wide(list: *const EGLAttrib) -> Result<Vec<EGLint>, EGLint> {
+    let mut out = Vec::new();
+    if list.is_null() {
+        out.push(EGL_NONE);
+        return Ok(out);
+    }
+    for i in 0..2 * MAX_ATTRIBS {
+        // SAFETY: the application promises an EGL_NONE-terminated list of pairs.
+        let a = unsafe { *list.add(i) };
+        let a = EGLint::try_from(a).map_err(|_| EGL_BAD_ATTRIBUTE)?;
+        out.push(a);
+        if i % 2 == 0 && a == EGL_NONE {
+            return Ok(out);
+        }
+    }
+    Err(EGL_BAD_ATTRIBUTE)
+}
+
+/// Runs a daemon call on the process's connection, mapping transport failures to EGL errors.
+fn daemon<T>(
+    p: &mut Process,
+    call: impl FnOnce(&mut Connection, u32) -> Result<EglResult<T>, ClientError>,
+) -> Result<T, EGLint> {
+    let dd = p.daemon_display;
+    let Some(conn) = p.conn.as_mut() else {
+        return Err(if p.lost { EGL_CONTEXT_LOST } else { EGL_NOT_INITIALIZED });
+    };
+    match call(conn, dd) {
+        Ok(r) => r,
+        Err(ClientError::Unsupported(why)) => {
+            state::log_once(&format!("stratad does not support a call: {why}"));
+            Err(EGL_BAD_ACCESS)
+        }
+        Err(e) => {
+            p.lose(&e);
+            Err(EGL_CONTEXT_LOST)
+        }
+    }
+}
+
+/// Checks that `dpy` is one of the shim's displays and is initialized; returns its number.
+fn initialized(p: &mut Process, dpy: EGLDisplay) -> Result<usize, EGLint> {
+    let d = dpy as usize;
+    let info = p.display(d).ok_or(EGL_BAD_DISPLAY)?;
+    if !info.initialized {
+        return Err(EGL_NOT_INITIALIZED);
+    }
+    if p.lost {
+        return Err(EGL_CONTEXT_LOST);
+    }
+    Ok(d)
+}
+
+/// The X display behind the shim's display `d`: the application's, or one the shim opens.
+fn x_display(p: &mut Process, d: usize) -> Option<usize> {
+    let info = p.display(d)?;
+    if info.native != 0 {
+        return Some(info.native);
+    }
+    if info.own_x11.is_none() && std::env::var_os("DISPLAY").is_some() {
+        info.own_x11 = x11::open_default();
+    }
+    info.own_x11
+}
+
+fn get_display(native: usize) -> EGLDisplay {
+    let mut p = process();
+    let n = match p.displays.iter().position(|d| d.native == native) {
+        Some(i) => i + 1,
+        None => {
+            p.displays.push(DisplayInfo { native, initialized: false, own_x11: None });
+            p.displays.len()
+        }
+    };
+    state::set_egl_error(EGL_SUCCESS);
+    n as EGLDisplay
+}
+
+fn platform_display(platform: EGLenum, native: *mut c_void) -> EGLDisplay {
+    if platform != EGL_PLATFORM_X11_KHR {
+        state::log_once(&format!("EGL platform {platform:#x} is not supported (only X11)"));
+        state::set_egl_error(EGL_BAD_PARAMETER);
+        return std::ptr::null_mut();
+    }
+    get_display(native as usize)
+}
+
+/// Where a window surface goes: `STRATA_WINDOW="x,y,z"` or `"x,y,z,WxH"`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct WindowPlacement {
+    x: i32,
+    y: i32,
+    z: f32,
+    size: Option<(i32, i32)>,
+}
+
+/// A native window id as the protocol carries it (`c_ulong` is 32 bits on some targets).
+#[allow(clippy::useless_conversion)]
+fn window_id(w: EGLNativeWindowType) -> u64 {
+    u64::from(w)
+}
+
+fn parse_placement(s: &str) -> Option<WindowPlacement> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let (x, y, z) = match parts.as_slice() {
+        [x, y, z] | [x, y, z, _] => (x.parse().ok()?, y.parse().ok()?, z.parse::<f32>().ok()?),
+        _ => return None,
+    };
+    if !z.is_finite() {
+        return None;
+    }
+    let size = match parts.get(3) {
+        Some(wh) => {
+            let (w, h) = wh.split_once(['x', 'X'])?;
+            let (w, h): (i32, i32) = (w.trim().parse().ok()?, h.trim().parse().ok()?);
+            if w <= 0 || h <= 0 {
+                return None;
+            }
+            Some((w, h))
+        }
+        None => None,
+    };
+    Some(WindowPlacement { x, y, z, size })
+}
+
+fn placement() -> WindowPlacement {
+    let default = WindowPlacement { x: 0, y: 0, z: 0.0, size: None };
+    match std::env::var("STRATA_WINDOW") {
+        Ok(s) => parse_placement(&s).unwrap_or_else(|| {
+            state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
+            default
+        }),
+        Err(_) => default,
+    }
+}
+
+fn create_window_surface(dpy: EGLDisplay, config: EGLConfig, win: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let place = placement();
+    let from_x = x_display(&mut p, d).and_then(|xd| x11::window_size(xd, win as std::ffi::c_ulong));
+    let Some((w, h)) = from_x.or(place.size) else {
+        state::log_once("cannot size a window surface: not an X11 window, and STRATA_WINDOW gives no WxH");
+        return Err(EGL_BAD_NATIVE_WINDOW);
+    };
+    let config = handle(config);
+    let s = daemon(&mut p, |c, dd| {
+        c.eglCreateWindowSurface(dd, config, win, place.x, place.y, place.z, w, h, Slice::new(&attribs))
+    })?;
+    p.surfaces.insert(s, SurfaceInfo { display: d });
+    Ok(s)
+}
+
+/// Releases this thread's current context (if any), on the daemon too when it is the one
+/// the daemon has current.
+fn release_current(p: &mut Process) -> Result<(), EGLint> {
+    let Some(cur) = state::current() else { return Ok(()) };
+    if let Some(c) = p.contexts.get_mut(&cur.context) {
+        c.owner = None;
+    }
+    state::set_current(None);
+    if p.daemon_current.is_some_and(|(c, _, _)| c == cur.context) {
+        p.daemon_current = None;
+        daemon(p, |c, dd| c.eglMakeCurrent(dd, 0, 0, 0))?;
+    }
+    Ok(())
+}
+
+fn make_current(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLContext) -> Result<(), EGLint> {
+    let mut p = process();
+    let (draw, read, ctx) = (handle(draw), handle(read), handle(ctx));
+    if ctx == 0 {
+        if draw != 0 || read != 0 {
+            return Err(EGL_BAD_MATCH);
+        }
+        // Releasing works on any valid display, even a terminated one.
+        p.display(dpy as usize).ok_or(EGL_BAD_DISPLAY)?;
+        return release_current(&mut p);
+    }
+    let d = initialized(&mut p, dpy)?;
+    let me = std::thread::current().id();
+    let c = p.contexts.get(&ctx).ok_or(EGL_BAD_CONTEXT)?;
+    if c.owner.is_some_and(|o| o != me) {
+        return Err(EGL_BAD_ACCESS);
+    }
+    if !p.surfaces.contains_key(&draw) || !p.surfaces.contains_key(&read) {
+        return Err(EGL_BAD_SURFACE);
+    }
+    daemon(&mut p, |c, dd| c.eglMakeCurrent(dd, draw, read, ctx))?;
+    if let Some(old) = state::current() {
+        if let Some(c) = p.contexts.get_mut(&old.context) {
+            c.owner = None;
+        }
+    }
+    if let Some(c) = p.contexts.get_mut(&ctx) {
+        c.owner = Some(me);
+    }
+    p.daemon_current = Some((ctx, draw, read));
+    state::set_current(Some(Current { display: d, draw, read, context: ctx }));
+    Ok(())
+}
+
+fn initialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> Result<(), EGLint> {
+    let mut p = process();
+    let d = dpy as usize;
+    p.display(d).ok_or(EGL_BAD_DISPLAY)?;
+    if p.lost {
+        return Err(EGL_CONTEXT_LOST);
+    }
+    if p.conn.is_none() {
+        let opts = ConnectOptions::default();
+        match Connection::connect(&opts) {
+            Ok(c) => p.conn = Some(c),
+            Err(e) => {
+                tracing::error!("strata-egl: eglInitialize failed: {e}");
+                return Err(EGL_NOT_INITIALIZED);
+            }
+        }
+        let dd = match p.conn.as_mut().map(|c| c.eglGetDisplay(0)) {
+            Some(Ok(dd)) => dd,
+            Some(Err(e)) => {
+                p.lose(&e);
+                return Err(EGL_NOT_INITIALIZED);
+            }
+            None => return Err(EGL_NOT_INITIALIZED),
+        };
+        p.daemon_display = dd;
+    }
+    let (ma, mi) = daemon(&mut p, |c, dd| c.eglInitialize(dd)).map_err(|e| match e {
+        EGL_CONTEXT_LOST => EGL_NOT_INITIALIZED,
+        e => e,
+    })?;
+    if let Some(info) = p.display(d) {
+        info.initialized = true;
+    }
+    // SAFETY: both out-pointers are optional; non-null ones point at an EGLint.
+    unsafe {
+        if !major.is_null() {
+            *major = ma;
+        }
+        if !minor.is_null() {
+            *minor = mi;
+        }
+    }
+    Ok(())
+}
+
+fn choose_config(
+    dpy: EGLDisplay,
+    attribs: Vec<EGLint>,
+    configs: *mut EGLConfig,
+    size: EGLint,
+    num: *mut EGLint,
+) -> Result<(), EGLint> {
+    if num.is_null() {
+        return Err(EGL_BAD_PARAMETER);
+    }
+    let mut p = process();
+    initialized(&mut p, dpy)?;
+    let limit = if configs.is_null() { -1 } else { size.max(0) };
+    let ids = daemon(&mut p, |c, dd| c.eglChooseConfig(dd, Slice::new(&attribs), limit))?;
+    // SAFETY: `configs` (when non-null) has room for `size` handles; `num` is non-null.
+    unsafe {
+        if !configs.is_null() {
+            for (i, id) in ids.iter().take(size.max(0) as usize).enumerate() {
+                *configs.add(i) = *id as usize as EGLConfig;
+            }
+        }
+        *num = ids.len().min(if configs.is_null() { usize::MAX } else { size.max(0) as usize }) as EGLint;
+    }
+    Ok(())
+}
+
+fn config_attrib(dpy: EGLDisplay, config: EGLConfig, attribute: EGLint, value: *mut EGLint) -> Result<(), EGLint> {
+    if value.is_null() {
+        return Err(EGL_BAD_PARAMETER);
+    }
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let config = handle(config);
+    let v = if attribute == EGL_NATIVE_VISUAL_ID {
+        // The daemon has no native visuals; the X server's depth-24 TrueColor visual is what
+        // X clients create the window with.
+        daemon(&mut p, |c, dd| c.eglGetConfigAttrib(dd, config, EGL_CONFIG_ID))?;
+        x_display(&mut p, d).and_then(x11::visual_id).map(|v| v as EGLint).unwrap_or(0)
+    } else {
+        daemon(&mut p, |c, dd| c.eglGetConfigAttrib(dd, config, attribute))?
+    };
+    // SAFETY: checked non-null above.
+    unsafe { *value = v };
+    Ok(())
+}
+
+fn create_context(dpy: EGLDisplay, config: EGLConfig, share: EGLContext, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    if state::api() != EGL_OPENGL_ES_API {
+        return Err(EGL_BAD_MATCH);
+    }
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let (config, share) = (handle(config), handle(share));
+    let ctx = daemon(&mut p, |c, dd| c.eglCreateContext(dd, config, share, Slice::new(&attribs)))?;
+    p.contexts.insert(ctx, ContextInfo { display: d, config, owner: None, gl: GlState::default() });
+    Ok(ctx)
+}
+
+fn destroy_context(dpy: EGLDisplay, ctx: EGLContext) -> Result<(), EGLint> {
+    let mut p = process();
+    initialized(&mut p, dpy)?;
+    let ctx = handle(ctx);
+    daemon(&mut p, |c, dd| c.eglDestroyContext(dd, ctx))?;
+    p.contexts.remove(&ctx);
+    if p.daemon_current.is_some_and(|(c, _, _)| c == ctx) {
+        p.daemon_current = None;
+    }
+    if state::current().is_some_and(|c| c.context == ctx) {
+        state::set_current(None);
+    }
+    Ok(())
+}
+
+fn query_context(dpy: EGLDisplay, ctx: EGLContext, attribute: EGLint, value: *mut EGLint) -> Result<(), EGLint> {
+    if value.is_null() {
+        return Err(EGL_BAD_PARAMETER);
+    }
+    let mut p = process();
+    initialized(&mut p, dpy)?;
+    let c = p.contexts.get(&handle(ctx)).ok_or(EGL_BAD_CONTEXT)?;
+    let v = match attribute {
+        EGL_CONFIG_ID => c.config as EGLint,
+        EGL_CONTEXT_CLIENT_TYPE => EGL_OPENGL_ES_API as EGLint,
+        EGL_CONTEXT_CLIENT_VERSION => 2,
+        EGL_RENDER_BUFFER => match state::current() {
+            Some(cur) if cur.context == handle(ctx) => EGL_BACK_BUFFER,
+            _ => EGL_NONE,
+        },
+        _ => return Err(EGL_BAD_ATTRIBUTE),
+    };
+    // SAFETY: checked non-null above.
+    unsafe { *value = v };
+    Ok(())
+}
+
+fn terminate(dpy: EGLDisplay) -> Result<(), EGLint> {
+    let mut p = process();
+    let d = dpy as usize;
+    let info = p.display(d).ok_or(EGL_BAD_DISPLAY)?;
+    if !info.initialized {
+        return Ok(());
+    }
+    info.initialized = false;
+    if p.displays.iter().all(|d| !d.initialized) && p.conn.is_some() {
+        // The daemon's state is per connection; its display goes down with the last one here.
+        let _ = daemon(&mut p, |c, dd| c.eglTerminate(dd));
+        p.contexts.retain(|_, c| c.display != d || c.owner.is_some());
+        p.surfaces.retain(|_, s| s.display != d);
+    }
+    Ok(())
+}
+
+fn unsupported(name: &str, error: EGLint) -> EGLint {
+    state::log_once(&format!("{name} is not supported; it fails with EGL error {error:#x}"));
+    error
+}
+
+fn wait_client() -> EGLBoolean {
+    if state::current().is_some() {
+        // SAFETY: glFinish takes no arguments.
+        unsafe { crate::gl::simple::glFinish() };
+    }
+    state::set_egl_error(EGL_SUCCESS);
+    EGL_TRUE
+}
+
+crate::entry_points! {
+    /// Returns and clears the calling thread's EGL error.
+    fn eglGetError() -> EGLint {
+        state::take_egl_error()
+    }
+
+    /// A display for a native (X11) display; `EGL_DEFAULT_DISPLAY` opens `$DISPLAY` when needed.
+    fn eglGetDisplay(native: EGLNativeDisplayType) -> EGLDisplay {
+        get_display(native as usize)
+    }
+
+    /// EGL 1.5 platform display; only `EGL_PLATFORM_X11_KHR` is supported.
+    fn eglGetPlatformDisplay(platform: EGLenum, native: *mut c_void, _attribs: *const EGLAttrib) -> EGLDisplay {
+        platform_display(platform, native)
+    }
+
+    /// `EGL_EXT_platform_base`; only `EGL_PLATFORM_X11_EXT` is supported.
+    fn eglGetPlatformDisplayEXT(platform: EGLenum, native: *mut c_void, _attribs: *const EGLint) -> EGLDisplay {
+        platform_display(platform, native)
+    }
+
+    /// Connects to stratad (once per process) and initializes the display.
+    fn eglInitialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> EGLBoolean {
+        boolean(initialize(dpy, major, minor))
+    }
+
+    /// Marks the display uninitialized.
+    fn eglTerminate(dpy: EGLDisplay) -> EGLBoolean {
+        boolean(terminate(dpy))
+    }
+
+    /// Vendor, version, client APIs and extensions; with `EGL_NO_DISPLAY`, client extensions.
+    fn eglQueryString(dpy: EGLDisplay, name: EGLint) -> *const c_char {
+        if dpy.is_null() {
+            if name == EGL_EXTENSIONS {
+                state::set_egl_error(EGL_SUCCESS);
+                return CLIENT_EXTENSIONS.as_ptr();
+            }
+            state::set_egl_error(EGL_BAD_DISPLAY);
+            return std::ptr::null();
+        }
+        if let Err(e) = initialized(&mut process(), dpy) {
+            state::set_egl_error(e);
+            return std::ptr::null();
+        }
+        let s: &CStr = match name {
+            EGL_VENDOR => c"Strata",
+            EGL_VERSION => c"1.4 Strata",
+            EGL_CLIENT_APIS => c"OpenGL_ES",
+            EGL_EXTENSIONS => c"",
+            _ => {
+                state::set_egl_error(EGL_BAD_PARAMETER);
+                return std::ptr::null();
+            }
+        };
+        state::set_egl_error(EGL_SUCCESS);
+        s.as_ptr()
+    }
+
+    /// Every config the daemon offers.
+    fn eglGetConfigs(dpy: EGLDisplay, configs: *mut EGLConfig, size: EGLint, num: *mut EGLint) -> EGLBoolean {
+        boolean(choose_config(dpy, vec![EGL_NONE], configs, size, num))
+    }
+
+    /// Configs matching `attribs`, best first, as the daemon orders them.
+    fn eglChooseConfig(
+        dpy: EGLDisplay,
+        attribs: *const EGLint,
+        configs: *mut EGLConfig,
+        size: EGLint,
+        num: *mut EGLint,
+    ) -> EGLBoolean {
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        boolean(unsafe { attrib_list(attribs) }.and_then(|a| choose_config(dpy, a, configs, size, num)))
+    }
+
+    /// One attribute of a config; `EGL_NATIVE_VISUAL_ID` names the X screen's TrueColor visual.
+    fn eglGetConfigAttrib(dpy: EGLDisplay, config: EGLConfig, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
+        boolean(config_attrib(dpy, config, attribute, value))
+    }
+
+    /// A composited window surface sized like the X window, placed by `STRATA_WINDOW`.
+    fn eglCreateWindowSurface(
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        win: EGLNativeWindowType,
+        attribs: *const EGLint,
+    ) -> EGLSurface {
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_window_surface(dpy, config, window_id(win), a)))
+    }
+
+    /// EGL 1.5 form of `eglCreateWindowSurface`: `native_window` points at an X11 `Window`.
+    fn eglCreatePlatformWindowSurface(
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        native_window: *mut c_void,
+        attribs: *const EGLAttrib,
+    ) -> EGLSurface {
+        if native_window.is_null() {
+            return handle_ptr(Err(EGL_BAD_NATIVE_WINDOW));
+        }
+        // SAFETY: on X11 the native window argument points at a `Window`.
+        let win = window_id(unsafe { *(native_window as *const EGLNativeWindowType) });
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list_wide(attribs) }.and_then(|a| create_window_surface(dpy, config, win, a)))
+    }
+
+    /// `EGL_EXT_platform_base` form of `eglCreateWindowSurface`.
+    fn eglCreatePlatformWindowSurfaceEXT(
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        native_window: *mut c_void,
+        attribs: *const EGLint,
+    ) -> EGLSurface {
+        if native_window.is_null() {
+            return handle_ptr(Err(EGL_BAD_NATIVE_WINDOW));
+        }
+        // SAFETY: on X11 the native window argument points at a `Window`.
+        let win = window_id(unsafe { *(native_window as *const EGLNativeWindowType) });
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_window_surface(dpy, config, win, a)))
+    }
+
+    /// An off-screen surface in the daemon.
+    fn eglCreatePbufferSurface(dpy: EGLDisplay, config: EGLConfig, attribs: *const EGLint) -> EGLSurface {
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        let r = unsafe { attrib_list(attribs) }.and_then(|a| {
+            let mut p = process();
+            let d = initialized(&mut p, dpy)?;
+            let config = handle(config);
+            let s = daemon(&mut p, |c, dd| c.eglCreatePbufferSurface(dd, config, Slice::new(&a)))?;
+            p.surfaces.insert(s, SurfaceInfo { display: d });
+            Ok(s)
+        });
+        handle_ptr(r)
+    }
+
+    /// Not supported: no config renders to pixmaps.
+    fn eglCreatePixmapSurface(
+        _dpy: EGLDisplay,
+        _config: EGLConfig,
+        _pixmap: EGLNativePixmapType,
+        _attribs: *const EGLint,
+    ) -> EGLSurface {
+        handle_ptr(Err(unsupported("eglCreatePixmapSurface", EGL_BAD_MATCH)))
+    }
+
+    /// Not supported: no config renders to pixmaps.
+    fn eglCreatePlatformPixmapSurfaceEXT(
+        _dpy: EGLDisplay,
+        _config: EGLConfig,
+        _pixmap: *mut c_void,
+        _attribs: *const EGLint,
+    ) -> EGLSurface {
+        handle_ptr(Err(unsupported("eglCreatePlatformPixmapSurfaceEXT", EGL_BAD_MATCH)))
+    }
+
+    /// Not supported: there are no client buffer types.
+    fn eglCreatePbufferFromClientBuffer(
+        _dpy: EGLDisplay,
+        _buftype: EGLenum,
+        _buffer: EGLClientBuffer,
+        _config: EGLConfig,
+        _attribs: *const EGLint,
+    ) -> EGLSurface {
+        handle_ptr(Err(unsupported("eglCreatePbufferFromClientBuffer", EGL_BAD_PARAMETER)))
+    }
+
+    /// Destroys a surface in the daemon.
+    fn eglDestroySurface(dpy: EGLDisplay, surface: EGLSurface) -> EGLBoolean {
+        let r = (|| {
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            let s = handle(surface);
+            daemon(&mut p, |c, dd| c.eglDestroySurface(dd, s))?;
+            p.surfaces.remove(&s);
+            Ok(())
+        })();
+        boolean(r)
+    }
+
+    /// Width, height, config id, render buffer and swap behaviour of a surface.
+    fn eglQuerySurface(dpy: EGLDisplay, surface: EGLSurface, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
+        let r = (|| {
+            if value.is_null() {
+                return Err(EGL_BAD_PARAMETER);
+            }
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            let s = handle(surface);
+            let v = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, s, attribute))?;
+            // SAFETY: checked non-null above.
+            unsafe { *value = v };
+            Ok(())
+        })();
+        boolean(r)
+    }
+
+    /// Only `EGL_SWAP_BEHAVIOR = EGL_BUFFER_DESTROYED` (what surfaces do anyway) is accepted.
+    fn eglSurfaceAttrib(dpy: EGLDisplay, surface: EGLSurface, attribute: EGLint, value: EGLint) -> EGLBoolean {
+        let r = (|| {
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            if !p.surfaces.contains_key(&handle(surface)) {
+                return Err(EGL_BAD_SURFACE);
+            }
+            match (attribute, value) {
+                (EGL_SWAP_BEHAVIOR, EGL_BUFFER_DESTROYED) => Ok(()),
+                _ => Err(unsupported(&format!("eglSurfaceAttrib({attribute:#x}, {value:#x})"), EGL_BAD_MATCH)),
+            }
+        })();
+        boolean(r)
+    }
+
+    /// Not supported: no config binds to textures.
+    fn eglBindTexImage(_dpy: EGLDisplay, _surface: EGLSurface, _buffer: EGLint) -> EGLBoolean {
+        boolean(Err(unsupported("eglBindTexImage", EGL_BAD_MATCH)))
+    }
+
+    /// Not supported: no config binds to textures.
+    fn eglReleaseTexImage(_dpy: EGLDisplay, _surface: EGLSurface, _buffer: EGLint) -> EGLBoolean {
+        boolean(Err(unsupported("eglReleaseTexImage", EGL_BAD_MATCH)))
+    }
+
+    /// Sets the swap interval of the current surface.
+    fn eglSwapInterval(dpy: EGLDisplay, interval: EGLint) -> EGLBoolean {
+        let r = (|| {
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            if state::current().is_none() {
+                return Err(EGL_BAD_CONTEXT);
+            }
+            daemon(&mut p, |c, dd| c.eglSwapInterval(dd, interval))
+        })();
+        boolean(r)
+    }
+
+    /// Creates an ES 2.0 context in the daemon.
+    fn eglCreateContext(dpy: EGLDisplay, config: EGLConfig, share: EGLContext, attribs: *const EGLint) -> EGLContext {
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_context(dpy, config, share, a)))
+    }
+
+    /// Destroys a context in the daemon.
+    fn eglDestroyContext(dpy: EGLDisplay, ctx: EGLContext) -> EGLBoolean {
+        boolean(destroy_context(dpy, ctx))
+    }
+
+    /// Binds a context to the calling thread (one current context per thread).
+    fn eglMakeCurrent(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLContext) -> EGLBoolean {
+        boolean(make_current(dpy, draw, read, ctx))
+    }
+
+    /// The calling thread's current context.
+    fn eglGetCurrentContext() -> EGLContext {
+        state::current().map_or(std::ptr::null_mut(), |c| c.context as usize as EGLContext)
+    }
+
+    /// The calling thread's current display.
+    fn eglGetCurrentDisplay() -> EGLDisplay {
+        state::current().map_or(std::ptr::null_mut(), |c| c.display as EGLDisplay)
+    }
+
+    /// The calling thread's current draw or read surface.
+    fn eglGetCurrentSurface(readdraw: EGLint) -> EGLSurface {
+        match (state::current(), readdraw) {
+            (Some(c), EGL_DRAW) => c.draw as usize as EGLSurface,
+            (Some(c), EGL_READ) => c.read as usize as EGLSurface,
+            (_, EGL_DRAW | EGL_READ) => std::ptr::null_mut(),
+            _ => {
+                state::set_egl_error(EGL_BAD_PARAMETER);
+                std::ptr::null_mut()
+            }
+        }
+    }
+
+    /// Config id, client type, client version and render buffer of a context.
+    fn eglQueryContext(dpy: EGLDisplay, ctx: EGLContext, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
+        boolean(query_context(dpy, ctx, attribute, value))
+    }
+
+    /// Waits for the current context's GL commands (`glFinish`).
+    fn eglWaitGL() -> EGLBoolean {
+        wait_client()
+    }
+
+    /// Waits for the current context's client API commands (`glFinish`).
+    fn eglWaitClient() -> EGLBoolean {
+        wait_client()
+    }
+
+    /// Nothing to wait for: the shim never renders through the native window system.
+    fn eglWaitNative(_engine: EGLint) -> EGLBoolean {
+        state::set_egl_error(EGL_SUCCESS);
+        EGL_TRUE
+    }
+
+    /// Presents the back buffer to the compositor (synchronous: applies back-pressure).
+    fn eglSwapBuffers(dpy: EGLDisplay, surface: EGLSurface) -> EGLBoolean {
+        let r = (|| {
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            let s = handle(surface);
+            if !p.surfaces.contains_key(&s) {
+                return Err(EGL_BAD_SURFACE);
+            }
+            daemon(&mut p, |c, dd| c.eglSwapBuffers(dd, s))
+        })();
+        boolean(r)
+    }
+
+    /// Not supported: there are no native pixmaps.
+    fn eglCopyBuffers(_dpy: EGLDisplay, _surface: EGLSurface, _target: EGLNativePixmapType) -> EGLBoolean {
+        boolean(Err(unsupported("eglCopyBuffers", EGL_BAD_NATIVE_PIXMAP)))
+    }
+
+    /// Only `EGL_OPENGL_ES_API` can be bound.
+    fn eglBindAPI(api: EGLenum) -> EGLBoolean {
+        if api == EGL_OPENGL_ES_API {
+            state::set_api(api);
+            boolean(Ok(()))
+        } else {
+            boolean(Err(EGL_BAD_PARAMETER))
+        }
+    }
+
+    /// The calling thread's bound API.
+    fn eglQueryAPI() -> EGLenum {
+        state::api()
+    }
+
+    /// Releases the calling thread's current context and resets its EGL state.
+    fn eglReleaseThread() -> EGLBoolean {
+        let r = release_current(&mut process());
+        state::set_api(EGL_OPENGL_ES_API);
+        let _ = r;
+        boolean(Ok(()))
+    }
+
+    /// The address of any EGL or GLES 2.0 entry point the shim exports (and `GL_OES_mapbuffer`).
+    fn eglGetProcAddress(name: *const c_char) -> EglProc {
+        if name.is_null() {
+            return None;
+        }
+        // SAFETY: the application passes a NUL-terminated name.
+        let name = unsafe { CStr::from_ptr(name) };
+        match crate::proc_address(name.to_bytes()) {
+            // SAFETY: a non-null address of one of the shim's own `extern "C"` functions; the
+            // caller casts it back to the right prototype, as eglGetProcAddress specifies.
+            Some(f) => Some(unsafe { std::mem::transmute::<*const c_void, unsafe extern "C" fn()>(f) }),
+            None => {
+                tracing::debug!("strata-egl: eglGetProcAddress({name:?}): no such entry point");
+                None
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn placement_parses_position_depth_and_size() {
+        assert_eq!(parse_placement("10,20,0.5"), Some(WindowPlacement { x: 10, y: 20, z: 0.5, size: None }));
+        assert_eq!(
+            parse_placement("0, 0, 1, 320x240"),
+            Some(WindowPlacement { x: 0, y: 0, z: 1.0, size: Some((320, 240)) })
+        );
+        assert_eq!(parse_placement("1,2"), None);
+        assert_eq!(parse_placement("1,2,nan"), None);
+        assert_eq!(parse_placement("1,2,3,0x5"), None);
+        assert_eq!(parse_placement("1,2,3,4"), None);
+    }
+}

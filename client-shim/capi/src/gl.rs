@@ -1,0 +1,1326 @@
+//! The GLES 2.0 entry points (and `GL_OES_mapbuffer`).
+//!
+//! Calls that map one-to-one onto a protocol command are generated from the table in
+//! [`simple`]; the ones below marshal pointers: arrays and strings in and out, client-side
+//! vertex and index arrays, buffer shadows for mapping, and client-allocated object names.
+//! With no current context every call does nothing, as GL specifies.
+
+use std::collections::HashMap;
+use std::ffi::{c_void, CStr, CString};
+use std::sync::{LazyLock, Mutex};
+
+use strata_client::{ClientError, Connection};
+use strata_protocol::{Blob, Calls, Slice, Text};
+
+use crate::state::{self, process, ClientArray, GlState};
+use crate::types::*;
+
+/// The extensions the shim implements itself, appended to the daemon's `GL_EXTENSIONS`.
+const SHIM_EXTENSIONS: &str = "GL_OES_mapbuffer";
+
+/// What a GL entry point works with: the connection and the current context's client state.
+pub(crate) struct Gl<'a> {
+    /// The daemon connection.
+    pub conn: &'a mut Connection,
+    /// The current context's client-side state.
+    pub st: &'a mut GlState,
+    /// The process's name counter.
+    pub next_name: &'a mut u32,
+}
+
+impl Gl<'_> {
+    /// Allocates `n` object names.
+    fn names(&mut self, n: usize) -> Vec<u32> {
+        let start = *self.next_name;
+        *self.next_name = self.next_name.wrapping_add(n as u32);
+        (0..n as u32).map(|i| start.wrapping_add(i)).collect()
+    }
+}
+
+/// Runs a GL call against the calling thread's current context. Without one, or once the
+/// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`).
+pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>) -> R {
+    let Some(cur) = state::current() else { return default };
+    let mut guard = process();
+    let p = &mut *guard;
+    if p.lost || p.conn.is_none() {
+        if let Some(c) = p.contexts.get_mut(&cur.context) {
+            c.gl.err(GL_CONTEXT_LOST);
+        }
+        return default;
+    }
+    if p.daemon_current != Some((cur.context, cur.draw, cur.read)) {
+        // Another thread's context was current on the daemon: switch back to ours.
+        let dd = p.daemon_display;
+        let r = match p.conn.as_mut() {
+            Some(conn) => conn.eglMakeCurrent(dd, cur.draw, cur.read, cur.context),
+            None => return default,
+        };
+        match r {
+            Ok(Ok(())) => p.daemon_current = Some((cur.context, cur.draw, cur.read)),
+            Ok(Err(e)) => {
+                tracing::warn!("strata-egl: {name}: re-binding the thread's context failed with EGL error {e:#x}");
+                return default;
+            }
+            Err(e) => {
+                p.lose(&e);
+                return default;
+            }
+        }
+    }
+    let state::Process { conn: Some(conn), contexts, next_name, .. } = p else { return default };
+    let Some(ctx) = contexts.get_mut(&cur.context) else { return default };
+    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name });
+    if check_errors() && name != "glGetError" && result.is_ok() {
+        // Debugging aid: name the call that raised each GL error (one round trip per call).
+        match conn.glGetError() {
+            Ok(GL_NO_ERROR) => {}
+            Ok(e) => {
+                tracing::warn!("strata-egl: {name} raised GL error {e:#x}");
+                ctx.gl.err(e);
+            }
+            Err(e) => result = Err(e),
+        }
+    }
+    match result {
+        Ok(r) => r,
+        Err(ClientError::Unsupported(why)) => {
+            state::log_once(&format!("{name}: stratad does not support it: {why}"));
+            ctx.gl.err(GL_INVALID_OPERATION);
+            default
+        }
+        Err(e) => {
+            p.lose(&e);
+            default
+        }
+    }
+}
+
+/// Whether `STRATA_CHECK_ERRORS=1` asks for every GL error to be logged with its call.
+fn check_errors() -> bool {
+    static ON: LazyLock<bool> = LazyLock::new(|| std::env::var_os("STRATA_CHECK_ERRORS").is_some_and(|v| v == "1"));
+    *ON
+}
+
+/// Converts a C argument to the protocol's type.
+trait Wire {
+    type Out;
+    fn wire(self) -> Self::Out;
+}
+
+macro_rules! wire_identity {
+    ($($t:ty),*) => { $( impl Wire for $t { type Out = $t; fn wire(self) -> $t { self } } )* };
+}
+wire_identity!(u32, i32, f32);
+
+impl Wire for GLboolean {
+    type Out = bool;
+    fn wire(self) -> bool {
+        self != 0
+    }
+}
+
+/// Converts a protocol result to the C return type.
+trait ToC<C> {
+    fn to_c(self) -> C;
+}
+
+impl ToC<()> for () {
+    fn to_c(self) {}
+}
+
+impl ToC<GLenum> for GLenum {
+    fn to_c(self) -> GLenum {
+        self
+    }
+}
+
+impl ToC<GLboolean> for bool {
+    fn to_c(self) -> GLboolean {
+        self as GLboolean
+    }
+}
+
+/// Generates entry points that map one-to-one onto a `Calls` method of the same name.
+macro_rules! simple_calls {
+    ($( fn $name:ident ( $( $arg:ident : $ty:ty ),* ) $( -> $ret:ty )? ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`, forwarded to the daemon as it is.")]
+                fn $name( $( $arg : $ty ),* ) $( -> $ret )? {
+                    with_gl(stringify!($name), crate::Fallback::fallback(), |gl| {
+                        Ok(ToC::to_c(gl.conn.$name( $( Wire::wire($arg) ),* )?))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// The entry points that carry only scalars: one line each, generated.
+pub mod simple {
+    use super::*;
+
+    simple_calls! {
+        fn glActiveTexture(texture: GLenum);
+        fn glAttachShader(program: GLuint, shader: GLuint);
+        fn glBindFramebuffer(target: GLenum, framebuffer: GLuint);
+        fn glBindRenderbuffer(target: GLenum, renderbuffer: GLuint);
+        fn glBindTexture(target: GLenum, texture: GLuint);
+        fn glBlendColor(red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat);
+        fn glBlendEquation(mode: GLenum);
+        fn glBlendEquationSeparate(mode_rgb: GLenum, mode_alpha: GLenum);
+        fn glBlendFunc(sfactor: GLenum, dfactor: GLenum);
+        fn glBlendFuncSeparate(src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum);
+        fn glClear(mask: GLbitfield);
+        fn glClearColor(red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat);
+        fn glClearDepthf(depth: GLfloat);
+        fn glClearStencil(s: GLint);
+        fn glColorMask(red: GLboolean, green: GLboolean, blue: GLboolean, alpha: GLboolean);
+        fn glCompileShader(shader: GLuint);
+        fn glCopyTexImage2D(target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint);
+        fn glCopyTexSubImage2D(target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei);
+        fn glCullFace(mode: GLenum);
+        fn glDeleteProgram(program: GLuint);
+        fn glDeleteShader(shader: GLuint);
+        fn glDepthFunc(func: GLenum);
+        fn glDepthMask(flag: GLboolean);
+        fn glDepthRangef(near: GLfloat, far: GLfloat);
+        fn glDetachShader(program: GLuint, shader: GLuint);
+        fn glDisable(cap: GLenum);
+        fn glEnable(cap: GLenum);
+        fn glFlush();
+        fn glFramebufferRenderbuffer(target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint);
+        fn glFramebufferTexture2D(target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint);
+        fn glFrontFace(mode: GLenum);
+        fn glGenerateMipmap(target: GLenum);
+        fn glHint(target: GLenum, mode: GLenum);
+        fn glLineWidth(width: GLfloat);
+        fn glLinkProgram(program: GLuint);
+        fn glPolygonOffset(factor: GLfloat, units: GLfloat);
+        fn glReleaseShaderCompiler();
+        fn glRenderbufferStorage(target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei);
+        fn glSampleCoverage(value: GLfloat, invert: GLboolean);
+        fn glScissor(x: GLint, y: GLint, width: GLsizei, height: GLsizei);
+        fn glStencilFunc(func: GLenum, reference: GLint, mask: GLuint);
+        fn glStencilFuncSeparate(face: GLenum, func: GLenum, reference: GLint, mask: GLuint);
+        fn glStencilMask(mask: GLuint);
+        fn glStencilMaskSeparate(face: GLenum, mask: GLuint);
+        fn glStencilOp(fail: GLenum, zfail: GLenum, zpass: GLenum);
+        fn glStencilOpSeparate(face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum);
+        fn glTexParameterf(target: GLenum, pname: GLenum, param: GLfloat);
+        fn glTexParameteri(target: GLenum, pname: GLenum, param: GLint);
+        fn glUniform1f(location: GLint, x: GLfloat);
+        fn glUniform1i(location: GLint, x: GLint);
+        fn glUniform2f(location: GLint, x: GLfloat, y: GLfloat);
+        fn glUniform2i(location: GLint, x: GLint, y: GLint);
+        fn glUniform3f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat);
+        fn glUniform3i(location: GLint, x: GLint, y: GLint, z: GLint);
+        fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
+        fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
+        fn glUseProgram(program: GLuint);
+        fn glValidateProgram(program: GLuint);
+        fn glVertexAttrib1f(index: GLuint, x: GLfloat);
+        fn glVertexAttrib2f(index: GLuint, x: GLfloat, y: GLfloat);
+        fn glVertexAttrib3f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat);
+        fn glVertexAttrib4f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
+        fn glViewport(x: GLint, y: GLint, width: GLsizei, height: GLsizei);
+        fn glCheckFramebufferStatus(target: GLenum) -> GLenum;
+        fn glFinish();
+        fn glIsBuffer(name: GLuint) -> GLboolean;
+        fn glIsEnabled(cap: GLenum) -> GLboolean;
+        fn glIsFramebuffer(name: GLuint) -> GLboolean;
+        fn glIsProgram(name: GLuint) -> GLboolean;
+        fn glIsRenderbuffer(name: GLuint) -> GLboolean;
+        fn glIsShader(name: GLuint) -> GLboolean;
+        fn glIsTexture(name: GLuint) -> GLboolean;
+    }
+}
+
+/// Bytes of one component of a vertex attribute or index type.
+fn type_size(ty: GLenum) -> Option<usize> {
+    Some(match ty {
+        0x1400 | 0x1401 => 1,                   // BYTE, UNSIGNED_BYTE
+        0x1402 | 0x1403 | 0x8D61 => 2,          // SHORT, UNSIGNED_SHORT, HALF_FLOAT_OES
+        0x1404 | 0x1405 | 0x1406 | 0x140C => 4, // INT, UNSIGNED_INT, FLOAT, FIXED
+        _ => return None,
+    })
+}
+
+/// Bytes per pixel of an upload in `format`/`ty`, if the combination is known.
+fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
+    let components = match format {
+        0x1906 | 0x1909 | 0x1902 => 1, // ALPHA, LUMINANCE, DEPTH_COMPONENT
+        0x190A => 2,                   // LUMINANCE_ALPHA
+        0x1907 => 3,                   // RGB
+        0x1908 | 0x80E1 => 4,          // RGBA, BGRA_EXT
+        0x84F9 => 1,                   // DEPTH_STENCIL_OES (one packed 32-bit value)
+        _ => return None,
+    };
+    match ty {
+        0x8363 | 0x8033 | 0x8034 => Some(2), // 5_6_5, 4_4_4_4, 5_5_5_1
+        0x84FA => Some(4),                   // UNSIGNED_INT_24_8_OES
+        _ => type_size(ty).map(|s| s * components),
+    }
+}
+
+/// Bytes an upload of `width`×`height` pixels reads, honouring the unpack alignment.
+fn upload_size(width: i32, height: i32, bpp: usize, alignment: usize) -> usize {
+    if width <= 0 || height <= 0 {
+        return 0;
+    }
+    let (w, h) = (width as usize, height as usize);
+    let row = (w * bpp).div_ceil(alignment) * alignment;
+    row * (h - 1) + w * bpp
+}
+
+/// Borrows `len` bytes of application memory (empty for a null pointer).
+///
+/// # Safety
+/// A non-null `ptr` must be valid for `len` bytes, as GL requires of the application.
+unsafe fn bytes<'a>(ptr: *const c_void, len: usize) -> &'a [u8] {
+    if ptr.is_null() || len == 0 {
+        &[]
+    } else {
+        // SAFETY: see the function's contract.
+        unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len) }
+    }
+}
+
+/// Borrows `n` values of application memory (empty for a null pointer or negative count).
+///
+/// # Safety
+/// A non-null `ptr` must be valid for `n` values.
+unsafe fn values<'a, T>(ptr: *const T, n: i64) -> &'a [T] {
+    if ptr.is_null() || n <= 0 {
+        &[]
+    } else {
+        // SAFETY: see the function's contract.
+        unsafe { std::slice::from_raw_parts(ptr, n as usize) }
+    }
+}
+
+/// Writes `src` into an application array (nothing for a null pointer).
+///
+/// # Safety
+/// A non-null `dst` must have room for `src.len()` values, as the GL query specifies.
+unsafe fn write_out<T: Copy>(dst: *mut T, src: &[T]) {
+    if !dst.is_null() {
+        // SAFETY: see the function's contract.
+        unsafe { std::ptr::copy_nonoverlapping(src.as_ptr(), dst, src.len()) };
+    }
+}
+
+/// Writes one value through an optional out-pointer.
+///
+/// # Safety
+/// A non-null `dst` must point at a `T`.
+unsafe fn put<T>(dst: *mut T, v: T) {
+    if !dst.is_null() {
+        // SAFETY: see the function's contract.
+        unsafe { *dst = v };
+    }
+}
+
+/// Copies `s` into a caller buffer of `buf_size` bytes, NUL-terminated and truncated as GL
+/// specifies, and stores the length written (without the NUL).
+///
+/// # Safety
+/// `out` (if non-null) must have room for `buf_size` bytes; `length` (if non-null) an int.
+unsafe fn copy_string(s: &str, buf_size: GLsizei, length: *mut GLsizei, out: *mut GLchar) {
+    let n = if buf_size <= 0 || out.is_null() { 0 } else { s.len().min(buf_size as usize - 1) };
+    // SAFETY: see the function's contract.
+    unsafe {
+        if !out.is_null() && buf_size > 0 {
+            std::ptr::copy_nonoverlapping(s.as_ptr().cast::<GLchar>(), out, n);
+            *out.add(n) = 0;
+        }
+        put(length, n as GLsizei);
+    }
+}
+
+/// Reads a NUL-terminated name from the application (`None` for null or non-UTF-8).
+///
+/// # Safety
+/// A non-null `name` must be NUL-terminated.
+unsafe fn c_name<'a>(name: *const GLchar) -> Option<&'a str> {
+    if name.is_null() {
+        return None;
+    }
+    // SAFETY: see the function's contract.
+    unsafe { CStr::from_ptr(name) }.to_str().ok()
+}
+
+/// A string that stays valid for the rest of the process (what `glGetString` returns).
+fn intern(s: String) -> *const GLubyte {
+    static STRINGS: LazyLock<Mutex<HashMap<String, &'static CStr>>> = LazyLock::new(|| Mutex::new(HashMap::new()));
+    let mut strings = STRINGS.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(c) = strings.get(&s) {
+        return c.as_ptr().cast();
+    }
+    let Ok(c) = CString::new(s.clone()) else { return std::ptr::null() };
+    let c: &'static CStr = Box::leak(c.into_boxed_c_str());
+    strings.insert(s, c);
+    c.as_ptr().cast()
+}
+
+/// Sends the bytes of every enabled client-side array that a draw of `vertices` vertices reads.
+fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64) -> Result<(), ClientError> {
+    if vertices == 0 {
+        return Ok(());
+    }
+    for i in 0..state::MAX_ATTRIBS {
+        let a = gl.st.attribs[i];
+        let (true, Some(ClientArray { ptr, size, ty, stride })) = (a.enabled, a.client) else { continue };
+        let Some(component) = type_size(ty) else { continue };
+        let element = component * size.clamp(1, 4) as usize;
+        let stride = if stride > 0 { stride as usize } else { element };
+        let Some(len) = (vertices - 1).checked_mul(stride as u64).and_then(|n| n.checked_add(element as u64)) else {
+            continue;
+        };
+        // SAFETY: the application promised `ptr` holds every vertex the draw reads.
+        let data = unsafe { bytes(ptr as *const c_void, len as usize) };
+        gl.conn.strataVertexAttribData(i as u32, Blob::borrowed(data))?;
+    }
+    Ok(())
+}
+
+/// Whether any enabled attribute reads a client-side array.
+fn uses_client_arrays(st: &GlState) -> bool {
+    st.attribs.iter().any(|a| a.enabled && a.client.is_some())
+}
+
+/// One more than the largest index in `data` (indices of type `ty`), 0 if empty.
+fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
+    let max = match ty {
+        GL_UNSIGNED_BYTE => data.iter().map(|&b| u32::from(b)).max(),
+        GL_UNSIGNED_SHORT => data.chunks_exact(2).map(|c| u32::from(u16::from_ne_bytes([c[0], c[1]]))).max(),
+        GL_UNSIGNED_INT => data.chunks_exact(4).map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]])).max(),
+        _ => None,
+    };
+    max.map_or(0, |m| u64::from(m) + 1)
+}
+
+/// `glUniform*v`: `count` elements of `n` values each.
+macro_rules! uniform_v {
+    ($( $name:ident : $t:ty , $n:literal ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: copies `count` × ", stringify!($n), " values.")]
+                fn $name(location: GLint, count: GLsizei, value: *const $t) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if count < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        // SAFETY: the application passes `count` elements.
+                        let v = unsafe { values(value, i64::from(count) * $n) };
+                        gl.conn.$name(location, Slice::new(v))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// `glUniformMatrix*fv`: `count` matrices of `n` floats.
+macro_rules! uniform_matrix {
+    ($( $name:ident , $n:literal ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: copies `count` matrices of ", stringify!($n), " floats.")]
+                fn $name(location: GLint, count: GLsizei, transpose: GLboolean, value: *const GLfloat) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if count < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        // SAFETY: the application passes `count` matrices.
+                        let v = unsafe { values(value, i64::from(count) * $n) };
+                        gl.conn.$name(location, transpose != 0, Slice::new(v))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// `glVertexAttrib*fv`: `n` floats.
+macro_rules! vertex_attrib_v {
+    ($( $name:ident , $n:literal ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: copies ", stringify!($n), " floats.")]
+                fn $name(index: GLuint, value: *const GLfloat) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if value.is_null() {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        // SAFETY: the application passes `n` floats.
+                        let v = unsafe { values(value, $n) };
+                        gl.conn.$name(index, Slice::new(v))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// `glGen*`: client-allocated names, written to the application's array and sent.
+macro_rules! gen_names {
+    ($( $name:ident ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: names are allocated here and sent to the daemon.")]
+                fn $name(n: GLsizei, names: *mut GLuint) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if n < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        if names.is_null() {
+                            return Ok(());
+                        }
+                        let new = gl.names(n as usize);
+                        // SAFETY: the application's array has room for `n` names.
+                        unsafe { write_out(names, &new) };
+                        gl.conn.$name(Slice::new(&new))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// `glDelete*` for textures, framebuffers and renderbuffers.
+macro_rules! delete_names {
+    ($( $name:ident ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: copies `n` names.")]
+                fn $name(n: GLsizei, names: *const GLuint) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if n < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        // SAFETY: the application passes `n` names.
+                        let v = unsafe { values(names, i64::from(n)) };
+                        gl.conn.$name(Slice::new(v))
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// Parameter queries that return one integer.
+macro_rules! get_one_int {
+    ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: writes one integer.")]
+                fn $name( $( $arg : $ty, )* params: *mut GLint) {
+                    with_gl(stringify!($name), (), |gl| {
+                        let v = gl.conn.$name( $( $arg ),* )?;
+                        // SAFETY: `params` points at one GLint.
+                        unsafe { put(params, v) };
+                        Ok(())
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// Queries that return an array, written to the caller's.
+macro_rules! get_array {
+    ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) -> $t:ty ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: writes the values the daemon returns.")]
+                fn $name( $( $arg : $ty, )* params: *mut $t) {
+                    with_gl(stringify!($name), (), |gl| {
+                        let v = gl.conn.$name( $( $arg ),* )?;
+                        // SAFETY: the caller's array has room for what the query returns.
+                        unsafe { write_out(params, &v) };
+                        Ok(())
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// Info logs and sources, copied into the caller's buffer.
+macro_rules! get_string {
+    ($( $name:ident ( $obj:ident ) ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: copies the text, NUL-terminated and truncated.")]
+                fn $name($obj: GLuint, buf_size: GLsizei, length: *mut GLsizei, out: *mut GLchar) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if buf_size < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        let s = gl.conn.$name($obj)?;
+                        // SAFETY: `out` has room for `buf_size` bytes.
+                        unsafe { copy_string(&s, buf_size, length, out) };
+                        Ok(())
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// `glGetActiveAttrib` / `glGetActiveUniform`.
+macro_rules! get_active {
+    ($( $name:ident ; )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: size, type and name of one active variable.")]
+                fn $name(
+                    program: GLuint,
+                    index: GLuint,
+                    buf_size: GLsizei,
+                    length: *mut GLsizei,
+                    size: *mut GLint,
+                    ty: *mut GLenum,
+                    name: *mut GLchar,
+                ) {
+                    with_gl(stringify!($name), (), |gl| {
+                        if buf_size < 0 {
+                            gl.st.err(GL_INVALID_VALUE);
+                            return Ok(());
+                        }
+                        if let Some(v) = gl.conn.$name(program, index)? {
+                            // SAFETY: out-pointers as GL specifies; `name` has `buf_size` bytes.
+                            unsafe {
+                                put(size, v.size);
+                                put(ty, v.ty);
+                                copy_string(&v.name, buf_size, length, name);
+                            }
+                        }
+                        Ok(())
+                    })
+                }
+            )*
+        }
+    };
+}
+
+/// Uniform arrays.
+pub mod uniforms {
+    use super::*;
+    uniform_v! {
+    glUniform1fv: GLfloat, 1;
+    glUniform2fv: GLfloat, 2;
+    glUniform3fv: GLfloat, 3;
+    glUniform4fv: GLfloat, 4;
+    glUniform1iv: GLint, 1;
+    glUniform2iv: GLint, 2;
+    glUniform3iv: GLint, 3;
+    glUniform4iv: GLint, 4;
+    }
+}
+
+/// Matrix uniforms.
+pub mod matrix {
+    use super::*;
+    uniform_matrix! {
+        glUniformMatrix2fv, 4;
+        glUniformMatrix3fv, 9;
+        glUniformMatrix4fv, 16;
+    }
+}
+
+/// Current vertex attribute values from arrays.
+pub mod attrib {
+    use super::*;
+    vertex_attrib_v! {
+        glVertexAttrib1fv, 1;
+        glVertexAttrib2fv, 2;
+        glVertexAttrib3fv, 3;
+        glVertexAttrib4fv, 4;
+    }
+}
+
+/// Name allocation and deletion.
+pub mod names {
+    use super::*;
+    gen_names! {
+        glGenFramebuffers;
+        glGenRenderbuffers;
+        glGenTextures;
+    }
+}
+
+/// Name deletion.
+pub mod delete {
+    use super::*;
+    delete_names! {
+        glDeleteFramebuffers;
+        glDeleteRenderbuffers;
+        glDeleteTextures;
+    }
+}
+
+/// Integer parameter queries.
+pub mod get_int {
+    use super::*;
+    get_one_int! {
+        glGetFramebufferAttachmentParameteriv(target: GLenum, attachment: GLenum, pname: GLenum);
+        glGetProgramiv(program: GLuint, pname: GLenum);
+        glGetRenderbufferParameteriv(target: GLenum, pname: GLenum);
+        glGetShaderiv(shader: GLuint, pname: GLenum);
+    }
+}
+
+/// Array queries.
+pub mod get_arrays {
+    use super::*;
+    get_array! {
+        glGetFloatv(pname: GLenum) -> GLfloat;
+        glGetIntegerv(pname: GLenum) -> GLint;
+        glGetTexParameterfv(target: GLenum, pname: GLenum) -> GLfloat;
+        glGetTexParameteriv(target: GLenum, pname: GLenum) -> GLint;
+        glGetUniformfv(program: GLuint, location: GLint) -> GLfloat;
+        glGetUniformiv(program: GLuint, location: GLint) -> GLint;
+        glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
+        glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
+    }
+}
+
+/// Logs and sources.
+pub mod get_strings {
+    use super::*;
+    get_string! {
+        glGetProgramInfoLog(program);
+        glGetShaderInfoLog(shader);
+        glGetShaderSource(shader);
+    }
+}
+
+/// Active variables.
+pub mod active {
+    use super::*;
+    get_active! {
+        glGetActiveAttrib;
+        glGetActiveUniform;
+    }
+}
+
+/// The names of every GL entry point, by module.
+#[cfg(test)]
+pub(crate) const MODULE_NAMES: &[&[&str]] = &[
+    simple::NAMES,
+    uniforms::NAMES,
+    matrix::NAMES,
+    attrib::NAMES,
+    names::NAMES,
+    delete::NAMES,
+    get_int::NAMES,
+    get_arrays::NAMES,
+    get_strings::NAMES,
+    active::NAMES,
+    hand::NAMES,
+];
+
+/// The address of a GL entry point, by name.
+pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
+    simple::lookup(name)
+        .or_else(|| uniforms::lookup(name))
+        .or_else(|| matrix::lookup(name))
+        .or_else(|| attrib::lookup(name))
+        .or_else(|| names::lookup(name))
+        .or_else(|| delete::lookup(name))
+        .or_else(|| get_int::lookup(name))
+        .or_else(|| get_arrays::lookup(name))
+        .or_else(|| get_strings::lookup(name))
+        .or_else(|| active::lookup(name))
+        .or_else(|| hand::lookup(name))
+}
+
+fn tex_image_bytes<'a>(
+    st: &GlState,
+    width: GLsizei,
+    height: GLsizei,
+    format: GLenum,
+    ty: GLenum,
+    pixels: *const c_void,
+) -> Option<&'a [u8]> {
+    let bpp = pixel_size(format, ty)?;
+    if pixels.is_null() {
+        return None;
+    }
+    // SAFETY: the application's pixels hold `upload_size` bytes for these dimensions and the
+    // current unpack alignment.
+    Some(unsafe { bytes(pixels, upload_size(width, height, bpp, st.unpack_alignment)) })
+}
+
+/// The hand-written entry points: everything that marshals pointers or keeps client state.
+pub mod hand {
+    use super::*;
+
+    crate::entry_points! {
+        /// The shim's own error first (including `GL_CONTEXT_LOST`), then the daemon's.
+        fn glGetError() -> GLenum {
+            let Some(cur) = state::current() else { return GL_NO_ERROR };
+            {
+                let mut p = process();
+                if let Some(c) = p.contexts.get_mut(&cur.context) {
+                    let e = std::mem::replace(&mut c.gl.error, GL_NO_ERROR);
+                    if e != GL_NO_ERROR {
+                        return e;
+                    }
+                }
+                if p.lost {
+                    return GL_NO_ERROR;
+                }
+            }
+            with_gl("glGetError", GL_NO_ERROR, |gl| gl.conn.glGetError())
+        }
+
+        /// Strings live for the rest of the process; `GL_EXTENSIONS` adds the shim's own.
+        fn glGetString(name: GLenum) -> *const GLubyte {
+            with_gl("glGetString", std::ptr::null(), |gl| {
+                Ok(match gl.conn.glGetString(name)? {
+                    Some(s) if name == GL_EXTENSIONS => intern(format!("{} {SHIM_EXTENSIONS}", s.trim_end())),
+                    Some(s) => intern(s),
+                    None => std::ptr::null(),
+                })
+            })
+        }
+
+        /// Booleans as `GLboolean`s.
+        fn glGetBooleanv(pname: GLenum, params: *mut GLboolean) {
+            with_gl("glGetBooleanv", (), |gl| {
+                let v: Vec<GLboolean> = gl.conn.glGetBooleanv(pname)?.into_iter().map(GLboolean::from).collect();
+                // SAFETY: the caller's array has room for what the query returns.
+                unsafe { write_out(params, &v) };
+                Ok(())
+            })
+        }
+
+        /// Mapping state is the shim's; everything else the daemon's.
+        fn glGetBufferParameteriv(target: GLenum, pname: GLenum, params: *mut GLint) {
+            with_gl("glGetBufferParameteriv", (), |gl| {
+                let mapped = gl.st.bound(target).is_some_and(|b| gl.st.mapped.contains_key(&b));
+                let v = match pname {
+                    GL_BUFFER_MAPPED_OES => GLint::from(mapped),
+                    GL_BUFFER_ACCESS_OES => GL_WRITE_ONLY_OES as GLint,
+                    _ => gl.conn.glGetBufferParameteriv(target, pname)?,
+                };
+                // SAFETY: `params` points at one GLint.
+                unsafe { put(params, v) };
+                Ok(())
+            })
+        }
+
+        /// The application's pointer for client-side arrays, the offset for buffer-backed ones.
+        fn glGetVertexAttribPointerv(index: GLuint, pname: GLenum, pointer: *mut *mut c_void) {
+            with_gl("glGetVertexAttribPointerv", (), |gl| {
+                let v = gl.conn.glGetVertexAttribPointerv(index, pname)?;
+                // SAFETY: `pointer` points at one pointer.
+                unsafe { put(pointer, v as usize as *mut c_void) };
+                Ok(())
+            })
+        }
+
+        /// Range and precision of a shader number format.
+        fn glGetShaderPrecisionFormat(shadertype: GLenum, precisiontype: GLenum, range: *mut GLint, precision: *mut GLint) {
+            with_gl("glGetShaderPrecisionFormat", (), |gl| {
+                let (r, p) = gl.conn.glGetShaderPrecisionFormat(shadertype, precisiontype)?;
+                // SAFETY: `range` has room for two GLints, `precision` for one.
+                unsafe {
+                    write_out(range, &r);
+                    put(precision, p);
+                }
+                Ok(())
+            })
+        }
+
+        /// At most `max_count` shader names.
+        fn glGetAttachedShaders(program: GLuint, max_count: GLsizei, count: *mut GLsizei, shaders: *mut GLuint) {
+            with_gl("glGetAttachedShaders", (), |gl| {
+                if max_count < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                let v = gl.conn.glGetAttachedShaders(program)?;
+                let n = v.len().min(max_count as usize);
+                // SAFETY: `shaders` has room for `max_count` names.
+                unsafe {
+                    write_out(shaders, &v[..n]);
+                    put(count, n as GLsizei);
+                }
+                Ok(())
+            })
+        }
+
+        /// Location of a named attribute.
+        fn glGetAttribLocation(program: GLuint, name: *const GLchar) -> GLint {
+            with_gl("glGetAttribLocation", -1, |gl| {
+                // SAFETY: `name` is NUL-terminated.
+                match unsafe { c_name(name) } {
+                    Some(n) => gl.conn.glGetAttribLocation(program, Text::borrowed(n)),
+                    None => Ok(-1),
+                }
+            })
+        }
+
+        /// Location of a named uniform.
+        fn glGetUniformLocation(program: GLuint, name: *const GLchar) -> GLint {
+            with_gl("glGetUniformLocation", -1, |gl| {
+                // SAFETY: `name` is NUL-terminated.
+                match unsafe { c_name(name) } {
+                    Some(n) => gl.conn.glGetUniformLocation(program, Text::borrowed(n)),
+                    None => Ok(-1),
+                }
+            })
+        }
+
+        /// Binds an attribute name to a location.
+        fn glBindAttribLocation(program: GLuint, index: GLuint, name: *const GLchar) {
+            with_gl("glBindAttribLocation", (), |gl| {
+                // SAFETY: `name` is NUL-terminated.
+                match unsafe { c_name(name) } {
+                    Some(n) => gl.conn.glBindAttribLocation(program, index, Text::borrowed(n)),
+                    None => {
+                        gl.st.err(GL_INVALID_VALUE);
+                        Ok(())
+                    }
+                }
+            })
+        }
+
+        /// Joins the application's strings into one source.
+        fn glShaderSource(shader: GLuint, count: GLsizei, string: *const *const GLchar, length: *const GLint) {
+            with_gl("glShaderSource", (), |gl| {
+                if count < 0 || (count > 0 && string.is_null()) {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                let mut source = Vec::new();
+                for i in 0..count as usize {
+                    // SAFETY: `string` has `count` entries, and `length` (if non-null) too.
+                    let (s, len) = unsafe { (*string.add(i), if length.is_null() { -1 } else { *length.add(i) }) };
+                    if s.is_null() {
+                        continue;
+                    }
+                    if len < 0 {
+                        // SAFETY: without a length the string is NUL-terminated.
+                        source.extend_from_slice(unsafe { CStr::from_ptr(s) }.to_bytes());
+                    } else {
+                        // SAFETY: with a length the string has that many bytes.
+                        source.extend_from_slice(unsafe { bytes(s.cast(), len as usize) });
+                    }
+                }
+                let source = String::from_utf8_lossy(&source);
+                gl.conn.glShaderSource(shader, Text::borrowed(&source))
+            })
+        }
+
+        /// Not supported by the daemon (no binary formats); sent so that it reports the error.
+        fn glShaderBinary(n: GLsizei, shaders: *const GLuint, binaryformat: GLenum, binary: *const c_void, length: GLsizei) {
+            with_gl("glShaderBinary", (), |gl| {
+                if n < 0 || length < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: `shaders` has `n` names and `binary` `length` bytes.
+                let (s, b) = unsafe { (values(shaders, i64::from(n)), bytes(binary, length as usize)) };
+                gl.conn.glShaderBinary(Slice::new(s), binaryformat, Blob::borrowed(b))
+            })
+        }
+
+        /// A shader name allocated here (0 for an invalid type).
+        fn glCreateShader(shader_type: GLenum) -> GLuint {
+            with_gl("glCreateShader", 0, |gl| {
+                if !matches!(shader_type, 0x8B30 | 0x8B31) {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(0);
+                }
+                let name = gl.names(1)[0];
+                gl.conn.glCreateShader(shader_type, name)?;
+                Ok(name)
+            })
+        }
+
+        /// A program name allocated here.
+        fn glCreateProgram() -> GLuint {
+            with_gl("glCreateProgram", 0, |gl| {
+                let name = gl.names(1)[0];
+                gl.conn.glCreateProgram(name)?;
+                Ok(name)
+            })
+        }
+
+        /// Buffer names allocated here.
+        fn glGenBuffers(n: GLsizei, buffers: *mut GLuint) {
+            with_gl("glGenBuffers", (), |gl| {
+                if n < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                if buffers.is_null() {
+                    return Ok(());
+                }
+                let new = gl.names(n as usize);
+                // SAFETY: the application's array has room for `n` names.
+                unsafe { write_out(buffers, &new) };
+                gl.conn.glGenBuffers(Slice::new(&new))
+            })
+        }
+
+        /// Forgets the buffers' shadows and bindings too.
+        fn glDeleteBuffers(n: GLsizei, buffers: *const GLuint) {
+            with_gl("glDeleteBuffers", (), |gl| {
+                if n < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: the application passes `n` names.
+                let v = unsafe { values(buffers, i64::from(n)) };
+                for &b in v.iter().filter(|&&b| b != 0) {
+                    gl.st.buffers.remove(&b);
+                    gl.st.mapped.remove(&b);
+                    if gl.st.array_buffer == b {
+                        gl.st.array_buffer = 0;
+                    }
+                    if gl.st.element_buffer == b {
+                        gl.st.element_buffer = 0;
+                    }
+                }
+                gl.conn.glDeleteBuffers(Slice::new(v))
+            })
+        }
+
+        /// Tracks the array and element bindings (client arrays and index ranges need them).
+        fn glBindBuffer(target: GLenum, buffer: GLuint) {
+            with_gl("glBindBuffer", (), |gl| {
+                match target {
+                    GL_ARRAY_BUFFER => gl.st.array_buffer = buffer,
+                    GL_ELEMENT_ARRAY_BUFFER => gl.st.element_buffer = buffer,
+                    _ => {}
+                }
+                gl.conn.glBindBuffer(target, buffer)
+            })
+        }
+
+        /// Copies `size` bytes (or allocates), keeping a shadow of the contents.
+        fn glBufferData(target: GLenum, size: GLsizeiptr, data: *const c_void, usage: GLenum) {
+            with_gl("glBufferData", (), |gl| {
+                if size < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: a non-null `data` holds `size` bytes.
+                let d = unsafe { bytes(data, size as usize) };
+                if let Some(b) = gl.st.bound(target).filter(|&b| b != 0) {
+                    let shadow = if data.is_null() { vec![0; size as usize] } else { d.to_vec() };
+                    gl.st.buffers.insert(b, shadow);
+                }
+                let blob = (!data.is_null()).then(|| Blob::borrowed(d));
+                gl.conn.glBufferData(target, size as i64, blob, usage)
+            })
+        }
+
+        /// Copies `size` bytes at `offset`, updating the shadow.
+        fn glBufferSubData(target: GLenum, offset: GLintptr, size: GLsizeiptr, data: *const c_void) {
+            with_gl("glBufferSubData", (), |gl| {
+                if size < 0 || offset < 0 || (size > 0 && data.is_null()) {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: `data` holds `size` bytes.
+                let d = unsafe { bytes(data, size as usize) };
+                if let Some(shadow) = gl.st.bound(target).and_then(|b| gl.st.buffers.get_mut(&b)) {
+                    if let Some(dst) = shadow.get_mut(offset as usize..offset as usize + d.len()) {
+                        dst.copy_from_slice(d);
+                    }
+                }
+                gl.conn.glBufferSubData(target, offset as i64, Blob::borrowed(d))
+            })
+        }
+
+        /// `GL_OES_mapbuffer`: hands out a copy of the buffer's contents, written back on unmap.
+        fn glMapBufferOES(target: GLenum, access: GLenum) -> *mut c_void {
+            with_gl("glMapBufferOES", std::ptr::null_mut(), |gl| {
+                if access != GL_WRITE_ONLY_OES {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(std::ptr::null_mut());
+                }
+                let Some(b) = gl.st.bound(target) else {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(std::ptr::null_mut());
+                };
+                if b == 0 || gl.st.mapped.contains_key(&b) {
+                    gl.st.err(GL_INVALID_OPERATION);
+                    return Ok(std::ptr::null_mut());
+                }
+                let copy: Box<[u8]> = gl.st.buffers.get(&b).cloned().unwrap_or_default().into_boxed_slice();
+                let map = gl.st.mapped.entry(b).or_insert(copy);
+                Ok(map.as_mut_ptr().cast())
+            })
+        }
+
+        /// `GL_OES_mapbuffer`: uploads the mapped memory as the buffer's new contents.
+        fn glUnmapBufferOES(target: GLenum) -> GLboolean {
+            with_gl("glUnmapBufferOES", 0, |gl| {
+                let Some(b) = gl.st.bound(target) else {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(0);
+                };
+                let Some(data) = gl.st.mapped.remove(&b) else {
+                    gl.st.err(GL_INVALID_OPERATION);
+                    return Ok(0);
+                };
+                gl.conn.glBufferSubData(target, 0, Blob::borrowed(&data))?;
+                gl.st.buffers.insert(b, data.into_vec());
+                Ok(1)
+            })
+        }
+
+        /// `GL_OES_mapbuffer`: the mapped pointer (null when not mapped).
+        fn glGetBufferPointervOES(target: GLenum, pname: GLenum, params: *mut *mut c_void) {
+            with_gl("glGetBufferPointervOES", (), |gl| {
+                if pname != GL_BUFFER_MAP_POINTER_OES {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(());
+                }
+                let Some(b) = gl.st.bound(target) else {
+                    gl.st.err(GL_INVALID_ENUM);
+                    return Ok(());
+                };
+                let ptr = gl.st.mapped.get_mut(&b).map_or(std::ptr::null_mut(), |m| m.as_mut_ptr().cast());
+                // SAFETY: `params` points at one pointer.
+                unsafe { put(params, ptr) };
+                Ok(())
+            })
+        }
+
+        /// Tracks enabled arrays (client arrays are sent at draw time).
+        fn glEnableVertexAttribArray(index: GLuint) {
+            with_gl("glEnableVertexAttribArray", (), |gl| {
+                if let Some(a) = gl.st.attribs.get_mut(index as usize) {
+                    a.enabled = true;
+                }
+                gl.conn.glEnableVertexAttribArray(index)
+            })
+        }
+
+        /// Tracks enabled arrays.
+        fn glDisableVertexAttribArray(index: GLuint) {
+            with_gl("glDisableVertexAttribArray", (), |gl| {
+                if let Some(a) = gl.st.attribs.get_mut(index as usize) {
+                    a.enabled = false;
+                }
+                gl.conn.glDisableVertexAttribArray(index)
+            })
+        }
+
+        /// With no array buffer bound, `pointer` is a client-side array, copied at draw time.
+        fn glVertexAttribPointer(
+            index: GLuint,
+            size: GLint,
+            ty: GLenum,
+            normalized: GLboolean,
+            stride: GLsizei,
+            pointer: *const c_void,
+        ) {
+            with_gl("glVertexAttribPointer", (), |gl| {
+                let client = (gl.st.array_buffer == 0 && !pointer.is_null())
+                    .then_some(ClientArray { ptr: pointer as usize, size, ty, stride });
+                if let Some(a) = gl.st.attribs.get_mut(index as usize) {
+                    a.client = client;
+                }
+                gl.conn.glVertexAttribPointer(index, size, ty, normalized != 0, stride, pointer as usize as u64)
+            })
+        }
+
+        /// Sends the client arrays the draw reads, then the draw.
+        fn glDrawArrays(mode: GLenum, first: GLint, count: GLsizei) {
+            with_gl("glDrawArrays", (), |gl| {
+                if first >= 0 && count > 0 && uses_client_arrays(gl.st) {
+                    send_client_arrays(gl, first as u64 + count as u64)?;
+                }
+                gl.conn.glDrawArrays(mode, first, count)
+            })
+        }
+
+        /// Indices from the bound element buffer, or a client-side index array sent along.
+        fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void) {
+            with_gl("glDrawElements", (), |gl| {
+                let Some(size) = type_size(ty).filter(|_| count > 0) else {
+                    // The daemon validates and records the error.
+                    return gl.conn.glDrawElements(mode, count, ty, indices as usize as u64);
+                };
+                let len = size * count as usize;
+                if gl.st.element_buffer != 0 {
+                    if uses_client_arrays(gl.st) {
+                        let offset = indices as usize;
+                        let n = gl
+                            .st
+                            .buffers
+                            .get(&gl.st.element_buffer)
+                            .and_then(|b| b.get(offset..offset.checked_add(len)?))
+                            .map_or(0, |d| vertex_count(d, ty));
+                        send_client_arrays(gl, n)?;
+                    }
+                    return gl.conn.glDrawElements(mode, count, ty, indices as usize as u64);
+                }
+                if indices.is_null() {
+                    gl.st.err(GL_INVALID_OPERATION);
+                    return Ok(());
+                }
+                // SAFETY: a client-side index array holds `count` indices.
+                let data = unsafe { bytes(indices, len) };
+                if uses_client_arrays(gl.st) {
+                    send_client_arrays(gl, vertex_count(data, ty))?;
+                }
+                gl.conn.strataDrawElementsData(mode, count, ty, Blob::borrowed(data))
+            })
+        }
+
+        /// Tracks `GL_UNPACK_ALIGNMENT` (upload sizes depend on it).
+        fn glPixelStorei(pname: GLenum, param: GLint) {
+            with_gl("glPixelStorei", (), |gl| {
+                if pname == GL_UNPACK_ALIGNMENT && matches!(param, 1 | 2 | 4 | 8) {
+                    gl.st.unpack_alignment = param as usize;
+                }
+                gl.conn.glPixelStorei(pname, param)
+            })
+        }
+
+        /// Copies the pixels an upload of this size, format and alignment reads.
+        fn glTexImage2D(
+            target: GLenum,
+            level: GLint,
+            internalformat: GLint,
+            width: GLsizei,
+            height: GLsizei,
+            border: GLint,
+            format: GLenum,
+            ty: GLenum,
+            pixels: *const c_void,
+        ) {
+            with_gl("glTexImage2D", (), |gl| {
+                let data = tex_image_bytes(gl.st, width, height, format, ty, pixels).map(Blob::borrowed);
+                gl.conn.glTexImage2D(target, level, internalformat, width, height, border, format, ty, data)
+            })
+        }
+
+        /// Copies the pixels a sub-image upload reads.
+        fn glTexSubImage2D(
+            target: GLenum,
+            level: GLint,
+            xoffset: GLint,
+            yoffset: GLint,
+            width: GLsizei,
+            height: GLsizei,
+            format: GLenum,
+            ty: GLenum,
+            pixels: *const c_void,
+        ) {
+            with_gl("glTexSubImage2D", (), |gl| {
+                let data = tex_image_bytes(gl.st, width, height, format, ty, pixels).unwrap_or(&[]);
+                gl.conn.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, ty, Blob::borrowed(data))
+            })
+        }
+
+        /// Copies `image_size` bytes.
+        fn glCompressedTexImage2D(
+            target: GLenum,
+            level: GLint,
+            internalformat: GLenum,
+            width: GLsizei,
+            height: GLsizei,
+            border: GLint,
+            image_size: GLsizei,
+            data: *const c_void,
+        ) {
+            with_gl("glCompressedTexImage2D", (), |gl| {
+                if image_size < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: `data` holds `image_size` bytes.
+                let d = unsafe { bytes(data, image_size as usize) };
+                gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, Blob::borrowed(d))
+            })
+        }
+
+        /// Copies `image_size` bytes.
+        fn glCompressedTexSubImage2D(
+            target: GLenum,
+            level: GLint,
+            xoffset: GLint,
+            yoffset: GLint,
+            width: GLsizei,
+            height: GLsizei,
+            format: GLenum,
+            image_size: GLsizei,
+            data: *const c_void,
+        ) {
+            with_gl("glCompressedTexSubImage2D", (), |gl| {
+                if image_size < 0 {
+                    gl.st.err(GL_INVALID_VALUE);
+                    return Ok(());
+                }
+                // SAFETY: `data` holds `image_size` bytes.
+                let d = unsafe { bytes(data, image_size as usize) };
+                gl.conn.glCompressedTexSubImage2D(
+                    target,
+                    level,
+                    xoffset,
+                    yoffset,
+                    width,
+                    height,
+                    format,
+                    Blob::borrowed(d),
+                )
+            })
+        }
+
+        /// One value (every ES 2.0 texture parameter is a scalar).
+        fn glTexParameterfv(target: GLenum, pname: GLenum, params: *const GLfloat) {
+            with_gl("glTexParameterfv", (), |gl| {
+                // SAFETY: `params` holds one value.
+                let v = unsafe { values(params, 1) };
+                gl.conn.glTexParameterfv(target, pname, Slice::new(v))
+            })
+        }
+
+        /// One value (every ES 2.0 texture parameter is a scalar).
+        fn glTexParameteriv(target: GLenum, pname: GLenum, params: *const GLint) {
+            with_gl("glTexParameteriv", (), |gl| {
+                // SAFETY: `params` holds one value.
+                let v = unsafe { values(params, 1) };
+                gl.conn.glTexParameteriv(target, pname, Slice::new(v))
+            })
+        }
+
+        /// Writes the rows the daemon returns, already laid out with `GL_PACK_ALIGNMENT`.
+        fn glReadPixels(
+            x: GLint,
+            y: GLint,
+            width: GLsizei,
+            height: GLsizei,
+            format: GLenum,
+            ty: GLenum,
+            pixels: *mut c_void,
+        ) {
+            with_gl("glReadPixels", (), |gl| {
+                let data = gl.conn.glReadPixels(x, y, width, height, format, ty)?;
+                // SAFETY: `pixels` has room for the packed rectangle, which is what the daemon
+                // returns (nothing on error).
+                unsafe { write_out(pixels.cast::<u8>(), &data.0) };
+                Ok(())
+            })
+        }
+    }
+}

@@ -1,0 +1,257 @@
+//! The shim's state: one daemon connection per process (behind a mutex), the EGL objects and
+//! the client-side GL state the C ABI needs, and each thread's current context and EGL error.
+
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+use std::sync::{LazyLock, Mutex, MutexGuard, Once};
+use std::thread::ThreadId;
+
+use strata_client::{ClientError, Connection};
+
+use crate::types::*;
+
+/// Vertex attribute slots the shim tracks (the daemon's `GL_MAX_VERTEX_ATTRIBS`).
+pub(crate) const MAX_ATTRIBS: usize = 16;
+
+/// A client-side vertex array: where the application's bytes are and how to walk them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ClientArray {
+    /// The application's pointer.
+    pub ptr: usize,
+    /// Components per vertex.
+    pub size: i32,
+    /// Component type.
+    pub ty: GLenum,
+    /// Byte stride (0 = tightly packed).
+    pub stride: i32,
+}
+
+/// What the shim remembers about one vertex attribute.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Attrib {
+    /// `glEnableVertexAttribArray`.
+    pub enabled: bool,
+    /// Set when the last `glVertexAttribPointer` had no array buffer bound.
+    pub client: Option<ClientArray>,
+}
+
+/// The client-side part of one GL context.
+#[derive(Debug)]
+pub(crate) struct GlState {
+    /// An error the shim raised itself; `glGetError` reports it before the daemon's.
+    pub error: GLenum,
+    /// `GL_ARRAY_BUFFER` binding.
+    pub array_buffer: u32,
+    /// `GL_ELEMENT_ARRAY_BUFFER` binding.
+    pub element_buffer: u32,
+    /// Vertex attributes.
+    pub attribs: [Attrib; MAX_ATTRIBS],
+    /// `GL_UNPACK_ALIGNMENT`.
+    pub unpack_alignment: usize,
+    /// A copy of every buffer's contents: index ranges of client-array draws and
+    /// `glMapBufferOES` read it.
+    pub buffers: HashMap<u32, Vec<u8>>,
+    /// Buffers mapped with `glMapBufferOES`: the memory handed to the application.
+    pub mapped: HashMap<u32, Box<[u8]>>,
+}
+
+impl Default for GlState {
+    fn default() -> Self {
+        GlState {
+            error: GL_NO_ERROR,
+            array_buffer: 0,
+            element_buffer: 0,
+            attribs: [Attrib::default(); MAX_ATTRIBS],
+            unpack_alignment: 4,
+            buffers: HashMap::new(),
+            mapped: HashMap::new(),
+        }
+    }
+}
+
+impl GlState {
+    /// Records an error unless one is already pending (the first error wins).
+    pub fn err(&mut self, e: GLenum) {
+        if self.error == GL_NO_ERROR {
+            self.error = e;
+        }
+    }
+
+    /// The buffer bound to `target`, if `target` is a buffer target.
+    pub fn bound(&self, target: GLenum) -> Option<u32> {
+        match target {
+            GL_ARRAY_BUFFER => Some(self.array_buffer),
+            GL_ELEMENT_ARRAY_BUFFER => Some(self.element_buffer),
+            _ => None,
+        }
+    }
+}
+
+/// An EGL display as the application sees it.
+#[derive(Debug)]
+pub(crate) struct DisplayInfo {
+    /// The native display the application passed (an X11 `Display *`, or null).
+    pub native: usize,
+    /// Whether `eglInitialize` succeeded (and `eglTerminate` has not been called since).
+    pub initialized: bool,
+    /// An X11 display the shim opened itself for `EGL_DEFAULT_DISPLAY`.
+    pub own_x11: Option<usize>,
+}
+
+/// A context the daemon created.
+#[derive(Debug)]
+pub(crate) struct ContextInfo {
+    /// The shim's display number.
+    pub display: usize,
+    /// Config it was created with.
+    pub config: u32,
+    /// The thread it is current to.
+    pub owner: Option<ThreadId>,
+    /// Client-side GL state.
+    pub gl: GlState,
+}
+
+/// A surface the daemon created.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SurfaceInfo {
+    /// The shim's display number.
+    pub display: usize,
+}
+
+/// Everything shared by the process's threads.
+pub(crate) struct Process {
+    /// The daemon connection, made by the first successful `eglInitialize`.
+    pub conn: Option<Connection>,
+    /// Set once the daemon went away; every later call fails with a context-lost error.
+    pub lost: bool,
+    /// Displays, numbered from 1 (the `EGLDisplay` value).
+    pub displays: Vec<DisplayInfo>,
+    /// The daemon's display handle.
+    pub daemon_display: u32,
+    /// Contexts by daemon handle.
+    pub contexts: HashMap<u32, ContextInfo>,
+    /// Surfaces by daemon handle.
+    pub surfaces: HashMap<u32, SurfaceInfo>,
+    /// What the daemon has as current: (context, draw, read).
+    pub daemon_current: Option<(u32, u32, u32)>,
+    /// The next GL object name (names are allocated by the client).
+    pub next_name: u32,
+}
+
+static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
+    Mutex::new(Process {
+        conn: None,
+        lost: false,
+        displays: Vec::new(),
+        daemon_display: 0,
+        contexts: HashMap::new(),
+        surfaces: HashMap::new(),
+        daemon_current: None,
+        next_name: 1,
+    })
+});
+
+/// Locks the process state. A panic in another entry point does not make it unusable.
+pub(crate) fn process() -> MutexGuard<'static, Process> {
+    PROCESS.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+impl Process {
+    /// Records that the daemon went away: logged once, the connection is dropped.
+    pub fn lose(&mut self, e: &ClientError) {
+        if !self.lost {
+            tracing::error!("strata-egl: lost the connection to stratad ({e}); calls now fail with context lost");
+        }
+        self.lost = true;
+        self.conn = None;
+        self.daemon_current = None;
+        for c in self.contexts.values_mut() {
+            c.gl.err(GL_CONTEXT_LOST);
+        }
+    }
+
+    /// The display numbered `d`, if it exists.
+    pub fn display(&mut self, d: usize) -> Option<&mut DisplayInfo> {
+        d.checked_sub(1).and_then(|i| self.displays.get_mut(i))
+    }
+}
+
+/// A thread's current EGL binding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Current {
+    /// The shim's display number.
+    pub display: usize,
+    /// Draw surface.
+    pub draw: u32,
+    /// Read surface.
+    pub read: u32,
+    /// Context (daemon handle).
+    pub context: u32,
+}
+
+/// Per-thread EGL state.
+struct ThreadState {
+    error: EGLint,
+    current: Option<Current>,
+    api: EGLenum,
+}
+
+thread_local! {
+    static THREAD: RefCell<ThreadState> =
+        const { RefCell::new(ThreadState { error: EGL_SUCCESS, current: None, api: EGL_OPENGL_ES_API }) };
+}
+
+/// Sets this thread's EGL error.
+pub(crate) fn set_egl_error(e: EGLint) {
+    let _ = THREAD.try_with(|t| t.borrow_mut().error = e);
+}
+
+/// Returns and clears this thread's EGL error.
+pub(crate) fn take_egl_error() -> EGLint {
+    THREAD.try_with(|t| std::mem::replace(&mut t.borrow_mut().error, EGL_SUCCESS)).unwrap_or(EGL_SUCCESS)
+}
+
+/// This thread's current binding.
+pub(crate) fn current() -> Option<Current> {
+    THREAD.try_with(|t| t.borrow().current).ok().flatten()
+}
+
+/// Changes this thread's current binding.
+pub(crate) fn set_current(c: Option<Current>) {
+    let _ = THREAD.try_with(|t| t.borrow_mut().current = c);
+}
+
+/// This thread's bound API.
+pub(crate) fn api() -> EGLenum {
+    THREAD.try_with(|t| t.borrow().api).unwrap_or(EGL_OPENGL_ES_API)
+}
+
+/// Changes this thread's bound API.
+pub(crate) fn set_api(api: EGLenum) {
+    let _ = THREAD.try_with(|t| t.borrow_mut().api = api);
+}
+
+/// Logs `what` the first time it happens in this process.
+pub(crate) fn log_once(what: &str) {
+    static SEEN: LazyLock<Mutex<HashSet<String>>> = LazyLock::new(|| Mutex::new(HashSet::new()));
+    let mut seen = SEEN.lock().unwrap_or_else(|p| p.into_inner());
+    if seen.insert(what.to_string()) {
+        tracing::warn!("strata-egl: {what}");
+    }
+}
+
+/// Installs a stderr logger (level from `STRATA_LOG`, default `warn`) unless the process has one.
+pub(crate) fn init_logging() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let filter = tracing_subscriber::EnvFilter::try_from_env("STRATA_LOG")
+            .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
+        let _ = tracing_subscriber::fmt()
+            .with_writer(std::io::stderr)
+            .with_env_filter(filter)
+            .with_ansi(false)
+            .without_time()
+            .with_target(false)
+            .try_init();
+    });
+}
