@@ -541,6 +541,64 @@ fn render_to_texture(gl: Gl<'_>, n: &mut Names) -> R {
     textured_quad(gl, n, 0.0, 1.0)
 }
 
+/// A quad from client memory: positions `p0..p1`, texture coordinates `t0..t1`.
+fn client_quad(gl: Gl<'_>, p0: [f32; 2], p1: [f32; 2], t0: [f32; 2], t1: [f32; 2]) -> R {
+    let pos = f32s(&[p0[0], p0[1], p1[0], p0[1], p0[0], p1[1], p1[0], p1[1]]);
+    let uv = f32s(&[t0[0], t0[1], t1[0], t0[1], t0[0], t1[1], t1[0], t1[1]]);
+    gl.glBindBuffer(ARRAY_BUFFER, 0)?;
+    gl.glVertexAttribPointer(0, 2, FLOAT, false, 0, 0)?;
+    gl.glEnableVertexAttribArray(0)?;
+    gl.glVertexAttribPointer(1, 2, FLOAT, false, 0, 0)?;
+    gl.glEnableVertexAttribArray(1)?;
+    gl.strataVertexAttribData(0, Blob::borrowed(&pos))?;
+    gl.strataVertexAttribData(1, Blob::borrowed(&uv))?;
+    gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)
+}
+
+/// Render-to-texture ping-pong the way glmark2's desktop scene does it: every framebuffer
+/// switch is followed directly by a draw (no clear), with client-side arrays and a uniform,
+/// so each new pass begins with a draw that carries its own data.
+fn ping_pong_without_clears(gl: Gl<'_>, n: &mut Names) -> R {
+    let mut targets = Vec::new();
+    for c in [[0.2f32, 0.0, 0.0, 1.0], [0.0, 0.0, 0.2, 1.0]] {
+        let (fb, tex) = (n.next(), n.next());
+        gl.glBindTexture(TEXTURE_2D, tex)?;
+        gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 32, 32, 0, RGBA, UNSIGNED_BYTE, None)?;
+        gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+        gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+        gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+        gl.glFramebufferTexture2D(FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_2D, tex, 0)?;
+        gl.glViewport(0, 0, 32, 32)?;
+        gl.glClearColor(c[0], c[1], c[2], c[3])?;
+        gl.glClear(COLOR_BUFFER_BIT)?;
+        targets.push((fb, tex));
+    }
+    let [(fa, ta), (fb, tb)] = [targets[0], targets[1]];
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glViewport(0, 0, W, H)?;
+    gl.glClearColor(0.1, 0.1, 0.1, 1.0)?;
+    gl.glClear(COLOR_BUFFER_BIT)?;
+    // Into A: a flat quad in a uniform colour.
+    gl.glBindFramebuffer(FRAMEBUFFER, fa)?;
+    gl.glViewport(0, 0, 32, 32)?;
+    let flat = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    color(gl, flat, [1.0, 0.5, 0.0, 1.0])?;
+    client_quad(gl, [-0.5, -0.9], [0.9, 0.3], [0.0, 0.0], [0.0, 0.0])?;
+    // Into B: part of A.
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    gl.glViewport(0, 0, 32, 32)?;
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    gl.glBindTexture(TEXTURE_2D, ta)?;
+    client_quad(gl, [-1.0, -0.6], [0.6, 1.0], [0.1, 0.0], [0.8, 0.7])?;
+    // The screen: B on the left, A on the right.
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glViewport(0, 0, W, H)?;
+    gl.glBindTexture(TEXTURE_2D, tb)?;
+    client_quad(gl, [-1.0, -1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 1.0])?;
+    gl.glBindTexture(TEXTURE_2D, ta)?;
+    client_quad(gl, [0.0, -1.0], [1.0, 1.0], [0.0, 0.0], [1.0, 1.0])
+}
+
 fn fbo_depth_renderbuffer(gl: Gl<'_>, n: &mut Names) -> R {
     let fb = n.next();
     let tex = n.next();
@@ -1000,6 +1058,7 @@ pub fn all() -> Vec<Case> {
         c("two_texture_units", two_texture_units, DEFAULT),
         c("copy_tex_image", copy_tex_image, DEFAULT),
         c("render_to_texture", render_to_texture, DEFAULT),
+        c("ping_pong_without_clears", ping_pong_without_clears, DEFAULT),
         c("fbo_depth_renderbuffer", fbo_depth_renderbuffer, DEFAULT),
         c("uniform_types", uniform_types, DEFAULT),
         c("glsl_control_flow", glsl_control_flow, DEFAULT),

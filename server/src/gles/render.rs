@@ -654,6 +654,9 @@ impl Renderer {
             .fold(0u32, |m, (i, _)| m | (1 << i));
         let pipeline = self.pipeline(&spec, target, depth_mask);
         let (layout, _) = self.layouts(&spec.program, depth_mask);
+        // Open the target's pass first: switching targets flushes the previous pass, which
+        // uploads and empties the staging area, so this draw's data must go in after that.
+        self.pass_for(target);
         let uniform =
             (!spec.uniforms.is_empty()).then(|| offset_of(&mut self.staging, spec.uniforms, self.align) as u32);
         let mut textures = Vec::with_capacity(spec.textures.len());
