@@ -324,3 +324,51 @@ fn bad_window_surfaces_get_egl_errors() {
     assert!(ok.expect("io").is_ok(), "the largest allowed window was refused");
     assert_eq!(list(&daemon.socket).1.len(), 1);
 }
+
+#[test]
+fn daemon_layout_places_clients_by_name() {
+    let dir = support::TempDir::new("layout-config");
+    let config = dir.0.join("stratad.toml");
+    std::fs::write(&config, "[[layout]]\nclient = \"hu-app\"\nx = 300\ny = 10\nz = 0.75\nwidth = 64\nheight = 32\n")
+        .expect("config");
+    let cfg = config.to_str().expect("utf-8");
+    let daemon = Daemon::start("layout", &["--output", "l=512x256", "--layout", "ic-app=100,50,0.25", "--config", cfg]);
+    let open = |name: &str, placement: Option<strata_protocol::handshake::Placement>| {
+        let mut gl = Connection::connect(&ConnectOptions {
+            socket: daemon.socket.clone(),
+            name: name.into(),
+            placement,
+            ..Default::default()
+        })
+        .expect("connect");
+        window(&mut gl, [0, 0, 40, 40], 0.9, 1);
+        gl
+    };
+    let _ic = open("ic-app", None);
+    let _hu = open("hu-app", None);
+    let _other = open("other", None);
+    // A client that states its placement keeps it, even when the layout names it.
+    let stated = strata_protocol::handshake::Placement { x: 5, y: 6, z: 0.9, width: 40, height: 40 };
+    let _pinned = open("ic-app", Some(stated));
+    let rows = list(&daemon.socket).1;
+    let by = |i: usize| (rows[i].client.as_str(), rows[i].rect, rows[i].z);
+    assert_eq!(by(0), ("ic-app", [100, 50, 40, 40], 0.25));
+    assert_eq!(by(1), ("hu-app", [300, 10, 64, 32], 0.75));
+    assert_eq!(by(2), ("other", [0, 0, 40, 40], 0.9));
+    assert_eq!(by(3), ("ic-app", [0, 0, 40, 40], 0.9));
+
+    // Bad layouts stop the daemon before it serves, saying why.
+    for (args, why) in [
+        (vec!["--layout", "ic=1,2"], "is not CLIENT=X,Y,Z[,WxH]"),
+        (vec!["--config", "/nonexistent/stratad.toml"], "reading /nonexistent/stratad.toml"),
+    ] {
+        let out = std::process::Command::new(support::stratad())
+            .args(["serve", "--socket"])
+            .arg(dir.0.join("never.sock"))
+            .args(&args)
+            .output()
+            .expect("stratad");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(why), "{args:?}: {err}");
+    }
+}

@@ -48,6 +48,8 @@ pub struct ServeOptions {
     pub refresh_hz: f64,
     /// Frames a window surface may have swapped but not yet shown before its swap blocks.
     pub frames_in_flight: u32,
+    /// Where clients' window surfaces go unless they say (first match by client name wins).
+    pub layout: Vec<crate::layout::LayoutEntry>,
 }
 
 /// The executor each client session gets.
@@ -72,6 +74,7 @@ impl Default for ServeOptions {
             outputs: vec![crate::root::OutputSpec::default()],
             refresh_hz: 60.0,
             frames_in_flight: 2,
+            layout: Vec::new(),
         }
     }
 }
@@ -374,8 +377,19 @@ async fn run_client(
         Writer::new(reply_ring, 0),
         hello.tally,
         match &shared.gpu {
-            Some(gpu) => Box::new(GlesExecutor::new(gpu.clone()).with_scene(shared.scene.clone(), id, &hello.name))
-                as Box<dyn crate::executor::Executor>,
+            Some(gpu) => {
+                // A placement the client states wins over the daemon's layout.
+                let layout =
+                    if hello.placement.is_some() { None } else { crate::layout::find(&opts.layout, &hello.name) };
+                if let Some(l) = layout {
+                    info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
+                }
+                Box::new(
+                    GlesExecutor::new(gpu.clone())
+                        .with_scene(shared.scene.clone(), id, &hello.name)
+                        .with_layout(layout.cloned()),
+                ) as Box<dyn crate::executor::Executor>
+            }
             None => Box::new(Drain::default()),
         },
         closed.clone(),

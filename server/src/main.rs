@@ -12,6 +12,7 @@ use strata_protocol::control::LightChange;
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_server::compositor::{Lighting, NormalSource};
+use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
 use tracing::info;
@@ -60,6 +61,13 @@ enum Cmd {
         /// Frames a window surface may have swapped but not yet shown before eglSwapBuffers blocks.
         #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
         frames_in_flight: u32,
+        /// Configuration file (TOML): `[[layout]]` entries with client, x, y, z, and optionally
+        /// width and height, placing a client's windows by its name.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// A layout entry: CLIENT=X,Y,Z[,WxH] (repeatable; before the config file's entries).
+        #[arg(long = "layout")]
+        layouts: Vec<LayoutEntry>,
     },
     /// Administer a running daemon.
     Ctl {
@@ -235,7 +243,12 @@ fn main() -> Result<()> {
             outputs,
             refresh_hz,
             frames_in_flight,
+            config,
+            mut layouts,
         } => {
+            if let Some(path) = config {
+                layouts.extend(Config::load(&path)?.layout);
+            }
             let lighting =
                 Lighting { enabled: matches!(lighting, Switch::On), normals: normals.into(), ..Lighting::default() };
             if !(refresh_hz.is_finite() && (1.0..=1000.0).contains(&refresh_hz)) {
@@ -256,6 +269,7 @@ fn main() -> Result<()> {
                 outputs: if outputs.is_empty() { vec![OutputSpec::default()] } else { outputs },
                 refresh_hz,
                 frames_in_flight,
+                layout: layouts,
             };
             run_daemon(opts)
         }

@@ -7,6 +7,7 @@
 use std::ffi::{c_char, c_void, CStr};
 
 use strata_client::{ClientError, ConnectOptions, Connection};
+use strata_protocol::handshake::Placement;
 use strata_protocol::{Calls, EglResult, Slice};
 
 use crate::state::{self, process, ContextInfo, Current, DisplayInfo, GlState, Process, SurfaceInfo};
@@ -204,15 +205,20 @@ fn parse_placement(s: &str) -> Option<WindowPlacement> {
     Some(WindowPlacement { x, y, z, size })
 }
 
-fn placement() -> WindowPlacement {
-    let default = WindowPlacement { x: 0, y: 0, z: 0.0, size: None };
-    match std::env::var("STRATA_WINDOW") {
-        Ok(s) => parse_placement(&s).unwrap_or_else(|| {
-            state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
-            default
-        }),
-        Err(_) => default,
+/// The placement `STRATA_WINDOW` states, if it is set and valid.
+fn explicit_placement() -> Option<WindowPlacement> {
+    let s = std::env::var("STRATA_WINDOW").ok()?;
+    let p = parse_placement(&s);
+    if p.is_none() {
+        state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
     }
+    p
+}
+
+/// Where a window surface goes: `STRATA_WINDOW`, else the origin at z 0 (the daemon's layout
+/// may still place it, by client name).
+fn placement() -> WindowPlacement {
+    explicit_placement().unwrap_or(WindowPlacement { x: 0, y: 0, z: 0.0, size: None })
 }
 
 fn create_window_surface(dpy: EGLDisplay, config: EGLConfig, win: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
@@ -289,7 +295,19 @@ fn initialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> Result
         return Err(EGL_CONTEXT_LOST);
     }
     if p.conn.is_none() {
-        let opts = ConnectOptions::default();
+        let mut opts = ConnectOptions::default();
+        // The daemon's layout matches clients by name (the process name unless STRATA_NAME
+        // says otherwise); a placement from STRATA_WINDOW takes precedence over the layout.
+        if let Some(name) = std::env::var("STRATA_NAME").ok().filter(|n| !n.is_empty()) {
+            opts.name = name;
+        }
+        opts.placement = explicit_placement().map(|p| Placement {
+            x: p.x,
+            y: p.y,
+            z: p.z,
+            width: p.size.map_or(0, |s| s.0 as u32),
+            height: p.size.map_or(0, |s| s.1 as u32),
+        });
         match Connection::connect(&opts) {
             Ok(c) => p.conn = Some(c),
             Err(e) => {

@@ -251,6 +251,8 @@ pub struct GlesExecutor {
     uid: u64,
     /// Where window surfaces are shown: the scene, this client's id and name.
     scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
+    /// The daemon's layout entry for this client: overrides where its windows go.
+    layout: Option<crate::layout::LayoutEntry>,
 }
 
 impl Drop for GlesExecutor {
@@ -426,7 +428,14 @@ impl GlesExecutor {
             current: None,
             uid: 1,
             scene: None,
+            layout: None,
         }
+    }
+
+    /// Places this client's window surfaces by `layout` instead of where it asks.
+    pub fn with_layout(mut self, layout: Option<crate::layout::LayoutEntry>) -> Self {
+        self.layout = layout;
+        self
     }
 
     /// Shows this client's window surfaces in `scene` as client `id` named `name`.
@@ -591,7 +600,13 @@ impl GlesExecutor {
                     self.make_surface(c, w, h, false)
                 }))
             }
-            Command::CreateWindowSurface { display, config, x, y, z, width, height, .. } => {
+            Command::CreateWindowSurface { display, config, mut x, mut y, mut z, mut width, mut height, .. } => {
+                if let Some(l) = &self.layout {
+                    (x, y, z) = (l.x, l.y, l.z);
+                    if let (Some(w), Some(h)) = (l.width, l.height) {
+                        (width, height) = (w as i32, h as i32);
+                    }
+                }
                 Reply::CreateWindowSurface(self.check_display(display).and_then(|()| {
                     let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
                     if !z.is_finite() || width <= 0 || height <= 0 {

@@ -1,0 +1,178 @@
+//! Where window surfaces go when the application does not say: the daemon's layout, one entry
+//! per client name (by default a client's process name). This is how an instrument cluster
+//! and a head unit are placed without changing their code.
+//!
+//! Precedence: a placement the client states (`STRATA_WINDOW`) wins; otherwise the first
+//! layout entry whose `client` equals the client's name; otherwise the surface's own request.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use serde::Deserialize;
+
+/// One layout entry.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayoutEntry {
+    /// The client name it applies to.
+    pub client: String,
+    /// Left edge in the output space.
+    pub x: i32,
+    /// Top edge in the output space.
+    pub y: i32,
+    /// Depth layer (larger is farther).
+    pub z: f32,
+    /// Width, if the layout sets it (else the window's own).
+    pub width: Option<u32>,
+    /// Height, if the layout sets it (else the window's own).
+    pub height: Option<u32>,
+}
+
+/// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
+/// and optionally `width`, `height`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// Layout entries, first match wins.
+    #[serde(default)]
+    pub layout: Vec<LayoutEntry>,
+}
+
+/// A layout or configuration that cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum LayoutError {
+    /// The file could not be read.
+    #[error("reading {path}: {source}")]
+    Read {
+        /// The file.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML of the expected shape.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// An entry has values out of range.
+    #[error("layout entry for {client:?}: {why}")]
+    Invalid {
+        /// The entry's client.
+        client: String,
+        /// What is wrong.
+        why: String,
+    },
+    /// A `--layout` argument does not parse.
+    #[error("--layout {0:?} is not CLIENT=X,Y,Z[,WxH]")]
+    Syntax(String),
+}
+
+impl LayoutEntry {
+    /// Checks the values: a finite z, sizes within 1..=8192 when given.
+    pub fn validate(&self) -> Result<(), LayoutError> {
+        let bad = |why: String| LayoutError::Invalid { client: self.client.clone(), why };
+        if self.client.is_empty() {
+            return Err(bad("the client name is empty".into()));
+        }
+        if !self.z.is_finite() {
+            return Err(bad(format!("z {} is not finite", self.z)));
+        }
+        for (what, v) in [("width", self.width), ("height", self.height)] {
+            if v.is_some_and(|v| !(1..=8192).contains(&v)) {
+                return Err(bad(format!("{what} must lie in 1..=8192")));
+            }
+        }
+        if self.width.is_some() != self.height.is_some() {
+            return Err(bad("give both width and height, or neither".into()));
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for LayoutEntry {
+    type Err = LayoutError;
+
+    /// Parses `CLIENT=X,Y,Z[,WxH]`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = || LayoutError::Syntax(s.to_string());
+        let (client, rest) = s.split_once('=').ok_or_else(bad)?;
+        let parts: Vec<&str> = rest.split(',').map(str::trim).collect();
+        let [x, y, z, size @ ..] = parts.as_slice() else { return Err(bad()) };
+        let (width, height) = match size {
+            [] => (None, None),
+            [wh] => {
+                let (w, h) = wh.split_once('x').ok_or_else(bad)?;
+                (Some(w.parse().map_err(|_| bad())?), Some(h.parse().map_err(|_| bad())?))
+            }
+            _ => return Err(bad()),
+        };
+        let e = LayoutEntry {
+            client: client.to_string(),
+            x: x.parse().map_err(|_| bad())?,
+            y: y.parse().map_err(|_| bad())?,
+            z: z.parse().map_err(|_| bad())?,
+            width,
+            height,
+        };
+        e.validate()?;
+        Ok(e)
+    }
+}
+
+impl Config {
+    /// Reads and checks a configuration file.
+    pub fn load(path: &Path) -> Result<Config, LayoutError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| LayoutError::Read { path: p.clone(), source })?;
+        let config: Config =
+            toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p, message: e.to_string() })?;
+        for e in &config.layout {
+            e.validate()?;
+        }
+        Ok(config)
+    }
+}
+
+/// The entry for client `name`, if any.
+pub fn find<'a>(layout: &'a [LayoutEntry], name: &str) -> Option<&'a LayoutEntry> {
+    layout.iter().find(|e| e.client == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_arguments_parse_and_bad_ones_are_refused() {
+        let e: LayoutEntry = "ic=10,20,0.5".parse().expect("parses");
+        assert_eq!((e.x, e.y, e.z, e.width), (10, 20, 0.5, None));
+        let e: LayoutEntry = "hu=-5,0,1,640x480".parse().expect("parses");
+        assert_eq!((e.width, e.height), (Some(640), Some(480)));
+        for bad in ["ic", "ic=1,2", "ic=1,2,nan", "ic=1,2,3,0x10", "=1,2,3", "ic=1,2,3,4", "ic=a,2,3"] {
+            assert!(bad.parse::<LayoutEntry>().is_err(), "{bad} parsed");
+        }
+    }
+
+    #[test]
+    fn config_files_parse_and_bad_ones_say_why() {
+        let dir = std::env::temp_dir().join(format!("strata-layout-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let good = dir.join("good.toml");
+        std::fs::write(&good, "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\n\n[[layout]]\nclient = \"hu\"\nx = 960\ny = 0\nz = 0.5\nwidth = 960\nheight = 720\n").expect("write");
+        let c = Config::load(&good).expect("loads");
+        assert_eq!(c.layout.len(), 2);
+        assert_eq!(find(&c.layout, "hu").map(|e| e.x), Some(960));
+        assert!(find(&c.layout, "other").is_none());
+        let bad = dir.join("bad.toml");
+        std::fs::write(&bad, "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\nwidth = 10\n").expect("write");
+        let e = Config::load(&bad).expect_err("width without height");
+        assert!(e.to_string().contains("give both width and height"), "{e}");
+        std::fs::write(&bad, "[[layout]]\nclient = \"ic\"\nx = 0\nwhere = 1\n").expect("write");
+        assert!(matches!(Config::load(&bad), Err(LayoutError::Parse { .. })));
+        assert!(matches!(Config::load(&dir.join("missing.toml")), Err(LayoutError::Read { .. })));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
