@@ -14,7 +14,6 @@
 pub mod reference;
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 use std::sync::Arc;
 
 use crate::gpu::Gpu;
@@ -76,114 +75,70 @@ pub struct Compositor {
     pub last_passes: usize,
 }
 
-/// WGSL for one pass shape.
-fn shader(k: &PassKind) -> String {
-    let n = k.surfaces;
-    let mut s = String::new();
-    let _ = writeln!(s, "struct Surf {{ rect: vec4<f32>, normal: vec4<f32>, }};");
-    let _ = writeln!(
-        s,
-        "struct Params {{ light_pos: vec4<f32>, light_color: vec4<f32>, view_pos: vec4<f32>, misc: vec4<f32>, surf: array<Surf, {n}>, }};"
-    );
-    let _ = writeln!(s, "@group(0) @binding(0) var<uniform> P: Params;");
-    for i in 0..n {
-        let _ = writeln!(s, "@group(0) @binding({}) var color{i}: texture_2d<f32>;", 1 + 2 * i);
-        let _ = writeln!(s, "@group(0) @binding({}) var depth{i}: texture_depth_2d;", 2 + 2 * i);
-    }
-    if k.intermediate {
-        let _ = writeln!(s, "@group(0) @binding({}) var icolor: texture_2d<f32>;", 1 + 2 * n);
-        let _ = writeln!(s, "@group(0) @binding({}) var igeom: texture_2d<f32>;", 2 + 2 * n);
-    }
-    s.push_str(
-        "@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {\n    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));\n    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);\n}\n",
-    );
-    if k.from_depth {
-        for i in 0..n {
-            let _ = write!(
-                s,
-                "fn dn{i}(p: vec2<i32>, size: vec2<i32>) -> vec3<f32> {{
-    let x0 = max(p.x - 1, 0); let x1 = min(p.x + 1, size.x - 1);
-    let y0 = max(p.y - 1, 0); let y1 = min(p.y + 1, size.y - 1);
-    var dzdx = 0.0; var dzdy = 0.0;
-    if (x1 > x0) {{ dzdx = (textureLoad(depth{i}, vec2<i32>(x1, p.y), 0) - textureLoad(depth{i}, vec2<i32>(x0, p.y), 0)) / f32(x1 - x0); }}
-    if (y1 > y0) {{ dzdy = (textureLoad(depth{i}, vec2<i32>(p.x, y1), 0) - textureLoad(depth{i}, vec2<i32>(p.x, y0), 0)) / f32(y1 - y0); }}
-    return normalize(vec3<f32>(-dzdx * P.light_color.w, -dzdy * P.light_color.w, 1.0));
-}}
-"
-            );
+/// The pass shader's template (`shaders/composite.wgsl`).
+const TEMPLATE: &str = include_str!("../../../shaders/composite.wgsl");
+
+impl PassKind {
+    /// Whether the pass has the template property `name`.
+    fn has(&self, name: &str) -> bool {
+        match name {
+            "intermediate" => self.intermediate,
+            "last" => self.last,
+            "lit" => self.lit,
+            "from_depth" => self.from_depth,
+            other => unreachable!("shaders/composite.wgsl names an unknown property {other:?}"),
         }
     }
-    if k.last && k.lit {
-        s.push_str(
-            "fn light(c: vec3<f32>, n_raw: vec3<f32>, frag_px: vec2<f32>) -> vec3<f32> {
-    var n = vec3<f32>(0.0);
-    if (length(n_raw) > 0.0) { n = normalize(n_raw); }
-    let frag = vec3<f32>(frag_px.x / P.misc.z * 2.0 - 1.0, 1.0 - frag_px.y / P.misc.w * 2.0, 0.0);
-    let ld = normalize(P.light_pos.xyz - frag);
-    let vd = normalize(P.view_pos.xyz - frag);
-    let diffuse = max(dot(n, ld), 0.0);
-    let r = reflect(-ld, n);
-    let base = max(dot(vd, r), 0.0);
-    var specular = 1.0;
-    if (P.misc.y != 0.0) { specular = pow(base, P.misc.y); }
-    let f = P.misc.x + diffuse + specular;
-    return clamp(c * f * P.light_color.rgb, vec3<f32>(0.0), vec3<f32>(1.0));
 }
-",
-        );
-    }
-    if k.last {
-        s.push_str("@fragment fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {\n");
-    } else {
-        s.push_str("struct Out { @location(0) color: vec4<f32>, @location(1) geom: vec4<f32>, };\n");
-        s.push_str("@fragment fn fs(@builtin(position) pos: vec4<f32>) -> Out {\n");
-    }
-    let _ = writeln!(s, "    let px = vec2<i32>(floor(pos.xy));\n    var best_d: f32 = {EMPTY:.1};\n    var best_c = vec4<f32>(0.0);\n    var best_n = vec3<f32>(0.0, 0.0, 1.0);\n    var found = false;");
-    if k.intermediate {
-        s.push_str("    let g = textureLoad(igeom, px, 0);\n    if (g.x < 2.0) { best_d = g.x; best_c = textureLoad(icolor, px, 0); best_n = g.yzw; found = true; }\n");
-    }
-    for i in 0..n {
-        let normal = if k.from_depth {
-            format!("if (has_depth) {{ best_n = dn{i}(sp, size); }} else {{ best_n = vec3<f32>(0.0, 0.0, 1.0); }}")
-        } else {
-            format!("best_n = P.surf[{i}].normal.xyz;")
-        };
-        let _ = write!(
-            s,
-            "    {{
-        let r = P.surf[{i}].rect;
-        let l = vec2<i32>(px.x - i32(r.x), px.y - i32(r.y));
-        let size = vec2<i32>(i32(r.z), i32(r.w));
-        if (l.x >= 0 && l.y >= 0 && l.x < size.x && l.y < size.y) {{
-            let sp = vec2<i32>(l.x, size.y - 1 - l.y);
-            let has_depth = P.surf[{i}].normal.w > 0.5;
-            var d: f32 = 1.0;
-            if (has_depth) {{ d = textureLoad(depth{i}, sp, 0); }}
-            if (d <= best_d) {{
-                best_d = d;
-                best_c = textureLoad(color{i}, sp, 0);
-                {normal}
-                found = true;
-            }}
-        }}
-    }}
-"
-        );
-    }
-    s.push_str("    if (!found) { discard; }\n");
-    if k.last {
-        if k.lit {
-            s.push_str("    let rgb = light(best_c.rgb, best_n, pos.xy);\n");
-        } else {
-            s.push_str("    let rgb = best_c.rgb;\n");
+
+/// Renders template lines from `*pos` up to the matching `//#end` (or the end) into `out`,
+/// keeping them when `keep`; `surface` is the surface of an enclosing `//#each surface`.
+fn render(lines: &[&str], pos: &mut usize, keep: bool, surface: Option<usize>, k: &PassKind, out: &mut String) {
+    while let Some(line) = lines.get(*pos) {
+        *pos += 1;
+        let directive = line.trim();
+        if directive == "//#end" {
+            return;
         }
-        s.push_str("    return vec4<f32>(rgb * best_c.a, best_c.a);\n}\n");
-    } else {
-        s.push_str(
-            "    var o: Out;\n    o.color = best_c;\n    o.geom = vec4<f32>(best_d, best_n);\n    return o;\n}\n",
-        );
+        if let Some(cond) = directive.strip_prefix("//#if ") {
+            let on = match cond.strip_prefix('!') {
+                Some(name) => !k.has(name),
+                None => k.has(cond),
+            };
+            render(lines, pos, keep && on, surface, k, out);
+        } else if directive == "//#each surface" {
+            let body = *pos;
+            render(lines, pos, false, surface, k, out);
+            if keep {
+                for i in 0..k.surfaces {
+                    let mut p = body;
+                    render(lines, &mut p, true, Some(i), k, out);
+                }
+            }
+        } else if keep && !directive.starts_with("//") {
+            // Comment lines document the template; the specialised shader leaves them out.
+            let mut l = line.replace("{{N}}", &k.surfaces.to_string()).replace("{{EMPTY}}", &format!("{EMPTY:.1}"));
+            l = l
+                .replace("{{icolor_binding}}", &(1 + 2 * k.surfaces).to_string())
+                .replace("{{igeom_binding}}", &(2 + 2 * k.surfaces).to_string());
+            if let Some(i) = surface {
+                l = l
+                    .replace("{{i}}", &i.to_string())
+                    .replace("{{color_binding}}", &(1 + 2 * i).to_string())
+                    .replace("{{depth_binding}}", &(2 + 2 * i).to_string());
+            }
+            out.push_str(&l);
+            out.push('\n');
+        }
     }
-    s
+}
+
+/// WGSL for one pass shape: the template specialised.
+fn shader(k: &PassKind) -> String {
+    let lines: Vec<&str> = TEMPLATE.lines().collect();
+    let mut out = String::with_capacity(TEMPLATE.len() * 2);
+    render(&lines, &mut 0, true, None, k, &mut out);
+    out
 }
 
 impl Compositor {
@@ -510,5 +465,36 @@ impl Compositor {
         }
         self.gpu.queue.submit([enc.finish()]);
         self.last_passes = passes;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_pass_shape_specialises_to_valid_wgsl() {
+        for surfaces in 1..=4 {
+            for bits in 0..16u32 {
+                let k = PassKind {
+                    surfaces,
+                    intermediate: bits & 1 != 0,
+                    last: bits & 2 != 0,
+                    lit: bits & 4 != 0,
+                    from_depth: bits & 8 != 0,
+                };
+                let src = shader(&k);
+                assert!(!src.contains("{{") && !src.contains("//#"), "unfilled template:\n{src}");
+                let module =
+                    naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{}\n{src}", e.emit_to_string(&src)));
+                naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+                    .validate(&module)
+                    .unwrap_or_else(|e| panic!("{e:?}\n{src}"));
+                assert_eq!(src.matches("var color").count(), surfaces);
+                assert_eq!(src.contains("var igeom"), k.intermediate);
+                assert_eq!(src.contains("fn light("), k.last && k.lit);
+                assert_eq!(src.matches("fn dn").count(), if k.from_depth { surfaces } else { 0 });
+            }
+        }
     }
 }
