@@ -33,63 +33,89 @@ pub struct Gpu {
     pub adapter: wgpu::Adapter,
 }
 
+/// A fragment-stage binding of a 2D texture read with `textureLoad` (`sample_type`: a
+/// non-filterable float or a depth texture).
+pub fn texture_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// Non-filterable float textures, for [`texture_entry`].
+pub const UNFILTERED: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: false };
+
 impl Gpu {
+    /// A pipeline that draws one full-screen triangle with the `vs` and `fs` entry points of
+    /// `wgsl`, one bind group of `entries`, into `targets` (and a depth attachment if `depth`).
+    pub fn fullscreen_pipeline(
+        &self,
+        label: &str,
+        wgsl: &str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        targets: &[Option<wgpu::ColorTargetState>],
+        depth: Option<wgpu::DepthStencilState>,
+    ) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
+        let d = &self.device;
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+        });
+        let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries });
+        let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: depth,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        (bgl, pipeline)
+    }
+
     /// Writes depth values (in [0, 1], rows in memory order) into a Depth32Float texture.
     /// wgpu cannot copy into depth images, so the values pass through a float texture and a
     /// pass that sets `frag_depth`.
     pub fn write_depth(&self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
         let d = &self.device;
         let (bgl, pipeline) = self.depth_writer.get_or_init(|| {
-            let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("depth upload"),
-                source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/depth_upload.wgsl").into()),
-            });
-            let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("depth upload"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                }],
-            });
-            let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: None,
-                bind_group_layouts: &[Some(&bgl)],
-                immediate_size: 0,
-            });
-            let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("depth upload"),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
+            self.fullscreen_pipeline(
+                "depth upload",
+                include_str!("../../shaders/depth_upload.wgsl"),
+                &[texture_entry(0, UNFILTERED)],
+                &[],
+                Some(wgpu::DepthStencilState {
                     format: wgpu::TextureFormat::Depth32Float,
                     depth_write_enabled: Some(true),
                     depth_compare: Some(wgpu::CompareFunction::Always),
                     stencil: Default::default(),
                     bias: Default::default(),
                 }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs"),
-                    compilation_options: Default::default(),
-                    targets: &[],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
-            (bgl, pipeline)
+            )
         });
         let size = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
         let src = d.create_texture(&wgpu::TextureDescriptor {

@@ -196,25 +196,10 @@ impl Compositor {
         if let Some(p) = self.pipelines.get(&k) {
             return p.clone();
         }
-        let d = &self.gpu.device;
-        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("compositor"),
-            source: wgpu::ShaderSource::Wgsl(shader(&k).into()),
-        });
-        let vis = wgpu::ShaderStages::FRAGMENT;
-        let float = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: vis,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        use crate::gpu::{texture_entry, UNFILTERED};
         let mut entries = vec![wgpu::BindGroupLayoutEntry {
             binding: 0,
-            visibility: vis,
+            visibility: wgpu::ShaderStages::FRAGMENT,
             ty: wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Uniform,
                 has_dynamic_offset: false,
@@ -223,32 +208,14 @@ impl Compositor {
             count: None,
         }];
         for i in 0..k.surfaces as u32 {
-            entries.push(float(1 + 2 * i));
-            entries.push(wgpu::BindGroupLayoutEntry {
-                binding: 2 + 2 * i,
-                visibility: vis,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Depth,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            });
+            entries.push(texture_entry(1 + 2 * i, UNFILTERED));
+            entries.push(texture_entry(2 + 2 * i, wgpu::TextureSampleType::Depth));
         }
         if k.intermediate {
             let n = k.surfaces as u32;
-            entries.push(float(1 + 2 * n));
-            entries.push(float(2 + 2 * n));
+            entries.push(texture_entry(1 + 2 * n, UNFILTERED));
+            entries.push(texture_entry(2 + 2 * n, UNFILTERED));
         }
-        let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("compositor"),
-            entries: &entries,
-        });
-        let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: None,
-            bind_group_layouts: &[Some(&bgl)],
-            immediate_size: 0,
-        });
         let over = wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::One,
             dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
@@ -260,27 +227,8 @@ impl Compositor {
             write_mask: wgpu::ColorWrites::ALL,
         })];
         let mid = [Some(COLOR_FORMAT.into()), Some(GEOM_FORMAT.into())];
-        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("compositor"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: if k.last { &last } else { &mid },
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let (bgl, pipeline) =
+            self.gpu.fullscreen_pipeline("compositor", &shader(&k), &entries, if k.last { &last } else { &mid }, None);
         self.pipelines.insert(k, (bgl.clone(), pipeline.clone()));
         (bgl, pipeline)
     }
