@@ -3,6 +3,7 @@
 
 mod composite;
 mod execute;
+mod glmark2;
 mod mesh;
 mod plot;
 mod transport;
@@ -29,6 +30,9 @@ enum Cmd {
     /// Compositor: ms per output frame for k = 1…16 surfaces at a chaining limit and at the
     /// device's limit, against a memory-bandwidth floor measured in the same run.
     Composite(composite::Args),
+    /// Unmodified glmark2-es2 through Strata against native Mesa (same run, same Xvfb), and
+    /// n = 1…10 concurrent instances at one z and area.
+    Glmark2(glmark2::Args),
     /// Runs the daemon half of a benchmark (started by the benchmark itself).
     #[command(hide = true)]
     Daemon {
@@ -38,6 +42,9 @@ enum Cmd {
         /// Executor for client sessions.
         #[arg(long, value_enum, default_value_t = strata_server::ExecutorKind::Drain)]
         executor: strata_server::ExecutorKind,
+        /// An output, as for `stratad serve --output` (repeatable).
+        #[arg(long = "output")]
+        outputs: Vec<strata_server::root::OutputSpec>,
     },
 }
 
@@ -48,6 +55,7 @@ fn main() -> Result<()> {
         Cmd::Transport(args) => transport::run(&args),
         Cmd::Execute(args) => execute::run(&args),
         Cmd::Composite(args) => composite::run(&args),
-        Cmd::Daemon { socket, executor } => transport::daemon(socket, executor),
+        Cmd::Glmark2(args) => glmark2::run(&args),
+        Cmd::Daemon { socket, executor, outputs } => transport::daemon(socket, executor, outputs),
     }
 }

@@ -43,7 +43,15 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
         .x_label_area_size(44)
         .y_label_area_size(64)
         .build_cartesian_2d(x0..x1, 0.0..y1.max(1e-9))?;
-    chart.configure_mesh().x_desc(x_label).y_desc(y_label).label_style(("sans-serif", 15)).draw()?;
+    // Whole-number x values (counts) are labelled without a fraction.
+    let x_fmt = |x: &f64| if x.fract() == 0.0 { format!("{x:.0}") } else { format!("{x:.2}") };
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&x_fmt)
+        .label_style(("sans-serif", 15))
+        .draw()?;
     let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(120, 120, 120)];
     for (i, s) in series.iter().enumerate() {
         let color = palette[i % palette.len()];

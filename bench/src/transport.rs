@@ -26,10 +26,17 @@ pub struct Args {
     bulk: u64,
 }
 
-/// Runs the daemon half until killed.
-pub fn daemon(socket: PathBuf, executor: strata_server::ExecutorKind) -> Result<()> {
+/// Runs the daemon half until killed, with `outputs` (none: the daemon's default output).
+pub fn daemon(
+    socket: PathBuf,
+    executor: strata_server::ExecutorKind,
+    outputs: Vec<strata_server::root::OutputSpec>,
+) -> Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
-    let opts = strata_server::ServeOptions { socket, executor, ..Default::default() };
+    let mut opts = strata_server::ServeOptions { socket, executor, ..Default::default() };
+    if !outputs.is_empty() {
+        opts.outputs = outputs;
+    }
     rt.block_on(strata_server::serve(opts, std::future::pending()))?;
     Ok(())
 }
@@ -47,22 +54,38 @@ impl Drop for DaemonProc {
 
 /// Starts this binary's daemon half with `executor` and waits until it listens.
 pub fn start_daemon(executor: strata_server::ExecutorKind) -> Result<DaemonProc> {
+    start_daemon_with(executor, &[], None)
+}
+
+/// Like `start_daemon`, with extra daemon arguments (e.g. `--output`) and its stderr written to
+/// `log` (inherited when `None`).
+pub fn start_daemon_with(
+    executor: strata_server::ExecutorKind,
+    extra: &[String],
+    log: Option<&std::path::Path>,
+) -> Result<DaemonProc> {
     let socket = std::env::temp_dir().join(format!("strata-bench-{}.sock", std::process::id()));
     let kind = match executor {
         strata_server::ExecutorKind::Gles => "gles",
         strata_server::ExecutorKind::Drain => "drain",
     };
-    let child =
-        Proc::new(std::env::current_exe()?).args(["daemon", "--executor", kind, "--socket"]).arg(&socket).spawn()?;
-    let d = DaemonProc(child, socket);
-    let deadline = Instant::now() + Duration::from_secs(10);
-    while std::os::unix::net::UnixStream::connect(&d.1).is_err() {
-        if Instant::now() > deadline {
-            bail!("benchmark daemon did not start");
+    let mut cmd = Proc::new(std::env::current_exe()?);
+    cmd.args(["daemon", "--executor", kind, "--socket"]).arg(&socket).args(extra);
+    if let Some(log) = log {
+        cmd.stderr(std::fs::File::create(log).with_context(|| format!("creating {}", log.display()))?);
+    }
+    let mut child = cmd.spawn().context("starting the benchmark daemon")?;
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while std::os::unix::net::UnixStream::connect(&socket).is_err() {
+        if Instant::now() > deadline || child.try_wait()?.is_some() {
+            let _ = child.kill();
+            let _ = child.wait();
+            let why = log.and_then(|l| std::fs::read_to_string(l).ok()).unwrap_or_default();
+            bail!("benchmark daemon did not start listening on {}\n{why}", socket.display());
         }
         std::thread::sleep(Duration::from_millis(10));
     }
-    Ok(d)
+    Ok(DaemonProc(child, socket))
 }
 
 /// A progress bar on stderr.
