@@ -85,14 +85,8 @@ fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
     Uploaded { color: c.create_view(&Default::default()), depth }
 }
 
-fn run(gpu: &Arc<Gpu>, comp: &mut Compositor, layers: &[RefLayer], light: &Lighting) -> Vec<u8> {
-    let up: Vec<Uploaded> = layers.iter().map(|l| upload(gpu, l)).collect();
-    let gl: Vec<Layer<'_>> = layers
-        .iter()
-        .zip(&up)
-        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
-        .collect();
-    let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
+fn output(gpu: &Gpu) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: None,
         size: wgpu::Extent3d { width: OUT_W, height: OUT_H, depth_or_array_layers: 1 },
         mip_level_count: 1,
@@ -101,9 +95,30 @@ fn run(gpu: &Arc<Gpu>, comp: &mut Compositor, layers: &[RefLayer], light: &Light
         format: wgpu::TextureFormat::Rgba8Unorm,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
-    });
-    comp.composite(&gl, light, &out, BACKGROUND);
-    gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback")
+    })
+}
+
+/// Composites `layers` into `out` (only `region` of it, if given) and reads `out` back.
+fn run_into(
+    gpu: &Arc<Gpu>,
+    comp: &mut Compositor,
+    layers: &[RefLayer],
+    light: &Lighting,
+    out: &wgpu::Texture,
+    region: Option<[u32; 4]>,
+) -> Vec<u8> {
+    let up: Vec<Uploaded> = layers.iter().map(|l| upload(gpu, l)).collect();
+    let gl: Vec<Layer<'_>> = layers
+        .iter()
+        .zip(&up)
+        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
+        .collect();
+    comp.composite(&gl, light, out, BACKGROUND, region);
+    gpu.read_rgba8(out, [0, 0, OUT_W, OUT_H]).expect("readback")
+}
+
+fn run(gpu: &Arc<Gpu>, comp: &mut Compositor, layers: &[RefLayer], light: &Lighting) -> Vec<u8> {
+    run_into(gpu, comp, layers, light, &output(gpu), None)
 }
 
 /// Exactly representable in 8 bits (51, 102, 153), so clearing involves no rounding.
@@ -197,4 +212,37 @@ fn too_few_textures_are_refused() {
     let e = Compositor::new(gpu.clone(), Some(3)).err().expect("3 textures cannot chain");
     assert!(e.to_string().contains("at least 4"), "{e}");
     assert!(Compositor::new(gpu, Some(u32::MAX)).is_err(), "beyond the device limit");
+}
+
+/// A composite that redraws only the region that changed (the bounding box of a surface with
+/// new content and of a moved surface's old and new places) gives the same image, bit for bit,
+/// as a whole composite of the new scene, with chaining and lighting from depth.
+#[test]
+fn partial_composites_equal_whole_ones() {
+    let Some(gpu) = gpu() else { return };
+    let light = Lighting { normals: NormalSource::FromDepth, ..Lighting::default() };
+    for (same_z, limit) in [(true, Some(6)), (false, None)] {
+        let mut comp = Compositor::new(gpu.clone(), limit).expect("compositor");
+        let before = scene(9, same_z, 200);
+        let out = output(&gpu);
+        run_into(&gpu, &mut comp, &before, &light, &out, None);
+        let mut after = before.clone();
+        after[4] = surface(40, before[4].rect, before[4].z, 255, true);
+        after[6].rect[0] += 23;
+        after[6].rect[1] -= 5;
+        let bbox = |rs: &[[i32; 4]]| {
+            let x0 = rs.iter().map(|r| r[0]).min().unwrap_or(0).max(0);
+            let y0 = rs.iter().map(|r| r[1]).min().unwrap_or(0).max(0);
+            let x1 = rs.iter().map(|r| r[0] + r[2]).max().unwrap_or(0).min(OUT_W as i32);
+            let y1 = rs.iter().map(|r| r[1] + r[3]).max().unwrap_or(0).min(OUT_H as i32);
+            [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32]
+        };
+        let region = bbox(&[after[4].rect, before[6].rect, after[6].rect]);
+        assert!(region[2] * region[3] < OUT_W * OUT_H, "the test region must be partial: {region:?}");
+        let partial = run_into(&gpu, &mut comp, &after, &light, &out, Some(region));
+        let whole = run(&gpu, &mut comp, &after, &light);
+        assert!(partial == whole, "same z {same_z}: the partial composite differs from a whole one");
+        // And the reference agrees with both.
+        check("partial", &partial, &reference::composite(&after, OUT_W, OUT_H, BACKGROUND, &light), 1);
+    }
 }

@@ -265,6 +265,10 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
     assert_eq!(moved["z"], 0.25);
     let (a, b) = (screenshot(&socket, "a"), screenshot(&socket, "b"));
     assert!(composites(&socket, 0) > idle, "a move must recomposite");
+    // Only what changed was redrawn: the old and new places' bounding box, in each output.
+    let outputs = ctl(&socket, &["list"]).expect("list")["outputs"].clone();
+    assert_eq!(outputs[0]["region"], serde_json::json!([16, 8, 112, 44]));
+    assert_eq!(outputs[1]["region"], serde_json::json!([0, 8, 16, 44]));
     assert_eq!(rgb(&a, 20, 20), [0, 0, 0], "the old position is still drawn");
     assert_eq!(rgb(&a, 120, 30), color, "output a shows the left part");
     assert_eq!(rgb(&b, 10, 30), color, "output b shows the right part");

@@ -96,7 +96,7 @@ fn time_composite(gpu: &Gpu, comp: &mut Compositor, surfaces: &[Surface], out: &
         .collect();
     let light = Lighting::default();
     let mut frame = || {
-        comp.composite(&layers, &light, out, [0.0, 0.0, 0.0, 1.0]);
+        comp.composite(&layers, &light, out, [0.0, 0.0, 0.0, 1.0], None);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     };
     frame();

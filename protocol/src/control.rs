@@ -173,6 +173,8 @@ pub struct OutputRow {
     pub composites: u64,
     /// Passes the last composite drew.
     pub passes: u64,
+    /// The part of the output the last composite redrew: x, y, width, height.
+    pub region: [i32; 4],
 }
 
 /// The daemon's answer to a `ControlRequest`.

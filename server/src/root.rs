@@ -13,7 +13,7 @@ use tracing::{info, warn};
 
 use crate::compositor::{Compositor, CompositorError, Layer};
 use crate::gpu::Gpu;
-use crate::scene::{Scene, Work};
+use crate::scene::{Region, Scene, Work};
 
 /// Default output: the width and height of a typical automotive centre display.
 pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
@@ -101,6 +101,10 @@ struct Output {
     window: Option<crate::window::WindowOutput>,
     composites: u64,
     passes: u64,
+    /// The part the last composite redrew (output pixels).
+    region: [i32; 4],
+    /// Whether the last composite reached the window (if any).
+    presented: bool,
 }
 
 struct Inner {
@@ -176,6 +180,8 @@ impl Root {
                 spec: spec.clone(),
                 composites: 0,
                 passes: 0,
+                region: [0; 4],
+                presented: true,
             });
         }
         Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs: made, composited: None }) })
@@ -192,9 +198,24 @@ impl Root {
         let Inner { compositor, outputs, .. } = &mut *inner;
         // Encode and submit under the scene lock: no swap can interleave, so every front
         // image sampled here is a completed frame.
-        let (_, seen) = self.scene.compose(|surfaces, light| {
+        let (_, seen) = self.scene.compose(|surfaces, light, changed| {
             for out in outputs.iter_mut() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
+                // The changed region in this output's pixels; nothing to do if it misses it.
+                let local = match changed {
+                    Region::Full => None,
+                    Region::None => continue,
+                    Region::Rect(r) => {
+                        let x0 = (r[0] - ox).max(0);
+                        let y0 = (r[1] - oy).max(0);
+                        let x1 = (r[0] + r[2] - ox).min(out.spec.width as i32);
+                        let y1 = (r[1] + r[3] - oy).min(out.spec.height as i32);
+                        if x1 <= x0 || y1 <= y0 {
+                            continue;
+                        }
+                        Some([x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32])
+                    }
+                };
                 let layers: Vec<Layer<'_>> = surfaces
                     .iter()
                     .filter_map(|s| {
@@ -207,13 +228,17 @@ impl Root {
                         })
                     })
                     .collect();
-                compositor.composite(&layers, light, &out.texture, BACKGROUND);
+                compositor.composite(&layers, light, &out.texture, BACKGROUND, local);
                 out.composites += 1;
                 out.passes = compositor.last_passes as u64;
+                out.region =
+                    local.map_or([0, 0, out.spec.width as i32, out.spec.height as i32], |r| r.map(|v| v as i32));
+                out.presented = false;
             }
         })?;
         inner.composited = Some(seen);
-        for out in inner.outputs.iter_mut() {
+        for out in inner.outputs.iter_mut().filter(|o| !o.presented) {
+            out.presented = true;
             if let Some(w) = &mut out.window {
                 w.present(&self.gpu, &out.texture);
             }
@@ -234,6 +259,7 @@ impl Root {
                 rect: [o.spec.x, o.spec.y, o.spec.width as i32, o.spec.height as i32],
                 composites: o.composites,
                 passes: o.passes,
+                region: o.region,
             })
             .collect()
     }

@@ -63,10 +63,42 @@ impl SceneSurface {
     }
 }
 
+/// The part of the output space that changed since the last composite.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Region {
+    /// Nothing.
+    None,
+    /// This rectangle (x, y, width, height), the bounding box of every change.
+    Rect([i32; 4]),
+    /// Everything (the first composite, a lighting change).
+    Full,
+}
+
+impl Region {
+    /// This region grown to cover `r` as well.
+    pub fn with(self, r: [i32; 4]) -> Region {
+        if r[2] <= 0 || r[3] <= 0 {
+            return self;
+        }
+        match self {
+            Region::None => Region::Rect(r),
+            Region::Full => Region::Full,
+            Region::Rect(a) => {
+                let (x0, y0) = (a[0].min(r[0]), a[1].min(r[1]));
+                let x1 = (a[0] + a[2]).max(r[0] + r[2]);
+                let y1 = (a[1] + a[3]).max(r[1] + r[3]);
+                Region::Rect([x0, y0, x1 - x0, y1 - y0])
+            }
+        }
+    }
+}
+
 struct State {
     surfaces: BTreeMap<(u64, u32), SceneSurface>,
     next_id: u64,
     damage: u64,
+    /// What changed since the last composite.
+    region: Region,
     refreshes: u64,
     /// A compositor thread consumes frames; without one, swaps never wait.
     root: bool,
@@ -105,6 +137,7 @@ impl Scene {
                 surfaces: BTreeMap::new(),
                 next_id: 0,
                 damage: 0,
+                region: Region::Full,
                 refreshes: 0,
                 root: false,
                 pacing_waiters: 0,
@@ -119,8 +152,13 @@ impl Scene {
         self.state.lock().ok()
     }
 
-    fn damaged(&self, mut g: MutexGuard<'_, State>) {
+    fn damaged(&self, mut g: MutexGuard<'_, State>, r: Region) {
         g.damage += 1;
+        g.region = match r {
+            Region::Rect(r) => g.region.with(r),
+            Region::Full => Region::Full,
+            Region::None => g.region,
+        };
         drop(g);
         self.changed.notify_all();
     }
@@ -156,7 +194,8 @@ impl Scene {
             s.color = Some(color);
             s.depth = depth;
             s.frames += 1;
-            self.damaged(g);
+            let r = s.rect;
+            self.damaged(g, Region::Rect(r));
         }
     }
 
@@ -212,10 +251,16 @@ impl Scene {
     /// Removes one surface, or with `surface == None` all of a client's.
     pub fn remove(&self, client: u64, surface: Option<u32>) {
         let Some(mut g) = self.lock() else { return };
-        let before = g.surfaces.len();
-        g.surfaces.retain(|k, _| k.0 != client || surface.is_some_and(|s| s != k.1));
-        if g.surfaces.len() != before {
-            self.damaged(g);
+        let mut gone = Region::None;
+        g.surfaces.retain(|k, s| {
+            let keep = k.0 != client || surface.is_some_and(|id| id != k.1);
+            if !keep && s.color.is_some() {
+                gone = gone.with(s.rect);
+            }
+            keep
+        });
+        if gone != Region::None {
+            self.damaged(g, gone);
         }
     }
 
@@ -223,11 +268,13 @@ impl Scene {
     pub fn move_surface(&self, id: u64, x: i32, y: i32, z: f32) -> Option<SurfaceRow> {
         let mut g = self.lock()?;
         let s = g.surfaces.values_mut().find(|s| s.id == id)?;
+        let old = s.rect;
         s.rect[0] = x;
         s.rect[1] = y;
         s.z = z;
         let row = s.row();
-        self.damaged(g);
+        let region = Region::Rect(old).with(row.rect);
+        self.damaged(g, region);
         Some(row)
     }
 
@@ -242,7 +289,7 @@ impl Scene {
         let new = change.apply(g.lighting);
         if new != g.lighting {
             g.lighting = new;
-            self.damaged(g);
+            self.damaged(g, Region::Full);
         }
         new
     }
@@ -260,14 +307,16 @@ impl Scene {
         self.lock().map(|g| g.damage).unwrap_or(0)
     }
 
-    /// Runs `f` on the surfaces (in stacking order) and the lighting while holding the lock,
-    /// so no swap can interleave with what `f` submits; the frames it saw count as shown.
-    /// Returns `f`'s result and the damage count it reflects.
-    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting) -> R) -> Option<(R, u64)> {
+    /// Runs `f` on the surfaces (in stacking order), the lighting and the region changed since
+    /// the last composite, while holding the lock, so no swap can interleave with what `f`
+    /// submits; the frames it saw count as shown. Returns `f`'s result and the damage count
+    /// it reflects.
+    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting, Region) -> R) -> Option<(R, u64)> {
         let mut g = self.lock()?;
         let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
         v.sort_by_key(|s| s.id);
-        let r = f(&v, &g.lighting);
+        let region = std::mem::replace(&mut g.region, Region::None);
+        let r = f(&v, &g.lighting, region);
         for s in g.surfaces.values_mut() {
             s.shown = s.frames;
         }

@@ -71,6 +71,8 @@ pub struct Compositor {
     max_textures: u32,
     pipelines: HashMap<PassKind, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
     dummy_depth: wgpu::TextureView,
+    /// The background fill of partial composites, built on first use.
+    fill: Option<(wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
     /// Passes drawn by the last `composite`.
     pub last_passes: usize,
 }
@@ -169,6 +171,7 @@ impl Compositor {
         };
         Ok(Compositor {
             dummy_depth: tex(wgpu::TextureFormat::Depth32Float, "no depth"),
+            fill: None,
             gpu,
             per_pass: (m / 2) as usize,
             max_textures: m,
@@ -251,41 +254,121 @@ impl Compositor {
     }
 
     /// Composites `layers` (in stacking order) into `output` (RGBA8, render-attachment usage),
-    /// over `background` (straight alpha).
-    pub fn composite(&mut self, layers: &[Layer<'_>], light: &Lighting, output: &wgpu::Texture, background: [f32; 4]) {
+    /// over `background` (straight alpha). With `region` (x, y, width, height in output
+    /// pixels) only that part is redrawn and the rest of `output` is kept; the result is the
+    /// same as a whole composite wherever the layers outside the region are unchanged.
+    pub fn composite(
+        &mut self,
+        layers: &[Layer<'_>],
+        light: &Lighting,
+        output: &wgpu::Texture,
+        background: [f32; 4],
+        region: Option<[u32; 4]>,
+    ) {
         let (w, h) = (output.width(), output.height());
+        let whole = [0, 0, w, h];
+        let region = match region {
+            Some(r) => {
+                let (x0, y0) = (r[0].min(w), r[1].min(h));
+                [x0, y0, r[2].min(w - x0), r[3].min(h - y0)]
+            }
+            None => whole,
+        };
+        if region[2] == 0 || region[3] == 0 {
+            self.last_passes = 0;
+            return;
+        }
+        let partial = region != whole;
+        // Layers with no fragment in the region change nothing there.
+        let (rx0, ry0, rx1, ry1) = (
+            i64::from(region[0]),
+            i64::from(region[1]),
+            i64::from(region[0] + region[2]),
+            i64::from(region[1] + region[3]),
+        );
+        let layers: Vec<&Layer<'_>> = layers
+            .iter()
+            .filter(|l| {
+                let (x0, y0) = (i64::from(l.rect[0]), i64::from(l.rect[1]));
+                let (x1, y1) = (x0 + i64::from(l.rect[2]), y0 + i64::from(l.rect[3]));
+                x0 < rx1 && x1 > rx0 && y0 < ry1 && y1 > ry0
+            })
+            .collect();
         let out_view = output.create_view(&Default::default());
         let d = self.gpu.device.clone();
         let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("composite") });
-        let a = f64::from(background[3]);
-        enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("background"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &out_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: f64::from(background[0]) * a,
-                        g: f64::from(background[1]) * a,
-                        b: f64::from(background[2]) * a,
-                        a,
-                    }),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
+        let a = background[3];
+        let premultiplied = [background[0] * a, background[1] * a, background[2] * a, a];
+        let fill = partial.then(|| {
+            let (bgl, pipeline) = self
+                .fill
+                .get_or_insert_with(|| {
+                    self.gpu.fullscreen_pipeline(
+                        "background fill",
+                        include_str!("../../../shaders/fill.wgsl"),
+                        &[wgpu::BindGroupLayoutEntry {
+                            binding: 0,
+                            visibility: wgpu::ShaderStages::FRAGMENT,
+                            ty: wgpu::BindingType::Buffer {
+                                ty: wgpu::BufferBindingType::Uniform,
+                                has_dynamic_offset: false,
+                                min_binding_size: None,
+                            },
+                            count: None,
+                        }],
+                        &[Some(COLOR_FORMAT.into())],
+                        None,
+                    )
+                })
+                .clone();
+            let ubuf = d.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("background"),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            self.gpu.queue.write_buffer(&ubuf, 0, bytemuck::cast_slice(&premultiplied));
+            let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("background"),
+                layout: &bgl,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() }],
+            });
+            (pipeline, group)
         });
+        {
+            let load = if partial {
+                wgpu::LoadOp::Load
+            } else {
+                let c = premultiplied.map(f64::from);
+                wgpu::LoadOp::Clear(wgpu::Color { r: c[0], g: c[1], b: c[2], a: c[3] })
+            };
+            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("background"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &out_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if let Some((pipeline, group)) = &fill {
+                rp.set_pipeline(pipeline);
+                rp.set_bind_group(0, group, &[]);
+                rp.set_scissor_rect(region[0], region[1], region[2], region[3]);
+                rp.draw(0..3, 0..1);
+            }
+        }
         let mut zs: Vec<f32> = layers.iter().map(|l| l.z).filter(|z| z.is_finite()).collect();
         zs.sort_by(|a, b| b.total_cmp(a));
         zs.dedup();
         let mut passes = 0;
         let mut spare: Option<[(wgpu::Texture, wgpu::TextureView); 2]> = None;
         for z in zs {
-            let group: Vec<&Layer<'_>> = layers.iter().filter(|l| l.z == z).collect();
+            let group: Vec<&Layer<'_>> = layers.iter().copied().filter(|l| l.z == z).collect();
             let p = self.per_pass;
             let mut chunks: Vec<&[&Layer<'_>]> = vec![&group[..group.len().min(p)]];
             let mut rest = &group[group.len().min(p)..];
@@ -400,6 +483,7 @@ impl Compositor {
                         multiview_mask: None,
                     });
                     rp.set_pipeline(&pipeline);
+                    rp.set_scissor_rect(region[0], region[1], region[2], region[3]);
                     rp.set_bind_group(0, &group_bind, &[]);
                     rp.draw(0..3, 0..1);
                 }
