@@ -9,12 +9,12 @@
 
 mod support;
 
-use std::io::{BufRead, BufReader, Read};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use support::{Daemon, TempDir};
+use support::{Daemon, TempDir, Xvfb};
 
 /// glmark2's default benchmark list (src/default-benchmarks.h, 2023.01), less the scenes
 /// this test leaves out (cel shading, ideas, jellyfish, terrain, shadow, refract).
@@ -63,36 +63,6 @@ fn oracles_present() -> bool {
 
 fn which(program: &str) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
-}
-
-/// A private X server, killed on drop.
-struct Xvfb {
-    child: Child,
-    display: String,
-}
-
-impl Xvfb {
-    fn start() -> Xvfb {
-        let mut child = Command::new("Xvfb")
-            .args(["-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("spawn Xvfb");
-        // Xvfb writes the display number it chose once it accepts connections.
-        let mut line = String::new();
-        let stdout = child.stdout.take().expect("Xvfb stdout");
-        BufReader::new(stdout).read_line(&mut line).expect("read Xvfb display number");
-        let n: u32 = line.trim().parse().unwrap_or_else(|_| panic!("Xvfb printed {line:?}, not a display number"));
-        Xvfb { child, display: format!(":{n}") }
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
 }
 
 /// A directory holding the shim under the names applications load: libEGL.so.1,
@@ -165,7 +135,7 @@ fn glmark2_validates_through_stratad() {
     if !oracles_present() {
         return;
     }
-    let x = Xvfb::start();
+    let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2");
     let shim = shim_dir(&tmp);
     let daemon = Daemon::start("glmark2", &[]);
@@ -257,7 +227,7 @@ fn no_daemon_fails_egl_initialize_with_one_clear_line() {
     if !oracles_present() {
         return;
     }
-    let x = Xvfb::start();
+    let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2-nodaemon");
     let shim = shim_dir(&tmp);
     let socket = tmp.0.join("nobody-listens.sock");
@@ -282,7 +252,7 @@ fn daemon_killed_mid_run_lets_the_application_exit() {
     if !oracles_present() {
         return;
     }
-    let x = Xvfb::start();
+    let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2-killed");
     let shim = shim_dir(&tmp);
     let mut daemon = Daemon::start("glmark2-killed", &[]);
@@ -438,7 +408,7 @@ fn glmark2_models_at_one_z_intersect_per_fragment() {
     if !oracles_present() {
         return;
     }
-    let x = Xvfb::start();
+    let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("same-z");
     let shim = shim_dir(&tmp);
     let output = "same-z";

@@ -183,7 +183,7 @@ pub fn oracles_required() -> bool {
     std::env::var_os("STRATA_REQUIRE_ORACLES").is_some()
 }
 
-/// An Xvfb server on a free display, killed on drop.
+/// A private X server (Xvfb) on a display it picks itself, killed on drop.
 pub struct Xvfb {
     pub child: Child,
     /// The `DISPLAY` value, e.g. `:123`.
@@ -193,28 +193,24 @@ pub struct Xvfb {
 impl Xvfb {
     /// Starts Xvfb with one `width`x`height` 24-bit screen, or returns why it cannot.
     pub fn start(width: u32, height: u32) -> Result<Xvfb, String> {
-        let base = 100 + std::process::id() % 700;
-        let n = (base..base + 100)
-            .find(|n| {
-                !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() && !Path::new(&format!("/tmp/.X{n}-lock")).exists()
-            })
-            .ok_or("no free X display number")?;
-        let child = Command::new("Xvfb")
-            .arg(format!(":{n}"))
-            .args(["-screen", "0", &format!("{width}x{height}x24"), "-nolisten", "tcp"])
-            .stdout(Stdio::null())
+        use std::io::BufRead;
+        let mut child = Command::new("Xvfb")
+            .args(["-displayfd", "1", "-screen", "0", &format!("{width}x{height}x24"), "-nolisten", "tcp"])
+            .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()
             .map_err(|e| format!("Xvfb could not start ({e}); install the xvfb package"))?;
-        let x = Xvfb { child, display: format!(":{n}") };
-        let deadline = Instant::now() + Duration::from_secs(10);
-        while !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
-            if Instant::now() > deadline {
-                return Err("Xvfb did not create its socket".into());
+        // Xvfb writes the display number it chose once it accepts connections.
+        let mut line = String::new();
+        let read = child.stdout.take().map(|o| std::io::BufReader::new(o).read_line(&mut line));
+        match (read, line.trim().parse::<u32>()) {
+            (Some(Ok(_)), Ok(n)) => Ok(Xvfb { child, display: format!(":{n}") }),
+            _ => {
+                let _ = child.kill();
+                let _ = child.wait();
+                Err(format!("Xvfb printed {line:?}, not a display number"))
             }
-            std::thread::sleep(Duration::from_millis(20));
         }
-        Ok(x)
     }
 }
 
