@@ -382,13 +382,25 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 return Ok(());
             }
             println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}",
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}  last redrawn",
                 "output", "kind", "x", "y", "w", "h", "composites", "passes"
             );
             for o in outputs {
+                let r = o.region;
                 println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}",
-                    o.name, o.kind, o.rect[0], o.rect[1], o.rect[2], o.rect[3], o.composites, o.passes
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}  {}x{}+{}+{}",
+                    o.name,
+                    o.kind,
+                    o.rect[0],
+                    o.rect[1],
+                    o.rect[2],
+                    o.rect[3],
+                    o.composites,
+                    o.passes,
+                    r[2],
+                    r[3],
+                    r[0],
+                    r[1]
                 );
             }
             println!();
