@@ -65,21 +65,6 @@ fn which(program: &str) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
 }
 
-/// A directory holding the shim under the names applications load: libEGL.so.1,
-/// libGLESv2.so.2 and the unversioned names (what `tools/build-shim` installs).
-fn shim_dir(tmp: &TempDir) -> PathBuf {
-    // Cargo builds the cdylib (a dev-dependency) next to the test's dependencies.
-    let exe = PathBuf::from(support::stratad());
-    let lib = exe.parent().expect("target dir").join("deps").join("libstrata_egl.so");
-    assert!(lib.is_file(), "{} not built", lib.display());
-    let dir = tmp.0.join("strata-gl");
-    std::fs::create_dir_all(&dir).expect("shim dir");
-    for name in ["libEGL.so.1", "libGLESv2.so.2", "libEGL.so", "libGLESv2.so"] {
-        std::os::unix::fs::symlink(&lib, dir.join(name)).expect("symlink shim");
-    }
-    dir
-}
-
 /// Runs a program with a deadline; kills it when the deadline passes.
 fn run_with_deadline(mut cmd: Command, deadline: Duration) -> (Output, Duration, bool) {
     let start = Instant::now();
@@ -137,7 +122,7 @@ fn glmark2_validates_through_stratad() {
     }
     let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2");
-    let shim = shim_dir(&tmp);
+    let shim = support::shim_dir(&tmp);
     let daemon = Daemon::start("glmark2", &[]);
     let mut failures = Vec::new();
     for scene in SCENES {
@@ -197,7 +182,7 @@ fn shared_object_exports_every_entry_point() {
     };
     assert_eq!((gl.len(), egl.len()), (142, 34), "gl2.h: 142 ES 2.0 calls; egl.h: 34 EGL 1.4 calls");
     let tmp = TempDir::new("symbols");
-    let lib_path = shim_dir(&tmp).join("libGLESv2.so.2");
+    let lib_path = support::shim_dir(&tmp).join("libGLESv2.so.2");
     // SAFETY: loading the shim runs no initialisers; symbols are only compared, never called,
     // except eglGetProcAddress, whose prototype is declared exactly.
     unsafe {
@@ -229,7 +214,7 @@ fn no_daemon_fails_egl_initialize_with_one_clear_line() {
     }
     let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2-nodaemon");
-    let shim = shim_dir(&tmp);
+    let shim = support::shim_dir(&tmp);
     let socket = tmp.0.join("nobody-listens.sock");
     let (out, elapsed, timed_out) = run_with_deadline(
         glmark2(&x.display, Some((&shim, &socket)), &["--validate", "-b", "build"]),
@@ -254,7 +239,7 @@ fn daemon_killed_mid_run_lets_the_application_exit() {
     }
     let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("glmark2-killed");
-    let shim = shim_dir(&tmp);
+    let shim = support::shim_dir(&tmp);
     let mut daemon = Daemon::start("glmark2-killed", &[]);
     let mut cmd =
         glmark2(&x.display, Some((&shim, &daemon.socket)), &["-b", "build:duration=4", "-b", "texture:duration=4"]);
@@ -410,7 +395,7 @@ fn glmark2_models_at_one_z_intersect_per_fragment() {
     }
     let x = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("same-z");
-    let shim = shim_dir(&tmp);
+    let shim = support::shim_dir(&tmp);
     let output = "same-z";
     let daemon = Daemon::start("same-z", &["--output", "headless:same-z=800x600"]);
     let models = ["horse", "cat", "bunny", "cube"];

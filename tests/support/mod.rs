@@ -220,3 +220,18 @@ impl Drop for Xvfb {
         let _ = self.child.wait();
     }
 }
+
+/// A directory holding the shim under the names applications load: libEGL.so.1,
+/// libGLESv2.so.2 and the unversioned names (what `tools/build-shim` installs).
+pub fn shim_dir(tmp: &TempDir) -> PathBuf {
+    // Cargo builds the cdylib (a dev-dependency) next to the test's dependencies.
+    let exe = PathBuf::from(stratad());
+    let lib = exe.parent().expect("target dir").join("deps").join("libstrata_egl.so");
+    assert!(lib.is_file(), "{} not built", lib.display());
+    let dir = tmp.0.join("strata-gl");
+    std::fs::create_dir_all(&dir).expect("shim dir");
+    for name in ["libEGL.so.1", "libGLESv2.so.2", "libEGL.so", "libGLESv2.so"] {
+        std::os::unix::fs::symlink(&lib, dir.join(name)).expect("symlink shim");
+    }
+    dir
+}

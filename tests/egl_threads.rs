@@ -1,0 +1,157 @@
+//! The drop-in libEGL/libGLESv2 keep one current context per thread, as EGL requires: two
+//! threads, each with its own context and pbuffer, draw and read back at the same time through
+//! one daemon connection, and each sees only its own context's results; a thread that made
+//! nothing current has no current context, and its GL calls do nothing.
+//!
+//! Its own test binary: it points the library at the daemon through the process environment.
+
+mod support;
+
+use std::ffi::c_void;
+use std::sync::{Arc, Barrier};
+
+use support::{Daemon, TempDir};
+
+type Ptr = *mut c_void;
+
+const EGL_NONE: i32 = 0x3038;
+const EGL_SURFACE_TYPE: i32 = 0x3033;
+const EGL_PBUFFER_BIT: i32 = 0x0001;
+const EGL_RENDERABLE_TYPE: i32 = 0x3040;
+const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
+const EGL_WIDTH: i32 = 0x3057;
+const EGL_HEIGHT: i32 = 0x3056;
+const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
+const EGL_OPENGL_ES_API: u32 = 0x30A0;
+const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
+const GL_RGBA: u32 = 0x1908;
+const GL_UNSIGNED_BYTE: u32 = 0x1401;
+
+/// The entry points the test calls, resolved from the shared object.
+#[derive(Clone, Copy)]
+struct Egl {
+    get_display: unsafe extern "C" fn(Ptr) -> Ptr,
+    initialize: unsafe extern "C" fn(Ptr, *mut i32, *mut i32) -> u32,
+    choose_config: unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32,
+    bind_api: unsafe extern "C" fn(u32) -> u32,
+    create_pbuffer: unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr,
+    create_context: unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr,
+    make_current: unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32,
+    current_context: unsafe extern "C" fn() -> Ptr,
+    clear_color: unsafe extern "C" fn(f32, f32, f32, f32),
+    clear: unsafe extern "C" fn(u32),
+    finish: unsafe extern "C" fn(),
+    read_pixels: unsafe extern "C" fn(i32, i32, i32, i32, u32, u32, *mut c_void),
+}
+
+// SAFETY: plain function pointers into a library that stays loaded for the whole test.
+unsafe impl Send for Egl {}
+
+fn load(lib: &libloading::Library) -> Egl {
+    // SAFETY: each symbol is declared with its C prototype from egl.h / gl2.h.
+    unsafe {
+        macro_rules! sym {
+            ($name:literal) => {
+                *lib.get($name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy($name)))
+            };
+        }
+        Egl {
+            get_display: sym!(b"eglGetDisplay"),
+            initialize: sym!(b"eglInitialize"),
+            choose_config: sym!(b"eglChooseConfig"),
+            bind_api: sym!(b"eglBindAPI"),
+            create_pbuffer: sym!(b"eglCreatePbufferSurface"),
+            create_context: sym!(b"eglCreateContext"),
+            make_current: sym!(b"eglMakeCurrent"),
+            current_context: sym!(b"eglGetCurrentContext"),
+            clear_color: sym!(b"glClearColor"),
+            clear: sym!(b"glClear"),
+            finish: sym!(b"glFinish"),
+            read_pixels: sym!(b"glReadPixels"),
+        }
+    }
+}
+
+#[test]
+fn each_thread_has_its_own_current_context() {
+    let daemon = Daemon::start("egl-threads", &["--output", "t=64x64"]);
+    // SAFETY: set before this test binary's only test starts any thread that reads the
+    // environment; the library reads it at eglInitialize.
+    unsafe {
+        std::env::set_var("STRATA_SOCKET", &daemon.socket);
+        std::env::remove_var("DISPLAY");
+    }
+    let tmp = TempDir::new("egl-threads");
+    // SAFETY: loading the shim runs no initialisers that need anything from the test.
+    let lib = unsafe { libloading::Library::new(support::shim_dir(&tmp).join("libEGL.so.1")) }.expect("dlopen");
+    let egl = load(&lib);
+    // SAFETY: EGL calls with the arguments egl.h describes; every out-pointer is valid.
+    let (dpy, config) = unsafe {
+        let dpy = (egl.get_display)(std::ptr::null_mut());
+        assert!(!dpy.is_null(), "eglGetDisplay");
+        let (mut major, mut minor) = (0, 0);
+        assert_eq!((egl.initialize)(dpy, &mut major, &mut minor), 1, "eglInitialize");
+        assert_eq!((egl.bind_api)(EGL_OPENGL_ES_API), 1, "eglBindAPI");
+        let attribs = [EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_NONE];
+        let (mut config, mut n) = (std::ptr::null_mut(), 0);
+        assert_eq!((egl.choose_config)(dpy, attribs.as_ptr(), &mut config, 1, &mut n), 1, "eglChooseConfig");
+        assert_eq!(n, 1, "no config");
+        (dpy as usize, config as usize)
+    };
+    let barrier = Arc::new(Barrier::new(2));
+    let threads: Vec<_> = (0..2u8)
+        .map(|t| {
+            let barrier = barrier.clone();
+            std::thread::spawn(move || {
+                let (dpy, config) = (dpy as Ptr, config as Ptr);
+                let mut wrong = Vec::new();
+                // SAFETY: as above; the read-back buffer holds the 4 bytes one pixel needs.
+                unsafe {
+                    let size = [EGL_WIDTH, 16, EGL_HEIGHT, 16, EGL_NONE];
+                    let surface = (egl.create_pbuffer)(dpy, config, size.as_ptr());
+                    let ctx_attribs = [EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE];
+                    let ctx = (egl.create_context)(dpy, config, std::ptr::null_mut(), ctx_attribs.as_ptr());
+                    let ready =
+                        !surface.is_null() && !ctx.is_null() && (egl.make_current)(dpy, surface, surface, ctx) == 1;
+                    if !ready {
+                        wrong.push(format!("thread {t}: no pbuffer, context or current context"));
+                    }
+                    for round in 0..20u8 {
+                        // Both threads are current at once; their calls interleave.
+                        barrier.wait();
+                        if !ready {
+                            barrier.wait();
+                            continue;
+                        }
+                        let v = [t * 100 + round, 255 - round, t * 200];
+                        let f = |c: u8| f32::from(c) / 255.0;
+                        (egl.clear_color)(f(v[0]), f(v[1]), f(v[2]), 1.0);
+                        (egl.clear)(GL_COLOR_BUFFER_BIT);
+                        barrier.wait();
+                        (egl.finish)();
+                        let mut px = [0u8; 4];
+                        (egl.read_pixels)(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px.as_mut_ptr().cast());
+                        // Recorded, not asserted here: a panic would leave the other thread
+                        // waiting at the barrier.
+                        if px != [v[0], v[1], v[2], 255] {
+                            wrong.push(format!("thread {t}, round {round}: read {px:?}, drew {v:?}"));
+                        }
+                        if (egl.current_context)() != ctx {
+                            wrong.push(format!("thread {t}, round {round}: eglGetCurrentContext is not its context"));
+                        }
+                    }
+                }
+                wrong
+            })
+        })
+        .collect();
+    let wrong: Vec<String> = threads.into_iter().flat_map(|t| t.join().expect("thread")).collect();
+    assert!(wrong.is_empty(), "{} mismatches:\n{}", wrong.len(), wrong.join("\n"));
+    // SAFETY: as above.
+    unsafe {
+        assert!((egl.current_context)().is_null(), "the main thread made nothing current");
+        // No current context: a GL call is a no-op, not a crash.
+        (egl.clear)(GL_COLOR_BUFFER_BIT);
+    }
+    drop(lib);
+}
