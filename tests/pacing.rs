@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 use strata_client::setup::{egl_context, Current, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_server::compositor::{reference, Lighting};
 use support::Daemon;
 
 const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
@@ -279,6 +280,29 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
     assert_eq!(on["enabled"], true);
     let lit = rgb(&screenshot(&socket, "a"), 120, 30);
     assert_ne!(lit, color, "lighting on changed nothing");
+    // Per-surface normals: tilting this surface's normal changes its lighting, and both
+    // colours follow the f64 reference compositor.
+    let tilted_normal = [0.6f32, -0.3, 1.0];
+    let n = ctl(&socket, &["normal", &id.to_string(), "0.6,-0.3,1"]).expect("normal");
+    assert_eq!(n["id"], id);
+    let tilted = rgb(&screenshot(&socket, "a"), 120, 30);
+    assert_ne!(tilted, lit, "a tilted normal changed nothing");
+    for (normal, got) in [([0.0, 0.0, 1.0], lit), (tilted_normal, tilted)] {
+        let layer = reference::RefLayer {
+            rect: [112, 20, 32, 32],
+            z: 0.25,
+            color: [color[0], color[1], color[2], 255].repeat(32 * 32),
+            depth: None,
+            normal,
+        };
+        let want = reference::composite(&[layer], 128, 64, [0.0, 0.0, 0.0, 1.0], &Lighting::default());
+        let p = ((30 * 128 + 120) * 4) as usize;
+        for c in 0..3 {
+            assert!(got[c].abs_diff(want[p + c]) <= 1, "normal {normal:?}: {got:?}, reference {:?}", &want[p..p + 3]);
+        }
+    }
+    let e = ctl(&socket, &["normal", &id.to_string(), "0,0,0"]).expect_err("zero normal");
+    assert!(e.contains("must be finite and not zero"), "{e}");
     let set = ctl(&socket, &["light", "set", "--ambient", "1", "--position", "-1,0.5,3"]).expect("light set");
     assert_eq!(set["ambient"], 1.0);
     assert_eq!(set["position"], serde_json::json!([-1.0, 0.5, 3.0]));

@@ -137,6 +137,13 @@ pub enum ControlRequest {
     },
     /// Changes the lighting (an empty change just reports it).
     Light(LightChange),
+    /// Sets a window surface's normal (per-surface lighting, the thesis' method).
+    Normal {
+        /// Surface id, as `List` shows it.
+        surface: u64,
+        /// The normal in output space (x right, y up, z towards the viewer); need not be unit.
+        normal: [f32; 3],
+    },
 }
 
 /// One row of `stratad ctl list`: a window surface.
@@ -158,6 +165,8 @@ pub struct SurfaceRow {
     pub shown: u64,
     /// Swap interval (0: unthrottled).
     pub interval: i32,
+    /// The surface's normal for per-surface lighting.
+    pub normal: [f32; 3],
 }
 
 /// One output of `stratad ctl list`.

@@ -327,6 +327,18 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
                 None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
             }
         }
+        ControlRequest::Normal { surface, normal } => {
+            if !normal.iter().all(|v| v.is_finite()) || normal.iter().all(|v| *v == 0.0) {
+                return ControlReply::Error(format!("normal {normal:?} must be finite and not zero"));
+            }
+            match shared.scene.set_normal(surface, normal) {
+                Some(row) => {
+                    info!(surface, ?normal, "surface normal set");
+                    ControlReply::Moved(row)
+                }
+                None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
+            }
+        }
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);

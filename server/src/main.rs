@@ -154,6 +154,14 @@ enum CtlCmd {
         #[arg(allow_negative_numbers = true)]
         z: f32,
     },
+    /// Set a window surface's normal for per-surface lighting.
+    Normal {
+        /// Surface id (as `list` shows it).
+        surface: u64,
+        /// The normal X,Y,Z (x right, y up, z towards the viewer).
+        #[arg(value_parser = vec3, allow_hyphen_values = true)]
+        normal: [f32; 3],
+    },
     /// Show or change the uniform lighting.
     Light {
         #[command(subcommand)]
@@ -359,6 +367,7 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
         CtlCmd::List => ControlRequest::List,
         CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
         CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
+        CtlCmd::Normal { surface, normal } => ControlRequest::Normal { surface: *surface, normal: *normal },
         CtlCmd::Light { what } => ControlRequest::Light(match what {
             LightCmd::On => LightChange { enabled: Some(true), ..Default::default() },
             LightCmd::Off => LightChange { enabled: Some(false), ..Default::default() },
@@ -438,7 +447,7 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             if json {
                 println!("{}", serde_json::json!(r));
             } else {
-                println!("surface {} now at x {} y {} z {}", r.id, r.rect[0], r.rect[1], r.z);
+                println!("surface {} now at x {} y {} z {}, normal {:?}", r.id, r.rect[0], r.rect[1], r.z, r.normal);
             }
             Ok(())
         }

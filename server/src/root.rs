@@ -224,7 +224,7 @@ impl Root {
                             z: s.z,
                             color: s.color.as_ref()?,
                             depth: s.depth.as_ref(),
-                            normal: [0.0, 0.0, 1.0],
+                            normal: s.normal,
                         })
                     })
                     .collect();

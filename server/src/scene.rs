@@ -43,6 +43,8 @@ pub struct SceneSurface {
     pub shown: u64,
     /// Swap interval (EGL default 1).
     pub interval: i32,
+    /// The normal per-surface lighting uses (default: facing the viewer).
+    pub normal: [f32; 3],
     /// The refresh count at the surface's previous swap.
     last_swap_refresh: u64,
 }
@@ -59,6 +61,7 @@ impl SceneSurface {
             frames: self.frames,
             shown: self.shown,
             interval: self.interval,
+            normal: self.normal,
         }
     }
 }
@@ -181,6 +184,7 @@ impl Scene {
                 frames: 0,
                 shown: 0,
                 interval: 1,
+                normal: [0.0, 0.0, 1.0],
                 last_swap_refresh: 0,
             },
         );
@@ -275,6 +279,17 @@ impl Scene {
         let row = s.row();
         let region = Region::Rect(old).with(row.rect);
         self.damaged(g, region);
+        Some(row)
+    }
+
+    /// Sets surface `id`'s normal; returns its new row, or `None` if there is no such surface.
+    pub fn set_normal(&self, id: u64, normal: [f32; 3]) -> Option<SurfaceRow> {
+        let mut g = self.lock()?;
+        let s = g.surfaces.values_mut().find(|s| s.id == id)?;
+        s.normal = normal;
+        let row = s.row();
+        // Only lit pixels change, and only with per-surface normals; redraw the surface.
+        self.damaged(g, Region::Rect(row.rect));
         Some(row)
     }
 
