@@ -48,6 +48,20 @@ pub fn texture_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu
     }
 }
 
+/// A fragment-stage binding of a uniform buffer.
+pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// Non-filterable float textures, for [`texture_entry`].
 pub const UNFILTERED: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: false };
 

@@ -199,17 +199,8 @@ impl Compositor {
         if let Some(p) = self.pipelines.get(&k) {
             return p.clone();
         }
-        use crate::gpu::{texture_entry, UNFILTERED};
-        let mut entries = vec![wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }];
+        use crate::gpu::{texture_entry, uniform_entry, UNFILTERED};
+        let mut entries = vec![uniform_entry(0)];
         for i in 0..k.surfaces as u32 {
             entries.push(texture_entry(1 + 2 * i, UNFILTERED));
             entries.push(texture_entry(2 + 2 * i, wgpu::TextureSampleType::Depth));
@@ -306,16 +297,7 @@ impl Compositor {
                     self.gpu.fullscreen_pipeline(
                         "background fill",
                         include_str!("../../../shaders/fill.wgsl"),
-                        &[wgpu::BindGroupLayoutEntry {
-                            binding: 0,
-                            visibility: wgpu::ShaderStages::FRAGMENT,
-                            ty: wgpu::BindingType::Buffer {
-                                ty: wgpu::BufferBindingType::Uniform,
-                                has_dynamic_offset: false,
-                                min_binding_size: None,
-                            },
-                            count: None,
-                        }],
+                        &[crate::gpu::uniform_entry(0)],
                         &[Some(COLOR_FORMAT.into())],
                         None,
                     )
