@@ -1,31 +1,59 @@
-// The compositor's pass (§4.5–4.6): per output fragment, the nearest of this pass's surfaces
-// (and of an earlier pass's result), lit in a group's last pass.
+// The compositor's pass (§4.5–4.6), drawn over rectangles ("cells") of the output that every
+// surface of the pass covers entirely: per fragment the nearest of the pass's surfaces (and of
+// an earlier pass's result), lit in a group's last pass, then laid on the background or blended
+// over what lies beneath.
 //
-// A template, specialised per pass shape at run time (server/src/compositor/mod.rs):
+// A template, specialised per pass shape at run time (server/src/compositor/shader.rs):
 //   //#each surface ... //#end   repeats a block for every surface of the pass, with {{i}},
 //                                {{color_binding}} and {{depth_binding}} filled in;
 //   //#if NAME ... //#end         keeps a block when the pass has the property NAME, and
-//   //#if !NAME ... //#end        when it lacks it: intermediate (an earlier pass's result is an
-//                                input), last (the group's last pass, which writes the output),
-//                                lit, from_depth (normals reconstructed from depth);
-//   {{N}} is the number of surfaces, {{EMPTY}} the intermediate's "no fragment" depth, and
-//   {{icolor_binding}}, {{igeom_binding}} the intermediate's bindings.
+//   //#if !NAME ... //#end        when it lacks it:
+//     select        several candidates: the depth select runs (otherwise one surface, fetched once);
+//     intermediate  an earlier pass's result is a candidate;
+//     last          the group's last pass, which writes the output (else an intermediate);
+//     lit           uniform Phong lighting; from_depth: normals reconstructed from depth;
+//     depth         the surfaces' depth images are bound;
+//     base          the cell's farthest group: laid on the background in the shader, no blending;
+//     copy          the 2D compositor: the texel as it is;
+//     map           the lighting factor is read from a light map (one surface, per-surface normal);
+//     factor        the pass that draws a light map;
+//     first         (inside //#each) the pass's first candidate, taken unconditionally;
+//   {{N}} is the number of surfaces, {{icolor_binding}}, {{igeom_binding}} the intermediate's.
 
-struct Surf { rect: vec4<f32>, normal: vec4<f32>, };
-struct Params { light_pos: vec4<f32>, light_color: vec4<f32>, view_pos: vec4<f32>, misc: vec4<f32>, surf: array<Surf, {{N}}>, };
+struct Params {
+    light_pos: vec4<f32>,
+    // w: the depth-normal scale.
+    light_color: vec4<f32>,
+    view_pos: vec4<f32>,
+    // ambient, shininess, output width, output height.
+    misc: vec4<f32>,
+    // Premultiplied.
+    background: vec4<f32>,
+};
+// rect: x, y (output pixels, from the top), width, height; normal: xyz unit (or zero), w > 0.5
+// when the surface has a depth image.
+struct Surf { rect: vec4<i32>, normal: vec4<f32>, };
+// origin.xy: the render target's origin in output pixels; origin.zw: the intermediate's.
+struct Draw { origin: vec4<i32>, surf: array<Surf, {{N}}>, };
 @group(0) @binding(0) var<uniform> P: Params;
+@group(0) @binding(1) var<uniform> D: Draw;
 //#each surface
 @group(0) @binding({{color_binding}}) var color{{i}}: texture_2d<f32>;
+//#if depth
 @group(0) @binding({{depth_binding}}) var depth{{i}}: texture_depth_2d;
+//#end
+//#end
+//#if map
+@group(0) @binding({{icolor_binding}}) var lmap: texture_2d<f32>;
 //#end
 //#if intermediate
 @group(0) @binding({{icolor_binding}}) var icolor: texture_2d<f32>;
 @group(0) @binding({{igeom_binding}}) var igeom: texture_2d<f32>;
 //#end
 
-@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+// One cell per instance: `r` is its rectangle in clip space (x0, y0, x1, y1), drawn as a strip.
+@vertex fn vs(@builtin(vertex_index) v: u32, @location(0) r: vec4<f32>) -> @builtin(position) vec4<f32> {
+    return vec4<f32>(select(r.x, r.z, (v & 1u) != 0u), select(r.y, r.w, (v & 2u) != 0u), 0.0, 1.0);
 }
 
 //#if from_depth
@@ -42,12 +70,10 @@ fn dn{{i}}(p: vec2<i32>, size: vec2<i32>) -> vec3<f32> {
 //#end
 //#end
 
-//#if last
 //#if lit
-// Phong: (ambient + diffuse + specular) · light colour · colour, the fragment on the plane z = 0.
-fn light(c: vec3<f32>, n_raw: vec3<f32>, frag_px: vec2<f32>) -> vec3<f32> {
-    var n = vec3<f32>(0.0);
-    if (length(n_raw) > 0.0) { n = normalize(n_raw); }
+// The Phong factor ambient + diffuse + specular of a fragment on the plane z = 0 with normal `n`
+// (a unit vector or zero).
+fn factor(n: vec3<f32>, frag_px: vec2<f32>) -> f32 {
     let frag = vec3<f32>(frag_px.x / P.misc.z * 2.0 - 1.0, 1.0 - frag_px.y / P.misc.w * 2.0, 0.0);
     let ld = normalize(P.light_pos.xyz - frag);
     let vd = normalize(P.view_pos.xyz - frag);
@@ -56,60 +82,104 @@ fn light(c: vec3<f32>, n_raw: vec3<f32>, frag_px: vec2<f32>) -> vec3<f32> {
     let base = max(dot(vd, r), 0.0);
     var specular = 1.0;
     if (P.misc.y != 0.0) { specular = pow(base, P.misc.y); }
-    let f = P.misc.x + diffuse + specular;
+    return P.misc.x + diffuse + specular;
+}
+// Lit colour: factor · light colour · colour.
+fn light(c: vec3<f32>, f: f32) -> vec3<f32> {
     return clamp(c * f * P.light_color.rgb, vec3<f32>(0.0), vec3<f32>(1.0));
 }
 //#end
+//#if factor
+// A light map: the factor of every pixel for the normal of the draw's surface.
+@fragment fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    let px = vec2<i32>(floor(pos.xy)) + D.origin.xy;
+    return vec4<f32>(factor(D.surf[0].normal.xyz, vec2<f32>(px) + 0.5), 0.0, 0.0, 0.0);
+}
+//#end
+//#if !factor
+//#if last
 @fragment fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
 //#end
 //#if !last
 struct Out { @location(0) color: vec4<f32>, @location(1) geom: vec4<f32>, };
 @fragment fn fs(@builtin(position) pos: vec4<f32>) -> Out {
 //#end
-    let px = vec2<i32>(floor(pos.xy));
-    var best_d: f32 = {{EMPTY}};
-    var best_c = vec4<f32>(0.0);
+    let px = vec2<i32>(floor(pos.xy)) + D.origin.xy;
+//#if select
+    var best_d: f32;
+    var best_c: vec4<f32>;
     var best_n = vec3<f32>(0.0, 0.0, 1.0);
-    var found = false;
 //#if intermediate
-    let g = textureLoad(igeom, px, 0);
-    if (g.x < 2.0) { best_d = g.x; best_c = textureLoad(icolor, px, 0); best_n = g.yzw; found = true; }
+    let ip = px - D.origin.zw;
+    let g = textureLoad(igeom, ip, 0);
+    best_d = g.x;
+    best_c = textureLoad(icolor, ip, 0);
+    best_n = g.yzw;
 //#end
 //#each surface
     {
-        let r = P.surf[{{i}}].rect;
-        let l = vec2<i32>(px.x - i32(r.x), px.y - i32(r.y));
-        let size = vec2<i32>(i32(r.z), i32(r.w));
-        if (l.x >= 0 && l.y >= 0 && l.x < size.x && l.y < size.y) {
-            // Surface images are in GL row order: bottom row first.
-            let sp = vec2<i32>(l.x, size.y - 1 - l.y);
-            let has_depth = P.surf[{{i}}].normal.w > 0.5;
-            var d: f32 = 1.0;
-            if (has_depth) { d = textureLoad(depth{{i}}, sp, 0); }
-            // `<=`: on equal depth the later surface in stacking order wins.
-            if (d <= best_d) {
-                best_d = d;
-                best_c = textureLoad(color{{i}}, sp, 0);
+        let r = D.surf[{{i}}].rect;
+        // Surface images are in GL row order: bottom row first.
+        let sp = vec2<i32>(px.x - r.x, r.y + r.w - 1 - px.y);
+        var d: f32 = 1.0;
+        if (D.surf[{{i}}].normal.w > 0.5) { d = textureLoad(depth{{i}}, sp, 0); }
+//#if first
+        {
+//#end
+//#if !first
+        // `<=`: on equal depth the later surface in stacking order wins.
+        if (d <= best_d) {
+//#end
+            best_d = d;
+            best_c = textureLoad(color{{i}}, sp, 0);
 //#if from_depth
-                if (has_depth) { best_n = dn{{i}}(sp, size); } else { best_n = vec3<f32>(0.0, 0.0, 1.0); }
+            if (D.surf[{{i}}].normal.w > 0.5) { best_n = dn{{i}}(sp, r.zw); } else { best_n = vec3<f32>(0.0, 0.0, 1.0); }
 //#end
 //#if !from_depth
-                best_n = P.surf[{{i}}].normal.xyz;
+            best_n = D.surf[{{i}}].normal.xyz;
 //#end
-                found = true;
-            }
         }
     }
 //#end
-    if (!found) { discard; }
+//#end
+//#if !select
+//#each surface
+    let r = D.surf[{{i}}].rect;
+    let sp = vec2<i32>(px.x - r.x, r.y + r.w - 1 - px.y);
+    let best_c = textureLoad(color{{i}}, sp, 0);
+//#if from_depth
+    var best_n = vec3<f32>(0.0, 0.0, 1.0);
+    if (D.surf[{{i}}].normal.w > 0.5) { best_n = dn{{i}}(sp, r.zw); }
+//#end
+//#if !from_depth
+    let best_n = D.surf[{{i}}].normal.xyz;
+//#end
+//#end
+//#end
 //#if last
+//#if copy
+    return best_c;
+//#end
+//#if !copy
+//#if map
+    let rgb = light(best_c.rgb, textureLoad(lmap, px, 0).x);
+//#end
+//#if !map
 //#if lit
-    let rgb = light(best_c.rgb, best_n, pos.xy);
+    let rgb = light(best_c.rgb, factor(best_n, vec2<f32>(px) + 0.5));
+//#end
 //#end
 //#if !lit
     let rgb = best_c.rgb;
 //#end
+//#if base
+    let under = 1.0 - best_c.a;
+    return vec4<f32>(rgb * best_c.a + P.background.rgb * under, best_c.a + P.background.a * under);
+//#end
+//#if !base
     return vec4<f32>(rgb * best_c.a, best_c.a);
+//#end
+//#end
 //#end
 //#if !last
     var o: Out;
@@ -118,3 +188,4 @@ struct Out { @location(0) color: vec4<f32>, @location(1) geom: vec4<f32>, };
     return o;
 //#end
 }
+//#end

@@ -8,6 +8,9 @@ use strata_server::compositor::reference::{self, RefLayer};
 use strata_server::compositor::{Compositor, Layer, Lighting, NormalSource};
 use strata_server::gpu::Gpu;
 
+#[path = "compositor/cells.rs"]
+mod cells;
+
 const OUT_W: u32 = 96;
 const OUT_H: u32 = 64;
 

@@ -5,6 +5,8 @@
 
 mod programs;
 mod support;
+#[path = "bad_input/textures.rs"]
+mod textures;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -126,8 +128,8 @@ fn misuse(gl: Gl<'_>) -> Result<(), ClientError> {
     expect(gl, "non-zero border", INVALID_VALUE);
     gl.glTexImage2D(TEXTURE_2D, 0, RGB as i32, 2, 2, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0; 16])))?;
     expect(gl, "format differs from internal format", INVALID_OPERATION);
-    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 2, 2, 0, RGBA, FLOAT, Some(Blob::borrowed(&[0; 64])))?;
-    expect(gl, "float textures are not supported", INVALID_ENUM);
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 2, 2, 0, RGBA, FIXED, Some(Blob::borrowed(&[0; 64])))?;
+    expect(gl, "GL_FIXED is no texel type", INVALID_ENUM);
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0; 16])))?;
     expect(gl, "pixel data shorter than the image", INVALID_OPERATION);
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 1 << 20, 1, 0, RGBA, UNSIGNED_BYTE, None)?;
@@ -163,6 +165,112 @@ fn misuse(gl: Gl<'_>) -> Result<(), ClientError> {
     gl.glDisable(DEPTH_TEST)?;
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glFinish()?;
+
+    // Texture formats and the texture-side extensions.
+    let mut check = |what: &str, got: u32, want: u32| assert_eq!(got, want, "{what}: got {got:#x}, expected {want:#x}");
+    textures::misuse(gl, &mut check)?;
+    textures::float_attachment(gl, &mut check)?;
+    gl.glViewport(0, 0, W, H)?;
+    Ok(())
+}
+
+const OUT_OF_MEMORY: u32 = 0x0505;
+
+/// The RGBA8 pixel at (x, y).
+fn pixel(gl: Gl<'_>, x: i32, y: i32) -> [u8; 4] {
+    let px = gl.glReadPixels(x, y, 1, 1, RGBA, UNSIGNED_BYTE).expect("glReadPixels").0;
+    [px[0], px[1], px[2], px[3]]
+}
+
+/// Arguments whose sums and shifts leave the integer range: each is the GL error the
+/// specification gives (or is clipped), never an overflow in the daemon, and changes nothing.
+fn overflows(gl: Gl<'_>) -> Result<(), ClientError> {
+    let n = &mut Names::starting_at(20_000);
+    expect(gl, "start", NO_ERROR);
+    let red = [255u8, 0, 0, 255].repeat(16);
+    texture(gl, n, 4, 4, RGBA, UNSIGNED_BYTE, &red, NEAREST, CLAMP_TO_EDGE)?;
+    let px = Blob::borrowed(&[0u8; 64]);
+    for level in [32, 40, 14, -1] {
+        gl.glTexSubImage2D(TEXTURE_2D, level, 0, 0, 1, 1, RGBA, UNSIGNED_BYTE, px.clone())?;
+        expect(gl, &format!("glTexSubImage2D at level {level}"), INVALID_VALUE);
+    }
+    gl.glTexSubImage2D(TEXTURE_2D, 0, i32::MAX, 0, 2, 1, RGBA, UNSIGNED_BYTE, px.clone())?;
+    expect(gl, "glTexSubImage2D with xoffset + width past i32::MAX", INVALID_VALUE);
+    gl.glTexSubImage2D(TEXTURE_2D, 0, 0, i32::MAX - 1, 1, 4, RGBA, UNSIGNED_BYTE, px.clone())?;
+    expect(gl, "glTexSubImage2D with yoffset + height past i32::MAX", INVALID_VALUE);
+    gl.glCopyTexSubImage2D(TEXTURE_2D, 0, i32::MAX, 0, 0, 0, 2, 2)?;
+    expect(gl, "glCopyTexSubImage2D with xoffset + width past i32::MAX", INVALID_VALUE);
+    gl.glCopyTexSubImage2D(TEXTURE_2D, 40, 0, 0, 0, 0, 1, 1)?;
+    expect(gl, "glCopyTexSubImage2D at level 40", INVALID_VALUE);
+    gl.glCopyTexImage2D(TEXTURE_2D, 0, RGBA, 0, 0, i32::MAX, 1, 0)?;
+    expect(gl, "glCopyTexImage2D wider than the maximum texture", INVALID_VALUE);
+    // A source rectangle far outside the framebuffer: x + width passes i32::MAX; nothing of
+    // it lies inside, so nothing is copied.
+    gl.glCopyTexSubImage2D(TEXTURE_2D, 0, 0, 0, i32::MAX - 1, i32::MAX - 1, 2, 2)?;
+    expect(gl, "glCopyTexSubImage2D from far outside the framebuffer", NO_ERROR);
+    // The texture is still red everywhere.
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    textured_quad(gl, n, 0.0, 1.0)?;
+    assert_eq!(pixel(gl, W / 2, H / 2), [255, 0, 0, 255], "texture unchanged by the refused updates");
+
+    // A viewport whose x + width passes i32::MAX covers no pixel: the draw changes nothing.
+    gl.glViewport(i32::MAX - 2, i32::MIN + 1, 64, 64)?;
+    expect(gl, "glViewport far outside", NO_ERROR);
+    assert_eq!(gl.glGetIntegerv(0x0BA2)?[..2], [i32::MAX - 2, i32::MIN + 1], "viewport as given");
+    gl.glClearColor(0.0, 0.0, 1.0, 1.0)?;
+    gl.glClear(COLOR_BUFFER_BIT)?;
+    textured_quad(gl, n, 0.0, 1.0)?;
+    expect(gl, "drawing with the far viewport", NO_ERROR);
+    assert_eq!(pixel(gl, W / 2, H / 2), [0, 0, 255, 255], "nothing drawn through the far viewport");
+    gl.glViewport(0, 0, W, H)?;
+
+    // Attribute pointers whose last element lies past u64: a read past the buffer.
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    color(gl, p, [0.0, 1.0, 0.0, 1.0])?;
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&quad(-1.0, -1.0, 1.0, 1.0, 0.0)))?;
+    for (offset, stride) in [(u64::MAX - 3, 12), (1 << 63, i32::MAX), (u64::MAX, 0)] {
+        attrib(gl, 0, 3, FLOAT, false, stride, offset)?;
+        gl.glDrawArrays(TRIANGLES, 0, 6)?;
+        expect(gl, &format!("draw with attribute offset {offset:#x}, stride {stride}"), INVALID_OPERATION);
+        gl.glDrawArrays(0x0000, 0, 6)?;
+        expect(gl, &format!("points with attribute offset {offset:#x}, stride {stride}"), INVALID_OPERATION);
+    }
+    assert_eq!(pixel(gl, W / 2, H / 2), [0, 0, 255, 255], "refused draws drew nothing");
+    // Fans and loops of 2^31 vertices from constant attributes: their index lists would need
+    // gigabytes, which the daemon refuses to allocate.
+    gl.glDisableVertexAttribArray(0)?;
+    for mode in [TRIANGLE_FAN, LINE_LOOP] {
+        gl.glDrawArrays(mode, 0, i32::MAX)?;
+        expect(gl, &format!("mode {mode:#x} with 2^31 vertices"), OUT_OF_MEMORY);
+    }
+    assert_eq!(pixel(gl, W / 2, H / 2), [0, 0, 255, 255], "refused draws drew nothing");
+
+    // Reads: a rectangle whose x + width passes i32::MAX is clipped to the framebuffer; one
+    // larger than any reply can carry is refused.
+    let read = gl.glReadPixels(i32::MAX - 1, 0, 4, 1, RGBA, UNSIGNED_BYTE)?.0;
+    expect(gl, "glReadPixels past i32::MAX", NO_ERROR);
+    assert_eq!(read, vec![0; 16], "pixels outside the framebuffer read as zero");
+    let huge = gl.glReadPixels(0, 0, i32::MAX, i32::MAX, RGBA, UNSIGNED_BYTE)?.0;
+    expect(gl, "glReadPixels of 2^62 pixels", OUT_OF_MEMORY);
+    assert!(huge.is_empty());
+
+    // A uniform array too large for any uniform block fails to link, with a log.
+    let vs = "uniform mat4 big[2000000000]; attribute vec4 pos; void main() { gl_Position = big[1] * pos; }";
+    let (s1, s2, prog) = (n.next(), n.next(), n.next());
+    gl.glCreateShader(0x8B31, s1)?;
+    gl.glShaderSource(s1, Text::borrowed(vs))?;
+    gl.glCompileShader(s1)?;
+    gl.glCreateShader(0x8B30, s2)?;
+    gl.glShaderSource(s2, Text::borrowed(FS_COLOR))?;
+    gl.glCompileShader(s2)?;
+    gl.glCreateProgram(prog)?;
+    gl.glAttachShader(prog, s1)?;
+    gl.glAttachShader(prog, s2)?;
+    gl.glLinkProgram(prog)?;
+    assert_eq!(gl.glGetProgramiv(prog, 0x8B82)?, 0, "a 128 GB uniform array does not link");
+    assert!(gl.glGetProgramInfoLog(prog)?.contains("uniform"), "the log names the uniforms");
+    gl.glClearColor(0.0, 0.0, 0.0, 0.0)?;
+    expect(gl, "end", NO_ERROR);
     Ok(())
 }
 
@@ -204,6 +312,7 @@ fn gl_misuse_records_errors_while_another_client_draws_correctly() {
     });
     let mut gl = strata_context(&daemon.socket, "misuse").expect("misuse client");
     misuse(&mut gl).expect("misuse sequence");
+    overflows(&mut gl).expect("overflow sequence");
     // The misbehaving client itself still renders correctly afterwards.
     let img = render_with(&mut gl, final_case, &mut Names::starting_at(50_000)).expect("final render");
     assert!(compare(final_case, &img, &final_expected).is_none(), "misuse client's later rendering differs from Mesa");

@@ -1,8 +1,13 @@
 //! Compositor throughput: k = 1…16 full-output surfaces at one z, composited per fragment
-//! with lighting, at a chaining limit (`--max-textures`, default 8 as on the thesis' i.MX6)
-//! and at the device's limit. The floor is physical: the bytes a composite must at least
-//! touch (every surface's colour and depth read once, the output written once) at the
-//! memcpy bandwidth measured in the same run.
+//! (lit by default), at a chaining limit (`--max-textures`, default 8 as on the thesis' i.MX6)
+//! and at the device's limit.
+//!
+//! The floor is physical and measured in the same run: the time the same device needs to move
+//! the bytes a composite must read and write, as `copy_texture_to_texture` of that many bytes
+//! (in units of one output-sized RGBA8 image). A composite must write the output once and read,
+//! per pixel, the one surface's colour where one surface covers it (plus its depth when
+//! normals come from depth), and where k surfaces overlap every depth and the winner's colour.
+//! CPU memcpy of the same bytes is printed beside it as a second reference.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -10,7 +15,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use strata_server::compositor::{Compositor, Layer, Lighting};
+use strata_server::compositor::{Compositor, Layer, Lighting, NormalSource};
 use strata_server::gpu::Gpu;
 
 use crate::plot::{line_plot, Series};
@@ -24,6 +29,9 @@ pub struct Args {
     /// Output height.
     #[arg(long, default_value_t = 720)]
     height: u32,
+    /// Fewest surfaces.
+    #[arg(long, default_value_t = 1)]
+    min_surfaces: usize,
     /// Most surfaces.
     #[arg(long, default_value_t = 16)]
     max_surfaces: usize,
@@ -33,6 +41,12 @@ pub struct Args {
     /// Timed frames per point.
     #[arg(long, default_value_t = 8)]
     frames: u32,
+    /// Lighting off (the composite is then a select and a copy).
+    #[arg(long)]
+    unlit: bool,
+    /// Normals reconstructed from depth instead of per surface.
+    #[arg(long)]
+    from_depth: bool,
     /// Where to write the curve (JSON) and its plot (PNG, same name).
     #[arg(long, default_value = "target/strata-bench/composite.json")]
     out: PathBuf,
@@ -46,20 +60,21 @@ struct Surface {
     depth: wgpu::TextureView,
 }
 
+fn texture(gpu: &Gpu, w: u32, h: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("bench image"),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// Surface `i`: a colour gradient and a tilted depth plane, so the surfaces intersect.
 fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
-    let mk = |format, usage| {
-        gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("bench surface"),
-            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
     let mut rgba = vec![0u8; (w * h * 4) as usize];
     let mut depth = vec![0f32; (w * h) as usize];
     let (a, b) = ((i as f32 * 0.7).sin() * 0.4, (i as f32 * 1.3).cos() * 0.4);
@@ -71,44 +86,71 @@ fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
             depth[(y * w + x) as usize] = (0.5 + a * (u - 0.5) + b * (v - 0.5)).clamp(0.0, 1.0);
         }
     }
-    let c = mk(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+    let c = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     gpu.queue.write_texture(
         c.as_image_copy(),
         &rgba,
         wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * 4), rows_per_image: None },
         c.size(),
     );
-    let d = mk(
-        wgpu::TextureFormat::Depth32Float,
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
-    );
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let d = texture(gpu, w, h, wgpu::TextureFormat::Depth32Float, usage);
     gpu.write_depth(&d, w, h, &depth);
     Surface { color: c.create_view(&Default::default()), depth: d.create_view(&Default::default()) }
 }
 
-/// Milliseconds per composite of `surfaces`: the median of `frames` timed frames after one
-/// warm-up (the median resists other load on a shared machine).
-fn time_composite(gpu: &Gpu, comp: &mut Compositor, surfaces: &[Surface], out: &wgpu::Texture, frames: u32) -> f64 {
-    let (w, h) = (out.width() as i32, out.height() as i32);
-    let layers: Vec<Layer<'_>> = surfaces
-        .iter()
-        .map(|s| Layer { rect: [0, 0, w, h], z: 0.5, color: &s.color, depth: Some(&s.depth), normal: [0.0, 0.0, 1.0] })
-        .collect();
-    let light = Lighting::default();
-    let mut frame = || {
-        comp.composite(&layers, &light, out, [0.0, 0.0, 0.0, 1.0], None);
-        let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-    };
-    frame();
+/// The median of `frames` timings of `f` (after one warm-up), in milliseconds; the median
+/// resists other load on a shared machine.
+fn median_ms(frames: u32, mut f: impl FnMut()) -> f64 {
+    f();
     let mut times: Vec<f64> = (0..frames)
         .map(|_| {
             let start = Instant::now();
-            frame();
+            f();
             start.elapsed().as_secs_f64() * 1e3
         })
         .collect();
     times.sort_by(f64::total_cmp);
     times[times.len() / 2]
+}
+
+/// Milliseconds per composite of `surfaces`.
+fn time_composite(
+    gpu: &Gpu,
+    comp: &mut Compositor,
+    surfaces: &[Surface],
+    out: &wgpu::Texture,
+    light: &Lighting,
+    frames: u32,
+) -> f64 {
+    let (w, h) = (out.width() as i32, out.height() as i32);
+    let layers: Vec<Layer<'_>> = surfaces
+        .iter()
+        .map(|s| Layer { rect: [0, 0, w, h], z: 0.5, color: &s.color, depth: Some(&s.depth), normal: [0.0, 0.0, 1.0] })
+        .collect();
+    median_ms(frames, || {
+        comp.composite(&layers, light, out, [0.0, 0.0, 0.0, 1.0], None);
+        let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+    })
+}
+
+/// Milliseconds the device takes to copy one `w`×`h` RGBA8 image (`copy_texture_to_texture`,
+/// eight per submission so that submitting costs little).
+fn device_copy_ms(gpu: &Gpu, w: u32, h: u32, frames: u32) -> f64 {
+    let usage = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
+    let a = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
+    let b = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
+    const PER_SUBMIT: u32 = 8;
+    median_ms(frames, || {
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        for i in 0..PER_SUBMIT {
+            let (src, dst) = if i % 2 == 0 { (&a, &b) } else { (&b, &a) };
+            enc.copy_texture_to_texture(src.as_image_copy(), dst.as_image_copy(), a.size());
+        }
+        gpu.queue.submit([enc.finish()]);
+        let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+    }) / f64::from(PER_SUBMIT)
 }
 
 /// One measured point.
@@ -118,21 +160,28 @@ struct Point {
     k: usize,
     passes: usize,
     ms_per_frame: f64,
-    floor_ms: f64,
+    device_floor_ms: f64,
+    memcpy_floor_ms: f64,
 }
 
 /// Runs the benchmark and prints its report; the last line is JSON.
 pub fn run(args: &Args) -> Result<()> {
     let (w, h) = (args.width, args.height);
-    if args.max_surfaces == 0 || args.frames == 0 || w == 0 || h == 0 {
-        bail!("--max-surfaces, --frames and the output size must be positive");
+    if args.max_surfaces == 0 || args.min_surfaces == 0 || args.frames == 0 || w == 0 || h == 0 {
+        bail!("--min-surfaces, --max-surfaces, --frames and the output size must be positive");
     }
+    let ks = args.min_surfaces..=args.max_surfaces.max(args.min_surfaces);
     let gpu: Arc<Gpu> = Gpu::open()?;
     let device_limit = gpu.limits.max_sampled_textures_per_shader_stage;
     let mut limits = vec![args.max_textures];
     if device_limit != args.max_textures {
         limits.push(device_limit);
     }
+    let light = Lighting {
+        enabled: !args.unlit,
+        normals: if args.from_depth { NormalSource::FromDepth } else { NormalSource::PerSurface },
+        ..Lighting::default()
+    };
     let quiet = args.json;
     let bar = |len: u64, msg: &'static str| {
         let pb = if quiet { ProgressBar::hidden() } else { ProgressBar::new(len) };
@@ -143,80 +192,103 @@ pub fn run(args: &Args) -> Result<()> {
         pb.set_message(msg);
         pb
     };
-    let pb = bar(args.max_surfaces as u64, "uploading surfaces");
-    let surfaces: Vec<Surface> = (0..args.max_surfaces)
+    let n = *ks.end();
+    let pb = bar(n as u64, "uploading surfaces");
+    let surfaces: Vec<Surface> = (0..n)
         .map(|i| {
             pb.inc(1);
             make_surface(&gpu, i, w, h)
         })
         .collect();
     pb.finish();
-    let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("bench output"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    // The floor's bandwidth: memcpy of a frame-sized buffer, far beyond the caches.
-    let payload = (w * h * 8) as usize;
-    let memcpy_gbps = crate::transport::memcpy_gbps(payload, 40, &bar(40, "memcpy"));
-    let floor_bytes = |k: usize| (k as u64 * u64::from(w) * u64::from(h) * 8 + u64::from(w) * u64::from(h) * 4) as f64;
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    let out = texture(&gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
+    // The floors: one output-sized RGBA8 image copied by the device, and by memcpy.
+    let image = u64::from(w) * u64::from(h) * 4;
+    let copy_ms = device_copy_ms(&gpu, w, h, 4 * args.frames);
+    let memcpy_gbps = crate::transport::memcpy_gbps(image as usize, 40, &bar(40, "memcpy"));
+    let memcpy_ms = image as f64 / (memcpy_gbps * 1e9) * 1e3;
+    // Images a composite of k full-output surfaces must move: the output written, and read
+    // the one colour (and depth, for normals from depth), or every depth and one colour.
+    let lit_depth = light.enabled && light.normals == NormalSource::FromDepth;
+    let images = |k: usize| -> u64 {
+        if k == 1 {
+            2 + u64::from(lit_depth)
+        } else {
+            k as u64 + 2
+        }
+    };
     let mut points = Vec::new();
     for &m in &limits {
         let mut comp = Compositor::new(gpu.clone(), Some(m))?;
-        let pb = bar(args.max_surfaces as u64, if m == device_limit { "device limit" } else { "--max-textures" });
-        for k in 1..=args.max_surfaces {
-            let ms = time_composite(&gpu, &mut comp, &surfaces[..k], &out, args.frames);
+        let pb = bar(ks.clone().count() as u64, if m == device_limit { "device limit" } else { "--max-textures" });
+        for k in ks.clone() {
+            let ms = time_composite(&gpu, &mut comp, &surfaces[..k], &out, &light, args.frames);
             points.push(Point {
                 max_textures: m,
                 k,
                 passes: comp.last_passes,
                 ms_per_frame: ms,
-                floor_ms: floor_bytes(k) / (memcpy_gbps * 1e9) * 1e3,
+                device_floor_ms: images(k) as f64 * copy_ms,
+                memcpy_floor_ms: images(k) as f64 * memcpy_ms,
             });
             pb.inc(1);
         }
         pb.finish();
     }
+    let lighting = match (light.enabled, lit_depth) {
+        (false, _) => "unlit",
+        (true, false) => "lit, per-surface normals",
+        (true, true) => "lit, normals from depth",
+    };
     if !quiet {
-        println!("composite {w}x{h}, lit, k surfaces at one z; memcpy {memcpy_gbps:.2} GB/s (same run)");
+        println!("composite {w}x{h}, {lighting}, k surfaces at one z");
         println!(
-            "{:>5} {:>3} {:>7} {:>12} {:>10} {:>12}",
-            "limit", "k", "passes", "ms/frame", "floor ms", "floor/actual"
+            "device copy of one {w}x{h} RGBA8 image: {copy_ms:.3} ms; memcpy of it: {memcpy_ms:.3} ms ({memcpy_gbps:.2} GB/s), same run"
+        );
+        println!(
+            "{:>5} {:>3} {:>7} {:>10} {:>10} {:>12} {:>10} {:>12}",
+            "limit", "k", "passes", "ms/frame", "floor ms", "floor/actual", "memcpy ms", "memcpy/act."
         );
         for p in &points {
             println!(
-                "{:>5} {:>3} {:>7} {:>12.2} {:>10.2} {:>12.3}",
+                "{:>5} {:>3} {:>7} {:>10.2} {:>10.2} {:>12.3} {:>10.2} {:>12.3}",
                 p.max_textures,
                 p.k,
                 p.passes,
                 p.ms_per_frame,
-                p.floor_ms,
-                p.floor_ms / p.ms_per_frame
+                p.device_floor_ms,
+                p.device_floor_ms / p.ms_per_frame,
+                p.memcpy_floor_ms,
+                p.memcpy_floor_ms / p.ms_per_frame
             );
         }
     }
     let at = |m: u32, k: usize| points.iter().find(|p| p.max_textures == m && p.k == k);
-    let k10 = 10.min(args.max_surfaces);
+    let k10 = 10.clamp(*ks.start(), *ks.end());
     let chained = at(args.max_textures, k10).map(|p| p.ms_per_frame);
     let device = at(device_limit, k10).map(|p| p.ms_per_frame);
-    let floor_ms = floor_bytes(k10) / (memcpy_gbps * 1e9) * 1e3;
+    let worst = |m: u32| {
+        points.iter().filter(|p| p.max_textures == m).map(|p| p.device_floor_ms / p.ms_per_frame).min_by(f64::total_cmp)
+    };
     let summary = serde_json::json!({
         "benchmark": "composite",
         "width": w,
         "height": h,
+        "lighting": lighting,
         "k": k10,
         "device_max_textures": device_limit,
+        "device_copy_ms_per_image": copy_ms,
         "memcpy_bandwidth_gb_per_s": memcpy_gbps,
-        "bytes_per_frame_lower_bound": floor_bytes(k10),
-        "bytes_per_frame_lower_bound / memcpy_bandwidth_ms": floor_ms,
+        "images_moved_per_frame": images(k10),
+        "device_floor_ms": images(k10) as f64 * copy_ms,
         "ms_per_frame": { format!("max_textures_{}", args.max_textures): chained, format!("device_{device_limit}"): device },
         "chained_over_single_pass": chained.zip(device).map(|(c, d)| c / d),
-        "floor_over_actual": { format!("max_textures_{}", args.max_textures): chained.map(|c| floor_ms / c), format!("device_{device_limit}"): device.map(|d| floor_ms / d) },
+        "device_floor_over_actual": {
+            format!("max_textures_{}", args.max_textures): chained.map(|c| images(k10) as f64 * copy_ms / c),
+            format!("device_{device_limit}"): device.map(|d| images(k10) as f64 * copy_ms / d),
+        },
+        "worst_device_floor_over_actual": { format!("max_textures_{}", args.max_textures): worst(args.max_textures), format!("device_{device_limit}"): worst(device_limit) },
         "curve": args.out,
     });
     if let Some(dir) = args.out.parent() {
@@ -238,15 +310,15 @@ pub fn run(args: &Args) -> Result<()> {
             reference: false,
         })
         .chain(std::iter::once(Series {
-            name: "floor: bytes / memcpy bandwidth".into(),
-            points: (1..=args.max_surfaces).map(|k| (k as f64, floor_bytes(k) / (memcpy_gbps * 1e9) * 1e3)).collect(),
+            name: "floor: the same bytes copied by the device".into(),
+            points: ks.clone().map(|k| (k as f64, images(k) as f64 * copy_ms)).collect(),
             reference: true,
         }))
         .collect();
     let png = args.out.with_extension("png");
     match line_plot(
         &png,
-        &format!("Per-fragment depth compositing, {w}x{h}, lit"),
+        &format!("Per-fragment depth compositing, {w}x{h}, {lighting}"),
         "surfaces at one z (k)",
         "ms per output frame",
         &series,

@@ -5,7 +5,9 @@
 //! same X server) and through the drop-in libEGL/libGLESv2 alternately, and the medians of
 //! its scores are compared. Then n = 1…N instances run concurrently through Strata, all at the
 //! same window rectangle and z, so that every pixel is a per-fragment depth contest between
-//! n surfaces (the same-z curve), and optionally the same n natively.
+//! n surfaces (the same-z curve), and optionally the same n natively. With `--z-step` the
+//! instances sit at one z each instead (the thesis' Table 5.3), and with `--compositor 2d` the
+//! daemon composites them as a 2D blitting compositor would (Table 5.4).
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -13,6 +15,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context, Result};
+use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::plot::{line_plot, Series};
@@ -42,6 +45,13 @@ pub struct Args {
     /// Skip the native side of the curve.
     #[arg(long)]
     no_native_curve: bool,
+    /// The daemon's compositor (2d: the baseline of the thesis' Table 5.4).
+    #[arg(long, value_enum, default_value_t = strata_server::compositor::Mode::ThreeD)]
+    compositor: strata_server::compositor::Mode,
+    /// Instance i of a concurrent run sits at z = i · STEP (0: all at one z, the same-z curve;
+    /// 1: one z each, as in the thesis' Tables 5.3 and 5.4).
+    #[arg(long, default_value_t = 0.0)]
+    z_step: f32,
     /// The daemon's headless output, WxH.
     #[arg(long, default_value = "1920x720")]
     output: String,
@@ -167,7 +177,8 @@ struct Run {
 }
 
 impl Runner<'_> {
-    fn command(&self, side: Side) -> Command {
+    /// glmark2 on `side`; through Strata, as instance `i` of its run.
+    fn command(&self, side: Side, i: u32) -> Command {
         let mut cmd = Command::new("glmark2-es2");
         let bench = format!("build:model={}:duration={}", self.args.model, self.args.duration);
         cmd.args(["-b", &bench, "-s", &self.args.size])
@@ -181,7 +192,7 @@ impl Runner<'_> {
         if side == Side::Strata {
             cmd.env("LD_LIBRARY_PATH", &self.shim)
                 .env("STRATA_SOCKET", &self.socket)
-                .env("STRATA_WINDOW", &self.window);
+                .env("STRATA_WINDOW", format!("{},{}", self.window, i as f32 * self.args.z_step));
         }
         cmd
     }
@@ -189,7 +200,7 @@ impl Runner<'_> {
     /// Runs `n` instances at once on `side` and returns each one's score.
     fn run(&self, side: Side, n: u32) -> Result<Vec<Run>> {
         let children: Vec<Child> =
-            (0..n).map(|_| self.command(side).spawn().context("starting glmark2-es2")).collect::<Result<_>>()?;
+            (0..n).map(|i| self.command(side, i).spawn().context("starting glmark2-es2")).collect::<Result<_>>()?;
         let deadline = Duration::from_secs(u64::from(self.args.duration) * 3 + 120);
         // Collect every child even if one fails, so none is left running.
         let outcomes: Vec<Result<Run>> = children.into_iter().map(|c| finish(c, deadline)).collect();
@@ -291,11 +302,17 @@ pub fn run(args: &Args) -> Result<()> {
     let log = tmp.0.join("daemon.log");
     let daemon: DaemonProc = start_daemon_with(
         strata_server::ExecutorKind::Gles,
-        &["--output".into(), format!("headless:bench={out_w}x{out_h}")],
+        &[
+            "--output".into(),
+            format!("headless:bench={out_w}x{out_h}"),
+            "--compositor".into(),
+            args.compositor.to_possible_value().map_or("3d".into(), |v| v.get_name().to_string()),
+        ],
         Some(&log),
     )?;
-    // Every instance's window surface: the same rectangle (centred in the output) and z.
-    let window = format!("{},{},0", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
+    // Every instance's window surface: the same rectangle (centred in the output); z by
+    // `--z-step`.
+    let window = format!("{},{}", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
     let runner = Runner { args, display: x.display.clone(), shim, socket: daemon.1.clone(), window: window.clone() };
     let daemon_log = || {
         let text = std::fs::read_to_string(&log).unwrap_or_default();
@@ -355,13 +372,19 @@ pub fn run(args: &Args) -> Result<()> {
     let png = args.out.with_extension("png");
     let bench = format!("build:model={}:duration={}", args.model, args.duration);
     if !args.json {
-        println!("glmark2-es2 -b {bench} -s {}, Xvfb; through Strata at STRATA_WINDOW={window}", args.size);
+        println!(
+            "glmark2-es2 -b {bench} -s {}, Xvfb; through Strata ({:?} compositor) at STRATA_WINDOW={window},i*{}",
+            args.size, args.compositor, args.z_step
+        );
         println!("  native (Mesa llvmpipe) scores: {native_runs:?}  median {native_score}");
         println!("  through Strata scores:         {strata_runs:?}  median {strata_score}");
         println!("  strata / native:               {ratio:.3}");
         if !points.is_empty() {
             println!();
-            println!("same z, same area: n concurrent instances (score = FPS of each instance)");
+            println!(
+                "{}, same area: n concurrent instances (score = FPS of each instance)",
+                if args.z_step == 0.0 { "same z" } else { "one z each" }
+            );
             println!(
                 "{:>3} {:>12} {:>12} {:>12} {:>12}  strata scores",
                 "n", "strata total", "strata avg", "native total", "native avg"
@@ -385,6 +408,8 @@ pub fn run(args: &Args) -> Result<()> {
         "glmark2_benchmark": bench,
         "size": args.size,
         "window": window,
+        "compositor": format!("{:?}", args.compositor),
+        "z_step": args.z_step,
         "native_runs": native_runs,
         "strata_runs": strata_runs,
         "native_score": native_score,
@@ -426,7 +451,12 @@ pub fn run(args: &Args) -> Result<()> {
         }
         match line_plot(
             &png,
-            &format!("glmark2-es2 {bench}, {}: n instances at one z and area", args.size),
+            &format!(
+                "glmark2-es2 {bench}, {}: n instances, one area, {}, {:?} compositor",
+                args.size,
+                if args.z_step == 0.0 { "one z" } else { "one z each" },
+                args.compositor
+            ),
             "concurrent instances (n)",
             "frames per second",
             &series,

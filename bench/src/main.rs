@@ -28,7 +28,7 @@ enum Cmd {
     /// wgpu, measured in the same run.
     Execute(execute::Args),
     /// Compositor: ms per output frame for k = 1…16 surfaces at a chaining limit and at the
-    /// device's limit, against a memory-bandwidth floor measured in the same run.
+    /// device's limit, against the device's copy of the same bytes, measured in the same run.
     Composite(composite::Args),
     /// Unmodified glmark2-es2 through Strata against native Mesa (same run, same Xvfb), and
     /// n = 1…10 concurrent instances at one z and area.
@@ -45,6 +45,9 @@ enum Cmd {
         /// An output, as for `stratad serve --output` (repeatable).
         #[arg(long = "output")]
         outputs: Vec<strata_server::root::OutputSpec>,
+        /// The compositor, as for `stratad serve --compositor`.
+        #[arg(long, value_enum, default_value_t = strata_server::compositor::Mode::ThreeD)]
+        compositor: strata_server::compositor::Mode,
     },
 }
 
@@ -56,6 +59,8 @@ fn main() -> Result<()> {
         Cmd::Execute(args) => execute::run(&args),
         Cmd::Composite(args) => composite::run(&args),
         Cmd::Glmark2(args) => glmark2::run(&args),
-        Cmd::Daemon { socket, executor, outputs } => transport::daemon(socket, executor, outputs),
+        Cmd::Daemon { socket, executor, outputs, compositor } => {
+            transport::daemon(socket, executor, outputs, compositor)
+        }
     }
 }

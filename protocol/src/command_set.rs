@@ -1,5 +1,7 @@
 //! The generator behind the command table: one `macro_rules!` expansion yields the `Command`
-//! enum, `Opcode`, `Reply`, the typed `Calls` methods and (with `arbitrary`) test strategies.
+//! enum, `Opcode`, `Reply`, the typed `Calls` methods, (with `arbitrary`) test strategies, and
+//! `command_table!`, which hands the same table to a macro of another crate (the daemon derives
+//! its dispatch from it).
 
 /// Expands the command table (see `commands.rs`) into every derived item.
 macro_rules! command_set {
@@ -11,6 +13,22 @@ macro_rules! command_set {
             $( $(#[doc = $sdoc:literal])* $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
         }
     ) => {
+        /// Hands the whole command table to `$callback!`, in the form
+        /// `async { glName => Variant { field: Type, ... }; ... }
+        /// sync { glName => Variant { field: Type, ... } -> ReplyType; ... }`,
+        /// so that another crate can derive code from it (a dispatch, a trait) and cannot
+        /// miss a command. The field types name `strata_protocol::wire` and
+        /// `strata_protocol::commands` items, which the caller brings into scope.
+        #[macro_export]
+        macro_rules! command_table {
+            ($callback:ident) => {
+                $callback! {
+                    async { $( $agl => $av { $( $af : $aty ),* } ; )* }
+                    sync { $( $sgl => $sv { $( $sf : $sty ),* } -> $ret ; )* }
+                }
+            };
+        }
+
         /// One call a client streams to the daemon, decoded in place from the ring.
         #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
         #[serde(bound(deserialize = "'de: 'a"))]

@@ -46,6 +46,26 @@ pub struct ExecStats {
     pub draws: u64,
 }
 
+/// One `GL_KHR_debug` message, as `glGetDebugMessageLogKHR` and the debug callback report it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DebugMessage {
+    /// `GL_DEBUG_SOURCE_*_KHR`.
+    pub source: GLenum,
+    /// `GL_DEBUG_TYPE_*_KHR`.
+    pub ty: GLenum,
+    /// The message's id within its source and type.
+    pub id: GLuint,
+    /// `GL_DEBUG_SEVERITY_*_KHR`.
+    pub severity: GLenum,
+    /// The text, without a terminating NUL.
+    pub text: Bytes,
+}
+
+/// `GL_MAX_LABEL_LENGTH_KHR`: a label must be shorter than this (in bytes).
+pub const MAX_LABEL_LENGTH: GLsizei = 256;
+/// `GL_MAX_DEBUG_MESSAGE_LENGTH_KHR`: a message must be shorter than this (in bytes).
+pub const MAX_DEBUG_MESSAGE_LENGTH: GLsizei = 4096;
+
 /// Owned raw bytes in a reply (e.g. `glReadPixels`), encoded without per-element framing.
 #[derive(Clone, PartialEq, Eq, Default)]
 pub struct Bytes(pub Vec<u8>);
@@ -188,6 +208,27 @@ command_set! {
         strataVertexAttribData => VertexAttribData { index: GLuint, data: Blob<'a> };
         /// `glDrawElements` with a client-side index array.
         strataDrawElementsData => DrawElementsData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a> };
+        glGenVertexArraysOES => GenVertexArraysOES { names: Slice<'a, GLuint> };
+        glBindVertexArrayOES => BindVertexArrayOES { array: GLuint };
+        glDeleteVertexArraysOES => DeleteVertexArraysOES { names: Slice<'a, GLuint> };
+        /// `ids` holds the first `count` ids (none when `count` is not positive).
+        glDebugMessageControlKHR => DebugMessageControlKHR { source: GLenum, ty: GLenum, severity: GLenum, count: GLsizei, ids: Slice<'a, GLuint>, enabled: bool };
+        /// `text` holds the message: `length` bytes, or with a negative `length` the bytes before
+        /// the NUL, at most `MAX_DEBUG_MESSAGE_LENGTH` of either (enough to refuse a longer one).
+        glDebugMessageInsertKHR => DebugMessageInsertKHR { source: GLenum, ty: GLenum, id: GLuint, severity: GLenum, length: GLsizei, text: Blob<'a> };
+        /// `text` as for `glDebugMessageInsertKHR`.
+        glPushDebugGroupKHR => PushDebugGroupKHR { source: GLenum, id: GLuint, length: GLsizei, text: Blob<'a> };
+        glPopDebugGroupKHR => PopDebugGroupKHR {};
+        /// `label` is `None` for NULL (remove the label); else as `text` of `glDebugMessageInsertKHR`
+        /// with `MAX_LABEL_LENGTH`.
+        glObjectLabelKHR => ObjectLabelKHR { identifier: GLenum, name: GLuint, length: GLsizei, label: Option<Blob<'a>> };
+        /// `ptr` is the application's sync object pointer.
+        glObjectPtrLabelKHR => ObjectPtrLabelKHR { ptr: u64, length: GLsizei, label: Option<Blob<'a>> };
+        /// Whether the application has a `GL_KHR_debug` callback: while it has, new messages
+        /// wait for `strataDebugMessages` instead of entering the message log.
+        strataDebugCallback => DebugCallback { installed: bool };
+        /// `GL_EXT_discard_framebuffer`: the listed attachments' contents may be discarded.
+        glDiscardFramebufferEXT => DiscardFramebufferEXT { target: GLenum, attachments: Slice<'a, GLenum> };
     }
     sync {
         glCheckFramebufferStatus => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -253,6 +294,20 @@ command_set! {
         /// Blocks while the surface has K frames in flight (and, with a swap interval n ≥ 1,
         /// until n output frames have passed since the previous swap).
         eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle } -> EglResult<()>;
+        glIsVertexArrayOES => IsVertexArrayOES { array: GLuint } -> bool;
+        /// At most `count` messages, oldest first; with `log` (the application passed a message
+        /// buffer) only as many as fit in `buf_size` bytes with their NULs.
+        glGetDebugMessageLogKHR => GetDebugMessageLogKHR { count: GLuint, buf_size: GLsizei, log: bool } -> Vec<DebugMessage>;
+        /// The whole label (the client truncates it to `buf_size`), `None` after a GL error.
+        glGetObjectLabelKHR => GetObjectLabelKHR { identifier: GLenum, name: GLuint, buf_size: GLsizei } -> Option<Bytes>;
+        /// As `glGetObjectLabelKHR`, for a sync object.
+        glGetObjectPtrLabelKHR => GetObjectPtrLabelKHR { ptr: u64, buf_size: GLsizei } -> Option<Bytes>;
+        /// The messages generated for the application's debug callback since the last call.
+        strataDebugMessages => DebugMessages {} -> Vec<DebugMessage>;
+        /// Reallocates a window surface's colour and depth images at a new size, keeping its
+        /// id, placement, depth layer, normal, swap interval and pacing; the last shown frame
+        /// stays on screen until the next swap.
+        strataResizeSurface => ResizeSurface { display: EglHandle, surface: EglHandle, width: GLsizei, height: GLsizei } -> EglResult<()>;
     }
 }
 
@@ -291,6 +346,16 @@ mod arbitrary {
                     render_passes,
                     draws,
                 })
+                .boxed()
+        }
+    }
+
+    impl Arbitrary for DebugMessage {
+        type Parameters = ();
+        type Strategy = BoxedStrategy<Self>;
+        fn arbitrary_with(_: ()) -> Self::Strategy {
+            (any::<GLenum>(), any::<GLenum>(), any::<GLuint>(), any::<GLenum>(), any::<Bytes>())
+                .prop_map(|(source, ty, id, severity, text)| DebugMessage { source, ty, id, severity, text })
                 .boxed()
         }
     }

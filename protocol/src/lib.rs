@@ -13,7 +13,9 @@ pub mod segment;
 pub mod tally;
 pub mod wire;
 
-pub use commands::{ActiveVariable, Bytes, Calls, Command, EglResult, ExecStats, Opcode, Reply, StreamTally};
+pub use commands::{
+    ActiveVariable, Bytes, Calls, Command, DebugMessage, EglResult, ExecStats, Opcode, Reply, StreamTally,
+};
 pub use wire::{Blob, Slice, Text};
 
 /// A reply that does not answer the call it was read for.

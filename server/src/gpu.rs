@@ -1,6 +1,7 @@
 //! The one GPU device the daemon owns, shared by every client's executor.
 
-use std::sync::Arc;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 
 use tracing::{error, info};
 
@@ -15,10 +16,22 @@ pub enum GpuError {
     Device(#[from] wgpu::RequestDeviceError),
 }
 
+/// Optional device features the executor uses where the adapter has them: linear filtering
+/// of RGBA32F (`OES_texture_float_linear`), and BC and ETC2 block formats (compressed textures
+/// sampled natively instead of decoded on upload).
+const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
+    .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
+    .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2);
+
+/// The pipelines of `write_depth`, one per depth format.
+type DepthWriters = HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>;
+
 /// The device and queue every executor draws with.
 pub struct Gpu {
-    /// Lazily built pipeline for `write_depth`.
-    depth_writer: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
+    /// Lazily built pipelines for `write_depth`.
+    depth_writers: Mutex<DepthWriters>,
+    /// The optional features the device was opened with.
+    pub features: wgpu::Features,
     /// The device.
     pub device: wgpu::Device,
     /// Its queue.
@@ -111,30 +124,54 @@ impl Gpu {
         (bgl, pipeline)
     }
 
-    /// Writes depth values (in [0, 1], rows in memory order) into a Depth32Float texture.
-    /// wgpu cannot copy into depth images, so the values pass through a float texture and a
-    /// pass that sets `frag_depth`.
+    /// Writes depth values (in [0, 1], rows in memory order) into a whole `width`×`height`
+    /// depth texture.
     pub fn write_depth(&self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
+        self.write_depth_region(tex, (width, height), [0, 0, width, height], values, None);
+    }
+
+    /// Writes depth values (in [0, 1], rows in memory order) into the rectangle `[x, y, w, h]`
+    /// of a `width`×`height` depth or depth-stencil texture, and stencil values (one byte per
+    /// texel) if given. wgpu cannot copy into depth aspects, so the depths pass through a float
+    /// texture and a scissored pass that sets `frag_depth`; stencil is copied directly.
+    pub fn write_depth_region(
+        &self,
+        tex: &wgpu::Texture,
+        size: (u32, u32),
+        rect: [u32; 4],
+        depths: &[f32],
+        stencil: Option<&[u8]>,
+    ) {
+        let [x, y, w, h] = rect;
+        if w == 0 || h == 0 {
+            return;
+        }
         let d = &self.device;
-        let (bgl, pipeline) = self.depth_writer.get_or_init(|| {
-            self.fullscreen_pipeline(
-                "depth upload",
-                include_str!("../../shaders/depth_upload.wgsl"),
-                &[texture_entry(0, UNFILTERED)],
-                &[],
-                Some(wgpu::DepthStencilState {
-                    format: wgpu::TextureFormat::Depth32Float,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Always),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-            )
-        });
-        let size = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
+        let format = tex.format();
+        let (bgl, pipeline) = {
+            let mut writers = self.depth_writers.lock().unwrap_or_else(|e| e.into_inner());
+            writers
+                .entry(format)
+                .or_insert_with(|| {
+                    self.fullscreen_pipeline(
+                        "depth upload",
+                        include_str!("../../shaders/depth_upload.wgsl"),
+                        &[texture_entry(0, UNFILTERED)],
+                        &[],
+                        Some(wgpu::DepthStencilState {
+                            format,
+                            depth_write_enabled: Some(true),
+                            depth_compare: Some(wgpu::CompareFunction::Always),
+                            stencil: Default::default(),
+                            bias: Default::default(),
+                        }),
+                    )
+                })
+                .clone()
+        };
         let src = d.create_texture(&wgpu::TextureDescriptor {
             label: Some("depth upload source"),
-            size,
+            size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -142,19 +179,27 @@ impl Gpu {
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
+        let extent = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
         self.queue.write_texture(
-            src.as_image_copy(),
-            bytemuck::cast_slice(values),
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(width * 4), rows_per_image: None },
-            size,
+            wgpu::TexelCopyTextureInfo {
+                texture: &src,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x, y, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(depths),
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * 4), rows_per_image: None },
+            extent,
         );
         let src_view = src.create_view(&Default::default());
         let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: bgl,
+            layout: &bgl,
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src_view) }],
         });
         let dst = tex.create_view(&Default::default());
+        let keep_depth = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
+        let keep_stencil = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
         let mut enc = d.create_command_encoder(&Default::default());
         {
             let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -162,18 +207,32 @@ impl Gpu {
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &dst,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
-                    stencil_ops: None,
+                    depth_ops: Some(keep_depth),
+                    stencil_ops: format.has_stencil_aspect().then_some(keep_stencil),
                 }),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            rp.set_pipeline(pipeline);
+            rp.set_pipeline(&pipeline);
             rp.set_bind_group(0, &group, &[]);
+            rp.set_scissor_rect(x, y, w, h);
             rp.draw(0..3, 0..1);
         }
         self.queue.submit([enc.finish()]);
+        if let Some(s) = stencil.filter(|_| format.has_stencil_aspect()) {
+            self.queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: tex,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x, y, z: 0 },
+                    aspect: wgpu::TextureAspect::StencilOnly,
+                },
+                s,
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w), rows_per_image: None },
+                extent,
+            );
+        }
     }
 
     /// Reads `[x, y, w, h]` of an RGBA8 texture as tightly packed rows in memory order.
@@ -241,16 +300,26 @@ impl Gpu {
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
         let limits = adapter.limits();
+        let features = adapter.features() & OPTIONAL_FEATURES;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("stratad"),
-            required_features: wgpu::Features::empty(),
+            required_features: features,
             required_limits: limits.clone(),
             experimental_features: Default::default(),
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,
         }))?;
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| error!("uncaptured GPU error: {e}")));
-        info!(adapter = %info.name, driver = %info.driver, "GPU opened");
-        Ok(Arc::new(Gpu { depth_writer: std::sync::OnceLock::new(), device, queue, info, limits, instance, adapter }))
+        info!(adapter = %info.name, driver = %info.driver, features = ?features, "GPU opened");
+        Ok(Arc::new(Gpu {
+            depth_writers: Mutex::new(HashMap::new()),
+            features,
+            device,
+            queue,
+            info,
+            limits,
+            instance,
+            adapter,
+        }))
     }
 }

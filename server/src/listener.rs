@@ -40,6 +40,8 @@ pub struct ServeOptions {
     pub executor: ExecutorKind,
     /// Sampled textures per compositor pass (`None`: the device's limit).
     pub max_textures: Option<u32>,
+    /// How the compositor combines surfaces (3D, or the 2D baseline).
+    pub compositor: crate::compositor::Mode,
     /// Uniform lighting of composited output (initially; `stratad ctl light` changes it).
     pub lighting: crate::compositor::Lighting,
     /// The outputs the compositor draws.
@@ -70,6 +72,7 @@ impl Default for ServeOptions {
             reply_ring: 1 << 20,
             executor: ExecutorKind::Gles,
             max_textures: None,
+            compositor: crate::compositor::Mode::ThreeD,
             lighting: crate::compositor::Lighting::default(),
             outputs: vec![crate::root::OutputSpec::default()],
             refresh_hz: 60.0,
@@ -175,7 +178,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
     let root = match &gpu {
         Some(gpu) => {
-            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), &opts.outputs, opts.max_textures)?))
+            let (outputs, m) = (&opts.outputs, opts.max_textures);
+            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, opts.compositor)?))
         }
         None => None,
     };

@@ -11,7 +11,7 @@ use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::control::LightChange;
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
-use strata_server::compositor::{Lighting, NormalSource};
+use strata_server::compositor::{Lighting, Mode, NormalSource};
 use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
@@ -44,6 +44,10 @@ enum Cmd {
         /// Sampled textures per compositor pass (at least 4; default: the device's limit).
         #[arg(long)]
         max_textures: Option<u32>,
+        /// The compositor: 3d (per-fragment depth within z-groups, lit) or 2d (the baseline:
+        /// painter's order by z, every surface an opaque copy, no depth, no lighting).
+        #[arg(long, value_enum, default_value_t = Mode::ThreeD)]
+        compositor: Mode,
         /// Uniform Phong lighting of the composited output.
         #[arg(long, value_enum, default_value_t = Switch::On)]
         lighting: Switch,
@@ -246,6 +250,7 @@ fn main() -> Result<()> {
             reply_ring,
             executor,
             max_textures,
+            compositor,
             lighting,
             normals,
             outputs,
@@ -273,6 +278,7 @@ fn main() -> Result<()> {
                 reply_ring,
                 executor,
                 max_textures,
+                compositor,
                 lighting,
                 outputs: if outputs.is_empty() { vec![OutputSpec::default()] } else { outputs },
                 refresh_hz,

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use strata_protocol::control::OutputRow;
 use tracing::{info, warn};
 
-use crate::compositor::{Compositor, CompositorError, Layer};
+use crate::compositor::{Compositor, CompositorError, Layer, Mode};
 use crate::gpu::Gpu;
 use crate::scene::{Region, Scene, Work};
 
@@ -136,15 +136,16 @@ pub enum RootError {
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 impl Root {
-    /// Creates the outputs; fails if the texture limit cannot chain or exceeds the device's,
-    /// or a window output cannot open.
+    /// Creates the outputs, composited in `mode`; fails if the texture limit cannot chain or
+    /// exceeds the device's, or a window output cannot open.
     pub fn new(
         gpu: Arc<Gpu>,
         scene: Arc<Scene>,
         outputs: &[OutputSpec],
         max_textures: Option<u32>,
+        mode: Mode,
     ) -> Result<Root, RootError> {
-        let compositor = Compositor::new(gpu.clone(), max_textures)?;
+        let compositor = Compositor::new(gpu.clone(), max_textures)?.with_mode(mode);
         let mut made = Vec::new();
         for spec in outputs {
             let window = match spec.kind {
@@ -206,13 +207,15 @@ impl Root {
                     Region::Full => None,
                     Region::None => continue,
                     Region::Rect(r) => {
+                        let (ox, oy) = (i64::from(ox), i64::from(oy));
                         let x0 = (r[0] - ox).max(0);
                         let y0 = (r[1] - oy).max(0);
-                        let x1 = (r[0] + r[2] - ox).min(out.spec.width as i32);
-                        let y1 = (r[1] + r[3] - oy).min(out.spec.height as i32);
+                        let x1 = (r[0] + r[2] - ox).min(i64::from(out.spec.width));
+                        let y1 = (r[1] + r[3] - oy).min(i64::from(out.spec.height));
                         if x1 <= x0 || y1 <= y0 {
                             continue;
                         }
+                        // Within the output, so each fits in a u32.
                         Some([x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32])
                     }
                 };
@@ -220,7 +223,9 @@ impl Root {
                     .iter()
                     .filter_map(|s| {
                         Some(Layer {
-                            rect: [s.rect[0] - ox, s.rect[1] - oy, s.rect[2], s.rect[3]],
+                            // Placements far outside the i32 range of this output's pixels
+                            // cover none of them; saturating keeps them outside.
+                            rect: [s.rect[0].saturating_sub(ox), s.rect[1].saturating_sub(oy), s.rect[2], s.rect[3]],
                             z: s.z,
                             color: s.color.as_ref()?,
                             depth: s.depth.as_ref(),

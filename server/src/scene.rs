@@ -47,6 +47,8 @@ pub struct SceneSurface {
     pub normal: [f32; 3],
     /// The refresh count at the surface's previous swap.
     last_swap_refresh: u64,
+    /// A new size (width, height) that takes effect with the next frame presented.
+    resized: Option<(i32, i32)>,
 }
 
 impl SceneSurface {
@@ -71,22 +73,29 @@ impl SceneSurface {
 pub enum Region {
     /// Nothing.
     None,
-    /// This rectangle (x, y, width, height), the bounding box of every change.
-    Rect([i32; 4]),
+    /// This rectangle (x, y, width, height), the bounding box of every change; 64-bit, so
+    /// that the box of rectangles anywhere in the `i32` output space cannot overflow.
+    Rect([i64; 4]),
     /// Everything (the first composite, a lighting change).
     Full,
 }
 
 impl Region {
-    /// This region grown to cover `r` as well.
+    /// This region grown to cover `r` (x, y, width, height) as well; a rectangle without area
+    /// adds nothing.
     pub fn with(self, r: [i32; 4]) -> Region {
         if r[2] <= 0 || r[3] <= 0 {
             return self;
         }
-        match self {
-            Region::None => Region::Rect(r),
-            Region::Full => Region::Full,
-            Region::Rect(a) => {
+        self.union(Region::Rect(r.map(i64::from)))
+    }
+
+    /// The smallest region covering both.
+    pub fn union(self, other: Region) -> Region {
+        match (self, other) {
+            (Region::Full, _) | (_, Region::Full) => Region::Full,
+            (Region::None, o) | (o, Region::None) => o,
+            (Region::Rect(a), Region::Rect(r)) => {
                 let (x0, y0) = (a[0].min(r[0]), a[1].min(r[1]));
                 let x1 = (a[0] + a[2]).max(r[0] + r[2]);
                 let y1 = (a[1] + a[3]).max(r[1] + r[3]);
@@ -157,11 +166,7 @@ impl Scene {
 
     fn damaged(&self, mut g: MutexGuard<'_, State>, r: Region) {
         g.damage += 1;
-        g.region = match r {
-            Region::Rect(r) => g.region.with(r),
-            Region::Full => Region::Full,
-            Region::None => g.region,
-        };
+        g.region = g.region.union(r);
         drop(g);
         self.changed.notify_all();
     }
@@ -186,6 +191,7 @@ impl Scene {
                 interval: 1,
                 normal: [0.0, 0.0, 1.0],
                 last_swap_refresh: 0,
+                resized: None,
             },
         );
         id
@@ -198,8 +204,24 @@ impl Scene {
             s.color = Some(color);
             s.depth = depth;
             s.frames += 1;
-            let r = s.rect;
-            self.damaged(g, Region::Rect(r));
+            let old = s.rect;
+            if let Some((w, h)) = s.resized.take() {
+                s.rect[2] = w;
+                s.rect[3] = h;
+            }
+            let r = Region::None.with(old).with(s.rect);
+            self.damaged(g, r);
+        }
+    }
+
+    /// Gives a surface a new size, which its rectangle takes with the next frame presented (its
+    /// last frame stays on screen as it is until then); id, position, depth layer, normal,
+    /// interval and pacing are kept.
+    pub fn resize(&self, client: u64, surface: u32, width: i32, height: i32) {
+        if let Some(mut g) = self.lock() {
+            if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
+                s.resized = Some((width, height));
+            }
         }
     }
 
@@ -277,7 +299,7 @@ impl Scene {
         s.rect[1] = y;
         s.z = z;
         let row = s.row();
-        let region = Region::Rect(old).with(row.rect);
+        let region = Region::None.with(old).with(row.rect);
         self.damaged(g, region);
         Some(row)
     }
@@ -289,7 +311,7 @@ impl Scene {
         s.normal = normal;
         let row = s.row();
         // Only lit pixels change, and only with per-surface normals; redraw the surface.
-        self.damaged(g, Region::Rect(row.rect));
+        self.damaged(g, Region::None.with(row.rect));
         Some(row)
     }
 

@@ -221,5 +221,24 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 }
 
 mod cases;
+mod compressed;
+mod derivatives;
+mod framebuffer_ext;
 pub mod harness;
-pub use cases::all;
+mod objects;
+mod points;
+mod samplers;
+mod textures;
+
+/// Every program, with its tolerance.
+pub fn all() -> Vec<Case> {
+    let mut all = cases::all();
+    all.extend(objects::all());
+    all.extend(textures::all());
+    all.extend(compressed::all());
+    all.extend(points::all());
+    all.extend(framebuffer_ext::all());
+    all.extend(derivatives::all());
+    all.extend(samplers::all());
+    all
+}

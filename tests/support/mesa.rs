@@ -30,6 +30,8 @@ pub struct MesaGl {
     gles: Library,
     fns: HashMap<&'static str, Ptr>,
     shaders: HashMap<u32, u32>,
+    /// The client's vertex array names and Mesa's.
+    vaos: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
     client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
@@ -37,6 +39,13 @@ pub struct MesaGl {
 }
 
 const EGL_PLATFORM_SURFACELESS_MESA: u32 = 0x31DD;
+
+/// What a `glGet*v` output array is filled with beforehand, to see how many values it wrote.
+const INT_SENTINEL: i32 = 0x5EED_F00D;
+/// A NaN no query returns.
+const FLOAT_SENTINEL: u32 = 0x7FC0_5EED;
+/// Neither GL_TRUE nor GL_FALSE.
+const BOOL_SENTINEL: u8 = 0xA5;
 
 macro_rules! call {
     ($self:ident, $name:literal, fn($($t:ty),*) -> $r:ty, $($a:expr),*) => {{
@@ -46,6 +55,9 @@ macro_rules! call {
         unsafe { f($($a),*) }
     }};
 }
+
+// After `call!`, which it uses.
+mod ext;
 
 fn unsupported(what: &str) -> ClientError {
     ClientError::Unsupported(format!("the Mesa reference backend does not forward {what}"))
@@ -105,6 +117,7 @@ impl MesaGl {
             gles,
             fns: HashMap::new(),
             shaders: HashMap::new(),
+            vaos: HashMap::new(),
             client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),
@@ -121,7 +134,22 @@ impl MesaGl {
         let mut z = name.as_bytes().to_vec();
         z.push(0);
         // SAFETY: looking up a symbol; it is only called with its declared signature.
-        let p = unsafe { self.gles.get::<Ptr>(z.as_slice()) }.map(|s| *s).map_err(|_| unsupported(name))?;
+        let p = match unsafe { self.gles.get::<Ptr>(z.as_slice()) } {
+            Ok(s) => *s,
+            // Extension entry points are not exported: ask EGL for them.
+            Err(_) => {
+                // SAFETY: eglGetProcAddress takes a NUL-terminated name and returns a pointer.
+                let p = unsafe {
+                    let get: libloading::Symbol<unsafe extern "C" fn(*const u8) -> Ptr> =
+                        self._egl.get(b"eglGetProcAddress\0").map_err(|_| unsupported(name))?;
+                    get(z.as_ptr())
+                };
+                if p.is_null() {
+                    return Err(unsupported(name));
+                }
+                p
+            }
+        };
         self.fns.insert(name, p);
         Ok(p)
     }
@@ -451,6 +479,33 @@ impl Calls for MesaGl {
                 *pixel_type,
                 pixels.as_bytes().as_ptr()
             ),
+            C::CompressedTexImage2D { target, level, internalformat, width, height, border, data } => call!(
+                self,
+                "glCompressedTexImage2D",
+                fn(u32, i32, u32, i32, i32, i32, i32, *const u8) -> (),
+                *target,
+                *level,
+                *internalformat,
+                *width,
+                *height,
+                *border,
+                data.len() as i32,
+                data.as_bytes().as_ptr()
+            ),
+            C::CompressedTexSubImage2D { target, level, xoffset, yoffset, width, height, format, data } => call!(
+                self,
+                "glCompressedTexSubImage2D",
+                fn(u32, i32, i32, i32, i32, i32, u32, i32, *const u8) -> (),
+                *target,
+                *level,
+                *xoffset,
+                *yoffset,
+                *width,
+                *height,
+                *format,
+                data.len() as i32,
+                data.as_bytes().as_ptr()
+            ),
             C::TexParameteri { target, pname, param } => {
                 call!(self, "glTexParameteri", fn(u32, u32, i32) -> (), *target, *pname, *param)
             }
@@ -601,13 +656,24 @@ impl Calls for MesaGl {
             C::Viewport { x, y, width, height } => {
                 call!(self, "glViewport", fn(i32, i32, i32, i32) -> (), *x, *y, *width, *height)
             }
-            other => return Err(unsupported(other.opcode().name())),
+            C::SampleCoverage { value, invert } => {
+                call!(self, "glSampleCoverage", fn(f32, u8) -> (), *value, u8::from(*invert))
+            }
+            C::DiscardFramebufferEXT { target, attachments } => {
+                let list: Vec<u32> = attachments.iter().collect();
+                let n = list.len() as i32;
+                call!(self, "glDiscardFramebufferEXT", fn(u32, i32, *const u32) -> (), *target, n, list.as_ptr())
+            }
+            other => return ext::send(self, other),
         }
         Ok(())
     }
 
     fn call(&mut self, cmd: &Command<'_>) -> Result<Reply, ClientError> {
         use Command as C;
+        if let Some(r) = ext::call(self, cmd) {
+            return r;
+        }
         Ok(match cmd {
             C::GetError {} => Reply::GetError(call!(self, "glGetError", fn() -> u32,)),
             C::Finish {} => {
@@ -647,10 +713,21 @@ impl Calls for MesaGl {
                 let p = self.shader(*program);
                 Reply::GetProgramInfoLog(self.log(p, true)?)
             }
+            // The values a query writes: everything before the first untouched sentinel.
             C::GetIntegerv { pname } => {
-                let mut v = [0i32; 16];
+                let mut v = [INT_SENTINEL; 16];
                 call!(self, "glGetIntegerv", fn(u32, *mut i32) -> (), *pname, v.as_mut_ptr());
-                Reply::GetIntegerv(v.to_vec())
+                Reply::GetIntegerv(v.iter().copied().take_while(|x| *x != INT_SENTINEL).collect())
+            }
+            C::GetFloatv { pname } => {
+                let mut v = [f32::from_bits(FLOAT_SENTINEL); 16];
+                call!(self, "glGetFloatv", fn(u32, *mut f32) -> (), *pname, v.as_mut_ptr());
+                Reply::GetFloatv(v.iter().copied().take_while(|x| x.to_bits() != FLOAT_SENTINEL).collect())
+            }
+            C::GetBooleanv { pname } => {
+                let mut v = [BOOL_SENTINEL; 16];
+                call!(self, "glGetBooleanv", fn(u32, *mut u8) -> (), *pname, v.as_mut_ptr());
+                Reply::GetBooleanv(v.iter().take_while(|x| **x != BOOL_SENTINEL).map(|x| *x != 0).collect())
             }
             C::GetString { name } => {
                 let p = call!(self, "glGetString", fn(u32) -> *const u8, *name);

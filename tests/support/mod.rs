@@ -195,7 +195,10 @@ impl Xvfb {
     pub fn start(width: u32, height: u32) -> Result<Xvfb, String> {
         use std::io::BufRead;
         let mut child = Command::new("Xvfb")
-            .args(["-displayfd", "1", "-screen", "0", &format!("{width}x{height}x24"), "-nolisten", "tcp"])
+            // -noreset: by default the server resets when its last client leaves, and a client
+            // connecting during the reset fails (XOpenDisplay), which short-lived programs
+            // started back to back, such as piglit's tests, run into.
+            .args(["-displayfd", "1", "-screen", "0", &format!("{width}x{height}x24"), "-nolisten", "tcp", "-noreset"])
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()

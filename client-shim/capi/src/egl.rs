@@ -1,8 +1,9 @@
 //! The EGL 1.4 entry points (plus `eglGetPlatformDisplay` and `EGL_EXT_platform_base`).
 //!
 //! Displays are the shim's own (so that `eglGetDisplay` works before the daemon is reached);
-//! `eglInitialize` connects to `stratad`. Configs, surfaces and contexts are the daemon's
-//! handles. Each thread has its own current context and EGL error.
+//! `eglInitialize` connects to `stratad`. Configs and contexts are the daemon's handles;
+//! surfaces are the shim's, each backed by a daemon surface (see [`crate::surface`]). Each
+//! thread has its own current context and EGL error.
 
 use std::ffi::{c_char, c_void, CStr};
 
@@ -10,7 +11,8 @@ use strata_client::{ClientError, ConnectOptions, Connection};
 use strata_protocol::handshake::Placement;
 use strata_protocol::{Calls, EglResult, Slice};
 
-use crate::state::{self, process, ContextInfo, Current, DisplayInfo, GlState, Process, SurfaceInfo};
+use crate::state::{self, process, ContextInfo, Current, DisplayInfo, GlState, Process};
+use crate::surface::{self, window_id, x_display};
 use crate::types::*;
 use crate::x11;
 
@@ -18,6 +20,10 @@ use crate::x11;
 const EGL_SWAP_BEHAVIOR: EGLint = 0x3093;
 /// `EGL_BUFFER_DESTROYED`.
 const EGL_BUFFER_DESTROYED: EGLint = 0x3095;
+/// `EGL_HEIGHT`.
+const EGL_HEIGHT: EGLint = 0x3056;
+/// `EGL_WIDTH`.
+const EGL_WIDTH: EGLint = 0x3057;
 
 /// Client extensions (`eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)`): only what is implemented.
 const CLIENT_EXTENSIONS: &CStr =
@@ -99,7 +105,7 @@ unsafe fn attrib_list_wide(list: *const EGLAttrib) -> Result<Vec<EGLint>, EGLint
 }
 
 /// Runs a daemon call on the process's connection, mapping transport failures to EGL errors.
-fn daemon<T>(
+pub(crate) fn daemon<T>(
     p: &mut Process,
     call: impl FnOnce(&mut Connection, u32) -> Result<EglResult<T>, ClientError>,
 ) -> Result<T, EGLint> {
@@ -121,7 +127,7 @@ fn daemon<T>(
 }
 
 /// Checks that `dpy` is one of the shim's displays and is initialized; returns its number.
-fn initialized(p: &mut Process, dpy: EGLDisplay) -> Result<usize, EGLint> {
+pub(crate) fn initialized(p: &mut Process, dpy: EGLDisplay) -> Result<usize, EGLint> {
     let d = dpy as usize;
     let info = p.display(d).ok_or(EGL_BAD_DISPLAY)?;
     if !info.initialized {
@@ -131,18 +137,6 @@ fn initialized(p: &mut Process, dpy: EGLDisplay) -> Result<usize, EGLint> {
         return Err(EGL_CONTEXT_LOST);
     }
     Ok(d)
-}
-
-/// The X display behind the shim's display `d`: the application's, or one the shim opens.
-fn x_display(p: &mut Process, d: usize) -> Option<usize> {
-    let info = p.display(d)?;
-    if info.native != 0 {
-        return Some(info.native);
-    }
-    if info.own_x11.is_none() && std::env::var_os("DISPLAY").is_some() {
-        info.own_x11 = x11::open_default();
-    }
-    info.own_x11
 }
 
 fn get_display(native: usize) -> EGLDisplay {
@@ -165,77 +159,6 @@ fn platform_display(platform: EGLenum, native: *mut c_void) -> EGLDisplay {
         return std::ptr::null_mut();
     }
     get_display(native as usize)
-}
-
-/// Where a window surface goes: `STRATA_WINDOW="x,y,z"` or `"x,y,z,WxH"`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct WindowPlacement {
-    x: i32,
-    y: i32,
-    z: f32,
-    size: Option<(i32, i32)>,
-}
-
-/// A native window id as the protocol carries it (`c_ulong` is 32 bits on some targets).
-#[allow(clippy::useless_conversion)]
-fn window_id(w: EGLNativeWindowType) -> u64 {
-    u64::from(w)
-}
-
-fn parse_placement(s: &str) -> Option<WindowPlacement> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let (x, y, z) = match parts.as_slice() {
-        [x, y, z] | [x, y, z, _] => (x.parse().ok()?, y.parse().ok()?, z.parse::<f32>().ok()?),
-        _ => return None,
-    };
-    if !z.is_finite() {
-        return None;
-    }
-    let size = match parts.get(3) {
-        Some(wh) => {
-            let (w, h) = wh.split_once(['x', 'X'])?;
-            let (w, h): (i32, i32) = (w.trim().parse().ok()?, h.trim().parse().ok()?);
-            if w <= 0 || h <= 0 {
-                return None;
-            }
-            Some((w, h))
-        }
-        None => None,
-    };
-    Some(WindowPlacement { x, y, z, size })
-}
-
-/// The placement `STRATA_WINDOW` states, if it is set and valid.
-fn explicit_placement() -> Option<WindowPlacement> {
-    let s = std::env::var("STRATA_WINDOW").ok()?;
-    let p = parse_placement(&s);
-    if p.is_none() {
-        state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
-    }
-    p
-}
-
-/// Where a window surface goes: `STRATA_WINDOW`, else the origin at z 0 (the daemon's layout
-/// may still place it, by client name).
-fn placement() -> WindowPlacement {
-    explicit_placement().unwrap_or(WindowPlacement { x: 0, y: 0, z: 0.0, size: None })
-}
-
-fn create_window_surface(dpy: EGLDisplay, config: EGLConfig, win: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
-    let mut p = process();
-    let d = initialized(&mut p, dpy)?;
-    let place = placement();
-    let from_x = x_display(&mut p, d).and_then(|xd| x11::window_size(xd, win as std::ffi::c_ulong));
-    let Some((w, h)) = from_x.or(place.size) else {
-        state::log_once("cannot size a window surface: not an X11 window, and STRATA_WINDOW gives no WxH");
-        return Err(EGL_BAD_NATIVE_WINDOW);
-    };
-    let config = handle(config);
-    let s = daemon(&mut p, |c, dd| {
-        c.eglCreateWindowSurface(dd, config, win, place.x, place.y, place.z, w, h, Slice::new(&attribs))
-    })?;
-    p.surfaces.insert(s, SurfaceInfo { display: d });
-    Ok(s)
 }
 
 /// Releases this thread's current context (if any), on the daemon too when it is the one
@@ -273,7 +196,13 @@ fn make_current(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLCon
     if !p.surfaces.contains_key(&draw) || !p.surfaces.contains_key(&read) {
         return Err(EGL_BAD_SURFACE);
     }
-    daemon(&mut p, |c, dd| c.eglMakeCurrent(dd, draw, read, ctx))?;
+    surface::follow_window(&mut p, draw);
+    if read != draw {
+        surface::follow_window(&mut p, read);
+    }
+    let (d_draw, d_read) = (p.daemon_surface(draw), p.daemon_surface(read));
+    let (Some(d_draw), Some(d_read)) = (d_draw, d_read) else { return Err(EGL_BAD_SURFACE) };
+    surface::bind_daemon(&mut p, ctx, d_draw, d_read)?;
     if let Some(old) = state::current() {
         if let Some(c) = p.contexts.get_mut(&old.context) {
             c.owner = None;
@@ -282,7 +211,6 @@ fn make_current(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLCon
     if let Some(c) = p.contexts.get_mut(&ctx) {
         c.owner = Some(me);
     }
-    p.daemon_current = Some((ctx, draw, read));
     state::set_current(Some(Current { display: d, draw, read, context: ctx }));
     Ok(())
 }
@@ -301,7 +229,7 @@ fn initialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> Result
         if let Some(name) = std::env::var("STRATA_NAME").ok().filter(|n| !n.is_empty()) {
             opts.name = name;
         }
-        opts.placement = explicit_placement().map(|p| Placement {
+        opts.placement = surface::explicit_placement().map(|p| Placement {
             x: p.x,
             y: p.y,
             z: p.z,
@@ -559,7 +487,7 @@ crate::entry_points! {
         attribs: *const EGLint,
     ) -> EGLSurface {
         // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_window_surface(dpy, config, window_id(win), a)))
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| surface::create_window(dpy, handle(config), window_id(win), a)))
     }
 
     /// EGL 1.5 form of `eglCreateWindowSurface`: `native_window` points at an X11 `Window`.
@@ -575,7 +503,7 @@ crate::entry_points! {
         // SAFETY: on X11 the native window argument points at a `Window`.
         let win = window_id(unsafe { *(native_window as *const EGLNativeWindowType) });
         // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list_wide(attribs) }.and_then(|a| create_window_surface(dpy, config, win, a)))
+        handle_ptr(unsafe { attrib_list_wide(attribs) }.and_then(|a| surface::create_window(dpy, handle(config), win, a)))
     }
 
     /// `EGL_EXT_platform_base` form of `eglCreateWindowSurface`.
@@ -591,7 +519,7 @@ crate::entry_points! {
         // SAFETY: on X11 the native window argument points at a `Window`.
         let win = window_id(unsafe { *(native_window as *const EGLNativeWindowType) });
         // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_window_surface(dpy, config, win, a)))
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| surface::create_window(dpy, handle(config), win, a)))
     }
 
     /// An off-screen surface in the daemon.
@@ -602,8 +530,7 @@ crate::entry_points! {
             let d = initialized(&mut p, dpy)?;
             let config = handle(config);
             let s = daemon(&mut p, |c, dd| c.eglCreatePbufferSurface(dd, config, Slice::new(&a)))?;
-            p.surfaces.insert(s, SurfaceInfo { display: d });
-            Ok(s)
+            Ok(p.add_surface(d, s, None))
         });
         handle_ptr(r)
     }
@@ -645,7 +572,8 @@ crate::entry_points! {
             let mut p = process();
             initialized(&mut p, dpy)?;
             let s = handle(surface);
-            daemon(&mut p, |c, dd| c.eglDestroySurface(dd, s))?;
+            let d = p.daemon_surface(s).ok_or(EGL_BAD_SURFACE)?;
+            daemon(&mut p, |c, dd| c.eglDestroySurface(dd, d))?;
             p.surfaces.remove(&s);
             Ok(())
         })();
@@ -661,7 +589,11 @@ crate::entry_points! {
             let mut p = process();
             initialized(&mut p, dpy)?;
             let s = handle(surface);
-            let v = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, s, attribute))?;
+            if attribute == EGL_WIDTH || attribute == EGL_HEIGHT {
+                surface::follow_window(&mut p, s);
+            }
+            let d = p.daemon_surface(s).ok_or(EGL_BAD_SURFACE)?;
+            let v = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, d, attribute))?;
             // SAFETY: checked non-null above.
             unsafe { *value = v };
             Ok(())
@@ -700,9 +632,9 @@ crate::entry_points! {
         let r = (|| {
             let mut p = process();
             initialized(&mut p, dpy)?;
-            if state::current().is_none() {
-                return Err(EGL_BAD_CONTEXT);
-            }
+            let cur = state::current().ok_or(EGL_BAD_CONTEXT)?;
+            // The daemon applies it to its current surface: make that this thread's.
+            surface::ensure_bound(&mut p, &cur)?;
             daemon(&mut p, |c, dd| c.eglSwapInterval(dd, interval))
         })();
         boolean(r)
@@ -774,11 +706,13 @@ crate::entry_points! {
             let mut p = process();
             initialized(&mut p, dpy)?;
             let s = handle(surface);
-            if !p.surfaces.contains_key(&s) {
-                return Err(EGL_BAD_SURFACE);
-            }
-            daemon(&mut p, |c, dd| c.eglSwapBuffers(dd, s))
+            let d = p.daemon_surface(s).ok_or(EGL_BAD_SURFACE)?;
+            daemon(&mut p, |c, dd| c.eglSwapBuffers(dd, d))?;
+            // The next frame is drawn at the window's size.
+            surface::follow_window(&mut p, s);
+            Ok(())
         })();
+        crate::debug::sync_point("eglSwapBuffers");
         boolean(r)
     }
 
@@ -826,23 +760,5 @@ crate::entry_points! {
                 None
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn placement_parses_position_depth_and_size() {
-        assert_eq!(parse_placement("10,20,0.5"), Some(WindowPlacement { x: 10, y: 20, z: 0.5, size: None }));
-        assert_eq!(
-            parse_placement("0, 0, 1, 320x240"),
-            Some(WindowPlacement { x: 0, y: 0, z: 1.0, size: Some((320, 240)) })
-        );
-        assert_eq!(parse_placement("1,2"), None);
-        assert_eq!(parse_placement("1,2,nan"), None);
-        assert_eq!(parse_placement("1,2,3,0x5"), None);
-        assert_eq!(parse_placement("1,2,3,4"), None);
     }
 }

@@ -30,7 +30,7 @@ pub(crate) struct Gl<'a> {
 
 impl Gl<'_> {
     /// Allocates `n` object names.
-    fn names(&mut self, n: usize) -> Vec<u32> {
+    pub(crate) fn names(&mut self, n: usize) -> Vec<u32> {
         let start = *self.next_name;
         *self.next_name = self.next_name.wrapping_add(n as u32);
         (0..n as u32).map(|i| start.wrapping_add(i)).collect()
@@ -38,8 +38,54 @@ impl Gl<'_> {
 }
 
 /// Runs a GL call against the calling thread's current context. Without one, or once the
-/// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`).
+/// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`). Debug
+/// messages fetched for the application's callback after the call (see `debug`) are delivered
+/// once the library's lock is released.
 pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>) -> R {
+    with_gl_args(name, &String::new, default, f)
+}
+
+/// A call argument as `STRATA_CHECK_ERRORS` shows it: enums in hex, numbers as they are.
+pub(crate) trait ShowArg {
+    /// The argument's text.
+    fn show(&self) -> String;
+}
+
+impl ShowArg for u32 {
+    fn show(&self) -> String {
+        format!("{self:#x}")
+    }
+}
+
+macro_rules! show_plain {
+    ($($t:ty),*) => { $( impl ShowArg for $t { fn show(&self) -> String { self.to_string() } } )* };
+}
+show_plain!(i32, f32, u8);
+
+/// [`with_gl`] for a call whose arguments `args` formats, so that `STRATA_CHECK_ERRORS` can
+/// name them with the error (formatted only when there is one).
+pub(crate) fn with_gl_args<R>(
+    name: &'static str,
+    args: &dyn Fn() -> String,
+    default: R,
+    f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>,
+) -> R {
+    let mut delivery = None;
+    let r = with_gl_locked(name, args, default, f, &mut delivery);
+    if let Some(d) = delivery {
+        d.deliver();
+    }
+    r
+}
+
+/// [`with_gl_args`] under the library's lock; the messages for the callback go to `delivery`.
+fn with_gl_locked<R>(
+    name: &'static str,
+    args: &dyn Fn() -> String,
+    default: R,
+    f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>,
+    delivery: &mut Option<crate::debug::Delivery>,
+) -> R {
     let Some(cur) = state::current() else { return default };
     let mut guard = process();
     let p = &mut *guard;
@@ -49,24 +95,12 @@ pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<
         }
         return default;
     }
-    if p.daemon_current != Some((cur.context, cur.draw, cur.read)) {
-        // Another thread's context was current on the daemon: switch back to ours.
-        let dd = p.daemon_display;
-        let r = match p.conn.as_mut() {
-            Some(conn) => conn.eglMakeCurrent(dd, cur.draw, cur.read, cur.context),
-            None => return default,
-        };
-        match r {
-            Ok(Ok(())) => p.daemon_current = Some((cur.context, cur.draw, cur.read)),
-            Ok(Err(e)) => {
-                tracing::warn!("strata-egl: {name}: re-binding the thread's context failed with EGL error {e:#x}");
-                return default;
-            }
-            Err(e) => {
-                p.lose(&e);
-                return default;
-            }
+    // Another thread's context may be current on the daemon: switch back to ours.
+    if let Err(e) = crate::surface::ensure_bound(p, &cur) {
+        if !p.lost {
+            tracing::warn!("strata-egl: {name}: re-binding the thread's context failed with EGL error {e:#x}");
         }
+        return default;
     }
     let state::Process { conn: Some(conn), contexts, next_name, .. } = p else { return default };
     let Some(ctx) = contexts.get_mut(&cur.context) else { return default };
@@ -76,9 +110,15 @@ pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<
         match conn.glGetError() {
             Ok(GL_NO_ERROR) => {}
             Ok(e) => {
-                tracing::warn!("strata-egl: {name} raised GL error {e:#x}");
+                tracing::warn!("strata-egl: {name}({}) raised GL error {e:#x}", args());
                 ctx.gl.err(e);
             }
+            Err(e) => result = Err(e),
+        }
+    }
+    if result.is_ok() {
+        match crate::debug::pull(conn, &ctx.gl, name) {
+            Ok(d) => *delivery = d,
             Err(e) => result = Err(e),
         }
     }
@@ -148,7 +188,8 @@ macro_rules! simple_calls {
             $(
                 #[doc = concat!("`", stringify!($name), "`, forwarded to the daemon as it is.")]
                 fn $name( $( $arg : $ty ),* ) $( -> $ret )? {
-                    with_gl(stringify!($name), crate::Fallback::fallback(), |gl| {
+                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
+                    with_gl_args(stringify!($name), &args, crate::Fallback::fallback(), |gl| {
                         Ok(ToC::to_c(gl.conn.$name( $( Wire::wire($arg) ),* )?))
                     })
                 }
@@ -187,8 +228,6 @@ pub mod simple {
         fn glDepthMask(flag: GLboolean);
         fn glDepthRangef(near: GLfloat, far: GLfloat);
         fn glDetachShader(program: GLuint, shader: GLuint);
-        fn glDisable(cap: GLenum);
-        fn glEnable(cap: GLenum);
         fn glFlush();
         fn glFramebufferRenderbuffer(target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint);
         fn glFramebufferTexture2D(target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint);
@@ -224,7 +263,6 @@ pub mod simple {
         fn glVertexAttrib2f(index: GLuint, x: GLfloat, y: GLfloat);
         fn glVertexAttrib3f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat);
         fn glVertexAttrib4f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
-        fn glViewport(x: GLint, y: GLint, width: GLsizei, height: GLsizei);
         fn glCheckFramebufferStatus(target: GLenum) -> GLenum;
         fn glFinish();
         fn glIsBuffer(name: GLuint) -> GLboolean;
@@ -264,14 +302,20 @@ fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
     }
 }
 
-/// Bytes an upload of `width`×`height` pixels reads, honouring the unpack alignment.
-fn upload_size(width: i32, height: i32, bpp: usize, alignment: usize) -> usize {
+/// Bytes an upload of `width`×`height` pixels reads from its pointer, honouring the unpack
+/// alignment and `[row length, skip rows, skip pixels]`.
+fn upload_size(width: i32, height: i32, bpp: usize, alignment: usize, rows: [usize; 3]) -> usize {
     if width <= 0 || height <= 0 {
         return 0;
     }
     let (w, h) = (width as usize, height as usize);
-    let row = (w * bpp).div_ceil(alignment) * alignment;
-    row * (h - 1) + w * bpp
+    let [row_length, skip_rows, skip_pixels] = rows;
+    let size = || {
+        let stride = (if row_length > 0 { row_length } else { w }).checked_mul(bpp)?.div_ceil(alignment) * alignment;
+        (skip_rows + h - 1).checked_mul(stride)?.checked_add((skip_pixels + w).checked_mul(bpp)?)
+    };
+    // Absurd skips read nothing; the daemon then finds the data short.
+    size().unwrap_or(0)
 }
 
 /// Borrows `len` bytes of application memory (empty for a null pointer).
@@ -291,7 +335,7 @@ unsafe fn bytes<'a>(ptr: *const c_void, len: usize) -> &'a [u8] {
 ///
 /// # Safety
 /// A non-null `ptr` must be valid for `n` values.
-unsafe fn values<'a, T>(ptr: *const T, n: i64) -> &'a [T] {
+pub(crate) unsafe fn values<'a, T>(ptr: *const T, n: i64) -> &'a [T] {
     if ptr.is_null() || n <= 0 {
         &[]
     } else {
@@ -522,7 +566,8 @@ macro_rules! get_one_int {
             $(
                 #[doc = concat!("`", stringify!($name), "`: writes one integer.")]
                 fn $name( $( $arg : $ty, )* params: *mut GLint) {
-                    with_gl(stringify!($name), (), |gl| {
+                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
+                    with_gl_args(stringify!($name), &args, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: `params` points at one GLint.
                         unsafe { put(params, v) };
@@ -541,7 +586,8 @@ macro_rules! get_array {
             $(
                 #[doc = concat!("`", stringify!($name), "`: writes the values the daemon returns.")]
                 fn $name( $( $arg : $ty, )* params: *mut $t) {
-                    with_gl(stringify!($name), (), |gl| {
+                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
+                    with_gl_args(stringify!($name), &args, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: the caller's array has room for what the query returns.
                         unsafe { write_out(params, &v) };
@@ -727,6 +773,9 @@ pub(crate) const MODULE_NAMES: &[&[&str]] = &[
     get_strings::NAMES,
     active::NAMES,
     hand::NAMES,
+    crate::vao::NAMES,
+    crate::debug::NAMES,
+    crate::discard::NAMES,
 ];
 
 /// The address of a GL entry point, by name.
@@ -742,6 +791,9 @@ pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
         .or_else(|| get_strings::lookup(name))
         .or_else(|| active::lookup(name))
         .or_else(|| hand::lookup(name))
+        .or_else(|| crate::vao::lookup(name))
+        .or_else(|| crate::debug::lookup(name))
+        .or_else(|| crate::discard::lookup(name))
 }
 
 fn tex_image_bytes<'a>(
@@ -757,8 +809,8 @@ fn tex_image_bytes<'a>(
         return None;
     }
     // SAFETY: the application's pixels hold `upload_size` bytes for these dimensions and the
-    // current unpack alignment.
-    Some(unsafe { bytes(pixels, upload_size(width, height, bpp, st.unpack_alignment)) })
+    // current unpack state.
+    Some(unsafe { bytes(pixels, upload_size(width, height, bpp, st.unpack_alignment, st.unpack_rows)) })
 }
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
@@ -784,6 +836,15 @@ pub mod hand {
             with_gl("glGetError", GL_NO_ERROR, |gl| gl.conn.glGetError())
         }
 
+        /// Forwarded after following the draw surface's window, which applications resize
+        /// before they set a viewport for the new size.
+        fn glViewport(x: GLint, y: GLint, width: GLsizei, height: GLsizei) {
+            if state::current().is_some() {
+                crate::surface::follow_current_window(&mut process());
+            }
+            with_gl("glViewport", (), |gl| gl.conn.glViewport(x, y, width, height))
+        }
+
         /// Strings live for the rest of the process; `GL_EXTENSIONS` adds the shim's own.
         fn glGetString(name: GLenum) -> *const GLubyte {
             with_gl("glGetString", std::ptr::null(), |gl| {
@@ -797,7 +858,7 @@ pub mod hand {
 
         /// Booleans as `GLboolean`s.
         fn glGetBooleanv(pname: GLenum, params: *mut GLboolean) {
-            with_gl("glGetBooleanv", (), |gl| {
+            with_gl_args("glGetBooleanv", &|| pname.show(), (), |gl| {
                 let v: Vec<GLboolean> = gl.conn.glGetBooleanv(pname)?.into_iter().map(GLboolean::from).collect();
                 // SAFETY: the caller's array has room for what the query returns.
                 unsafe { write_out(params, &v) };
@@ -1135,7 +1196,10 @@ pub mod hand {
             with_gl("glVertexAttribPointer", (), |gl| {
                 let client = (gl.st.array_buffer == 0 && !pointer.is_null())
                     .then_some(ClientArray { ptr: pointer as usize, size, ty, stride });
-                if let Some(a) = gl.st.attribs.get_mut(index as usize) {
+                // Only the default vertex array can hold a client array: the daemon refuses one
+                // in another, and the state stays as it was.
+                let refused = client.is_some() && gl.st.vertex_array != 0;
+                if let Some(a) = gl.st.attribs.get_mut(index as usize).filter(|_| !refused) {
                     a.client = client;
                 }
                 gl.conn.glVertexAttribPointer(index, size, ty, normalized != 0, stride, pointer as usize as u64)
@@ -1186,11 +1250,15 @@ pub mod hand {
             })
         }
 
-        /// Tracks `GL_UNPACK_ALIGNMENT` (upload sizes depend on it).
+        /// Tracks the unpack state (upload sizes depend on it).
         fn glPixelStorei(pname: GLenum, param: GLint) {
             with_gl("glPixelStorei", (), |gl| {
                 if pname == GL_UNPACK_ALIGNMENT && matches!(param, 1 | 2 | 4 | 8) {
                     gl.st.unpack_alignment = param as usize;
+                }
+                // UNPACK_ROW_LENGTH_EXT, UNPACK_SKIP_ROWS_EXT, UNPACK_SKIP_PIXELS_EXT.
+                if let (Some(i @ 0..=2), Ok(v)) = (pname.checked_sub(0x0CF2), usize::try_from(param)) {
+                    gl.st.unpack_rows[i as usize] = v;
                 }
                 gl.conn.glPixelStorei(pname, param)
             })
@@ -1322,5 +1390,34 @@ pub mod hand {
                 Ok(())
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Upload sizes follow the unpack rules of ES 2.0 §3.7.1 and `EXT_unpack_subimage`: rows of
+    /// `ROW_LENGTH` (or the width) pixels padded to the alignment, skipped rows and pixels
+    /// included, and only the last row's own pixels read.
+    #[test]
+    fn upload_sizes_cover_exactly_the_pixels_read() {
+        // 3 RGB pixels = 9 bytes, padded to 12 with alignment 4; the last row is not padded.
+        assert_eq!(upload_size(3, 2, 3, 4, [0, 0, 0]), 12 + 9);
+        // Row length 8 RGBA (32 bytes), 2 skipped rows, 3 skipped pixels: rows 2 and 3 are read,
+        // the last one up to pixel 3 + 4.
+        assert_eq!(upload_size(4, 2, 4, 4, [8, 2, 3]), 3 * 32 + 7 * 4);
+        assert_eq!(upload_size(0, 5, 4, 4, [0, 0, 0]), 0);
+        // Skips that overflow read nothing rather than wrapping.
+        assert_eq!(upload_size(4, 4, 4, 4, [usize::MAX, 0, 0]), 0);
+    }
+
+    #[test]
+    fn pixel_sizes_of_the_texture_extensions() {
+        assert_eq!(pixel_size(0x1908, 0x1406), Some(16)); // RGBA FLOAT
+        assert_eq!(pixel_size(0x190A, 0x8D61), Some(4)); // LUMINANCE_ALPHA HALF_FLOAT_OES
+        assert_eq!(pixel_size(0x80E1, 0x1401), Some(4)); // BGRA_EXT UNSIGNED_BYTE
+        assert_eq!(pixel_size(0x84F9, 0x84FA), Some(4)); // DEPTH_STENCIL_OES UNSIGNED_INT_24_8_OES
+        assert_eq!(pixel_size(0x1234, 0x1401), None);
     }
 }

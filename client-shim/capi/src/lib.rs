@@ -8,10 +8,16 @@
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 #![warn(missing_docs)]
 
+pub mod debug;
+pub mod discard;
 pub mod egl;
 pub mod gl;
+mod glvnd;
+pub mod glx;
 mod state;
+mod surface;
 mod types;
+pub mod vao;
 mod x11;
 
 pub use types::*;
@@ -93,7 +99,7 @@ pub(crate) use entry_points;
 
 /// The address of any exported EGL or GL entry point, by name.
 pub(crate) fn proc_address(name: &[u8]) -> Option<*const c_void> {
-    egl::lookup(name).or_else(|| gl::lookup(name))
+    egl::lookup(name).or_else(|| gl::lookup(name)).or_else(|| glx::lookup(name))
 }
 
 /// Every exported entry point's name.
@@ -135,6 +141,30 @@ mod tests {
     }
 
     #[test]
+    fn every_entry_point_of_the_offered_extensions_is_exported_and_resolvable() {
+        let Some(text) = std::fs::read_to_string("/usr/include/GLES2/gl2ext.h").ok() else {
+            assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "GLES2/gl2ext.h missing");
+            eprintln!("skipping: /usr/include/GLES2/gl2ext.h not installed (libgles-dev)");
+            return;
+        };
+        let exported = exported_names();
+        for (ext, count) in [("GL_KHR_debug", 11), ("GL_OES_vertex_array_object", 4), ("GL_OES_mapbuffer", 3)] {
+            let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
+            let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
+            let names: Vec<&str> = text[start..end]
+                .lines()
+                .filter(|l| l.starts_with("GL_APICALL"))
+                .filter_map(|l| l.split('(').next()?.split_whitespace().last())
+                .collect();
+            assert_eq!(names.len(), count, "{ext} declares {count} entry points");
+            for n in names {
+                assert!(exported.contains(&n), "{n} ({ext}) is not exported");
+                assert!(proc_address(n.as_bytes()).is_some(), "eglGetProcAddress cannot resolve {n}");
+            }
+        }
+    }
+
+    #[test]
     fn every_egl_1_4_entry_point_is_exported_and_resolvable() {
         let Some(text) = std::fs::read_to_string("/usr/include/EGL/egl.h").ok() else {
             assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "EGL/egl.h missing");
@@ -158,5 +188,25 @@ mod tests {
             assert!(proc_address(n.as_bytes()).is_some(), "{n}");
         }
         assert!(proc_address(b"glNoSuchCall").is_none());
+    }
+
+    #[test]
+    fn extension_entry_points_are_exported_and_resolvable_both_ways() {
+        let exported = exported_names();
+        // The entry points of the extensions the daemon advertises.
+        const EXTENSION_ENTRY_POINTS: &[&str] = &["glDiscardFramebufferEXT"];
+        for &n in EXTENSION_ENTRY_POINTS {
+            assert!(exported.contains(&n), "{n} is not exported");
+            let egl = proc_address(n.as_bytes()).expect("eglGetProcAddress resolves it");
+            let name = std::ffi::CString::new(n).expect("a C name");
+            // SAFETY: a NUL-terminated name.
+            let glx = unsafe { glx::glXGetProcAddressARB(name.as_ptr().cast()) };
+            let glx = glx.expect("glXGetProcAddressARB resolves it");
+            assert_eq!(glx as *const c_void, egl, "{n}: the same function both ways");
+        }
+        // The GLX query answers GL names only.
+        let egl_name = std::ffi::CString::new("eglGetDisplay").expect("a C name");
+        // SAFETY: a NUL-terminated name.
+        assert!(unsafe { glx::glXGetProcAddressARB(egl_name.as_ptr().cast()) }.is_none());
     }
 }

@@ -42,12 +42,21 @@ pub(crate) struct GlState {
     pub error: GLenum,
     /// `GL_ARRAY_BUFFER` binding.
     pub array_buffer: u32,
-    /// `GL_ELEMENT_ARRAY_BUFFER` binding.
+    /// `GL_ELEMENT_ARRAY_BUFFER` binding (of the bound vertex array object).
     pub element_buffer: u32,
-    /// Vertex attributes.
+    /// Vertex attributes (of the bound vertex array object).
     pub attribs: [Attrib; MAX_ATTRIBS],
+    /// `GL_VERTEX_ARRAY_BINDING_OES`.
+    pub vertex_array: u32,
+    /// The vertex array objects not bound, with their state (see `vao`).
+    pub vertex_arrays: HashMap<u32, crate::vao::VertexArray>,
+    /// `GL_KHR_debug` state the library keeps: the callback and the two enables.
+    pub debug: crate::debug::DebugClient,
     /// `GL_UNPACK_ALIGNMENT`.
     pub unpack_alignment: usize,
+    /// `GL_UNPACK_ROW_LENGTH_EXT`, `GL_UNPACK_SKIP_ROWS_EXT`, `GL_UNPACK_SKIP_PIXELS_EXT`
+    /// (`EXT_unpack_subimage`): where an upload's rows lie in the application's memory.
+    pub unpack_rows: [usize; 3],
     /// A copy of every buffer's contents: index ranges of client-array draws and
     /// `glMapBufferOES` read it.
     pub buffers: HashMap<u32, Vec<u8>>,
@@ -62,7 +71,11 @@ impl Default for GlState {
             array_buffer: 0,
             element_buffer: 0,
             attribs: [Attrib::default(); MAX_ATTRIBS],
+            vertex_array: 0,
+            vertex_arrays: HashMap::new(),
+            debug: crate::debug::DebugClient::default(),
             unpack_alignment: 4,
+            unpack_rows: [0; 3],
             buffers: HashMap::new(),
             mapped: HashMap::new(),
         }
@@ -111,11 +124,25 @@ pub(crate) struct ContextInfo {
     pub gl: GlState,
 }
 
-/// A surface the daemon created.
-#[derive(Debug, Clone, Copy)]
+/// A surface as the application holds it: the shim numbers surfaces itself (a handle of its own
+/// per `EGLSurface`, backed by one daemon surface).
+#[derive(Debug)]
 pub(crate) struct SurfaceInfo {
     /// The shim's display number.
     pub display: usize,
+    /// The daemon's surface behind it now.
+    pub daemon: u32,
+    /// For a window surface sized from its X window: what following that window needs.
+    pub window: Option<WindowInfo>,
+}
+
+/// What the shim remembers of a window surface to follow its window's size.
+#[derive(Debug)]
+pub(crate) struct WindowInfo {
+    /// The native (X11) window.
+    pub native: u64,
+    /// The window's size the daemon surface has.
+    pub size: (i32, i32),
 }
 
 /// Everything shared by the process's threads.
@@ -130,9 +157,11 @@ pub(crate) struct Process {
     pub daemon_display: u32,
     /// Contexts by daemon handle.
     pub contexts: HashMap<u32, ContextInfo>,
-    /// Surfaces by daemon handle.
+    /// Surfaces by the application's handle.
     pub surfaces: HashMap<u32, SurfaceInfo>,
-    /// What the daemon has as current: (context, draw, read).
+    /// The next application surface handle.
+    pub next_surface: u32,
+    /// What the daemon has as current: (context, draw, read), in daemon handles.
     pub daemon_current: Option<(u32, u32, u32)>,
     /// The next GL object name (names are allocated by the client).
     pub next_name: u32,
@@ -146,6 +175,7 @@ static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
         daemon_display: 0,
         contexts: HashMap::new(),
         surfaces: HashMap::new(),
+        next_surface: 1,
         daemon_current: None,
         next_name: 1,
     })
@@ -174,6 +204,27 @@ impl Process {
     pub fn display(&mut self, d: usize) -> Option<&mut DisplayInfo> {
         d.checked_sub(1).and_then(|i| self.displays.get_mut(i))
     }
+
+    /// Registers a daemon surface; returns the application's handle for it.
+    pub fn add_surface(&mut self, display: usize, daemon: u32, window: Option<WindowInfo>) -> u32 {
+        let mut s = self.next_surface.max(1);
+        while self.surfaces.contains_key(&s) {
+            s = s.wrapping_add(1).max(1);
+        }
+        self.next_surface = s.wrapping_add(1);
+        self.surfaces.insert(s, SurfaceInfo { display, daemon, window });
+        s
+    }
+
+    /// The daemon surface behind the application's surface `s`.
+    pub fn daemon_surface(&self, s: u32) -> Option<u32> {
+        self.surfaces.get(&s).map(|i| i.daemon)
+    }
+
+    /// What the daemon must have current for `cur`, if both its surfaces still exist.
+    pub fn binding(&self, cur: &Current) -> Option<(u32, u32, u32)> {
+        Some((cur.context, self.daemon_surface(cur.draw)?, self.daemon_surface(cur.read)?))
+    }
 }
 
 /// A thread's current EGL binding.
@@ -181,9 +232,9 @@ impl Process {
 pub(crate) struct Current {
     /// The shim's display number.
     pub display: usize,
-    /// Draw surface.
+    /// Draw surface (the application's handle).
     pub draw: u32,
-    /// Read surface.
+    /// Read surface (the application's handle).
     pub read: u32,
     /// Context (daemon handle).
     pub context: u32,
@@ -216,9 +267,10 @@ pub(crate) fn current() -> Option<Current> {
     THREAD.try_with(|t| t.borrow().current).ok().flatten()
 }
 
-/// Changes this thread's current binding.
+/// Changes this thread's current binding (and tells glvnd's dispatch, when the process has it).
 pub(crate) fn set_current(c: Option<Current>) {
     let _ = THREAD.try_with(|t| t.borrow_mut().current = c);
+    crate::glvnd::follow_current(c.is_some());
 }
 
 /// This thread's bound API.

@@ -45,7 +45,7 @@ struct Xlib {
         *mut c_uint,
     ) -> c_int,
     set_error_handler: unsafe extern "C" fn(ErrorHandler) -> ErrorHandler,
-    sync: unsafe extern "C" fn(*mut Display, c_int) -> c_int,
+    next_request: unsafe extern "C" fn(*mut Display) -> c_ulong,
 }
 
 fn xlib() -> Option<&'static Xlib> {
@@ -71,7 +71,7 @@ fn xlib() -> Option<&'static Xlib> {
             match_visual_info: sym!("XMatchVisualInfo"),
             get_geometry: sym!("XGetGeometry"),
             set_error_handler: sym!("XSetErrorHandler"),
-            sync: sym!("XSync"),
+            next_request: sym!("XNextRequest"),
         })
     })
     .as_ref()
@@ -108,30 +108,68 @@ pub(crate) fn visual_id(display: usize) -> Option<u32> {
     }
 }
 
-static FAILED: Mutex<bool> = Mutex::new(false);
-
-unsafe extern "C" fn record_error(_: *mut Display, _: *mut c_void) -> c_int {
-    *FAILED.lock().unwrap_or_else(|p| p.into_inner()) = true;
-    0
+/// `XErrorEvent` from `X11/Xlib.h`.
+#[repr(C)]
+struct XErrorEvent {
+    kind: c_int,
+    display: *mut Display,
+    resource_id: c_ulong,
+    serial: c_ulong,
+    error_code: u8,
+    request_code: u8,
+    minor_code: u8,
 }
 
-/// The size of an X window, or `None` if it is not a window of `display`.
+/// The one request whose error the shim is waiting for, and the handler it displaced.
+struct Pending {
+    /// The connection the request went out on (an address; the pointer is never read).
+    display: usize,
+    /// The request's serial number.
+    serial: c_ulong,
+    /// Whether the X server answered it with an error.
+    failed: bool,
+    /// The application's handler, which gets every other error.
+    previous: ErrorHandler,
+}
+
+static PENDING: Mutex<Option<Pending>> = Mutex::new(None);
+
+unsafe extern "C" fn record_error(d: *mut Display, ev: *mut c_void) -> c_int {
+    let mut pending = PENDING.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(p) = pending.as_mut() else { return 0 };
+    // SAFETY: Xlib passes an XErrorEvent.
+    let e = unsafe { &*ev.cast::<XErrorEvent>() };
+    if e.display as usize == p.display && e.serial == p.serial {
+        p.failed = true;
+        return 0;
+    }
+    // An error of one of the application's own requests: its handler decides.
+    let previous = p.previous;
+    drop(pending);
+    match previous {
+        // SAFETY: the handler the application installed, called as Xlib would.
+        Some(h) => unsafe { h(d, ev) },
+        None => 0,
+    }
+}
+
+/// The size of an X window, or `None` if it is not a window of `display`. One round trip.
 pub(crate) fn window_size(display: usize, window: c_ulong) -> Option<(i32, i32)> {
     let x = xlib()?;
     let d = display as *mut Display;
     let (mut root, mut px, mut py) = (0, 0, 0);
     let (mut w, mut h, mut border, mut depth) = (0, 0, 0, 0);
-    *FAILED.lock().unwrap_or_else(|p| p.into_inner()) = false;
     // SAFETY: `d` is a live Display; the temporary error handler turns a BadWindow/BadDrawable
-    // into a failed call instead of Xlib's default exit, and the previous handler is restored.
-    let status = unsafe {
-        (x.sync)(d, 0);
+    // of this request into a failed call instead of Xlib's default exit, passes every other
+    // error to the previous handler, and that handler is restored.
+    let (status, failed) = unsafe {
+        let serial = (x.next_request)(d);
         let previous = (x.set_error_handler)(Some(record_error));
+        *PENDING.lock().unwrap_or_else(|p| p.into_inner()) = Some(Pending { display, serial, failed: false, previous });
         let s = (x.get_geometry)(d, window, &mut root, &mut px, &mut py, &mut w, &mut h, &mut border, &mut depth);
-        (x.sync)(d, 0);
         (x.set_error_handler)(previous);
-        s
+        let failed = PENDING.lock().unwrap_or_else(|p| p.into_inner()).take().is_some_and(|p| p.failed);
+        (s, failed)
     };
-    let failed = *FAILED.lock().unwrap_or_else(|p| p.into_inner());
     (status != 0 && !failed && w > 0 && h > 0).then_some((w as i32, h as i32))
 }

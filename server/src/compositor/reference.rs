@@ -65,10 +65,13 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
                 // Within the group: nearest depth wins; on a tie the later surface wins.
                 let mut best: Option<(f64, &RefLayer, i32, i32)> = None;
                 for l in layers.iter().filter(|l| l.z == z) {
-                    let (lx, ly) = (px - l.rect[0], py - l.rect[1]);
-                    if lx < 0 || ly < 0 || lx >= l.rect[2] || ly >= l.rect[3] {
+                    // In 64 bits: a rectangle may lie anywhere in the i32 plane.
+                    let (lx, ly) = (i64::from(px) - i64::from(l.rect[0]), i64::from(py) - i64::from(l.rect[1]));
+                    if lx < 0 || ly < 0 || lx >= i64::from(l.rect[2]) || ly >= i64::from(l.rect[3]) {
                         continue;
                     }
+                    // Inside the rectangle, so both fit in an i32.
+                    let (lx, ly) = (lx as i32, ly as i32);
                     let sy = l.rect[3] - 1 - ly;
                     let d = depth_at(l, lx, sy);
                     if best.is_none_or(|b| d <= b.0) {

@@ -1,7 +1,12 @@
-//! EGL on the daemon side: the configs offered, surfaces (daemon-owned colour and depth
-//! targets) and config matching as `eglChooseConfig` specifies it.
+//! EGL on the daemon side: the configs offered and their matching as `eglChooseConfig`
+//! specifies it, displays, contexts, and the EGL calls on surfaces (which `surface` holds).
 
+use strata_protocol::wire::EglHandle;
+use strata_protocol::{EglResult, Slice};
+
+use super::context::Context;
 use super::enums::*;
+use super::GlesExecutor;
 
 /// One framebuffer configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -132,6 +137,222 @@ pub fn pbuffer_size(attribs: &[i32]) -> Result<(i32, i32), i32> {
         }
     }
     Ok((w, h))
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// `Ok` for the one display once initialised.
+    pub(super) fn check_display(&self, display: u32) -> Result<(), i32> {
+        if display != 1 {
+            Err(EGL_BAD_DISPLAY)
+        } else if !self.initialized {
+            Err(EGL_NOT_INITIALIZED)
+        } else {
+            Ok(())
+        }
+    }
+
+    pub(super) fn eglGetDisplay(&mut self, _native_display: u64) -> EglHandle {
+        1
+    }
+
+    pub(super) fn eglGetPlatformDisplay(
+        &mut self,
+        _platform: u32,
+        _native_display: u64,
+        _attribs: Slice<'_, i32>,
+    ) -> EglHandle {
+        1
+    }
+
+    pub(super) fn eglInitialize(&mut self, display: EglHandle) -> EglResult<(i32, i32)> {
+        if display != 1 {
+            return Err(EGL_BAD_DISPLAY);
+        }
+        self.initialized = true;
+        Ok((1, 4))
+    }
+
+    pub(super) fn eglTerminate(&mut self, display: EglHandle) -> EglResult<()> {
+        if display != 1 {
+            return Err(EGL_BAD_DISPLAY);
+        }
+        self.initialized = false;
+        Ok(())
+    }
+
+    pub(super) fn eglChooseConfig(
+        &mut self,
+        display: EglHandle,
+        attribs: Slice<'_, i32>,
+        config_size: i32,
+    ) -> EglResult<Vec<EglHandle>> {
+        self.check_display(display)?;
+        let mut ids = choose(&attribs.to_vec())?;
+        if config_size >= 0 {
+            ids.truncate(config_size as usize);
+        }
+        Ok(ids)
+    }
+
+    pub(super) fn eglGetConfigAttrib(
+        &mut self,
+        display: EglHandle,
+        config: EglHandle,
+        attribute: i32,
+    ) -> EglResult<i32> {
+        self.check_display(display)?;
+        Config::get(config).ok_or(EGL_BAD_CONFIG)?.attrib(attribute).ok_or(EGL_BAD_ATTRIBUTE)
+    }
+
+    pub(super) fn eglCreatePbufferSurface(
+        &mut self,
+        display: EglHandle,
+        config: EglHandle,
+        attribs: Slice<'_, i32>,
+    ) -> EglResult<EglHandle> {
+        self.check_display(display)?;
+        let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
+        let (w, h) = pbuffer_size(&attribs.to_vec())?;
+        self.make_surface(c, w, h, false)
+    }
+
+    /// The daemon's layout entry for this client, if any, overrides the placement asked for.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn eglCreateWindowSurface(
+        &mut self,
+        display: EglHandle,
+        config: EglHandle,
+        _native_window: u64,
+        mut x: i32,
+        mut y: i32,
+        mut z: f32,
+        mut width: i32,
+        mut height: i32,
+        _attribs: Slice<'_, i32>,
+    ) -> EglResult<EglHandle> {
+        if let Some(l) = &self.layout {
+            (x, y, z) = (l.x, l.y, l.z);
+            if let (Some(w), Some(h)) = (l.width, l.height) {
+                (width, height) = (w as i32, h as i32);
+            }
+        }
+        self.check_display(display)?;
+        let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
+        if !z.is_finite() || width <= 0 || height <= 0 {
+            return Err(EGL_BAD_NATIVE_WINDOW);
+        }
+        let id = self.make_surface(c, width, height, true)?;
+        if let Some((scene, client, name)) = &self.scene {
+            scene.add(*client, id, name, [x, y, width, height], z);
+        }
+        Ok(id)
+    }
+
+    pub(super) fn eglCreateContext(
+        &mut self,
+        display: EglHandle,
+        config: EglHandle,
+        _share_context: EglHandle,
+        attribs: Slice<'_, i32>,
+    ) -> EglResult<EglHandle> {
+        self.check_display(display)?;
+        let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
+        let mut version = 1;
+        for pair in attribs.to_vec().chunks(2) {
+            match *pair {
+                [EGL_NONE, ..] => break,
+                [EGL_CONTEXT_CLIENT_VERSION, v] => version = v,
+                [_, _] => return Err(EGL_BAD_ATTRIBUTE),
+                _ => return Err(EGL_BAD_ATTRIBUTE),
+            }
+        }
+        if version != 2 {
+            return Err(EGL_BAD_CONFIG);
+        }
+        let id = self.next_handle;
+        self.next_handle += 1;
+        self.contexts.insert(id, Context::new(c));
+        Ok(id)
+    }
+
+    pub(super) fn eglMakeCurrent(
+        &mut self,
+        display: EglHandle,
+        draw: EglHandle,
+        read: EglHandle,
+        context: EglHandle,
+    ) -> EglResult<()> {
+        self.check_display(display)?;
+        if context == 0 {
+            if draw != 0 || read != 0 {
+                return Err(EGL_BAD_MATCH);
+            }
+            self.flush();
+            self.current = None;
+            return Ok(());
+        }
+        if draw != read {
+            return Err(EGL_BAD_MATCH);
+        }
+        let surface = self.surfaces.get(&draw).ok_or(EGL_BAD_SURFACE)?;
+        let (w, h) = (surface.target.width as i32, surface.target.height as i32);
+        let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
+        if !ctx.made_current {
+            ctx.made_current = true;
+            ctx.raster.viewport = [0, 0, w, h];
+            ctx.raster.scissor = [0, 0, w, h];
+        }
+        self.flush();
+        self.current = Some((context, draw));
+        Ok(())
+    }
+
+    pub(super) fn eglSwapInterval(&mut self, display: EglHandle, interval: i32) -> EglResult<()> {
+        self.check_display(display)?;
+        // EGL: the interval applies to the window surface bound to the current context.
+        let (_, surface) = self.current.ok_or(EGL_BAD_CONTEXT)?;
+        if let Some((scene, client, _)) = &self.scene {
+            scene.set_interval(*client, surface, interval);
+        }
+        Ok(())
+    }
+
+    pub(super) fn eglQuerySurface(&mut self, display: EglHandle, surface: EglHandle, attribute: i32) -> EglResult<i32> {
+        self.check_display(display)?;
+        let s = self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?;
+        match attribute {
+            EGL_WIDTH => Ok(s.target.width as i32),
+            EGL_HEIGHT => Ok(s.target.height as i32),
+            EGL_CONFIG_ID => Ok(s.config.id as i32),
+            EGL_RENDER_BUFFER => Ok(EGL_BACK_BUFFER),
+            EGL_SWAP_BEHAVIOR => Ok(EGL_BUFFER_DESTROYED),
+            _ => Err(EGL_BAD_ATTRIBUTE),
+        }
+    }
+
+    pub(super) fn eglDestroySurface(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {
+        self.check_display(display)?;
+        self.surfaces.remove(&surface).ok_or(EGL_BAD_SURFACE)?;
+        if let Some((scene, client, _)) = &self.scene {
+            scene.remove(*client, Some(surface));
+        }
+        Ok(())
+    }
+
+    pub(super) fn eglDestroyContext(&mut self, display: EglHandle, context: EglHandle) -> EglResult<()> {
+        self.check_display(display)?;
+        if self.current.is_some_and(|(c, _)| c == context) {
+            self.flush();
+            self.current = None;
+        }
+        self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)
+    }
+
+    pub(super) fn eglSwapBuffers(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {
+        self.check_display(display)?;
+        self.swap(surface)
+    }
 }
 
 #[cfg(test)]

@@ -90,6 +90,8 @@ pub const ONE_MINUS_CONSTANT_ALPHA: u32 = 0x8004;
 pub const FUNC_ADD: u32 = 0x8006;
 pub const FUNC_SUBTRACT: u32 = 0x800A;
 pub const FUNC_REVERSE_SUBTRACT: u32 = 0x800B;
+pub const MIN_EXT: u32 = 0x8007;
+pub const MAX_EXT: u32 = 0x8008;
 
 // Stencil ops.
 pub const KEEP: u32 = 0x1E00;
@@ -113,6 +115,17 @@ pub const RGBA: u32 = 0x1908;
 pub const LUMINANCE: u32 = 0x1909;
 pub const LUMINANCE_ALPHA: u32 = 0x190A;
 pub const UNPACK_ALIGNMENT: u32 = 0x0CF5;
+pub const UNPACK_ROW_LENGTH: u32 = 0x0CF2;
+pub const UNPACK_SKIP_ROWS: u32 = 0x0CF3;
+pub const UNPACK_SKIP_PIXELS: u32 = 0x0CF4;
+pub const BGRA_EXT: u32 = 0x80E1;
+pub const DEPTH_STENCIL_OES: u32 = 0x84F9;
+pub const UNSIGNED_INT_24_8_OES: u32 = 0x84FA;
+pub const COMPRESSED_RGB_S3TC_DXT1_EXT: u32 = 0x83F0;
+pub const COMPRESSED_RGBA_S3TC_DXT1_EXT: u32 = 0x83F1;
+pub const COMPRESSED_RGBA_S3TC_DXT3_EXT: u32 = 0x83F2;
+pub const COMPRESSED_RGBA_S3TC_DXT5_EXT: u32 = 0x83F3;
+pub const ETC1_RGB8_OES: u32 = 0x8D64;
 pub const PACK_ALIGNMENT: u32 = 0x0D05;
 
 // Textures.
@@ -248,6 +261,7 @@ pub const SUBPIXEL_BITS: u32 = 0x0D50;
 pub const IMPLEMENTATION_COLOR_READ_TYPE: u32 = 0x8B9A;
 pub const IMPLEMENTATION_COLOR_READ_FORMAT: u32 = 0x8B9B;
 pub const NUM_COMPRESSED_TEXTURE_FORMATS: u32 = 0x86A2;
+pub const COMPRESSED_TEXTURE_FORMATS: u32 = 0x86A3;
 pub const NUM_SHADER_BINARY_FORMATS: u32 = 0x8DF9;
 pub const SHADER_COMPILER: u32 = 0x8DFA;
 pub const FRAMEBUFFER_BINDING: u32 = 0x8CA6;
@@ -259,9 +273,93 @@ pub const CULL_FACE_MODE: u32 = 0x0B45;
 pub const FRONT_FACE: u32 = 0x0B46;
 pub const LINE_WIDTH: u32 = 0x0B21;
 pub const GENERATE_MIPMAP_HINT: u32 = 0x8192;
+/// `GL_FRAGMENT_SHADER_DERIVATIVE_HINT_OES` (OES_standard_derivatives).
+pub const FRAGMENT_SHADER_DERIVATIVE_HINT_OES: u32 = 0x8B8B;
 pub const DONT_CARE: u32 = 0x1100;
 pub const FASTEST: u32 = 0x1101;
 pub const NICEST: u32 = 0x1102;
+
+// GL_OES_vertex_array_object.
+pub const VERTEX_ARRAY_BINDING_OES: u32 = 0x85B5;
+
+// GL_KHR_debug.
+pub const STACK_OVERFLOW: u32 = 0x0503;
+pub const STACK_UNDERFLOW: u32 = 0x0504;
+pub const DEBUG_OUTPUT: u32 = 0x92E0;
+pub const DEBUG_OUTPUT_SYNCHRONOUS: u32 = 0x8242;
+pub const MAX_DEBUG_MESSAGE_LENGTH: u32 = 0x9143;
+pub const MAX_DEBUG_LOGGED_MESSAGES: u32 = 0x9144;
+pub const DEBUG_LOGGED_MESSAGES: u32 = 0x9145;
+pub const DEBUG_NEXT_LOGGED_MESSAGE_LENGTH: u32 = 0x8243;
+pub const MAX_DEBUG_GROUP_STACK_DEPTH: u32 = 0x826C;
+pub const DEBUG_GROUP_STACK_DEPTH: u32 = 0x826D;
+pub const MAX_LABEL_LENGTH: u32 = 0x82E8;
+pub const DEBUG_SOURCE_API: u32 = 0x8246;
+pub const DEBUG_SOURCE_WINDOW_SYSTEM: u32 = 0x8247;
+pub const DEBUG_SOURCE_SHADER_COMPILER: u32 = 0x8248;
+pub const DEBUG_SOURCE_THIRD_PARTY: u32 = 0x8249;
+pub const DEBUG_SOURCE_APPLICATION: u32 = 0x824A;
+pub const DEBUG_SOURCE_OTHER: u32 = 0x824B;
+pub const DEBUG_TYPE_ERROR: u32 = 0x824C;
+pub const DEBUG_TYPE_DEPRECATED_BEHAVIOR: u32 = 0x824D;
+pub const DEBUG_TYPE_UNDEFINED_BEHAVIOR: u32 = 0x824E;
+pub const DEBUG_TYPE_PORTABILITY: u32 = 0x824F;
+pub const DEBUG_TYPE_PERFORMANCE: u32 = 0x8250;
+pub const DEBUG_TYPE_OTHER: u32 = 0x8251;
+pub const DEBUG_TYPE_MARKER: u32 = 0x8268;
+pub const DEBUG_TYPE_PUSH_GROUP: u32 = 0x8269;
+pub const DEBUG_TYPE_POP_GROUP: u32 = 0x826A;
+pub const DEBUG_SEVERITY_HIGH: u32 = 0x9146;
+pub const DEBUG_SEVERITY_MEDIUM: u32 = 0x9147;
+pub const DEBUG_SEVERITY_LOW: u32 = 0x9148;
+pub const DEBUG_SEVERITY_NOTIFICATION: u32 = 0x826B;
+pub const BUFFER_KHR: u32 = 0x82E0;
+pub const SHADER_KHR: u32 = 0x82E1;
+pub const PROGRAM_KHR: u32 = 0x82E2;
+pub const VERTEX_ARRAY_KHR: u32 = 0x8074;
+pub const QUERY_KHR: u32 = 0x82E3;
+pub const PROGRAM_PIPELINE_KHR: u32 = 0x82E4;
+pub const SAMPLER_KHR: u32 = 0x82E6;
+// State queries (ES 2.0 state tables 6.5, 6.6, 6.9, 6.10, 6.17).
+pub const BLEND_EQUATION_RGB: u32 = 0x8009;
+pub const BLEND_EQUATION_ALPHA: u32 = 0x883D;
+pub const BLEND_DST_RGB: u32 = 0x80C8;
+pub const BLEND_SRC_RGB: u32 = 0x80C9;
+pub const BLEND_DST_ALPHA: u32 = 0x80CA;
+pub const BLEND_SRC_ALPHA: u32 = 0x80CB;
+pub const STENCIL_CLEAR_VALUE: u32 = 0x0B91;
+pub const STENCIL_FUNC: u32 = 0x0B92;
+pub const STENCIL_VALUE_MASK: u32 = 0x0B93;
+pub const STENCIL_FAIL: u32 = 0x0B94;
+pub const STENCIL_PASS_DEPTH_FAIL: u32 = 0x0B95;
+pub const STENCIL_PASS_DEPTH_PASS: u32 = 0x0B96;
+pub const STENCIL_REF: u32 = 0x0B97;
+pub const STENCIL_WRITEMASK: u32 = 0x0B98;
+pub const STENCIL_BACK_FUNC: u32 = 0x8800;
+pub const STENCIL_BACK_FAIL: u32 = 0x8801;
+pub const STENCIL_BACK_PASS_DEPTH_FAIL: u32 = 0x8802;
+pub const STENCIL_BACK_PASS_DEPTH_PASS: u32 = 0x8803;
+pub const STENCIL_BACK_REF: u32 = 0x8CA3;
+pub const STENCIL_BACK_VALUE_MASK: u32 = 0x8CA4;
+pub const STENCIL_BACK_WRITEMASK: u32 = 0x8CA5;
+pub const POLYGON_OFFSET_UNITS: u32 = 0x2A00;
+pub const POLYGON_OFFSET_FACTOR: u32 = 0x8038;
+pub const SAMPLE_BUFFERS: u32 = 0x80A8;
+pub const SAMPLES: u32 = 0x80A9;
+pub const SAMPLE_COVERAGE_VALUE: u32 = 0x80AA;
+pub const SAMPLE_COVERAGE_INVERT: u32 = 0x80AB;
+pub const SHADER_BINARY_FORMATS: u32 = 0x8DF8;
+/// `GL_MAX_CLIP_PLANES` (desktop GL and ES 1.x; see `queries`).
+pub const MAX_CLIP_PLANES: u32 = 0x0D32;
+/// `GL_UNPACK_SKIP_IMAGES` (ES 3.0 and OES_texture_3D; see `queries`).
+pub const UNPACK_SKIP_IMAGES: u32 = 0x806D;
+/// `GL_UNPACK_IMAGE_HEIGHT` (ES 3.0 and OES_texture_3D; see `queries`).
+pub const UNPACK_IMAGE_HEIGHT: u32 = 0x806E;
+
+// EXT_discard_framebuffer.
+pub const COLOR_EXT: u32 = 0x1800;
+pub const DEPTH_EXT: u32 = 0x1801;
+pub const STENCIL_EXT: u32 = 0x1802;
 
 // EGL.
 pub const EGL_SUCCESS: i32 = 0x3000;

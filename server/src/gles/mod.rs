@@ -4,12 +4,114 @@
 //! and an invalid one records the GL error and changes nothing, as a driver would. What does
 //! reach wgpu runs inside error scopes, so a wgpu validation error is logged against this client
 //! and never panics the daemon.
+//!
+//! One module per GL concept, validation beside execution. `dispatch` routes each command (the
+//! match is generated from the protocol's command table) to the handler named like the GL
+//! call, `glBufferData` in `buffers`, `glDrawArrays` in `draw`, and so on; handlers validate
+//! against [`context::Context`], record a [`error::GlError`] or act, and leave GPU work to
+//! `render`. `conv` holds the typed enums and every GL → wgpu mapping.
 
+mod buffers;
+mod compressed;
+mod context;
+mod conv;
+mod copyimage;
+mod debug;
+mod dispatch;
+mod draw;
 pub mod egl;
 pub mod enums;
+mod error;
+mod formats;
+mod framebuffers;
 pub mod glsl;
-pub mod objects;
-pub mod render;
+mod images;
+mod labels;
+mod pixels;
+mod programs;
+mod queries;
+mod render;
+mod shaders;
 mod state;
+mod surface;
+mod teximage;
+mod textures;
+mod uniforms;
+mod unpack;
+mod vao;
+mod vertex;
 
-pub use state::GlesExecutor;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+pub use surface::Surface;
+
+use crate::gpu::Gpu;
+use context::Context;
+use render::Renderer;
+
+/// Runs one client's commands on the shared GPU.
+pub struct GlesExecutor {
+    gpu: Arc<Gpu>,
+    r: Renderer,
+    initialized: bool,
+    surfaces: HashMap<u32, Surface>,
+    contexts: HashMap<u32, Context>,
+    next_handle: u32,
+    /// The current (context, surface).
+    current: Option<(u32, u32)>,
+    uid: u64,
+    /// Where window surfaces are shown: the scene, this client's id and name.
+    scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
+    /// The daemon's layout entry for this client: overrides where its windows go.
+    layout: Option<crate::layout::LayoutEntry>,
+}
+
+impl Drop for GlesExecutor {
+    fn drop(&mut self) {
+        // A client that leaves, even mid-frame, disappears from the next composite.
+        if let Some((scene, client, _)) = &self.scene {
+            scene.remove(*client, None);
+        }
+    }
+}
+
+impl GlesExecutor {
+    /// An executor drawing on `gpu`; it logs within its session's span.
+    pub fn new(gpu: Arc<Gpu>) -> Self {
+        GlesExecutor {
+            r: Renderer::new(gpu.clone()),
+            gpu,
+            initialized: false,
+            surfaces: HashMap::new(),
+            contexts: HashMap::new(),
+            next_handle: 1,
+            current: None,
+            uid: 1,
+            scene: None,
+            layout: None,
+        }
+    }
+
+    /// Places this client's window surfaces by `layout` instead of where it asks.
+    pub fn with_layout(mut self, layout: Option<crate::layout::LayoutEntry>) -> Self {
+        self.layout = layout;
+        self
+    }
+
+    /// Shows this client's window surfaces in `scene` as client `id` named `name`.
+    pub fn with_scene(mut self, scene: Arc<crate::scene::Scene>, id: u64, name: &str) -> Self {
+        self.scene = Some((scene, id, name.to_string()));
+        self
+    }
+
+    /// Pipelines created because none in the cache matched.
+    pub fn pipeline_cache_misses(&self) -> u64 {
+        self.r.pipeline_misses
+    }
+
+    /// The surface with handle `id`, for the compositor and tests.
+    pub fn surface(&self, id: u32) -> Option<&Surface> {
+        self.surfaces.get(&id)
+    }
+}

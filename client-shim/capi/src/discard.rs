@@ -1,0 +1,23 @@
+//! `GL_EXT_discard_framebuffer`: the application's attachment list, forwarded to the daemon,
+//! which validates it (and treats the discard as a hint).
+
+use strata_protocol::{Calls, Slice};
+
+use crate::gl::{values, with_gl_args, ShowArg};
+use crate::types::*;
+
+crate::entry_points! {
+    /// A negative count is `GL_INVALID_VALUE` here; the rest is validated by the daemon.
+    fn glDiscardFramebufferEXT(target: GLenum, num_attachments: GLsizei, attachments: *const GLenum) {
+        let args = || format!("{}, {num_attachments}", target.show());
+        with_gl_args("glDiscardFramebufferEXT", &args, (), |gl| {
+            if num_attachments < 0 {
+                gl.st.err(GL_INVALID_VALUE);
+                return Ok(());
+            }
+            // SAFETY: `attachments` holds `num_attachments` enums, as the extension requires.
+            let list = unsafe { values(attachments, i64::from(num_attachments)) };
+            gl.conn.glDiscardFramebufferEXT(target, Slice::new(list))
+        })
+    }
+}

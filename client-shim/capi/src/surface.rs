@@ -1,0 +1,185 @@
+//! Window surfaces: where they go (`STRATA_WINDOW`), how big they are (their X window), and
+//! following that window when it is resized.
+//!
+//! EGL window surfaces track their native window's size: a surface is resized when its window
+//! is (EGL 1.4 §3.9.1), and applications such as trace replayers create a small window and grow
+//! it before they draw. When the window's size changes the shim has the daemon resize the
+//! surface in place (`strataResizeSurface`), which keeps its id, its placement (including one
+//! `stratad ctl move` gave it), its swap interval and pacing. Like Mesa's X11 platform, the
+//! shim looks at the window's size when a surface is made current, after each swap, when the
+//! application sets a viewport (what applications do after a resize) and when it queries the
+//! surface's size.
+
+use std::ffi::c_ulong;
+
+use strata_protocol::{Calls, Slice};
+
+use crate::egl::{daemon, initialized};
+use crate::state::{self, Current, Process, WindowInfo};
+use crate::types::*;
+use crate::x11;
+
+/// Where a window surface goes: `STRATA_WINDOW="x,y,z"` or `"x,y,z,WxH"`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct WindowPlacement {
+    /// Left edge in the output space.
+    pub x: i32,
+    /// Top edge in the output space.
+    pub y: i32,
+    /// Depth layer.
+    pub z: f32,
+    /// Size, for windows the shim cannot measure.
+    pub size: Option<(i32, i32)>,
+}
+
+/// A native window id as the protocol carries it (`c_ulong` is 32 bits on some targets).
+#[allow(clippy::useless_conversion)]
+pub(crate) fn window_id(w: EGLNativeWindowType) -> u64 {
+    u64::from(w)
+}
+
+fn parse_placement(s: &str) -> Option<WindowPlacement> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let (x, y, z) = match parts.as_slice() {
+        [x, y, z] | [x, y, z, _] => (x.parse().ok()?, y.parse().ok()?, z.parse::<f32>().ok()?),
+        _ => return None,
+    };
+    if !z.is_finite() {
+        return None;
+    }
+    let size = match parts.get(3) {
+        Some(wh) => {
+            let (w, h) = wh.split_once(['x', 'X'])?;
+            let (w, h): (i32, i32) = (w.trim().parse().ok()?, h.trim().parse().ok()?);
+            if w <= 0 || h <= 0 {
+                return None;
+            }
+            Some((w, h))
+        }
+        None => None,
+    };
+    Some(WindowPlacement { x, y, z, size })
+}
+
+/// The placement `STRATA_WINDOW` states, if it is set and valid.
+pub(crate) fn explicit_placement() -> Option<WindowPlacement> {
+    let s = std::env::var("STRATA_WINDOW").ok()?;
+    let p = parse_placement(&s);
+    if p.is_none() {
+        state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
+    }
+    p
+}
+
+/// Where a window surface goes: `STRATA_WINDOW`, else the origin at z 0 (the daemon's layout
+/// may still place it, by client name).
+fn placement() -> WindowPlacement {
+    explicit_placement().unwrap_or(WindowPlacement { x: 0, y: 0, z: 0.0, size: None })
+}
+
+/// The X display behind the shim's display `d`: the application's, or one the shim opens.
+pub(crate) fn x_display(p: &mut Process, d: usize) -> Option<usize> {
+    let info = p.display(d)?;
+    if info.native != 0 {
+        return Some(info.native);
+    }
+    if info.own_x11.is_none() && std::env::var_os("DISPLAY").is_some() {
+        info.own_x11 = crate::x11::open_default();
+    }
+    info.own_x11
+}
+
+/// The size of the X window `win` on the shim's display `d`, if it is one.
+fn window_size(p: &mut Process, d: usize, win: u64) -> Option<(i32, i32)> {
+    let xd = x_display(p, d)?;
+    x11::window_size(xd, c_ulong::try_from(win).ok()?)
+}
+
+/// `eglCreateWindowSurface`: a daemon surface sized like the X window (or as `STRATA_WINDOW`
+/// says when there is no X window), placed by `STRATA_WINDOW`. Returns the application's handle.
+pub(crate) fn create_window(dpy: EGLDisplay, config: u32, win: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    let mut p = crate::state::process();
+    let d = initialized(&mut p, dpy)?;
+    let place = placement();
+    let from_x = window_size(&mut p, d, win);
+    let Some((w, h)) = from_x.or(place.size) else {
+        state::log_once("cannot size a window surface: not an X11 window, and STRATA_WINDOW gives no WxH");
+        return Err(EGL_BAD_NATIVE_WINDOW);
+    };
+    let s = daemon(&mut p, |c, dd| {
+        c.eglCreateWindowSurface(dd, config, win, place.x, place.y, place.z, w, h, Slice::new(&attribs))
+    })?;
+    // Only a surface sized from its X window follows that window.
+    let window = from_x.map(|size| WindowInfo { native: win, size });
+    Ok(p.add_surface(d, s, window))
+}
+
+/// Makes `(context, draw, read)` (daemon handles) current on the daemon.
+pub(crate) fn bind_daemon(p: &mut Process, context: u32, draw: u32, read: u32) -> Result<(), EGLint> {
+    daemon(p, |c, dd| c.eglMakeCurrent(dd, draw, read, context))?;
+    p.daemon_current = Some((context, draw, read));
+    Ok(())
+}
+
+/// Makes the daemon's current binding the one `cur` (this thread's) names, if it is not.
+/// A binding whose surface is gone stays as it is when its context is the daemon's current one.
+pub(crate) fn ensure_bound(p: &mut Process, cur: &Current) -> Result<(), EGLint> {
+    match p.binding(cur) {
+        Some(want) if p.daemon_current == Some(want) => Ok(()),
+        Some((c, d, r)) => bind_daemon(p, c, d, r),
+        None if p.daemon_current.is_some_and(|(c, _, _)| c == cur.context) => Ok(()),
+        None => Err(EGL_BAD_SURFACE),
+    }
+}
+
+/// Resizes the window surface `s` (an application handle) to its window's current size, if
+/// that size changed; nothing for other surfaces. A failure is logged and leaves the surface as
+/// it was.
+pub(crate) fn follow_window(p: &mut Process, s: u32) {
+    let Some(info) = p.surfaces.get(&s) else { return };
+    let Some(w) = &info.window else { return };
+    let (d, native, old_size, surface) = (info.display, w.native, w.size, info.daemon);
+    let Some(size) = window_size(p, d, native) else { return };
+    if size == old_size {
+        return;
+    }
+    let resized = daemon(p, |c, dd| c.strataResizeSurface(dd, surface, size.0, size.1));
+    // Either way this size has been dealt with: a failure is not retried every frame.
+    if let Some(w) = p.surfaces.get_mut(&s).and_then(|i| i.window.as_mut()) {
+        w.size = size;
+    }
+    match resized {
+        Ok(()) => {
+            tracing::debug!("strata-egl: window {native:#x} is now {}x{}: surface {surface} resized", size.0, size.1)
+        }
+        Err(e) => state::log_once(&format!(
+            "cannot follow a window resized to {}x{}: stratad refused that size (EGL error {e:#x})",
+            size.0, size.1
+        )),
+    }
+}
+
+/// Follows the calling thread's current draw surface's window (see [`follow_window`]).
+pub(crate) fn follow_current_window(p: &mut Process) {
+    if let Some(cur) = state::current() {
+        follow_window(p, cur.draw);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn placement_parses_position_depth_and_size() {
+        assert_eq!(parse_placement("10,20,0.5"), Some(WindowPlacement { x: 10, y: 20, z: 0.5, size: None }));
+        assert_eq!(
+            parse_placement("0, 0, 1, 320x240"),
+            Some(WindowPlacement { x: 0, y: 0, z: 1.0, size: Some((320, 240)) })
+        );
+        assert_eq!(parse_placement("1,2"), None);
+        assert_eq!(parse_placement("1,2,nan"), None);
+        assert_eq!(parse_placement("1,2,3,0x5"), None);
+        assert_eq!(parse_placement("1,2,3,4"), None);
+    }
+}

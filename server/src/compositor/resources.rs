@@ -1,0 +1,390 @@
+//! What the compositor keeps between composites, so that a composite allocates nothing in the
+//! steady state: pipelines per pass shape, one uniform buffer (the lighting, then one block
+//! per draw, bound with dynamic offsets), one instance buffer (the cells' rectangles), bind
+//! groups by the images they bind, and the chain's intermediates.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::shader::{shader, Geom, PassKind, FILL};
+use crate::gpu::{texture_entry, Gpu, UNFILTERED};
+
+/// The output's format.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// Bytes of the lighting parameters at the start of the uniform buffer (`Params`).
+pub const PARAMS_SIZE: u64 = 80;
+
+/// Bytes of one surface's entry in a draw's block (`Surf`).
+pub const SURF_SIZE: u64 = 32;
+
+/// Bind groups unused for this many composites are dropped (a surface alternates between two
+/// front images, so each of its bind groups is typically used every other composite).
+const KEEP_COMPOSITES: u64 = 4;
+
+/// A pipeline and its bind group layout.
+pub type Pipeline = (wgpu::BindGroupLayout, wgpu::RenderPipeline);
+
+/// The two ping-pong intermediates of chained passes: the selected colour and its geometry,
+/// covering the bounding box of the cells that chain.
+pub struct Intermediates {
+    /// Width and height.
+    pub size: (u32, u32),
+    /// What the geometry images hold.
+    pub geom: Geom,
+    /// Colour images (RGBA8) and views.
+    pub color: [(wgpu::Texture, wgpu::TextureView); 2],
+    /// Geometry images and views.
+    pub geometry: [(wgpu::Texture, wgpu::TextureView); 2],
+}
+
+/// A light map: the lighting factor of every output pixel for one normal.
+struct LightMap {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    /// The lighting parameters it was drawn with (bit patterns).
+    stamp: [u32; 16],
+}
+
+/// A buffer that grows (and is then replaced) when a composite needs more.
+pub struct Growing {
+    /// The buffer.
+    pub buffer: wgpu::Buffer,
+    usage: wgpu::BufferUsages,
+    label: &'static str,
+}
+
+impl Growing {
+    fn new(d: &wgpu::Device, label: &'static str, usage: wgpu::BufferUsages, size: u64) -> Growing {
+        let buffer =
+            d.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false });
+        Growing { buffer, usage, label }
+    }
+
+    /// Makes room for `size` bytes; returns whether the buffer was replaced.
+    fn reserve(&mut self, d: &wgpu::Device, size: u64) -> bool {
+        if size <= self.buffer.size() {
+            return false;
+        }
+        *self = Growing::new(d, self.label, self.usage, size.next_power_of_two());
+        true
+    }
+}
+
+/// The compositor's persistent GPU resources.
+pub struct Resources {
+    gpu: Arc<Gpu>,
+    pipelines: HashMap<PassKind, Pipeline>,
+    fill: Option<Pipeline>,
+    groups: HashMap<(Option<PassKind>, Vec<wgpu::TextureView>), (wgpu::BindGroup, u64)>,
+    /// The uniform buffer: `Params`, then one block per draw.
+    pub uniforms: Growing,
+    /// The cells' clip-space rectangles, one instance each.
+    pub instances: Growing,
+    /// Light maps by the bits of their unit normal.
+    maps: HashMap<[u32; 3], LightMap>,
+    /// The chain's intermediates, once a chain was needed.
+    pub intermediates: Option<Intermediates>,
+    /// Bound in place of the depth image of a surface without one.
+    pub dummy_depth: wgpu::TextureView,
+    /// Composites so far (ages bind groups).
+    generation: u64,
+    /// The device's alignment of dynamic uniform offsets.
+    pub align: u64,
+}
+
+fn layout_entry(binding: u32, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: dynamic,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// Bytes of a draw block with `n` surfaces.
+pub fn block_size(n: usize) -> u64 {
+    16 + SURF_SIZE * n as u64
+}
+
+impl Resources {
+    /// Empty caches and small buffers.
+    pub fn new(gpu: Arc<Gpu>) -> Resources {
+        let d = &gpu.device;
+        let dummy_depth = d
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("no depth"),
+                size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Depth32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&Default::default());
+        let uniforms =
+            Growing::new(d, "compositor uniforms", wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST, 4096);
+        let instances =
+            Growing::new(d, "compositor cells", wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST, 4096);
+        let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment.max(16));
+        Resources {
+            pipelines: HashMap::new(),
+            fill: None,
+            groups: HashMap::new(),
+            uniforms,
+            instances,
+            intermediates: None,
+            maps: HashMap::new(),
+            dummy_depth,
+            generation: 0,
+            align,
+            gpu,
+        }
+    }
+
+    fn build(
+        &self,
+        label: &str,
+        wgsl: &str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        targets: &[Option<wgpu::ColorTargetState>],
+    ) -> Pipeline {
+        let d = &self.gpu.device;
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+        });
+        let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries });
+        let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 16,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &[wgpu::VertexAttribute {
+                        format: wgpu::VertexFormat::Float32x4,
+                        offset: 0,
+                        shader_location: 0,
+                    }],
+                })],
+            },
+            primitive: wgpu::PrimitiveState { topology: wgpu::PrimitiveTopology::TriangleStrip, ..Default::default() },
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        (bgl, pipeline)
+    }
+
+    /// The pipeline of pass shape `k` (`None`: the background fill), built on first use.
+    pub fn pipeline(&mut self, k: Option<PassKind>) -> Pipeline {
+        let Some(k) = k else {
+            if self.fill.is_none() {
+                let target = [Some(COLOR_FORMAT.into())];
+                self.fill = Some(self.build("compositor fill", FILL, &[layout_entry(0, false)], &target));
+            }
+            return self.fill.clone().unwrap_or_else(|| unreachable!("built above"));
+        };
+        if let Some(p) = self.pipelines.get(&k) {
+            return p.clone();
+        }
+        let mut entries = vec![layout_entry(0, false), layout_entry(1, true)];
+        if k.factor {
+            let target = [Some(wgpu::TextureFormat::R32Float.into())];
+            let p = self.build("compositor light map", &shader(&k), &entries, &target);
+            self.pipelines.insert(k, p.clone());
+            return p;
+        }
+        for i in 0..k.surfaces {
+            entries.push(texture_entry(PassKind::color_binding(i), UNFILTERED));
+            if k.depth() {
+                entries.push(texture_entry(PassKind::depth_binding(i), wgpu::TextureSampleType::Depth));
+            }
+        }
+        if k.intermediate {
+            entries.push(texture_entry(PassKind::color_binding(k.surfaces), UNFILTERED));
+            entries.push(texture_entry(PassKind::depth_binding(k.surfaces), UNFILTERED));
+        }
+        if k.map {
+            entries.push(texture_entry(PassKind::color_binding(k.surfaces), UNFILTERED));
+        }
+        let over = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        };
+        let targets: Vec<Option<wgpu::ColorTargetState>> = if !k.last {
+            vec![Some(COLOR_FORMAT.into()), Some(k.geom().format().into())]
+        } else {
+            let blend = (!k.base && !k.copy).then_some(wgpu::BlendState { color: over, alpha: over });
+            vec![Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL })]
+        };
+        let p = self.build("compositor", &shader(&k), &entries, &targets);
+        self.pipelines.insert(k, p.clone());
+        p
+    }
+
+    /// The bind group of a draw of shape `k` (`None`: the fill) over `views` (in binding
+    /// order after the two uniform blocks), cached while it keeps being used.
+    pub fn bind_group(&mut self, k: Option<PassKind>, views: Vec<wgpu::TextureView>) -> wgpu::BindGroup {
+        let generation = self.generation;
+        let key = (k, views);
+        if let Some((g, used)) = self.groups.get_mut(&key) {
+            *used = generation;
+            return g.clone();
+        }
+        let (bgl, _) = self.pipeline(k);
+        let mut entries = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &self.uniforms.buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(PARAMS_SIZE),
+            }),
+        }];
+        if let Some(k) = k {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &self.uniforms.buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(block_size(k.surfaces)),
+                }),
+            });
+            let mut bindings = Vec::new();
+            for i in 0..k.surfaces {
+                bindings.push(PassKind::color_binding(i));
+                if k.depth() {
+                    bindings.push(PassKind::depth_binding(i));
+                }
+            }
+            if k.intermediate {
+                bindings.extend([PassKind::color_binding(k.surfaces), PassKind::depth_binding(k.surfaces)]);
+            }
+            if k.map {
+                bindings.push(PassKind::color_binding(k.surfaces));
+            }
+            for (binding, view) in bindings.into_iter().zip(&key.1) {
+                entries.push(wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) });
+            }
+        }
+        let g = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("compositor"),
+            layout: &bgl,
+            entries: &entries,
+        });
+        self.groups.insert(key, (g.clone(), generation));
+        g
+    }
+
+    /// Writes this composite's uniforms and cells, growing the buffers (and dropping the bind
+    /// groups that named the old uniform buffer) where needed.
+    pub fn upload(&mut self, uniforms: &[u8], instances: &[f32]) {
+        let d = self.gpu.device.clone();
+        if self.uniforms.reserve(&d, uniforms.len() as u64) {
+            self.groups.clear();
+        }
+        self.instances.reserve(&d, (instances.len() * 4) as u64);
+        self.gpu.queue.write_buffer(&self.uniforms.buffer, 0, uniforms);
+        if !instances.is_empty() {
+            self.gpu.queue.write_buffer(&self.instances.buffer, 0, bytemuck::cast_slice(instances));
+        }
+    }
+
+    /// Intermediates of at least `size` holding `geom`, reallocated (dropping the bind groups
+    /// that named the old ones) when the current ones are too small or hold other geometry.
+    pub fn intermediates(&mut self, size: (u32, u32), geom: Geom) -> &Intermediates {
+        let fits =
+            self.intermediates.as_ref().is_some_and(|i| i.geom == geom && i.size.0 >= size.0 && i.size.1 >= size.1);
+        if !fits {
+            let old = self.intermediates.as_ref().map_or((0, 0), |i| i.size);
+            let size = (size.0.max(old.0), size.1.max(old.1));
+            let d = &self.gpu.device;
+            let make = |format, label| {
+                let t = d.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                });
+                let v = t.create_view(&Default::default());
+                (t, v)
+            };
+            self.groups.clear();
+            self.intermediates = Some(Intermediates {
+                size,
+                geom,
+                color: [make(COLOR_FORMAT, "compositor intermediate"), make(COLOR_FORMAT, "compositor intermediate")],
+                geometry: [
+                    make(geom.format(), "compositor intermediate"),
+                    make(geom.format(), "compositor intermediate"),
+                ],
+            });
+        }
+        self.intermediates.as_ref().unwrap_or_else(|| unreachable!("set above"))
+    }
+
+    /// The light map of unit normal `n` for an output of `size` and lighting `stamp`, and
+    /// whether it must be drawn (new, or drawn for other lighting). Maps of normals not in
+    /// `keep` are dropped.
+    pub fn light_map(&mut self, n: [f32; 3], size: (u32, u32), stamp: [u32; 16]) -> (wgpu::TextureView, bool) {
+        let key = n.map(f32::to_bits);
+        let fits = self.maps.get(&key).is_some_and(|m| m.texture.width() == size.0 && m.texture.height() == size.1);
+        if !fits {
+            let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("compositor light map"),
+                size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::R32Float,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            });
+            let view = texture.create_view(&Default::default());
+            // Bind groups naming a replaced map are never looked up again and age out.
+            self.maps.insert(key, LightMap { texture, view, stamp: [u32::MAX; 16] });
+        }
+        let map = self.maps.get_mut(&key).unwrap_or_else(|| unreachable!("inserted above"));
+        let stale = map.stamp != stamp;
+        map.stamp = stamp;
+        (map.view.clone(), stale)
+    }
+
+    /// Drops the light maps of normals other than `keep` (bit patterns).
+    pub fn keep_light_maps(&mut self, keep: &[[u32; 3]]) {
+        self.maps.retain(|k, _| keep.contains(k));
+    }
+
+    /// Ends a composite: bind groups unused for a while are dropped.
+    pub fn finish(&mut self) {
+        let g = self.generation;
+        self.groups.retain(|_, (_, used)| g.saturating_sub(*used) < KEEP_COMPOSITES);
+        self.generation += 1;
+    }
+}

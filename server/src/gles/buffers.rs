@@ -1,0 +1,164 @@
+//! Buffer objects: names, bindings, data specification and queries. Each buffer keeps a CPU
+//! shadow of its contents, against which draws are validated and from which attribute and
+//! index data are converted.
+
+use strata_protocol::{Blob, Slice};
+
+use super::context::Context;
+use super::conv::BufferTarget;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::GlesExecutor;
+
+/// A buffer object: a CPU shadow (used to validate draws and convert formats) plus its GPU copy.
+#[derive(Default)]
+pub struct Buffer {
+    /// The contents as the client last wrote them.
+    pub data: Vec<u8>,
+    /// The GPU copy (size rounded up to 4 bytes).
+    pub gpu: Option<wgpu::Buffer>,
+    /// `GL_BUFFER_USAGE`.
+    pub usage: u32,
+    /// Bumped on every write, so derived data (widened indices, converted attributes) can be cached.
+    pub generation: u64,
+}
+
+/// Checks `glBufferData`; the name of the buffer it replaces.
+fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blob<'_>>, usage: u32) -> GlResult<u32> {
+    let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
+    if !matches!(usage, STREAM_DRAW | STATIC_DRAW | DYNAMIC_DRAW) {
+        return Err(GlError::InvalidEnum);
+    }
+    if size < 0 || data.is_some_and(|d| d.len() as i64 != size) {
+        return Err(GlError::InvalidValue);
+    }
+    if name == 0 {
+        return Err(GlError::InvalidOperation);
+    }
+    if size > (1 << 30) {
+        return Err(GlError::OutOfMemory);
+    }
+    Ok(name)
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenBuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.buffers.entry(n).or_default();
+        }
+        Ok(())
+    }
+
+    pub(super) fn glDeleteBuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter() {
+            if ctx.objects.buffers.remove(&n).is_some() {
+                ctx.objects.forget_label(BUFFER_KHR, n);
+                if ctx.bindings.array_buffer == n {
+                    ctx.bindings.array_buffer = 0;
+                }
+                if ctx.bindings.element_buffer == n {
+                    ctx.bindings.element_buffer = 0;
+                }
+                for a in &mut ctx.attribs {
+                    if a.buffer == n {
+                        a.buffer = 0;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindBuffer(&mut self, target: u32, buffer: u32) -> GlResult {
+        let ctx = self.ctx();
+        match BufferTarget::from_gl(target)? {
+            BufferTarget::Array => ctx.bindings.array_buffer = buffer,
+            BufferTarget::ElementArray => ctx.bindings.element_buffer = buffer,
+        }
+        if buffer != 0 {
+            ctx.objects.buffers.entry(buffer).or_default();
+        }
+        Ok(())
+    }
+
+    pub(super) fn glIsBuffer(&mut self, name: u32) -> bool {
+        name != 0 && self.ctx().objects.buffers.contains_key(&name)
+    }
+
+    pub(super) fn glBufferData(&mut self, target: u32, size: i64, data: Option<Blob<'_>>, usage: u32) -> GlResult {
+        let (ctx, gpu) = self.ctx_gpu();
+        let name = validate_buffer_data(ctx, target, size, data.as_ref(), usage)?;
+        let b = ctx.objects.buffers.entry(name).or_default();
+        b.data = data.map(|d| d.as_bytes().to_vec()).unwrap_or_else(|| vec![0; size as usize]);
+        b.usage = usage;
+        b.generation += 1;
+        let padded = (b.data.len() as u64).div_ceil(4).max(1) * 4;
+        let gbuf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("gl buffer"),
+            size: padded,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut padded_data = b.data.clone();
+        padded_data.resize(padded as usize, 0);
+        gpu.queue.write_buffer(&gbuf, 0, &padded_data);
+        b.gpu = Some(gbuf);
+        Ok(())
+    }
+
+    pub(super) fn glBufferSubData(&mut self, target: u32, offset: i64, data: Blob<'_>) -> GlResult {
+        let (ctx, gpu) = self.ctx_gpu();
+        let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
+        let b = ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let end = offset.checked_add(data.len() as i64);
+        if offset < 0 || end.is_none_or(|e| e as usize > b.data.len()) {
+            return Err(GlError::InvalidValue);
+        }
+        let off = offset as usize;
+        b.data[off..off + data.len()].copy_from_slice(data.as_bytes());
+        b.generation += 1;
+        if let Some(g) = &b.gpu {
+            // wgpu writes whole 4-byte words; widen the range using the shadow.
+            let start = off / 4 * 4;
+            let stop = ((off + data.len()).div_ceil(4) * 4).min(g.size() as usize);
+            let mut words = b.data[start..stop.min(b.data.len())].to_vec();
+            words.resize(stop - start, 0);
+            if !words.is_empty() {
+                gpu.queue.write_buffer(g, start as u64, &words);
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glGetBufferParameteriv(&mut self, target: u32, pname: u32) -> i32 {
+        let ctx = self.ctx();
+        let name = match BufferTarget::from_gl(target) {
+            Ok(t) => ctx.bindings.buffer(t),
+            Err(e) => {
+                ctx.record(e);
+                return 0;
+            }
+        };
+        let Some(b) = ctx.objects.buffers.get(&name).filter(|_| name != 0) else {
+            ctx.record(GlError::InvalidOperation);
+            return 0;
+        };
+        match pname {
+            BUFFER_SIZE => b.data.len() as i32,
+            BUFFER_USAGE => {
+                if b.usage == 0 {
+                    STATIC_DRAW as i32
+                } else {
+                    b.usage as i32
+                }
+            }
+            _ => {
+                ctx.record(GlError::InvalidEnum);
+                0
+            }
+        }
+    }
+}

@@ -1,0 +1,366 @@
+//! One GL context's state, grouped the way GL groups it: named objects, bindings, vertex
+//! arrays, rasterisation, depth and stencil, blending and colour output, pixel store.
+
+use std::collections::HashMap;
+
+use super::buffers::Buffer;
+use super::conv::{BufferTarget, Capability, TextureTarget};
+use super::debug::DebugState;
+use super::egl::Config;
+use super::enums::*;
+use super::error::{ErrorFlag, GlError};
+use super::framebuffers::{Framebuffer, Renderbuffer};
+use super::programs::Program;
+use super::shaders::ShaderObj;
+use super::textures::Texture;
+use super::vao::VertexArray;
+use super::vertex::Attrib;
+
+/// `GL_MAX_VERTEX_ATTRIBS`.
+pub const MAX_ATTRIBS: usize = 16;
+/// Texture units (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
+pub const MAX_UNITS: usize = 16;
+/// Largest texture, renderbuffer, viewport and surface dimension.
+pub const MAX_TEXTURE: u32 = 8192;
+/// Largest point size (`GL_ALIASED_POINT_SIZE_RANGE`): points are drawn as squares of two
+/// triangles, so any size rasterises; this bounds what a shader can ask for.
+pub const MAX_POINT_SIZE: f32 = 1024.0;
+
+/// The context's name tables.
+#[derive(Default)]
+pub struct Objects {
+    /// Buffer objects.
+    pub buffers: HashMap<u32, Buffer>,
+    /// Texture objects.
+    pub textures: HashMap<u32, Texture>,
+    /// Renderbuffer objects.
+    pub renderbuffers: HashMap<u32, Renderbuffer>,
+    /// Framebuffer objects.
+    pub framebuffers: HashMap<u32, Framebuffer>,
+    /// Shader objects (one namespace with programs).
+    pub shaders: HashMap<u32, ShaderObj>,
+    /// Program objects.
+    pub programs: HashMap<u32, Program>,
+    /// Vertex array objects other than the bound one, whose state is in `Context::attribs`.
+    pub vertex_arrays: HashMap<u32, VertexArray>,
+    /// `GL_KHR_debug` object labels by (namespace, name).
+    pub labels: HashMap<(u32, u32), Vec<u8>>,
+}
+
+impl Objects {
+    /// The error for `name` where a shader or program of the other kind was expected: the
+    /// wrong kind is `GL_INVALID_OPERATION`, no object at all `GL_INVALID_VALUE`.
+    pub fn shader_or_program_error(&self, name: u32) -> GlError {
+        if self.shaders.contains_key(&name) || self.programs.contains_key(&name) {
+            GlError::InvalidOperation
+        } else {
+            GlError::InvalidValue
+        }
+    }
+}
+
+/// What is bound where.
+#[derive(Default)]
+pub struct Bindings {
+    /// `GL_ARRAY_BUFFER_BINDING`.
+    pub array_buffer: u32,
+    /// `GL_ELEMENT_ARRAY_BUFFER_BINDING`.
+    pub element_buffer: u32,
+    /// `GL_ACTIVE_TEXTURE` − `GL_TEXTURE0`.
+    pub active_unit: usize,
+    /// Per texture unit: the 2D and the cube map texture.
+    pub units: [[u32; 2]; MAX_UNITS],
+    /// `GL_CURRENT_PROGRAM`.
+    pub program: u32,
+    /// `GL_FRAMEBUFFER_BINDING`.
+    pub framebuffer: u32,
+    /// `GL_RENDERBUFFER_BINDING`.
+    pub renderbuffer: u32,
+    /// `GL_VERTEX_ARRAY_BINDING_OES`.
+    pub vertex_array: u32,
+}
+
+impl Bindings {
+    /// The buffer bound to `target`.
+    pub fn buffer(&self, target: BufferTarget) -> u32 {
+        match target {
+            BufferTarget::Array => self.array_buffer,
+            BufferTarget::ElementArray => self.element_buffer,
+        }
+    }
+
+    /// The texture bound to `target` of the active unit.
+    pub fn texture(&self, target: TextureTarget) -> u32 {
+        self.units[self.active_unit][target.slot()]
+    }
+}
+
+/// Rasterisation: viewport, scissor, culling, polygon offset, lines, multisample coverage.
+pub struct Raster {
+    /// `GL_VIEWPORT`.
+    pub viewport: [i32; 4],
+    /// `GL_SCISSOR_BOX`.
+    pub scissor: [i32; 4],
+    /// `GL_SCISSOR_TEST`.
+    pub scissor_test: bool,
+    /// `GL_CULL_FACE`.
+    pub cull: bool,
+    /// `GL_CULL_FACE_MODE`.
+    pub cull_face: u32,
+    /// `GL_FRONT_FACE`.
+    pub front_face: u32,
+    /// `GL_POLYGON_OFFSET_FILL`.
+    pub polygon_offset_fill: bool,
+    /// `GL_POLYGON_OFFSET_FACTOR` and `_UNITS`.
+    pub polygon_offset: [f32; 2],
+    /// `GL_LINE_WIDTH`.
+    pub line_width: f32,
+    /// `GL_SAMPLE_COVERAGE`.
+    pub sample_coverage: bool,
+    /// `GL_SAMPLE_ALPHA_TO_COVERAGE`.
+    pub alpha_to_coverage: bool,
+    /// `GL_SAMPLE_COVERAGE_VALUE` and `GL_SAMPLE_COVERAGE_INVERT` (kept for queries: the
+    /// single-sampled targets have no coverage to mask).
+    pub coverage: (f32, bool),
+}
+
+impl Default for Raster {
+    fn default() -> Self {
+        Raster {
+            viewport: [0; 4],
+            scissor: [0; 4],
+            scissor_test: false,
+            cull: false,
+            cull_face: BACK,
+            front_face: CCW,
+            polygon_offset_fill: false,
+            polygon_offset: [0.0; 2],
+            line_width: 1.0,
+            sample_coverage: false,
+            alpha_to_coverage: false,
+            coverage: (1.0, false),
+        }
+    }
+}
+
+/// One face's stencil state.
+#[derive(Clone, Copy)]
+pub struct StencilFace {
+    /// Comparison function.
+    pub func: u32,
+    /// Reference value.
+    pub reference: i32,
+    /// Comparison mask.
+    pub mask: u32,
+    /// Write mask.
+    pub write: u32,
+    /// Operation when the stencil test fails.
+    pub fail: u32,
+    /// Operation when the depth test fails.
+    pub zfail: u32,
+    /// Operation when both pass.
+    pub zpass: u32,
+}
+
+impl Default for StencilFace {
+    fn default() -> Self {
+        StencilFace {
+            func: ALWAYS,
+            // "All ones" of the 8-bit stencil buffers every config and renderbuffer has,
+            // which is also what Mesa reports.
+            reference: 0,
+            mask: 0xFF,
+            write: 0xFF,
+            fail: KEEP,
+            zfail: KEEP,
+            zpass: KEEP,
+        }
+    }
+}
+
+/// Depth and stencil testing, and their clear values.
+pub struct DepthStencil {
+    /// `GL_DEPTH_TEST`.
+    pub depth_test: bool,
+    /// `GL_DEPTH_FUNC`.
+    pub depth_func: u32,
+    /// `GL_DEPTH_WRITEMASK`.
+    pub depth_mask: bool,
+    /// `GL_DEPTH_RANGE`, clamped to [0, 1].
+    pub depth_range: [f32; 2],
+    /// `GL_DEPTH_CLEAR_VALUE`.
+    pub clear_depth: f32,
+    /// `GL_STENCIL_TEST`.
+    pub stencil_test: bool,
+    /// Front and back stencil state.
+    pub stencil: [StencilFace; 2],
+    /// `GL_STENCIL_CLEAR_VALUE`.
+    pub clear_stencil: i32,
+}
+
+impl Default for DepthStencil {
+    fn default() -> Self {
+        DepthStencil {
+            depth_test: false,
+            depth_func: LESS,
+            depth_mask: true,
+            depth_range: [0.0, 1.0],
+            clear_depth: 1.0,
+            stencil_test: false,
+            stencil: [StencilFace::default(); 2],
+            clear_stencil: 0,
+        }
+    }
+}
+
+/// Blending and the rest of colour output: write mask, clear colour, dithering.
+pub struct Blend {
+    /// `GL_BLEND`.
+    pub enabled: bool,
+    /// Source and destination factors: RGB source, RGB destination, alpha source, alpha destination.
+    pub func: [u32; 4],
+    /// RGB and alpha equations.
+    pub eq: [u32; 2],
+    /// `GL_BLEND_COLOR`.
+    pub color: [f32; 4],
+    /// `GL_COLOR_WRITEMASK`.
+    pub color_mask: [bool; 4],
+    /// `GL_COLOR_CLEAR_VALUE`.
+    pub clear_color: [f32; 4],
+    /// `GL_DITHER`.
+    pub dither: bool,
+}
+
+impl Default for Blend {
+    fn default() -> Self {
+        Blend {
+            enabled: false,
+            func: [ONE, ZERO, ONE, ZERO],
+            eq: [FUNC_ADD, FUNC_ADD],
+            color: [0.0; 4],
+            color_mask: [true; 4],
+            clear_color: [0.0; 4],
+            dither: true,
+        }
+    }
+}
+
+/// `glPixelStorei` state.
+pub struct PixelStore {
+    /// `GL_UNPACK_ALIGNMENT`.
+    pub unpack_alignment: i32,
+    /// `GL_PACK_ALIGNMENT`.
+    pub pack_alignment: i32,
+    /// `GL_UNPACK_ROW_LENGTH_EXT` (`EXT_unpack_subimage`; 0: the image's width).
+    pub unpack_row_length: i32,
+    /// `GL_UNPACK_SKIP_ROWS_EXT`.
+    pub unpack_skip_rows: i32,
+    /// `GL_UNPACK_SKIP_PIXELS_EXT`.
+    pub unpack_skip_pixels: i32,
+}
+
+impl Default for PixelStore {
+    fn default() -> Self {
+        PixelStore {
+            unpack_alignment: 4,
+            pack_alignment: 4,
+            unpack_row_length: 0,
+            unpack_skip_rows: 0,
+            unpack_skip_pixels: 0,
+        }
+    }
+}
+
+/// One GL context's state.
+pub struct Context {
+    /// The EGL config it was created with.
+    pub config: Config,
+    /// The pending GL error.
+    pub error: ErrorFlag,
+    /// Whether it has been current (the first `eglMakeCurrent` sizes viewport and scissor).
+    pub made_current: bool,
+    /// Name tables.
+    pub objects: Objects,
+    /// Bindings.
+    pub bindings: Bindings,
+    /// Generic vertex attributes.
+    pub attribs: Vec<Attrib>,
+    /// Rasterisation state.
+    pub raster: Raster,
+    /// Depth and stencil state.
+    pub depth_stencil: DepthStencil,
+    /// Blending and colour output.
+    pub blend: Blend,
+    /// Pixel store.
+    pub pixel_store: PixelStore,
+    /// `GL_GENERATE_MIPMAP_HINT`.
+    pub mipmap_hint: u32,
+    /// Debug output (`GL_KHR_debug`).
+    pub debug: DebugState,
+    /// The GL call being executed, which debug messages about its errors name.
+    pub call: &'static str,
+    /// `GL_FRAGMENT_SHADER_DERIVATIVE_HINT_OES`.
+    pub derivative_hint: u32,
+}
+
+impl Context {
+    /// A new context's default state.
+    pub fn new(config: Config) -> Self {
+        Context {
+            config,
+            error: ErrorFlag::default(),
+            made_current: false,
+            objects: Objects::default(),
+            bindings: Bindings::default(),
+            attribs: vec![Attrib::default(); MAX_ATTRIBS],
+            raster: Raster::default(),
+            depth_stencil: DepthStencil::default(),
+            blend: Blend::default(),
+            pixel_store: PixelStore::default(),
+            mipmap_hint: DONT_CARE,
+            debug: DebugState::default(),
+            call: "",
+            derivative_hint: DONT_CARE,
+        }
+    }
+
+    /// Records `e` (the first error wins until `glGetError`), and generates its debug message.
+    pub fn record(&mut self, e: GlError) {
+        self.error.record(e);
+        self.debug.error(self.call, e);
+    }
+
+    /// Whether capability `cap` is enabled.
+    pub fn enabled(&self, cap: Capability) -> bool {
+        match cap {
+            Capability::CullFace => self.raster.cull,
+            Capability::Blend => self.blend.enabled,
+            Capability::DepthTest => self.depth_stencil.depth_test,
+            Capability::ScissorTest => self.raster.scissor_test,
+            Capability::StencilTest => self.depth_stencil.stencil_test,
+            Capability::PolygonOffsetFill => self.raster.polygon_offset_fill,
+            Capability::Dither => self.blend.dither,
+            Capability::SampleCoverage => self.raster.sample_coverage,
+            Capability::SampleAlphaToCoverage => self.raster.alpha_to_coverage,
+            Capability::DebugOutput => self.debug.output,
+            Capability::DebugOutputSynchronous => self.debug.synchronous,
+        }
+    }
+
+    /// The flag of capability `cap`, for `glEnable`/`glDisable`.
+    pub fn enabled_mut(&mut self, cap: Capability) -> &mut bool {
+        match cap {
+            Capability::CullFace => &mut self.raster.cull,
+            Capability::Blend => &mut self.blend.enabled,
+            Capability::DepthTest => &mut self.depth_stencil.depth_test,
+            Capability::ScissorTest => &mut self.raster.scissor_test,
+            Capability::StencilTest => &mut self.depth_stencil.stencil_test,
+            Capability::PolygonOffsetFill => &mut self.raster.polygon_offset_fill,
+            Capability::Dither => &mut self.blend.dither,
+            Capability::SampleCoverage => &mut self.raster.sample_coverage,
+            Capability::SampleAlphaToCoverage => &mut self.raster.alpha_to_coverage,
+            Capability::DebugOutput => &mut self.debug.output,
+            Capability::DebugOutputSynchronous => &mut self.debug.synchronous,
+        }
+    }
+}

@@ -1,0 +1,502 @@
+//! GL enums parsed once at the boundary into typed values, and every mapping from GL state to
+//! wgpu state, with the conventions that tie the two together written down once:
+//!
+//! - **Clip z.** GL clips z to [-w, w], wgpu to [0, w]: every vertex shader's generated `main`
+//!   maps z to (z + w) / 2 (`glsl/link.rs`).
+//! - **Y flip and winding.** The same `main` negates y, so memory row 0 is GL's bottom row.
+//!   Mirroring the image reverses the winding, so GL's front face is the opposite one in wgpu
+//!   ([`front_face`]).
+//! - **Window coordinates.** Because of the flip, viewport and scissor rectangles are used as
+//!   GL gives them, bottom-left origin included ([`viewport`], [`clip_rect`]).
+//! - **Depth range.** `glDepthRangef` becomes the viewport's depth range ([`viewport`]).
+//! - **Texture origin.** GL's first uploaded row is the bottom row (t = 0), which is memory
+//!   row 0: uploads, render-to-texture and `glReadPixels` need no flips.
+
+use super::context::MAX_TEXTURE;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::render::Target;
+use super::textures::SamplerState;
+
+/// A buffer binding point (`glBindBuffer`, `glBufferData`, …).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BufferTarget {
+    /// `GL_ARRAY_BUFFER`.
+    Array,
+    /// `GL_ELEMENT_ARRAY_BUFFER`.
+    ElementArray,
+}
+
+impl BufferTarget {
+    /// Parses a buffer target; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            ARRAY_BUFFER => Ok(BufferTarget::Array),
+            ELEMENT_ARRAY_BUFFER => Ok(BufferTarget::ElementArray),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+}
+
+/// A texture binding point of a texture unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureTarget {
+    /// `GL_TEXTURE_2D`.
+    TwoD,
+    /// `GL_TEXTURE_CUBE_MAP`.
+    CubeMap,
+}
+
+impl TextureTarget {
+    /// Parses a texture target; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            TEXTURE_2D => Ok(TextureTarget::TwoD),
+            TEXTURE_CUBE_MAP => Ok(TextureTarget::CubeMap),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// The GL enum, as a texture object remembers its target.
+    pub fn as_gl(self) -> u32 {
+        match self {
+            TextureTarget::TwoD => TEXTURE_2D,
+            TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
+        }
+    }
+
+    /// Index of this binding point in a texture unit.
+    pub fn slot(self) -> usize {
+        match self {
+            TextureTarget::TwoD => 0,
+            TextureTarget::CubeMap => 1,
+        }
+    }
+}
+
+/// The image an upload or copy addresses: `GL_TEXTURE_2D` or one cube face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ImageTarget {
+    /// Array layer: the cube face (0..6), 0 for 2D.
+    pub face: u32,
+    /// Whether this is a cube face.
+    pub cube: bool,
+}
+
+impl ImageTarget {
+    /// Parses `GL_TEXTURE_2D` or `GL_TEXTURE_CUBE_MAP_*`; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false }),
+            t if (TEXTURE_CUBE_MAP_POSITIVE_X..TEXTURE_CUBE_MAP_POSITIVE_X + 6).contains(&t) => {
+                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true })
+            }
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// The binding point whose texture holds this image.
+    pub fn binding(self) -> TextureTarget {
+        if self.cube {
+            TextureTarget::CubeMap
+        } else {
+            TextureTarget::TwoD
+        }
+    }
+}
+
+/// A capability of `glEnable`/`glDisable`/`glIsEnabled`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Capability {
+    /// `GL_CULL_FACE`.
+    CullFace,
+    /// `GL_BLEND`.
+    Blend,
+    /// `GL_DEPTH_TEST`.
+    DepthTest,
+    /// `GL_SCISSOR_TEST`.
+    ScissorTest,
+    /// `GL_STENCIL_TEST`.
+    StencilTest,
+    /// `GL_POLYGON_OFFSET_FILL`.
+    PolygonOffsetFill,
+    /// `GL_DITHER`.
+    Dither,
+    /// `GL_SAMPLE_COVERAGE`.
+    SampleCoverage,
+    /// `GL_SAMPLE_ALPHA_TO_COVERAGE`.
+    SampleAlphaToCoverage,
+    /// `GL_DEBUG_OUTPUT_KHR`.
+    DebugOutput,
+    /// `GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR`.
+    DebugOutputSynchronous,
+}
+
+impl Capability {
+    /// Parses a capability; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(cap: u32) -> GlResult<Self> {
+        Ok(match cap {
+            CULL_FACE => Capability::CullFace,
+            BLEND => Capability::Blend,
+            DEPTH_TEST => Capability::DepthTest,
+            SCISSOR_TEST => Capability::ScissorTest,
+            STENCIL_TEST => Capability::StencilTest,
+            POLYGON_OFFSET_FILL => Capability::PolygonOffsetFill,
+            DITHER => Capability::Dither,
+            SAMPLE_COVERAGE => Capability::SampleCoverage,
+            SAMPLE_ALPHA_TO_COVERAGE => Capability::SampleAlphaToCoverage,
+            DEBUG_OUTPUT => Capability::DebugOutput,
+            DEBUG_OUTPUT_SYNCHRONOUS => Capability::DebugOutputSynchronous,
+            _ => return Err(GlError::InvalidEnum),
+        })
+    }
+}
+
+/// A draw call's primitive mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Primitive {
+    /// `GL_POINTS`.
+    Points,
+    /// `GL_LINES`.
+    Lines,
+    /// `GL_LINE_LOOP`, drawn as a strip of generated indices.
+    LineLoop,
+    /// `GL_LINE_STRIP`.
+    LineStrip,
+    /// `GL_TRIANGLES`.
+    Triangles,
+    /// `GL_TRIANGLE_STRIP`.
+    TriangleStrip,
+    /// `GL_TRIANGLE_FAN`, drawn as a list of generated indices.
+    TriangleFan,
+}
+
+impl Primitive {
+    /// Parses a primitive mode; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(mode: u32) -> GlResult<Self> {
+        Ok(match mode {
+            POINTS => Primitive::Points,
+            LINES => Primitive::Lines,
+            LINE_LOOP => Primitive::LineLoop,
+            LINE_STRIP => Primitive::LineStrip,
+            TRIANGLES => Primitive::Triangles,
+            TRIANGLE_STRIP => Primitive::TriangleStrip,
+            TRIANGLE_FAN => Primitive::TriangleFan,
+            _ => return Err(GlError::InvalidEnum),
+        })
+    }
+
+    /// The wgpu topology the primitive is drawn with.
+    pub fn topology(self) -> wgpu::PrimitiveTopology {
+        match self {
+            Primitive::Points => wgpu::PrimitiveTopology::PointList,
+            Primitive::Lines => wgpu::PrimitiveTopology::LineList,
+            Primitive::LineStrip | Primitive::LineLoop => wgpu::PrimitiveTopology::LineStrip,
+            Primitive::Triangles | Primitive::TriangleFan => wgpu::PrimitiveTopology::TriangleList,
+            Primitive::TriangleStrip => wgpu::PrimitiveTopology::TriangleStrip,
+        }
+    }
+
+    /// Whether wgpu has no such primitive, so the draw uses generated indices.
+    pub fn generates_indices(self) -> bool {
+        matches!(self, Primitive::LineLoop | Primitive::TriangleFan)
+    }
+
+    /// Whether this is a strip (whose indexed form restarts at the format's maximum in wgpu).
+    pub fn is_strip(self) -> bool {
+        matches!(self, Primitive::LineStrip | Primitive::TriangleStrip)
+    }
+}
+
+/// The type of a draw's indices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IndexType {
+    /// `GL_UNSIGNED_BYTE`.
+    U8,
+    /// `GL_UNSIGNED_SHORT`.
+    U16,
+    /// `GL_UNSIGNED_INT` (`OES_element_index_uint`).
+    U32,
+}
+
+impl IndexType {
+    /// Parses an index type; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(ty: u32) -> GlResult<Self> {
+        match ty {
+            UNSIGNED_BYTE => Ok(IndexType::U8),
+            UNSIGNED_SHORT => Ok(IndexType::U16),
+            UNSIGNED_INT => Ok(IndexType::U32),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// Bytes per index.
+    pub fn size(self) -> u64 {
+        match self {
+            IndexType::U8 => 1,
+            IndexType::U16 => 2,
+            IndexType::U32 => 4,
+        }
+    }
+}
+
+/// Whether `f` is one of the eight comparison functions.
+pub fn valid_func(f: u32) -> bool {
+    (NEVER..=ALWAYS).contains(&f)
+}
+
+/// The wgpu comparison for a (validated) GL comparison function.
+pub fn compare(f: u32) -> wgpu::CompareFunction {
+    match f {
+        NEVER => wgpu::CompareFunction::Never,
+        LESS => wgpu::CompareFunction::Less,
+        EQUAL => wgpu::CompareFunction::Equal,
+        LEQUAL => wgpu::CompareFunction::LessEqual,
+        GREATER => wgpu::CompareFunction::Greater,
+        NOTEQUAL => wgpu::CompareFunction::NotEqual,
+        GEQUAL => wgpu::CompareFunction::GreaterEqual,
+        _ => wgpu::CompareFunction::Always,
+    }
+}
+
+/// Whether `op` is a stencil operation.
+pub fn valid_stencil_op(op: u32) -> bool {
+    matches!(op, ZERO | KEEP | REPLACE | INCR | DECR | INVERT | INCR_WRAP | DECR_WRAP)
+}
+
+/// The wgpu stencil operation for a (validated) GL one.
+pub fn stencil_op(op: u32) -> wgpu::StencilOperation {
+    match op {
+        ZERO => wgpu::StencilOperation::Zero,
+        REPLACE => wgpu::StencilOperation::Replace,
+        INCR => wgpu::StencilOperation::IncrementClamp,
+        DECR => wgpu::StencilOperation::DecrementClamp,
+        INVERT => wgpu::StencilOperation::Invert,
+        INCR_WRAP => wgpu::StencilOperation::IncrementWrap,
+        DECR_WRAP => wgpu::StencilOperation::DecrementWrap,
+        _ => wgpu::StencilOperation::Keep,
+    }
+}
+
+/// The wgpu blend factor for a GL one, `None` if `f` is not a blend factor.
+pub fn blend_factor(f: u32) -> Option<wgpu::BlendFactor> {
+    use wgpu::BlendFactor as B;
+    Some(match f {
+        ZERO => B::Zero,
+        ONE => B::One,
+        SRC_COLOR => B::Src,
+        ONE_MINUS_SRC_COLOR => B::OneMinusSrc,
+        SRC_ALPHA => B::SrcAlpha,
+        ONE_MINUS_SRC_ALPHA => B::OneMinusSrcAlpha,
+        DST_ALPHA => B::DstAlpha,
+        ONE_MINUS_DST_ALPHA => B::OneMinusDstAlpha,
+        DST_COLOR => B::Dst,
+        ONE_MINUS_DST_COLOR => B::OneMinusDst,
+        SRC_ALPHA_SATURATE => B::SrcAlphaSaturated,
+        CONSTANT_COLOR => B::Constant,
+        ONE_MINUS_CONSTANT_COLOR => B::OneMinusConstant,
+        // wgpu has one blend constant; its alpha is what CONSTANT_ALPHA reads.
+        CONSTANT_ALPHA => B::Constant,
+        ONE_MINUS_CONSTANT_ALPHA => B::OneMinusConstant,
+        _ => return None,
+    })
+}
+
+/// The wgpu blend operation for a GL blend equation (`EXT_blend_minmax` included), `None`
+/// if `e` is not one.
+pub fn blend_op(e: u32) -> Option<wgpu::BlendOperation> {
+    Some(match e {
+        FUNC_ADD => wgpu::BlendOperation::Add,
+        FUNC_SUBTRACT => wgpu::BlendOperation::Subtract,
+        FUNC_REVERSE_SUBTRACT => wgpu::BlendOperation::ReverseSubtract,
+        MIN_EXT => wgpu::BlendOperation::Min,
+        MAX_EXT => wgpu::BlendOperation::Max,
+        _ => return None,
+    })
+}
+
+/// One blend component: GL's `MIN`/`MAX` ignore the factors, and wgpu requires them to be
+/// `One` for those operations.
+pub fn blend_component(src: u32, dst: u32, eq: u32) -> wgpu::BlendComponent {
+    let operation = blend_op(eq).unwrap_or(wgpu::BlendOperation::Add);
+    if matches!(operation, wgpu::BlendOperation::Min | wgpu::BlendOperation::Max) {
+        return wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation,
+        };
+    }
+    let f = |x| blend_factor(x).unwrap_or(wgpu::BlendFactor::One);
+    wgpu::BlendComponent { src_factor: f(src), dst_factor: f(dst), operation }
+}
+
+/// wgpu's front face for GL's: the y flip mirrors the image, so the winding reverses.
+pub fn front_face(gl_front_ccw: bool) -> wgpu::FrontFace {
+    if gl_front_ccw {
+        wgpu::FrontFace::Cw
+    } else {
+        wgpu::FrontFace::Ccw
+    }
+}
+
+/// The colour write mask of `glColorMask`'s four flags.
+pub fn color_writes(mask: [bool; 4]) -> wgpu::ColorWrites {
+    let mut writes = wgpu::ColorWrites::empty();
+    for (bit, on) in
+        [wgpu::ColorWrites::RED, wgpu::ColorWrites::GREEN, wgpu::ColorWrites::BLUE, wgpu::ColorWrites::ALPHA]
+            .into_iter()
+            .zip(mask)
+    {
+        if on {
+            writes |= bit;
+        }
+    }
+    writes
+}
+
+/// A GL window rectangle (x, y, w, h, bottom-left origin) clipped to the target, as wgpu's
+/// scissor wants it; the y flip makes GL's window y the target's row.
+pub fn clip_rect(r: [i32; 4], t: &Target) -> [u32; 4] {
+    let x0 = r[0].clamp(0, t.width as i32);
+    let y0 = r[1].clamp(0, t.height as i32);
+    let x1 = (r[0].saturating_add(r[2])).clamp(0, t.width as i32);
+    let y1 = (r[1].saturating_add(r[3])).clamp(0, t.height as i32);
+    [x0 as u32, y0 as u32, (x1 - x0).max(0) as u32, (y1 - y0).max(0) as u32]
+}
+
+/// wgpu's viewport (x, y, w, h, min depth, max depth) for GL's viewport and depth range, or
+/// `None` if it is empty. It may extend past the target: wgpu, like Vulkan, accepts viewports
+/// within twice the largest dimension, and clips. Beyond that it is moved inside that range,
+/// where it still covers no pixel of any target.
+pub fn viewport(vp: [i32; 4], depth_range: [f32; 2]) -> Option<[f32; 6]> {
+    let [vx, vy, vw, vh] = vp;
+    if vw <= 0 || vh <= 0 {
+        return None;
+    }
+    let bound = 2 * i64::from(MAX_TEXTURE);
+    let place = |v: i32, size: i32| i64::from(v).clamp(-bound, bound - 1 - i64::from(size)) as f32;
+    Some([
+        place(vx, vw),
+        place(vy, vh),
+        vw as f32,
+        vh as f32,
+        depth_range[0].min(depth_range[1]),
+        depth_range[0].max(depth_range[1]),
+    ])
+}
+
+/// Bytes per component of a vertex attribute type, `None` if `ty` is not one.
+pub fn type_size(ty: u32) -> Option<usize> {
+    Some(match ty {
+        BYTE | UNSIGNED_BYTE => 1,
+        SHORT | UNSIGNED_SHORT | HALF_FLOAT_OES => 2,
+        FLOAT | FIXED => 4,
+        _ => return None,
+    })
+}
+
+/// The wgpu format that reads GL attribute data as-is, if there is one.
+pub fn native_format(ty: u32, size: i32, normalized: bool) -> Option<wgpu::VertexFormat> {
+    use wgpu::VertexFormat as F;
+    Some(match (ty, size, normalized) {
+        (FLOAT, 1, _) => F::Float32,
+        (FLOAT, 2, _) => F::Float32x2,
+        (FLOAT, 3, _) => F::Float32x3,
+        (FLOAT, 4, _) => F::Float32x4,
+        (HALF_FLOAT_OES, 2, _) => F::Float16x2,
+        (HALF_FLOAT_OES, 4, _) => F::Float16x4,
+        (UNSIGNED_BYTE, 4, true) => F::Unorm8x4,
+        (BYTE, 4, true) => F::Snorm8x4,
+        (UNSIGNED_SHORT, 2, true) => F::Unorm16x2,
+        (UNSIGNED_SHORT, 4, true) => F::Unorm16x4,
+        (SHORT, 2, true) => F::Snorm16x2,
+        (SHORT, 4, true) => F::Snorm16x4,
+        _ => return None,
+    })
+}
+
+/// Reads one attribute component as GL converts it to float (ES 2.0 §2.1.2, table 2.7).
+pub fn component(bytes: &[u8], ty: u32, normalized: bool) -> f32 {
+    match ty {
+        FLOAT => f32::from_ne_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]),
+        FIXED => i32::from_ne_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]) as f32 / 65536.0,
+        HALF_FLOAT_OES => half::f16::from_bits(u16::from_ne_bytes([bytes[0], bytes[1]])).to_f32(),
+        UNSIGNED_BYTE => {
+            let v = f32::from(bytes[0]);
+            if normalized {
+                v / 255.0
+            } else {
+                v
+            }
+        }
+        BYTE => {
+            let v = f32::from(bytes[0] as i8);
+            if normalized {
+                (2.0 * v + 1.0) / 255.0
+            } else {
+                v
+            }
+        }
+        UNSIGNED_SHORT => {
+            let v = f32::from(u16::from_ne_bytes([bytes[0], bytes[1]]));
+            if normalized {
+                v / 65535.0
+            } else {
+                v
+            }
+        }
+        _ => {
+            let v = f32::from(i16::from_ne_bytes([bytes[0], bytes[1]]));
+            if normalized {
+                (2.0 * v + 1.0) / 65535.0
+            } else {
+                v
+            }
+        }
+    }
+}
+
+/// The float vertex format with `n` components (converted attributes).
+pub fn float_format(n: i32) -> wgpu::VertexFormat {
+    match n {
+        1 => wgpu::VertexFormat::Float32,
+        2 => wgpu::VertexFormat::Float32x2,
+        3 => wgpu::VertexFormat::Float32x3,
+        _ => wgpu::VertexFormat::Float32x4,
+    }
+}
+
+/// The wgpu sampler for a texture's GL sampling state.
+pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
+    let filter = |f: u32| {
+        if matches!(f, LINEAR | LINEAR_MIPMAP_NEAREST | LINEAR_MIPMAP_LINEAR) {
+            wgpu::FilterMode::Linear
+        } else {
+            wgpu::FilterMode::Nearest
+        }
+    };
+    let wrap = |w: u32| match w {
+        CLAMP_TO_EDGE => wgpu::AddressMode::ClampToEdge,
+        MIRRORED_REPEAT => wgpu::AddressMode::MirrorRepeat,
+        _ => wgpu::AddressMode::Repeat,
+    };
+    let mip = if matches!(s.min, NEAREST_MIPMAP_LINEAR | LINEAR_MIPMAP_LINEAR) {
+        wgpu::MipmapFilterMode::Linear
+    } else {
+        wgpu::MipmapFilterMode::Nearest
+    };
+    wgpu::SamplerDescriptor {
+        label: None,
+        address_mode_u: wrap(s.wrap_s),
+        address_mode_v: wrap(s.wrap_t),
+        address_mode_w: wrap(s.wrap_t),
+        mag_filter: filter(s.mag),
+        min_filter: filter(s.min),
+        mipmap_filter: mip,
+        lod_min_clamp: 0.0,
+        lod_max_clamp: if s.uses_mipmaps() { 32.0 } else { 0.0 },
+        compare: None,
+        anisotropy_clamp: 1,
+        border_color: None,
+    }
+}

@@ -1,0 +1,143 @@
+//! Texture images copied from the framebuffer: `glCopyTexImage2D` and `glCopyTexSubImage2D`
+//! (into 8-bit colour images only: float, depth and compressed images are not copy targets).
+
+use super::conv::ImageTarget;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{Compressed, Storage};
+use super::render::Target;
+use super::teximage::{image_texture, validate_size, MAX_LEVEL};
+use super::GlesExecutor;
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glCopyTexImage2D(
+        &mut self,
+        target: u32,
+        level: i32,
+        internalformat: u32,
+        x: i32,
+        y: i32,
+        width: i32,
+        height: i32,
+        border: i32,
+    ) -> GlResult {
+        self.copy_tex(target, level, Some(internalformat), 0, 0, x, y, width, height, border)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glCopyTexSubImage2D(
+        &mut self,
+        target: u32,
+        level: i32,
+        xoffset: i32,
+        yoffset: i32,
+        x: i32,
+        y: i32,
+        width: i32,
+        height: i32,
+    ) -> GlResult {
+        self.copy_tex(target, level, None, xoffset, yoffset, x, y, width, height, 0)
+    }
+
+    /// Copies a rectangle of the framebuffer's colour into a texture level; with `internal`
+    /// (`glCopyTexImage2D`) level 0 is (re)specified first.
+    #[allow(clippy::too_many_arguments)]
+    fn copy_tex(
+        &mut self,
+        target: u32,
+        level: i32,
+        internal: Option<u32>,
+        xo: i32,
+        yo: i32,
+        x: i32,
+        y: i32,
+        w: i32,
+        h: i32,
+        border: i32,
+    ) -> GlResult {
+        let src = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let uid = self.next_uid();
+        let (ctx, gpu) = self.ctx_gpu();
+        let image = ImageTarget::from_gl(target)?;
+        if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
+            return Err(GlError::InvalidValue);
+        }
+        if let Some(f) = internal {
+            if !matches!(f, RGBA | RGB | LUMINANCE | LUMINANCE_ALPHA | ALPHA) {
+                return Err(GlError::InvalidEnum);
+            }
+            validate_size(image, level, w, h, border)?;
+        }
+        let name = image_texture(ctx, image);
+        let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let level = level as u32;
+        if let Some(f) = internal {
+            if level == 0 {
+                t.ensure_image(gpu, uid, w as u32, h as u32, Storage::Rgba8);
+                t.format = f;
+            }
+        }
+        let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+        if img.storage != Storage::Rgba8 || Compressed::from_gl(t.format).is_some() {
+            if internal.is_some() {
+                // A colour level of a float, depth or compressed texture: the texture is
+                // incomplete until its levels agree again.
+                t.defined[image.face as usize] &= !(1 << level);
+                return Ok(());
+            }
+            return Err(GlError::InvalidOperation);
+        }
+        let (lw, lh) = img.level_size(level);
+        if internal.is_some() && (lw, lh) != (w as u32, h as u32) {
+            return Err(GlError::InvalidValue);
+        }
+        super::teximage::validate_rect((lw, lh), xo, yo, w, h)?;
+        t.defined[image.face as usize] |= 1 << level;
+        let rgb = t.format == RGB;
+        let Some((src_tex, _)) = &src.color else { return Ok(()) };
+        // Clip the source rectangle to the framebuffer.
+        let (sx0, sy0) = (x.max(0), y.max(0));
+        let (sx1, sy1) = (x.saturating_add(w).min(src.width as i32), y.saturating_add(h).min(src.height as i32));
+        if sx1 <= sx0 || sy1 <= sy0 {
+            return Ok(());
+        }
+        let dst = [(xo + sx0 - x) as u32, (yo + sy0 - y) as u32, (sx1 - sx0) as u32, (sy1 - sy0) as u32];
+        let dst_tex = img.texture.clone();
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        enc.copy_texture_to_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: src_tex,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: sx0 as u32, y: sy0 as u32, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyTextureInfo {
+                texture: &img.texture,
+                mip_level: level,
+                origin: wgpu::Origin3d { x: dst[0], y: dst[1], z: image.face },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
+        );
+        self.flush();
+        self.gpu.queue.submit([enc.finish()]);
+        if rgb {
+            // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.
+            let view = dst_tex.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_mip_level: level,
+                mip_level_count: Some(1),
+                base_array_layer: image.face,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let color = Some((dst_tex, view));
+            let level_target = Target { key: (uid, 3), color, depth: None, width: lw, height: lh, opaque: true };
+            let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
+            self.r.clear(&level_target, alpha_one, None, None, Some(dst));
+        }
+        Ok(())
+    }
+}

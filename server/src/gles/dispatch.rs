@@ -1,0 +1,193 @@
+//! What happens to every command before its handler runs, and the dispatch onto the handlers.
+//!
+//! - **Error scope.** Everything a command does on the device runs inside a wgpu validation
+//!   scope; an error caught there (or in a pass flushed meanwhile) is logged against this client
+//!   and recorded as `GL_OUT_OF_MEMORY`.
+//! - **No current context.** GL calls without a current context have no effect; synchronous
+//!   ones still get an answer (`Reply::Unsupported`), so the client never waits forever.
+//! - **Flush rule.** A call that rewrites a buffer or texture a recorded draw may read first
+//!   submits the pending pass, so the draw reads the old contents, as GL orders it.
+//! - **Dispatch.** The match is generated from the protocol's command table
+//!   (`strata_protocol::command_table!`): each command calls the handler method named like its
+//!   `Calls` method (`glBufferData`, `eglSwapBuffers`, `strataPing`) with its fields. A command
+//!   without a handler does not compile. Asynchronous GL handlers return `GlResult<()>`, whose
+//!   error is recorded here; synchronous handlers return the reply's value.
+
+use strata_protocol::commands::*;
+use strata_protocol::wire::*;
+use strata_protocol::Opcode;
+use tracing::warn;
+
+use super::context::Context;
+use super::error::{GlError, GlResult};
+use super::render::Renderer;
+use super::GlesExecutor;
+use crate::executor::{ExecError, Executor};
+use crate::gpu::Gpu;
+
+/// Generates `GlesExecutor::dispatch` from the command table.
+macro_rules! gles_dispatch {
+    (
+        async { $( $agl:ident => $av:ident { $( $af:ident : $aty:ty ),* } ; )* }
+        sync { $( $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* } -> $ret:ty ; )* }
+    ) => {
+        impl GlesExecutor {
+            /// Runs `cmd`'s handler; synchronous commands return their reply.
+            fn dispatch(&mut self, cmd: Command<'_>) -> Option<Reply> {
+                match cmd {
+                    $( Command::$av { $( $af ),* } => {
+                        let result: GlResult = self.$agl($( $af ),*);
+                        if let Err(e) = result {
+                            self.record(e);
+                        }
+                        None
+                    } )*
+                    $( Command::$sv { $( $sf ),* } => {
+                        let value: $ret = self.$sgl($( $sf ),*);
+                        Some(Reply::$sv(value))
+                    } )*
+                }
+            }
+        }
+    };
+}
+
+strata_protocol::command_table!(gles_dispatch);
+
+/// Whether `op` is a GL call, which needs a current context (EGL and Strata's own calls do not).
+fn needs_context(op: Opcode) -> bool {
+    use Opcode as O;
+    !matches!(
+        op,
+        O::Ping
+            | O::Stats
+            | O::GetDisplay
+            | O::GetPlatformDisplay
+            | O::Initialize
+            | O::Terminate
+            | O::ChooseConfig
+            | O::GetConfigAttrib
+            | O::CreatePbufferSurface
+            | O::CreateWindowSurface
+            | O::CreateContext
+            | O::MakeCurrent
+            | O::SwapInterval
+            | O::QuerySurface
+            | O::DestroySurface
+            | O::DestroyContext
+            | O::SwapBuffers
+            | O::ResizeSurface
+    )
+}
+
+/// Whether `op` writes a buffer or texture that a recorded draw may read, so the pending pass
+/// must be submitted first.
+fn flushes_first(op: Opcode) -> bool {
+    use Opcode as O;
+    matches!(
+        op,
+        O::BufferData
+            | O::BufferSubData
+            | O::TexImage2D
+            | O::TexSubImage2D
+            | O::CompressedTexImage2D
+            | O::CompressedTexSubImage2D
+            | O::CopyTexImage2D
+            | O::CopyTexSubImage2D
+            | O::GenerateMipmap
+    )
+}
+
+impl Executor for GlesExecutor {
+    fn execute(&mut self, cmd: Command<'_>) -> Result<Option<Reply>, ExecError> {
+        let op = cmd.opcode();
+        // Everything a command does on the device is charged to this client.
+        let scope = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let reply = if self.current.is_none() && needs_context(op) {
+            // No current context: GL calls have no effect. Queries still get an answer.
+            op.is_sync().then(|| Reply::Unsupported(format!("{}: no current context", op.name())))
+        } else {
+            if flushes_first(op) && self.r.pending() {
+                self.flush();
+            }
+            // Debug messages about the errors a call records name it.
+            if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
+                ctx.call = op.name();
+            }
+            self.dispatch(cmd)
+        };
+        let caught = pollster::block_on(scope.pop());
+        if caught.is_some() || !self.r.errors.is_empty() {
+            self.charge(caught);
+        }
+        Ok(reply)
+    }
+}
+
+impl GlesExecutor {
+    /// The current context. GL handlers run only with one (see `needs_context`), and
+    /// `eglDestroyContext` of the current context also ends its currency.
+    pub(super) fn ctx(&mut self) -> &mut Context {
+        let (cid, _) = self.current.expect("GL handlers run with a current context");
+        self.contexts.get_mut(&cid).expect("the current context exists")
+    }
+
+    /// The current context and the GPU, borrowed together.
+    pub(super) fn ctx_gpu(&mut self) -> (&mut Context, &Gpu) {
+        let (cid, _) = self.current.expect("GL handlers run with a current context");
+        (self.contexts.get_mut(&cid).expect("the current context exists"), &self.gpu)
+    }
+
+    /// The current context and the renderer, borrowed together.
+    pub(super) fn ctx_renderer(&mut self) -> (&mut Context, &mut Renderer) {
+        let (cid, _) = self.current.expect("GL handlers run with a current context");
+        (self.contexts.get_mut(&cid).expect("the current context exists"), &mut self.r)
+    }
+
+    /// Records `e` in the current context, if there is one.
+    pub(super) fn record(&mut self, e: GlError) {
+        if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
+            ctx.record(e);
+        }
+    }
+
+    /// A fresh id for cache keys (images, targets, programs).
+    pub(super) fn next_uid(&mut self) -> u64 {
+        self.uid += 1;
+        self.uid
+    }
+
+    /// Submits the pending pass.
+    pub(super) fn flush(&mut self) {
+        self.r.flush();
+    }
+
+    /// Logs every GPU error caught since the last command against this client and records
+    /// `GL_OUT_OF_MEMORY` (after which GL leaves the state undefined, as a lost GPU would).
+    fn charge(&mut self, extra: Option<wgpu::Error>) {
+        let mut errors = std::mem::take(&mut self.r.errors);
+        errors.extend(extra.map(|e| super::render::error_chain(&e)));
+        for e in errors {
+            // The log target is the one operators' filters (and the misuse test) match.
+            warn!(target: "strata_server::gles::state", "GPU validation error charged to this client: {e}");
+            self.record(GlError::OutOfMemory);
+        }
+    }
+
+    #[allow(non_snake_case)]
+    pub(super) fn strataPing(&mut self, token: u64) -> u64 {
+        token
+    }
+
+    #[allow(non_snake_case)]
+    pub(super) fn strataStats(&mut self) -> ExecStats {
+        ExecStats { pipeline_cache_misses: self.r.pipeline_misses, render_passes: self.r.passes, draws: self.r.draws }
+    }
+
+    /// The session answers `strataVerify` from its own stream tally before commands reach an
+    /// executor; an executor keeps none, so it answers as a session without a tally does.
+    #[allow(non_snake_case)]
+    pub(super) fn strataVerify(&mut self, _commands: u64, _crc32: u32) -> StreamTally {
+        StreamTally { commands: 0, crc32: 0, matches: false }
+    }
+}

@@ -1,0 +1,461 @@
+//! Drawing: `glClear`, `glDrawArrays` and `glDrawElements` (with buffer or client-side
+//! indices), `glFlush` and `glFinish`. A draw is validated against `&Context` into a draw plan
+//! ([`DrawSpec`]), every read checked against the CPU shadows of the buffers involved, and the
+//! plan is then lowered onto the renderer's open pass.
+
+use strata_protocol::Blob;
+
+use super::context::{Context, StencilFace};
+use super::conv::{
+    blend_component, clip_rect, color_writes, compare, component, float_format, native_format, stencil_op, type_size,
+    viewport, IndexType, Primitive,
+};
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::glsl::Ty;
+use super::programs::LinkedProgram;
+use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
+use super::GlesExecutor;
+
+/// The most bytes of converted vertex data one attribute of one draw may need.
+const MAX_CONVERTED: usize = 256 << 20;
+
+/// Where a draw's indices come from.
+#[derive(Clone, Copy)]
+enum Indices<'a> {
+    /// The bound element array buffer, at a byte offset.
+    Buffer(u64),
+    /// A client-side index array sent with the draw.
+    Client(&'a [u8]),
+}
+
+/// A draw's indices: the index source wgpu reads, and how many vertices they reach.
+struct IndexPlan {
+    index: Option<(Source, wgpu::IndexFormat)>,
+    count: u32,
+    vertex_count: u64,
+}
+
+/// Reads a draw's `count` indices, checked against their source: the values, and the byte
+/// offset and GPU buffer of an element array buffer (`None` for client indices).
+fn index_values<'c>(
+    ctx: &'c Context,
+    ty: IndexType,
+    indices: Indices<'c>,
+    count: u32,
+) -> GlResult<(Vec<u32>, u64, Option<&'c wgpu::Buffer>)> {
+    let (offset, gpu, data): (u64, Option<&wgpu::Buffer>, &[u8]) = match indices {
+        Indices::Buffer(offset) => {
+            let buf = ctx.objects.buffers.get(&ctx.bindings.element_buffer).ok_or(GlError::InvalidOperation)?;
+            (offset, buf.gpu.as_ref(), &buf.data)
+        }
+        // Client indices are always rewritten into the per-pass ring.
+        Indices::Client(bytes) => (0, None, bytes),
+    };
+    let end = offset.checked_add(u64::from(count) * ty.size());
+    let bytes = end.and_then(|e| data.get(offset as usize..e as usize)).ok_or(GlError::InvalidOperation)?;
+    let values: Vec<u32> = match ty {
+        IndexType::U8 => bytes.iter().map(|&b| u32::from(b)).collect(),
+        IndexType::U16 => bytes.chunks_exact(2).map(|c| u32::from(u16::from_ne_bytes([c[0], c[1]]))).collect(),
+        IndexType::U32 => bytes.chunks_exact(4).map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect(),
+    };
+    Ok((values, offset, gpu))
+}
+
+/// Refuses a draw whose generated index list (at most three indices per vertex, for a fan)
+/// would pass `MAX_CONVERTED` bytes: `GL_OUT_OF_MEMORY`, where a count the client chose would
+/// otherwise make the daemon allocate without bound.
+fn generated_size(count: u32) -> GlResult {
+    if u64::from(count) * 12 > MAX_CONVERTED as u64 {
+        return Err(GlError::OutOfMemory);
+    }
+    Ok(())
+}
+
+/// Validates a draw's indices (or its vertex range) and plans what wgpu reads: the element
+/// buffer directly where wgpu can, else indices generated into the per-pass ring.
+fn plan_indices(
+    ctx: &Context,
+    prim: Primitive,
+    count: u32,
+    indices: Option<(IndexType, Indices<'_>)>,
+    first: u32,
+) -> GlResult<IndexPlan> {
+    let mut index: Option<(Source, wgpu::IndexFormat)> = None;
+    let mut list: Option<Vec<u32>> = None;
+    let vertex_count: u64;
+    if let Some((ty, indices)) = indices {
+        let (values, offset, gpu) = index_values(ctx, ty, indices, count)?;
+        vertex_count = u64::from(values.iter().copied().max().unwrap_or(0)) + 1;
+        // A u16 strip containing 0xFFFF would restart under wgpu; widen it to u32, whose
+        // restart value no validated index can reach.
+        let restart_hazard = prim.is_strip() && ty == IndexType::U16 && values.contains(&0xFFFF);
+        let direct = ty != IndexType::U8
+            && offset.is_multiple_of(ty.size())
+            && !prim.generates_indices()
+            && !restart_hazard
+            && gpu.is_some();
+        if direct {
+            let fmt = if ty == IndexType::U16 { wgpu::IndexFormat::Uint16 } else { wgpu::IndexFormat::Uint32 };
+            index = gpu.cloned().map(|g| (Source::Buffer(g, offset), fmt));
+        } else {
+            list = Some(values);
+        }
+    } else {
+        vertex_count = u64::from(first) + u64::from(count);
+        if prim.generates_indices() {
+            generated_size(count)?;
+            list = Some((first..first + count).collect());
+        }
+    }
+    let mut draw_count = count;
+    if let Some(v) = list {
+        generated_size(count)?;
+        let out: Vec<u32> = match prim {
+            Primitive::LineLoop => v.iter().copied().chain(v.first().copied()).collect(),
+            Primitive::TriangleFan => (1..v.len().saturating_sub(1)).flat_map(|i| [v[0], v[i], v[i + 1]]).collect(),
+            _ => v,
+        };
+        draw_count = out.len() as u32;
+        index = Some((Source::Bytes(bytemuck::cast_slice(&out).to_vec()), wgpu::IndexFormat::Uint32));
+    }
+    Ok(IndexPlan { index, count: draw_count, vertex_count })
+}
+
+/// Validates the program's vertex inputs against their arrays for `vertex_count` vertices and
+/// plans each: the buffer as wgpu reads it, or converted to float in the per-pass ring. With
+/// `order` (indexed points), each array is gathered in that order and converted.
+fn plan_inputs(
+    ctx: &Context,
+    program: &LinkedProgram,
+    vertex_count: u64,
+    order: Option<&[u32]>,
+) -> GlResult<Vec<VertexInput>> {
+    let mut inputs = Vec::with_capacity(program.info.attributes.len());
+    for (_, loc) in &program.info.attributes {
+        let a = &ctx.attribs[*loc as usize];
+        if !a.enabled {
+            inputs.push(VertexInput {
+                location: *loc,
+                format: wgpu::VertexFormat::Float32x4,
+                stride: 0,
+                source: Source::Bytes(bytemuck::cast_slice(&a.current).to_vec()),
+            });
+            continue;
+        }
+        // A buffer object's shadow, or the client array sent for this draw (offset 0).
+        let (data, gpu, offset): (&[u8], Option<&wgpu::Buffer>, u64) = if a.buffer == 0 {
+            let bytes = a.client.as_ref().ok_or(GlError::InvalidOperation)?;
+            (bytes, None, 0)
+        } else {
+            let buf = ctx.objects.buffers.get(&a.buffer).ok_or(GlError::InvalidOperation)?;
+            (&buf.data, buf.gpu.as_ref(), a.offset)
+        };
+        let elem = type_size(a.ty).unwrap_or(4) * a.size as usize;
+        let stride = if a.stride == 0 { elem } else { a.stride as usize };
+        // The pointer and the stride are the client's: a sum past u64 reads past any buffer.
+        let need = vertex_count
+            .saturating_sub(1)
+            .checked_mul(stride as u64)
+            .and_then(|x| x.checked_add(offset))
+            .and_then(|x| x.checked_add(elem as u64))
+            .ok_or(GlError::InvalidOperation)?;
+        if need > data.len() as u64 {
+            return Err(GlError::InvalidOperation);
+        }
+        let (need, offset) = (need as usize, offset as usize);
+        match native_format(a.ty, a.size, a.normalized) {
+            Some(fmt) if order.is_none() && offset.is_multiple_of(4) && stride.is_multiple_of(4) => {
+                let source = match gpu {
+                    Some(g) => Source::Buffer(g.clone(), offset as u64),
+                    None => Source::Bytes(data[..need].to_vec()),
+                };
+                inputs.push(VertexInput { location: *loc, format: fmt, stride: stride as u64, source });
+            }
+            _ => {
+                let ts = type_size(a.ty).unwrap_or(4);
+                let rows = order.map_or(vertex_count as usize, <[u32]>::len);
+                // Overlapping elements (a stride below their size) can ask for more floats
+                // than the buffer has bytes; beyond a bound that is an allocation failure.
+                let bytes = rows.checked_mul(a.size as usize * 4).filter(|&b| b <= MAX_CONVERTED);
+                let mut out = Vec::with_capacity(bytes.ok_or(GlError::OutOfMemory)?);
+                let mut convert = |v: usize| {
+                    let base = offset + v * stride;
+                    for c in 0..a.size as usize {
+                        let at = base + c * ts;
+                        out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
+                    }
+                };
+                match order {
+                    Some(o) => o.iter().for_each(|&v| convert(v as usize)),
+                    None => (0..vertex_count as usize).for_each(&mut convert),
+                }
+                inputs.push(VertexInput {
+                    location: *loc,
+                    format: float_format(a.size),
+                    stride: a.size as u64 * 4,
+                    source: Source::Bytes(out),
+                });
+            }
+        }
+    }
+    Ok(inputs)
+}
+
+/// Plans a `GL_POINTS` draw: one instance per point (in index order for indexed draws, whose
+/// arrays are gathered), four vertices each, which the program's points vertex stage expands
+/// to a square; `strata_point` carries the viewport's pixel size.
+fn plan_points(
+    ctx: &Context,
+    program: &LinkedProgram,
+    count: u32,
+    indices: Option<(IndexType, Indices<'_>)>,
+    first: u32,
+) -> GlResult<(Vec<VertexInput>, (u32, u32))> {
+    let order = match indices {
+        Some((ty, i)) => Some(index_values(ctx, ty, i, count)?.0),
+        None => None,
+    };
+    let (vertex_count, instances) = match &order {
+        Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, count)),
+        None => (u64::from(first) + u64::from(count), (first, count)),
+    };
+    let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref())?;
+    let [_, _, w, h] = ctx.raster.viewport;
+    let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, 0.0, 0.0];
+    inputs.push(VertexInput {
+        location: program.info.point_input,
+        format: wgpu::VertexFormat::Float32x4,
+        stride: 0,
+        source: Source::Bytes(bytemuck::cast_slice(&point).to_vec()),
+    });
+    Ok((inputs, instances))
+}
+
+/// The fixed-function state of a draw with `topology` into `target`.
+fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Target) -> RasterState {
+    let (raster, ds, blend) = (&ctx.raster, &ctx.depth_stencil, &ctx.blend);
+    let triangles = matches!(topology, wgpu::PrimitiveTopology::TriangleList | wgpu::PrimitiveTopology::TriangleStrip);
+    let cull = (raster.cull && triangles).then_some(match raster.cull_face {
+        FRONT => Some(wgpu::Face::Front),
+        BACK => Some(wgpu::Face::Back),
+        _ => None,
+    });
+    // Culling both faces draws nothing; emulate with a never-passing depth test.
+    let cull_all = cull == Some(None);
+    let depth = if target.depth.is_some() && (ds.depth_test || cull_all) {
+        let func = if cull_all { NEVER } else { ds.depth_func };
+        Some((compare(func), ds.depth_mask && !cull_all))
+    } else {
+        None
+    };
+    let stencil = (ds.stencil_test && target.has_stencil()).then(|| {
+        let face = |f: &StencilFace| wgpu::StencilFaceState {
+            compare: compare(f.func),
+            fail_op: stencil_op(f.fail),
+            depth_fail_op: stencil_op(f.zfail),
+            pass_op: stencil_op(f.zpass),
+        };
+        wgpu::StencilState {
+            front: face(&ds.stencil[0]),
+            back: face(&ds.stencil[1]),
+            read_mask: ds.stencil[0].mask & 0xff,
+            write_mask: ds.stencil[0].write & 0xff,
+        }
+    });
+    let blend_state = blend.enabled.then(|| wgpu::BlendState {
+        color: blend_component(blend.func[0], blend.func[1], blend.eq[0]),
+        alpha: blend_component(blend.func[2], blend.func[3], blend.eq[1]),
+    });
+    let bias = (raster.polygon_offset_fill && triangles && target.depth.is_some()).then(|| {
+        // GL's units are in minimum resolvable depth steps, as Vulkan's constant factor is.
+        (raster.polygon_offset[0].to_bits(), raster.polygon_offset[1] as i32)
+    });
+    RasterState {
+        topology,
+        strip_index: None,
+        front_ccw: raster.front_face == CCW,
+        cull: cull.flatten(),
+        depth,
+        stencil,
+        bias,
+        blend: blend_state,
+        // A colour buffer without alpha keeps alpha at 1.
+        write_mask: if target.opaque {
+            color_writes(blend.color_mask) - wgpu::ColorWrites::ALPHA
+        } else {
+            color_writes(blend.color_mask)
+        },
+        points: false,
+    }
+}
+
+/// Validates a draw of the current program into `target`; `None` if it draws nothing.
+fn plan_draw<'c>(
+    ctx: &'c Context,
+    target: &Target,
+    prim: Primitive,
+    count: u32,
+    indices: Option<(IndexType, Indices<'_>)>,
+    first: u32,
+) -> GlResult<Option<DrawSpec<'c>>> {
+    let Some(p) = ctx.objects.programs.get(&ctx.bindings.program) else { return Ok(None) };
+    let Some(program) = p.linked.clone() else { return Ok(None) };
+    if count == 0 {
+        return Ok(None);
+    }
+    let (inputs, index, count, first, instances) = if prim == Primitive::Points {
+        let (inputs, instances) = plan_points(ctx, &program, count, indices, first)?;
+        (inputs, None, 4, 0, instances)
+    } else {
+        let IndexPlan { index, count, vertex_count } = plan_indices(ctx, prim, count, indices, first)?;
+        if count == 0 {
+            return Ok(None);
+        }
+        (plan_inputs(ctx, &program, vertex_count, None)?, index, count, first, (0, 1))
+    };
+    let textures = program
+        .info
+        .samplers
+        .iter()
+        .zip(&p.units)
+        .map(|((ty, _), unit)| {
+            let slot = if *ty == Ty::SamplerCube { 1 } else { 0 };
+            let name = ctx.bindings.units.get(*unit as usize)?[slot];
+            let t = ctx.objects.textures.get(&name)?;
+            let want = if *ty == Ty::SamplerCube { TEXTURE_CUBE_MAP } else { TEXTURE_2D };
+            if t.target != want || !t.complete() {
+                return None;
+            }
+            t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))
+        })
+        .collect();
+    let topology = prim.topology();
+    let mut raster = raster_state(ctx, topology, target);
+    if matches!(topology, wgpu::PrimitiveTopology::LineStrip | wgpu::PrimitiveTopology::TriangleStrip) {
+        raster.strip_index = index.as_ref().map(|i| i.1);
+    }
+    if prim == Primitive::Points {
+        // A square of two triangles per point, never culled or offset (both were decided
+        // for a point topology above), and front-facing as GL's points are.
+        raster.topology = wgpu::PrimitiveTopology::TriangleStrip;
+        raster.front_ccw = true;
+        raster.points = true;
+    }
+    let Some(viewport) = viewport(ctx.raster.viewport, ctx.depth_stencil.depth_range) else {
+        return Ok(None);
+    };
+    let scissor = if ctx.raster.scissor_test {
+        clip_rect(ctx.raster.scissor, target)
+    } else {
+        [0, 0, target.width, target.height]
+    };
+    Ok(Some(DrawSpec {
+        vs: program.vs.clone(),
+        program,
+        uniforms: &p.data,
+        textures,
+        inputs,
+        index,
+        count,
+        first,
+        instances,
+        raster,
+        viewport,
+        scissor,
+        stencil_ref: ctx.depth_stencil.stencil[0].reference.clamp(0, 255) as u32,
+        blend_color: ctx.blend.color.map(|c| f64::from(c.clamp(0.0, 1.0))),
+    }))
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// Validates a draw, plans it and records it into the target's pass.
+    fn draw(&mut self, mode: u32, count: u32, indices: Option<(u32, Indices<'_>)>, first: u32) -> GlResult {
+        let prim = Primitive::from_gl(mode)?;
+        let indices = match indices {
+            Some((ty, i)) => Some((IndexType::from_gl(ty)?, i)),
+            None => None,
+        };
+        let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let gpu = self.gpu.clone();
+        let (ctx, renderer) = self.ctx_renderer();
+        let Some(mut spec) = plan_draw(ctx, &target, prim, count, indices, first)? else { return Ok(()) };
+        if spec.raster.points {
+            match spec.program.points_vs(&gpu) {
+                Ok(vs) => spec.vs = vs,
+                Err(e) => {
+                    // GL has no error for this: the draw is dropped, and the reason logged.
+                    tracing::warn!("points draw dropped: the points vertex stage failed: {e}");
+                    return Ok(());
+                }
+            }
+        }
+        renderer.draw(&target, spec);
+        Ok(())
+    }
+
+    pub(super) fn glDrawArrays(&mut self, mode: u32, first: i32, count: i32) -> GlResult {
+        if first < 0 || count < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        self.draw(mode, count as u32, None, first as u32)
+    }
+
+    pub(super) fn glDrawElements(&mut self, mode: u32, count: i32, index_type: u32, offset: u64) -> GlResult {
+        if count < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        self.draw(mode, count as u32, Some((index_type, Indices::Buffer(offset))), 0)
+    }
+
+    pub(super) fn strataDrawElementsData(
+        &mut self,
+        mode: u32,
+        count: i32,
+        index_type: u32,
+        indices: Blob<'_>,
+    ) -> GlResult {
+        if count < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        self.draw(mode, count as u32, Some((index_type, Indices::Client(indices.as_bytes()))), 0)
+    }
+
+    pub(super) fn glClear(&mut self, mask: u32) -> GlResult {
+        if mask & !(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT | STENCIL_BUFFER_BIT) != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let (ctx, renderer) = self.ctx_renderer();
+        let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
+        let writes = color_writes(blend.color_mask);
+        let color = (mask & COLOR_BUFFER_BIT != 0 && target.color.is_some() && !writes.is_empty()).then(|| {
+            let mut c = blend.clear_color.map(|c| c.clamp(0.0, 1.0));
+            if target.opaque {
+                // A colour buffer without alpha keeps alpha at 1.
+                c[3] = 1.0;
+            }
+            (c, writes)
+        });
+        let depth =
+            (mask & DEPTH_BUFFER_BIT != 0 && target.depth.is_some() && ds.depth_mask).then_some((ds.clear_depth, true));
+        let stencil = (mask & STENCIL_BUFFER_BIT != 0 && target.has_stencil() && ds.stencil[0].write & 0xff != 0)
+            .then_some((ds.clear_stencil as u32 & 0xff, ds.stencil[0].write & 0xff));
+        let scissor = ctx.raster.scissor_test.then(|| clip_rect(ctx.raster.scissor, &target));
+        if color.is_none() && depth.is_none() && stencil.is_none() {
+            return Ok(());
+        }
+        renderer.clear(&target, color, depth, stencil, scissor);
+        Ok(())
+    }
+
+    pub(super) fn glFlush(&mut self) -> GlResult {
+        self.flush();
+        Ok(())
+    }
+
+    pub(super) fn glFinish(&mut self) {
+        self.r.finish();
+    }
+}

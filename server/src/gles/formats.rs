@@ -1,0 +1,257 @@
+//! Texture formats: which GL format/type pairs an upload accepts, the storage each is kept in
+//! on the GPU, and the compressed formats offered (S3TC and ETC1, sampled natively where the
+//! device has the block format, else decoded to RGBA8 on upload).
+
+use super::compressed::{etc1, s3tc::S3tc};
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::render::COLOR_FORMAT;
+
+/// How a texture's texels are kept on the GPU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Storage {
+    /// RGBA8: every 8-bit and packed 16-bit colour upload, BGRA, and compressed images that
+    /// are decoded on upload.
+    Rgba8,
+    /// RGBA16F: `HALF_FLOAT_OES` uploads (`OES_texture_half_float`).
+    Half,
+    /// RGBA32F: `FLOAT` uploads (`OES_texture_float`).
+    Float,
+    /// Depth32Float: `DEPTH_COMPONENT` (`OES_depth_texture`).
+    Depth,
+    /// Depth24PlusStencil8: `DEPTH_STENCIL_OES` (`OES_packed_depth_stencil`).
+    DepthStencil,
+    /// The compressed blocks as they were uploaded, in the device's matching block format.
+    Native(Compressed),
+}
+
+impl Storage {
+    /// The wgpu format of the image.
+    pub fn wgpu(self) -> wgpu::TextureFormat {
+        match self {
+            Storage::Rgba8 => COLOR_FORMAT,
+            Storage::Half => wgpu::TextureFormat::Rgba16Float,
+            Storage::Float => wgpu::TextureFormat::Rgba32Float,
+            Storage::Depth => wgpu::TextureFormat::Depth32Float,
+            Storage::DepthStencil => wgpu::TextureFormat::Depth24PlusStencil8,
+            Storage::Native(c) => c.native_format().unwrap_or(COLOR_FORMAT),
+        }
+    }
+
+    /// Bytes per texel of the data an upload writes (RGBA of the storage's component type).
+    pub fn texel_bytes(self) -> u32 {
+        match self {
+            Storage::Half => 8,
+            Storage::Float => 16,
+            _ => 4,
+        }
+    }
+
+    /// A depth or depth-stencil image.
+    pub fn is_depth(self) -> bool {
+        matches!(self, Storage::Depth | Storage::DepthStencil)
+    }
+
+    /// Whether a framebuffer can render into it as its colour attachment (ES 2.0 offers no
+    /// float colour buffers, and compressed images are never renderable).
+    pub fn color_renderable(self) -> bool {
+        self == Storage::Rgba8
+    }
+
+    /// Whether the image can be a render attachment in wgpu at all.
+    pub fn attachable(self) -> bool {
+        !matches!(self, Storage::Native(_))
+    }
+}
+
+/// A compressed internal format offered by `glCompressedTexImage2D`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Compressed {
+    /// One of `EXT_texture_compression_s3tc`'s four formats.
+    S3tc(S3tc),
+    /// `ETC1_RGB8_OES` (`OES_compressed_ETC1_RGB8_texture`).
+    Etc1,
+}
+
+/// Every compressed format known, in the order `GL_COMPRESSED_TEXTURE_FORMATS` lists the
+/// offered ones.
+const COMPRESSED_FORMATS: [u32; 5] = [
+    COMPRESSED_RGB_S3TC_DXT1_EXT,
+    COMPRESSED_RGBA_S3TC_DXT1_EXT,
+    COMPRESSED_RGBA_S3TC_DXT3_EXT,
+    COMPRESSED_RGBA_S3TC_DXT5_EXT,
+    ETC1_RGB8_OES,
+];
+
+impl Compressed {
+    /// The compressed format `f` names, if it is one offered.
+    pub fn from_gl(f: u32) -> Option<Self> {
+        Some(match f {
+            COMPRESSED_RGB_S3TC_DXT1_EXT => Compressed::S3tc(S3tc::Dxt1Rgb),
+            COMPRESSED_RGBA_S3TC_DXT1_EXT => Compressed::S3tc(S3tc::Dxt1Rgba),
+            COMPRESSED_RGBA_S3TC_DXT3_EXT => Compressed::S3tc(S3tc::Dxt3),
+            COMPRESSED_RGBA_S3TC_DXT5_EXT => Compressed::S3tc(S3tc::Dxt5),
+            ETC1_RGB8_OES => Compressed::Etc1,
+            _ => return None,
+        })
+    }
+
+    /// Bytes per 4×4 block.
+    pub fn block_bytes(self) -> usize {
+        match self {
+            Compressed::S3tc(d) => d.block_bytes(),
+            Compressed::Etc1 => 8,
+        }
+    }
+
+    /// Bytes of a `width`×`height` image: one block per started 4×4 square.
+    pub fn image_size(self, width: u32, height: u32) -> usize {
+        width.div_ceil(4) as usize * height.div_ceil(4) as usize * self.block_bytes()
+    }
+
+    /// The wgpu block format that samples exactly as GL defines this format. DXT1's RGB
+    /// variant has none: its "transparent" code is opaque black, wgpu's BC1 gives alpha 0.
+    pub fn native_format(self) -> Option<wgpu::TextureFormat> {
+        use wgpu::TextureFormat as F;
+        match self {
+            Compressed::S3tc(S3tc::Dxt1Rgb) => None,
+            Compressed::S3tc(S3tc::Dxt1Rgba) => Some(F::Bc1RgbaUnorm),
+            Compressed::S3tc(S3tc::Dxt3) => Some(F::Bc2RgbaUnorm),
+            Compressed::S3tc(S3tc::Dxt5) => Some(F::Bc3RgbaUnorm),
+            // ETC1 is the subset of ETC2 RGB8 without ETC2's extra modes.
+            Compressed::Etc1 => Some(F::Etc2Rgb8Unorm),
+        }
+    }
+
+    /// Whether a device with `features` offers this format: ETC1 everywhere (decoded where
+    /// ETC2 is missing), S3TC where the device has BC formats.
+    pub fn offered(self, features: wgpu::Features) -> bool {
+        match self {
+            Compressed::S3tc(_) => features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC),
+            Compressed::Etc1 => true,
+        }
+    }
+
+    /// The compressed format `f` names, if a device with `features` offers it.
+    pub fn offered_gl(f: u32, features: wgpu::Features) -> Option<Self> {
+        Self::from_gl(f).filter(|c| c.offered(features))
+    }
+
+    /// The native format if `features` make it available.
+    pub fn native_on(self, features: wgpu::Features) -> Option<wgpu::TextureFormat> {
+        self.native_format().filter(|f| features.contains(f.required_features()))
+    }
+
+    /// Decodes a `width`×`height` image (blocks in row order) to tightly packed RGBA8 rows.
+    /// `data` must hold [`Self::image_size`] bytes.
+    pub fn decode(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
+        let (w, h) = (width as usize, height as usize);
+        let mut out = vec![0u8; w * h * 4];
+        let (bw, bb) = (w.div_ceil(4), self.block_bytes());
+        for (i, block) in data.chunks_exact(bb).take(bw * h.div_ceil(4)).enumerate() {
+            let texels = match self {
+                Compressed::S3tc(d) => super::compressed::s3tc::decode_block(d, block),
+                Compressed::Etc1 => etc1::decode_block(block),
+            };
+            let (x0, y0) = ((i % bw) * 4, (i / bw) * 4);
+            for (t, px) in texels.iter().enumerate() {
+                let (x, y) = (x0 + t % 4, y0 + t / 4);
+                if x < w && y < h {
+                    out[(y * w + x) * 4..][..4].copy_from_slice(px);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The compressed formats a device with `features` offers (`GL_COMPRESSED_TEXTURE_FORMATS`).
+pub fn offered_compressed(features: wgpu::Features) -> Vec<u32> {
+    COMPRESSED_FORMATS.into_iter().filter(|&f| Compressed::offered_gl(f, features).is_some()).collect()
+}
+
+/// Whether `f` is a colour format of uploads (`BGRA_EXT` included).
+pub fn is_color_format(f: u32) -> bool {
+    matches!(f, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA | BGRA_EXT)
+}
+
+/// Whether `f` is a format enum uploads know at all.
+fn known_format(f: u32) -> bool {
+    is_color_format(f) || matches!(f, DEPTH_COMPONENT | DEPTH_STENCIL_OES)
+}
+
+/// Whether `ty` is a type enum uploads know at all.
+fn known_type(ty: u32) -> bool {
+    matches!(
+        ty,
+        UNSIGNED_BYTE
+            | UNSIGNED_SHORT_5_6_5
+            | UNSIGNED_SHORT_4_4_4_4
+            | UNSIGNED_SHORT_5_5_5_1
+            | UNSIGNED_SHORT
+            | UNSIGNED_INT
+            | FLOAT
+            | HALF_FLOAT_OES
+            | UNSIGNED_INT_24_8_OES
+    )
+}
+
+/// The storage an upload of `format`/`ty` data is kept in: `GL_INVALID_ENUM` for an unknown
+/// format or type, `GL_INVALID_OPERATION` for a pair ES 2.0 and its extensions do not list,
+/// except that a depth format with another type is `GL_INVALID_ENUM` (as Mesa and ANGLE
+/// answer, and as Strata always has).
+pub fn upload_storage(format: u32, ty: u32) -> GlResult<Storage> {
+    let plain = matches!(format, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA);
+    Ok(match (format, ty) {
+        (_, UNSIGNED_BYTE) if plain || format == BGRA_EXT => Storage::Rgba8,
+        (RGB, UNSIGNED_SHORT_5_6_5) | (RGBA, UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1) => Storage::Rgba8,
+        (_, FLOAT) if plain => Storage::Float,
+        (_, HALF_FLOAT_OES) if plain => Storage::Half,
+        (DEPTH_COMPONENT, UNSIGNED_SHORT | UNSIGNED_INT) => Storage::Depth,
+        (DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES) => Storage::DepthStencil,
+        (DEPTH_COMPONENT | DEPTH_STENCIL_OES, _) => return Err(GlError::InvalidEnum),
+        _ if known_format(format) && known_type(ty) => return Err(GlError::InvalidOperation),
+        _ => return Err(GlError::InvalidEnum),
+    })
+}
+
+/// Whether `internal` may hold an upload in `format`: ES 2.0 wants them equal; an offered
+/// S3TC internal format takes RGB or RGBA data, which is kept uncompressed (as RGBA8).
+pub fn internal_accepts(internal: u32, format: u32, features: wgpu::Features) -> bool {
+    match Compressed::from_gl(internal) {
+        Some(c @ Compressed::S3tc(_)) => c.offered(features) && matches!(format, RGB | RGBA),
+        Some(Compressed::Etc1) => false,
+        None => internal == format,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_type_pairs() {
+        assert_eq!(upload_storage(RGBA, UNSIGNED_BYTE), Ok(Storage::Rgba8));
+        assert_eq!(upload_storage(BGRA_EXT, UNSIGNED_BYTE), Ok(Storage::Rgba8));
+        assert_eq!(upload_storage(LUMINANCE_ALPHA, FLOAT), Ok(Storage::Float));
+        assert_eq!(upload_storage(ALPHA, HALF_FLOAT_OES), Ok(Storage::Half));
+        assert_eq!(upload_storage(DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES), Ok(Storage::DepthStencil));
+        assert_eq!(upload_storage(BGRA_EXT, FLOAT), Err(GlError::InvalidOperation));
+        assert_eq!(upload_storage(RGB, UNSIGNED_SHORT_4_4_4_4), Err(GlError::InvalidOperation));
+        assert_eq!(upload_storage(DEPTH_STENCIL_OES, UNSIGNED_INT), Err(GlError::InvalidEnum));
+        assert_eq!(upload_storage(DEPTH_COMPONENT, FLOAT), Err(GlError::InvalidEnum));
+        assert_eq!(upload_storage(RGBA, UNSIGNED_INT_24_8_OES), Err(GlError::InvalidOperation));
+        assert_eq!(upload_storage(RGBA, 0x1234), Err(GlError::InvalidEnum));
+        assert_eq!(upload_storage(0x1234, UNSIGNED_BYTE), Err(GlError::InvalidEnum));
+    }
+
+    #[test]
+    fn compressed_sizes_round_up_to_blocks() {
+        let dxt1 = Compressed::from_gl(COMPRESSED_RGB_S3TC_DXT1_EXT).expect("dxt1");
+        let dxt5 = Compressed::from_gl(COMPRESSED_RGBA_S3TC_DXT5_EXT).expect("dxt5");
+        assert_eq!(dxt1.image_size(1, 1), 8);
+        assert_eq!(dxt1.image_size(5, 4), 16);
+        assert_eq!(dxt5.image_size(127, 63), 32 * 16 * 16);
+        assert_eq!(dxt5.image_size(0, 0), 0);
+    }
+}

@@ -1,0 +1,442 @@
+//! Framebuffer and renderbuffer objects: names, bindings, storage, attachments, completeness,
+//! and the render target the current framebuffer resolves to.
+
+use strata_protocol::Slice;
+
+use super::context::{Context, MAX_TEXTURE};
+use super::conv::ImageTarget;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{Compressed, Storage};
+use super::render::{Target, COLOR_FORMAT};
+use super::GlesExecutor;
+
+/// Where one attachment of a framebuffer object comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Attachment {
+    /// Nothing attached.
+    #[default]
+    None,
+    /// A texture level (cube maps: face 0..6).
+    Texture {
+        /// Texture name.
+        name: u32,
+        /// Mip level.
+        level: u32,
+        /// Cube face, 0 for 2D.
+        face: u32,
+    },
+    /// A renderbuffer.
+    Renderbuffer(u32),
+}
+
+/// A framebuffer object.
+#[derive(Default, Clone)]
+pub struct Framebuffer {
+    /// `COLOR_ATTACHMENT0`.
+    pub color: Attachment,
+    /// `DEPTH_ATTACHMENT`.
+    pub depth: Attachment,
+    /// `STENCIL_ATTACHMENT`.
+    pub stencil: Attachment,
+}
+
+/// A renderbuffer.
+#[derive(Default)]
+pub struct Renderbuffer {
+    /// Internal format enum, 0 until storage is allocated.
+    pub format: u32,
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// The GPU image.
+    pub gpu: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// Unique id for caches.
+    pub uid: u64,
+}
+
+/// A resolved depth/stencil attachment: view, format, renderbuffer uid, width, height.
+type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32);
+
+/// Attaches `a` to `attachment` of the bound framebuffer object.
+fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
+    let bound = ctx.bindings.framebuffer;
+    let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
+    match attachment {
+        COLOR_ATTACHMENT0 => fb.color = a,
+        DEPTH_ATTACHMENT => fb.depth = a,
+        STENCIL_ATTACHMENT => fb.stencil = a,
+        _ => return Err(GlError::InvalidEnum),
+    }
+    Ok(())
+}
+
+/// The render target of framebuffer object `ctx.bindings.framebuffer`, or why it is incomplete
+/// (a `GL_FRAMEBUFFER_*` status).
+fn resolve_object(ctx: &Context) -> Result<Target, u32> {
+    let bound = ctx.bindings.framebuffer;
+    let fb = ctx.objects.framebuffers.get(&bound).cloned().unwrap_or_default();
+    let mut size: Option<(u32, u32)> = None;
+    let mut same = |w: u32, h: u32| -> Result<(), u32> {
+        match size {
+            Some(s) if s != (w, h) => Err(FRAMEBUFFER_INCOMPLETE_DIMENSIONS),
+            _ => {
+                size = Some((w, h));
+                Ok(())
+            }
+        }
+    };
+    let mut key = (bound as u64) << 32;
+    let mut opaque = false;
+    let color = match fb.color {
+        Attachment::None => None,
+        Attachment::Texture { name, level, face } => {
+            let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+            let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+            // ES 2.0 renders only into 8-bit colour (no float colour buffers are offered), and
+            // never into compressed images.
+            if !img.storage.color_renderable() || Compressed::from_gl(t.format).is_some() {
+                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+            }
+            if t.defined[face as usize] & (1 << level) == 0 {
+                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+            }
+            same((img.width >> level).max(1), (img.height >> level).max(1))?;
+            opaque = t.format == RGB;
+            key ^= t.uid.wrapping_mul(31).wrapping_add(u64::from(level) * 7 + u64::from(face));
+            let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_mip_level: level,
+                mip_level_count: Some(1),
+                base_array_layer: face,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            Some((img.texture.clone(), view))
+        }
+        Attachment::Renderbuffer(name) => {
+            let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+            let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+            if !matches!(rb.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES) {
+                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+            }
+            same(rb.width, rb.height)?;
+            opaque = matches!(rb.format, RGB565 | RGB8_OES);
+            key ^= rb.uid.wrapping_mul(31);
+            Some((tex.clone(), view.clone()))
+        }
+    };
+    let ds = |a: Attachment, ok: &[u32]| -> Result<Option<DepthAttachment>, u32> {
+        match a {
+            Attachment::None => Ok(None),
+            Attachment::Texture { name, .. } => {
+                let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                // A depth texture is a depth attachment; a depth-stencil one is either.
+                let fits = match img.storage {
+                    Storage::Depth => ok.contains(&DEPTH_COMPONENT16),
+                    Storage::DepthStencil => ok.contains(&DEPTH24_STENCIL8_OES),
+                    _ => false,
+                };
+                if !fits {
+                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                }
+                let view = img.texture.create_view(&Default::default());
+                Ok(Some((view, img.storage.wgpu(), t.uid, img.width, img.height)))
+            }
+            Attachment::Renderbuffer(name) => {
+                let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
+                if !ok.contains(&rb.format) {
+                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                }
+                Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height)))
+            }
+        }
+    };
+    let depth = ds(fb.depth, &[DEPTH_COMPONENT16, DEPTH_COMPONENT24_OES, DEPTH24_STENCIL8_OES])?;
+    let stencil = ds(fb.stencil, &[STENCIL_INDEX8, DEPTH24_STENCIL8_OES])?;
+    let depth = match (depth, stencil) {
+        (Some(d), Some(s)) if d.2 != s.2 => return Err(FRAMEBUFFER_UNSUPPORTED),
+        (Some(d), _) | (None, Some(d)) => Some(d),
+        (None, None) => None,
+    };
+    if let Some(d) = &depth {
+        same(d.3, d.4)?;
+        key ^= d.2.wrapping_mul(131);
+    }
+    let (width, height) = size.ok_or(FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT)?;
+    Ok(Target { key: (key, 1), color, depth: depth.map(|d| (d.0, d.1)), width, height, opaque })
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// What draws, clears and reads address: the current surface for framebuffer 0, else the
+    /// bound framebuffer object; `Err` is the `GL_FRAMEBUFFER_*` status that makes it
+    /// incomplete.
+    pub(super) fn draw_target(&self) -> Result<Target, u32> {
+        let (cid, sid) = self.current.ok_or(FRAMEBUFFER_UNSUPPORTED)?;
+        let ctx = self.contexts.get(&cid).ok_or(FRAMEBUFFER_UNSUPPORTED)?;
+        if ctx.bindings.framebuffer == 0 {
+            return self.surfaces.get(&sid).map(|s| s.target.clone()).ok_or(FRAMEBUFFER_UNSUPPORTED);
+        }
+        resolve_object(ctx)
+    }
+
+    pub(super) fn glGenRenderbuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.renderbuffers.entry(n).or_default();
+        }
+        Ok(())
+    }
+
+    pub(super) fn glDeleteRenderbuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.renderbuffers.remove(&n);
+            ctx.objects.forget_label(RENDERBUFFER, n);
+            if ctx.bindings.renderbuffer == n {
+                ctx.bindings.renderbuffer = 0;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindRenderbuffer(&mut self, target: u32, renderbuffer: u32) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let ctx = self.ctx();
+        if renderbuffer != 0 {
+            ctx.objects.renderbuffers.entry(renderbuffer).or_default();
+        }
+        ctx.bindings.renderbuffer = renderbuffer;
+        Ok(())
+    }
+
+    pub(super) fn glIsRenderbuffer(&mut self, name: u32) -> bool {
+        name != 0 && self.ctx().objects.renderbuffers.contains_key(&name)
+    }
+
+    pub(super) fn glRenderbufferStorage(
+        &mut self,
+        target: u32,
+        internalformat: u32,
+        width: i32,
+        height: i32,
+    ) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let format = match internalformat {
+            RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES => COLOR_FORMAT,
+            DEPTH_COMPONENT16 => wgpu::TextureFormat::Depth16Unorm,
+            DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
+            DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
+            STENCIL_INDEX8 => wgpu::TextureFormat::Stencil8,
+            _ => return Err(GlError::InvalidEnum),
+        };
+        if width < 0 || height < 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
+            return Err(GlError::InvalidValue);
+        }
+        let uid = self.next_uid();
+        let (ctx, gpu) = self.ctx_gpu();
+        let name = ctx.bindings.renderbuffer;
+        if name == 0 || !ctx.objects.renderbuffers.contains_key(&name) {
+            return Err(GlError::InvalidOperation);
+        }
+        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("renderbuffer"),
+            size: wgpu::Extent3d {
+                width: (width as u32).max(1),
+                height: (height as u32).max(1),
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = tex.create_view(&Default::default());
+        if matches!(internalformat, RGB565 | RGB8_OES) && width > 0 && height > 0 {
+            // Alpha reads as 1 in a buffer without alpha; draws never change it (see `Target`).
+            let (w, h) = (width as u32, height as u32);
+            let color = Some((tex.clone(), view.clone()));
+            let t = Target { key: (uid, 2), color, depth: None, width: w, height: h, opaque: true };
+            self.r.clear(&t, Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALL)), None, None, None);
+        }
+        let rb = self.ctx().objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        *rb = Renderbuffer {
+            format: internalformat,
+            width: width as u32,
+            height: height as u32,
+            gpu: Some((tex, view)),
+            uid,
+        };
+        Ok(())
+    }
+
+    pub(super) fn glGetRenderbufferParameteriv(&mut self, target: u32, pname: u32) -> i32 {
+        let ctx = self.ctx();
+        let rb = ctx.objects.renderbuffers.get(&ctx.bindings.renderbuffer);
+        let v = match (target, pname, rb) {
+            (RENDERBUFFER, RENDERBUFFER_WIDTH, Some(rb)) => Ok(rb.width as i32),
+            (RENDERBUFFER, RENDERBUFFER_HEIGHT, Some(rb)) => Ok(rb.height as i32),
+            (RENDERBUFFER, RENDERBUFFER_INTERNAL_FORMAT, Some(rb)) => {
+                Ok(if rb.format == 0 { RGBA4 as i32 } else { rb.format as i32 })
+            }
+            (RENDERBUFFER, _, None) => Err(GlError::InvalidOperation),
+            _ => Err(GlError::InvalidEnum),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            0
+        })
+    }
+
+    pub(super) fn glGenFramebuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.framebuffers.entry(n).or_default();
+        }
+        Ok(())
+    }
+
+    pub(super) fn glDeleteFramebuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.framebuffers.remove(&n);
+            ctx.objects.forget_label(FRAMEBUFFER, n);
+            if ctx.bindings.framebuffer == n {
+                ctx.bindings.framebuffer = 0;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindFramebuffer(&mut self, target: u32, framebuffer: u32) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let ctx = self.ctx();
+        if framebuffer != 0 {
+            ctx.objects.framebuffers.entry(framebuffer).or_default();
+        }
+        ctx.bindings.framebuffer = framebuffer;
+        Ok(())
+    }
+
+    pub(super) fn glIsFramebuffer(&mut self, name: u32) -> bool {
+        name != 0 && self.ctx().objects.framebuffers.contains_key(&name)
+    }
+
+    pub(super) fn glFramebufferTexture2D(
+        &mut self,
+        target: u32,
+        attachment: u32,
+        textarget: u32,
+        texture: u32,
+        level: i32,
+    ) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let face = ImageTarget::from_gl(textarget)?.face;
+        if level != 0 && texture != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        let ctx = self.ctx();
+        if texture != 0 && !ctx.objects.textures.contains_key(&texture) {
+            return Err(GlError::InvalidOperation);
+        }
+        let a = if texture == 0 { Attachment::None } else { Attachment::Texture { name: texture, level: 0, face } };
+        set_attachment(ctx, attachment, a)
+    }
+
+    pub(super) fn glFramebufferRenderbuffer(
+        &mut self,
+        target: u32,
+        attachment: u32,
+        renderbuffertarget: u32,
+        renderbuffer: u32,
+    ) -> GlResult {
+        if target != FRAMEBUFFER || renderbuffertarget != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let ctx = self.ctx();
+        if renderbuffer != 0 && !ctx.objects.renderbuffers.contains_key(&renderbuffer) {
+            return Err(GlError::InvalidOperation);
+        }
+        let a = if renderbuffer == 0 { Attachment::None } else { Attachment::Renderbuffer(renderbuffer) };
+        set_attachment(ctx, attachment, a)
+    }
+
+    pub(super) fn glGetFramebufferAttachmentParameteriv(&mut self, target: u32, attachment: u32, pname: u32) -> i32 {
+        let ctx = self.ctx();
+        let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
+        let a = match (target, fb, attachment) {
+            (FRAMEBUFFER, Some(fb), COLOR_ATTACHMENT0) => fb.color,
+            (FRAMEBUFFER, Some(fb), DEPTH_ATTACHMENT) => fb.depth,
+            (FRAMEBUFFER, Some(fb), STENCIL_ATTACHMENT) => fb.stencil,
+            (FRAMEBUFFER, None, _) => {
+                ctx.record(GlError::InvalidOperation);
+                return 0;
+            }
+            _ => {
+                ctx.record(GlError::InvalidEnum);
+                return 0;
+            }
+        };
+        match (pname, a) {
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::None) => NONE as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::Texture { .. }) => TEXTURE as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::Renderbuffer(_)) => RENDERBUFFER as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Texture { name, .. }) => name as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Renderbuffer(n)) => n as i32,
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, Attachment::Texture { level, .. }) => level as i32,
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, Attachment::Texture { face, .. }) => {
+                if face == 0 {
+                    0
+                } else {
+                    (TEXTURE_CUBE_MAP_POSITIVE_X + face) as i32
+                }
+            }
+            _ => {
+                ctx.record(GlError::InvalidEnum);
+                0
+            }
+        }
+    }
+
+    pub(super) fn glCheckFramebufferStatus(&mut self, target: u32) -> u32 {
+        if target != FRAMEBUFFER {
+            self.record(GlError::InvalidEnum);
+            return 0;
+        }
+        match self.draw_target() {
+            Ok(_) => FRAMEBUFFER_COMPLETE,
+            Err(status) => status,
+        }
+    }
+
+    /// `EXT_discard_framebuffer`. Validated as the extension specifies; the contents are kept,
+    /// which the extension allows (a discard only makes them undefined).
+    pub(super) fn glDiscardFramebufferEXT(&mut self, target: u32, attachments: Slice<'_, u32>) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let valid: [u32; 3] = if self.ctx().bindings.framebuffer == 0 {
+            [COLOR_EXT, DEPTH_EXT, STENCIL_EXT]
+        } else {
+            [COLOR_ATTACHMENT0, DEPTH_ATTACHMENT, STENCIL_ATTACHMENT]
+        };
+        if attachments.iter().any(|a| !valid.contains(&a)) {
+            return Err(GlError::InvalidEnum);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,243 @@
+//! GLSL ES 1.00 rules checked on the parsed shader before it is lifted and rewritten:
+//! derivative functions (`GL_OES_standard_derivatives`), redeclarations (§4.2.7), struct
+//! members (§4.1.8) and constant global initialisers (§4.3). Errors name the line, Mesa-style.
+
+use std::collections::{HashMap, HashSet};
+
+use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
+use glsl_lang::visitor::{Host, Visit, Visitor};
+
+use super::precision;
+use super::preprocess::{error_at, line_col, Parsed};
+use super::Stage;
+
+/// The derivative functions of `GL_OES_standard_derivatives`.
+const DERIVATIVES: [&str; 3] = ["dFdx", "dFdy", "fwidth"];
+
+/// What the checks learnt that linking needs.
+#[derive(Debug, Clone, Default)]
+pub struct Facts {
+    /// Precision of each float or int uniform.
+    pub uniform_precisions: HashMap<String, ast::PrecisionQualifierData>,
+    /// Every variable name the shader's functions read or write.
+    pub used: HashSet<String>,
+    /// Built-in variables declared `invariant`.
+    pub invariants: HashSet<String>,
+}
+
+/// Checks `parsed` against the rules above; the error is the info log.
+pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
+    let at = |span: Option<ast::NodeSpan>, msg: &str| {
+        let (line, col) = span.map_or((1, 1), |s| line_col(&parsed.text, usize::from(s.range().start())));
+        error_at(line, col, msg)
+    };
+    let mut calls = Calls::default();
+    parsed.tu.visit(&mut calls);
+    for (name, span) in &calls.found {
+        if DERIVATIVES.contains(&name.as_str()) && (stage == Stage::Vertex || !parsed.derivatives) {
+            let why = if stage == Stage::Vertex {
+                "is only available in fragment shaders"
+            } else {
+                "requires `#extension GL_OES_standard_derivatives : enable'"
+            };
+            return Err(at(*span, &format!("`{name}' {why}")));
+        }
+    }
+    globals(&parsed.tu, &at)?;
+    super::writes::check(stage, &parsed.tu, &at)?;
+    let uniform_precisions = precision::check(stage, &parsed.tu, &at)?;
+    let mut invariants = HashSet::new();
+    for decl in &parsed.tu.0 {
+        if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {
+            if let ast::DeclarationData::Invariant(id) = &d.content {
+                if id.0 == "gl_FrontFacing" {
+                    return Err(at(d.span, "`gl_FrontFacing' cannot be declared invariant"));
+                }
+                invariants.insert(id.0.to_string());
+            }
+        }
+    }
+    Ok(Facts { uniform_precisions, used: calls.variables, invariants })
+}
+
+/// Every function called by name, with where.
+#[derive(Default)]
+struct Calls {
+    found: Vec<(String, Option<ast::NodeSpan>)>,
+    variables: HashSet<String>,
+}
+
+impl Visitor for Calls {
+    fn visit_expr(&mut self, e: &ast::Expr) -> Visit {
+        if let ExprData::Variable(id) = &e.content {
+            self.variables.insert(id.0.to_string());
+        }
+        if let ExprData::FunCall(f, _) = &e.content {
+            if let FunIdentifierData::Expr(callee) = &f.content {
+                if let ExprData::Variable(id) = &callee.content {
+                    self.found.push((id.0.to_string(), e.span));
+                }
+            }
+        }
+        Visit::Children
+    }
+}
+
+/// Whether a qualifier list declares a `const`.
+pub(super) fn is_const(q: Option<&ast::TypeQualifier>) -> bool {
+    q.is_some_and(|q| {
+        q.qualifiers.iter().any(|s| matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Const))
+    })
+}
+
+/// A function's signature for redeclaration checks: its name and parameter types.
+pub(super) fn signature(p: &ast::FunctionPrototype) -> String {
+    let mut s = p.name.0.to_string();
+    for param in &p.parameters {
+        let ty = match &param.content {
+            ast::FunctionParameterDeclarationData::Named(_, d) => &d.ty,
+            ast::FunctionParameterDeclarationData::Unnamed(_, t) => t,
+        };
+        s.push('|');
+        let _ = glsl_lang::transpiler::glsl::show_type_specifier(&mut s, ty, &mut Default::default());
+    }
+    s
+}
+
+/// The first variable in `e` that is not a constant (a global declared `const`, or a
+/// built-in constant), if any.
+fn non_constant<'a>(e: &'a ast::Expr, consts: &HashSet<String>) -> Option<&'a ast::Expr> {
+    struct Find<'c, 'e> {
+        consts: &'c HashSet<String>,
+        found: Option<&'e ast::Expr>,
+    }
+    let mut stack = vec![e];
+    let mut f = Find { consts, found: None };
+    while let Some(e) = stack.pop() {
+        match &e.content {
+            ExprData::Variable(id) if !f.consts.contains(id.0.as_str()) && !id.0.starts_with("gl_Max") => {
+                f.found = Some(e);
+                break;
+            }
+            ExprData::Unary(_, a) | ExprData::Dot(a, _) | ExprData::PostInc(a) | ExprData::PostDec(a) => stack.push(a),
+            ExprData::Binary(_, a, b) | ExprData::Bracket(a, b) | ExprData::Comma(a, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            ExprData::Assignment(a, _, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            ExprData::Ternary(a, b, c) => {
+                stack.push(a);
+                stack.push(b);
+                stack.push(c);
+            }
+            ExprData::FunCall(_, args) => stack.extend(args.iter()),
+            _ => {}
+        }
+    }
+    f.found
+}
+
+fn initializer_exprs(i: &ast::Initializer) -> Vec<&ast::Expr> {
+    match &i.content {
+        ast::InitializerData::Simple(e) => vec![e],
+        ast::InitializerData::List(l) => l.iter().flat_map(initializer_exprs).collect(),
+    }
+}
+
+/// Global-scope rules: redeclarations, struct members, constant initialisers.
+fn globals(tu: &ast::TranslationUnit, at: &dyn Fn(Option<ast::NodeSpan>, &str) -> String) -> Result<(), String> {
+    let mut defined: HashSet<String> = HashSet::new();
+    let mut prototyped: HashSet<String> = HashSet::new();
+    let mut functions: HashSet<String> = HashSet::new();
+    // Names of variables and structs at global scope.
+    let mut names: HashMap<String, &'static str> = HashMap::new();
+    let mut consts: HashSet<String> = HashSet::new();
+    let struct_check = |s: &ast::StructSpecifier| -> Result<(), String> {
+        for field in &s.fields {
+            if field.identifiers.is_empty() {
+                return Err(at(field.span, "anonymous structure members are not allowed"));
+            }
+            if matches!(field.ty.ty.content, T::Struct(_)) {
+                return Err(at(field.span, "embedded structure definitions are not allowed"));
+            }
+        }
+        Ok(())
+    };
+    for decl in &tu.0 {
+        match &decl.content {
+            ast::ExternalDeclarationData::FunctionDefinition(f) => {
+                let p = &f.prototype;
+                let name = p.name.0.to_string();
+                if names.contains_key(&name) {
+                    return Err(at(p.span, &format!("`{name}' redeclared as a function")));
+                }
+                if !defined.insert(signature(p)) {
+                    return Err(at(p.span, &format!("function `{name}' redefined")));
+                }
+                functions.insert(name);
+            }
+            ast::ExternalDeclarationData::Declaration(d) => match &d.content {
+                ast::DeclarationData::FunctionPrototype(p) => {
+                    let name = p.name.0.to_string();
+                    if names.contains_key(&name) {
+                        return Err(at(p.span, &format!("`{name}' redeclared as a function")));
+                    }
+                    if !prototyped.insert(signature(p)) {
+                        return Err(at(p.span, &format!("function `{name}' declared more than once")));
+                    }
+                    functions.insert(name);
+                }
+                ast::DeclarationData::InitDeclaratorList(list) => {
+                    let head = &list.head;
+                    if let T::Struct(s) = &head.ty.ty.ty.content {
+                        struct_check(s)?;
+                        if let Some(n) = &s.name {
+                            let n = n.0.to_string();
+                            if functions.contains(&n) || names.contains_key(&n) {
+                                return Err(at(s.span, &format!("`{n}' redeclared")));
+                            }
+                            names.insert(n, "struct");
+                        }
+                    }
+                    let constant = is_const(head.ty.qualifier.as_ref());
+                    let mut declared: Vec<(String, Option<&ast::Initializer>, Option<ast::NodeSpan>)> = Vec::new();
+                    if let Some(n) = &head.name {
+                        declared.push((n.0.to_string(), head.initializer.as_ref(), head.span));
+                    }
+                    for t in &list.tail {
+                        declared.push((t.ident.ident.0.to_string(), t.initializer.as_ref(), t.span));
+                    }
+                    for (n, init, span) in declared {
+                        if let Some(init) = init {
+                            for e in initializer_exprs(init) {
+                                if let Some(bad) = non_constant(e, &consts) {
+                                    let what = match &bad.content {
+                                        ExprData::Variable(id) => id.0.to_string(),
+                                        _ => String::new(),
+                                    };
+                                    return Err(at(
+                                        bad.span.or(span),
+                                        &format!("initializer of global variable uses non-constant `{what}'"),
+                                    ));
+                                }
+                            }
+                        }
+                        if functions.contains(&n) || names.contains_key(&n) {
+                            return Err(at(span, &format!("`{n}' redeclared")));
+                        }
+                        if constant {
+                            consts.insert(n.clone());
+                        }
+                        names.insert(n, "variable");
+                    }
+                }
+                _ => {}
+            },
+            _ => {}
+        }
+    }
+    Ok(())
+}

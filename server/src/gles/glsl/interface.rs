@@ -1,0 +1,233 @@
+//! The global interface of one shader: attributes, varyings and uniforms lifted out of the
+//! AST and checked against GLSL ES 1.00's rules; what remains is rewritten (`rewrite`).
+
+use std::collections::HashMap;
+
+use glsl_lang::ast::{self, TypeQualifierSpecData};
+use glsl_lang::visitor::HostMut;
+
+use super::checks;
+use super::consts::{fold, Val};
+use super::preprocess::parse;
+use super::rewrite::Rewrite;
+use super::{Scalar, Shader, Stage, Ty, Var};
+
+/// The longest varying array: more than all varying vectors together (checked at link), so
+/// that no valid shader is refused, and small enough that its slots are cheap to list.
+const MAX_VARYING_ARRAY: u32 = 256;
+
+/// The length of an interface variable's array specifier, `None` if it is no array.
+fn array_len(spec: Option<&ast::ArraySpecifier>, consts: &HashMap<String, Val>) -> Result<Option<u32>, String> {
+    let Some(spec) = spec else { return Ok(None) };
+    match spec.dimensions.as_slice() {
+        [d] => match &d.content {
+            ast::ArraySpecifierDimensionData::ExplicitlySized(e) => match fold(e, consts) {
+                // Uniform arrays are bounded by the block at link (with a log naming them),
+                // varyings below; the size only has to be a positive int.
+                Some(Val::Int(n)) if n > 0 && n <= i64::from(i32::MAX) => Ok(Some(n as u32)),
+                Some(Val::Int(_)) => Err("0: array size must be greater than zero".into()),
+                _ => Err("0: array size must be a constant valued expression".into()),
+            },
+            ast::ArraySpecifierDimensionData::Unsized => Err("unsized arrays are not allowed".into()),
+        },
+        _ => Err("arrays of arrays are not allowed in GLSL ES 1.00".into()),
+    }
+}
+
+/// The storage qualifier that makes a declaration part of the interface.
+enum Storage {
+    Attribute,
+    Varying,
+    Uniform,
+}
+
+fn storage_of(q: Option<&ast::TypeQualifier>) -> Option<Storage> {
+    q?.qualifiers.iter().find_map(|s| match &s.content {
+        TypeQualifierSpecData::Storage(st) => match st.content {
+            ast::StorageQualifierData::Attribute => Some(Storage::Attribute),
+            ast::StorageQualifierData::Varying => Some(Storage::Varying),
+            ast::StorageQualifierData::Uniform => Some(Storage::Uniform),
+            _ => None,
+        },
+        _ => None,
+    })
+}
+
+/// Compiles a shader: parse, lift the interface, rewrite the rest.
+pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String> {
+    let parsed = parse(stage, source)?;
+    let facts = checks::check(stage, &parsed)?;
+    let mut shader = Shader {
+        stage,
+        body: ast::TranslationUnit(Vec::new()),
+        attributes: vec![],
+        varyings: vec![],
+        uniforms: vec![],
+        point_coord: false,
+        has_main: false,
+        log: parsed.warnings.join("\n"),
+        facts,
+        line_starts: std::iter::once(0).chain(parsed.text.match_indices('\n').map(|(i, _)| i + 1)).collect(),
+    };
+    let mut consts: HashMap<String, Val> = HashMap::new();
+    for decl in parsed.tu.0 {
+        let list = match &decl.content {
+            ast::ExternalDeclarationData::Preprocessor(_) => continue,
+            ast::ExternalDeclarationData::Declaration(d) => match &d.content {
+                // Precision is dropped; invariance of built-ins is checked at link time.
+                ast::DeclarationData::Precision(..) | ast::DeclarationData::Invariant(_) => continue,
+                ast::DeclarationData::InitDeclaratorList(list) => Some(list.clone()),
+                _ => None,
+            },
+            ast::ExternalDeclarationData::FunctionDefinition(f) => {
+                shader.has_main |= f.prototype.name.0 == "main";
+                None
+            }
+        };
+        let Some(list) = list else {
+            shader.body.0.push(decl);
+            continue;
+        };
+        if checks::is_const(list.head.ty.qualifier.as_ref()) {
+            let named = list.head.name.as_ref().map(|n| (n, list.head.initializer.as_ref()));
+            for (name, init) in
+                named.into_iter().chain(list.tail.iter().map(|t| (&t.ident.ident, t.initializer.as_ref())))
+            {
+                if let Some(ast::InitializerData::Simple(e)) = init.map(|i| &i.content) {
+                    if let Some(v) = fold(e, &consts) {
+                        consts.insert(name.0.to_string(), v);
+                    }
+                }
+            }
+        }
+        let Some(storage) = storage_of(list.head.ty.qualifier.as_ref()) else {
+            shader.body.0.push(decl);
+            continue;
+        };
+        let ty = Ty::from_spec(&list.head.ty.ty.ty.content).ok_or_else(|| {
+            format!("0: interface variables of type '{}' are not supported", type_name(&list.head.ty.ty))
+        })?;
+        let base_array = array_len(list.head.ty.ty.array_specifier.as_ref(), &consts)?;
+        let mut vars = Vec::new();
+        if let Some(name) = &list.head.name {
+            vars.push(Var {
+                name: name.0.to_string(),
+                ty,
+                array: array_len(list.head.array_specifier.as_ref(), &consts)?.or(base_array),
+            });
+        }
+        for t in &list.tail {
+            vars.push(Var {
+                name: t.ident.ident.0.to_string(),
+                ty,
+                array: array_len(t.ident.array_spec.as_ref(), &consts)?.or(base_array),
+            });
+        }
+        if list.head.initializer.is_some() || list.tail.iter().any(|t| t.initializer.is_some()) {
+            return Err("0: attribute, varying and uniform variables cannot be initialised".into());
+        }
+        match storage {
+            Storage::Attribute => {
+                if stage == Stage::Fragment {
+                    return Err("0: 'attribute' is not allowed in a fragment shader".into());
+                }
+                if ty.scalar() != Scalar::Float || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
+                    return Err("0: attributes must be float, vec2, vec3 or vec4".into());
+                }
+                shader.attributes.extend(vars);
+            }
+            Storage::Varying => {
+                if ty.scalar() != Scalar::Float {
+                    return Err("0: varyings must be floats, float vectors or matrices, or arrays of them".into());
+                }
+                if vars.iter().any(|v| v.array.is_some_and(|n| n > MAX_VARYING_ARRAY)) {
+                    return Err(format!("0: a varying array may have at most {MAX_VARYING_ARRAY} elements"));
+                }
+                shader.varyings.extend(vars);
+            }
+            Storage::Uniform => {
+                shader.uniforms.extend(vars);
+            }
+        }
+    }
+    // Functions taking samplers: naga accepts no combined sampler parameters, so each becomes a
+    // texture and a sampler parameter, and every call passes both halves.
+    let mut sampler_fns: HashMap<String, Vec<bool>> = HashMap::new();
+    let mut sampler_params: HashMap<String, Ty> = HashMap::new();
+    for decl in &shader.body.0 {
+        let proto = match &decl.content {
+            ast::ExternalDeclarationData::FunctionDefinition(f) => &f.prototype,
+            ast::ExternalDeclarationData::Declaration(d) => match &d.content {
+                ast::DeclarationData::FunctionPrototype(p) => p,
+                _ => continue,
+            },
+            _ => continue,
+        };
+        let flags: Vec<bool> = proto
+            .parameters
+            .iter()
+            .map(|p| match &p.content {
+                ast::FunctionParameterDeclarationData::Named(_, d) => match Ty::from_spec(&d.ty.ty.content) {
+                    Some(t) if t.is_sampler() => {
+                        sampler_params.insert(d.ident.ident.0.to_string(), t);
+                        true
+                    }
+                    _ => false,
+                },
+                ast::FunctionParameterDeclarationData::Unnamed(_, t) => {
+                    Ty::from_spec(&t.ty.content).is_some_and(Ty::is_sampler)
+                }
+            })
+            .collect();
+        if flags.iter().any(|f| *f) {
+            sampler_fns.insert(proto.name.0.to_string(), flags);
+        }
+    }
+    let mut samplers: HashMap<String, Ty> = HashMap::new();
+    let mut sampler_arrays: HashMap<String, u32> = HashMap::new();
+    for u in shader.uniforms.iter().filter(|u| u.ty.is_sampler()) {
+        match u.array {
+            Some(len) => {
+                sampler_arrays.insert(u.name.clone(), len);
+                samplers.extend((0..len).map(|k| (super::rewrite::sampler_element(&u.name, k), u.ty)));
+            }
+            None => {
+                samplers.insert(u.name.clone(), u.ty);
+            }
+        }
+    }
+    samplers.extend(sampler_params);
+    let mut rewrite = Rewrite {
+        sampler_fns,
+        samplers,
+        sampler_arrays,
+        bools: shader
+            .uniforms
+            .iter()
+            .filter(|u| u.ty.scalar() == Scalar::Bool)
+            .map(|u| (u.name.clone(), u.ty))
+            .collect(),
+        mat2s: shader
+            .uniforms
+            .iter()
+            .filter(|u| u.ty == Ty::Mat2)
+            .map(|u| (u.name.clone(), u.array.is_some()))
+            .collect(),
+        error: None,
+        stage,
+        point_coord: false,
+    };
+    shader.body.visit_mut(&mut rewrite);
+    super::rewrite::hoist_global_initializers(&mut shader.body);
+    shader.point_coord = rewrite.point_coord;
+    if let Some(e) = rewrite.error {
+        return Err(e);
+    }
+    Ok(shader)
+}
+
+fn type_name(t: &ast::TypeSpecifier) -> String {
+    let mut s = String::new();
+    let _ = glsl_lang::transpiler::glsl::show_type_specifier(&mut s, t, &mut Default::default());
+    s
+}

@@ -1,0 +1,400 @@
+//! Linking: one std140 uniform block for both stages, attribute and varying locations, the
+//! generated `main`s that apply Strata's conventions (y negated, clip z mapped from [-1, 1] to
+//! [0, 1]; see `conv`), the points variant of the vertex stage, and validation by naga.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use super::super::context::MAX_POINT_SIZE;
+use super::translate::{naga_module, transpile, Body, Placed};
+use super::{Scalar, Shader, Stage, Ty, Var};
+
+/// A uniform's place in the program's block (or, for samplers, its binding).
+#[derive(Debug, Clone)]
+pub struct UniformSlot {
+    /// The name as declared.
+    pub name: String,
+    /// Its type.
+    pub ty: Ty,
+    /// Array length (1 for non-arrays).
+    pub len: u32,
+    /// Whether declared as an array.
+    pub is_array: bool,
+    /// Byte offset of element 0 in the block.
+    pub offset: u32,
+    /// Bytes between array elements (std140).
+    pub stride: u32,
+    /// For samplers: index into the program's sampler list.
+    pub sampler: Option<usize>,
+}
+
+/// A linked program: naga modules and everything needed to feed them.
+#[derive(Debug)]
+pub struct Linked {
+    /// Vertex stage module.
+    pub vertex: naga::Module,
+    /// Fragment stage module.
+    pub fragment: naga::Module,
+    /// Attributes with their locations.
+    pub attributes: Vec<(Var, u32)>,
+    /// Every uniform (samplers included), in declaration order.
+    pub uniforms: Vec<UniformSlot>,
+    /// Bytes of the uniform block (0 if none).
+    pub block_size: u32,
+    /// Sampler uniforms: (type, bind-group binding of the texture; the sampler follows).
+    pub samplers: Vec<(Ty, u32)>,
+    /// The vertex stage of `GL_POINTS` draws, as GLSL (parsed on first use by
+    /// [`points_vertex`]): one instance per point, four vertices per instance, expanded to a
+    /// square of `gl_PointSize` pixels with `gl_PointCoord` for the fragment stage.
+    pub points_source: String,
+    /// The vertex input location of the points stage's `strata_point` parameter:
+    /// (1 / viewport width, 1 / viewport height, 0, 0), constant over the draw.
+    pub point_input: u32,
+}
+
+/// The largest uniform block: wgpu's guaranteed uniform binding size (64 KiB, 4096 vectors,
+/// far above the 512 that `MAX_VERTEX_UNIFORM_VECTORS` + `MAX_FRAGMENT_UNIFORM_VECTORS` allow).
+const MAX_BLOCK: u32 = 64 << 10;
+
+/// Varying vectors a program may use: `GL_MAX_VARYING_VECTORS`.
+pub const MAX_VARYING_VECTORS: u32 = 15;
+
+/// Samplers a program may declare (sampler sets are kept as 32-bit masks: depth-texture layouts).
+const MAX_SAMPLERS: usize = 32;
+
+/// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1].
+const CONVENTIONS: &str =
+    "    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
+
+/// Parses and validates the points vertex stage of a linked program (`Linked::points_source`).
+pub fn points_vertex(linked: &Linked) -> Result<naga::Module, String> {
+    let none = Body { text: String::new(), lines: Vec::new() };
+    std::panic::catch_unwind(|| {
+        naga_module(Stage::Vertex, &linked.points_source, &Placed { first_line: usize::MAX, body: &none })
+    })
+    .unwrap_or_else(|_| Err("internal error: translating the points stage failed".into()))
+}
+
+fn array_suffix(v: &Var) -> String {
+    v.array.map_or(String::new(), |n| format!("[{n}]"))
+}
+
+/// The vectors a matrix or array varying crosses stages as: (name suffix, access from the
+/// variable, GLSL type), one per location.
+fn varying_slots(v: &Var) -> Vec<(String, String, &'static str)> {
+    let column_ty = match v.ty {
+        Ty::Mat2 => "vec2",
+        Ty::Mat3 => "vec3",
+        Ty::Mat4 => "vec4",
+        t => t.glsl(false),
+    };
+    let mut slots = Vec::new();
+    for e in 0..v.array.unwrap_or(1) {
+        let elem = if v.array.is_some() { format!("[{e}]") } else { String::new() };
+        match v.ty.columns() {
+            0 => slots.push((format!("__e{e}"), elem, column_ty)),
+            cols => {
+                for c in 0..cols {
+                    slots.push((format!("__e{e}c{c}"), format!("{elem}[{c}]"), column_ty));
+                }
+            }
+        }
+    }
+    slots
+}
+
+/// Links a vertex and a fragment shader. `bindings` are `glBindAttribLocation` requests;
+/// `max_attribs` bounds locations. The error is the program info log.
+pub fn link(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Linked, String> {
+    std::panic::catch_unwind(|| link_inner(vs, fs, bindings, max_attribs))
+        .unwrap_or_else(|_| Err("error: internal error: translating this program failed".into()))
+}
+
+fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Linked, String> {
+    let g = generate(vs, fs, bindings, max_attribs)?;
+    let placed = |first_line, body| Placed { first_line, body };
+    let vertex = naga_module(Stage::Vertex, &g.vsrc, &placed(g.vs_first_line, &g.vs_body))
+        .map_err(|e| format!("vertex shader:\n{e}"))?;
+    let fragment = naga_module(Stage::Fragment, &g.fsrc, &placed(g.fs_first_line, &g.fs_body))
+        .map_err(|e| format!("fragment shader:\n{e}"))?;
+    let Generated { attributes, uniforms, block_size, samplers, points_source, point_input, .. } = g;
+    Ok(Linked { vertex, fragment, attributes, uniforms, block_size, samplers, points_source, point_input })
+}
+
+/// A compiled shader translated once against a stand-in for the other stage (which declares
+/// the same varyings and nothing else): the errors only naga finds, such as types, fail the
+/// compile with the shader's line. What only a real link can judge is left to the link.
+pub(super) fn check_stage(s: Shader) -> Result<Shader, String> {
+    let stand_in = match s.stage {
+        Stage::Vertex => "void main() { gl_FragColor = vec4(0.0); }".to_string(),
+        Stage::Fragment => {
+            let mut src = String::new();
+            for v in &s.varyings {
+                let _ = writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
+            }
+            for (frag, vert) in [("gl_FragCoord", "gl_Position"), ("gl_PointCoord", "gl_PointSize")] {
+                if s.facts.invariants.contains(frag) {
+                    let _ = writeln!(src, "invariant {vert};");
+                }
+            }
+            src.push_str("void main() { gl_Position = vec4(0.0); }");
+            src
+        }
+    };
+    let other_stage = if s.stage == Stage::Vertex { Stage::Fragment } else { Stage::Vertex };
+    let Ok(other) = super::interface::compile_inner(other_stage, &stand_in) else { return Ok(s) };
+    let (vs, fs) = if s.stage == Stage::Vertex { (&s, &other) } else { (&other, &s) };
+    let Ok(g) = generate(vs, fs, &HashMap::new(), 1024) else { return Ok(s) };
+    let (src, placed) = match s.stage {
+        Stage::Vertex => (&g.vsrc, Placed { first_line: g.vs_first_line, body: &g.vs_body }),
+        Stage::Fragment => (&g.fsrc, Placed { first_line: g.fs_first_line, body: &g.fs_body }),
+    };
+    naga_module(s.stage, src, &placed)?;
+    Ok(s)
+}
+
+/// A program's generated stage sources, before naga.
+struct Generated {
+    vsrc: String,
+    fsrc: String,
+    /// The vertex shader's own code and the line of `vsrc` where it starts.
+    vs_body: Body,
+    vs_first_line: usize,
+    /// The fragment shader's own code and the line of `fsrc` where it starts.
+    fs_body: Body,
+    fs_first_line: usize,
+    attributes: Vec<(Var, u32)>,
+    uniforms: Vec<UniformSlot>,
+    block_size: u32,
+    samplers: Vec<(Ty, u32)>,
+    points_source: String,
+    point_input: u32,
+}
+
+/// The uniform block, locations and both stages' sources of a program.
+fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Generated, String> {
+    // GLSL ES 1.00 §2.10: a missing `main` is a link error.
+    for (s, name) in [(vs, "vertex"), (fs, "fragment")] {
+        if !s.has_main {
+            return Err(format!("error: {name} shader lacks `main'"));
+        }
+    }
+    // GLSL ES 1.00 §4.6.4: gl_FragCoord and gl_PointCoord may be invariant only if gl_Position
+    // and gl_PointSize are.
+    for (frag, vert) in [("gl_FragCoord", "gl_Position"), ("gl_PointCoord", "gl_PointSize")] {
+        if fs.facts.invariants.contains(frag) && !vs.facts.invariants.contains(vert) {
+            return Err(format!("error: {frag} can be invariant only if {vert} is invariant in the vertex shader"));
+        }
+    }
+    // §4.5.3: a uniform both stages use has the same precision in both.
+    for (name, p) in &vs.facts.uniform_precisions {
+        if let Some(q) = fs.facts.uniform_precisions.get(name) {
+            if p != q && vs.facts.used.contains(name) && fs.facts.used.contains(name) {
+                return Err(format!("error: uniform `{name}' has different precisions in the two stages"));
+            }
+        }
+    }
+    // Uniforms: one program-wide namespace.
+    let mut uniforms: Vec<UniformSlot> = Vec::new();
+    let mut samplers = Vec::new();
+    let mut offset = 0u32;
+    // Array sizes are the shader's: the block is bounded before anything is allocated for it.
+    let too_big = || format!("error: the uniforms need more than the {MAX_BLOCK} bytes a uniform block can bind");
+    for u in vs.uniforms.iter().chain(&fs.uniforms) {
+        if let Some(prev) = uniforms.iter().find(|p| p.name == u.name) {
+            if prev.ty != u.ty || prev.len != u.array.unwrap_or(1) {
+                return Err(format!("error: uniform '{}' is declared with different types in the two stages", u.name));
+            }
+            continue;
+        }
+        let len = u.array.unwrap_or(1);
+        let (size, align, stride, sampler) = if u.ty.is_sampler() {
+            // A sampler array is `len` consecutive samplers, one binding pair each.
+            let first = samplers.len();
+            for _ in 0..len.min(MAX_SAMPLERS as u32 + 1) {
+                samplers.push((u.ty, 1 + 2 * samplers.len() as u32));
+            }
+            (0, 1, 0, Some(first))
+        } else {
+            let (size, align) = u.ty.std140();
+            if u.array.is_some() {
+                let stride = size.div_ceil(16) * 16;
+                (stride.checked_mul(len).ok_or_else(too_big)?, 16, stride, None)
+            } else {
+                (size, align, size, None)
+            }
+        };
+        offset = offset.div_ceil(align) * align;
+        uniforms.push(UniformSlot {
+            name: u.name.clone(),
+            ty: u.ty,
+            len,
+            is_array: u.array.is_some(),
+            offset,
+            stride,
+            sampler,
+        });
+        offset = offset.checked_add(size).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
+    }
+    let block_size = offset.div_ceil(16) * 16;
+    if samplers.len() > MAX_SAMPLERS {
+        return Err(format!("error: more than {MAX_SAMPLERS} samplers declared"));
+    }
+
+    // Attributes: bound locations first, then the lowest free ones.
+    let mut attributes: Vec<(Var, u32)> = Vec::new();
+    let mut used = vec![false; max_attribs as usize];
+    for a in &vs.attributes {
+        if let Some(&loc) = bindings.get(&a.name) {
+            if loc >= max_attribs {
+                return Err(format!("error: attribute '{}' bound to location {loc} beyond the limit", a.name));
+            }
+            used[loc as usize] = true;
+            attributes.push((a.clone(), loc));
+        }
+    }
+    for a in &vs.attributes {
+        if bindings.contains_key(&a.name) {
+            continue;
+        }
+        let loc = used.iter().position(|u| !u).ok_or_else(|| "error: too many vertex attributes".to_string())?;
+        used[loc] = true;
+        attributes.push((a.clone(), loc as u32));
+    }
+
+    // Varyings: every fragment input must be a vertex output of the same type.
+    for v in &fs.varyings {
+        match vs.varyings.iter().find(|o| o.name == v.name) {
+            Some(o) if o.ty == v.ty && o.array == v.array => {}
+            Some(_) => return Err(format!("error: varying '{}' has different types in the two stages", v.name)),
+            None => return Err(format!("error: fragment varying '{}' is not written by the vertex shader", v.name)),
+        }
+    }
+
+    let mut common = String::from("#version 450\n");
+    if block_size > 0 {
+        common.push_str("layout(std140, set = 0, binding = 0) uniform StrataUniforms {\n");
+        for u in uniforms.iter().filter(|u| !u.ty.is_sampler()) {
+            if u.ty == Ty::Mat2 {
+                let _ = writeln!(common, "    vec4 strata_m2_{}[{}];", u.name, 2 * u.len);
+                continue;
+            }
+            let name = if u.ty.scalar() == Scalar::Bool { format!("strata_b_{}", u.name) } else { u.name.clone() };
+            let arr = if u.is_array { format!("[{}]", u.len) } else { String::new() };
+            let _ = writeln!(common, "    {} {name}{arr};", u.ty.glsl(true));
+        }
+        common.push_str("};\n");
+    }
+    for u in uniforms.iter().filter(|u| u.ty.is_sampler()) {
+        let first = u.sampler.unwrap_or(0);
+        for k in 0..u.len {
+            let binding = samplers[first + k as usize].1;
+            let name = if u.is_array { super::rewrite::sampler_element(&u.name, k) } else { u.name.clone() };
+            let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", u.ty.glsl(true));
+            let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__s;", binding + 1);
+        }
+    }
+
+    let mut vsrc = common.clone();
+    for (a, loc) in &attributes {
+        let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
+    }
+    // Varying locations: one per vector, one per column of a matrix, per array element.
+    // Matrices and arrays cannot cross stages in naga, so such a varying is a private global in
+    // each stage, copied through vectors in the generated `main`s.
+    let mut locations: HashMap<&str, u32> = HashMap::new();
+    let mut next = 0u32;
+    for v in &vs.varyings {
+        locations.insert(v.name.as_str(), next);
+        next += varying_slots(v).len() as u32;
+    }
+    // GL_MAX_VARYING_VECTORS (one more location stays free for gl_PointCoord).
+    if next > MAX_VARYING_VECTORS {
+        return Err(format!("error: the varyings need {next} vectors; at most {MAX_VARYING_VECTORS} are supported"));
+    }
+    let mut vs_copy = String::new();
+    for v in &vs.varyings {
+        let loc = locations[v.name.as_str()];
+        if v.ty.columns() == 0 && v.array.is_none() {
+            let _ = writeln!(vsrc, "layout(location = {loc}) out {} {};", v.ty.glsl(false), v.name);
+            continue;
+        }
+        let _ = writeln!(vsrc, "{} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
+        for (i, (suffix, access, ty)) in varying_slots(v).into_iter().enumerate() {
+            let _ = writeln!(vsrc, "layout(location = {}) out {ty} {}{suffix};", loc + i as u32, v.name);
+            let _ = writeln!(vs_copy, "    {}{suffix} = {}{access};", v.name, v.name);
+        }
+    }
+    // gl_PointCoord: one more varying, a square's corner in the points stage.
+    let mut pc_default = String::new();
+    let mut pc_corner = String::new();
+    if fs.point_coord {
+        let _ = writeln!(vsrc, "layout(location = {next}) out vec2 strata_PointCoord;");
+        pc_default.push_str("    strata_PointCoord = vec2(0.0);\n");
+        // GL's point sprite origin is the upper left: t grows downwards (ES 2.0 §3.3).
+        pc_corner.push_str("    strata_PointCoord = vec2(strata_corner.x, 1.0 - strata_corner.y);\n");
+    }
+    vsrc.push_str("float strata_PointSize;\n");
+    let point_input = used.iter().position(|u| !u).unwrap_or(used.len()) as u32;
+    let vs_body = transpile(vs)?;
+    let body = &vs_body.text;
+    let points_source = format!(
+        "{vsrc}layout(location = {point_input}) in vec4 strata_point;\n{body}\nvoid main() {{\n    strata_PointSize = 1.0;\n    strata_main();\n{vs_copy}\
+    float strata_size = clamp(strata_PointSize, 1.0, {MAX_POINT_SIZE:.1});\n\
+    vec2 strata_corner = vec2(float(gl_VertexIndex & 1), float((gl_VertexIndex >> 1) & 1));\n{pc_corner}\
+    gl_Position.xy += (strata_corner * 2.0 - 1.0) * (strata_size * gl_Position.w) * strata_point.xy;\n{CONVENTIONS}}}\n"
+    );
+    let vs_first_line = vsrc.matches('\n').count();
+    vsrc.push_str(body);
+    vsrc.push_str(&format!(
+        "\nvoid main() {{\n    strata_PointSize = 1.0;\n    strata_main();\n{vs_copy}{pc_default}{CONVENTIONS}}}\n"
+    ));
+
+    let mut fsrc = common;
+    let mut fs_copy = String::new();
+    for v in &fs.varyings {
+        let loc = locations.get(v.name.as_str()).copied().unwrap_or(0);
+        if v.ty.columns() == 0 && v.array.is_none() {
+            let _ = writeln!(fsrc, "layout(location = {loc}) in {} {};", v.ty.glsl(false), v.name);
+            continue;
+        }
+        let _ = writeln!(fsrc, "{} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
+        let slots = varying_slots(v);
+        let cols = v.ty.columns();
+        for (i, (suffix, access, ty)) in slots.iter().enumerate() {
+            let _ = writeln!(fsrc, "layout(location = {}) in {ty} {}{suffix};", loc + i as u32, v.name);
+            if cols == 0 {
+                let _ = writeln!(fs_copy, "    {}{access} = {}{suffix};", v.name, v.name);
+            }
+        }
+        if cols > 0 {
+            for (e, chunk) in slots.chunks(cols).enumerate() {
+                let parts: Vec<String> = chunk.iter().map(|(suffix, _, _)| format!("{}{suffix}", v.name)).collect();
+                let elem = if v.array.is_some() { format!("[{e}]") } else { String::new() };
+                let _ = writeln!(fs_copy, "    {}{elem} = {}({});", v.name, v.ty.glsl(false), parts.join(", "));
+            }
+        }
+    }
+    if fs.point_coord {
+        let _ = writeln!(fsrc, "layout(location = {next}) in vec2 strata_PointCoord;");
+    }
+    fsrc.push_str("layout(location = 0) out vec4 strata_FragColor;\n");
+    let fs_body = transpile(fs)?;
+    let fs_first_line = fsrc.matches('\n').count();
+    fsrc.push_str(&fs_body.text);
+    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n}}\n"));
+    Ok(Generated {
+        vsrc,
+        fsrc,
+        vs_body,
+        vs_first_line,
+        fs_body,
+        fs_first_line,
+        attributes,
+        uniforms,
+        block_size,
+        samplers,
+        points_source,
+        point_input,
+    })
+}

@@ -1,0 +1,171 @@
+//! A texture's GPU image: allocation for each storage (colour, float, depth, depth-stencil,
+//! native compressed blocks), writes of whole levels and sub-rectangles, and the switch of a
+//! natively compressed image to RGBA8 when uncompressed data arrives for it.
+
+use std::collections::HashMap;
+
+use super::enums::*;
+use super::formats::Storage;
+use super::textures::Texture;
+use crate::gpu::Gpu;
+
+/// A texture's GPU image.
+pub struct TextureImage {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// The view draws sample: all levels (and faces); the depth aspect of a depth-stencil image.
+    pub view: wgpu::TextureView,
+    /// Level-0 width.
+    pub width: u32,
+    /// Level-0 height.
+    pub height: u32,
+    /// Mip levels allocated.
+    pub mips: u32,
+    /// Levels of GL's full mip chain for this size (completeness is judged against these).
+    pub levels: u32,
+    /// How the texels are kept.
+    pub storage: Storage,
+    /// Whether the image can be sampled with linear filtering.
+    pub filterable: bool,
+    /// For natively compressed images: the blocks of every specified level, by (face, level),
+    /// kept so that the image can be decoded to RGBA8 if uncompressed data is written to it.
+    pub blocks: HashMap<(u32, u32), Vec<u8>>,
+}
+
+/// A rectangle of one level of one face.
+#[derive(Debug, Clone, Copy)]
+pub struct Region {
+    /// Cube face (array layer), 0 for 2D.
+    pub face: u32,
+    /// Mip level.
+    pub level: u32,
+    /// Left column.
+    pub x: u32,
+    /// Bottom row (memory row 0).
+    pub y: u32,
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+}
+
+impl TextureImage {
+    /// Allocates an image of `storage` for a texture of `target`.
+    fn new(gpu: &Gpu, target: u32, width: u32, height: u32, storage: Storage) -> Self {
+        let layers = if target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let levels = 32 - width.max(height).max(1).leading_zeros();
+        let mips = if storage.is_depth() { 1 } else { levels };
+        let mut usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        if storage.attachable() {
+            usage |= wgpu::TextureUsages::RENDER_ATTACHMENT;
+        }
+        if !storage.is_depth() {
+            usage |= wgpu::TextureUsages::COPY_SRC;
+        }
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("gl texture"),
+            size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: layers },
+            mip_level_count: mips,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: storage.wgpu(),
+            usage,
+            view_formats: &[],
+        });
+        let dim = if layers == 6 { wgpu::TextureViewDimension::Cube } else { wgpu::TextureViewDimension::D2 };
+        let aspect = if storage.is_depth() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
+        let view =
+            texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), aspect, ..Default::default() });
+        let filterable = match storage {
+            Storage::Float => gpu.features.contains(wgpu::Features::FLOAT32_FILTERABLE),
+            s => !s.is_depth(),
+        };
+        TextureImage { texture, view, width, height, mips, levels, storage, filterable, blocks: HashMap::new() }
+    }
+
+    /// Width and height of `level`.
+    pub fn level_size(&self, level: u32) -> (u32, u32) {
+        ((self.width >> level).max(1), (self.height >> level).max(1))
+    }
+
+    /// Writes tightly packed texels of the image's storage (RGBA8, RGBA16F or RGBA32F) into
+    /// `r`, or, for a natively compressed image, whole blocks covering `r` (rows of blocks).
+    pub fn write(&self, gpu: &Gpu, r: Region, data: &[u8]) {
+        if r.width == 0 || r.height == 0 {
+            return;
+        }
+        let (mut width, mut height, bytes_per_row) = match self.storage {
+            Storage::Native(c) => {
+                (r.width.div_ceil(4) * 4, r.height.div_ceil(4) * 4, r.width.div_ceil(4) * c.block_bytes() as u32)
+            }
+            s => (r.width, r.height, r.width * s.texel_bytes()),
+        };
+        if let Storage::Native(_) = self.storage {
+            // Copies of block formats cover whole blocks, clipped to the level's block-rounded size.
+            let (lw, lh) = self.level_size(r.level);
+            width = width.min(lw.div_ceil(4) * 4 - r.x);
+            height = height.min(lh.div_ceil(4) * 4 - r.y);
+        }
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.texture,
+                mip_level: r.level,
+                origin: wgpu::Origin3d { x: r.x, y: r.y, z: r.face },
+                aspect: wgpu::TextureAspect::All,
+            },
+            data,
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(bytes_per_row), rows_per_image: None },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        );
+    }
+
+    /// Writes compressed blocks covering `r` (a block-aligned rectangle of one level) and
+    /// records them, so the level can still be decoded later.
+    pub fn write_blocks(&mut self, gpu: &Gpu, r: Region, data: &[u8]) {
+        let Storage::Native(c) = self.storage else { return };
+        if r.width == 0 || r.height == 0 {
+            return;
+        }
+        let (lw, lh) = self.level_size(r.level);
+        let bb = c.block_bytes();
+        let level_row = lw.div_ceil(4) as usize * bb;
+        let full = self.blocks.entry((r.face, r.level)).or_insert_with(|| vec![0; c.image_size(lw, lh)]);
+        let row = r.width.div_ceil(4) as usize * bb;
+        for (i, src) in data.chunks_exact(row).take(r.height.div_ceil(4) as usize).enumerate() {
+            let at = (r.y as usize / 4 + i) * level_row + r.x as usize / 4 * bb;
+            if let Some(dst) = full.get_mut(at..at + row) {
+                dst.copy_from_slice(src);
+            }
+        }
+        self.write(gpu, r, data);
+    }
+}
+
+impl Texture {
+    /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain
+    /// (one level for depth), unless it already has one of that size and storage; a new image
+    /// has no level defined.
+    pub fn ensure_image(&mut self, gpu: &Gpu, uid: u64, width: u32, height: u32, storage: Storage) {
+        if self.gpu.as_ref().is_some_and(|i| i.width == width && i.height == height && i.storage == storage) {
+            return;
+        }
+        self.gpu = Some(TextureImage::new(gpu, self.target, width, height, storage));
+        self.defined = [0; 6];
+        self.uid = uid;
+    }
+
+    /// Turns a natively compressed image into an RGBA8 one holding the decoded levels, so that
+    /// uncompressed data can be written to it; other images are left as they are.
+    pub fn decompress(&mut self, gpu: &Gpu, uid: u64) {
+        let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return };
+        let Storage::Native(c) = old.storage else { return };
+        let img = TextureImage::new(gpu, self.target, old.width, old.height, Storage::Rgba8);
+        for (&(face, level), blocks) in &old.blocks {
+            let (width, height) = img.level_size(level);
+            let region = Region { face, level, x: 0, y: 0, width, height };
+            img.write(gpu, region, &c.decode(blocks, width, height));
+        }
+        self.gpu = Some(img);
+        self.uid = uid;
+    }
+}

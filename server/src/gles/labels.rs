@@ -1,0 +1,99 @@
+//! Object labels (`GL_KHR_debug`): `glObjectLabelKHR` and `glGetObjectLabelKHR` on the object
+//! kinds an ES 2.0 context has, and the pointer variants, which name sync objects (ES 2.0 has
+//! none, so every pointer is invalid).
+//!
+//! Labels live beside the objects, in `Objects::labels`, keyed by the label namespace and the
+//! name; deleting an object forgets its label, so a name that is used again starts unlabelled.
+
+use strata_protocol::commands::MAX_LABEL_LENGTH;
+use strata_protocol::{Blob, Bytes};
+
+use super::context::Objects;
+use super::debug::message_text;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::GlesExecutor;
+
+/// Checks that `identifier` is a label namespace of this context (`GL_INVALID_ENUM`) and that
+/// `name` is an object in it (`GL_INVALID_VALUE`).
+fn check_object(objects: &Objects, current_vao: u32, identifier: u32, name: u32) -> GlResult {
+    let exists = match identifier {
+        BUFFER_KHR => name != 0 && objects.buffers.contains_key(&name),
+        SHADER_KHR => objects.shaders.contains_key(&name),
+        PROGRAM_KHR => objects.programs.contains_key(&name),
+        VERTEX_ARRAY_KHR => name != 0 && (name == current_vao || objects.vertex_arrays.contains_key(&name)),
+        TEXTURE => name != 0 && objects.textures.contains_key(&name),
+        RENDERBUFFER => name != 0 && objects.renderbuffers.contains_key(&name),
+        FRAMEBUFFER => name != 0 && objects.framebuffers.contains_key(&name),
+        _ => return Err(GlError::InvalidEnum),
+    };
+    if exists {
+        Ok(())
+    } else {
+        Err(GlError::InvalidValue)
+    }
+}
+
+impl Objects {
+    /// Forgets the label of the object `name` in namespace `identifier` (it was deleted).
+    pub fn forget_label(&mut self, identifier: u32, name: u32) {
+        if !self.labels.is_empty() {
+            self.labels.remove(&(identifier, name));
+        }
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glObjectLabelKHR(
+        &mut self,
+        identifier: u32,
+        name: u32,
+        length: i32,
+        label: Option<Blob<'_>>,
+    ) -> GlResult {
+        let ctx = self.ctx();
+        check_object(&ctx.objects, ctx.bindings.vertex_array, identifier, name)?;
+        match label {
+            None => {
+                ctx.objects.labels.remove(&(identifier, name));
+            }
+            Some(label) => {
+                let text = message_text(length, &label, MAX_LABEL_LENGTH)?;
+                if text.is_empty() {
+                    ctx.objects.labels.remove(&(identifier, name));
+                } else {
+                    ctx.objects.labels.insert((identifier, name), text);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glGetObjectLabelKHR(&mut self, identifier: u32, name: u32, buf_size: i32) -> Option<Bytes> {
+        let ctx = self.ctx();
+        let checked = if buf_size < 0 {
+            Err(GlError::InvalidValue)
+        } else {
+            check_object(&ctx.objects, ctx.bindings.vertex_array, identifier, name)
+        };
+        match checked {
+            Ok(()) => Some(Bytes(ctx.objects.labels.get(&(identifier, name)).cloned().unwrap_or_default())),
+            Err(e) => {
+                ctx.record(e);
+                None
+            }
+        }
+    }
+
+    /// ES 2.0 has no sync objects, so no pointer names one.
+    pub(super) fn glObjectPtrLabelKHR(&mut self, _ptr: u64, _length: i32, _label: Option<Blob<'_>>) -> GlResult {
+        Err(GlError::InvalidValue)
+    }
+
+    /// ES 2.0 has no sync objects, so no pointer names one.
+    pub(super) fn glGetObjectPtrLabelKHR(&mut self, _ptr: u64, _buf_size: i32) -> Option<Bytes> {
+        self.ctx().record(GlError::InvalidValue);
+        None
+    }
+}

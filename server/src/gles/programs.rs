@@ -1,0 +1,356 @@
+//! Program objects: creation, attachment, attribute bindings, linking (through `glsl`, then
+//! wgpu shader modules and layouts), use, deletion and queries.
+
+use std::collections::HashMap;
+use std::sync::{Arc, OnceLock};
+
+use strata_protocol::{ActiveVariable, Text};
+
+use super::context::{Context, Objects, MAX_ATTRIBS};
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::glsl::{self, Stage};
+use super::render::{error_chain, layout_entries};
+use super::GlesExecutor;
+use crate::gpu::Gpu;
+
+/// A linked program's GPU-side state.
+pub struct LinkedProgram {
+    /// Reflection from the linker.
+    pub info: glsl::Linked,
+    /// Vertex module.
+    pub vs: wgpu::ShaderModule,
+    /// Fragment module.
+    pub fs: wgpu::ShaderModule,
+    /// Bind group layout: uniform block, then texture/sampler pairs.
+    pub bgl: wgpu::BindGroupLayout,
+    /// Pipeline layout.
+    pub layout: wgpu::PipelineLayout,
+    /// Location → (uniform index, array element).
+    pub locations: Vec<(usize, u32)>,
+    /// Unique id for caches.
+    pub id: u64,
+    /// The points vertex stage, created on the first `GL_POINTS` draw (or why it failed).
+    points_vs: OnceLock<Result<wgpu::ShaderModule, String>>,
+}
+
+impl LinkedProgram {
+    /// The vertex module of `GL_POINTS` draws (see `glsl::Linked::points_source`), created
+    /// on first use; the error says why the GPU or the translator refused it.
+    pub fn points_vs(&self, gpu: &Gpu) -> Result<wgpu::ShaderModule, String> {
+        self.points_vs
+            .get_or_init(|| {
+                let module = glsl::points_vertex(&self.info)?;
+                let guard = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                let vs = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("vs points"),
+                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
+                });
+                match pollster::block_on(guard.pop()) {
+                    Some(e) => Err(error_chain(&e)),
+                    None => Ok(vs),
+                }
+            })
+            .clone()
+    }
+}
+
+/// A program object.
+#[derive(Default)]
+pub struct Program {
+    /// Attached shader names.
+    pub attached: Vec<u32>,
+    /// `glBindAttribLocation` requests for the next link.
+    pub bindings: HashMap<String, u32>,
+    /// The result of the last successful link.
+    pub linked: Option<Arc<LinkedProgram>>,
+    /// Whether the last link succeeded.
+    pub link_ok: bool,
+    /// The info log.
+    pub log: String,
+    /// Uniform block contents (std140).
+    pub data: Vec<u8>,
+    /// Texture unit of each sampler uniform.
+    pub units: Vec<u32>,
+    /// Deleted while current: freed when no longer in use.
+    pub delete_pending: bool,
+    /// `glValidateProgram` result.
+    pub validated: bool,
+}
+
+/// `f` of program `name`, or `default` after recording the error GL gives for a bad name.
+fn with_program<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&Program) -> T) -> T {
+    match ctx.objects.programs.get(&name) {
+        Some(p) => f(p),
+        None => {
+            let e = ctx.objects.shader_or_program_error(name);
+            ctx.record(e);
+            default
+        }
+    }
+}
+
+/// Frees the shaders among `shaders` that were deleted while attached and are now attached
+/// to no program.
+fn release_shaders(objects: &mut Objects, shaders: &[u32]) {
+    for s in shaders {
+        let still = objects.programs.values().any(|p| p.attached.contains(s));
+        if !still && objects.shaders.get(s).is_some_and(|x| x.delete_pending) {
+            objects.shaders.remove(s);
+            objects.forget_label(SHADER_KHR, *s);
+        }
+    }
+}
+
+/// The last successful link of `program`, for the active-variable queries: an unlinked
+/// program is `GL_INVALID_VALUE`, a name that is no program the usual error.
+pub fn linked_for_query(objects: &Objects, program: u32) -> GlResult<&LinkedProgram> {
+    match objects.programs.get(&program) {
+        Some(p) => p.linked.as_deref().ok_or(GlError::InvalidValue),
+        None => Err(objects.shader_or_program_error(program)),
+    }
+}
+
+/// Links the program's attached shaders: the program info log on failure.
+fn link_stages(objects: &Objects, p: &Program) -> Result<glsl::Linked, String> {
+    let find = |stage: Stage| p.attached.iter().filter_map(|s| objects.shaders.get(s)).find(|s| s.stage == stage);
+    match (find(Stage::Vertex), find(Stage::Fragment)) {
+        (Some(vs), Some(fs)) => match (&vs.compiled, &fs.compiled) {
+            (Some(v), Some(f)) if vs.compiled_ok && fs.compiled_ok => glsl::link(v, f, &p.bindings, MAX_ATTRIBS as u32),
+            _ => Err("error: an attached shader did not compile".to_string()),
+        },
+        _ => Err("error: a program needs one vertex and one fragment shader".to_string()),
+    }
+}
+
+/// Creates a linked program's shader modules and layouts; the info log if the GPU rejects them.
+fn create_gpu_program(gpu: &Gpu, info: glsl::Linked, id: u64) -> Result<LinkedProgram, String> {
+    let d = &gpu.device;
+    let guard = d.push_error_scope(wgpu::ErrorFilter::Validation);
+    let vs = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("vs"),
+        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(info.vertex.clone())),
+    });
+    let fs = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("fs"),
+        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(info.fragment.clone())),
+    });
+    let entries = layout_entries(&info, 0);
+    let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: None, entries: &entries });
+    let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: &[Some(&bgl)],
+        immediate_size: 0,
+    });
+    if let Some(e) = pollster::block_on(guard.pop()) {
+        return Err(format!("error: the GPU rejected the program: {}", error_chain(&e)));
+    }
+    let mut locations = Vec::new();
+    for (i, u) in info.uniforms.iter().enumerate() {
+        for e in 0..u.len {
+            locations.push((i, e));
+        }
+    }
+    Ok(LinkedProgram { info, vs, fs, bgl, layout, locations, id, points_vs: OnceLock::new() })
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glCreateProgram(&mut self, name: u32) -> GlResult {
+        let objects = &mut self.ctx().objects;
+        if name == 0 || objects.shaders.contains_key(&name) || objects.programs.contains_key(&name) {
+            return Err(GlError::InvalidValue);
+        }
+        objects.programs.insert(name, Program::default());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteProgram(&mut self, program: u32) -> GlResult {
+        if program == 0 {
+            return Ok(());
+        }
+        let ctx = self.ctx();
+        let objects = &mut ctx.objects;
+        if !objects.programs.contains_key(&program) {
+            return Err(objects.shader_or_program_error(program));
+        }
+        if ctx.bindings.program == program {
+            if let Some(p) = objects.programs.get_mut(&program) {
+                p.delete_pending = true;
+            }
+        } else if let Some(p) = objects.programs.remove(&program) {
+            objects.forget_label(PROGRAM_KHR, program);
+            release_shaders(objects, &p.attached);
+        }
+        Ok(())
+    }
+
+    pub(super) fn glAttachShader(&mut self, program: u32, shader: u32) -> GlResult {
+        let objects = &mut self.ctx().objects;
+        let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
+        let Some(stage) = objects.shaders.get(&shader).map(|s| s.stage) else {
+            return Err(objects.shader_or_program_error(shader));
+        };
+        let same_stage = p.attached.iter().any(|s| objects.shaders.get(s).is_some_and(|x| x.stage == stage));
+        if p.attached.contains(&shader) || same_stage {
+            return Err(GlError::InvalidOperation);
+        }
+        if let Some(p) = objects.programs.get_mut(&program) {
+            p.attached.push(shader);
+        }
+        Ok(())
+    }
+
+    pub(super) fn glDetachShader(&mut self, program: u32, shader: u32) -> GlResult {
+        let objects = &mut self.ctx().objects;
+        if !objects.programs.contains_key(&program) {
+            return Err(objects.shader_or_program_error(program));
+        }
+        if !objects.shaders.contains_key(&shader) {
+            return Err(objects.shader_or_program_error(shader));
+        }
+        let Some(p) = objects.programs.get_mut(&program) else { return Ok(()) };
+        let i = p.attached.iter().position(|&s| s == shader).ok_or(GlError::InvalidOperation)?;
+        p.attached.remove(i);
+        release_shaders(objects, &[shader]);
+        Ok(())
+    }
+
+    pub(super) fn glBindAttribLocation(&mut self, program: u32, index: u32, name: Text<'_>) -> GlResult {
+        if index as usize >= MAX_ATTRIBS {
+            return Err(GlError::InvalidValue);
+        }
+        if name.as_str().starts_with("gl_") {
+            return Err(GlError::InvalidOperation);
+        }
+        let objects = &mut self.ctx().objects;
+        match objects.programs.get_mut(&program) {
+            Some(p) => {
+                p.bindings.insert(name.as_str().to_string(), index);
+                Ok(())
+            }
+            None => Err(objects.shader_or_program_error(program)),
+        }
+    }
+
+    pub(super) fn glLinkProgram(&mut self, program: u32) -> GlResult {
+        let id = self.next_uid();
+        let (ctx, gpu) = self.ctx_gpu();
+        let objects = &mut ctx.objects;
+        let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
+        let result = link_stages(objects, p).and_then(|info| create_gpu_program(gpu, info, id));
+        let Some(p) = objects.programs.get_mut(&program) else { return Ok(()) };
+        match result {
+            Ok(linked) => {
+                p.data = vec![0; linked.info.block_size as usize];
+                p.units = vec![0; linked.info.samplers.len()];
+                p.linked = Some(Arc::new(linked));
+                p.link_ok = true;
+                p.log.clear();
+            }
+            Err(log) => {
+                p.link_ok = false;
+                p.log = log;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glUseProgram(&mut self, program: u32) -> GlResult {
+        let ctx = self.ctx();
+        let objects = &mut ctx.objects;
+        if program != 0 && !objects.programs.get(&program).is_some_and(|p| p.link_ok) {
+            return Err(objects.shader_or_program_error(program));
+        }
+        let old = ctx.bindings.program;
+        ctx.bindings.program = program;
+        if old != program && objects.programs.get(&old).is_some_and(|p| p.delete_pending) {
+            if let Some(p) = objects.programs.remove(&old) {
+                objects.forget_label(PROGRAM_KHR, old);
+                release_shaders(objects, &p.attached);
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glValidateProgram(&mut self, program: u32) -> GlResult {
+        let objects = &mut self.ctx().objects;
+        match objects.programs.get_mut(&program) {
+            Some(p) => {
+                p.validated = p.link_ok;
+                Ok(())
+            }
+            None => Err(objects.shader_or_program_error(program)),
+        }
+    }
+
+    pub(super) fn glIsProgram(&mut self, name: u32) -> bool {
+        self.ctx().objects.programs.contains_key(&name)
+    }
+
+    pub(super) fn glGetProgramiv(&mut self, program: u32, pname: u32) -> i32 {
+        let ctx = self.ctx();
+        let v = match ctx.objects.programs.get(&program) {
+            Some(p) => {
+                let linked = p.linked.as_ref();
+                match pname {
+                    LINK_STATUS => Ok(i32::from(p.link_ok)),
+                    DELETE_STATUS => Ok(i32::from(p.delete_pending)),
+                    VALIDATE_STATUS => Ok(i32::from(p.validated)),
+                    INFO_LOG_LENGTH => Ok(if p.log.is_empty() { 0 } else { p.log.len() as i32 + 1 }),
+                    ATTACHED_SHADERS => Ok(p.attached.len() as i32),
+                    ACTIVE_ATTRIBUTES => Ok(linked.map_or(0, |l| l.info.attributes.len() as i32)),
+                    ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
+                    ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked
+                        .map_or(0, |l| l.info.attributes.iter().map(|a| a.0.name.len() as i32 + 1).max().unwrap_or(0))),
+                    ACTIVE_UNIFORM_MAX_LENGTH => Ok(linked.map_or(0, |l| {
+                        l.info
+                            .uniforms
+                            .iter()
+                            .map(|u| u.name.len() as i32 + if u.is_array { 4 } else { 1 })
+                            .max()
+                            .unwrap_or(0)
+                    })),
+                    _ => Err(GlError::InvalidEnum),
+                }
+            }
+            None => Err(ctx.objects.shader_or_program_error(program)),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            0
+        })
+    }
+
+    pub(super) fn glGetProgramInfoLog(&mut self, program: u32) -> String {
+        with_program(self.ctx(), program, String::new(), |p| p.log.clone())
+    }
+
+    pub(super) fn glGetAttachedShaders(&mut self, program: u32) -> Vec<u32> {
+        with_program(self.ctx(), program, vec![], |p| p.attached.clone())
+    }
+
+    pub(super) fn glGetAttribLocation(&mut self, program: u32, name: Text<'_>) -> i32 {
+        let ctx = self.ctx();
+        let v = match ctx.objects.programs.get(&program) {
+            Some(p) => match &p.linked {
+                Some(l) => Ok(l.info.attributes.iter().find(|a| a.0.name == name.as_str()).map_or(-1, |a| a.1 as i32)),
+                None => Err(GlError::InvalidOperation),
+            },
+            None => Err(ctx.objects.shader_or_program_error(program)),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            -1
+        })
+    }
+
+    pub(super) fn glGetActiveAttrib(&mut self, program: u32, index: u32) -> Option<ActiveVariable> {
+        let ctx = self.ctx();
+        let v = linked_for_query(&ctx.objects, program).and_then(|l| {
+            let (a, _) = l.info.attributes.get(index as usize).ok_or(GlError::InvalidValue)?;
+            Ok(ActiveVariable { size: 1, ty: a.ty.gl_enum(), name: a.name.clone() })
+        });
+        v.map_err(|e| ctx.record(e)).ok()
+    }
+}

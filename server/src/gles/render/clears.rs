@@ -1,0 +1,130 @@
+//! Clears: a clear of the whole target before any draw becomes the pass's load operations;
+//! any other clear is a quad that honours the scissor and the write masks.
+
+use super::passes::{offset_of, Bind, Recorded};
+use super::{Renderer, Target, COLOR_FORMAT};
+
+/// What selects a clear pipeline.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub(super) struct ClearKey {
+    color: Option<wgpu::ColorWrites>,
+    depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
+    target_color: bool,
+}
+
+impl Renderer {
+    /// `glClear` of the whole target with full masks, folded into the pass's load operations
+    /// when nothing has been drawn yet.
+    #[allow(clippy::too_many_arguments)]
+    pub fn clear(
+        &mut self,
+        target: &Target,
+        color: Option<([f32; 4], wgpu::ColorWrites)>,
+        depth: Option<(f32, bool)>,
+        stencil: Option<(u32, u32)>,
+        scissor: Option<[u32; 4]>,
+    ) {
+        let full_color = color.is_none_or(|(_, m)| m == wgpu::ColorWrites::ALL);
+        let full_depth = depth.is_none_or(|(_, w)| w);
+        let full_stencil = stencil.is_none_or(|(_, m)| m & 0xff == 0xff);
+        let whole = scissor.is_none_or(|s| s == [0, 0, target.width, target.height]);
+        let pass = self.pass_for(target);
+        if pass.draws.is_empty() && full_color && full_depth && full_stencil && whole {
+            if let Some((c, _)) = color {
+                pass.clear_color = Some(wgpu::Color { r: c[0].into(), g: c[1].into(), b: c[2].into(), a: c[3].into() });
+            }
+            if let Some((d, _)) = depth {
+                pass.clear_depth = Some(d.clamp(0.0, 1.0));
+            }
+            if let Some((s, _)) = stencil {
+                pass.clear_stencil = Some(s & 0xff);
+            }
+            return;
+        }
+        // A quad that honours masks and the scissor.
+        let has_depth = target.depth.is_some();
+        let key = ClearKey {
+            color: color.map(|(_, m)| m),
+            depth: target.depth.as_ref().map(|(_, f)| {
+                (*f, depth.is_some_and(|(_, w)| w), stencil.filter(|_| target.has_stencil()).map(|(_, m)| m))
+            }),
+            target_color: target.color.is_some(),
+        };
+        let pipeline = self.clear_pipeline(&key);
+        let mut params = [0u8; 32];
+        let c = color.map(|(c, _)| c).unwrap_or([0.0; 4]);
+        for (i, v) in c.iter().enumerate() {
+            params[i * 4..i * 4 + 4].copy_from_slice(&v.to_ne_bytes());
+        }
+        params[16..20].copy_from_slice(&depth.map(|(d, _)| d.clamp(0.0, 1.0)).unwrap_or(0.0).to_ne_bytes());
+        let off = offset_of(&mut self.staging, &params, self.align) as u32;
+        let scissor = scissor.unwrap_or([0, 0, target.width, target.height]);
+        let pass = self.pass_for(target);
+        let _ = has_depth;
+        pass.draws.push(Recorded {
+            pipeline,
+            bind: Bind::Clear(off),
+            vertex: Vec::new(),
+            index: None,
+            count: 3,
+            first: 0,
+            instances: (0, 1),
+            viewport: [0.0, 0.0, target.width as f32, target.height as f32, 0.0, 1.0],
+            scissor,
+            stencil_ref: stencil.map(|(s, _)| s).unwrap_or(0),
+            blend_color: [0.0; 4],
+        });
+    }
+
+    fn clear_pipeline(&mut self, key: &ClearKey) -> wgpu::RenderPipeline {
+        if let Some(p) = self.clear_pipelines.get(key) {
+            return p.clone();
+        }
+        let targets = [Some(wgpu::ColorTargetState {
+            format: COLOR_FORMAT,
+            blend: None,
+            write_mask: key.color.unwrap_or(wgpu::ColorWrites::empty()),
+        })];
+        let depth_stencil = key.depth.map(|(format, write, stencil)| {
+            let face = wgpu::StencilFaceState {
+                compare: wgpu::CompareFunction::Always,
+                fail_op: wgpu::StencilOperation::Keep,
+                depth_fail_op: wgpu::StencilOperation::Keep,
+                pass_op: wgpu::StencilOperation::Replace,
+            };
+            wgpu::DepthStencilState {
+                format,
+                depth_write_enabled: Some(write),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: match stencil {
+                    Some(mask) => wgpu::StencilState { front: face, back: face, read_mask: 0xff, write_mask: mask },
+                    None => Default::default(),
+                },
+                bias: Default::default(),
+            }
+        });
+        let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("clear"),
+            layout: Some(&self.clear_layout),
+            vertex: wgpu::VertexState {
+                module: &self.clear_module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &self.clear_module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets: if key.target_color { &targets } else { &[] },
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        self.clear_pipelines.insert(key.clone(), p.clone());
+        p
+    }
+}

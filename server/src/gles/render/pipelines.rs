@@ -1,0 +1,193 @@
+//! Pipelines and their inputs: bind group layouts (with variants for depth textures), the
+//! sampler cache, and the render pipeline cache keyed by program, vertex layout, fixed-function
+//! state and target formats.
+
+use super::super::conv::{front_face, sampler_descriptor};
+use super::super::glsl;
+use super::{DrawSpec, LinkedProgram, RasterState, Renderer, SamplerState, Target, COLOR_FORMAT};
+
+/// What selects a render pipeline.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub(super) struct PipelineKey {
+    program: u64,
+    depth_mask: u32,
+    inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
+    raster: RasterState,
+    color: bool,
+    depth_format: Option<wgpu::TextureFormat>,
+}
+
+/// A program's bind group layout entries: the uniform block at 0, then a texture and a sampler
+/// per sampler uniform. Samplers in `depth_mask` take images that cannot be filtered (depth,
+/// and float ones without `FLOAT32_FILTERABLE`), which bind as unfilterable float with a
+/// non-filtering sampler.
+pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut entries = Vec::new();
+    if info.block_size > 0 {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(u64::from(info.block_size)),
+            },
+            count: None,
+        });
+    }
+    for (i, (ty, b)) in info.samplers.iter().enumerate() {
+        let depth = depth_mask & (1 << i) != 0;
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: *b,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
+                view_dimension: if *ty == glsl::Ty::SamplerCube {
+                    wgpu::TextureViewDimension::Cube
+                } else {
+                    wgpu::TextureViewDimension::D2
+                },
+                multisampled: false,
+            },
+            count: None,
+        });
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: b + 1,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Sampler(if depth {
+                wgpu::SamplerBindingType::NonFiltering
+            } else {
+                wgpu::SamplerBindingType::Filtering
+            }),
+            count: None,
+        });
+    }
+    entries
+}
+
+impl Renderer {
+    /// The sampler for `s`, cached.
+    pub(super) fn sampler(&mut self, s: SamplerState) -> wgpu::Sampler {
+        if let Some(x) = self.samplers.get(&s) {
+            return x.clone();
+        }
+        let x = self.gpu.device.create_sampler(&sampler_descriptor(s));
+        self.samplers.insert(s, x.clone());
+        x
+    }
+
+    /// The bind group and pipeline layouts of `program` with the samplers in `mask` taking
+    /// unfilterable images.
+    pub(super) fn layouts(
+        &mut self,
+        program: &LinkedProgram,
+        mask: u32,
+    ) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+        if mask == 0 {
+            return (program.bgl.clone(), program.layout.clone());
+        }
+        let d = &self.gpu.device;
+        self.layouts
+            .entry((program.id, mask))
+            .or_insert_with(|| {
+                let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("gles unfilterable-sampling"),
+                    entries: &layout_entries(&program.info, mask),
+                });
+                let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: None,
+                    bind_group_layouts: &[Some(&bgl)],
+                    immediate_size: 0,
+                });
+                (bgl, layout)
+            })
+            .clone()
+    }
+
+    /// The render pipeline for a draw of `spec` into `target`, cached.
+    pub(super) fn pipeline(&mut self, spec: &DrawSpec<'_>, target: &Target, depth_mask: u32) -> wgpu::RenderPipeline {
+        let key = PipelineKey {
+            program: spec.program.id,
+            depth_mask,
+            inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride)).collect(),
+            raster: spec.raster.clone(),
+            color: target.color.is_some(),
+            depth_format: target.depth.as_ref().map(|d| d.1),
+        };
+        if let Some(p) = self.pipelines.get(&key) {
+            return p.clone();
+        }
+        self.pipeline_misses += 1;
+        let (_, pipeline_layout) = self.layouts(&spec.program, depth_mask);
+        let attrs: Vec<[wgpu::VertexAttribute; 1]> = spec
+            .inputs
+            .iter()
+            .map(|i| [wgpu::VertexAttribute { format: i.format, offset: 0, shader_location: i.location }])
+            .collect();
+        let layouts: Vec<Option<wgpu::VertexBufferLayout<'_>>> = spec
+            .inputs
+            .iter()
+            .zip(&attrs)
+            .map(|(i, a)| {
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: i.stride,
+                    step_mode: if i.stride == 0 || spec.raster.points {
+                        wgpu::VertexStepMode::Instance
+                    } else {
+                        wgpu::VertexStepMode::Vertex
+                    },
+                    attributes: a,
+                })
+            })
+            .collect();
+        let r = &spec.raster;
+        let depth_stencil = key.depth_format.map(|format| wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(r.depth.is_some_and(|d| d.1)),
+            depth_compare: Some(r.depth.map(|d| d.0).unwrap_or(wgpu::CompareFunction::Always)),
+            stencil: if format.has_stencil_aspect() {
+                r.stencil.clone().unwrap_or_default()
+            } else {
+                Default::default()
+            },
+            bias: match r.bias {
+                Some((factor, units)) => {
+                    wgpu::DepthBiasState { constant: units, slope_scale: f32::from_bits(factor), clamp: 0.0 }
+                }
+                None => Default::default(),
+            },
+        });
+        let targets = [Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend: r.blend, write_mask: r.write_mask })];
+        let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gles"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &spec.vs,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                buffers: &layouts,
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: r.topology,
+                strip_index_format: r.strip_index,
+                front_face: front_face(r.front_ccw),
+                cull_mode: r.cull,
+                unclipped_depth: false,
+                polygon_mode: wgpu::PolygonMode::Fill,
+                conservative: false,
+            },
+            depth_stencil,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &spec.program.fs,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                targets: if key.color { &targets } else { &[] },
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        self.pipelines.insert(key, p.clone());
+        p
+    }
+}

@@ -1,0 +1,33 @@
+//! Readback, depth uploads, and waiting for the GPU: each first submits the open pass.
+
+use super::{Renderer, Target};
+
+impl Renderer {
+    /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom
+    /// row first (GL order, which is also memory order here).
+    pub fn read_rgba(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        self.flush();
+        let (tex, _) = target.color.as_ref()?;
+        self.gpu.read_rgba8(tex, rect)
+    }
+
+    /// Waits until the GPU has finished everything submitted.
+    pub fn finish(&mut self) {
+        self.flush();
+        let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+    }
+
+    /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
+    /// rectangle `[x, y, w, h]` of a `size` depth or depth-stencil texture.
+    pub fn upload_depth(
+        &mut self,
+        tex: &wgpu::Texture,
+        size: (u32, u32),
+        rect: [u32; 4],
+        depths: &[f32],
+        stencil: Option<&[u8]>,
+    ) {
+        self.flush();
+        self.gpu.write_depth_region(tex, size, rect, depths, stencil);
+    }
+}

@@ -1,0 +1,240 @@
+//! Texture image specification from client data: `glTexImage2D` and `glTexSubImage2D` for
+//! colour (8-bit, packed, BGRA, float and half-float), depth (`OES_depth_texture`) and
+//! depth-stencil (`OES_packed_depth_stencil`) images. Compressed uploads are in `compressed`,
+//! copies from the framebuffer in `copyimage`.
+
+use strata_protocol::Blob;
+
+use super::context::{Context, MAX_TEXTURE};
+use super::conv::ImageTarget;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{internal_accepts, upload_storage, Compressed, Storage};
+use super::images::Region;
+use super::unpack::{depth_stencil_values, to_storage, Unpack};
+use super::GlesExecutor;
+
+/// The largest mip level an image may be specified at (log2 of the maximum size).
+pub const MAX_LEVEL: i32 = 13;
+
+/// The texture name an image of `target` goes to: the one bound to its binding point.
+pub fn image_texture(ctx: &Context, target: ImageTarget) -> u32 {
+    ctx.bindings.texture(target.binding())
+}
+
+/// Checks a new image's level and size: `GL_INVALID_VALUE` for a level outside 0..=13, a
+/// negative or too large size, a border, or a non-square cube face.
+pub fn validate_size(image: ImageTarget, level: i32, width: i32, height: i32, border: i32) -> GlResult {
+    if !(0..=MAX_LEVEL).contains(&level)
+        || width < 0
+        || height < 0
+        || border != 0
+        || width as u32 > MAX_TEXTURE
+        || height as u32 > MAX_TEXTURE
+        || (image.cube && width != height)
+    {
+        return Err(GlError::InvalidValue);
+    }
+    Ok(())
+}
+
+/// Checks a sub-image rectangle against its level: `GL_INVALID_VALUE` if it does not fit.
+pub fn validate_rect(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> GlResult {
+    let (lw, lh) = (i64::from(level_size.0), i64::from(level_size.1));
+    let (x, y, w, h) = (i64::from(x), i64::from(y), i64::from(width), i64::from(height));
+    if x < 0 || y < 0 || w < 0 || h < 0 || x + w > lw || y + h > lh {
+        return Err(GlError::InvalidValue);
+    }
+    Ok(())
+}
+
+/// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image: the
+/// rectangle starts on a block boundary and covers whole blocks, except where it reaches the
+/// level's right or top edge.
+pub fn block_aligned(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
+    let edge = |o: i32, n: i32, size: u32| n % 4 == 0 || i64::from(o) + i64::from(n) == i64::from(size);
+    x % 4 == 0 && y % 4 == 0 && edge(x, width, level_size.0) && edge(y, height, level_size.1)
+}
+
+/// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
+/// has no alpha (RGB and luminance images read alpha as 1 whatever their colour).
+fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
+    let alpha: f32 = if matches!(format, RGB | LUMINANCE) { 1.0 } else { 0.0 };
+    let rgba = [0.0, 0.0, 0.0, alpha];
+    let texel: Vec<u8> = match storage {
+        Storage::Half => rgba.iter().flat_map(|v| half::f16::from_f32(*v).to_bits().to_ne_bytes()).collect(),
+        Storage::Float => rgba.iter().flat_map(|v| v.to_ne_bytes()).collect(),
+        _ => vec![0, 0, 0, (alpha * 255.0) as u8],
+    };
+    texel.repeat(texels as usize)
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glTexImage2D(
+        &mut self,
+        target: u32,
+        level: i32,
+        internalformat: i32,
+        width: i32,
+        height: i32,
+        border: i32,
+        format: u32,
+        pixel_type: u32,
+        pixels: Option<Blob<'_>>,
+    ) -> GlResult {
+        let image = ImageTarget::from_gl(target)?;
+        let storage = upload_storage(format, pixel_type)?;
+        let internal = internalformat as u32;
+        if storage.is_depth() {
+            // Depth formats are 2D-only and have no mipmaps (OES_depth_texture).
+            if internal != format || image.cube || level != 0 {
+                return Err(GlError::InvalidOperation);
+            }
+            validate_size(image, level, width, height, border)?;
+            let pixels = pixels.as_ref().map(|p| p.as_bytes());
+            return self.depth_tex_image(width as u32, height as u32, format, pixel_type, storage, pixels);
+        }
+        if !internal_accepts(internal, format, self.gpu.features) {
+            return Err(GlError::InvalidOperation);
+        }
+        validate_size(image, level, width, height, border)?;
+        let (uid, uid2) = (self.next_uid(), self.next_uid());
+        let (ctx, gpu) = self.ctx_gpu();
+        let name = image_texture(ctx, image);
+        let unpack = Unpack::of(&ctx.pixel_store);
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let (w, h, level) = (width as u32, height as u32, level as u32);
+        let texels = match &pixels {
+            Some(p) => Some(
+                to_storage(p.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, storage)
+                    .ok_or(GlError::InvalidOperation)?,
+            ),
+            None => None,
+        };
+        if level == 0 {
+            t.ensure_image(gpu, uid, w, h, storage);
+            t.format = internal;
+        } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
+            // Uncompressed data for a level of a natively compressed image.
+            t.decompress(gpu, uid2);
+        }
+        let face = image.face;
+        let Some(img) = &t.gpu else { return Ok(()) };
+        if img.storage != storage || img.level_size(level) != (w.max(1), h.max(1)) || level >= img.mips {
+            // A level inconsistent with level 0 leaves the texture incomplete.
+            t.defined[face as usize] &= !(1 << level);
+            return Ok(());
+        }
+        t.defined[face as usize] |= 1 << level;
+        let region = Region { face, level, x: 0, y: 0, width: w, height: h };
+        match texels {
+            Some(data) => img.write(gpu, region, &data),
+            None => img.write(gpu, region, &blank(w * h, format, storage)),
+        }
+        Ok(())
+    }
+
+    /// `glTexImage2D` of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image (2D, level 0).
+    fn depth_tex_image(
+        &mut self,
+        w: u32,
+        h: u32,
+        format: u32,
+        ty: u32,
+        storage: Storage,
+        pixels: Option<&[u8]>,
+    ) -> GlResult {
+        let uid = self.next_uid();
+        let (ctx, gpu) = self.ctx_gpu();
+        let unpack = Unpack::of(&ctx.pixel_store);
+        let values = match pixels {
+            Some(b) => {
+                Some(depth_stencil_values(b, w as usize, h as usize, ty, unpack).ok_or(GlError::InvalidOperation)?)
+            }
+            None => None,
+        };
+        let name = ctx.bindings.texture(super::conv::TextureTarget::TwoD);
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.ensure_image(gpu, uid, w, h, storage);
+        t.defined = [1, 0, 0, 0, 0, 0];
+        t.format = format;
+        let Some(img) = &t.gpu else { return Ok(()) };
+        let texture = img.texture.clone();
+        if let Some((depths, stencil)) = values.filter(|_| w > 0 && h > 0) {
+            let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
+            self.r.upload_depth(&texture, (w, h), [0, 0, w, h], &depths, stencil);
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glTexSubImage2D(
+        &mut self,
+        target: u32,
+        level: i32,
+        xoffset: i32,
+        yoffset: i32,
+        width: i32,
+        height: i32,
+        format: u32,
+        pixel_type: u32,
+        pixels: Blob<'_>,
+    ) -> GlResult {
+        let image = ImageTarget::from_gl(target)?;
+        let storage = upload_storage(format, pixel_type)?;
+        if !(0..=MAX_LEVEL).contains(&level) {
+            return Err(GlError::InvalidValue);
+        }
+        let uid = self.next_uid();
+        let (ctx, gpu) = self.ctx_gpu();
+        let unpack = Unpack::of(&ctx.pixel_store);
+        let name = image_texture(ctx, image);
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+        let (face, level) = (image.face, level as u32);
+        if t.defined[face as usize] & (1 << level) == 0 {
+            return Err(GlError::InvalidOperation);
+        }
+        let size = img.level_size(level);
+        match Compressed::from_gl(t.format) {
+            // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture).
+            Some(Compressed::Etc1) => return Err(GlError::InvalidOperation),
+            Some(Compressed::S3tc(_))
+                if !internal_accepts(t.format, format, gpu.features)
+                    || !block_aligned(size, xoffset, yoffset, width, height) =>
+            {
+                return Err(GlError::InvalidOperation)
+            }
+            Some(Compressed::S3tc(_)) => {}
+            // ES 2.0: the format must be the image's; the type must give the same storage.
+            None if t.format != format || storage != img.storage => return Err(GlError::InvalidOperation),
+            None => {}
+        }
+        validate_rect(size, xoffset, yoffset, width, height)?;
+        let (w, h) = (width as u32, height as u32);
+        if pixels.is_empty() || w == 0 || h == 0 {
+            // No data (a null pointer): nothing to write.
+            return Ok(());
+        }
+        let region = Region { face, level, x: xoffset as u32, y: yoffset as u32, width: w, height: h };
+        if storage.is_depth() {
+            let (depths, stencil) = depth_stencil_values(pixels.as_bytes(), w as usize, h as usize, pixel_type, unpack)
+                .ok_or(GlError::InvalidOperation)?;
+            let texture = img.texture.clone();
+            let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
+            let rect = [region.x, region.y, w, h];
+            self.r.upload_depth(&texture, size, rect, &depths, stencil);
+            return Ok(());
+        }
+        let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };
+        let data = to_storage(pixels.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, target_storage)
+            .ok_or(GlError::InvalidOperation)?;
+        t.decompress(gpu, uid);
+        if let Some(img) = &t.gpu {
+            img.write(gpu, region, &data);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,232 @@
+//! Texture objects: names, units and bindings, sampling parameters, their GPU images and
+//! mipmap generation. Image specification (uploads and copies) is in `teximage`.
+
+use strata_protocol::Slice;
+
+use super::context::Context;
+use super::conv::TextureTarget;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{Compressed, Storage};
+use super::images::TextureImage;
+use super::GlesExecutor;
+
+/// Sampling state of a texture (ES 2.0 keeps it in the texture object).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SamplerState {
+    /// `TEXTURE_MIN_FILTER`.
+    pub min: u32,
+    /// `TEXTURE_MAG_FILTER`.
+    pub mag: u32,
+    /// `TEXTURE_WRAP_S`.
+    pub wrap_s: u32,
+    /// `TEXTURE_WRAP_T`.
+    pub wrap_t: u32,
+}
+
+impl Default for SamplerState {
+    fn default() -> Self {
+        SamplerState { min: NEAREST_MIPMAP_LINEAR, mag: LINEAR, wrap_s: REPEAT, wrap_t: REPEAT }
+    }
+}
+
+impl SamplerState {
+    /// Whether the minification filter reads mipmaps.
+    pub fn uses_mipmaps(&self) -> bool {
+        !matches!(self.min, NEAREST | LINEAR)
+    }
+
+    /// Whether either filter interpolates between texels or levels.
+    pub fn filters_linearly(&self) -> bool {
+        self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
+    }
+}
+
+/// A texture object.
+#[derive(Default)]
+pub struct Texture {
+    /// `TEXTURE_2D` or `TEXTURE_CUBE_MAP` once bound, 0 before.
+    pub target: u32,
+    /// Sampling state.
+    pub sampler: SamplerState,
+    /// The GPU image, its views, base size, mip count and storage.
+    pub gpu: Option<TextureImage>,
+    /// Per face: bitmask of the levels that have been specified.
+    pub defined: [u32; 6],
+    /// Internal format of level 0 (`RGBA`, `LUMINANCE`, `BGRA_EXT`, a compressed format, …).
+    pub format: u32,
+    /// Unique id for caches; changes when the image is recreated.
+    pub uid: u64,
+}
+
+impl Texture {
+    /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
+    /// image the device cannot filter is incomplete with a linear filter
+    /// (`OES_texture_float_linear` not offered).
+    pub fn complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        if img.storage == Storage::Float && !img.filterable && self.sampler.filters_linearly() {
+            return false;
+        }
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let need = if self.sampler.uses_mipmaps() { ((1u64 << img.levels) - 1) as u32 } else { 1 };
+        self.defined[..faces].iter().all(|d| d & need == need)
+    }
+}
+
+/// Sets one sampling parameter of the texture bound to `target`.
+fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult {
+    let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
+    let v = v as u32;
+    let ok = match pname {
+        TEXTURE_MIN_FILTER => matches!(
+            v,
+            NEAREST
+                | LINEAR
+                | NEAREST_MIPMAP_NEAREST
+                | LINEAR_MIPMAP_NEAREST
+                | NEAREST_MIPMAP_LINEAR
+                | LINEAR_MIPMAP_LINEAR
+        ),
+        TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
+        TEXTURE_WRAP_S | TEXTURE_WRAP_T => matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT),
+        _ => false,
+    };
+    if !ok {
+        return Err(GlError::InvalidEnum);
+    }
+    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    match pname {
+        TEXTURE_MIN_FILTER => t.sampler.min = v,
+        TEXTURE_MAG_FILTER => t.sampler.mag = v,
+        TEXTURE_WRAP_S => t.sampler.wrap_s = v,
+        _ => t.sampler.wrap_t = v,
+    }
+    Ok(())
+}
+
+/// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
+/// answering nothing) for a bad target or name, or when nothing is bound.
+fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
+    let bound = TextureTarget::from_gl(target).ok().map(|t| ctx.bindings.texture(t));
+    let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
+        TEXTURE_MIN_FILTER => Some(s.min),
+        TEXTURE_MAG_FILTER => Some(s.mag),
+        TEXTURE_WRAP_S => Some(s.wrap_s),
+        TEXTURE_WRAP_T => Some(s.wrap_t),
+        _ => None,
+    });
+    match v {
+        Some(v) => vec![v as i32],
+        None => {
+            ctx.record(GlError::InvalidEnum);
+            vec![]
+        }
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenTextures(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            ctx.objects.textures.entry(n).or_default();
+        }
+        Ok(())
+    }
+
+    pub(super) fn glDeleteTextures(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let ctx = self.ctx();
+        for n in names.iter().filter(|&n| n != 0) {
+            if ctx.objects.textures.remove(&n).is_some() {
+                ctx.objects.forget_label(TEXTURE, n);
+                for u in &mut ctx.bindings.units {
+                    for s in u.iter_mut() {
+                        if *s == n {
+                            *s = 0;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glActiveTexture(&mut self, texture: u32) -> GlResult {
+        let unit = texture.wrapping_sub(TEXTURE0) as usize;
+        let bindings = &mut self.ctx().bindings;
+        if unit >= bindings.units.len() {
+            return Err(GlError::InvalidEnum);
+        }
+        bindings.active_unit = unit;
+        Ok(())
+    }
+
+    pub(super) fn glBindTexture(&mut self, target: u32, texture: u32) -> GlResult {
+        let ctx = self.ctx();
+        let target = TextureTarget::from_gl(target)?;
+        if texture != 0 {
+            // A texture takes the target it is first bound to, and keeps it.
+            let t = ctx.objects.textures.entry(texture).or_default();
+            if t.target == 0 {
+                t.target = target.as_gl();
+            } else if t.target != target.as_gl() {
+                return Err(GlError::InvalidOperation);
+            }
+        }
+        ctx.bindings.units[ctx.bindings.active_unit][target.slot()] = texture;
+        Ok(())
+    }
+
+    pub(super) fn glIsTexture(&mut self, name: u32) -> bool {
+        self.ctx().objects.textures.get(&name).is_some_and(|t| t.target != 0)
+    }
+
+    pub(super) fn glTexParameteri(&mut self, target: u32, pname: u32, param: i32) -> GlResult {
+        tex_parameter(self.ctx(), target, pname, param as f32)
+    }
+
+    pub(super) fn glTexParameterf(&mut self, target: u32, pname: u32, param: f32) -> GlResult {
+        tex_parameter(self.ctx(), target, pname, param)
+    }
+
+    pub(super) fn glTexParameteriv(&mut self, target: u32, pname: u32, params: Slice<'_, i32>) -> GlResult {
+        let v = params.get(0).ok_or(GlError::InvalidValue)?;
+        tex_parameter(self.ctx(), target, pname, v as f32)
+    }
+
+    pub(super) fn glTexParameterfv(&mut self, target: u32, pname: u32, params: Slice<'_, f32>) -> GlResult {
+        let v = params.get(0).ok_or(GlError::InvalidValue)?;
+        tex_parameter(self.ctx(), target, pname, v)
+    }
+
+    pub(super) fn glGetTexParameteriv(&mut self, target: u32, pname: u32) -> Vec<i32> {
+        get_tex_parameter(self.ctx(), target, pname)
+    }
+
+    pub(super) fn glGetTexParameterfv(&mut self, target: u32, pname: u32) -> Vec<f32> {
+        get_tex_parameter(self.ctx(), target, pname).into_iter().map(|x| x as f32).collect()
+    }
+
+    pub(super) fn glGenerateMipmap(&mut self, target: u32) -> GlResult {
+        let ctx = self.ctx();
+        let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
+        let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+        // Depth and compressed images have no mipmaps to generate; nor do images that cannot
+        // be filtered (ES 3.0 §3.8.10 spells out the rule ES 2.0 leaves implicit).
+        if img.storage.is_depth() || Compressed::from_gl(t.format).is_some() || !img.filterable {
+            return Err(GlError::InvalidOperation);
+        }
+        if t.defined[..layers].iter().any(|d| d & 1 == 0) {
+            return Err(GlError::InvalidOperation);
+        }
+        let (tex, mips, format) = (img.texture.clone(), img.mips, img.storage.wgpu());
+        for d in &mut t.defined[..layers] {
+            *d = (1 << mips) - 1;
+        }
+        self.r.generate_mipmaps(&tex, mips, layers as u32, format);
+        Ok(())
+    }
+}

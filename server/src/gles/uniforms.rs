@@ -1,0 +1,260 @@
+//! Uniforms: locations, active-uniform queries, the `glUniform*` family writing the program's
+//! std140 block (or a sampler's texture unit), and reading values back.
+
+use strata_protocol::{ActiveVariable, Slice, Text};
+
+use super::context::{Context, MAX_UNITS};
+use super::error::{GlError, GlResult};
+use super::glsl::Scalar;
+use super::programs::{linked_for_query, LinkedProgram};
+use super::GlesExecutor;
+
+/// The values of one `glUniform*` call.
+enum Vals<'a> {
+    F(&'a [f32]),
+    I(&'a [i32]),
+}
+
+/// The location of uniform `name` (`name` or `name[i]`), -1 if the program has none.
+fn uniform_location(l: &LinkedProgram, name: &str) -> i32 {
+    let (base, index) = match name.strip_suffix(']').and_then(|n| n.rsplit_once('[')) {
+        Some((b, i)) => match i.parse::<u32>() {
+            Ok(i) => (b, i),
+            Err(_) => return -1,
+        },
+        None => (name, 0),
+    };
+    let Some(u) = l.info.uniforms.iter().position(|u| u.name == base) else { return -1 };
+    if index >= l.info.uniforms[u].len || (index > 0 && !l.info.uniforms[u].is_array) {
+        return -1;
+    }
+    l.locations.iter().position(|&(i, e)| i == u && e == index).map_or(-1, |p| p as i32)
+}
+
+/// Byte offset of scalar `c` of a uniform element at `base`; matrix columns are 16 bytes apart
+/// in std140, vectors are packed.
+fn scalar_offset(base: usize, c: usize, columns: usize) -> usize {
+    match c.checked_div(columns) {
+        Some(col) => base + col * 16 + (c % columns) * 4,
+        None => base + c * 4,
+    }
+}
+
+/// Writes `vals` (elements of `n` components, or `columns`×`columns` matrices) to the current
+/// program's uniform at `location`.
+fn set_uniform(ctx: &mut Context, location: i32, n: usize, columns: usize, vals: Vals<'_>) -> GlResult {
+    if location == -1 {
+        return Ok(());
+    }
+    let program = ctx.bindings.program;
+    let p = ctx.objects.programs.get_mut(&program).ok_or(GlError::InvalidOperation)?;
+    let l = p.linked.clone().ok_or(GlError::InvalidOperation)?;
+    let &(ui, element) =
+        usize::try_from(location).ok().and_then(|i| l.locations.get(i)).ok_or(GlError::InvalidOperation)?;
+    let u = &l.info.uniforms[ui];
+    let len = match &vals {
+        Vals::F(v) => v.len(),
+        Vals::I(v) => v.len(),
+    };
+    let per = if columns > 0 { columns * columns } else { n };
+    let expect_cols = u.ty.columns();
+    if (columns > 0) != (expect_cols > 0)
+        || (columns > 0 && columns != expect_cols)
+        || (columns == 0 && u.ty.components() != n)
+    {
+        return Err(GlError::InvalidOperation);
+    }
+    let ok_kind =
+        matches!((&vals, u.ty.scalar()), (_, Scalar::Bool) | (Vals::F(_), Scalar::Float) | (Vals::I(_), Scalar::Int));
+    if !ok_kind || len % per != 0 || len == 0 {
+        return Err(if len == 0 { GlError::InvalidValue } else { GlError::InvalidOperation });
+    }
+    let count = len / per;
+    if count > 1 && !u.is_array {
+        return Err(GlError::InvalidOperation);
+    }
+    let count = count.min((u.len - element) as usize);
+    if let Some(si) = u.sampler {
+        let Vals::I(v) = vals else { return Err(GlError::InvalidOperation) };
+        let v = &v[..count];
+        if v.iter().any(|&unit| unit < 0 || unit as usize >= MAX_UNITS) {
+            return Err(GlError::InvalidValue);
+        }
+        // A sampler array's elements are consecutive samplers.
+        let first = si + element as usize;
+        for (slot, &unit) in p.units.iter_mut().skip(first).zip(v) {
+            *slot = unit as u32;
+        }
+        return Ok(());
+    }
+    for e in 0..count {
+        let base = (u.offset + (element + e as u32) * u.stride) as usize;
+        for c in 0..per {
+            // Matrix columns are 16 bytes apart in std140; vectors are packed.
+            let at = scalar_offset(base, c, columns);
+            let bytes = match (&vals, u.ty.scalar()) {
+                (Vals::F(v), Scalar::Bool) => i32::from(v[e * per + c] != 0.0).to_ne_bytes(),
+                (Vals::I(v), Scalar::Bool) => i32::from(v[e * per + c] != 0).to_ne_bytes(),
+                (Vals::F(v), _) => v[e * per + c].to_ne_bytes(),
+                (Vals::I(v), _) => v[e * per + c].to_ne_bytes(),
+            };
+            if let Some(dst) = p.data.get_mut(at..at + 4) {
+                dst.copy_from_slice(&bytes);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `glUniformMatrix*fv`: ES 2.0 requires `transpose` to be false.
+fn set_matrix(ctx: &mut Context, location: i32, transpose: bool, n: usize, v: &[f32]) -> GlResult {
+    if transpose {
+        return Err(GlError::InvalidValue);
+    }
+    set_uniform(ctx, location, n, n, Vals::F(v))
+}
+
+/// The value at `location` of `program`, as floats.
+fn get_uniform(ctx: &Context, program: u32, location: i32) -> GlResult<Vec<f32>> {
+    let p = ctx.objects.programs.get(&program).ok_or_else(|| ctx.objects.shader_or_program_error(program))?;
+    let l = p.linked.as_ref().ok_or(GlError::InvalidOperation)?;
+    let &(ui, element) =
+        usize::try_from(location).ok().and_then(|i| l.locations.get(i)).ok_or(GlError::InvalidOperation)?;
+    let u = &l.info.uniforms[ui];
+    if let Some(si) = u.sampler {
+        let unit = p.units.get(si + element as usize).ok_or(GlError::InvalidOperation)?;
+        return Ok(vec![*unit as f32]);
+    }
+    let cols = u.ty.columns();
+    let per = if cols > 0 { cols * cols } else { u.ty.components() };
+    let base = (u.offset + element * u.stride) as usize;
+    Ok((0..per)
+        .map(|c| {
+            let at = scalar_offset(base, c, cols);
+            let b = [p.data[at], p.data[at + 1], p.data[at + 2], p.data[at + 3]];
+            match u.ty.scalar() {
+                Scalar::Float => f32::from_ne_bytes(b),
+                _ => i32::from_ne_bytes(b) as f32,
+            }
+        })
+        .collect())
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGetUniformLocation(&mut self, program: u32, name: Text<'_>) -> i32 {
+        let ctx = self.ctx();
+        let v = match ctx.objects.programs.get(&program) {
+            Some(p) => match &p.linked {
+                Some(l) => Ok(uniform_location(l, name.as_str())),
+                None => Err(GlError::InvalidOperation),
+            },
+            None => Err(ctx.objects.shader_or_program_error(program)),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            -1
+        })
+    }
+
+    pub(super) fn glGetActiveUniform(&mut self, program: u32, index: u32) -> Option<ActiveVariable> {
+        let ctx = self.ctx();
+        let v = linked_for_query(&ctx.objects, program).and_then(|l| {
+            let u = l.info.uniforms.get(index as usize).ok_or(GlError::InvalidValue)?;
+            Ok(ActiveVariable {
+                size: u.len as i32,
+                ty: u.ty.gl_enum(),
+                name: if u.is_array { format!("{}[0]", u.name) } else { u.name.clone() },
+            })
+        });
+        v.map_err(|e| ctx.record(e)).ok()
+    }
+
+    pub(super) fn glUniform1f(&mut self, location: i32, x: f32) -> GlResult {
+        set_uniform(self.ctx(), location, 1, 0, Vals::F(&[x]))
+    }
+
+    pub(super) fn glUniform2f(&mut self, location: i32, x: f32, y: f32) -> GlResult {
+        set_uniform(self.ctx(), location, 2, 0, Vals::F(&[x, y]))
+    }
+
+    pub(super) fn glUniform3f(&mut self, location: i32, x: f32, y: f32, z: f32) -> GlResult {
+        set_uniform(self.ctx(), location, 3, 0, Vals::F(&[x, y, z]))
+    }
+
+    pub(super) fn glUniform4f(&mut self, location: i32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
+        set_uniform(self.ctx(), location, 4, 0, Vals::F(&[x, y, z, w]))
+    }
+
+    pub(super) fn glUniform1i(&mut self, location: i32, x: i32) -> GlResult {
+        set_uniform(self.ctx(), location, 1, 0, Vals::I(&[x]))
+    }
+
+    pub(super) fn glUniform2i(&mut self, location: i32, x: i32, y: i32) -> GlResult {
+        set_uniform(self.ctx(), location, 2, 0, Vals::I(&[x, y]))
+    }
+
+    pub(super) fn glUniform3i(&mut self, location: i32, x: i32, y: i32, z: i32) -> GlResult {
+        set_uniform(self.ctx(), location, 3, 0, Vals::I(&[x, y, z]))
+    }
+
+    pub(super) fn glUniform4i(&mut self, location: i32, x: i32, y: i32, z: i32, w: i32) -> GlResult {
+        set_uniform(self.ctx(), location, 4, 0, Vals::I(&[x, y, z, w]))
+    }
+
+    pub(super) fn glUniform1fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(self.ctx(), location, 1, 0, Vals::F(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform2fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(self.ctx(), location, 2, 0, Vals::F(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform3fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(self.ctx(), location, 3, 0, Vals::F(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform4fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(self.ctx(), location, 4, 0, Vals::F(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform1iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(self.ctx(), location, 1, 0, Vals::I(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform2iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(self.ctx(), location, 2, 0, Vals::I(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform3iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(self.ctx(), location, 3, 0, Vals::I(&values.to_vec()))
+    }
+
+    pub(super) fn glUniform4iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(self.ctx(), location, 4, 0, Vals::I(&values.to_vec()))
+    }
+
+    pub(super) fn glUniformMatrix2fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
+        set_matrix(self.ctx(), location, transpose, 2, &values.to_vec())
+    }
+
+    pub(super) fn glUniformMatrix3fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
+        set_matrix(self.ctx(), location, transpose, 3, &values.to_vec())
+    }
+
+    pub(super) fn glUniformMatrix4fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
+        set_matrix(self.ctx(), location, transpose, 4, &values.to_vec())
+    }
+
+    pub(super) fn glGetUniformfv(&mut self, program: u32, location: i32) -> Vec<f32> {
+        let ctx = self.ctx();
+        get_uniform(ctx, program, location).unwrap_or_else(|e| {
+            ctx.record(e);
+            vec![]
+        })
+    }
+
+    pub(super) fn glGetUniformiv(&mut self, program: u32, location: i32) -> Vec<i32> {
+        self.glGetUniformfv(program, location).iter().map(|v| *v as i32).collect()
+    }
+}

@@ -1,0 +1,219 @@
+//! Generic vertex attributes: array pointers (buffer objects or client-side arrays), enables,
+//! current values, and their queries.
+
+use strata_protocol::{Blob, Slice};
+
+use super::context::{Context, MAX_ATTRIBS};
+use super::conv::type_size;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::GlesExecutor;
+
+/// One generic vertex attribute: its array and its current value.
+#[derive(Clone)]
+pub struct Attrib {
+    /// `VERTEX_ATTRIB_ARRAY_ENABLED`.
+    pub enabled: bool,
+    /// Components per vertex (1–4).
+    pub size: i32,
+    /// Component type.
+    pub ty: u32,
+    /// Whether integers are normalised.
+    pub normalized: bool,
+    /// Byte stride (0: tightly packed).
+    pub stride: i32,
+    /// Byte offset into the buffer (the pointer).
+    pub offset: u64,
+    /// The array buffer bound when the pointer was set; 0 for a client-side array.
+    pub buffer: u32,
+    /// The current value, used while the array is disabled.
+    pub current: [f32; 4],
+    /// A client-side array's bytes for the next draw (`buffer` is 0).
+    pub client: Option<Vec<u8>>,
+}
+
+impl Default for Attrib {
+    fn default() -> Self {
+        Attrib {
+            enabled: false,
+            size: 4,
+            ty: FLOAT,
+            normalized: false,
+            stride: 0,
+            offset: 0,
+            buffer: 0,
+            current: [0.0, 0.0, 0.0, 1.0],
+            client: None,
+        }
+    }
+}
+
+/// An integer parameter of an attribute's array, `None` if `pname` is not one.
+fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
+    Some(match pname {
+        VERTEX_ATTRIB_ARRAY_ENABLED => i32::from(a.enabled),
+        VERTEX_ATTRIB_ARRAY_SIZE => a.size,
+        VERTEX_ATTRIB_ARRAY_STRIDE => a.stride,
+        VERTEX_ATTRIB_ARRAY_TYPE => a.ty as i32,
+        VERTEX_ATTRIB_ARRAY_NORMALIZED => i32::from(a.normalized),
+        VERTEX_ATTRIB_ARRAY_BUFFER_BINDING => a.buffer as i32,
+        _ => return None,
+    })
+}
+
+/// Sets attribute `index`'s current value.
+fn set_current(ctx: &mut Context, index: u32, v: [f32; 4]) -> GlResult {
+    let a = ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
+    a.current = v;
+    Ok(())
+}
+
+/// The first `n` of `values` as a current value (missing components from (0, 0, 0, 1)).
+fn current_from(values: &Slice<'_, f32>, n: usize) -> GlResult<[f32; 4]> {
+    if values.len() < n {
+        return Err(GlError::InvalidValue);
+    }
+    let mut v = [0.0, 0.0, 0.0, 1.0];
+    for (i, x) in values.iter().take(n).enumerate() {
+        v[i] = x;
+    }
+    Ok(v)
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glVertexAttribPointer(
+        &mut self,
+        index: u32,
+        size: i32,
+        attrib_type: u32,
+        normalized: bool,
+        stride: i32,
+        offset: u64,
+    ) -> GlResult {
+        let ctx = self.ctx();
+        if index as usize >= MAX_ATTRIBS || !(1..=4).contains(&size) || stride < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        if type_size(attrib_type).is_none() {
+            return Err(GlError::InvalidEnum);
+        }
+        // With no array buffer bound the pointer names a client-side array, whose bytes
+        // arrive with `strataVertexAttribData` before each draw. A vertex array object cannot
+        // hold one (`GL_OES_vertex_array_object`); a null pointer detaches its buffer.
+        let buffer = ctx.bindings.array_buffer;
+        if buffer == 0 && offset != 0 && ctx.bindings.vertex_array != 0 {
+            return Err(GlError::InvalidOperation);
+        }
+        let a = &mut ctx.attribs[index as usize];
+        a.size = size;
+        a.ty = attrib_type;
+        a.normalized = normalized;
+        a.stride = stride;
+        a.offset = offset;
+        a.buffer = buffer;
+        Ok(())
+    }
+
+    pub(super) fn strataVertexAttribData(&mut self, index: u32, data: Blob<'_>) -> GlResult {
+        match self.ctx().attribs.get_mut(index as usize) {
+            Some(a) if a.buffer == 0 => a.client = Some(data.as_bytes().to_vec()),
+            Some(_) => return Err(GlError::InvalidOperation),
+            None => return Err(GlError::InvalidValue),
+        }
+        Ok(())
+    }
+
+    pub(super) fn glEnableVertexAttribArray(&mut self, index: u32) -> GlResult {
+        self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = true;
+        Ok(())
+    }
+
+    pub(super) fn glDisableVertexAttribArray(&mut self, index: u32) -> GlResult {
+        self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = false;
+        Ok(())
+    }
+
+    pub(super) fn glVertexAttrib1f(&mut self, index: u32, x: f32) -> GlResult {
+        set_current(self.ctx(), index, [x, 0.0, 0.0, 1.0])
+    }
+
+    pub(super) fn glVertexAttrib2f(&mut self, index: u32, x: f32, y: f32) -> GlResult {
+        set_current(self.ctx(), index, [x, y, 0.0, 1.0])
+    }
+
+    pub(super) fn glVertexAttrib3f(&mut self, index: u32, x: f32, y: f32, z: f32) -> GlResult {
+        set_current(self.ctx(), index, [x, y, z, 1.0])
+    }
+
+    pub(super) fn glVertexAttrib4f(&mut self, index: u32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
+        set_current(self.ctx(), index, [x, y, z, w])
+    }
+
+    pub(super) fn glVertexAttrib1fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(self.ctx(), index, current_from(&values, 1)?)
+    }
+
+    pub(super) fn glVertexAttrib2fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(self.ctx(), index, current_from(&values, 2)?)
+    }
+
+    pub(super) fn glVertexAttrib3fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(self.ctx(), index, current_from(&values, 3)?)
+    }
+
+    pub(super) fn glVertexAttrib4fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(self.ctx(), index, current_from(&values, 4)?)
+    }
+
+    pub(super) fn glGetVertexAttribfv(&mut self, index: u32, pname: u32) -> Vec<f32> {
+        let ctx = self.ctx();
+        let Some(a) = ctx.attribs.get(index as usize) else {
+            ctx.record(GlError::InvalidValue);
+            return vec![];
+        };
+        match pname {
+            CURRENT_VERTEX_ATTRIB => a.current.to_vec(),
+            _ => match attrib_param(a, pname) {
+                Some(i) => vec![i as f32],
+                None => {
+                    ctx.record(GlError::InvalidEnum);
+                    vec![]
+                }
+            },
+        }
+    }
+
+    pub(super) fn glGetVertexAttribiv(&mut self, index: u32, pname: u32) -> Vec<i32> {
+        let ctx = self.ctx();
+        let Some(a) = ctx.attribs.get(index as usize) else {
+            ctx.record(GlError::InvalidValue);
+            return vec![];
+        };
+        match pname {
+            CURRENT_VERTEX_ATTRIB => a.current.iter().map(|f| *f as i32).collect(),
+            _ => match attrib_param(a, pname) {
+                Some(i) => vec![i],
+                None => {
+                    ctx.record(GlError::InvalidEnum);
+                    vec![]
+                }
+            },
+        }
+    }
+
+    pub(super) fn glGetVertexAttribPointerv(&mut self, index: u32, pname: u32) -> u64 {
+        let ctx = self.ctx();
+        if pname != VERTEX_ATTRIB_ARRAY_POINTER {
+            ctx.record(GlError::InvalidEnum);
+            return 0;
+        }
+        match ctx.attribs.get(index as usize) {
+            Some(a) => a.offset,
+            None => {
+                ctx.record(GlError::InvalidValue);
+                0
+            }
+        }
+    }
+}
