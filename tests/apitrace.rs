@@ -20,10 +20,9 @@
 mod support;
 
 use std::collections::BTreeMap;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use support::{Daemon, TempDir, Xvfb};
 
@@ -59,54 +58,19 @@ const SCENE_SECONDS: &str = "0.1";
 /// glmark2's window size, which the replays grow their windows to.
 const SIZE: &str = "160x120";
 
-fn which(program: &str) -> Option<PathBuf> {
-    std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
-}
-
 /// Whether the programs this test drives are installed; if not, the test skips with the
 /// reason, unless `STRATA_REQUIRE_ORACLES` is set, where it fails.
 fn programs_present() -> bool {
     let missing: Vec<&str> =
-        ["apitrace", "eglretrace", "glmark2-es2", "Xvfb"].into_iter().filter(|p| which(p).is_none()).collect();
-    if missing.is_empty() {
-        return true;
-    }
-    let why = format!("{} not installed (tools/install-deps installs them)", missing.join(", "));
-    assert!(!support::oracles_required(), "STRATA_REQUIRE_ORACLES is set: {why}");
-    eprintln!("skipping: {why}");
-    false
+        ["apitrace", "eglretrace", "glmark2-es2", "Xvfb"].into_iter().filter(|p| support::which(p).is_none()).collect();
+    support::nothing_missing(&missing)
 }
 
 /// Runs a program to completion, killing it after `deadline`; returns its output and whether
 /// it timed out.
 fn run(mut cmd: Command, deadline: Duration) -> (Output, bool) {
-    let mut child = cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("spawn");
-    let (mut out, mut err) = (child.stdout.take().expect("stdout"), child.stderr.take().expect("stderr"));
-    let t_out = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = out.read_to_end(&mut s);
-        s
-    });
-    let t_err = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = err.read_to_end(&mut s);
-        s
-    });
-    let start = Instant::now();
-    let mut timed_out = false;
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("try_wait") {
-            break s;
-        }
-        if start.elapsed() > deadline {
-            timed_out = true;
-            let _ = child.kill();
-            break child.wait().expect("wait");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let output = Output { status, stdout: t_out.join().unwrap_or_default(), stderr: t_err.join().unwrap_or_default() };
-    (output, timed_out)
+    let child = cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("spawn");
+    support::wait_with_deadline(child, deadline)
 }
 
 fn text(o: &Output) -> String {
@@ -320,10 +284,7 @@ fn apitrace_traces_and_replays_a_piglit_program_through_stratad() {
     if !programs_present() {
         return;
     }
-    if !Path::new(PIGLIT_PROGRAM).is_file() {
-        let why = format!("{PIGLIT_PROGRAM} not installed (tools/install-deps installs piglit)");
-        assert!(!support::oracles_required(), "STRATA_REQUIRE_ORACLES is set: {why}");
-        eprintln!("skipping: {why}");
+    if !support::nothing_missing(if Path::new(PIGLIT_PROGRAM).is_file() { &[] } else { &[PIGLIT_PROGRAM] }) {
         return;
     }
     let x = Xvfb::start(640, 480).expect("Xvfb");

@@ -51,18 +51,8 @@ const SCENES: &[&str] = &[
 /// Whether the programs this test drives are installed; if not, the test skips with the
 /// reason, unless `STRATA_REQUIRE_ORACLES=1` (CI), where it fails.
 fn oracles_present() -> bool {
-    let missing: Vec<&str> = ["glmark2-es2", "Xvfb"].into_iter().filter(|p| which(p).is_none()).collect();
-    if missing.is_empty() {
-        return true;
-    }
-    let why = format!("{} not installed (tools/install-deps installs them)", missing.join(" and "));
-    assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "STRATA_REQUIRE_ORACLES is set: {why}");
-    eprintln!("skipping: {why}");
-    false
-}
-
-fn which(program: &str) -> Option<PathBuf> {
-    std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
+    let missing: Vec<&str> = ["glmark2-es2", "Xvfb"].into_iter().filter(|p| support::which(p).is_none()).collect();
+    support::nothing_missing(&missing)
 }
 
 /// Runs a program with a deadline; kills it when the deadline passes.
@@ -259,31 +249,10 @@ fn daemon_killed_mid_run_lets_the_application_exit() {
 }
 
 /// Waits for `child` up to `deadline` (killing it then), returning its status and output.
-fn wait_child(mut child: Child, deadline: Duration) -> (Option<ExitStatus>, String) {
-    let (mut out, mut err) = (child.stdout.take().expect("stdout"), child.stderr.take().expect("stderr"));
-    let t_out = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = out.read_to_string(&mut s);
-        s
-    });
-    let t_err = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err.read_to_string(&mut s);
-        s
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("try_wait") {
-            break Some(s);
-        }
-        if start.elapsed() > deadline {
-            let _ = child.kill();
-            let _ = child.wait();
-            break None;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    (status, format!("{}{}", t_out.join().unwrap_or_default(), t_err.join().unwrap_or_default()))
+fn wait_child(child: Child, deadline: Duration) -> (Option<ExitStatus>, String) {
+    let (out, killed) = support::wait_with_deadline(child, deadline);
+    let status = if killed { None } else { Some(out.status) };
+    (status, format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
 }
 
 /// The daemon's surfaces as `stratad ctl list --json` reports them.

@@ -38,21 +38,12 @@ const NATIVE_PASS_FLOOR: usize = 250;
 /// Whether piglit, wflinfo and Xvfb are installed; if not, the test skips with the reason,
 /// unless `STRATA_REQUIRE_ORACLES=1` (CI), where it fails.
 fn oracles_present() -> bool {
-    let mut missing: Vec<&str> = ["piglit", "wflinfo", "Xvfb"].into_iter().filter(|p| which(p).is_none()).collect();
+    let mut missing: Vec<&str> =
+        ["piglit", "wflinfo", "Xvfb"].into_iter().filter(|p| support::which(p).is_none()).collect();
     if !Path::new(TESTS).join(PROFILES[0]).is_file() {
         missing.push(TESTS);
     }
-    if missing.is_empty() {
-        return true;
-    }
-    let why = format!("{} not installed (tools/install-deps installs them)", missing.join(", "));
-    assert!(!support::oracles_required(), "STRATA_REQUIRE_ORACLES is set: {why}");
-    eprintln!("skipping: {why}");
-    false
-}
-
-fn which(program: &str) -> Option<PathBuf> {
-    std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
+    support::nothing_missing(&missing)
 }
 
 /// The workspace's target directory (where cargo put `stratad`).

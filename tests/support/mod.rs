@@ -183,6 +183,56 @@ pub fn oracles_required() -> bool {
     std::env::var_os("STRATA_REQUIRE_ORACLES").is_some()
 }
 
+/// The path of `program` on `PATH`, if installed.
+pub fn which(program: &str) -> Option<PathBuf> {
+    std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
+}
+
+/// Whether nothing a test needs is `missing`; otherwise the test skips, or fails when
+/// `STRATA_REQUIRE_ORACLES` is set.
+pub fn nothing_missing(missing: &[&str]) -> bool {
+    if missing.is_empty() {
+        return true;
+    }
+    let why = format!("{} not installed (tools/install-deps installs them)", missing.join(", "));
+    assert!(!oracles_required(), "STRATA_REQUIRE_ORACLES is set: {why}");
+    eprintln!("skipping: {why}");
+    false
+}
+
+/// Waits for `child` (spawned with piped stdout and stderr) up to `deadline`, killing it then;
+/// returns its output and whether it was killed.
+pub fn wait_with_deadline(mut child: Child, deadline: Duration) -> (std::process::Output, bool) {
+    use std::io::Read;
+    let (mut out, mut err) = (child.stdout.take().expect("stdout"), child.stderr.take().expect("stderr"));
+    let t_out = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = out.read_to_end(&mut s);
+        s
+    });
+    let t_err = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = err.read_to_end(&mut s);
+        s
+    });
+    let start = Instant::now();
+    let mut killed = false;
+    let status = loop {
+        if let Some(s) = child.try_wait().expect("try_wait") {
+            break s;
+        }
+        if start.elapsed() > deadline {
+            killed = true;
+            let _ = child.kill();
+            break child.wait().expect("wait");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let stdout = t_out.join().unwrap_or_default();
+    let stderr = t_err.join().unwrap_or_default();
+    (std::process::Output { status, stdout, stderr }, killed)
+}
+
 /// A private X server (Xvfb) on a display it picks itself, killed on drop.
 pub struct Xvfb {
     pub child: Child,
