@@ -255,10 +255,14 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
     let a = screenshot(&socket, "a");
     assert_eq!(rgb(&a, 20, 20), color);
 
-    // Nothing changes: nothing is recomposited.
+    // Nothing changes: nothing is recomposited, and no compositing time is spent.
     let idle = composites(&socket, 0);
+    let busy = |socket: &Path| ctl(socket, &["list"]).expect("list")["outputs"][0]["composite_us"].as_u64();
+    let idle_us = busy(&socket).expect("ctl list reports the time spent compositing");
+    assert!(idle_us > 0, "composites so far took no time");
     std::thread::sleep(Duration::from_millis(300));
     assert_eq!(composites(&socket, 0), idle, "the compositor redrew an unchanged scene");
+    assert_eq!(busy(&socket), Some(idle_us), "time was spent compositing an unchanged scene");
 
     // Move it across the boundary between the outputs.
     let moved = ctl(&socket, &["move", &id.to_string(), "112", "20", "0.25"]).expect("move");

@@ -65,18 +65,19 @@ pub struct Args {
 }
 
 /// A program on `PATH`.
-fn which(program: &str) -> Option<PathBuf> {
+pub(crate) fn which(program: &str) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
 }
 
 /// A private X server on a display it chose itself; killed on drop.
-struct Xvfb {
+pub(crate) struct Xvfb {
     child: Child,
-    display: String,
+    /// The `DISPLAY` value.
+    pub(crate) display: String,
 }
 
 impl Xvfb {
-    fn start() -> Result<Xvfb> {
+    pub(crate) fn start() -> Result<Xvfb> {
         let mut child = Command::new("Xvfb")
             .args(["-displayfd", "1", "-screen", "0", "1920x1080x24", "-nolisten", "tcp"])
             .stdout(Stdio::piped())
@@ -105,10 +106,10 @@ impl Drop for Xvfb {
 }
 
 /// A temporary directory, removed on drop.
-struct TempDir(PathBuf);
+pub(crate) struct TempDir(pub(crate) PathBuf);
 
 impl TempDir {
-    fn new() -> Result<TempDir> {
+    pub(crate) fn new() -> Result<TempDir> {
         let p = std::env::temp_dir().join(format!("strata-bench-glmark2-{}", std::process::id()));
         std::fs::create_dir_all(&p).with_context(|| format!("creating {}", p.display()))?;
         Ok(TempDir(p))
@@ -124,7 +125,7 @@ impl Drop for TempDir {
 /// The directory applications load the shim from: `--shim`, or links to the libstrata_egl.so
 /// cargo built beside this binary (strata-egl is a dependency of this crate, so building the
 /// benchmark builds it).
-fn shim_dir(arg: Option<&Path>, tmp: &TempDir) -> Result<PathBuf> {
+pub(crate) fn shim_dir(arg: Option<&Path>, tmp: &TempDir) -> Result<PathBuf> {
     if let Some(dir) = arg {
         for name in ["libEGL.so.1", "libGLESv2.so.2"] {
             if !dir.join(name).is_file() {
@@ -155,7 +156,7 @@ fn shim_dir(arg: Option<&Path>, tmp: &TempDir) -> Result<PathBuf> {
 
 /// Where glmark2 renders.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Side {
+pub(crate) enum Side {
     /// Mesa's own libEGL/libGLESv2 (llvmpipe).
     Native,
     /// The drop-in libraries, executed and composited by the daemon.
@@ -172,8 +173,9 @@ struct Runner<'a> {
 }
 
 /// One glmark2 process's result.
-struct Run {
-    score: u32,
+pub(crate) struct Run {
+    /// glmark2's score: the instance's frames per second.
+    pub(crate) score: u32,
 }
 
 impl Runner<'_> {
@@ -209,7 +211,7 @@ impl Runner<'_> {
 }
 
 /// Waits for a glmark2 process (killing it after `deadline`) and parses its score.
-fn finish(mut child: Child, deadline: Duration) -> Result<Run> {
+pub(crate) fn finish(mut child: Child, deadline: Duration) -> Result<Run> {
     let pipes = (child.stdout.take(), child.stderr.take());
     let read = |p: Option<Box<dyn Read + Send>>| {
         std::thread::spawn(move || {
@@ -262,7 +264,7 @@ fn median(v: &[f64]) -> f64 {
 }
 
 /// Parses `WxH`.
-fn size(s: &str) -> Result<(u32, u32)> {
+pub(crate) fn size(s: &str) -> Result<(u32, u32)> {
     let (w, h) = s.split_once('x').with_context(|| format!("{s:?} is not WxH"))?;
     let parse = |v: &str| v.parse::<u32>().ok().filter(|&v| v > 0).with_context(|| format!("{s:?} is not WxH"));
     Ok((parse(w)?, parse(h)?))

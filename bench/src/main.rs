@@ -6,6 +6,7 @@ mod execute;
 mod glmark2;
 mod mesh;
 mod plot;
+mod thesis;
 mod transport;
 
 use anyhow::Result;
@@ -48,7 +49,14 @@ enum Cmd {
         /// The compositor, as for `stratad serve --compositor`.
         #[arg(long, value_enum, default_value_t = strata_server::compositor::Mode::ThreeD)]
         compositor: strata_server::compositor::Mode,
+        /// Textures per compositor pass, as for `stratad serve --max-textures`.
+        #[arg(long)]
+        max_textures: Option<u32>,
     },
+    /// The thesis' evaluation (chapter 5) on this machine: n = 1…10 glmark2-es2 instances over
+    /// one area at one z, natively, at one z each, and through the 2D baseline; JSON and a PNG
+    /// per figure.
+    Thesis(thesis::Args),
 }
 
 fn main() -> Result<()> {
@@ -59,8 +67,9 @@ fn main() -> Result<()> {
         Cmd::Execute(args) => execute::run(&args),
         Cmd::Composite(args) => composite::run(&args),
         Cmd::Glmark2(args) => glmark2::run(&args),
-        Cmd::Daemon { socket, executor, outputs, compositor } => {
-            transport::daemon(socket, executor, outputs, compositor)
+        Cmd::Daemon { socket, executor, outputs, compositor, max_textures } => {
+            transport::daemon(socket, executor, outputs, compositor, max_textures)
         }
+        Cmd::Thesis(args) => thesis::run(&args),
     }
 }

@@ -184,6 +184,9 @@ pub struct OutputRow {
     pub passes: u64,
     /// The part of the output the last composite redrew: x, y, width, height.
     pub region: [i32; 4],
+    /// Time spent compositing into it so far (encoding, submitting and waiting for the
+    /// device), in microseconds: divided by `composites`, the cost of a composite.
+    pub composite_us: u64,
 }
 
 /// The daemon's answer to a `ControlRequest`.

@@ -397,13 +397,14 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 return Ok(());
             }
             println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}  last redrawn",
-                "output", "kind", "x", "y", "w", "h", "composites", "passes"
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9}  last redrawn",
+                "output", "kind", "x", "y", "w", "h", "composites", "passes", "ms each"
             );
             for o in outputs {
                 let r = o.region;
+                let ms = o.composite_us as f64 / 1000.0 / o.composites.max(1) as f64;
                 println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6}  {}x{}+{}+{}",
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2}  {}x{}+{}+{}",
                     o.name,
                     o.kind,
                     o.rect[0],

@@ -105,6 +105,8 @@ struct Output {
     region: [i32; 4],
     /// Whether the last composite reached the window (if any).
     presented: bool,
+    /// Time spent compositing into it so far.
+    busy: Duration,
 }
 
 struct Inner {
@@ -183,6 +185,7 @@ impl Root {
                 passes: 0,
                 region: [0; 4],
                 presented: true,
+                busy: Duration::ZERO,
             });
         }
         Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs: made, composited: None }) })
@@ -197,10 +200,12 @@ impl Root {
             return Some(damage);
         }
         let Inner { compositor, outputs, .. } = &mut *inner;
+        let started = Instant::now();
+        let mut composited = Vec::new();
         // Encode and submit under the scene lock: no swap can interleave, so every front
         // image sampled here is a completed frame.
         let (_, seen) = self.scene.compose(|surfaces, light, changed| {
-            for out in outputs.iter_mut() {
+            for (index, out) in outputs.iter_mut().enumerate() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
                 // The changed region in this output's pixels; nothing to do if it misses it.
                 let local = match changed {
@@ -235,6 +240,7 @@ impl Root {
                     .collect();
                 compositor.composite(&layers, light, &out.texture, BACKGROUND, local);
                 out.composites += 1;
+                composited.push(index);
                 out.passes = compositor.last_passes as u64;
                 out.region =
                     local.map_or([0, 0, out.spec.width as i32, out.spec.height as i32], |r| r.map(|v| v as i32));
@@ -249,6 +255,13 @@ impl Root {
             }
         }
         let _ = self.gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        // Each output composited shares the round's time (one output: its composite's cost).
+        let share = started.elapsed() / composited.len().max(1) as u32;
+        for &i in &composited {
+            if let Some(out) = inner.outputs.get_mut(i) {
+                out.busy += share;
+            }
+        }
         Some(seen)
     }
 
@@ -265,6 +278,7 @@ impl Root {
                 composites: o.composites,
                 passes: o.passes,
                 region: o.region,
+                composite_us: o.busy.as_micros() as u64,
             })
             .collect()
     }

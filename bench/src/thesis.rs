@@ -1,0 +1,370 @@
+//! `strata-bench thesis`: the evaluation of the thesis Strata comes from (chapter 5), run on
+//! this machine. n = 1…N unmodified glmark2-es2 instances draw the `build` scene in one window
+//! rectangle of a headless output:
+//!
+//! | table | figure | how |
+//! |---|---|---|
+//! | 5.1 | 5.2 | through Strata, every instance at one z (per-fragment depth contests everywhere) |
+//! | 5.2 | 5.3 | natively on Mesa (llvmpipe), under the same X server |
+//! | 5.3 | 5.4 | through Strata, one z each (no contest: the nearest surface wins) |
+//! | 5.4 | 5.5 | through the 2D baseline (`--compositor 2d`): painter's order, opaque copies |
+//!
+//! The daemon chains at `--max-textures 8` (the thesis' i.MX6 had 8 texture units), lighting on,
+//! 60 Hz. Per n it reports each instance's fps, the total, the compositor's milliseconds per
+//! composite (from `ctl list`, over the run) and the passes (chaining stages) of the busiest
+//! composite. Instance i draws `MODELS[i % 4]`: Debian's glmark2-data has the thesis' horse,
+//! cat and bunny, but neither its dragon nor its buddha, so the asteroid stands in for both.
+
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use anyhow::{bail, Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use strata_client::ControlConnection;
+use strata_protocol::handshake::{ControlReply, ControlRequest};
+
+use crate::glmark2::{finish, shim_dir, size, which, Side, TempDir, Xvfb};
+use crate::plot::{line_plot, Series};
+use crate::transport::start_daemon_with;
+
+/// The models instance i draws, `MODELS[i % 4]`.
+const MODELS: [&str; 4] = ["horse", "cat", "bunny", "asteroid-low"];
+
+/// `strata-bench thesis` options.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Print only the final JSON line.
+    #[arg(long)]
+    json: bool,
+    /// Seconds each glmark2 instance runs.
+    #[arg(long, default_value_t = 5)]
+    duration: u32,
+    /// Most concurrent instances (the thesis went to 10).
+    #[arg(long, default_value_t = 10)]
+    max_instances: u32,
+    /// Textures per compositor pass (the thesis' i.MX6 had 8).
+    #[arg(long, default_value_t = 8)]
+    max_textures: u32,
+    /// glmark2 window size, WxH (the thesis' 540×540).
+    #[arg(long, default_value = "540x540")]
+    size: String,
+    /// The daemon's headless output, WxH.
+    #[arg(long, default_value = "1920x720")]
+    output: String,
+    /// Directory holding libEGL.so.1 and libGLESv2.so.2 [default: the libstrata_egl.so cargo
+    /// built next to this binary].
+    #[arg(long)]
+    shim: Option<PathBuf>,
+    /// Directory for thesis.json and one PNG per figure.
+    #[arg(long, default_value = "target/strata-bench/thesis")]
+    out: PathBuf,
+}
+
+/// One table of the evaluation.
+struct Table {
+    table: &'static str,
+    figure: &'static str,
+    what: &'static str,
+    side: Side,
+    compositor: &'static str,
+    z_step: f32,
+}
+
+const TABLES: [Table; 4] = [
+    Table {
+        table: "5.1",
+        figure: "5.2",
+        what: "one z, through Strata",
+        side: Side::Strata,
+        compositor: "3d",
+        z_step: 0.0,
+    },
+    Table { table: "5.2", figure: "5.3", what: "natively (Mesa)", side: Side::Native, compositor: "-", z_step: 0.0 },
+    Table {
+        table: "5.3",
+        figure: "5.4",
+        what: "one z each, through Strata",
+        side: Side::Strata,
+        compositor: "3d",
+        z_step: 1.0,
+    },
+    Table {
+        table: "5.4",
+        figure: "5.5",
+        what: "2D baseline, one z each",
+        side: Side::Strata,
+        compositor: "2d",
+        z_step: 1.0,
+    },
+];
+
+/// One row of a table: n instances at once.
+#[derive(serde::Serialize)]
+struct Row {
+    instances: u32,
+    fps: Vec<u32>,
+    total_fps: f64,
+    per_instance_fps: f64,
+    /// The compositor's mean milliseconds per composite over the run (Strata only).
+    composite_ms: Option<f64>,
+    /// Composites during the run (Strata only).
+    composites: Option<u64>,
+    /// Passes of the busiest composite seen (chaining stages; Strata only).
+    stages: Option<u64>,
+}
+
+/// The first output's composites, time spent compositing (µs) and last pass count.
+fn output_stats(socket: &std::path::Path) -> Result<(u64, u64, u64)> {
+    let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
+    match c.request(&ControlRequest::List)? {
+        ControlReply::List { outputs, .. } => {
+            let o = outputs.first().context("the daemon has no output")?;
+            Ok((o.composites, o.composite_us, o.passes))
+        }
+        other => bail!("unexpected control reply {other:?}"),
+    }
+}
+
+/// Everything the runs of one table share.
+struct Bench<'a> {
+    args: &'a Args,
+    display: String,
+    shim: PathBuf,
+    window: String,
+}
+
+impl Bench<'_> {
+    fn command(&self, t: &Table, socket: Option<&std::path::Path>, i: u32) -> Command {
+        let model = MODELS[i as usize % MODELS.len()];
+        let mut cmd = Command::new("glmark2-es2");
+        cmd.args(["-b", &format!("build:model={model}:duration={}", self.args.duration), "-s", &self.args.size])
+            .env("DISPLAY", &self.display)
+            .env_remove("LD_LIBRARY_PATH")
+            .env_remove("STRATA_SOCKET")
+            .env_remove("STRATA_WINDOW")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped());
+        if let (Side::Strata, Some(socket)) = (t.side, socket) {
+            cmd.env("LD_LIBRARY_PATH", &self.shim)
+                .env("STRATA_SOCKET", socket)
+                .env("STRATA_WINDOW", format!("{},{}", self.window, i as f32 * t.z_step));
+        }
+        cmd
+    }
+
+    /// n instances at once; with a daemon, its compositor's figures over the run.
+    fn row(&self, t: &Table, socket: Option<&std::path::Path>, n: u32) -> Result<Row> {
+        let before = socket.map(output_stats).transpose()?;
+        let children: Vec<Child> = (0..n)
+            .map(|i| self.command(t, socket, i).spawn().context("starting glmark2-es2"))
+            .collect::<Result<_>>()?;
+        // The passes of the busiest composite, sampled while the instances run.
+        let stop = Arc::new(AtomicBool::new(false));
+        let sampler = socket.map(|s| {
+            let (s, stop) = (s.to_path_buf(), stop.clone());
+            std::thread::spawn(move || {
+                let mut most = 0;
+                while !stop.load(Ordering::Acquire) {
+                    if let Ok((_, _, passes)) = output_stats(&s) {
+                        most = most.max(passes);
+                    }
+                    std::thread::sleep(Duration::from_millis(250));
+                }
+                most
+            })
+        });
+        let deadline = Duration::from_secs(u64::from(self.args.duration) * 3 + 120);
+        let outcomes: Vec<Result<u32>> = children.into_iter().map(|c| finish(c, deadline).map(|r| r.score)).collect();
+        stop.store(true, Ordering::Release);
+        let stages = sampler.and_then(|h| h.join().ok());
+        let fps: Vec<u32> = outcomes.into_iter().collect::<Result<_>>()?;
+        let after = socket.map(output_stats).transpose()?;
+        let (composites, composite_ms) = match (before, after) {
+            (Some(b), Some(a)) if a.0 > b.0 => {
+                let count = a.0 - b.0;
+                (Some(count), Some((a.1 - b.1) as f64 / 1000.0 / count as f64))
+            }
+            _ => (None, None),
+        };
+        let total: f64 = fps.iter().map(|&f| f64::from(f)).sum();
+        Ok(Row {
+            instances: n,
+            total_fps: total,
+            per_instance_fps: total / f64::from(n),
+            fps,
+            composite_ms,
+            composites,
+            stages,
+        })
+    }
+}
+
+/// Runs the evaluation and prints its tables; the last line is JSON.
+pub fn run(args: &Args) -> Result<()> {
+    for (program, package) in [("glmark2-es2", "glmark2-es2-x11 and glmark2-data"), ("Xvfb", "xvfb")] {
+        if which(program).is_none() {
+            bail!("{program} not found on PATH; install the Debian package {package} (tools/install-deps does)");
+        }
+    }
+    if args.duration == 0 || args.max_instances == 0 {
+        bail!("--duration and --max-instances must be positive");
+    }
+    let (win_w, win_h) = size(&args.size)?;
+    let (out_w, out_h) = size(&args.output)?;
+    let tmp = TempDir::new()?;
+    let shim = shim_dir(args.shim.as_deref(), &tmp)?;
+    let x = Xvfb::start()?;
+    let window = format!("{},{}", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
+    let bench = Bench { args, display: x.display.clone(), shim, window };
+
+    let pb = if args.json { ProgressBar::hidden() } else { ProgressBar::new(4 * u64::from(args.max_instances)) };
+    pb.set_style(
+        ProgressStyle::with_template("{msg:>28} [{bar:40}] {pos}/{len} {elapsed} eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let mut tables = Vec::new();
+    for t in &TABLES {
+        let log = tmp.0.join(format!("daemon-{}.log", t.table));
+        let daemon = match t.side {
+            Side::Native => None,
+            Side::Strata => Some(start_daemon_with(
+                strata_server::ExecutorKind::Gles,
+                &[
+                    "--output".into(),
+                    format!("headless:thesis={out_w}x{out_h}"),
+                    "--compositor".into(),
+                    t.compositor.into(),
+                    "--max-textures".into(),
+                    args.max_textures.to_string(),
+                ],
+                Some(&log),
+            )?),
+        };
+        let mut rows = Vec::new();
+        for n in 1..=args.max_instances {
+            pb.set_message(format!("table {}: {n} instance(s)", t.table));
+            let row = bench.row(t, daemon.as_ref().map(|d| d.1.as_path()), n).map_err(|e| {
+                let tail = std::fs::read_to_string(&log).unwrap_or_default();
+                let tail: Vec<&str> = tail.lines().rev().take(20).collect();
+                anyhow::anyhow!("{e:#}\ndaemon log (last lines, newest first):\n{}", tail.join("\n"))
+            })?;
+            rows.push(row);
+            pb.inc(1);
+        }
+        drop(daemon);
+        tables.push((t, rows));
+    }
+    pb.finish_and_clear();
+    drop(x);
+    report(args, &tables)
+}
+
+/// Prints the tables, writes thesis.json and the figures.
+fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
+    let opt = |v: Option<f64>, prec: usize| v.map_or_else(|| "-".to_string(), |v| format!("{v:.prec$}"));
+    if !args.json {
+        println!(
+            "glmark2-es2 -b build:model=M:duration={} -s {}, M cycling {MODELS:?}; headless {} output, --max-textures {}",
+            args.duration, args.size, args.output, args.max_textures
+        );
+        for (t, rows) in tables {
+            println!();
+            println!("Table {} (figure {}): {}", t.table, t.figure, t.what);
+            println!(
+                "{:>3} {:>10} {:>14} {:>13} {:>7}  fps of each",
+                "n", "total fps", "per instance", "composite ms", "stages"
+            );
+            for r in rows {
+                let stages = r.stages.map_or_else(|| "-".to_string(), |s| s.to_string());
+                println!(
+                    "{:>3} {:>10.0} {:>14.1} {:>13} {:>7}  {:?}",
+                    r.instances,
+                    r.total_fps,
+                    r.per_instance_fps,
+                    opt(r.composite_ms, 2),
+                    stages,
+                    r.fps
+                );
+            }
+        }
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let doc = serde_json::json!({
+        "models": MODELS,
+        "duration_s": args.duration,
+        "size": args.size,
+        "output": args.output,
+        "max_textures": args.max_textures,
+        "tables": tables.iter().map(|(t, rows)| serde_json::json!({
+            "table": t.table, "figure": t.figure, "what": t.what, "compositor": t.compositor, "z_step": t.z_step, "rows": rows,
+        })).collect::<Vec<_>>(),
+    });
+    let json_path = args.out.join("thesis.json");
+    std::fs::write(&json_path, serde_json::to_string_pretty(&doc)?)
+        .with_context(|| format!("writing {}", json_path.display()))?;
+    let xy = |rows: &[Row], f: &dyn Fn(&Row) -> Option<f64>| -> Vec<(f64, f64)> {
+        rows.iter().filter_map(|r| Some((f64::from(r.instances), f(r)?))).collect()
+    };
+    let native = tables.iter().find(|(t, _)| t.side == Side::Native).map(|(_, rows)| rows);
+    let mut written = Vec::new();
+    for (t, rows) in tables {
+        let mut series = vec![
+            Series { name: "total fps".into(), points: xy(rows, &|r| Some(r.total_fps)), reference: false },
+            Series {
+                name: "fps per instance".into(),
+                points: xy(rows, &|r| Some(r.per_instance_fps)),
+                reference: false,
+            },
+        ];
+        if let (Side::Strata, Some(native)) = (t.side, native) {
+            series.push(Series {
+                name: "native: total fps".into(),
+                points: xy(native, &|r| Some(r.total_fps)),
+                reference: true,
+            });
+        }
+        let png = args.out.join(format!("figure-{}.png", t.figure.replace('.', "-")));
+        let title = format!("Figure {} (table {}): n glmark2-es2 instances, {}", t.figure, t.table, t.what);
+        line_plot(&png, &title, "concurrent instances (n)", "frames per second", &series)?;
+        written.push(png);
+    }
+    let composite: Vec<Series> = tables
+        .iter()
+        .filter(|(t, _)| t.side == Side::Strata)
+        .map(|(t, rows)| Series {
+            name: format!("table {}: {}", t.table, t.what),
+            points: xy(rows, &|r| r.composite_ms),
+            reference: false,
+        })
+        .collect();
+    let png = args.out.join("composite-ms.png");
+    line_plot(
+        &png,
+        "Compositor: milliseconds per composite",
+        "concurrent instances (n)",
+        "ms per composite",
+        &composite,
+    )?;
+    written.push(png);
+    if !args.json {
+        println!();
+        println!("written: {}", json_path.display());
+        for p in &written {
+            println!("         {}", p.display());
+        }
+    }
+    let summary = serde_json::json!({
+        "benchmark": "thesis",
+        "json": json_path,
+        "figures": written,
+        "total_fps": tables.iter().map(|(t, rows)| (t.table, rows.iter().map(|r| r.total_fps).collect::<Vec<_>>()))
+            .collect::<std::collections::BTreeMap<_, _>>(),
+    });
+    println!("{summary}");
+    Ok(())
+}
