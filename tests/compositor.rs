@@ -4,12 +4,14 @@
 
 use std::sync::Arc;
 
-use strata_server::compositor::reference::{self, RefLayer};
+use strata_server::compositor::reference::{self, upload, RefLayer, Uploaded};
 use strata_server::compositor::{Compositor, Layer, Lighting, NormalSource};
 use strata_server::gpu::Gpu;
 
 #[path = "compositor/cells.rs"]
 mod cells;
+#[path = "compositor/figures.rs"]
+mod figures;
 
 const OUT_W: u32 = 96;
 const OUT_H: u32 = 64;
@@ -49,43 +51,6 @@ fn surface(i: usize, rect: [i32; 4], z: f32, alpha: u8, depth: bool) -> RefLayer
     }
     let normal = [(i as f32 * 0.3).sin() * 0.5, (i as f32 * 0.7).cos() * 0.5, 1.0];
     RefLayer { rect, z, color, depth: depth.then_some(d), normal }
-}
-
-struct Uploaded {
-    color: wgpu::TextureView,
-    depth: Option<wgpu::TextureView>,
-}
-
-fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
-    let size = wgpu::Extent3d { width: l.rect[2] as u32, height: l.rect[3] as u32, depth_or_array_layers: 1 };
-    let mk = |format, usage| {
-        gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
-    let c = mk(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
-    gpu.queue.write_texture(
-        c.as_image_copy(),
-        &l.color,
-        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(size.width * 4), rows_per_image: None },
-        size,
-    );
-    let depth = l.depth.as_ref().map(|d| {
-        let t = mk(
-            wgpu::TextureFormat::Depth32Float,
-            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
-        );
-        gpu.write_depth(&t, size.width, size.height, d);
-        t.create_view(&Default::default())
-    });
-    Uploaded { color: c.create_view(&Default::default()), depth }
 }
 
 fn output(gpu: &Gpu) -> wgpu::Texture {

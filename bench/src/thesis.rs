@@ -14,6 +14,9 @@
 //! composite (from `ctl list`, over the run) and the passes (chaining stages) of the busiest
 //! composite. Instance i draws `MODELS[i % 4]`: Debian's glmark2-data has the thesis' horse,
 //! cat and bunny, but neither its dragon nor its buddha, so the asteroid stands in for both.
+//!
+//! Figures 5.6 and 5.7 are the two crossing triangles of `compositor::figures`, composited with
+//! the far and the near light (`tests/compositor/figures.rs` checks them against the reference).
 
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
@@ -264,6 +267,44 @@ pub fn run(args: &Args) -> Result<()> {
     report(args, &tables)
 }
 
+/// Figures 5.6 and 5.7: the two crossing triangles composited by the GPU compositor with the
+/// far and the near light, as PNGs in `dir`.
+fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
+    use strata_server::compositor::figures::{far_light, near_light, two_triangles};
+    use strata_server::compositor::reference::upload;
+    use strata_server::compositor::{Compositor, Layer};
+    let (w, h) = (960u32, 540u32);
+    let gpu = strata_server::gpu::Gpu::open().context("opening the GPU for figures 5.6 and 5.7")?;
+    let mut comp = Compositor::new(gpu.clone(), None).context("creating the compositor")?;
+    let layers = two_triangles(w, h);
+    let up: Vec<_> = layers.iter().map(|l| upload(&gpu, l)).collect();
+    let gl: Vec<Layer<'_>> = layers
+        .iter()
+        .zip(&up)
+        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
+        .collect();
+    let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("figure"),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let mut written = Vec::new();
+    for (figure, light) in [("5-6", far_light()), ("5-7", near_light())] {
+        comp.composite(&gl, &light, &out, [0.0, 0.0, 0.0, 1.0], None);
+        let rgba = gpu.read_rgba8(&out, [0, 0, w, h]).context("reading the figure back")?;
+        let img = image::RgbaImage::from_raw(w, h, rgba).context("figure image of the wrong size")?;
+        let path = dir.join(format!("figure-{figure}.png"));
+        img.save(&path).with_context(|| format!("writing {}", path.display()))?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
 /// Prints the tables, writes thesis.json and the figures.
 fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
     let opt = |v: Option<f64>, prec: usize| v.map_or_else(|| "-".to_string(), |v| format!("{v:.prec$}"));
@@ -351,6 +392,7 @@ fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
         &composite,
     )?;
     written.push(png);
+    written.extend(lit_triangles(&args.out)?);
     if !args.json {
         println!();
         println!("written: {}", json_path.display());

@@ -21,6 +21,7 @@
 //! visible part of a surface copied as it is.
 
 mod encode;
+pub mod figures;
 mod plan;
 pub mod reference;
 mod resources;

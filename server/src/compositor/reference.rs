@@ -2,6 +2,7 @@
 //! oracle for the GPU compositor. Deliberately simple: one loop over output pixels.
 
 use super::{Lighting, NormalSource};
+use crate::gpu::Gpu;
 
 /// One surface as the reference sees it: CPU copies of its images.
 #[derive(Debug, Clone)]
@@ -118,4 +119,46 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
         }
     }
     out
+}
+
+/// A reference layer's images on the device, for the GPU compositor.
+pub struct Uploaded {
+    /// The colour image.
+    pub color: wgpu::TextureView,
+    /// The depth image, if the layer has depth.
+    pub depth: Option<wgpu::TextureView>,
+}
+
+/// Uploads a reference layer's colour and depth images, so that the GPU compositor can draw
+/// what the reference draws.
+pub fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
+    let size = wgpu::Extent3d { width: l.rect[2] as u32, height: l.rect[3] as u32, depth_or_array_layers: 1 };
+    let mk = |format, usage| {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let c = mk(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+    gpu.queue.write_texture(
+        c.as_image_copy(),
+        &l.color,
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(size.width * 4), rows_per_image: None },
+        size,
+    );
+    let depth = l.depth.as_ref().map(|d| {
+        let t = mk(
+            wgpu::TextureFormat::Depth32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        gpu.write_depth(&t, size.width, size.height, d);
+        t.create_view(&Default::default())
+    });
+    Uploaded { color: c.create_view(&Default::default()), depth }
 }
