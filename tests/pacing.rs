@@ -254,6 +254,16 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
     assert_eq!(list["outputs"][1]["rect"], serde_json::json!([128, 0, 128, 64]));
     let a = screenshot(&socket, "a");
     assert_eq!(rgb(&a, 20, 20), color);
+    // The client's command stream is counted: another frame adds to it.
+    let streamed = |socket: &Path| ctl(socket, &["list"]).expect("list")["surfaces"][0]["stream_bytes"].as_u64();
+    let sent = streamed(&socket).expect("ctl list reports the stream bytes");
+    assert!(sent > 0, "the client's commands were not counted");
+    clear(&mut gl, color);
+    swap(&mut gl, cur);
+    gl.glFinish().expect("io");
+    assert!(streamed(&socket).is_some_and(|now| now > sent), "a frame's commands were not counted");
+    // That frame is composited before the idle check below.
+    screenshot(&socket, "a");
 
     // Nothing changes: nothing is recomposited, and no compositing time is spent.
     let idle = composites(&socket, 0);

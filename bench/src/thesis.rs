@@ -15,6 +15,10 @@
 //! composite. Instance i draws `MODELS[i % 4]`: Debian's glmark2-data has the thesis' horse,
 //! cat and bunny, but neither its dragon nor its buddha, so the asteroid stands in for both.
 //!
+//! The data path of the server/client rendering split (seed 000): per model, one instance's
+//! command-stream bytes per frame (from `ctl list`, in the steady state) beside the colour and
+//! depth bytes per frame that rendering in the client would ship instead.
+//!
 //! Figures 5.6 and 5.7 are the two crossing triangles of `compositor::figures`, composited with
 //! the far and the near light (`tests/compositor/figures.rs` checks them against the reference).
 
@@ -27,6 +31,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use strata_client::ControlConnection;
+use strata_protocol::control::{OutputRow, SurfaceRow};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 
 use crate::glmark2::{finish, shim_dir, size, which, Side, TempDir, Xvfb};
@@ -119,16 +124,32 @@ struct Row {
     stages: Option<u64>,
 }
 
-/// The first output's composites, time spent compositing (µs) and last pass count.
-fn output_stats(socket: &std::path::Path) -> Result<(u64, u64, u64)> {
+/// `ctl list`: the daemon's outputs and surfaces.
+fn list(socket: &std::path::Path) -> Result<(Vec<OutputRow>, Vec<SurfaceRow>)> {
     let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
     match c.request(&ControlRequest::List)? {
-        ControlReply::List { outputs, .. } => {
-            let o = outputs.first().context("the daemon has no output")?;
-            Ok((o.composites, o.composite_us, o.passes))
-        }
+        ControlReply::List { outputs, surfaces } => Ok((outputs, surfaces)),
         other => bail!("unexpected control reply {other:?}"),
     }
+}
+
+/// The first output's composites, time spent compositing (µs) and last pass count.
+fn output_stats(socket: &std::path::Path) -> Result<(u64, u64, u64)> {
+    let (outputs, _) = list(socket)?;
+    let o = outputs.first().context("the daemon has no output")?;
+    Ok((o.composites, o.composite_us, o.passes))
+}
+
+/// One model's data path: the command stream its client sends per frame, beside the image
+/// bytes per frame that rendering in the client (seed 000's split) would send instead.
+#[derive(serde::Serialize)]
+struct DataPath {
+    model: &'static str,
+    fps: u32,
+    /// Command-stream bytes per frame in the steady state (the model's upload excluded).
+    stream_bytes_per_frame: f64,
+    /// Colour (RGBA8) and depth (32-bit) of the window: what the compositor reads per frame.
+    image_bytes_per_frame: u64,
 }
 
 /// Everything the runs of one table share.
@@ -206,6 +227,51 @@ impl Bench<'_> {
     }
 }
 
+impl Bench<'_> {
+    /// Model `k` alone through the daemon at `socket` (table `t`'s settings), its stream and
+    /// frames sampled from `ctl list` while it runs.
+    fn data_path(&self, t: &Table, socket: &std::path::Path, k: u32) -> Result<DataPath> {
+        let child = self.command(t, Some(socket), k).spawn().context("starting glmark2-es2")?;
+        let stop = Arc::new(AtomicBool::new(false));
+        let sampler = {
+            let (s, stop) = (socket.to_path_buf(), stop.clone());
+            std::thread::spawn(move || {
+                let mut samples: Vec<(u64, u64)> = Vec::new();
+                while !stop.load(Ordering::Acquire) {
+                    if let Ok((_, surfaces)) = list(&s) {
+                        if let Some(r) = surfaces.first() {
+                            samples.push((r.frames, r.stream_bytes));
+                        }
+                    }
+                    std::thread::sleep(Duration::from_millis(250));
+                }
+                samples
+            })
+        };
+        let deadline = Duration::from_secs(u64::from(self.args.duration) * 3 + 120);
+        let run = finish(child, deadline);
+        stop.store(true, Ordering::Release);
+        let samples = sampler.join().unwrap_or_default();
+        let fps = run?.score;
+        // The steady state: from a quarter of the way in (the model is uploaded by then) to
+        // the last sample.
+        let live: Vec<&(u64, u64)> = samples.iter().filter(|s| s.0 > 0).collect();
+        let (Some(first), Some(last)) = (live.get(live.len() / 4), live.last()) else {
+            bail!("{} ran too briefly to sample its stream", MODELS[k as usize]);
+        };
+        if last.0 <= first.0 {
+            bail!("{} swapped no frames while sampled", MODELS[k as usize]);
+        }
+        let (w, h) = size(&self.args.size)?;
+        Ok(DataPath {
+            model: MODELS[k as usize],
+            fps,
+            stream_bytes_per_frame: (last.1 - first.1) as f64 / (last.0 - first.0) as f64,
+            image_bytes_per_frame: u64::from(w) * u64::from(h) * 8,
+        })
+    }
+}
+
 /// Runs the evaluation and prints its tables; the last line is JSON.
 pub fn run(args: &Args) -> Result<()> {
     for (program, package) in [("glmark2-es2", "glmark2-es2-x11 and glmark2-data"), ("Xvfb", "xvfb")] {
@@ -224,13 +290,18 @@ pub fn run(args: &Args) -> Result<()> {
     let window = format!("{},{}", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
     let bench = Bench { args, display: x.display.clone(), shim, window };
 
-    let pb = if args.json { ProgressBar::hidden() } else { ProgressBar::new(4 * u64::from(args.max_instances)) };
+    let pb = if args.json {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(4 * u64::from(args.max_instances) + MODELS.len() as u64)
+    };
     pb.set_style(
         ProgressStyle::with_template("{msg:>28} [{bar:40}] {pos}/{len} {elapsed} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
     let mut tables = Vec::new();
+    let mut paths = Vec::new();
     for t in &TABLES {
         let log = tmp.0.join(format!("daemon-{}.log", t.table));
         let daemon = match t.side {
@@ -248,6 +319,14 @@ pub fn run(args: &Args) -> Result<()> {
                 Some(&log),
             )?),
         };
+        // The data path, with the first daemon (one model at a time).
+        if let (Some(d), true) = (&daemon, paths.is_empty()) {
+            for k in 0..MODELS.len() as u32 {
+                pb.set_message(format!("data path: {}", MODELS[k as usize]));
+                paths.push(bench.data_path(t, &d.1, k)?);
+                pb.inc(1);
+            }
+        }
         let mut rows = Vec::new();
         for n in 1..=args.max_instances {
             pb.set_message(format!("table {}: {n} instance(s)", t.table));
@@ -264,7 +343,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     pb.finish_and_clear();
     drop(x);
-    report(args, &tables)
+    report(args, &tables, &paths)
 }
 
 /// Figures 5.6 and 5.7: the two crossing triangles composited by the GPU compositor with the
@@ -306,7 +385,7 @@ fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
 }
 
 /// Prints the tables, writes thesis.json and the figures.
-fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
+fn report(args: &Args, tables: &[(&Table, Vec<Row>)], paths: &[DataPath]) -> Result<()> {
     let opt = |v: Option<f64>, prec: usize| v.map_or_else(|| "-".to_string(), |v| format!("{v:.prec$}"));
     if !args.json {
         println!(
@@ -333,6 +412,22 @@ fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
                 );
             }
         }
+        println!();
+        println!("Data path (seed 000's split): one instance per model through Strata");
+        println!(
+            "{:<14} {:>6} {:>22} {:>22} {:>8}",
+            "model", "fps", "stream bytes/frame", "image bytes/frame", "image/stream"
+        );
+        for p in paths {
+            println!(
+                "{:<14} {:>6} {:>22.0} {:>22} {:>8.0}",
+                p.model,
+                p.fps,
+                p.stream_bytes_per_frame,
+                p.image_bytes_per_frame,
+                p.image_bytes_per_frame as f64 / p.stream_bytes_per_frame.max(1.0)
+            );
+        }
     }
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let doc = serde_json::json!({
@@ -341,6 +436,7 @@ fn report(args: &Args, tables: &[(&Table, Vec<Row>)]) -> Result<()> {
         "size": args.size,
         "output": args.output,
         "max_textures": args.max_textures,
+        "data_path": paths,
         "tables": tables.iter().map(|(t, rows)| serde_json::json!({
             "table": t.table, "figure": t.figure, "what": t.what, "compositor": t.compositor, "z_step": t.z_step, "rows": rows,
         })).collect::<Vec<_>>(),

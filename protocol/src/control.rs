@@ -167,6 +167,8 @@ pub struct SurfaceRow {
     pub interval: i32,
     /// The surface's normal for per-surface lighting.
     pub normal: [f32; 3],
+    /// Bytes of command stream its client has sent so far (all its surfaces together).
+    pub stream_bytes: u64,
 }
 
 /// One output of `stratad ctl list`.

@@ -409,7 +409,8 @@ async fn run_client(
             None => Box::new(Drain::default()),
         },
         closed.clone(),
-    );
+    )
+    .with_byte_counter(shared.scene.stream_counter(id));
     shared
         .clients
         .lock()
@@ -426,7 +427,10 @@ async fn run_client(
             let _keep = segment;
             let _ = done_tx.send(session.run());
         })
-        .map_err(SetupError::Thread)?;
+        .map_err(|e| {
+            shared.scene.forget_stream(id);
+            SetupError::Thread(e)
+        })?;
 
     let mut shutdown = shared.shutdown.clone();
     let mut buf = [0u8; 64];
@@ -437,6 +441,7 @@ async fn run_client(
             done = &mut done_rx => {
                 let (end, stats) = done.unwrap_or((SessionEnd::Violation("session thread panicked".into()), Default::default()));
                 info!(commands = stats.commands, bytes = stats.bytes, "session ended");
+                shared.scene.forget_stream(id);
                 return Ok(forced.unwrap_or(end));
             }
             read = stream.read(&mut buf), if socket_open => {

@@ -421,12 +421,12 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             }
             println!();
             println!(
-                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8}",
-                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval"
+                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12}",
+                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval", "stream bytes"
             );
             for r in surfaces {
                 println!(
-                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8}",
+                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12}",
                     r.id,
                     format!("{} ({})", r.client, r.client_id),
                     r.rect[0],
@@ -436,7 +436,8 @@ fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                     r.z,
                     r.frames,
                     r.shown,
-                    r.interval
+                    r.interval,
+                    r.stream_bytes
                 );
             }
             Ok(())

@@ -8,8 +8,9 @@
 //! and with a swap interval n ≥ 1 also until n output refreshes have passed since the
 //! surface's previous swap. Interval 0 never blocks.
 
-use std::collections::BTreeMap;
-use std::sync::{Condvar, Mutex, MutexGuard};
+use std::collections::{BTreeMap, HashMap};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use strata_protocol::control::{LightChange, Lighting, SurfaceRow};
@@ -64,6 +65,7 @@ impl SceneSurface {
             shown: self.shown,
             interval: self.interval,
             normal: self.normal,
+            stream_bytes: 0,
         }
     }
 }
@@ -124,6 +126,8 @@ pub struct Scene {
     state: Mutex<State>,
     changed: Condvar,
     frames_in_flight: u64,
+    /// Each connected client's count of command-stream bytes, by client id.
+    streams: Mutex<HashMap<u64, Arc<AtomicU64>>>,
 }
 
 impl Default for Scene {
@@ -157,6 +161,24 @@ impl Scene {
             }),
             changed: Condvar::new(),
             frames_in_flight: u64::from(frames_in_flight.max(1)),
+            streams: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// The counter client `client`'s session adds its command-stream bytes to; `ctl list`
+    /// reports it with the client's surfaces.
+    pub fn stream_counter(&self, client: u64) -> Arc<AtomicU64> {
+        let counter = Arc::new(AtomicU64::new(0));
+        if let Ok(mut m) = self.streams.lock() {
+            m.insert(client, counter.clone());
+        }
+        counter
+    }
+
+    /// Drops a departed client's counter.
+    pub fn forget_stream(&self, client: u64) {
+        if let Ok(mut m) = self.streams.lock() {
+            m.remove(&client);
         }
     }
 
@@ -336,6 +358,11 @@ impl Scene {
         let mut rows: Vec<SurfaceRow> =
             self.lock().map(|g| g.surfaces.values().map(SceneSurface::row).collect()).unwrap_or_default();
         rows.sort_by_key(|r| r.id);
+        if let Ok(m) = self.streams.lock() {
+            for r in &mut rows {
+                r.stream_bytes = m.get(&r.client_id).map_or(0, |c| c.load(Ordering::Relaxed));
+            }
+        }
         rows
     }
 

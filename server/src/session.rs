@@ -1,7 +1,7 @@
 //! One client's decoder loop, on its own thread: read frames from the command ring, decode and
 //! validate them, hand them to the executor, and write replies to the reply ring.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 
 use strata_protocol::codec::{self, CodecError};
@@ -59,6 +59,8 @@ pub struct Session {
     executor: Box<dyn Executor>,
     closed: Arc<AtomicBool>,
     stats: SessionStats,
+    /// Where the bytes decoded are also counted for others to read (`ctl list`).
+    counter: Option<Arc<AtomicU64>>,
 }
 
 impl Session {
@@ -71,18 +73,35 @@ impl Session {
         executor: Box<dyn Executor>,
         closed: Arc<AtomicBool>,
     ) -> Self {
-        Session { reader, replies, tally: tally.then(Tally::default), executor, closed, stats: SessionStats::default() }
+        Session {
+            reader,
+            replies,
+            tally: tally.then(Tally::default),
+            executor,
+            closed,
+            stats: SessionStats::default(),
+            counter: None,
+        }
+    }
+
+    /// Also counts the bytes decoded into `counter`, readable while the session runs.
+    pub fn with_byte_counter(mut self, counter: Arc<AtomicU64>) -> Self {
+        self.counter = Some(counter);
+        self
     }
 
     /// Decodes and executes until the client leaves or misbehaves.
     pub fn run(mut self) -> (SessionEnd, SessionStats) {
         let closed = self.closed.clone();
         let alive = move || !closed.load(Ordering::Acquire);
-        let Session { reader, replies, tally, executor, stats, .. } = &mut self;
+        let Session { reader, replies, tally, executor, stats, counter, .. } = &mut self;
         loop {
             let r = reader.recv_batch::<Stop>(&alive, |bytes| {
                 stats.commands += 1;
                 stats.bytes += bytes.len() as u64;
+                if let Some(c) = counter {
+                    c.fetch_add(bytes.len() as u64, Ordering::Relaxed);
+                }
                 let cmd = codec::decode_command(bytes)?;
                 let op = cmd.opcode();
                 let reply = match cmd {
