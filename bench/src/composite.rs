@@ -60,7 +60,14 @@ struct Surface {
     depth: wgpu::TextureView,
 }
 
-fn texture(gpu: &Gpu, w: u32, h: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+/// A `w`×`h` 2D texture of one level.
+pub(crate) fn texture(
+    gpu: &Gpu,
+    w: u32,
+    h: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("bench image"),
         size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },

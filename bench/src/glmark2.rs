@@ -286,21 +286,28 @@ fn total(scores: &[u32]) -> f64 {
     scores.iter().map(|&s| f64::from(s)).sum()
 }
 
-/// Runs the benchmark and prints its report; the last line is JSON.
-pub fn run(args: &Args) -> Result<()> {
+/// What every glmark2 run needs: glmark2-es2 and Xvfb installed, a temporary directory, the
+/// shim directory (`--shim` or the library built beside this binary), and an X server.
+pub(crate) fn prepare(shim: Option<&Path>) -> Result<(TempDir, PathBuf, Xvfb)> {
     for (program, package) in [("glmark2-es2", "glmark2-es2-x11 and glmark2-data"), ("Xvfb", "xvfb")] {
         if which(program).is_none() {
             bail!("{program} not found on PATH; install the Debian package {package} (tools/install-deps does)");
         }
     }
+    let tmp = TempDir::new()?;
+    let shim = shim_dir(shim, &tmp)?;
+    let x = Xvfb::start()?;
+    Ok((tmp, shim, x))
+}
+
+/// Runs the benchmark and prints its report; the last line is JSON.
+pub fn run(args: &Args) -> Result<()> {
     if args.pairs == 0 || args.duration == 0 {
         bail!("--pairs and --duration must be positive");
     }
     let (win_w, win_h) = size(&args.size)?;
     let (out_w, out_h) = size(&args.output)?;
-    let tmp = TempDir::new()?;
-    let shim = shim_dir(args.shim.as_deref(), &tmp)?;
-    let x = Xvfb::start()?;
+    let (tmp, shim, x) = prepare(args.shim.as_deref())?;
     let log = tmp.0.join("daemon.log");
     let daemon: DaemonProc = start_daemon_with(
         strata_server::ExecutorKind::Gles,

@@ -34,7 +34,7 @@ use strata_client::ControlConnection;
 use strata_protocol::control::{OutputRow, SurfaceRow};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 
-use crate::glmark2::{finish, shim_dir, size, which, Side, TempDir, Xvfb};
+use crate::glmark2::{finish, prepare, size, Side};
 use crate::plot::{line_plot, Series};
 use crate::transport::start_daemon_with;
 
@@ -274,19 +274,12 @@ impl Bench<'_> {
 
 /// Runs the evaluation and prints its tables; the last line is JSON.
 pub fn run(args: &Args) -> Result<()> {
-    for (program, package) in [("glmark2-es2", "glmark2-es2-x11 and glmark2-data"), ("Xvfb", "xvfb")] {
-        if which(program).is_none() {
-            bail!("{program} not found on PATH; install the Debian package {package} (tools/install-deps does)");
-        }
-    }
     if args.duration == 0 || args.max_instances == 0 {
         bail!("--duration and --max-instances must be positive");
     }
     let (win_w, win_h) = size(&args.size)?;
     let (out_w, out_h) = size(&args.output)?;
-    let tmp = TempDir::new()?;
-    let shim = shim_dir(args.shim.as_deref(), &tmp)?;
-    let x = Xvfb::start()?;
+    let (tmp, shim, x) = prepare(args.shim.as_deref())?;
     let window = format!("{},{}", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
     let bench = Bench { args, display: x.display.clone(), shim, window };
 
@@ -362,16 +355,8 @@ fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
         .zip(&up)
         .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
         .collect();
-    let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("figure"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    let out = crate::composite::texture(&gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     let mut written = Vec::new();
     for (figure, light) in [("5-6", far_light()), ("5-7", near_light())] {
         comp.composite(&gl, &light, &out, [0.0, 0.0, 0.0, 1.0], None);
