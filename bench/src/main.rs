@@ -6,6 +6,8 @@ mod execute;
 mod glmark2;
 mod mesh;
 mod plot;
+mod soak;
+mod soak_client;
 mod thesis;
 mod transport;
 
@@ -57,6 +59,13 @@ enum Cmd {
     /// one area at one z, natively, at one z each, and through the 2D baseline; JSON and a PNG
     /// per figure.
     Thesis(thesis::Args),
+    /// The daemon under client churn: a bystander's every frame checked against the same
+    /// frame alone while clients are started and killed at random points; RSS over time as
+    /// JSON and a PNG.
+    Soak(soak::Args),
+    /// One client of the soak (started by `soak` itself).
+    #[command(hide = true)]
+    SoakClient(soak_client::Args),
 }
 
 fn main() -> Result<()> {
@@ -71,5 +80,7 @@ fn main() -> Result<()> {
             transport::daemon(socket, executor, outputs, compositor, max_textures)
         }
         Cmd::Thesis(args) => thesis::run(&args),
+        Cmd::Soak(args) => soak::run(&args),
+        Cmd::SoakClient(args) => soak_client::run(&args),
     }
 }

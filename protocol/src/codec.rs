@@ -85,6 +85,12 @@ fn peek_variant(bytes: &[u8]) -> Option<u64> {
     }
 }
 
+/// The opcode at the start of an encoded command, without decoding the rest (for a command
+/// the daemon refuses unread, such as one beyond the client's size limit).
+pub fn peek_opcode(bytes: &[u8]) -> Option<Opcode> {
+    peek_variant(bytes).and_then(|i| u32::try_from(i).ok()).and_then(Opcode::from_index)
+}
+
 /// Decodes one command, borrowing bulk data from `bytes`. Every byte must be used.
 pub fn decode_command(bytes: &[u8]) -> Result<Command<'_>, CodecError> {
     let index = peek_variant(bytes).ok_or_else(|| CodecError::Malformed {
@@ -109,8 +115,35 @@ pub fn decode_reply(bytes: &[u8]) -> Result<Reply, CodecError> {
 }
 
 /// Decodes an owned value (handshake messages, replies). Every byte must be used.
+///
+/// bincode allocates an owned string or byte array at its announced length before reading it,
+/// within the configured limit. A valid message announces at most its own length in all, so the
+/// limit follows the message's size: a forged length costs at most 16 times the bytes that
+/// carried it (and never more than [`MAX_MESSAGE_LEN`]), not the whole limit.
 pub fn decode_owned<T: DeserializeOwned>(bytes: &[u8], what: &'static str) -> Result<T, CodecError> {
-    let (v, used) = bincode::serde::decode_from_slice::<T, _>(bytes, config())
+    let n = bytes.len();
+    if n <= 4 << 10 {
+        decode_owned_within::<T, { 4 << 10 }>(bytes, what)
+    } else if n <= 64 << 10 {
+        decode_owned_within::<T, { 64 << 10 }>(bytes, what)
+    } else if n <= 1 << 20 {
+        decode_owned_within::<T, { 1 << 20 }>(bytes, what)
+    } else if n <= 16 << 20 {
+        decode_owned_within::<T, { 16 << 20 }>(bytes, what)
+    } else if n <= 256 << 20 {
+        decode_owned_within::<T, { 256 << 20 }>(bytes, what)
+    } else {
+        decode_owned_within::<T, MAX_MESSAGE_LEN>(bytes, what)
+    }
+}
+
+/// [`decode_owned`] with at most `LIMIT` bytes of owned strings and byte arrays.
+fn decode_owned_within<T: DeserializeOwned, const LIMIT: usize>(
+    bytes: &[u8],
+    what: &'static str,
+) -> Result<T, CodecError> {
+    let config = bincode::config::standard().with_limit::<LIMIT>();
+    let (v, used) = bincode::serde::decode_from_slice::<T, _>(bytes, config)
         .map_err(|e| CodecError::Malformed { what: what.into(), reason: e.to_string() })?;
     if used != bytes.len() {
         return Err(CodecError::TrailingBytes { what, used, len: bytes.len() });
@@ -167,6 +200,21 @@ mod tests {
         match decode_command(&bytes) {
             Err(CodecError::UnknownCommand { opcode: 60000, .. }) => {}
             other => panic!("expected UnknownCommand, got {other:?}"),
+        }
+    }
+
+    /// A forged length in a short message fails on the limit, before bincode allocates the
+    /// announced bytes: a 7-byte hello may not cost the daemon 256 MiB.
+    #[test]
+    fn forged_string_length_is_refused_before_allocating() {
+        // `Hello::name`: a string announcing 256 MiB (varint 253 + u64), then nothing.
+        let mut bytes = vec![253u8];
+        bytes.extend_from_slice(&(256u64 << 20).to_le_bytes());
+        match decode_owned::<crate::handshake::Hello>(&bytes, "hello") {
+            Err(CodecError::Malformed { reason, .. }) => {
+                assert!(reason.contains("LimitExceeded"), "refused only after allocating: {reason}")
+            }
+            other => panic!("expected a malformed hello, got {other:?}"),
         }
     }
 

@@ -1,7 +1,7 @@
 //! The generator behind the command table: one `macro_rules!` expansion yields the `Command`
-//! enum, `Opcode`, `Reply`, the typed `Calls` methods, (with `arbitrary`) test strategies, and
-//! `command_table!`, which hands the same table to a macro of another crate (the daemon derives
-//! its dispatch from it).
+//! enum, `Opcode`, `Reply`, the typed `Calls` methods, (with `arbitrary`) test strategies and
+//! `arbitrary::Arbitrary` commands for fuzzing, and `command_table!`, which hands the same table
+//! to a macro of another crate (the daemon derives its dispatch from it).
 
 /// Expands the command table (see `commands.rs`) into every derived item.
 macro_rules! command_set {
@@ -31,6 +31,7 @@ macro_rules! command_set {
 
         /// One call a client streams to the daemon, decoded in place from the ring.
         #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
         #[serde(bound(deserialize = "'de: 'a"))]
         #[allow(missing_docs)]
         pub enum Command<'a> {

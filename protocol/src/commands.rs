@@ -311,8 +311,9 @@ command_set! {
     }
 }
 
+/// Proptest strategies for the reply types (the command strategies are `Opcode::strategy`).
 #[cfg(feature = "arbitrary")]
-mod arbitrary {
+mod strategies {
     use super::*;
     use proptest::prelude::*;
 

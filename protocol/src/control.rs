@@ -1,6 +1,8 @@
 //! `stratad ctl`: the requests an administrator sends over a control connection and the
 //! daemon's answers, plus the lighting settings they read and change.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 /// Where lighting takes a fragment's normal from.
@@ -144,6 +146,54 @@ pub enum ControlRequest {
         /// The normal in output space (x right, y up, z towards the viewer); need not be unit.
         normal: [f32; 3],
     },
+    /// The daemon's memory, and every client's resources against its quota.
+    Stats,
+}
+
+/// One client's resources, as `stratad ctl stats` shows them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClientStats {
+    /// The client's number.
+    pub id: u64,
+    /// Its name.
+    pub name: String,
+    /// Its role.
+    pub role: String,
+    /// GPU memory it holds (buffers, texture and renderbuffer images, surfaces), bytes.
+    pub gpu_bytes: u64,
+    /// Its limit on that.
+    pub gpu_bytes_limit: u64,
+    /// Objects it holds, by kind (`buffers`, `textures`, …, `contexts`, `surfaces`).
+    pub objects: BTreeMap<String, u64>,
+    /// Allocations refused because they exceeded its quota.
+    pub refusals: u64,
+    /// Bytes of command stream it has sent.
+    pub stream_bytes: u64,
+}
+
+/// The daemon's resources, as `stratad ctl stats` shows them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DaemonStats {
+    /// Resident memory of the daemon process, bytes.
+    pub rss_bytes: u64,
+    /// The most resident memory it has had, bytes.
+    pub peak_rss_bytes: u64,
+    /// Of the resident memory, what is anonymous (heaps, stacks, driver allocations) rather
+    /// than pages of mapped files such as the program's and libraries' code, bytes.
+    pub rss_anon_bytes: u64,
+    /// Client sessions started since the daemon started.
+    pub sessions: u64,
+    /// Connected clients.
+    pub clients: Vec<ClientStats>,
+    /// GPU memory all clients hold, bytes.
+    pub gpu_bytes: u64,
+    /// The limit on that for all clients together.
+    pub gpu_bytes_limit: u64,
+    /// Objects all clients hold, by kind.
+    pub objects: BTreeMap<String, u64>,
+    /// Objects alive on the device, by type, as the GPU layer counts them (clients' and the
+    /// compositor's).
+    pub device_objects: BTreeMap<String, u64>,
 }
 
 /// One row of `stratad ctl list`: a window surface.
@@ -214,6 +264,8 @@ pub enum ControlReply {
     Moved(SurfaceRow),
     /// The lighting now in force.
     Light(Lighting),
+    /// The daemon's and its clients' resources.
+    Stats(DaemonStats),
     /// The request failed.
     Error(String),
 }

@@ -120,6 +120,10 @@ pub enum RingError {
     /// The region handed to the ring is unusable.
     #[error("bad ring geometry: {0}")]
     Geometry(String),
+    /// The tail the reader started from (as the peer left it in shared memory) is not at a
+    /// frame boundary: frames start 8-byte aligned.
+    #[error("reader tail {0} is not 8-byte aligned")]
+    MisalignedTail(u32),
 }
 
 /// Keeps the memory behind a ring mapped while any ring end uses it.
@@ -278,6 +282,24 @@ fn wait_change(
     }
 }
 
+/// A message as the reader delivers it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Message<'a> {
+    /// A whole message.
+    Whole(&'a [u8]),
+    /// A chunked message larger than the reader's limit, skipped without being kept: its
+    /// announced length and the start of its first chunk (enough to name its command).
+    Oversized {
+        /// The announced length.
+        len: u64,
+        /// Up to [`OVERSIZED_HEAD`] bytes from its start.
+        head: &'a [u8],
+    },
+}
+
+/// Bytes kept from the start of a message that is skipped for its size.
+pub const OVERSIZED_HEAD: usize = 16;
+
 /// The consuming end of a ring.
 pub struct Reader {
     ring: RingRegion,
@@ -286,13 +308,15 @@ pub struct Reader {
     max_message: usize,
     assembly: Vec<u8>,
     expected: Option<usize>,
+    /// Of an oversized message being skipped: the bytes seen so far.
+    skipped: Option<usize>,
 }
 
 impl Reader {
     /// Takes the consuming end; `max_message` bounds chunked messages.
     pub fn new(ring: RingRegion, max_message: usize) -> Self {
         let tail = ring.ctl().tail.0.load(Ordering::Acquire);
-        Reader { ring, tail, released: tail, max_message, assembly: Vec::new(), expected: None }
+        Reader { ring, tail, released: tail, max_message, assembly: Vec::new(), expected: None, skipped: None }
     }
 
     /// Whether a chunked message has begun but not ended.
@@ -313,6 +337,31 @@ impl Reader {
         alive: &dyn Fn() -> bool,
         mut on_message: impl FnMut(&[u8]) -> Result<(), E>,
     ) -> Result<usize, E> {
+        let limit = self.max_message;
+        self.receive(alive, false, |m| match m {
+            Message::Whole(bytes) => on_message(bytes),
+            Message::Oversized { len, .. } => Err(RingError::TooLarge { len, limit }.into()),
+        })
+    }
+
+    /// As [`Reader::recv_batch`], except that a chunked message beyond the limit is skipped
+    /// without being kept, and reported as [`Message::Oversized`] once its last chunk is read,
+    /// so that the stream goes on after it.
+    pub fn recv_messages<E: From<RingError>>(
+        &mut self,
+        alive: &dyn Fn() -> bool,
+        on_message: impl FnMut(Message<'_>) -> Result<(), E>,
+    ) -> Result<usize, E> {
+        self.receive(alive, true, on_message)
+    }
+
+    /// Delivers messages; an oversized one is skipped when `skip`, else refused at once.
+    fn receive<E: From<RingError>>(
+        &mut self,
+        alive: &dyn Fn() -> bool,
+        skip: bool,
+        mut on_message: impl FnMut(Message<'_>) -> Result<(), E>,
+    ) -> Result<usize, E> {
         let ctl = self.ring.ctl();
         let mut head = ctl.head.0.load(Ordering::Acquire);
         if head == self.tail {
@@ -330,6 +379,10 @@ impl Reader {
                 return Err(RingError::Truncated { needed: FRAME_HEADER, available }.into());
             }
             let off = self.ring.offset(self.tail);
+            // Frames keep the tail aligned; only a tail planted before the reader began is not.
+            if !off.is_multiple_of(8) {
+                return Err(RingError::MisalignedTail(self.tail).into());
+            }
             let (len, kind) = self.ring.read_header(off);
             if kind == KIND_WRAP {
                 let skip = cap as usize - off;
@@ -354,7 +407,7 @@ impl Reader {
                     if self.expected.is_some() {
                         return Err(RingError::BadChunk("whole message inside a chunked one").into());
                     }
-                    on_message(payload)?;
+                    on_message(Message::Whole(payload))?;
                     delivered += 1;
                 }
                 KIND_CHUNK_FIRST => {
@@ -365,16 +418,44 @@ impl Reader {
                         .split_first_chunk::<8>()
                         .ok_or(RingError::BadChunk("first chunk lacks the total length"))?;
                     let total = u64::from_le_bytes(*total);
-                    if total > self.max_message as u64 {
-                        return Err(RingError::TooLarge { len: total, limit: self.max_message }.into());
-                    }
                     if (rest.len() as u64) > total {
                         return Err(RingError::BadChunk("chunk exceeds the announced size").into());
+                    }
+                    if total > self.max_message as u64 && !skip {
+                        return Err(RingError::TooLarge { len: total, limit: self.max_message }.into());
+                    }
+                    if total > self.max_message as u64 {
+                        // Kept: only the head, to name the command when it is refused.
+                        let total = usize::try_from(total)
+                            .map_err(|_| RingError::TooLarge { len: total, limit: self.max_message })?;
+                        self.assembly.clear();
+                        self.assembly.extend_from_slice(&rest[..rest.len().min(OVERSIZED_HEAD)]);
+                        self.skipped = Some(rest.len());
+                        self.expected = Some(total);
+                        self.tail = self.tail.wrapping_add(size as u32);
+                        continue;
                     }
                     self.assembly.clear();
                     self.assembly.reserve(total as usize);
                     self.assembly.extend_from_slice(rest);
                     self.expected = Some(total as usize);
+                }
+                KIND_CHUNK_MORE | KIND_CHUNK_LAST if self.skipped.is_some() => {
+                    let total = self.expected.ok_or(RingError::BadChunk("continuation without a first chunk"))?;
+                    let seen = self.skipped.unwrap_or(0) + payload.len();
+                    if seen > total {
+                        return Err(RingError::BadChunk("chunks exceed the announced size").into());
+                    }
+                    self.skipped = Some(seen);
+                    if kind == KIND_CHUNK_LAST {
+                        if seen != total {
+                            return Err(RingError::BadChunk("chunked message ended short").into());
+                        }
+                        self.expected = None;
+                        self.skipped = None;
+                        on_message(Message::Oversized { len: total as u64, head: &self.assembly })?;
+                        delivered += 1;
+                    }
                 }
                 KIND_CHUNK_MORE | KIND_CHUNK_LAST => {
                     let total = self.expected.ok_or(RingError::BadChunk("continuation without a first chunk"))?;
@@ -388,7 +469,7 @@ impl Reader {
                         }
                         self.expected = None;
                         let msg = std::mem::take(&mut self.assembly);
-                        let r = on_message(&msg);
+                        let r = on_message(Message::Whole(&msg));
                         self.assembly = msg;
                         if self.assembly.capacity() > (64 << 20) {
                             self.assembly = Vec::new();
@@ -622,6 +703,40 @@ mod tests {
         producer.join().expect("producer");
     }
 
+    /// A chunked message beyond the reader's limit is skipped unkept and reported with its
+    /// length and head; the messages around it arrive whole and in order. `recv_batch` still
+    /// refuses it.
+    #[test]
+    fn oversized_messages_are_skipped_and_the_stream_goes_on() {
+        let ring = heap_ring(1 << 14);
+        let reader_ring = ring.clone();
+        let producer = std::thread::spawn(move || {
+            let mut w = Writer::new(ring, 4096);
+            for len in [100usize, 50_000, 200] {
+                let msg = message(len as u64, len);
+                w.write::<RingError>(len, &|| true, |buf| Ok(buf.copy_from_slice(&msg))).expect("write");
+            }
+            w.publish();
+        });
+        let mut r = Reader::new(reader_ring, 10_000);
+        let mut seen = Vec::new();
+        while seen.len() < 3 {
+            r.recv_messages::<RingError>(&|| true, |m| {
+                seen.push(match m {
+                    Message::Whole(b) => (b.len() as u64, b.to_vec()),
+                    Message::Oversized { len, head } => (len, head.to_vec()),
+                });
+                Ok(())
+            })
+            .expect("read");
+        }
+        producer.join().expect("producer");
+        assert_eq!(seen[0], (100, message(100, 100)));
+        assert_eq!(seen[1], (50_000, message(50_000, 50_000)[..OVERSIZED_HEAD].to_vec()));
+        assert_eq!(seen[2], (200, message(200, 200)));
+        assert!(!r.mid_message());
+    }
+
     fn read_one(ring: RingRegion) -> Result<usize, RingError> {
         let mut r = Reader::new(ring, 1 << 20);
         r.recv_batch::<RingError>(&|| false, |_| Ok(()))
@@ -647,6 +762,20 @@ mod tests {
             w.publish();
             let err = read_one(ring).expect_err(want);
             assert!(format!("{err:?}").starts_with(want), "{want}: got {err:?}");
+        }
+    }
+
+    /// A client can set the tail before the daemon's reader starts: one off a frame boundary,
+    /// near the ring's end, is refused before any header is read past the data area.
+    #[test]
+    fn planted_misaligned_tail_is_rejected() {
+        let ring = heap_ring(4096);
+        let tail = 4096 - 3;
+        ring.ctl().tail.0.store(tail, Ordering::SeqCst);
+        ring.ctl().head.0.store(tail + 16, Ordering::SeqCst);
+        match read_one(ring) {
+            Err(RingError::MisalignedTail(t)) => assert_eq!(t, tail),
+            other => panic!("expected MisalignedTail, got {other:?}"),
         }
     }
 

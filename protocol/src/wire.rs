@@ -217,8 +217,9 @@ impl<'de: 'a, 'a, T: Pod> Deserialize<'de> for Slice<'a, T> {
     }
 }
 
+/// Proptest strategies for the bulk field types.
 #[cfg(feature = "arbitrary")]
-mod arbitrary {
+mod strategies {
     use super::*;
     use proptest::prelude::*;
 
@@ -243,6 +244,35 @@ mod arbitrary {
         type Strategy = BoxedStrategy<Self>;
         fn arbitrary_with(_: ()) -> Self::Strategy {
             proptest::collection::vec(any::<T>(), 0..40).prop_map(Slice::from_vec).boxed()
+        }
+    }
+}
+
+/// `arbitrary::Arbitrary` for the bulk field types, borrowing from the fuzzer's input as a
+/// decoded command borrows from the ring.
+#[cfg(feature = "arbitrary")]
+mod fuzzing {
+    use super::*;
+    use ::arbitrary::{Arbitrary, Result, Unstructured};
+
+    impl<'a> Arbitrary<'a> for Blob<'a> {
+        fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+            Ok(Blob::borrowed(<&[u8]>::arbitrary(u)?))
+        }
+    }
+
+    impl<'a> Arbitrary<'a> for Text<'a> {
+        fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+            Ok(Text::borrowed(<&str>::arbitrary(u)?))
+        }
+    }
+
+    impl<'a, T: Pod> Arbitrary<'a> for Slice<'a, T> {
+        fn arbitrary(u: &mut Unstructured<'a>) -> Result<Self> {
+            // A whole number of elements, as decoding requires.
+            let len = u.arbitrary_len::<u8>()?;
+            let bytes = u.bytes(len - len % std::mem::size_of::<T>().max(1))?;
+            Ok(Slice { bytes: Cow::Borrowed(bytes), _ty: PhantomData })
         }
     }
 }

@@ -44,6 +44,8 @@ pub struct Gpu {
     pub instance: wgpu::Instance,
     /// The adapter, for window surfaces' capabilities.
     pub adapter: wgpu::Adapter,
+    /// What every client's GLES renderer shares, built by the first one.
+    pub gles: std::sync::OnceLock<Arc<crate::gles::RendererFixed>>,
 }
 
 /// A fragment-stage binding of a 2D texture read with `textureLoad` (`sample_type`: a
@@ -320,6 +322,7 @@ impl Gpu {
             limits,
             instance,
             adapter,
+            gles: std::sync::OnceLock::new(),
         }))
     }
 }

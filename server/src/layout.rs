@@ -29,13 +29,17 @@ pub struct LayoutEntry {
 }
 
 /// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
-/// and optionally `width`, `height`.
+/// and optionally `width`, `height`; `[[quota]]` tables with `client` and limits.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
     /// Layout entries, first match wins.
     #[serde(default)]
     pub layout: Vec<LayoutEntry>,
+    /// Per-client quotas (`[[quota]]` with `client` and any of the `--quota-*` names without
+    /// the prefix), first match wins.
+    #[serde(default)]
+    pub quota: Vec<crate::quota::QuotaEntry>,
 }
 
 /// A layout or configuration that cannot be used.
@@ -131,6 +135,12 @@ impl Config {
             toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p, message: e.to_string() })?;
         for e in &config.layout {
             e.validate()?;
+        }
+        if let Some(q) = config.quota.iter().find(|q| q.client.is_empty()) {
+            return Err(LayoutError::Invalid {
+                client: q.client.clone(),
+                why: "a [[quota]] entry has no client name".into(),
+            });
         }
         Ok(config)
     }

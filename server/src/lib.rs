@@ -12,6 +12,8 @@ pub mod demo;
 pub mod gles;
 pub mod gpu;
 pub mod layout;
+pub mod quota;
 pub mod root;
 pub mod scene;
+pub mod stats;
 pub mod window;

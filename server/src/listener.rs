@@ -52,6 +52,12 @@ pub struct ServeOptions {
     pub frames_in_flight: u32,
     /// Where clients' window surfaces go unless they say (first match by client name wins).
     pub layout: Vec<crate::layout::LayoutEntry>,
+    /// Each client's limits, unless a quota entry names it.
+    pub limits: crate::quota::Limits,
+    /// Per-client limits by client name (first match wins).
+    pub quotas: Vec<crate::quota::QuotaEntry>,
+    /// GPU memory all clients together may hold.
+    pub total_gpu_bytes: u64,
 }
 
 /// The executor each client session gets.
@@ -78,6 +84,9 @@ impl Default for ServeOptions {
             refresh_hz: 60.0,
             frames_in_flight: 2,
             layout: Vec::new(),
+            limits: crate::quota::Limits::default(),
+            quotas: Vec::new(),
+            total_gpu_bytes: crate::quota::default_total(),
         }
     }
 }
@@ -143,6 +152,8 @@ pub struct ClientInfo {
     pub name: String,
     /// Role from the hello.
     pub role: String,
+    /// Its quota and what it holds.
+    pub account: Arc<crate::quota::Account>,
 }
 
 struct Shared {
@@ -152,6 +163,8 @@ struct Shared {
     root: Option<Arc<crate::root::Root>>,
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
+    pool: Arc<crate::quota::Pool>,
+    sessions: AtomicU64,
     shutdown: watch::Receiver<bool>,
 }
 
@@ -191,13 +204,15 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     info!(socket = %opts.socket.display(), "stratad serving");
     let (stop_tx, stop_rx) = watch::channel(false);
     let shared = Arc::new(Shared {
-        opts,
         gpu,
         scene,
         root,
+        pool: crate::quota::Pool::new(opts.total_gpu_bytes),
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
+        sessions: AtomicU64::new(0),
         shutdown: stop_rx,
+        opts,
     });
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
@@ -310,6 +325,13 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
             outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
             surfaces: shared.scene.rows(),
         },
+        ControlRequest::Stats => ControlReply::Stats(crate::stats::collect(
+            shared.gpu.as_deref(),
+            &shared.pool,
+            shared.sessions.load(Ordering::Relaxed),
+            &shared.clients.lock().map(|c| c.clone()).unwrap_or_default(),
+            &shared.scene,
+        )),
         ControlRequest::Screenshot { output } => {
             let Some(root) = &shared.root else {
                 return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
@@ -356,6 +378,15 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
     }
 }
 
+/// Returns the allocator's free pages to the system (glibc keeps them in its heaps otherwise).
+fn release_free_memory() {
+    #[cfg(target_env = "gnu")]
+    // SAFETY: malloc_trim only releases free memory; it is safe to call from any thread.
+    unsafe {
+        libc::malloc_trim(0);
+    }
+}
+
 #[derive(Debug, thiserror::Error)]
 enum SetupError {
     #[error(transparent)]
@@ -373,6 +404,8 @@ async fn run_client(
     hello: &Hello,
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
+    let limits = crate::quota::limits_for(opts.limits, &opts.quotas, &hello.name);
+    let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
     let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
     let welcome = ServerMessage::Welcome {
         client_id: id,
@@ -389,7 +422,8 @@ async fn run_client(
     let waker = cmd_ring.clone();
     let closed = Arc::new(AtomicBool::new(false));
     let session = Session::new(
-        Reader::new(cmd_ring, MAX_MESSAGE_LEN),
+        // Larger commands are skipped unread and refused (see `Session::with_account`).
+        Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN)),
         Writer::new(reply_ring, 0),
         hello.tally,
         match &shared.gpu {
@@ -403,19 +437,19 @@ async fn run_client(
                 Box::new(
                     GlesExecutor::new(gpu.clone())
                         .with_scene(shared.scene.clone(), id, &hello.name)
-                        .with_layout(layout.cloned()),
+                        .with_layout(layout.cloned())
+                        .with_account(account.clone()),
                 ) as Box<dyn crate::executor::Executor>
             }
             None => Box::new(Drain::default()),
         },
         closed.clone(),
     )
-    .with_byte_counter(shared.scene.stream_counter(id));
-    shared
-        .clients
-        .lock()
-        .map(|mut c| c.insert(id, ClientInfo { name: hello.name.clone(), role: hello.role.clone() }))
-        .ok();
+    .with_byte_counter(shared.scene.stream_counter(id))
+    .with_account(account.clone());
+    let info = ClientInfo { name: hello.name.clone(), role: hello.role.clone(), account };
+    shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
+    shared.sessions.fetch_add(1, Ordering::Relaxed);
     info!(segment = segment.name(), "client connected");
     let (done_tx, mut done_rx) = oneshot::channel();
     let span = tracing::Span::current();
@@ -425,7 +459,11 @@ async fn run_client(
             // Everything the session logs (GPU errors included) carries the client's identity.
             let _span = span.enter();
             let _keep = segment;
-            let _ = done_tx.send(session.run());
+            let ended = session.run();
+            // The session and everything its client held are freed by now: give the pages
+            // back, so that clients coming and going leave the daemon's memory where it was.
+            release_free_memory();
+            let _ = done_tx.send(ended);
         })
         .map_err(|e| {
             shared.scene.forget_stream(id);

@@ -8,7 +8,6 @@ use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
-use strata_protocol::control::LightChange;
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_server::compositor::{Lighting, Mode, NormalSource};
@@ -16,6 +15,8 @@ use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
 use tracing::info;
+
+mod ctl;
 
 /// Strata: a consolidated 3D compositing window manager daemon.
 #[derive(Parser)]
@@ -72,6 +73,10 @@ enum Cmd {
         /// A layout entry: CLIENT=X,Y,Z[,WxH] (repeatable; before the config file's entries).
         #[arg(long = "layout")]
         layouts: Vec<LayoutEntry>,
+        /// Each client's limits (a `[[quota]]` entry of the config file overrides them for a
+        /// client by name), and the total.
+        #[command(flatten)]
+        quota: strata_server::quota::QuotaArgs,
     },
     /// Administer a running daemon.
     Ctl {
@@ -82,7 +87,7 @@ enum Cmd {
         #[arg(long)]
         json: bool,
         #[command(subcommand)]
-        what: CtlCmd,
+        what: ctl::CtlCmd,
     },
     /// Run a built-in demo client (started by `stratad demo`).
     #[command(hide = true)]
@@ -133,83 +138,6 @@ enum Cmd {
     },
 }
 
-#[derive(Subcommand)]
-enum CtlCmd {
-    /// List every output and window surface.
-    List,
-    /// Save an output's current image as a PNG.
-    Screenshot {
-        /// Output name (as `list` shows it).
-        output: String,
-        /// The PNG to write.
-        file: PathBuf,
-    },
-    /// Move a window surface in the output space.
-    Move {
-        /// Surface id (as `list` shows it).
-        surface: u64,
-        /// New left edge.
-        #[arg(allow_negative_numbers = true)]
-        x: i32,
-        /// New top edge.
-        #[arg(allow_negative_numbers = true)]
-        y: i32,
-        /// New depth layer (larger is farther).
-        #[arg(allow_negative_numbers = true)]
-        z: f32,
-    },
-    /// Set a window surface's normal for per-surface lighting.
-    Normal {
-        /// Surface id (as `list` shows it).
-        surface: u64,
-        /// The normal X,Y,Z (x right, y up, z towards the viewer).
-        #[arg(value_parser = vec3, allow_hyphen_values = true)]
-        normal: [f32; 3],
-    },
-    /// Show or change the uniform lighting.
-    Light {
-        #[command(subcommand)]
-        what: LightCmd,
-    },
-}
-
-#[derive(Subcommand)]
-enum LightCmd {
-    /// Turn lighting on.
-    On,
-    /// Turn lighting off.
-    Off,
-    /// Show the lighting in force.
-    Show,
-    /// Change lighting parameters.
-    Set {
-        /// Light position X,Y,Z (output space: x, y in [-1, 1], y up, the output at z = 0).
-        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
-        position: Option<[f32; 3]>,
-        /// Viewer position X,Y,Z.
-        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
-        view: Option<[f32; 3]>,
-        /// Light colour R,G,B in [0, 1].
-        #[arg(long, value_parser = vec3)]
-        color: Option<[f32; 3]>,
-        /// Ambient factor in [0, 1].
-        #[arg(long)]
-        ambient: Option<f32>,
-        /// Specular exponent.
-        #[arg(long)]
-        shininess: Option<f32>,
-        /// Where normals come from.
-        #[arg(long, value_enum)]
-        normals: Option<Normals>,
-    },
-}
-
-fn vec3(s: &str) -> Result<[f32; 3], String> {
-    let v: Vec<f32> =
-        s.split(',').map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p:?}: {e}"))).collect::<Result<_, _>>()?;
-    <[f32; 3]>::try_from(v).map_err(|_| format!("{s:?} is not three comma-separated numbers"))
-}
-
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum Switch {
     On,
@@ -217,7 +145,7 @@ enum Switch {
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
-enum Normals {
+pub(crate) enum Normals {
     PerSurface,
     FromDepth,
 }
@@ -258,9 +186,13 @@ fn main() -> Result<()> {
             frames_in_flight,
             config,
             mut layouts,
+            quota,
         } => {
+            let mut quotas = Vec::new();
             if let Some(path) = config {
-                layouts.extend(Config::load(&path)?.layout);
+                let c = Config::load(&path)?;
+                layouts.extend(c.layout);
+                quotas = c.quota;
             }
             let lighting =
                 Lighting { enabled: matches!(lighting, Switch::On), normals: normals.into(), ..Lighting::default() };
@@ -284,10 +216,13 @@ fn main() -> Result<()> {
                 refresh_hz,
                 frames_in_flight,
                 layout: layouts,
+                limits: quota.limits(),
+                quotas,
+                total_gpu_bytes: quota.total(),
             };
             run_daemon(opts)
         }
-        Cmd::Ctl { socket, json, what } => ctl(&socket.unwrap_or_else(default_socket_path), json, what),
+        Cmd::Ctl { socket, json, what } => ctl::run(&socket.unwrap_or_else(default_socket_path), json, what),
         Cmd::DemoClient { socket, role, frames } => Ok(strata_server::demo::run_client(&socket, &role, frames)?),
         Cmd::Client { socket, name, role, commands, verify_every, max_upload, seed } => {
             let opts = ConnectOptions {
@@ -303,7 +238,21 @@ fn main() -> Result<()> {
     }
 }
 
+/// Makes the daemon give memory back when clients leave: allocations of 1 MiB and more (ring
+/// messages being assembled, uploads, the driver's images) are mapped on their own and unmapped
+/// when freed. By default glibc raises this threshold after the first large free, after which
+/// such blocks are carved from its heaps, which a departed client's frees leave fragmented and
+/// resident; and it keeps one heap per thread that ever allocated, up to 8 per core.
+fn return_memory_when_clients_leave() {
+    // SAFETY: mallopt only changes allocator parameters; it is called before other threads start.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
+        libc::mallopt(libc::M_ARENA_MAX, 4);
+    }
+}
+
 fn run_daemon(opts: ServeOptions) -> Result<()> {
+    return_memory_when_clients_leave();
     let rt = tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build()?;
     rt.block_on(async {
         let shutdown = async {
@@ -361,123 +310,10 @@ fn check(t: strata_protocol::StreamTally, name: &str) -> Result<()> {
     Ok(())
 }
 
-fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Vec<u8>) -> Result<()> {
+pub(crate) fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Vec<u8>) -> Result<()> {
     let img = image::RgbaImage::from_raw(width, height, rgba).context("screenshot has the wrong size")?;
     img.save(path).with_context(|| format!("writing {}", path.display()))?;
     Ok(())
-}
-
-fn ctl(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
-    let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
-    let request = match &what {
-        CtlCmd::List => ControlRequest::List,
-        CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
-        CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
-        CtlCmd::Normal { surface, normal } => ControlRequest::Normal { surface: *surface, normal: *normal },
-        CtlCmd::Light { what } => ControlRequest::Light(match what {
-            LightCmd::On => LightChange { enabled: Some(true), ..Default::default() },
-            LightCmd::Off => LightChange { enabled: Some(false), ..Default::default() },
-            LightCmd::Show => LightChange::default(),
-            LightCmd::Set { position, view, color, ambient, shininess, normals } => LightChange {
-                enabled: None,
-                ambient: *ambient,
-                shininess: *shininess,
-                position: *position,
-                view: *view,
-                color: *color,
-                normals: normals.map(Into::into),
-            },
-        }),
-    };
-    match (c.request(&request)?, what) {
-        (ControlReply::Error(e), _) => bail!("{e}"),
-        (ControlReply::List { outputs, surfaces }, _) => {
-            if json {
-                println!("{}", serde_json::json!({"outputs": outputs, "surfaces": surfaces}));
-                return Ok(());
-            }
-            println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9}  last redrawn",
-                "output", "kind", "x", "y", "w", "h", "composites", "passes", "ms each"
-            );
-            for o in outputs {
-                let r = o.region;
-                let ms = o.composite_us as f64 / 1000.0 / o.composites.max(1) as f64;
-                println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2}  {}x{}+{}+{}",
-                    o.name,
-                    o.kind,
-                    o.rect[0],
-                    o.rect[1],
-                    o.rect[2],
-                    o.rect[3],
-                    o.composites,
-                    o.passes,
-                    r[2],
-                    r[3],
-                    r[0],
-                    r[1]
-                );
-            }
-            println!();
-            println!(
-                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12}",
-                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval", "stream bytes"
-            );
-            for r in surfaces {
-                println!(
-                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12}",
-                    r.id,
-                    format!("{} ({})", r.client, r.client_id),
-                    r.rect[0],
-                    r.rect[1],
-                    r.rect[2],
-                    r.rect[3],
-                    r.z,
-                    r.frames,
-                    r.shown,
-                    r.interval,
-                    r.stream_bytes
-                );
-            }
-            Ok(())
-        }
-        (ControlReply::Image { width, height, rgba }, CtlCmd::Screenshot { file, .. }) => {
-            save_png(&file, width, height, rgba.0)?;
-            if json {
-                println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
-            } else {
-                println!("wrote {} ({width}x{height})", file.display());
-            }
-            Ok(())
-        }
-        (ControlReply::Moved(r), _) => {
-            if json {
-                println!("{}", serde_json::json!(r));
-            } else {
-                println!("surface {} now at x {} y {} z {}, normal {:?}", r.id, r.rect[0], r.rect[1], r.z, r.normal);
-            }
-            Ok(())
-        }
-        (ControlReply::Light(l), _) => {
-            if json {
-                println!("{}", serde_json::json!(l));
-            } else {
-                println!(
-                    "lighting {}: ambient {} shininess {} position {:?} view {:?} color {:?} normals {:?}",
-                    if l.enabled { "on" } else { "off" },
-                    l.ambient,
-                    l.shininess,
-                    l.position,
-                    l.view,
-                    l.color,
-                    l.normals
-                );
-            }
-            Ok(())
-        }
-        (other, _) => bail!("unexpected reply {other:?}"),
-    }
 }
 
 fn demo(frames: u32, out: &std::path::Path) -> Result<()> {

@@ -175,6 +175,11 @@ impl Scene {
         counter
     }
 
+    /// Bytes of command stream client `client` has sent.
+    pub fn stream_bytes(&self, client: u64) -> u64 {
+        self.streams.lock().ok().and_then(|m| m.get(&client).map(|c| c.load(Ordering::Relaxed))).unwrap_or(0)
+    }
+
     /// Drops a departed client's counter.
     pub fn forget_stream(&self, client: u64) {
         if let Ok(mut m) = self.streams.lock() {

@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 
 use strata_protocol::codec::{self, CodecError};
-use strata_protocol::ring::{Reader, RingError, Writer};
+use strata_protocol::ring::{Message, Reader, RingError, Writer};
 use strata_protocol::tally::Tally;
 use strata_protocol::{Command, Reply, StreamTally};
 
@@ -61,6 +61,8 @@ pub struct Session {
     stats: SessionStats,
     /// Where the bytes decoded are also counted for others to read (`ctl list`).
     counter: Option<Arc<AtomicU64>>,
+    /// The client's quota: the largest command it may send.
+    account: Option<Arc<crate::quota::Account>>,
 }
 
 impl Session {
@@ -81,6 +83,7 @@ impl Session {
             closed,
             stats: SessionStats::default(),
             counter: None,
+            account: None,
         }
     }
 
@@ -90,17 +93,48 @@ impl Session {
         self
     }
 
+    /// Refuses commands larger than `account` allows, as `GL_OUT_OF_MEMORY`.
+    pub fn with_account(mut self, account: Arc<crate::quota::Account>) -> Self {
+        self.account = Some(account);
+        self
+    }
+
     /// Decodes and executes until the client leaves or misbehaves.
     pub fn run(mut self) -> (SessionEnd, SessionStats) {
         let closed = self.closed.clone();
         let alive = move || !closed.load(Ordering::Acquire);
-        let Session { reader, replies, tally, executor, stats, counter, .. } = &mut self;
+        let Session { reader, replies, tally, executor, stats, counter, account, .. } = &mut self;
         loop {
-            let r = reader.recv_batch::<Stop>(&alive, |bytes| {
+            let r = reader.recv_messages::<Stop>(&alive, |message| {
+                let (bytes, len) = match message {
+                    Message::Whole(bytes) => (bytes, bytes.len() as u64),
+                    // The reader kept only its start; it is refused below.
+                    Message::Oversized { len, head } => (head, len),
+                };
                 stats.commands += 1;
-                stats.bytes += bytes.len() as u64;
+                stats.bytes += len;
                 if let Some(c) = counter {
-                    c.fetch_add(bytes.len() as u64, Ordering::Relaxed);
+                    c.fetch_add(len, Ordering::Relaxed);
+                }
+                let admitted = match account {
+                    Some(a) => a.admit_command(len),
+                    None if matches!(message, Message::Oversized { .. }) => {
+                        return Err(RingError::TooLarge { len, limit: codec::MAX_MESSAGE_LEN }.into())
+                    }
+                    None => Ok(()),
+                };
+                if let Err(e) = admitted {
+                    // Too large to run: the client's call fails, and the stream goes on.
+                    let op = codec::peek_opcode(bytes).ok_or(CodecError::UnknownCommand {
+                        opcode: u64::MAX,
+                        known: strata_protocol::Opcode::COUNT,
+                    })?;
+                    if let Some(reply) = executor.refuse(op, &e.to_string()) {
+                        let len = codec::encoded_len(&reply)?;
+                        replies.write::<Stop>(len, &alive, |buf| Ok(codec::encode_into(&reply, buf).map(|_| ())?))?;
+                        replies.publish();
+                    }
+                    return Ok(());
                 }
                 let cmd = codec::decode_command(bytes)?;
                 let op = cmd.opcode();

@@ -71,6 +71,31 @@ impl Daemon {
         d
     }
 
+    /// Like `start`, listening on `socket`, a path the caller owns: it outlives this daemon, so
+    /// that a later daemon can take it over.
+    pub fn start_at(tag: &str, socket: &Path, extra: &[&str]) -> Daemon {
+        let dir = TempDir::new(tag);
+        let log = dir.0.join("stratad.log");
+        let child = Command::new(stratad())
+            .arg("serve")
+            .arg("--socket")
+            .arg(socket)
+            .args(extra)
+            .env("RUST_LOG", "info")
+            .stderr(std::fs::File::create(&log).expect("log file"))
+            .spawn()
+            .expect("spawn stratad");
+        let d = Daemon { child, socket: socket.to_path_buf(), log, dir };
+        d.wait_listening();
+        d
+    }
+
+    /// Sends SIGKILL (no clean-up at all) and waits for the process to end.
+    pub fn kill(mut self) -> std::process::ExitStatus {
+        let _ = self.child.kill();
+        self.child.wait().expect("wait stratad")
+    }
+
     fn wait_listening(&self) {
         let deadline = Instant::now() + Duration::from_secs(20);
         while UnixStream::connect(&self.socket).is_err() {

@@ -1,17 +1,18 @@
 //! The EGL 1.4 entry points (plus `eglGetPlatformDisplay` and `EGL_EXT_platform_base`).
 //!
 //! Displays are the shim's own (so that `eglGetDisplay` works before the daemon is reached);
-//! `eglInitialize` connects to `stratad`. Configs and contexts are the daemon's handles;
-//! surfaces are the shim's, each backed by a daemon surface (see [`crate::surface`]). Each
-//! thread has its own current context and EGL error.
+//! `eglInitialize` connects to `stratad`, and connects again after it went away (see
+//! [`crate::display`]). Configs are the daemon's handles; contexts and surfaces are the shim's,
+//! each backed by a daemon object (see [`crate::context`] and [`crate::surface`]). Each thread
+//! has its own current context and EGL error.
 
 use std::ffi::{c_char, c_void, CStr};
 
-use strata_client::{ClientError, ConnectOptions, Connection};
-use strata_protocol::handshake::Placement;
-use strata_protocol::{Calls, EglResult, Slice};
+use strata_protocol::{Calls, Slice};
 
-use crate::state::{self, process, ContextInfo, Current, DisplayInfo, GlState, Process};
+use crate::context::{create_context, destroy_context, make_current, query_context, release_current};
+use crate::display::{daemon, get_display, initialize, initialized, platform_display, terminate};
+use crate::state::{self, process};
 use crate::surface::{self, window_id, x_display};
 use crate::types::*;
 use crate::x11;
@@ -104,174 +105,6 @@ unsafe fn attrib_list_wide(list: *const EGLAttrib) -> Result<Vec<EGLint>, EGLint
     Err(EGL_BAD_ATTRIBUTE)
 }
 
-/// Runs a daemon call on the process's connection, mapping transport failures to EGL errors.
-pub(crate) fn daemon<T>(
-    p: &mut Process,
-    call: impl FnOnce(&mut Connection, u32) -> Result<EglResult<T>, ClientError>,
-) -> Result<T, EGLint> {
-    let dd = p.daemon_display;
-    let Some(conn) = p.conn.as_mut() else {
-        return Err(if p.lost { EGL_CONTEXT_LOST } else { EGL_NOT_INITIALIZED });
-    };
-    match call(conn, dd) {
-        Ok(r) => r,
-        Err(ClientError::Unsupported(why)) => {
-            state::log_once(&format!("stratad does not support a call: {why}"));
-            Err(EGL_BAD_ACCESS)
-        }
-        Err(e) => {
-            p.lose(&e);
-            Err(EGL_CONTEXT_LOST)
-        }
-    }
-}
-
-/// Checks that `dpy` is one of the shim's displays and is initialized; returns its number.
-pub(crate) fn initialized(p: &mut Process, dpy: EGLDisplay) -> Result<usize, EGLint> {
-    let d = dpy as usize;
-    let info = p.display(d).ok_or(EGL_BAD_DISPLAY)?;
-    if !info.initialized {
-        return Err(EGL_NOT_INITIALIZED);
-    }
-    if p.lost {
-        return Err(EGL_CONTEXT_LOST);
-    }
-    Ok(d)
-}
-
-fn get_display(native: usize) -> EGLDisplay {
-    let mut p = process();
-    let n = match p.displays.iter().position(|d| d.native == native) {
-        Some(i) => i + 1,
-        None => {
-            p.displays.push(DisplayInfo { native, initialized: false, own_x11: None });
-            p.displays.len()
-        }
-    };
-    state::set_egl_error(EGL_SUCCESS);
-    n as EGLDisplay
-}
-
-fn platform_display(platform: EGLenum, native: *mut c_void) -> EGLDisplay {
-    if platform != EGL_PLATFORM_X11_KHR {
-        state::log_once(&format!("EGL platform {platform:#x} is not supported (only X11)"));
-        state::set_egl_error(EGL_BAD_PARAMETER);
-        return std::ptr::null_mut();
-    }
-    get_display(native as usize)
-}
-
-/// Releases this thread's current context (if any), on the daemon too when it is the one
-/// the daemon has current.
-fn release_current(p: &mut Process) -> Result<(), EGLint> {
-    let Some(cur) = state::current() else { return Ok(()) };
-    if let Some(c) = p.contexts.get_mut(&cur.context) {
-        c.owner = None;
-    }
-    state::set_current(None);
-    if p.daemon_current.is_some_and(|(c, _, _)| c == cur.context) {
-        p.daemon_current = None;
-        daemon(p, |c, dd| c.eglMakeCurrent(dd, 0, 0, 0))?;
-    }
-    Ok(())
-}
-
-fn make_current(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLContext) -> Result<(), EGLint> {
-    let mut p = process();
-    let (draw, read, ctx) = (handle(draw), handle(read), handle(ctx));
-    if ctx == 0 {
-        if draw != 0 || read != 0 {
-            return Err(EGL_BAD_MATCH);
-        }
-        // Releasing works on any valid display, even a terminated one.
-        p.display(dpy as usize).ok_or(EGL_BAD_DISPLAY)?;
-        return release_current(&mut p);
-    }
-    let d = initialized(&mut p, dpy)?;
-    let me = std::thread::current().id();
-    let c = p.contexts.get(&ctx).ok_or(EGL_BAD_CONTEXT)?;
-    if c.owner.is_some_and(|o| o != me) {
-        return Err(EGL_BAD_ACCESS);
-    }
-    if !p.surfaces.contains_key(&draw) || !p.surfaces.contains_key(&read) {
-        return Err(EGL_BAD_SURFACE);
-    }
-    surface::follow_window(&mut p, draw);
-    if read != draw {
-        surface::follow_window(&mut p, read);
-    }
-    let (d_draw, d_read) = (p.daemon_surface(draw), p.daemon_surface(read));
-    let (Some(d_draw), Some(d_read)) = (d_draw, d_read) else { return Err(EGL_BAD_SURFACE) };
-    surface::bind_daemon(&mut p, ctx, d_draw, d_read)?;
-    if let Some(old) = state::current() {
-        if let Some(c) = p.contexts.get_mut(&old.context) {
-            c.owner = None;
-        }
-    }
-    if let Some(c) = p.contexts.get_mut(&ctx) {
-        c.owner = Some(me);
-    }
-    state::set_current(Some(Current { display: d, draw, read, context: ctx }));
-    Ok(())
-}
-
-fn initialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> Result<(), EGLint> {
-    let mut p = process();
-    let d = dpy as usize;
-    p.display(d).ok_or(EGL_BAD_DISPLAY)?;
-    if p.lost {
-        return Err(EGL_CONTEXT_LOST);
-    }
-    if p.conn.is_none() {
-        let mut opts = ConnectOptions::default();
-        // The daemon's layout matches clients by name (the process name unless STRATA_NAME
-        // says otherwise); a placement from STRATA_WINDOW takes precedence over the layout.
-        if let Some(name) = std::env::var("STRATA_NAME").ok().filter(|n| !n.is_empty()) {
-            opts.name = name;
-        }
-        opts.placement = surface::explicit_placement().map(|p| Placement {
-            x: p.x,
-            y: p.y,
-            z: p.z,
-            width: p.size.map_or(0, |s| s.0 as u32),
-            height: p.size.map_or(0, |s| s.1 as u32),
-        });
-        match Connection::connect(&opts) {
-            Ok(c) => p.conn = Some(c),
-            Err(e) => {
-                tracing::error!("strata-egl: eglInitialize failed: {e}");
-                return Err(EGL_NOT_INITIALIZED);
-            }
-        }
-        let dd = match p.conn.as_mut().map(|c| c.eglGetDisplay(0)) {
-            Some(Ok(dd)) => dd,
-            Some(Err(e)) => {
-                p.lose(&e);
-                return Err(EGL_NOT_INITIALIZED);
-            }
-            None => return Err(EGL_NOT_INITIALIZED),
-        };
-        p.daemon_display = dd;
-    }
-    let (ma, mi) = daemon(&mut p, |c, dd| c.eglInitialize(dd)).map_err(|e| match e {
-        EGL_CONTEXT_LOST => EGL_NOT_INITIALIZED,
-        e => e,
-    })?;
-    if let Some(info) = p.display(d) {
-        info.initialized = true;
-    }
-    // SAFETY: both out-pointers are optional; non-null ones point at an EGLint.
-    unsafe {
-        if !major.is_null() {
-            *major = ma;
-        }
-        if !minor.is_null() {
-            *minor = mi;
-        }
-    }
-    Ok(())
-}
-
 fn choose_config(
     dpy: EGLDisplay,
     attribs: Vec<EGLint>,
@@ -318,72 +151,6 @@ fn config_attrib(dpy: EGLDisplay, config: EGLConfig, attribute: EGLint, value: *
     Ok(())
 }
 
-fn create_context(dpy: EGLDisplay, config: EGLConfig, share: EGLContext, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
-    if state::api() != EGL_OPENGL_ES_API {
-        return Err(EGL_BAD_MATCH);
-    }
-    let mut p = process();
-    let d = initialized(&mut p, dpy)?;
-    let (config, share) = (handle(config), handle(share));
-    let ctx = daemon(&mut p, |c, dd| c.eglCreateContext(dd, config, share, Slice::new(&attribs)))?;
-    p.contexts.insert(ctx, ContextInfo { display: d, config, owner: None, gl: GlState::default() });
-    Ok(ctx)
-}
-
-fn destroy_context(dpy: EGLDisplay, ctx: EGLContext) -> Result<(), EGLint> {
-    let mut p = process();
-    initialized(&mut p, dpy)?;
-    let ctx = handle(ctx);
-    daemon(&mut p, |c, dd| c.eglDestroyContext(dd, ctx))?;
-    p.contexts.remove(&ctx);
-    if p.daemon_current.is_some_and(|(c, _, _)| c == ctx) {
-        p.daemon_current = None;
-    }
-    if state::current().is_some_and(|c| c.context == ctx) {
-        state::set_current(None);
-    }
-    Ok(())
-}
-
-fn query_context(dpy: EGLDisplay, ctx: EGLContext, attribute: EGLint, value: *mut EGLint) -> Result<(), EGLint> {
-    if value.is_null() {
-        return Err(EGL_BAD_PARAMETER);
-    }
-    let mut p = process();
-    initialized(&mut p, dpy)?;
-    let c = p.contexts.get(&handle(ctx)).ok_or(EGL_BAD_CONTEXT)?;
-    let v = match attribute {
-        EGL_CONFIG_ID => c.config as EGLint,
-        EGL_CONTEXT_CLIENT_TYPE => EGL_OPENGL_ES_API as EGLint,
-        EGL_CONTEXT_CLIENT_VERSION => 2,
-        EGL_RENDER_BUFFER => match state::current() {
-            Some(cur) if cur.context == handle(ctx) => EGL_BACK_BUFFER,
-            _ => EGL_NONE,
-        },
-        _ => return Err(EGL_BAD_ATTRIBUTE),
-    };
-    // SAFETY: checked non-null above.
-    unsafe { *value = v };
-    Ok(())
-}
-
-fn terminate(dpy: EGLDisplay) -> Result<(), EGLint> {
-    let mut p = process();
-    let d = dpy as usize;
-    let info = p.display(d).ok_or(EGL_BAD_DISPLAY)?;
-    if !info.initialized {
-        return Ok(());
-    }
-    info.initialized = false;
-    if p.displays.iter().all(|d| !d.initialized) && p.conn.is_some() {
-        // The daemon's state is per connection; its display goes down with the last one here.
-        let _ = daemon(&mut p, |c, dd| c.eglTerminate(dd));
-        p.contexts.retain(|_, c| c.display != d || c.owner.is_some());
-        p.surfaces.retain(|_, s| s.display != d);
-    }
-    Ok(())
-}
-
 fn unsupported(name: &str, error: EGLint) -> EGLint {
     state::log_once(&format!("{name} is not supported; it fails with EGL error {error:#x}"));
     error
@@ -419,7 +186,7 @@ crate::entry_points! {
         platform_display(platform, native)
     }
 
-    /// Connects to stratad (once per process) and initializes the display.
+    /// Connects to stratad (once per process, and again after losing it) and initializes the display.
     fn eglInitialize(dpy: EGLDisplay, major: *mut EGLint, minor: *mut EGLint) -> EGLBoolean {
         boolean(initialize(dpy, major, minor))
     }
@@ -643,17 +410,17 @@ crate::entry_points! {
     /// Creates an ES 2.0 context in the daemon.
     fn eglCreateContext(dpy: EGLDisplay, config: EGLConfig, share: EGLContext, attribs: *const EGLint) -> EGLContext {
         // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_context(dpy, config, share, a)))
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| create_context(dpy, handle(config), handle(share), a)))
     }
 
     /// Destroys a context in the daemon.
     fn eglDestroyContext(dpy: EGLDisplay, ctx: EGLContext) -> EGLBoolean {
-        boolean(destroy_context(dpy, ctx))
+        boolean(destroy_context(dpy, handle(ctx)))
     }
 
     /// Binds a context to the calling thread (one current context per thread).
     fn eglMakeCurrent(dpy: EGLDisplay, draw: EGLSurface, read: EGLSurface, ctx: EGLContext) -> EGLBoolean {
-        boolean(make_current(dpy, draw, read, ctx))
+        boolean(make_current(dpy, handle(draw), handle(read), handle(ctx)))
     }
 
     /// The calling thread's current context.
@@ -681,7 +448,7 @@ crate::entry_points! {
 
     /// Config id, client type, client version and render buffer of a context.
     fn eglQueryContext(dpy: EGLDisplay, ctx: EGLContext, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
-        boolean(query_context(dpy, ctx, attribute, value))
+        boolean(query_context(dpy, handle(ctx), attribute, value))
     }
 
     /// Waits for the current context's GL commands (`glFinish`).

@@ -89,7 +89,8 @@ fn with_gl_locked<R>(
     let Some(cur) = state::current() else { return default };
     let mut guard = process();
     let p = &mut *guard;
-    if p.lost || p.conn.is_none() {
+    // The thread's context may have been lost with a connection that was replaced since.
+    if p.lost || p.conn.is_none() || p.live_context(cur.context).is_none() {
         if let Some(c) = p.contexts.get_mut(&cur.context) {
             c.gl.err(GL_CONTEXT_LOST);
         }
@@ -821,19 +822,16 @@ pub mod hand {
         /// The shim's own error first (including `GL_CONTEXT_LOST`), then the daemon's.
         fn glGetError() -> GLenum {
             let Some(cur) = state::current() else { return GL_NO_ERROR };
-            {
-                let mut p = process();
-                if let Some(c) = p.contexts.get_mut(&cur.context) {
-                    let e = std::mem::replace(&mut c.gl.error, GL_NO_ERROR);
-                    if e != GL_NO_ERROR {
-                        return e;
-                    }
-                }
-                if p.lost {
-                    return GL_NO_ERROR;
-                }
+            let pending = || process().contexts.get_mut(&cur.context).map_or(GL_NO_ERROR, |c| c.gl.take_error());
+            let (e, live) = (pending(), process().live_context(cur.context).is_some());
+            if e != GL_NO_ERROR || !live {
+                return e;
             }
-            with_gl("glGetError", GL_NO_ERROR, |gl| gl.conn.glGetError())
+            // A loss this call runs into is reported by this call.
+            match with_gl("glGetError", GL_NO_ERROR, |gl| gl.conn.glGetError()) {
+                GL_NO_ERROR => pending(),
+                e => e,
+            }
         }
 
         /// Forwarded after following the draw surface's window, which applications resize

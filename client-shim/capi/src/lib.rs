@@ -8,8 +8,10 @@
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 #![warn(missing_docs)]
 
+mod context;
 pub mod debug;
 pub mod discard;
+mod display;
 pub mod egl;
 pub mod gl;
 mod glvnd;

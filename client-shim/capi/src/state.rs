@@ -90,6 +90,11 @@ impl GlState {
         }
     }
 
+    /// Returns and clears the pending error.
+    pub fn take_error(&mut self) -> GLenum {
+        std::mem::replace(&mut self.error, GL_NO_ERROR)
+    }
+
     /// The buffer bound to `target`, if `target` is a buffer target.
     pub fn bound(&self, target: GLenum) -> Option<u32> {
         match target {
@@ -111,9 +116,12 @@ pub(crate) struct DisplayInfo {
     pub own_x11: Option<usize>,
 }
 
-/// A context the daemon created.
+/// A context as the application holds it: the shim numbers contexts itself, so that a handle
+/// from a lost connection never names a context of a later one.
 #[derive(Debug)]
 pub(crate) struct ContextInfo {
+    /// The daemon's handle for it; `None` once the connection it was made on is lost.
+    pub daemon: Option<u32>,
     /// The shim's display number.
     pub display: usize,
     /// Config it was created with.
@@ -149,14 +157,17 @@ pub(crate) struct WindowInfo {
 pub(crate) struct Process {
     /// The daemon connection, made by the first successful `eglInitialize`.
     pub conn: Option<Connection>,
-    /// Set once the daemon went away; every later call fails with a context-lost error.
+    /// Set once the daemon went away: calls fail with a context-lost error until an
+    /// `eglInitialize` connects again.
     pub lost: bool,
     /// Displays, numbered from 1 (the `EGLDisplay` value).
     pub displays: Vec<DisplayInfo>,
     /// The daemon's display handle.
     pub daemon_display: u32,
-    /// Contexts by daemon handle.
+    /// Contexts by the application's handle.
     pub contexts: HashMap<u32, ContextInfo>,
+    /// The next application context handle (never reused within the process).
+    pub next_context: u32,
     /// Surfaces by the application's handle.
     pub surfaces: HashMap<u32, SurfaceInfo>,
     /// The next application surface handle.
@@ -174,6 +185,7 @@ static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
         displays: Vec::new(),
         daemon_display: 0,
         contexts: HashMap::new(),
+        next_context: 1,
         surfaces: HashMap::new(),
         next_surface: 1,
         daemon_current: None,
@@ -187,16 +199,68 @@ pub(crate) fn process() -> MutexGuard<'static, Process> {
 }
 
 impl Process {
-    /// Records that the daemon went away: logged once, the connection is dropped.
+    /// Records that the daemon went away: logged once, the connection is dropped and every
+    /// context is lost (each records `GL_CONTEXT_LOST`).
     pub fn lose(&mut self, e: &ClientError) {
         if !self.lost {
-            tracing::error!("strata-egl: lost the connection to stratad ({e}); calls now fail with context lost");
+            tracing::error!(
+                "strata-egl: lost the connection to stratad ({e}); calls fail with context lost until eglInitialize \
+                 connects again"
+            );
         }
         self.lost = true;
         self.conn = None;
         self.daemon_current = None;
         for c in self.contexts.values_mut() {
+            c.daemon = None;
             c.gl.err(GL_CONTEXT_LOST);
+        }
+    }
+
+    /// Installs a new connection. After a loss, the lost connection's surfaces are forgotten, and
+    /// so are its contexts, except those still current to a thread, which stay lost until that
+    /// thread releases them. Returns how many contexts and surfaces were forgotten.
+    pub fn install_connection(&mut self, conn: Connection, daemon_display: u32) -> (usize, usize) {
+        let (contexts, surfaces) = (self.contexts.len(), self.surfaces.len());
+        if self.lost {
+            self.contexts.retain(|_, c| c.owner.is_some());
+            self.surfaces.clear();
+        }
+        self.conn = Some(conn);
+        self.daemon_display = daemon_display;
+        self.daemon_current = None;
+        self.lost = false;
+        (contexts - self.contexts.len(), surfaces - self.surfaces.len())
+    }
+
+    /// Registers a context the daemon created; returns the application's handle for it.
+    pub fn add_context(&mut self, info: ContextInfo) -> u32 {
+        let mut c = self.next_context.max(1);
+        while self.contexts.contains_key(&c) {
+            c = c.wrapping_add(1).max(1);
+        }
+        self.next_context = c.wrapping_add(1);
+        self.contexts.insert(c, info);
+        c
+    }
+
+    /// The context `c` (an application handle), unless it does not exist or is lost.
+    pub fn live_context(&self, c: u32) -> Option<&ContextInfo> {
+        self.contexts.get(&c).filter(|i| i.daemon.is_some())
+    }
+
+    /// The daemon's handle for the application's context `c`, if it is live.
+    pub fn daemon_context(&self, c: u32) -> Option<u32> {
+        self.contexts.get(&c).and_then(|i| i.daemon)
+    }
+
+    /// Marks context `c` current to no thread; a lost context is forgotten then.
+    pub fn release_context(&mut self, c: u32) {
+        if let Some(info) = self.contexts.get_mut(&c) {
+            info.owner = None;
+            if info.daemon.is_none() {
+                self.contexts.remove(&c);
+            }
         }
     }
 
@@ -221,9 +285,10 @@ impl Process {
         self.surfaces.get(&s).map(|i| i.daemon)
     }
 
-    /// What the daemon must have current for `cur`, if both its surfaces still exist.
+    /// What the daemon must have current for `cur` (daemon handles), if its context is live and
+    /// both its surfaces still exist.
     pub fn binding(&self, cur: &Current) -> Option<(u32, u32, u32)> {
-        Some((cur.context, self.daemon_surface(cur.draw)?, self.daemon_surface(cur.read)?))
+        Some((self.daemon_context(cur.context)?, self.daemon_surface(cur.draw)?, self.daemon_surface(cur.read)?))
     }
 }
 
@@ -236,7 +301,7 @@ pub(crate) struct Current {
     pub draw: u32,
     /// Read surface (the application's handle).
     pub read: u32,
-    /// Context (daemon handle).
+    /// Context (the application's handle).
     pub context: u32,
 }
 

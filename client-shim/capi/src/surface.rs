@@ -14,7 +14,7 @@ use std::ffi::c_ulong;
 
 use strata_protocol::{Calls, Slice};
 
-use crate::egl::{daemon, initialized};
+use crate::display::{daemon, initialized};
 use crate::state::{self, Current, Process, WindowInfo};
 use crate::types::*;
 use crate::x11;
@@ -127,7 +127,7 @@ pub(crate) fn ensure_bound(p: &mut Process, cur: &Current) -> Result<(), EGLint>
     match p.binding(cur) {
         Some(want) if p.daemon_current == Some(want) => Ok(()),
         Some((c, d, r)) => bind_daemon(p, c, d, r),
-        None if p.daemon_current.is_some_and(|(c, _, _)| c == cur.context) => Ok(()),
+        None if p.daemon_current.is_some_and(|(c, _, _)| Some(c) == p.daemon_context(cur.context)) => Ok(()),
         None => Err(EGL_BAD_SURFACE),
     }
 }

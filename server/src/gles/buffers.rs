@@ -9,6 +9,7 @@ use super::conv::BufferTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::GlesExecutor;
+use crate::quota::Kind;
 
 /// A buffer object: a CPU shadow (used to validate draws and convert formats) plus its GPU copy.
 #[derive(Default)]
@@ -21,6 +22,8 @@ pub struct Buffer {
     pub usage: u32,
     /// Bumped on every write, so derived data (widened indices, converted attributes) can be cached.
     pub generation: u64,
+    /// The memory of the shadow and the GPU copy, held against the client's quota.
+    pub _reserved: Option<crate::quota::Reservation>,
 }
 
 /// Checks `glBufferData`; the name of the buffer it replaces.
@@ -44,6 +47,7 @@ fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blo
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glGenBuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        self.admit_names(Kind::Buffer, names.iter())?;
         let ctx = self.ctx();
         for n in names.iter().filter(|&n| n != 0) {
             ctx.objects.buffers.entry(n).or_default();
@@ -73,8 +77,10 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBindBuffer(&mut self, target: u32, buffer: u32) -> GlResult {
+        let target = BufferTarget::from_gl(target)?;
+        self.admit_names(Kind::Buffer, [buffer])?;
         let ctx = self.ctx();
-        match BufferTarget::from_gl(target)? {
+        match target {
             BufferTarget::Array => ctx.bindings.array_buffer = buffer,
             BufferTarget::ElementArray => ctx.bindings.element_buffer = buffer,
         }
@@ -89,13 +95,17 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBufferData(&mut self, target: u32, size: i64, data: Option<Blob<'_>>, usage: u32) -> GlResult {
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let name = validate_buffer_data(ctx, target, size, data.as_ref(), usage)?;
         let b = ctx.objects.buffers.entry(name).or_default();
+        // The old contents' memory is given back before the new contents' is reserved.
+        *b = Buffer { generation: b.generation, usage: b.usage, ..Buffer::default() };
+        let padded = (size as u64).div_ceil(4).max(1) * 4;
+        b._reserved = Some(account.reserve(size as u64 + padded).map_err(|_| GlError::OutOfMemory)?);
         b.data = data.map(|d| d.as_bytes().to_vec()).unwrap_or_else(|| vec![0; size as usize]);
         b.usage = usage;
         b.generation += 1;
-        let padded = (b.data.len() as u64).div_ceil(4).max(1) * 4;
         let gbuf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("gl buffer"),
             size: padded,

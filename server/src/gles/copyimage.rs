@@ -59,6 +59,7 @@ impl GlesExecutor {
     ) -> GlResult {
         let src = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
         let uid = self.next_uid();
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let image = ImageTarget::from_gl(target)?;
         if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
@@ -75,7 +76,7 @@ impl GlesExecutor {
         let level = level as u32;
         if let Some(f) = internal {
             if level == 0 {
-                t.ensure_image(gpu, uid, w as u32, h as u32, Storage::Rgba8);
+                t.ensure_image(gpu, &account, uid, w as u32, h as u32, Storage::Rgba8)?;
                 t.format = f;
             }
         }

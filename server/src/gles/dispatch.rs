@@ -120,7 +120,13 @@ impl Executor for GlesExecutor {
         if caught.is_some() || !self.r.errors.is_empty() {
             self.charge(caught);
         }
+        self.publish_usage();
         Ok(reply)
+    }
+
+    fn refuse(&mut self, op: Opcode, why: &str) -> Option<Reply> {
+        self.record(GlError::OutOfMemory);
+        op.is_sync().then(|| Reply::Unsupported(format!("{} refused: {why}", op.name())))
     }
 }
 

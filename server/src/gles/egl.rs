@@ -270,6 +270,7 @@ impl GlesExecutor {
         if version != 2 {
             return Err(EGL_BAD_CONFIG);
         }
+        self.account.admit(crate::quota::Kind::Context, self.contexts.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
         let id = self.next_handle;
         self.next_handle += 1;
         self.contexts.insert(id, Context::new(c));

@@ -10,6 +10,7 @@ use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
 use super::render::{Target, COLOR_FORMAT};
 use super::GlesExecutor;
+use crate::quota::Kind;
 
 /// Where one attachment of a framebuffer object comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -54,6 +55,8 @@ pub struct Renderbuffer {
     pub gpu: Option<(wgpu::Texture, wgpu::TextureView)>,
     /// Unique id for caches.
     pub uid: u64,
+    /// The image's memory, held against the client's quota.
+    pub _reserved: Option<crate::quota::Reservation>,
 }
 
 /// A resolved depth/stencil attachment: view, format, renderbuffer uid, width, height.
@@ -185,6 +188,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGenRenderbuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        self.admit_names(Kind::Renderbuffer, names.iter())?;
         let ctx = self.ctx();
         for n in names.iter().filter(|&n| n != 0) {
             ctx.objects.renderbuffers.entry(n).or_default();
@@ -208,6 +212,7 @@ impl GlesExecutor {
         if target != RENDERBUFFER {
             return Err(GlError::InvalidEnum);
         }
+        self.admit_names(Kind::Renderbuffer, [renderbuffer])?;
         let ctx = self.ctx();
         if renderbuffer != 0 {
             ctx.objects.renderbuffers.entry(renderbuffer).or_default();
@@ -242,11 +247,21 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
-        let (ctx, gpu) = self.ctx_gpu();
+        let ctx = self.ctx();
         let name = ctx.bindings.renderbuffer;
-        if name == 0 || !ctx.objects.renderbuffers.contains_key(&name) {
+        let Some(rb) = ctx.objects.renderbuffers.get_mut(&name).filter(|_| name != 0) else {
             return Err(GlError::InvalidOperation);
-        }
+        };
+        // The old image's memory is given back before the new one's is reserved.
+        *rb = Renderbuffer::default();
+        let texel = match format {
+            wgpu::TextureFormat::Stencil8 => 1,
+            wgpu::TextureFormat::Depth16Unorm => 2,
+            _ => 4,
+        };
+        let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
+        let reserved = Some(self.reserve(bytes)?);
+        let (_, gpu) = self.ctx_gpu();
         let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("renderbuffer"),
             size: wgpu::Extent3d {
@@ -276,6 +291,7 @@ impl GlesExecutor {
             height: height as u32,
             gpu: Some((tex, view)),
             uid,
+            _reserved: reserved,
         };
         Ok(())
     }
@@ -299,6 +315,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGenFramebuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
+        self.admit_names(Kind::Framebuffer, names.iter())?;
         let ctx = self.ctx();
         for n in names.iter().filter(|&n| n != 0) {
             ctx.objects.framebuffers.entry(n).or_default();
@@ -322,6 +339,7 @@ impl GlesExecutor {
         if target != FRAMEBUFFER {
             return Err(GlError::InvalidEnum);
         }
+        self.admit_names(Kind::Framebuffer, [framebuffer])?;
         let ctx = self.ctx();
         if framebuffer != 0 {
             ctx.objects.framebuffers.entry(framebuffer).or_default();

@@ -3,11 +3,14 @@
 //! natively compressed image to RGBA8 when uncompressed data arrives for it.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use super::enums::*;
+use super::error::{GlError, GlResult};
 use super::formats::Storage;
 use super::textures::Texture;
 use crate::gpu::Gpu;
+use crate::quota::{Account, Reservation};
 
 /// A texture's GPU image.
 pub struct TextureImage {
@@ -30,6 +33,8 @@ pub struct TextureImage {
     /// For natively compressed images: the blocks of every specified level, by (face, level),
     /// kept so that the image can be decoded to RGBA8 if uncompressed data is written to it.
     pub blocks: HashMap<(u32, u32), Vec<u8>>,
+    /// The GPU memory it holds against its client's quota.
+    _reserved: Reservation,
 }
 
 /// A rectangle of one level of one face.
@@ -50,11 +55,21 @@ pub struct Region {
 }
 
 impl TextureImage {
-    /// Allocates an image of `storage` for a texture of `target`.
-    fn new(gpu: &Gpu, target: u32, width: u32, height: u32, storage: Storage) -> Self {
+    /// Allocates an image of `storage` for a texture of `target`, reserving its memory first.
+    fn new(
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        target: u32,
+        width: u32,
+        height: u32,
+        storage: Storage,
+    ) -> GlResult<Self> {
         let layers = if target == TEXTURE_CUBE_MAP { 6 } else { 1 };
         let levels = 32 - width.max(height).max(1).leading_zeros();
         let mips = if storage.is_depth() { 1 } else { levels };
+        let reserved = account
+            .reserve(super::account::image_bytes(width, height, layers, mips, storage))
+            .map_err(|_| GlError::OutOfMemory)?;
         let mut usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         if storage.attachable() {
             usage |= wgpu::TextureUsages::RENDER_ATTACHMENT;
@@ -80,7 +95,18 @@ impl TextureImage {
             Storage::Float => gpu.features.contains(wgpu::Features::FLOAT32_FILTERABLE),
             s => !s.is_depth(),
         };
-        TextureImage { texture, view, width, height, mips, levels, storage, filterable, blocks: HashMap::new() }
+        Ok(TextureImage {
+            texture,
+            view,
+            width,
+            height,
+            mips,
+            levels,
+            storage,
+            filterable,
+            blocks: HashMap::new(),
+            _reserved: reserved,
+        })
     }
 
     /// Width and height of `level`.
@@ -144,22 +170,33 @@ impl TextureImage {
 impl Texture {
     /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain
     /// (one level for depth), unless it already has one of that size and storage; a new image
-    /// has no level defined.
-    pub fn ensure_image(&mut self, gpu: &Gpu, uid: u64, width: u32, height: u32, storage: Storage) {
+    /// has no level defined. Beyond the client's quota the texture is left without an image.
+    pub fn ensure_image(
+        &mut self,
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        uid: u64,
+        width: u32,
+        height: u32,
+        storage: Storage,
+    ) -> GlResult {
         if self.gpu.as_ref().is_some_and(|i| i.width == width && i.height == height && i.storage == storage) {
-            return;
+            return Ok(());
         }
-        self.gpu = Some(TextureImage::new(gpu, self.target, width, height, storage));
+        // The old image's memory is given back before the new one is reserved.
+        self.gpu = None;
         self.defined = [0; 6];
         self.uid = uid;
+        self.gpu = Some(TextureImage::new(gpu, account, self.target, width, height, storage)?);
+        Ok(())
     }
 
     /// Turns a natively compressed image into an RGBA8 one holding the decoded levels, so that
     /// uncompressed data can be written to it; other images are left as they are.
-    pub fn decompress(&mut self, gpu: &Gpu, uid: u64) {
-        let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return };
-        let Storage::Native(c) = old.storage else { return };
-        let img = TextureImage::new(gpu, self.target, old.width, old.height, Storage::Rgba8);
+    pub fn decompress(&mut self, gpu: &Gpu, account: &Arc<Account>, uid: u64) -> GlResult {
+        let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return Ok(()) };
+        let Storage::Native(c) = old.storage else { return Ok(()) };
+        let img = TextureImage::new(gpu, account, self.target, old.width, old.height, Storage::Rgba8)?;
         for (&(face, level), blocks) in &old.blocks {
             let (width, height) = img.level_size(level);
             let region = Region { face, level, x: 0, y: 0, width, height };
@@ -167,5 +204,6 @@ impl Texture {
         }
         self.gpu = Some(img);
         self.uid = uid;
+        Ok(())
     }
 }

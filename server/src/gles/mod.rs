@@ -11,6 +11,7 @@
 //! against [`context::Context`], record a [`error::GlError`] or act, and leave GPU work to
 //! `render`. `conv` holds the typed enums and every GL → wgpu mapping.
 
+mod account;
 mod buffers;
 mod compressed;
 mod context;
@@ -44,6 +45,7 @@ mod vertex;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+pub use render::Fixed as RendererFixed;
 pub use surface::Surface;
 
 use crate::gpu::Gpu;
@@ -65,6 +67,8 @@ pub struct GlesExecutor {
     scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
     /// The daemon's layout entry for this client: overrides where its windows go.
     layout: Option<crate::layout::LayoutEntry>,
+    /// What this client may hold and holds (GPU memory, object counts).
+    account: Arc<crate::quota::Account>,
 }
 
 impl Drop for GlesExecutor {
@@ -90,12 +94,19 @@ impl GlesExecutor {
             uid: 1,
             scene: None,
             layout: None,
+            account: crate::quota::Account::unlimited(),
         }
     }
 
     /// Places this client's window surfaces by `layout` instead of where it asks.
     pub fn with_layout(mut self, layout: Option<crate::layout::LayoutEntry>) -> Self {
         self.layout = layout;
+        self
+    }
+
+    /// Holds this client to `account`'s quota.
+    pub fn with_account(mut self, account: Arc<crate::quota::Account>) -> Self {
+        self.account = account;
         self
     }
 

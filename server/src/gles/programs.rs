@@ -161,7 +161,8 @@ impl GlesExecutor {
         if name == 0 || objects.shaders.contains_key(&name) || objects.programs.contains_key(&name) {
             return Err(GlError::InvalidValue);
         }
-        objects.programs.insert(name, Program::default());
+        self.admit(crate::quota::Kind::Program, 1)?;
+        self.ctx().objects.programs.insert(name, Program::default());
         Ok(())
     }
 

@@ -48,6 +48,8 @@ impl GlesExecutor {
         if name == 0 || objects.shaders.contains_key(&name) || objects.programs.contains_key(&name) {
             return Err(GlError::InvalidValue);
         }
+        self.admit(crate::quota::Kind::Shader, 1)?;
+        let objects = &mut self.ctx().objects;
         objects.shaders.insert(
             name,
             ShaderObj {

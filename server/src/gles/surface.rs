@@ -22,6 +22,19 @@ pub struct Surface {
     pub config: Config,
     /// Window surface (composited) rather than pbuffer.
     pub window: bool,
+    /// The images' memory, held against the client's quota.
+    _reserved: crate::quota::Reservation,
+}
+
+/// Bytes of the images of a `w`×`h` surface of `config`: colour and depth/stencil, twice for a
+/// window surface's front buffer.
+fn surface_bytes(config: Config, w: u32, h: u32, window: bool) -> u64 {
+    let depth = match (config.depth, config.stencil) {
+        (0, 0) => 0,
+        (16, 0) => 2,
+        _ => 4,
+    };
+    u64::from(w) * u64::from(h) * (4 + depth) * if window { 2 } else { 1 }
 }
 
 impl GlesExecutor {
@@ -90,12 +103,15 @@ impl GlesExecutor {
             return Err(if window { EGL_BAD_NATIVE_WINDOW } else { EGL_BAD_PARAMETER });
         }
         let (w, h) = ((width as u32).max(1), (height as u32).max(1));
+        let exceeded = |_| EGL_BAD_ALLOC;
+        self.account.admit(crate::quota::Kind::Surface, self.surfaces.len() as u64, 1).map_err(exceeded)?;
+        let reserved = self.account.reserve(surface_bytes(config, w, h, window)).map_err(exceeded)?;
         let (target, depth_sample) = self.make_target(config, w, h);
         // Window surfaces are double-buffered: a front buffer holds the last completed frame.
         let front = window.then(|| self.make_target(config, w, h));
         let id = self.next_handle;
         self.next_handle += 1;
-        self.surfaces.insert(id, Surface { target, depth_sample, front, config, window });
+        self.surfaces.insert(id, Surface { target, depth_sample, front, config, window, _reserved: reserved });
         Ok(id)
     }
 
@@ -141,6 +157,9 @@ impl GlesExecutor {
             return Ok(());
         }
         let config = s.config;
+        // The new images are reserved before the old ones are given back, which they are once
+        // replaced.
+        let reserved = self.account.reserve(surface_bytes(config, w, h, true)).map_err(|_| EGL_BAD_ALLOC)?;
         // Work recorded for the old images goes first.
         self.flush();
         let (target, depth_sample) = self.make_target(config, w, h);
@@ -149,6 +168,7 @@ impl GlesExecutor {
         s.target = target;
         s.depth_sample = depth_sample;
         s.front = Some(front);
+        s._reserved = reserved;
         if let Some((scene, client, _)) = &self.scene {
             scene.resize(*client, surface, width, height);
         }

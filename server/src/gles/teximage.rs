@@ -101,6 +101,7 @@ impl GlesExecutor {
         }
         validate_size(image, level, width, height, border)?;
         let (uid, uid2) = (self.next_uid(), self.next_uid());
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
@@ -114,11 +115,11 @@ impl GlesExecutor {
             None => None,
         };
         if level == 0 {
-            t.ensure_image(gpu, uid, w, h, storage);
+            t.ensure_image(gpu, &account, uid, w, h, storage)?;
             t.format = internal;
         } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
             // Uncompressed data for a level of a natively compressed image.
-            t.decompress(gpu, uid2);
+            t.decompress(gpu, &account, uid2)?;
         }
         let face = image.face;
         let Some(img) = &t.gpu else { return Ok(()) };
@@ -147,6 +148,7 @@ impl GlesExecutor {
         pixels: Option<&[u8]>,
     ) -> GlResult {
         let uid = self.next_uid();
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let unpack = Unpack::of(&ctx.pixel_store);
         let values = match pixels {
@@ -157,7 +159,7 @@ impl GlesExecutor {
         };
         let name = ctx.bindings.texture(super::conv::TextureTarget::TwoD);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        t.ensure_image(gpu, uid, w, h, storage);
+        t.ensure_image(gpu, &account, uid, w, h, storage)?;
         t.defined = [1, 0, 0, 0, 0, 0];
         t.format = format;
         let Some(img) = &t.gpu else { return Ok(()) };
@@ -188,6 +190,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let unpack = Unpack::of(&ctx.pixel_store);
         let name = image_texture(ctx, image);
@@ -231,7 +234,7 @@ impl GlesExecutor {
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };
         let data = to_storage(pixels.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, target_storage)
             .ok_or(GlError::InvalidOperation)?;
-        t.decompress(gpu, uid);
+        t.decompress(gpu, &account, uid)?;
         if let Some(img) = &t.gpu {
             img.write(gpu, region, &data);
         }

@@ -128,6 +128,7 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glGenTextures(&mut self, names: Slice<'_, u32>) -> GlResult {
+        self.admit_names(crate::quota::Kind::Texture, names.iter())?;
         let ctx = self.ctx();
         for n in names.iter().filter(|&n| n != 0) {
             ctx.objects.textures.entry(n).or_default();
@@ -163,8 +164,9 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBindTexture(&mut self, target: u32, texture: u32) -> GlResult {
-        let ctx = self.ctx();
         let target = TextureTarget::from_gl(target)?;
+        self.admit_names(crate::quota::Kind::Texture, [texture])?;
+        let ctx = self.ctx();
         if texture != 0 {
             // A texture takes the target it is first bound to, and keeps it.
             let t = ctx.objects.textures.entry(texture).or_default();

@@ -60,6 +60,8 @@ fn bind(ctx: &mut Context, array: u32) -> GlResult {
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glGenVertexArraysOES(&mut self, names: Slice<'_, u32>) -> GlResult {
+        let bound = self.ctx().bindings.vertex_array;
+        self.admit_names(crate::quota::Kind::VertexArray, names.iter().filter(|&n| n != bound))?;
         let ctx = self.ctx();
         for n in names.iter().filter(|&n| n != 0 && n != ctx.bindings.vertex_array) {
             ctx.objects.vertex_arrays.entry(n).or_insert_with(VertexArray::new);

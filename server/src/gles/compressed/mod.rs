@@ -36,13 +36,14 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
+        let account = self.account.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         if level == 0 {
             let whole_blocks = w > 0 && h > 0 && w % 4 == 0 && h % 4 == 0;
             let native = whole_blocks && c.native_on(gpu.features).is_some();
-            t.ensure_image(gpu, uid, w, h, if native { Storage::Native(c) } else { Storage::Rgba8 });
+            t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { Storage::Rgba8 })?;
             t.format = internalformat;
         }
         let face = image.face;

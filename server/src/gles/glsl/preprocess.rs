@@ -95,6 +95,65 @@ fn extension_directive(
     }
 }
 
+/// The error for a comment or quoted string that `text` leaves open at its end, if any.
+///
+/// glsl-lang-pp 0.8.1 never returns from a `##` whose directive reaches the end of the input
+/// without a new-line token, and a block comment or a `"` string (GLSL ES has none; the
+/// preprocessor lexes one for `#include`) swallows every new-line up to the end. So such
+/// sources are refused before preprocessing; `parse` also ends the text with an empty line,
+/// against a `\` continuation on the last line.
+fn unterminated(text: &str) -> Option<String> {
+    #[derive(PartialEq)]
+    enum In {
+        Code,
+        LineComment,
+        BlockComment,
+        Quote,
+    }
+    let mut state = In::Code;
+    let mut start = 0;
+    let mut chars = text.char_indices().peekable();
+    while let Some((i, c)) = chars.next() {
+        let next = chars.peek().map(|&(_, n)| n);
+        match state {
+            In::Code => match (c, next) {
+                ('/', Some('/')) => state = In::LineComment,
+                ('/', Some('*')) => {
+                    chars.next();
+                    (state, start) = (In::BlockComment, i);
+                }
+                ('"', _) => (state, start) = (In::Quote, i),
+                _ => {}
+            },
+            In::LineComment => match (c, next) {
+                // A continuation carries the comment onto the next line.
+                ('\\', Some('\n')) => {
+                    chars.next();
+                }
+                ('\n', _) => state = In::Code,
+                _ => {}
+            },
+            In::BlockComment => {
+                if (c, next) == ('*', Some('/')) {
+                    chars.next();
+                    state = In::Code;
+                }
+            }
+            In::Quote => {
+                if c == '"' {
+                    state = In::Code;
+                }
+            }
+        }
+    }
+    let (line, col) = line_col(text, start);
+    match state {
+        In::BlockComment => Some(error_at(line, col, "unterminated comment")),
+        In::Quote => Some(error_at(line, col, "syntax error, unexpected '\"'")),
+        In::Code | In::LineComment => None,
+    }
+}
+
 /// Preprocesses and parses `source`; the error is the info log.
 pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     // `#version 100` is the only version ES 2.0 has. `#extension` directives are handled here
@@ -122,6 +181,11 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
             text.push('\n');
         }
     }
+    if let Some(e) = unterminated(&text) {
+        return Err(e);
+    }
+    // Ends a `\` continuation on the last line before the input does (see `unterminated`).
+    text.push('\n');
     let gl_es = "1".parse::<DefineObject>().map_err(|e| format!("internal: {e:?}"))?;
     let mut state =
         ProcessorState::builder().registry(&REGISTRY).definition(Define::object("GL_ES".into(), gl_es.clone(), true));
@@ -136,5 +200,36 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
         Ok((tu, _, _)) => Ok(Parsed { tu, text, derivatives, warnings }),
         // Mesa's form, `0:LINE(COL): error: …`, from the parser's 0-based position.
         Err(e) => Err(error_at(e.line() as usize + 1, e.col() as usize + 1, &e.inner().to_string())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `##` whose directive runs to the end of the source (through an open string, an open
+    /// comment or a continuation) once made the preprocessor loop forever: now each returns,
+    /// the open string or comment as an error.
+    #[test]
+    fn concat_running_to_the_end_of_the_source_returns() {
+        for source in
+            ["#pragma ##\"\n", "#define A(x) x##\"", "#define A x ## /*\n", "#define A x##\\", "#define A x##\\\n"]
+        {
+            let (tx, rx) = std::sync::mpsc::channel();
+            std::thread::spawn(move || {
+                let _ = tx.send(parse(Stage::Fragment, source).map(|_| ()));
+            });
+            match rx.recv_timeout(std::time::Duration::from_secs(20)) {
+                Ok(r) => assert!(r.is_err() || !source.contains(['"', '*']), "{source:?} parsed"),
+                Err(_) => panic!("{source:?}: the preprocessor did not return"),
+            }
+        }
+    }
+
+    #[test]
+    fn closed_comments_and_strings_still_parse() {
+        let source =
+            "/* a \"quote\" */\n// \"\n#define A(x) x ## 1 /* c */\nvoid main() { gl_FragColor = vec4(A(0)); }";
+        parse(Stage::Fragment, source).expect("parses");
     }
 }

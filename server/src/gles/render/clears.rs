@@ -80,6 +80,11 @@ impl Renderer {
         if let Some(p) = self.clear_pipelines.get(key) {
             return p.clone();
         }
+        // Compiled once for all clients (each compile costs the driver memory it keeps).
+        if let Some(p) = self.fixed.clear_pipelines.lock().ok().and_then(|m| m.get(key).cloned()) {
+            self.clear_pipelines.insert(key.clone(), p.clone());
+            return p;
+        }
         let targets = [Some(wgpu::ColorTargetState {
             format: COLOR_FORMAT,
             blend: None,
@@ -105,9 +110,9 @@ impl Renderer {
         });
         let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("clear"),
-            layout: Some(&self.clear_layout),
+            layout: Some(&self.fixed.clear_layout),
             vertex: wgpu::VertexState {
-                module: &self.clear_module,
+                module: &self.fixed.clear_module,
                 entry_point: Some("vs"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -116,7 +121,7 @@ impl Renderer {
             depth_stencil,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &self.clear_module,
+                module: &self.fixed.clear_module,
                 entry_point: Some("fs"),
                 compilation_options: Default::default(),
                 targets: if key.target_color { &targets } else { &[] },
@@ -125,6 +130,9 @@ impl Renderer {
             cache: None,
         });
         self.clear_pipelines.insert(key.clone(), p.clone());
+        if let Ok(mut shared) = self.fixed.clear_pipelines.lock() {
+            shared.insert(key.clone(), p.clone());
+        }
         p
     }
 }

@@ -9,20 +9,21 @@ impl Renderer {
     pub fn generate_mipmaps(&mut self, tex: &wgpu::Texture, mips: u32, layers: u32, format: wgpu::TextureFormat) {
         self.flush();
         let d = &self.gpu.device;
-        let pipeline = self
-            .mip_pipelines
+        // Compiled once for all clients (each compile costs the driver memory it keeps).
+        let mut shared = self.fixed.mip_pipelines.lock().unwrap_or_else(|e| e.into_inner());
+        let pipeline = shared
             .entry(format)
             .or_insert_with(|| {
                 let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                     label: Some("mipmap"),
-                    bind_group_layouts: &[Some(&self.mip_bgl)],
+                    bind_group_layouts: &[Some(&self.fixed.mip_bgl)],
                     immediate_size: 0,
                 });
                 d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                     label: Some("mipmap"),
                     layout: Some(&layout),
                     vertex: wgpu::VertexState {
-                        module: &self.mip_module,
+                        module: &self.fixed.mip_module,
                         entry_point: Some("vs"),
                         compilation_options: Default::default(),
                         buffers: &[],
@@ -31,7 +32,7 @@ impl Renderer {
                     depth_stencil: None,
                     multisample: Default::default(),
                     fragment: Some(wgpu::FragmentState {
-                        module: &self.mip_module,
+                        module: &self.fixed.mip_module,
                         entry_point: Some("fs"),
                         compilation_options: Default::default(),
                         targets: &[Some(format.into())],
@@ -41,6 +42,7 @@ impl Renderer {
                 })
             })
             .clone();
+        drop(shared);
         let linear =
             self.sampler(SamplerState { min: LINEAR, mag: LINEAR, wrap_s: CLAMP_TO_EDGE, wrap_t: CLAMP_TO_EDGE });
         let d = &self.gpu.device;
@@ -61,7 +63,7 @@ impl Renderer {
                 let dst = view(level);
                 let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: None,
-                    layout: &self.mip_bgl,
+                    layout: &self.fixed.mip_bgl,
                     entries: &[
                         wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src) },
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&linear) },

@@ -145,14 +145,7 @@ pub struct Renderer {
     staging: Vec<u8>,
     ring: Option<(wgpu::Buffer, u64)>,
     align: u64,
-    black_2d: wgpu::TextureView,
-    black_cube: wgpu::TextureView,
-    clear_module: wgpu::ShaderModule,
-    clear_bgl: wgpu::BindGroupLayout,
-    clear_layout: wgpu::PipelineLayout,
-    mip_module: wgpu::ShaderModule,
-    mip_bgl: wgpu::BindGroupLayout,
-    mip_pipelines: HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>,
+    fixed: Arc<Fixed>,
     layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
 }
 
@@ -185,9 +178,25 @@ fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
     tex.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() })
 }
 
-impl Renderer {
-    /// A renderer drawing with `gpu`.
-    pub fn new(gpu: Arc<Gpu>) -> Self {
+/// The objects every client's renderer uses unchanged: the clear and mipmap shaders and
+/// layouts, and the black images incomplete textures sample. They are built once per device
+/// (not per client: creating them for every session would cost each session its own uploads).
+pub struct Fixed {
+    black_2d: wgpu::TextureView,
+    black_cube: wgpu::TextureView,
+    clear_module: wgpu::ShaderModule,
+    clear_bgl: wgpu::BindGroupLayout,
+    clear_layout: wgpu::PipelineLayout,
+    mip_module: wgpu::ShaderModule,
+    mip_bgl: wgpu::BindGroupLayout,
+    /// Clear pipelines by target and masks, compiled once for all clients.
+    clear_pipelines: std::sync::Mutex<HashMap<ClearKey, wgpu::RenderPipeline>>,
+    /// Mipmap pipelines by format, compiled once for all clients.
+    mip_pipelines: std::sync::Mutex<HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>>,
+}
+
+impl Fixed {
+    fn new(gpu: &Gpu) -> Self {
         let d = &gpu.device;
         let clear_module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("clear"),
@@ -236,10 +245,26 @@ impl Renderer {
                 },
             ],
         });
+        Fixed {
+            black_2d: black(gpu, 1),
+            black_cube: black(gpu, 6),
+            clear_module,
+            clear_bgl,
+            clear_layout,
+            mip_module,
+            mip_bgl,
+            clear_pipelines: Default::default(),
+            mip_pipelines: Default::default(),
+        }
+    }
+}
+
+impl Renderer {
+    /// A renderer drawing with `gpu`.
+    pub fn new(gpu: Arc<Gpu>) -> Self {
+        let fixed = gpu.gles.get_or_init(|| Arc::new(Fixed::new(&gpu))).clone();
         let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment).max(16);
         Renderer {
-            black_2d: black(&gpu, 1),
-            black_cube: black(&gpu, 6),
             gpu,
             pipelines: HashMap::new(),
             clear_pipelines: HashMap::new(),
@@ -252,12 +277,7 @@ impl Renderer {
             staging: Vec::new(),
             ring: None,
             align,
-            clear_module,
-            clear_bgl,
-            clear_layout,
-            mip_module,
-            mip_bgl,
-            mip_pipelines: HashMap::new(),
+            fixed,
             layouts: HashMap::new(),
         }
     }

@@ -122,7 +122,7 @@ impl Renderer {
                     textures.push((view.clone(), *uid, self.sampler(state), state))
                 }
                 None => {
-                    let view = if cube { self.black_cube.clone() } else { self.black_2d.clone() };
+                    let view = if cube { self.fixed.black_cube.clone() } else { self.fixed.black_2d.clone() };
                     let s = SamplerState::default();
                     textures.push((view, u64::MAX - u64::from(cube), self.sampler(s), s));
                 }
@@ -221,7 +221,7 @@ impl Renderer {
                         if let Some(ring) = ring {
                             clear_group = Some(d.create_bind_group(&wgpu::BindGroupDescriptor {
                                 label: Some("clear"),
-                                layout: &self.clear_bgl,
+                                layout: &self.fixed.clear_bgl,
                                 entries: &[wgpu::BindGroupEntry {
                                     binding: 0,
                                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {

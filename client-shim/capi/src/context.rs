@@ -1,0 +1,120 @@
+//! Contexts and current bindings: `eglCreateContext`, `eglDestroyContext`, `eglQueryContext`,
+//! `eglMakeCurrent` and releasing a thread's context.
+//!
+//! The application's context handles are the shim's own, each backed by a daemon context (see
+//! [`crate::state::ContextInfo`]); a context whose connection was lost keeps its handle only
+//! while a thread still has it current, and every EGL call naming it fails with
+//! `EGL_BAD_CONTEXT`.
+
+use strata_protocol::{Calls, Slice};
+
+use crate::display::{daemon, initialized};
+use crate::state::{self, process, ContextInfo, Current, GlState, Process};
+use crate::surface;
+use crate::types::*;
+
+/// Releases this thread's current context (if any), on the daemon too when it is the one
+/// the daemon has current.
+pub(crate) fn release_current(p: &mut Process) -> Result<(), EGLint> {
+    let Some(cur) = state::current() else { return Ok(()) };
+    let on_daemon = p.daemon_context(cur.context);
+    p.release_context(cur.context);
+    state::set_current(None);
+    if on_daemon.is_some() && p.daemon_current.map(|(c, _, _)| c) == on_daemon {
+        p.daemon_current = None;
+        daemon(p, |c, dd| c.eglMakeCurrent(dd, 0, 0, 0))?;
+    }
+    Ok(())
+}
+
+/// `eglMakeCurrent`, with application handles.
+pub(crate) fn make_current(dpy: EGLDisplay, draw: u32, read: u32, ctx: u32) -> Result<(), EGLint> {
+    let mut p = process();
+    if ctx == 0 {
+        if draw != 0 || read != 0 {
+            return Err(EGL_BAD_MATCH);
+        }
+        // Releasing works on any valid display, even a terminated one.
+        p.display(dpy as usize).ok_or(EGL_BAD_DISPLAY)?;
+        return release_current(&mut p);
+    }
+    let d = initialized(&mut p, dpy)?;
+    let me = std::thread::current().id();
+    let c = p.live_context(ctx).ok_or(EGL_BAD_CONTEXT)?;
+    if c.owner.is_some_and(|o| o != me) {
+        return Err(EGL_BAD_ACCESS);
+    }
+    let d_ctx = c.daemon.ok_or(EGL_BAD_CONTEXT)?;
+    if !p.surfaces.contains_key(&draw) || !p.surfaces.contains_key(&read) {
+        return Err(EGL_BAD_SURFACE);
+    }
+    surface::follow_window(&mut p, draw);
+    if read != draw {
+        surface::follow_window(&mut p, read);
+    }
+    let (d_draw, d_read) = (p.daemon_surface(draw), p.daemon_surface(read));
+    let (Some(d_draw), Some(d_read)) = (d_draw, d_read) else { return Err(EGL_BAD_SURFACE) };
+    surface::bind_daemon(&mut p, d_ctx, d_draw, d_read)?;
+    if let Some(old) = state::current() {
+        p.release_context(old.context);
+    }
+    if let Some(c) = p.contexts.get_mut(&ctx) {
+        c.owner = Some(me);
+    }
+    state::set_current(Some(Current { display: d, draw, read, context: ctx }));
+    Ok(())
+}
+
+/// `eglCreateContext`: returns the application's handle.
+pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    if state::api() != EGL_OPENGL_ES_API {
+        return Err(EGL_BAD_MATCH);
+    }
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let share = match share {
+        0 => 0,
+        s => p.daemon_context(s).ok_or(EGL_BAD_CONTEXT)?,
+    };
+    let ctx = daemon(&mut p, |c, dd| c.eglCreateContext(dd, config, share, Slice::new(&attribs)))?;
+    Ok(p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl: GlState::default() }))
+}
+
+/// `eglDestroyContext`.
+pub(crate) fn destroy_context(dpy: EGLDisplay, ctx: u32) -> Result<(), EGLint> {
+    let mut p = process();
+    initialized(&mut p, dpy)?;
+    let d_ctx = p.daemon_context(ctx).ok_or(EGL_BAD_CONTEXT)?;
+    daemon(&mut p, |c, dd| c.eglDestroyContext(dd, d_ctx))?;
+    p.contexts.remove(&ctx);
+    if p.daemon_current.is_some_and(|(c, _, _)| c == d_ctx) {
+        p.daemon_current = None;
+    }
+    if state::current().is_some_and(|c| c.context == ctx) {
+        state::set_current(None);
+    }
+    Ok(())
+}
+
+/// `eglQueryContext`.
+pub(crate) fn query_context(dpy: EGLDisplay, ctx: u32, attribute: EGLint, value: *mut EGLint) -> Result<(), EGLint> {
+    if value.is_null() {
+        return Err(EGL_BAD_PARAMETER);
+    }
+    let mut p = process();
+    initialized(&mut p, dpy)?;
+    let c = p.live_context(ctx).ok_or(EGL_BAD_CONTEXT)?;
+    let v = match attribute {
+        EGL_CONFIG_ID => c.config as EGLint,
+        EGL_CONTEXT_CLIENT_TYPE => EGL_OPENGL_ES_API as EGLint,
+        EGL_CONTEXT_CLIENT_VERSION => 2,
+        EGL_RENDER_BUFFER => match state::current() {
+            Some(cur) if cur.context == ctx => EGL_BACK_BUFFER,
+            _ => EGL_NONE,
+        },
+        _ => return Err(EGL_BAD_ATTRIBUTE),
+    };
+    // SAFETY: checked non-null above.
+    unsafe { *value = v };
+    Ok(())
+}

@@ -1,0 +1,245 @@
+//! `stratad ctl`: the operator's commands against a running daemon, and how their answers
+//! are printed (part of the `stratad` binary).
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::Subcommand;
+use strata_client::ControlConnection;
+use strata_protocol::control::LightChange;
+use strata_protocol::handshake::{ControlReply, ControlRequest};
+
+use crate::{save_png, Normals};
+
+#[derive(Subcommand)]
+pub enum CtlCmd {
+    /// List every output and window surface.
+    List,
+    /// Save an output's current image as a PNG.
+    Screenshot {
+        /// Output name (as `list` shows it).
+        output: String,
+        /// The PNG to write.
+        file: PathBuf,
+    },
+    /// Move a window surface in the output space.
+    Move {
+        /// Surface id (as `list` shows it).
+        surface: u64,
+        /// New left edge.
+        #[arg(allow_negative_numbers = true)]
+        x: i32,
+        /// New top edge.
+        #[arg(allow_negative_numbers = true)]
+        y: i32,
+        /// New depth layer (larger is farther).
+        #[arg(allow_negative_numbers = true)]
+        z: f32,
+    },
+    /// Set a window surface's normal for per-surface lighting.
+    Normal {
+        /// Surface id (as `list` shows it).
+        surface: u64,
+        /// The normal X,Y,Z (x right, y up, z towards the viewer).
+        #[arg(value_parser = vec3, allow_hyphen_values = true)]
+        normal: [f32; 3],
+    },
+    /// The daemon's memory, every client's GPU memory and objects against its quota, and the
+    /// objects alive on the device.
+    Stats,
+    /// Show or change the uniform lighting.
+    Light {
+        #[command(subcommand)]
+        what: LightCmd,
+    },
+}
+
+#[derive(Subcommand)]
+pub enum LightCmd {
+    /// Turn lighting on.
+    On,
+    /// Turn lighting off.
+    Off,
+    /// Show the lighting in force.
+    Show,
+    /// Change lighting parameters.
+    Set {
+        /// Light position X,Y,Z (output space: x, y in [-1, 1], y up, the output at z = 0).
+        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
+        position: Option<[f32; 3]>,
+        /// Viewer position X,Y,Z.
+        #[arg(long, value_parser = vec3, allow_hyphen_values = true)]
+        view: Option<[f32; 3]>,
+        /// Light colour R,G,B in [0, 1].
+        #[arg(long, value_parser = vec3)]
+        color: Option<[f32; 3]>,
+        /// Ambient factor in [0, 1].
+        #[arg(long)]
+        ambient: Option<f32>,
+        /// Specular exponent.
+        #[arg(long)]
+        shininess: Option<f32>,
+        /// Where normals come from.
+        #[arg(long, value_enum)]
+        normals: Option<Normals>,
+    },
+}
+
+pub fn vec3(s: &str) -> Result<[f32; 3], String> {
+    let v: Vec<f32> =
+        s.split(',').map(|p| p.trim().parse::<f32>().map_err(|e| format!("{p:?}: {e}"))).collect::<Result<_, _>>()?;
+    <[f32; 3]>::try_from(v).map_err(|_| format!("{s:?} is not three comma-separated numbers"))
+}
+
+pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
+    let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
+    let request = match &what {
+        CtlCmd::List => ControlRequest::List,
+        CtlCmd::Stats => ControlRequest::Stats,
+        CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
+        CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
+        CtlCmd::Normal { surface, normal } => ControlRequest::Normal { surface: *surface, normal: *normal },
+        CtlCmd::Light { what } => ControlRequest::Light(match what {
+            LightCmd::On => LightChange { enabled: Some(true), ..Default::default() },
+            LightCmd::Off => LightChange { enabled: Some(false), ..Default::default() },
+            LightCmd::Show => LightChange::default(),
+            LightCmd::Set { position, view, color, ambient, shininess, normals } => LightChange {
+                enabled: None,
+                ambient: *ambient,
+                shininess: *shininess,
+                position: *position,
+                view: *view,
+                color: *color,
+                normals: normals.map(Into::into),
+            },
+        }),
+    };
+    match (c.request(&request)?, what) {
+        (ControlReply::Error(e), _) => bail!("{e}"),
+        (ControlReply::List { outputs, surfaces }, _) => {
+            if json {
+                println!("{}", serde_json::json!({"outputs": outputs, "surfaces": surfaces}));
+                return Ok(());
+            }
+            println!(
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9}  last redrawn",
+                "output", "kind", "x", "y", "w", "h", "composites", "passes", "ms each"
+            );
+            for o in outputs {
+                let r = o.region;
+                let ms = o.composite_us as f64 / 1000.0 / o.composites.max(1) as f64;
+                println!(
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2}  {}x{}+{}+{}",
+                    o.name,
+                    o.kind,
+                    o.rect[0],
+                    o.rect[1],
+                    o.rect[2],
+                    o.rect[3],
+                    o.composites,
+                    o.passes,
+                    r[2],
+                    r[3],
+                    r[0],
+                    r[1]
+                );
+            }
+            println!();
+            println!(
+                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12}",
+                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval", "stream bytes"
+            );
+            for r in surfaces {
+                println!(
+                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12}",
+                    r.id,
+                    format!("{} ({})", r.client, r.client_id),
+                    r.rect[0],
+                    r.rect[1],
+                    r.rect[2],
+                    r.rect[3],
+                    r.z,
+                    r.frames,
+                    r.shown,
+                    r.interval,
+                    r.stream_bytes
+                );
+            }
+            Ok(())
+        }
+        (ControlReply::Image { width, height, rgba }, CtlCmd::Screenshot { file, .. }) => {
+            save_png(&file, width, height, rgba.0)?;
+            if json {
+                println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
+            } else {
+                println!("wrote {} ({width}x{height})", file.display());
+            }
+            Ok(())
+        }
+        (ControlReply::Stats(s), _) => {
+            if json {
+                println!("{}", serde_json::json!(s));
+                return Ok(());
+            }
+            print_stats(&s);
+            Ok(())
+        }
+        (ControlReply::Moved(r), _) => {
+            if json {
+                println!("{}", serde_json::json!(r));
+            } else {
+                println!("surface {} now at x {} y {} z {}, normal {:?}", r.id, r.rect[0], r.rect[1], r.z, r.normal);
+            }
+            Ok(())
+        }
+        (ControlReply::Light(l), _) => {
+            if json {
+                println!("{}", serde_json::json!(l));
+            } else {
+                println!(
+                    "lighting {}: ambient {} shininess {} position {:?} view {:?} color {:?} normals {:?}",
+                    if l.enabled { "on" } else { "off" },
+                    l.ambient,
+                    l.shininess,
+                    l.position,
+                    l.view,
+                    l.color,
+                    l.normals
+                );
+            }
+            Ok(())
+        }
+        (other, _) => bail!("unexpected reply {other:?}"),
+    }
+}
+
+fn mib(bytes: u64) -> String {
+    format!("{:.1} MiB", bytes as f64 / (1 << 20) as f64)
+}
+
+fn print_stats(s: &strata_protocol::control::DaemonStats) {
+    println!("daemon: rss {} (peak {}), {} sessions started", mib(s.rss_bytes), mib(s.peak_rss_bytes), s.sessions);
+    println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
+    let kinds: Vec<&String> = s.objects.keys().collect();
+    print!("{:>4} {:<20} {:>12} {:>12} {:>8}", "id", "client", "gpu memory", "limit", "refused");
+    for k in &kinds {
+        print!(" {:>13}", k);
+    }
+    println!();
+    for c in &s.clients {
+        print!("{:>4} {:<20} {:>12} {:>12} {:>8}", c.id, c.name, mib(c.gpu_bytes), mib(c.gpu_bytes_limit), c.refusals);
+        for k in &kinds {
+            print!(" {:>13}", c.objects.get(*k).copied().unwrap_or(0));
+        }
+        println!();
+    }
+    print!("{:>4} {:<20} {:>12} {:>12} {:>8}", "", "total", mib(s.gpu_bytes), mib(s.gpu_bytes_limit), "");
+    for k in &kinds {
+        print!(" {:>13}", s.objects[*k]);
+    }
+    println!();
+    if !s.device_objects.is_empty() {
+        let live: Vec<String> = s.device_objects.iter().map(|(k, v)| format!("{k} {v}")).collect();
+        println!("device objects: {}", live.join(", "));
+    }
+}

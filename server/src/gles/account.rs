@@ -1,0 +1,102 @@
+//! What this client holds, checked against its quota: object counts come from the contexts'
+//! name tables and surfaces; GPU memory is reserved when an image or buffer is allocated and
+//! given back when it is dropped. A refusal is `GL_OUT_OF_MEMORY` (or `EGL_BAD_ALLOC`) for this
+//! client alone; see [`crate::quota`].
+
+use crate::quota::{Kind, Reservation};
+
+use super::error::{GlError, GlResult};
+use super::formats::Storage;
+use super::GlesExecutor;
+
+impl GlesExecutor {
+    /// Objects of `kind` this client has now, over all its contexts.
+    pub(super) fn have(&self, kind: Kind) -> u64 {
+        let tables = |f: fn(&super::context::Objects) -> usize| -> u64 {
+            self.contexts.values().map(|c| f(&c.objects) as u64).sum()
+        };
+        match kind {
+            Kind::Buffer => tables(|o| o.buffers.len()),
+            Kind::Texture => tables(|o| o.textures.len()),
+            Kind::Renderbuffer => tables(|o| o.renderbuffers.len()),
+            Kind::Framebuffer => tables(|o| o.framebuffers.len()),
+            Kind::Shader => tables(|o| o.shaders.len()),
+            Kind::Program => tables(|o| o.programs.len()),
+            Kind::VertexArray => tables(|o| o.vertex_arrays.len()),
+            Kind::Context => self.contexts.len() as u64,
+            Kind::Surface => self.surfaces.len() as u64,
+        }
+    }
+
+    /// Whether `more` new objects of `kind` fit this client's quota.
+    pub(super) fn admit(&self, kind: Kind, more: u64) -> GlResult {
+        if more == 0 {
+            return Ok(());
+        }
+        self.account.admit(kind, self.have(kind), more).map_err(|_| GlError::OutOfMemory)
+    }
+
+    /// Whether the current context has object `name` of `kind` (contexts and surfaces are
+    /// not named by the context, so they count as known).
+    fn known(&mut self, kind: Kind, name: u32) -> bool {
+        let o = &self.ctx().objects;
+        match kind {
+            Kind::Buffer => o.buffers.contains_key(&name),
+            Kind::Texture => o.textures.contains_key(&name),
+            Kind::Renderbuffer => o.renderbuffers.contains_key(&name),
+            Kind::Framebuffer => o.framebuffers.contains_key(&name),
+            Kind::Shader => o.shaders.contains_key(&name),
+            Kind::Program => o.programs.contains_key(&name),
+            Kind::VertexArray => o.vertex_arrays.contains_key(&name),
+            Kind::Context | Kind::Surface => true,
+        }
+    }
+
+    /// Whether the names among `names` that are not yet objects of `kind` fit the quota
+    /// (generating or binding a new name creates the object).
+    pub(super) fn admit_names(&mut self, kind: Kind, names: impl IntoIterator<Item = u32>) -> GlResult {
+        let mut fresh: Vec<u32> = names.into_iter().filter(|&n| n != 0 && !self.known(kind, n)).collect();
+        fresh.sort_unstable();
+        fresh.dedup();
+        self.admit(kind, fresh.len() as u64)
+    }
+
+    /// Reserves `bytes` of GPU memory for an object this client allocates.
+    pub(super) fn reserve(&self, bytes: u64) -> GlResult<Reservation> {
+        self.account.reserve(bytes).map_err(|_| GlError::OutOfMemory)
+    }
+
+    /// Publishes the object counts for `ctl stats`.
+    pub(super) fn publish_usage(&self) {
+        for kind in Kind::ALL {
+            self.account.set_count(kind, self.have(kind));
+        }
+    }
+}
+
+/// Bytes of a texture image of `width`×`height` with `layers` faces and `mips` levels.
+pub fn image_bytes(width: u32, height: u32, layers: u32, mips: u32, storage: Storage) -> u64 {
+    (0..mips)
+        .map(|l| {
+            let (w, h) = ((width >> l).max(1) as u64, (height >> l).max(1) as u64);
+            match storage {
+                // Native blocks are kept on the device and, for decoding later, in the daemon.
+                Storage::Native(c) => 2 * c.image_size(w as u32, h as u32) as u64,
+                s => w * h * u64::from(s.texel_bytes()),
+            }
+        })
+        .sum::<u64>()
+        * u64::from(layers)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn image_bytes_count_every_level_and_face() {
+        assert_eq!(image_bytes(4, 4, 1, 1, Storage::Rgba8), 64);
+        assert_eq!(image_bytes(4, 4, 1, 3, Storage::Rgba8), 64 + 16 + 4);
+        assert_eq!(image_bytes(4, 4, 6, 1, Storage::Float), 6 * 16 * 16);
+    }
+}
