@@ -714,7 +714,11 @@ mod tests {
             let mut w = Writer::new(ring, 4096);
             for len in [100usize, 50_000, 200] {
                 let msg = message(len as u64, len);
-                w.write::<RingError>(len, &|| true, |buf| Ok(buf.copy_from_slice(&msg))).expect("write");
+                w.write::<RingError>(len, &|| true, |buf| {
+                    buf.copy_from_slice(&msg);
+                    Ok(())
+                })
+                .expect("write");
             }
             w.publish();
         });
