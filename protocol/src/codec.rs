@@ -109,9 +109,11 @@ pub fn decode_command(bytes: &[u8]) -> Result<Command<'_>, CodecError> {
     Ok(cmd)
 }
 
-/// Decodes one reply. Every byte must be used.
+/// Decodes one reply. Every byte must be used. The client trusts the daemon, and a reply's
+/// decoded size may be many times its encoded size (a list of many small items), so replies
+/// get the whole limit rather than one that follows their size.
 pub fn decode_reply(bytes: &[u8]) -> Result<Reply, CodecError> {
-    decode_owned(bytes, "reply")
+    decode_owned_within::<Reply, MAX_MESSAGE_LEN>(bytes, "reply")
 }
 
 /// Decodes an owned value (handshake messages, replies). Every byte must be used.
