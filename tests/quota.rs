@@ -8,9 +8,7 @@ mod support;
 use std::path::Path;
 
 use strata_client::setup::{egl_context, Current, SurfaceKind};
-use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
-use strata_protocol::control::DaemonStats;
-use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::{Blob, Slice};
 use support::Daemon;
 
@@ -52,13 +50,6 @@ fn texture(gl: &mut Connection, name: u32, size: i32) -> u32 {
     error(gl)
 }
 
-fn stats(socket: &Path) -> DaemonStats {
-    match ControlConnection::connect(socket).expect("control").request(&ControlRequest::Stats).expect("stats") {
-        ControlReply::Stats(s) => s,
-        other => panic!("stats: {other:?}"),
-    }
-}
-
 fn refusals_logged(daemon: &Daemon, client: &str) -> usize {
     daemon.log_text().lines().filter(|l| l.contains("quota exceeded") && l.contains(client)).count()
 }
@@ -77,7 +68,7 @@ fn a_client_beyond_its_gpu_memory_gets_out_of_memory_and_a_bystander_notices_not
     }
     // Nothing else changed: the greedy client still renders, and what it holds is within its limit.
     assert!(draws(&mut greedy, [250, 5, 5]));
-    let s = stats(&daemon.socket);
+    let s = support::stats(&daemon.socket);
     let g = s.clients.iter().find(|c| c.name == "greedy").expect("greedy listed");
     assert!(g.gpu_bytes <= 8 << 20 && g.gpu_bytes >= 4 << 20, "greedy holds {} bytes", g.gpu_bytes);
     assert_eq!((g.refusals, g.objects["textures"]), (4, 5));
@@ -171,14 +162,14 @@ fn all_clients_together_stay_within_the_daemons_total() {
     assert_eq!(texture(&mut a, 1, 1024), GL_NO_ERROR);
     assert_eq!(texture(&mut b, 1, 1024), GL_NO_ERROR);
     assert_eq!(texture(&mut b, 2, 1024), GL_OUT_OF_MEMORY, "within its own 12 MiB, beyond the 16 MiB total");
-    let s = stats(&daemon.socket);
+    let s = support::stats(&daemon.socket);
     assert!(s.gpu_bytes <= 16 << 20, "{} bytes held in all", s.gpu_bytes);
     assert_eq!(s.gpu_bytes_limit, 16 << 20);
     assert!(daemon.log_text().contains("daemon's"), "the refusal names the total");
     drop(a);
     // The first client's memory returns to the pool when it leaves.
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
-    while stats(&daemon.socket).clients.len() > 1 {
+    while support::stats(&daemon.socket).clients.len() > 1 {
         assert!(std::time::Instant::now() < deadline, "the first client never left");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }

@@ -10,26 +10,17 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use strata_client::ControlConnection;
 use strata_protocol::control::DaemonStats;
-use strata_protocol::handshake::{ControlReply, ControlRequest};
 use support::{Daemon, TempDir, Xvfb};
 
 const SESSIONS: usize = 50;
 const WARM_UP: usize = 5;
 
-fn stats(socket: &Path) -> DaemonStats {
-    match ControlConnection::connect(socket).expect("control").request(&ControlRequest::Stats).expect("stats") {
-        ControlReply::Stats(s) => s,
-        other => panic!("stats: {other:?}"),
-    }
-}
-
 /// Waits until no client is connected, then returns the daemon's statistics.
 fn settled(socket: &Path) -> DaemonStats {
     let deadline = Instant::now() + Duration::from_secs(20);
     loop {
-        let s = stats(socket);
+        let s = support::stats(socket);
         if s.clients.is_empty() {
             return s;
         }

@@ -203,6 +203,15 @@ impl RawClient {
 }
 pub mod mesa;
 
+/// A running daemon's `stratad ctl stats`.
+pub fn stats(socket: &Path) -> strata_protocol::control::DaemonStats {
+    let mut c = strata_client::ControlConnection::connect(socket).expect("control");
+    match c.request(&handshake::ControlRequest::Stats).expect("stats") {
+        handshake::ControlReply::Stats(s) => s,
+        other => panic!("stats: {other:?}"),
+    }
+}
+
 /// Whether a missing oracle (Mesa, Xvfb, glmark2) must fail the test instead of skipping it.
 pub fn oracles_required() -> bool {
     std::env::var_os("STRATA_REQUIRE_ORACLES").is_some()
