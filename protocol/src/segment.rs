@@ -70,6 +70,23 @@ pub fn segment_size(cmd_capacity: u32, reply_capacity: u32) -> usize {
     DATA + cmd_capacity as usize + reply_capacity as usize
 }
 
+/// Makes every page of a fresh mapping resident by writing a zero to it.
+///
+/// A ring's pages otherwise become resident one at a time as its cursor first passes them,
+/// so a long-lived client's segment would add to the daemon's memory for as long as its ring
+/// takes to wrap once (minutes, for a client that streams little). Touching them at creation
+/// makes a client's cost fixed from its first frame: the whole segment, freed when it leaves.
+///
+/// # Safety
+/// `base` must point to `len` writable bytes that nothing else reads or writes yet.
+unsafe fn populate(base: *mut u8, len: usize) {
+    const PAGE: usize = 4096;
+    for offset in (0..len).step_by(PAGE) {
+        // SAFETY: offset < len, within the mapping the caller vouches for.
+        unsafe { base.add(offset).write_volatile(0) };
+    }
+}
+
 fn check_capacity(name: &str, cap: u32) -> Result<(), SegmentError> {
     if cap.is_power_of_two() && (MIN_CAPACITY..=MAX_CAPACITY).contains(&cap) {
         Ok(())
@@ -95,9 +112,11 @@ impl Segment {
         // Unlinking is ours (see `unlink`), never the mapping's drop.
         shmem.set_owner(false);
         let seg = Segment { name, map: Arc::new(Mapping(shmem)), cmd_capacity, reply_capacity, linked: true };
-        // SAFETY: the header lies at the start of a fresh, page-aligned mapping of DATA+ bytes.
+        // SAFETY: the header lies at the start of a fresh, page-aligned mapping of DATA+ bytes,
+        // and `segment_size` bytes are mapped.
         unsafe {
             let p = seg.base();
+            populate(p, segment_size(cmd_capacity, reply_capacity));
             p.cast::<u64>().write_volatile(MAGIC);
             p.add(8).cast::<u32>().write_volatile(cmd_capacity);
             p.add(12).cast::<u32>().write_volatile(reply_capacity);
