@@ -3,6 +3,10 @@
 //! The two images must agree within the tolerance stated beside each program; the default is
 //! at most 1/255 per channel on at least 99.9 % of pixels. On failure the actual, expected and
 //! difference images are written under `target/oracle-failures/`.
+//!
+//! The same programs run a second time as low-priority clients whose every pass the daemon
+//! cuts into pieces submitted one by one (runs of draws, or scissored bands of the target),
+//! which must leave every image as Mesa draws it.
 
 mod programs;
 mod support;
@@ -15,6 +19,19 @@ use support::Daemon;
 
 #[test]
 fn executor_matches_mesa() {
+    matches_mesa("oracle", &[]);
+}
+
+#[test]
+fn sliced_low_priority_passes_match_mesa() {
+    // Three pieces: passes of three draws or more are cut into runs of draws; shorter ones
+    // draw by draw, into ranges of primitives where a draw has enough, else into bands.
+    matches_mesa("oracle-sliced", &["--default-priority", "low", "--force-pieces", "3"]);
+}
+
+/// Renders every program through a daemon started with `daemon_args` and through Mesa, and
+/// fails listing every program whose images differ.
+fn matches_mesa(tag: &str, daemon_args: &[&str]) {
     let cases = programs::all();
     assert!(cases.len() >= 30, "the suite must have at least 30 programs");
     let mut mesa_probe = match MesaGl::open(W, H) {
@@ -28,8 +45,9 @@ fn executor_matches_mesa() {
     eprintln!("reference: {}", mesa_probe.renderer);
     let _ = mesa_probe.glFinish();
     drop(mesa_probe);
-    let daemon = Daemon::start("oracle", &[]);
-    let out_dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target/oracle-failures");
+    let daemon = Daemon::start(tag, daemon_args);
+    let out_dir =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target").join(format!("{tag}-failures"));
     let mut failures = Vec::new();
     for case in &cases {
         let expected = MesaGl::open(W, H).map_err(ClientError::Unsupported).and_then(|mut m| render(&mut m, case));

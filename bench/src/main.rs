@@ -4,6 +4,8 @@
 mod composite;
 mod execute;
 mod glmark2;
+mod interference;
+mod interference_client;
 mod mesh;
 mod plot;
 mod soak;
@@ -66,6 +68,12 @@ enum Cmd {
     /// One client of the soak (started by `soak` itself).
     #[command(hide = true)]
     SoakClient(soak_client::Args),
+    /// Freedom from interference: an instrument cluster's frame times alone and beside each
+    /// head-unit load (glmark2 terrain and refract, a huge draw, 64 MiB uploads per frame).
+    Interference(interference::Args),
+    /// One client of the interference benchmark (started by `interference` itself).
+    #[command(hide = true)]
+    InterferenceClient(interference_client::Args),
 }
 
 fn main() -> Result<()> {
@@ -82,5 +90,7 @@ fn main() -> Result<()> {
         Cmd::Thesis(args) => thesis::run(&args),
         Cmd::Soak(args) => soak::run(&args),
         Cmd::SoakClient(args) => soak_client::run(&args),
+        Cmd::Interference(args) => interference::run(&args),
+        Cmd::InterferenceClient(args) => interference_client::run(&args),
     }
 }

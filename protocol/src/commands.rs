@@ -308,6 +308,9 @@ command_set! {
         /// id, placement, depth layer, normal, swap interval and pacing; the last shown frame
         /// stays on screen until the next swap.
         strataResizeSurface => ResizeSurface { display: EglHandle, surface: EglHandle, width: GLsizei, height: GLsizei } -> EglResult<()>;
+        /// A context attribute only the daemon knows (`EGL_CONTEXT_PRIORITY_LEVEL_IMG`: the class
+        /// its client is scheduled in).
+        eglQueryContext => QueryContext { display: EglHandle, context: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
     }
 }
 

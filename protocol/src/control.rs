@@ -5,6 +5,64 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+/// A client's scheduling class on the daemon's one GPU queue.
+///
+/// `high` work is submitted at once and never waits behind the others; `low` work is
+/// submitted in bounded slices, one at a time, within a share of each refresh period while a
+/// `high` client is connected; `normal` work is submitted as it comes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Priority {
+    /// The instrument cluster's class: never queued behind other work.
+    High,
+    /// The default.
+    #[default]
+    Normal,
+    /// Sliced and budgeted: may be deferred, never dropped.
+    Low,
+}
+
+impl std::str::FromStr for Priority {
+    type Err = String;
+
+    /// Parses `high`, `normal` or `low`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "high" => Ok(Priority::High),
+            "normal" => Ok(Priority::Normal),
+            "low" => Ok(Priority::Low),
+            _ => Err(format!("unknown priority {s:?}: the classes are high, normal and low")),
+        }
+    }
+}
+
+impl Priority {
+    /// The class's name as the configuration and `ctl` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Priority::High => "high",
+            Priority::Normal => "normal",
+            Priority::Low => "low",
+        }
+    }
+}
+
+/// Where a client's frames waited, summed over its session, in microseconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Waits {
+    /// In `eglSwapBuffers`, for the compositor to take a frame or for the swap interval.
+    pub swap_us: u64,
+    /// For the scheduler to let its work onto the queue.
+    pub queue_us: u64,
+    /// For the GPU to finish its work (readbacks, `glFinish`, the previous frame at a swap,
+    /// and each low-priority slice).
+    pub gpu_us: u64,
+    /// Low-priority slices submitted.
+    pub slices: u64,
+    /// Times a low-priority slice waited because the class had used its share of a refresh.
+    pub deferred: u64,
+}
+
 /// Where lighting takes a fragment's normal from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum NormalSource {
@@ -169,6 +227,12 @@ pub struct ClientStats {
     pub refusals: u64,
     /// Bytes of command stream it has sent.
     pub stream_bytes: u64,
+    /// Its scheduling class.
+    pub priority: Priority,
+    /// Where its frames waited.
+    pub waits: Waits,
+    /// Deadline misses of its surfaces (see `SurfaceRow::deadline_misses`).
+    pub deadline_misses: u64,
 }
 
 /// The daemon's resources, as `stratad ctl stats` shows them.
@@ -219,6 +283,17 @@ pub struct SurfaceRow {
     pub normal: [f32; 3],
     /// Bytes of command stream its client has sent so far (all its surfaces together).
     pub stream_bytes: u64,
+    /// Its client's scheduling class.
+    pub priority: Priority,
+    /// Whether the compositor watches its frame deadline (`deadline = true` in the layout).
+    pub deadline: bool,
+    /// Refreshes at which its newest frame was older than its swap interval allows (counted
+    /// for deadline surfaces only).
+    pub deadline_misses: u64,
+    /// Swap-to-shown latency of its recent frames (up to the last 1024 shown): the time from
+    /// `eglSwapBuffers` publishing a frame to the device completing the composite that took
+    /// it, p50, p99 and max, in microseconds.
+    pub shown_latency_us: [u64; 3],
 }
 
 /// One output of `stratad ctl list`.

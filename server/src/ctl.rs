@@ -146,12 +146,25 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             }
             println!();
             println!(
-                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12}",
-                "id", "client", "x", "y", "w", "h", "z", "frames", "shown", "interval", "stream bytes"
+                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}",
+                "id",
+                "client",
+                "x",
+                "y",
+                "w",
+                "h",
+                "z",
+                "frames",
+                "shown",
+                "interval",
+                "stream bytes",
+                "priority",
+                "missed",
+                "shown in (p99)"
             );
             for r in surfaces {
                 println!(
-                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12}",
+                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}",
                     r.id,
                     format!("{} ({})", r.client, r.client_id),
                     r.rect[0],
@@ -162,7 +175,10 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                     r.frames,
                     r.shown,
                     r.interval,
-                    r.stream_bytes
+                    r.stream_bytes,
+                    r.priority.name(),
+                    if r.deadline { r.deadline_misses.to_string() } else { "-".into() },
+                    format!("{:.1} ms", r.shown_latency_us[1] as f64 / 1000.0)
                 );
             }
             Ok(())
@@ -221,23 +237,59 @@ fn print_stats(s: &strata_protocol::control::DaemonStats) {
     println!("daemon: rss {} (peak {}), {} sessions started", mib(s.rss_bytes), mib(s.peak_rss_bytes), s.sessions);
     println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
     let kinds: Vec<&String> = s.objects.keys().collect();
-    print!("{:>4} {:<20} {:>12} {:>12} {:>8}", "id", "client", "gpu memory", "limit", "refused");
+    print!(
+        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
+        "id", "client", "priority", "missed", "gpu memory", "limit", "refused"
+    );
     for k in &kinds {
         print!(" {:>13}", k);
     }
     println!();
     for c in &s.clients {
-        print!("{:>4} {:<20} {:>12} {:>12} {:>8}", c.id, c.name, mib(c.gpu_bytes), mib(c.gpu_bytes_limit), c.refusals);
+        print!(
+            "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
+            c.id,
+            c.name,
+            c.priority.name(),
+            c.deadline_misses,
+            mib(c.gpu_bytes),
+            mib(c.gpu_bytes_limit),
+            c.refusals
+        );
         for k in &kinds {
             print!(" {:>13}", c.objects.get(*k).copied().unwrap_or(0));
         }
         println!();
     }
-    print!("{:>4} {:<20} {:>12} {:>12} {:>8}", "", "total", mib(s.gpu_bytes), mib(s.gpu_bytes_limit), "");
+    print!(
+        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
+        "",
+        "total",
+        "",
+        "",
+        mib(s.gpu_bytes),
+        mib(s.gpu_bytes_limit),
+        ""
+    );
     for k in &kinds {
         print!(" {:>13}", s.objects[*k]);
     }
     println!();
+    println!("where frames waited (ms): swap, queue, gpu; low-priority slices and deferrals");
+    for c in &s.clients {
+        let w = &c.waits;
+        let ms = |us: u64| us as f64 / 1000.0;
+        println!(
+            "{:>4} {:<20} {:>10.1} {:>10.1} {:>10.1} {:>8} {:>8}",
+            c.id,
+            c.name,
+            ms(w.swap_us),
+            ms(w.queue_us),
+            ms(w.gpu_us),
+            w.slices,
+            w.deferred
+        );
+    }
     if !s.device_objects.is_empty() {
         let live: Vec<String> = s.device_objects.iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("device objects: {}", live.join(", "));

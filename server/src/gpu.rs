@@ -46,6 +46,8 @@ pub struct Gpu {
     pub adapter: wgpu::Adapter,
     /// What every client's GLES renderer shares, built by the first one.
     pub gles: std::sync::OnceLock<Arc<crate::gles::RendererFixed>>,
+    /// Decides when each client's work goes onto the queue.
+    pub scheduler: Arc<crate::schedule::Scheduler>,
 }
 
 /// A fragment-stage binding of a 2D texture read with `textureLoad` (`sample_type`: a
@@ -323,6 +325,7 @@ impl Gpu {
             instance,
             adapter,
             gles: std::sync::OnceLock::new(),
+            scheduler: Arc::default(),
         }))
     }
 }

@@ -26,10 +26,18 @@ pub struct LayoutEntry {
     pub width: Option<u32>,
     /// Height, if the layout sets it (else the window's own).
     pub height: Option<u32>,
+    /// The client's scheduling class (`"high"`, `"normal"` or `"low"`); wins over what its EGL
+    /// context asks for.
+    #[serde(default)]
+    pub priority: Option<strata_protocol::control::Priority>,
+    /// Whether the compositor watches its surfaces' frame deadlines (`ctl stats` and
+    /// `ctl list` count the misses).
+    #[serde(default)]
+    pub deadline: bool,
 }
 
 /// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
-/// and optionally `width`, `height`; `[[quota]]` tables with `client` and limits.
+/// and optionally `width`, `height`, `priority`, `deadline`; `[[quota]]` tables with `client` and limits.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
@@ -120,6 +128,8 @@ impl FromStr for LayoutEntry {
             z: z.parse().map_err(|_| bad())?,
             width,
             height,
+            priority: None,
+            deadline: false,
         };
         e.validate()?;
         Ok(e)
@@ -183,6 +193,17 @@ mod tests {
         std::fs::write(&bad, "[[layout]]\nclient = \"ic\"\nx = 0\nwhere = 1\n").expect("write");
         assert!(matches!(Config::load(&bad), Err(LayoutError::Parse { .. })));
         assert!(matches!(Config::load(&dir.join("missing.toml")), Err(LayoutError::Read { .. })));
+        // Classes and deadlines; an unknown class names the valid ones.
+        let classes = dir.join("classes.toml");
+        std::fs::write(&classes, "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\npriority = \"high\"\ndeadline = true\n\n[[layout]]\nclient = \"hu\"\nx = 0\ny = 0\nz = 1\npriority = \"low\"\n").expect("write");
+        let c = Config::load(&classes).expect("loads");
+        use strata_protocol::control::Priority;
+        assert_eq!(find(&c.layout, "ic").map(|e| (e.priority, e.deadline)), Some((Some(Priority::High), true)));
+        assert_eq!(find(&c.layout, "hu").map(|e| (e.priority, e.deadline)), Some((Some(Priority::Low), false)));
+        std::fs::write(&bad, "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\npriority = \"urgent\"\n")
+            .expect("write");
+        let e = Config::load(&bad).expect_err("unknown class").to_string();
+        assert!(e.contains("urgent") && e.contains("high") && e.contains("normal") && e.contains("low"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -15,5 +15,6 @@ pub mod layout;
 pub mod quota;
 pub mod root;
 pub mod scene;
+pub mod schedule;
 pub mod stats;
 pub mod window;

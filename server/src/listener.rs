@@ -58,6 +58,8 @@ pub struct ServeOptions {
     pub quotas: Vec<crate::quota::QuotaEntry>,
     /// GPU memory all clients together may hold.
     pub total_gpu_bytes: u64,
+    /// How clients' work is scheduled on the queue (its period is the refresh period).
+    pub schedule: crate::schedule::Policy,
 }
 
 /// The executor each client session gets.
@@ -87,6 +89,7 @@ impl Default for ServeOptions {
             limits: crate::quota::Limits::default(),
             quotas: Vec::new(),
             total_gpu_bytes: crate::quota::default_total(),
+            schedule: crate::schedule::Policy::default(),
         }
     }
 }
@@ -154,6 +157,8 @@ pub struct ClientInfo {
     pub role: String,
     /// Its quota and what it holds.
     pub account: Arc<crate::quota::Account>,
+    /// Its way onto the GPU queue: class, and where its frames waited.
+    pub lane: Option<Arc<crate::schedule::Lane>>,
 }
 
 struct Shared {
@@ -180,6 +185,10 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         ExecutorKind::Gles => Some(Gpu::open()?),
         ExecutorKind::Drain => None,
     };
+    if let Some(gpu) = &gpu {
+        let period = std::time::Duration::from_secs_f64(1.0 / opts.refresh_hz.clamp(1.0, 1000.0));
+        gpu.scheduler.configure(crate::schedule::Policy { period, ..opts.schedule });
+    }
     if opts.outputs.is_empty() {
         return Err(ServerError::Outputs("at least one output is needed".into()));
     }
@@ -421,6 +430,7 @@ async fn run_client(
     let reply_ring = segment.reply_ring()?;
     let waker = cmd_ring.clone();
     let closed = Arc::new(AtomicBool::new(false));
+    let mut lane = None;
     let session = Session::new(
         // Larger commands are skipped unread and refused (see `Session::with_account`).
         Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN)),
@@ -428,18 +438,27 @@ async fn run_client(
         hello.tally,
         match &shared.gpu {
             Some(gpu) => {
-                // A placement the client states wins over the daemon's layout.
-                let layout =
-                    if hello.placement.is_some() { None } else { crate::layout::find(&opts.layout, &hello.name) };
+                let entry = crate::layout::find(&opts.layout, &hello.name);
+                // A placement the client states wins over the daemon's layout; the class and
+                // deadline always come from the daemon's entry.
+                let layout = if hello.placement.is_some() { None } else { entry };
                 if let Some(l) = layout {
                     info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
                 }
-                Box::new(
-                    GlesExecutor::new(gpu.clone())
-                        .with_scene(shared.scene.clone(), id, &hello.name)
-                        .with_layout(layout.cloned())
-                        .with_account(account.clone()),
-                ) as Box<dyn crate::executor::Executor>
+                let fixed = entry.and_then(|e| e.priority);
+                let class = fixed.unwrap_or(opts.schedule.default_class);
+                let deadline = entry.is_some_and(|e| e.deadline);
+                shared.scene.set_policy(id, class, deadline);
+                if fixed.is_some() || deadline {
+                    info!(priority = class.name(), deadline, "scheduled by the daemon's configuration");
+                }
+                let executor = GlesExecutor::new(gpu.clone())
+                    .with_scene(shared.scene.clone(), id, &hello.name)
+                    .with_layout(layout.cloned())
+                    .with_account(account.clone())
+                    .with_priority(class, fixed.is_some(), deadline);
+                lane = Some(executor.lane());
+                Box::new(executor) as Box<dyn crate::executor::Executor>
             }
             None => Box::new(Drain::default()),
         },
@@ -447,7 +466,7 @@ async fn run_client(
     )
     .with_byte_counter(shared.scene.stream_counter(id))
     .with_account(account.clone());
-    let info = ClientInfo { name: hello.name.clone(), role: hello.role.clone(), account };
+    let info = ClientInfo { name: hello.name.clone(), role: hello.role.clone(), account, lane };
     shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
     shared.sessions.fetch_add(1, Ordering::Relaxed);
     info!(segment = segment.name(), "client connected");

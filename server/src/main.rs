@@ -67,7 +67,8 @@ enum Cmd {
         #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
         frames_in_flight: u32,
         /// Configuration file (TOML): `[[layout]]` entries with client, x, y, z, and optionally
-        /// width and height, placing a client's windows by its name.
+        /// width and height, placing a client's windows by its name, and `priority` (high,
+        /// normal, low) and `deadline` (true: count its missed frames); `[[quota]]` entries.
         #[arg(long)]
         config: Option<PathBuf>,
         /// A layout entry: CLIENT=X,Y,Z[,WxH] (repeatable; before the config file's entries).
@@ -77,6 +78,9 @@ enum Cmd {
         /// client by name), and the total.
         #[command(flatten)]
         quota: strata_server::quota::QuotaArgs,
+        /// How clients' work is scheduled on the GPU queue by class.
+        #[command(flatten)]
+        schedule: strata_server::schedule::ScheduleArgs,
     },
     /// Administer a running daemon.
     Ctl {
@@ -187,6 +191,7 @@ fn main() -> Result<()> {
             config,
             mut layouts,
             quota,
+            schedule,
         } => {
             let mut quotas = Vec::new();
             if let Some(path) = config {
@@ -219,6 +224,7 @@ fn main() -> Result<()> {
                 limits: quota.limits(),
                 quotas,
                 total_gpu_bytes: quota.total(),
+                schedule: schedule.policy()?,
             };
             run_daemon(opts)
         }

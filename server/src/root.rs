@@ -204,7 +204,7 @@ impl Root {
         let mut composited = Vec::new();
         // Encode and submit under the scene lock: no swap can interleave, so every front
         // image sampled here is a completed frame.
-        let (_, seen) = self.scene.compose(|surfaces, light, changed| {
+        let (_, seen, shown) = self.scene.compose(|surfaces, light, changed| {
             for (index, out) in outputs.iter_mut().enumerate() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
                 // The changed region in this output's pixels; nothing to do if it misses it.
@@ -254,7 +254,11 @@ impl Root {
                 w.present(&self.gpu, &out.texture);
             }
         }
-        let _ = self.gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        // Wait for this composite only: work clients submitted meanwhile is theirs to wait for.
+        if let Some(index) = inner.compositor.last_submission.take() {
+            let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: Some(index), timeout: None });
+        }
+        self.scene.shown(shown);
         // Each output composited shares the round's time (one output: its composite's cost).
         let share = started.elapsed() / composited.len().max(1) as u32;
         for &i in &composited {

@@ -13,8 +13,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use strata_protocol::control::{LightChange, Lighting, SurfaceRow};
+use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 use tracing::warn;
+
+/// Swap-to-shown latencies kept per surface for `ctl list`.
+const LATENCIES: usize = 1024;
 
 /// Longest a swap waits for the compositor before giving up on pacing (a wedged compositor
 /// must not wedge its clients).
@@ -50,6 +53,16 @@ pub struct SceneSurface {
     last_swap_refresh: u64,
     /// A new size (width, height) that takes effect with the next frame presented.
     resized: Option<(i32, i32)>,
+    /// Whether the compositor counts this surface's deadline misses.
+    pub deadline: bool,
+    /// Refreshes at which its newest frame was older than its interval allows.
+    pub deadline_misses: u64,
+    /// When its newest frame was published, and the refresh count then.
+    presented: Option<(Instant, u64)>,
+    /// Recent swap-to-shown latencies, microseconds, oldest first.
+    latencies: std::collections::VecDeque<u32>,
+    /// Its client's scheduling class.
+    pub priority: Priority,
 }
 
 impl SceneSurface {
@@ -66,9 +79,28 @@ impl SceneSurface {
             interval: self.interval,
             normal: self.normal,
             stream_bytes: 0,
+            priority: self.priority,
+            deadline: self.deadline,
+            deadline_misses: self.deadline_misses,
+            shown_latency_us: self.latency_summary(),
         }
     }
+
+    /// p50, p99 and max of the recent swap-to-shown latencies, microseconds.
+    fn latency_summary(&self) -> [u64; 3] {
+        let mut v: Vec<u32> = self.latencies.iter().copied().collect();
+        if v.is_empty() {
+            return [0; 3];
+        }
+        v.sort_unstable();
+        let at = |q: f64| u64::from(v[((v.len() - 1) as f64 * q).round() as usize]);
+        [at(0.5), at(0.99), at(1.0)]
+    }
 }
+
+/// The frames a composite took that were new, with when each was swapped.
+#[derive(Debug, Default)]
+pub struct Shown(Vec<((u64, u32), Instant)>);
 
 /// The part of the output space that changed since the last composite.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -119,6 +151,8 @@ struct State {
     /// Swaps waiting for a refresh to pass.
     pacing_waiters: usize,
     lighting: Lighting,
+    /// Each connected client's class and whether its surfaces have deadlines.
+    policies: HashMap<u64, (Priority, bool)>,
 }
 
 /// Every window surface of every client, and the lighting.
@@ -158,6 +192,7 @@ impl Scene {
                 root: false,
                 pacing_waiters: 0,
                 lighting,
+                policies: HashMap::new(),
             }),
             changed: Condvar::new(),
             frames_in_flight: u64::from(frames_in_flight.max(1)),
@@ -203,6 +238,7 @@ impl Scene {
         let Some(mut g) = self.lock() else { return 0 };
         g.next_id += 1;
         let id = g.next_id;
+        let (priority, deadline) = g.policies.get(&client).copied().unwrap_or_default();
         g.surfaces.insert(
             (client, surface),
             SceneSurface {
@@ -219,18 +255,36 @@ impl Scene {
                 normal: [0.0, 0.0, 1.0],
                 last_swap_refresh: 0,
                 resized: None,
+                deadline,
+                deadline_misses: 0,
+                presented: None,
+                latencies: std::collections::VecDeque::new(),
+                priority,
             },
         );
         id
     }
 
+    /// Sets client `client`'s scheduling class and whether its surfaces have deadlines, for
+    /// its surfaces now and later.
+    pub fn set_policy(&self, client: u64, priority: Priority, deadline: bool) {
+        let Some(mut g) = self.lock() else { return };
+        g.policies.insert(client, (priority, deadline));
+        for s in g.surfaces.values_mut().filter(|s| s.client_id == client) {
+            s.priority = priority;
+            s.deadline = deadline;
+        }
+    }
+
     /// Publishes a completed frame's front images.
     pub fn present(&self, client: u64, surface: u32, color: wgpu::TextureView, depth: Option<wgpu::TextureView>) {
         let Some(mut g) = self.lock() else { return };
+        let refreshes = g.refreshes;
         if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
             s.color = Some(color);
             s.depth = depth;
             s.frames += 1;
+            s.presented = Some((Instant::now(), refreshes));
             let old = s.rect;
             if let Some((w, h)) = s.resized.take() {
                 s.rect[2] = w;
@@ -304,6 +358,9 @@ impl Scene {
     /// Removes one surface, or with `surface == None` all of a client's.
     pub fn remove(&self, client: u64, surface: Option<u32>) {
         let Some(mut g) = self.lock() else { return };
+        if surface.is_none() {
+            g.policies.remove(&client);
+        }
         let mut gone = Region::None;
         g.surfaces.retain(|k, s| {
             let keep = k.0 != client || surface.is_some_and(|id| id != k.1);
@@ -378,21 +435,40 @@ impl Scene {
 
     /// Runs `f` on the surfaces (in stacking order), the lighting and the region changed since
     /// the last composite, while holding the lock, so no swap can interleave with what `f`
-    /// submits; the frames it saw count as shown. Returns `f`'s result and the damage count
-    /// it reflects.
-    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting, Region) -> R) -> Option<(R, u64)> {
+    /// submits; the frames it saw count as shown. Returns `f`'s result, the damage count it
+    /// reflects, and the new frames it took (for [`Scene::shown`]).
+    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting, Region) -> R) -> Option<(R, u64, Shown)> {
         let mut g = self.lock()?;
         let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
         v.sort_by_key(|s| s.id);
         let region = std::mem::replace(&mut g.region, Region::None);
         let r = f(&v, &g.lighting, region);
-        for s in g.surfaces.values_mut() {
+        let mut taken = Vec::new();
+        for (key, s) in g.surfaces.iter_mut() {
+            if let (true, Some((at, _))) = (s.frames > s.shown, s.presented) {
+                taken.push((*key, at));
+            }
             s.shown = s.frames;
         }
         let damage = g.damage;
         drop(g);
         self.changed.notify_all();
-        Some((r, damage))
+        Some((r, damage, Shown(taken)))
+    }
+
+    /// Records, once a composite has completed on the device, how long each frame it took
+    /// waited from its swap.
+    pub fn shown(&self, frames: Shown) {
+        let now = Instant::now();
+        let Some(mut g) = self.lock() else { return };
+        for (key, at) in frames.0 {
+            if let Some(s) = g.surfaces.get_mut(&key) {
+                if s.latencies.len() == LATENCIES {
+                    s.latencies.pop_front();
+                }
+                s.latencies.push_back(now.duration_since(at).as_micros().min(u128::from(u32::MAX)) as u32);
+            }
+        }
     }
 
     /// Marks that a compositor thread consumes frames (or, with `false`, that none does any
@@ -404,10 +480,19 @@ impl Scene {
         self.changed.notify_all();
     }
 
-    /// Counts one output refresh and wakes swaps waiting for it.
+    /// Counts one output refresh and wakes swaps waiting for it. A deadline surface whose newest frame is now older than its swap interval allows
+    /// counts a miss.
     pub fn refreshed(&self) {
         if let Some(mut g) = self.lock() {
             g.refreshes += 1;
+            let now = g.refreshes;
+            for s in g.surfaces.values_mut().filter(|s| s.deadline && s.interval > 0) {
+                if let Some((_, at)) = s.presented {
+                    if now - at > s.interval as u64 {
+                        s.deadline_misses += 1;
+                    }
+                }
+            }
         }
         self.changed.notify_all();
     }
@@ -420,7 +505,9 @@ impl Scene {
             if !g.root {
                 return Work::Stop;
             }
-            if g.damage != seen || g.pacing_waiters > 0 {
+            // A deadline surface is watched at every refresh, even when nothing changes.
+            let watched = g.surfaces.values().any(|s| s.deadline && s.presented.is_some());
+            if g.damage != seen || g.pacing_waiters > 0 || watched {
                 return Work::Refresh;
             }
             g = match self.changed.wait(g) {

@@ -60,6 +60,7 @@ pub fn collect(
     let (rss_bytes, peak_rss_bytes, rss_anon_bytes) = rss();
     let mut ids: Vec<&u64> = clients.keys().collect();
     ids.sort();
+    let surfaces = scene.rows();
     let mut objects: BTreeMap<String, u64> = Kind::ALL.iter().map(|k| (k.name().to_string(), 0)).collect();
     let rows = ids
         .into_iter()
@@ -80,6 +81,9 @@ pub fn collect(
                 objects: mine,
                 refusals: usage.refusals,
                 stream_bytes: scene.stream_bytes(id),
+                priority: c.lane.as_ref().map(|l| l.class()).unwrap_or_default(),
+                waits: c.lane.as_ref().map(|l| l.waits()).unwrap_or_default(),
+                deadline_misses: surfaces.iter().filter(|r| r.client_id == id).map(|r| r.deadline_misses).sum(),
             }
         })
         .collect();

@@ -104,6 +104,15 @@ pub(crate) fn query_context(dpy: EGLDisplay, ctx: u32, attribute: EGLint, value:
     let mut p = process();
     initialized(&mut p, dpy)?;
     let c = p.live_context(ctx).ok_or(EGL_BAD_CONTEXT)?;
+    if attribute == EGL_CONTEXT_PRIORITY_LEVEL_IMG {
+        // The class the daemon schedules the client in: its configuration may override what
+        // the context asked for.
+        let d_ctx = c.daemon.ok_or(EGL_BAD_CONTEXT)?;
+        let v = daemon(&mut p, |conn, dd| conn.eglQueryContext(dd, d_ctx, attribute))?;
+        // SAFETY: checked non-null above.
+        unsafe { *value = v };
+        return Ok(());
+    }
     let v = match attribute {
         EGL_CONFIG_ID => c.config as EGLint,
         EGL_CONTEXT_CLIENT_TYPE => EGL_OPENGL_ES_API as EGLint,

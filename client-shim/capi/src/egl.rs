@@ -214,7 +214,7 @@ crate::entry_points! {
             EGL_VENDOR => c"Strata",
             EGL_VERSION => c"1.4 Strata",
             EGL_CLIENT_APIS => c"OpenGL_ES",
-            EGL_EXTENSIONS => c"",
+            EGL_EXTENSIONS => c"EGL_IMG_context_priority",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();
@@ -446,7 +446,8 @@ crate::entry_points! {
         }
     }
 
-    /// Config id, client type, client version and render buffer of a context.
+    /// Config id, client type, client version, render buffer and (`EGL_IMG_context_priority`)
+    /// the priority level of a context.
     fn eglQueryContext(dpy: EGLDisplay, ctx: EGLContext, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
         boolean(query_context(dpy, handle(ctx), attribute, value))
     }

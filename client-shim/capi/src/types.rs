@@ -110,6 +110,8 @@ pub const EGL_SINGLE_BUFFER: EGLint = 0x3085;
 pub const EGL_CONTEXT_CLIENT_TYPE: EGLint = 0x3097;
 /// `EGL_CONTEXT_CLIENT_VERSION`.
 pub const EGL_CONTEXT_CLIENT_VERSION: EGLint = 0x3098;
+/// `EGL_CONTEXT_PRIORITY_LEVEL_IMG` (`EGL_IMG_context_priority`): answered by the daemon.
+pub const EGL_CONTEXT_PRIORITY_LEVEL_IMG: EGLint = 0x3100;
 /// `EGL_OPENGL_ES_API`.
 pub const EGL_OPENGL_ES_API: EGLenum = 0x30A0;
 /// `EGL_DRAW`.

@@ -111,6 +111,8 @@ pub struct Compositor {
     pub last_passes: usize,
     /// What the last composite did.
     pub last_stats: Stats,
+    /// The queue submission of the last composite that drew anything.
+    pub last_submission: Option<wgpu::SubmissionIndex>,
 }
 
 impl Compositor {
@@ -133,6 +135,7 @@ impl Compositor {
             mode: Mode::ThreeD,
             last_passes: 0,
             last_stats: Stats::default(),
+            last_submission: None,
         })
     }
 
@@ -297,6 +300,6 @@ impl Compositor {
                 rp.draw(0..4, draw.instances);
             }
         }
-        self.gpu.queue.submit([enc.finish()]);
+        self.last_submission = Some(crate::schedule::submit_compositor(&self.gpu, vec![enc.finish()]));
     }
 }

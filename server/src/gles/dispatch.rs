@@ -77,6 +77,7 @@ fn needs_context(op: Opcode) -> bool {
             | O::DestroyContext
             | O::SwapBuffers
             | O::ResizeSurface
+            | O::QueryContext
     )
 }
 
@@ -114,7 +115,14 @@ impl Executor for GlesExecutor {
             if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
                 ctx.call = op.name();
             }
-            self.dispatch(cmd)
+            let reply = self.dispatch(cmd);
+            if flushes_first(op) && self.r.lane.sliced() {
+                // Uploads are queued writes that the next submission carries, whoever makes
+                // it: a sliced client submits its own at once, so that they run in its turn
+                // and not at the start of another client's work.
+                self.r.lane.submit(&self.gpu, Vec::new());
+            }
+            reply
         };
         let caught = pollster::block_on(scope.pop());
         if caught.is_some() || !self.r.errors.is_empty() {

@@ -1,6 +1,7 @@
 //! EGL on the daemon side: the configs offered and their matching as `eglChooseConfig`
 //! specifies it, displays, contexts, and the EGL calls on surfaces (which `surface` holds).
 
+use strata_protocol::control::Priority;
 use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
@@ -259,10 +260,12 @@ impl GlesExecutor {
         self.check_display(display)?;
         let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
         let mut version = 1;
+        let mut asked = None;
         for pair in attribs.to_vec().chunks(2) {
             match *pair {
                 [EGL_NONE, ..] => break,
                 [EGL_CONTEXT_CLIENT_VERSION, v] => version = v,
+                [EGL_CONTEXT_PRIORITY_LEVEL_IMG, v] => asked = Some(priority_of(v).ok_or(EGL_BAD_ATTRIBUTE)?),
                 [_, _] => return Err(EGL_BAD_ATTRIBUTE),
                 _ => return Err(EGL_BAD_ATTRIBUTE),
             }
@@ -274,7 +277,31 @@ impl GlesExecutor {
         let id = self.next_handle;
         self.next_handle += 1;
         self.contexts.insert(id, Context::new(c));
+        // The class applies to the whole client; the daemon's configuration wins over it.
+        if let (Some(class), false) = (asked, self.policy_fixed) {
+            self.r.lane.set_class(class);
+            if let Some((scene, client, _)) = &self.scene {
+                scene.set_policy(*client, class, self.deadline);
+            }
+        }
         Ok(id)
+    }
+
+    /// `eglQueryContext` for what only the daemon knows: `EGL_CONTEXT_PRIORITY_LEVEL_IMG`, the
+    /// class the client is scheduled in (the configuration's, if it names one).
+    pub(super) fn eglQueryContext(&mut self, display: EglHandle, context: EglHandle, attribute: i32) -> EglResult<i32> {
+        self.check_display(display)?;
+        if !self.contexts.contains_key(&context) {
+            return Err(EGL_BAD_CONTEXT);
+        }
+        match attribute {
+            EGL_CONTEXT_PRIORITY_LEVEL_IMG => Ok(match self.r.lane.class() {
+                Priority::High => EGL_CONTEXT_PRIORITY_HIGH_IMG,
+                Priority::Normal => EGL_CONTEXT_PRIORITY_MEDIUM_IMG,
+                Priority::Low => EGL_CONTEXT_PRIORITY_LOW_IMG,
+            }),
+            _ => Err(EGL_BAD_ATTRIBUTE),
+        }
     }
 
     pub(super) fn eglMakeCurrent(
@@ -353,6 +380,16 @@ impl GlesExecutor {
     pub(super) fn eglSwapBuffers(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {
         self.check_display(display)?;
         self.swap(surface)
+    }
+}
+
+/// The class an `EGL_CONTEXT_PRIORITY_LEVEL_IMG` value asks for.
+fn priority_of(level: i32) -> Option<Priority> {
+    match level {
+        EGL_CONTEXT_PRIORITY_HIGH_IMG => Some(Priority::High),
+        EGL_CONTEXT_PRIORITY_MEDIUM_IMG => Some(Priority::Normal),
+        EGL_CONTEXT_PRIORITY_LOW_IMG => Some(Priority::Low),
+        _ => None,
     }
 }
 

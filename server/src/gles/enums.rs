@@ -414,6 +414,14 @@ pub const EGL_WINDOW_BIT: i32 = 0x0004;
 pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
 pub const EGL_DONT_CARE: i32 = -1;
 pub const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
+/// `EGL_IMG_context_priority`: the attribute and its three levels.
+pub const EGL_CONTEXT_PRIORITY_LEVEL_IMG: i32 = 0x3100;
+/// High priority.
+pub const EGL_CONTEXT_PRIORITY_HIGH_IMG: i32 = 0x3101;
+/// Medium priority (the default).
+pub const EGL_CONTEXT_PRIORITY_MEDIUM_IMG: i32 = 0x3102;
+/// Low priority.
+pub const EGL_CONTEXT_PRIORITY_LOW_IMG: i32 = 0x3103;
 pub const EGL_RENDER_BUFFER: i32 = 0x3086;
 pub const EGL_BACK_BUFFER: i32 = 0x3084;
 pub const EGL_SWAP_BEHAVIOR: i32 = 0x3093;

@@ -69,6 +69,10 @@ pub struct GlesExecutor {
     layout: Option<crate::layout::LayoutEntry>,
     /// What this client may hold and holds (GPU memory, object counts).
     account: Arc<crate::quota::Account>,
+    /// Whether the daemon's configuration fixes the client's class (EGL's request is then
+    /// ignored), and whether its surfaces have deadlines.
+    policy_fixed: bool,
+    deadline: bool,
 }
 
 impl Drop for GlesExecutor {
@@ -95,7 +99,23 @@ impl GlesExecutor {
             scene: None,
             layout: None,
             account: crate::quota::Account::unlimited(),
+            policy_fixed: false,
+            deadline: false,
         }
+    }
+
+    /// Schedules this client in `class`; with `fixed`, what its EGL contexts ask for is
+    /// ignored. With `deadline`, the compositor counts its surfaces' missed deadlines.
+    pub fn with_priority(mut self, class: strata_protocol::control::Priority, fixed: bool, deadline: bool) -> Self {
+        self.r.lane.set_class(class);
+        self.policy_fixed = fixed;
+        self.deadline = deadline;
+        self
+    }
+
+    /// This client's way onto the queue.
+    pub fn lane(&self) -> Arc<crate::schedule::Lane> {
+        self.r.lane.clone()
     }
 
     /// Places this client's window surfaces by `layout` instead of where it asks.

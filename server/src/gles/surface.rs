@@ -125,8 +125,13 @@ impl GlesExecutor {
         std::mem::swap(&mut s.depth_sample, front_depth);
         if let (Some(scene), Some((_, view))) = (&self.scene, &front.color) {
             scene.0.present(scene.1, surface, view.clone(), front_depth.clone());
+            let start = std::time::Instant::now();
             scene.0.throttle(scene.1, surface);
+            self.r.lane.add_swap_wait(start.elapsed());
         }
+        // At most one frame of this client on the queue: whatever is submitted after it
+        // never waits behind a backlog of its frames.
+        self.r.lane.frame_boundary(&self.gpu);
         Ok(())
     }
 

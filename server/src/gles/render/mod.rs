@@ -16,6 +16,7 @@ mod mipmaps;
 mod passes;
 mod pipelines;
 mod readback;
+mod slices;
 mod targets;
 
 use std::collections::HashMap;
@@ -147,6 +148,10 @@ pub struct Renderer {
     align: u64,
     fixed: Arc<Fixed>,
     layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
+    /// The client's way onto the queue.
+    pub lane: Arc<crate::schedule::Lane>,
+    /// What each target's pass took to complete last time, for lanes that slice.
+    pass_costs: HashMap<(u64, u64), std::time::Duration>,
 }
 
 /// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.
@@ -264,7 +269,10 @@ impl Renderer {
     pub fn new(gpu: Arc<Gpu>) -> Self {
         let fixed = gpu.gles.get_or_init(|| Arc::new(Fixed::new(&gpu))).clone();
         let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment).max(16);
+        let lane = gpu.scheduler.lane(strata_protocol::control::Priority::Normal);
         Renderer {
+            lane,
+            pass_costs: HashMap::new(),
             gpu,
             pipelines: HashMap::new(),
             clear_pipelines: HashMap::new(),

@@ -6,6 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::super::enums::*;
+use super::slices::{Part, Piece};
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
 
 /// What a recorded draw binds at group 0.
@@ -45,6 +46,8 @@ pub(super) struct Recorded {
     pub(super) stencil_ref: u32,
     /// Blend constant.
     pub(super) blend_color: [f64; 4],
+    /// Primitive topology (points are instanced triangle strips).
+    pub(super) topology: wgpu::PrimitiveTopology,
 }
 
 /// The open pass: its target, load operations and recorded draws.
@@ -159,11 +162,13 @@ impl Renderer {
             scissor: spec.scissor,
             stencil_ref: spec.stencil_ref,
             blend_color: spec.blend_color,
+            topology: spec.raster.topology,
         };
         self.pass_for(target).draws.push(rec);
     }
 
-    /// Encodes and submits the open pass. A GPU validation error is queued in `errors`.
+    /// Encodes and submits the open pass: whole, or for a lane that slices, in pieces sized
+    /// by what this target's pass cost last time. A GPU validation error is queued in `errors`.
     pub fn flush(&mut self) {
         let Some(pass) = self.pass.take() else { return };
         self.passes += 1;
@@ -171,10 +176,22 @@ impl Renderer {
         self.upload_staging();
         let ring = self.ring.as_ref().map(|(b, _)| b.clone());
         let groups = self.bind_groups(&pass, ring.as_ref());
-        let mut enc =
-            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
-        encode(&mut enc, &pass, &groups, ring.as_ref());
-        self.gpu.queue.submit([enc.finish()]);
+        let sliced = self.lane.sliced();
+        let pieces = if sliced { self.pieces(&pass) } else { vec![Piece::whole(&pass)] };
+        let mut took = Some(std::time::Duration::ZERO);
+        for (i, piece) in pieces.iter().enumerate() {
+            let mut enc =
+                self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
+            encode(&mut enc, &pass, &groups, ring.as_ref(), piece, i == 0);
+            let t = self.lane.submit(&self.gpu, vec![enc.finish()]);
+            took = took.zip(t).map(|(a, b)| a + b);
+        }
+        if let (true, Some(took)) = (sliced, took) {
+            if self.pass_costs.len() >= 256 {
+                self.pass_costs.clear();
+            }
+            self.pass_costs.insert(pass.target.key, took);
+        }
         if let Some(e) = pollster::block_on(guard.pop()) {
             self.errors.push(error_chain(&e));
         }
@@ -283,30 +300,32 @@ impl Renderer {
 }
 
 /// Encodes `pass` with the bind groups from `bind_groups` and the ring holding its staged data.
+/// Encodes `piece` of `pass` (its load operations only in the first piece; later pieces load
+/// what the earlier ones stored).
 fn encode(
     enc: &mut wgpu::CommandEncoder,
     pass: &Pass,
     groups: &[Option<wgpu::BindGroup>],
     ring: Option<&wgpu::Buffer>,
+    piece: &Piece,
+    first: bool,
 ) {
     let t = &pass.target;
+    let clear = |op: Option<wgpu::Color>| op.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load);
     let color = t.color.as_ref().map(|(_, view)| wgpu::RenderPassColorAttachment {
         view,
         depth_slice: None,
         resolve_target: None,
-        ops: wgpu::Operations {
-            load: pass.clear_color.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
-            store: wgpu::StoreOp::Store,
-        },
+        ops: wgpu::Operations { load: clear(pass.clear_color), store: wgpu::StoreOp::Store },
     });
     let depth = t.depth.as_ref().map(|(view, f)| wgpu::RenderPassDepthStencilAttachment {
         view,
         depth_ops: Some(wgpu::Operations {
-            load: pass.clear_depth.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
+            load: pass.clear_depth.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
             store: wgpu::StoreOp::Store,
         }),
         stencil_ops: f.has_stencil_aspect().then(|| wgpu::Operations {
-            load: pass.clear_stencil.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
+            load: pass.clear_stencil.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
             store: wgpu::StoreOp::Store,
         }),
     });
@@ -319,7 +338,22 @@ fn encode(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    for (r, g) in pass.draws.iter().zip(groups) {
+    let range = piece.draws.clone();
+    for (r, g) in pass.draws[range.clone()].iter().zip(&groups[range]) {
+        let [sx, sy, sw, sh] = r.scissor;
+        let (sy, sh) = match piece.band {
+            None => (sy, sh),
+            Some([top, bottom]) => {
+                let (y0, y1) = (sy.max(top), (sy + sh).min(bottom));
+                if y1 <= y0 {
+                    continue;
+                }
+                (y0, y1 - y0)
+            }
+        };
+        if sw == 0 || sh == 0 {
+            continue;
+        }
         rp.set_pipeline(&r.pipeline);
         match (&r.bind, g) {
             (Bind::Clear(off), Some(g)) => rp.set_bind_group(0, g, &[*off]),
@@ -339,7 +373,6 @@ fn encode(
         }
         let [x, y, w, h, n, f] = r.viewport;
         rp.set_viewport(x, y, w, h, n, f);
-        let [sx, sy, sw, sh] = r.scissor;
         rp.set_scissor_rect(sx, sy, sw, sh);
         rp.set_stencil_reference(r.stencil_ref);
         let [br, bg, bb, ba] = r.blend_color;
@@ -354,11 +387,19 @@ fn encode(
                         }
                     }
                 }
-                rp.draw_indexed(0..r.count, 0, 0..1);
+                let (s, n) = match piece.part {
+                    Some(Part::Elements(s, n)) => (s, n),
+                    _ => (0, r.count),
+                };
+                rp.draw_indexed(s..s + n, 0, 0..1);
             }
             None => {
                 let (i0, n) = r.instances;
-                rp.draw(r.first..r.first + r.count, i0..i0 + n)
+                match piece.part {
+                    Some(Part::Elements(s, c)) => rp.draw(r.first + s..r.first + s + c, i0..i0 + n),
+                    Some(Part::Instances(s, c)) => rp.draw(r.first..r.first + r.count, i0 + s..i0 + s + c),
+                    None => rp.draw(r.first..r.first + r.count, i0..i0 + n),
+                }
             }
         }
     }

@@ -11,10 +11,10 @@ impl Renderer {
         self.gpu.read_rgba8(tex, rect)
     }
 
-    /// Waits until the GPU has finished everything submitted.
+    /// Waits until the GPU has finished everything this client submitted.
     pub fn finish(&mut self) {
         self.flush();
-        let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+        self.lane.wait_idle(&self.gpu);
     }
 
     /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the

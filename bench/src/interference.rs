@@ -1,0 +1,659 @@
+//! `strata-bench interference`: freedom from interference. An instrument-cluster client (IC,
+//! a dial at swap interval 1) must keep its frame deadline whatever a head-unit client (HU)
+//! does. The IC runs alone, then beside each HU load in turn (glmark2-es2 `terrain` and
+//! `refract` through the drop-in libraries, one huge draw per frame, 64 MiB of uploads per
+//! frame); its frame times are compared with those it had alone. The daemon is this
+//! benchmark's own, configured to place both clients and, unless `--no-priorities`, to give
+//! the IC high priority and a deadline.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use anyhow::{anyhow, bail, Context, Result};
+use clap::ValueEnum;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use serde_json::Value;
+use strata_client::ControlConnection;
+use strata_protocol::handshake::{ControlReply, ControlRequest};
+
+use crate::interference_client::{lines, plot_cdf, read_outcome, FrameStats};
+
+/// The IC's frame deadline: 1.5 refresh periods at the daemon's default 60 Hz.
+const DEADLINE_MS: f64 = 1.5 * 1000.0 / 60.0;
+/// How long a HU load runs before the IC is measured beside it.
+const SETTLE: Duration = Duration::from_secs(2);
+/// Longest the HU is given to show its first frame before the IC is measured beside it.
+const SETTLE_LIMIT: Duration = Duration::from_secs(60);
+/// The daemon's output (one, headless).
+const OUTPUT: &str = "main=1920x720";
+
+/// A head-unit load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Load {
+    /// glmark2-es2 `--benchmark terrain` through the drop-in libraries.
+    Terrain,
+    /// glmark2-es2 `--benchmark refract` through the drop-in libraries.
+    Refract,
+    /// One fullscreen quad per frame with a very long fragment loop (`interference-client`).
+    HugeDraw,
+    /// 64 MiB of texture uploads per frame (`interference-client`).
+    Upload,
+}
+
+impl Load {
+    fn name(self) -> String {
+        self.to_possible_value().map_or_else(|| format!("{self:?}"), |v| v.get_name().to_string())
+    }
+
+    fn is_glmark2(self) -> bool {
+        matches!(self, Load::Terrain | Load::Refract)
+    }
+}
+
+/// `strata-bench interference` arguments.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Seconds the IC is measured in each phase.
+    #[arg(long, default_value_t = 20.0)]
+    pub seconds: f64,
+    /// Where the configuration, JSON, plot and logs go.
+    #[arg(long, default_value = "target/strata-bench/interference")]
+    pub out: PathBuf,
+    /// The daemon binary [default: `stratad` beside this program].
+    #[arg(long)]
+    pub stratad: Option<PathBuf>,
+    /// HU loads, in order (comma-separated).
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "terrain,refract,huge-draw,upload")]
+    pub loads: Vec<Load>,
+    /// Leave `priority` and `deadline` out of the daemon's layout.
+    #[arg(long)]
+    pub no_priorities: bool,
+    /// The HU's window size, WxH (glmark2's `-s` too).
+    #[arg(long, default_value = "1280x720")]
+    pub hu_size: String,
+    /// Fragment-loop iterations of the huge draw.
+    #[arg(long, default_value_t = 50)]
+    pub iterations: u32,
+    /// Directory holding libEGL.so.1 and libGLESv2.so.2 [default: libstrata_egl.so beside
+    /// this binary].
+    #[arg(long)]
+    pub shim: Option<PathBuf>,
+    /// Print only the JSON (no progress bar, no table).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One phase: the IC alone or beside one load.
+#[derive(Debug, Clone, Serialize)]
+struct Phase {
+    phase: String,
+    #[serde(flatten)]
+    ic: FrameStats,
+    /// The daemon's `deadline_misses` for the IC over the phase (null where it has none).
+    daemon_deadline_misses: Option<u64>,
+    p50_ratio: Option<f64>,
+    p99_ratio: Option<f64>,
+    max_ratio: Option<f64>,
+    /// The HU's frames per second over the phase, from the daemon's frame counter.
+    hu_fps: Option<f64>,
+    /// The HU's own frame rate (the client's result, or glmark2's last FPS line).
+    hu_reported_fps: Option<f64>,
+    /// The HU surface's swap interval as the daemon lists it.
+    hu_interval: Option<i64>,
+    hu_error: Option<String>,
+    load_average_1m: Option<f64>,
+    /// The IC's surface as `ctl list` showed it at the end of the phase.
+    ic_surface: Option<Value>,
+    /// The IC's and the HU's `ctl stats` rows at the end of the phase: class, and where their
+    /// frames waited (swap, scheduler, device; low-priority slices and deferrals).
+    clients: Vec<Value>,
+    frame_times_ms: Vec<f64>,
+}
+
+/// The target for one load: p99 within 1.25× alone, and no more client-side misses.
+#[derive(Debug, Serialize)]
+struct Verdict {
+    load: String,
+    p99_ratio: f64,
+    p99_ok: bool,
+    client_misses: u64,
+    alone_client_misses: u64,
+    misses_ok: bool,
+    pass: bool,
+}
+
+#[derive(Debug, Serialize)]
+struct Report {
+    benchmark: &'static str,
+    seconds: f64,
+    priorities: bool,
+    config: String,
+    output: &'static str,
+    deadline_ms: f64,
+    phases: Vec<Phase>,
+    skipped: Vec<String>,
+    failures: Vec<String>,
+    verdicts: Vec<Verdict>,
+    plot: String,
+    daemon_log: String,
+}
+
+/// The daemon's layout: the IC at the left, the HU beside it.
+fn config(priorities: bool) -> String {
+    let (ic, hu) =
+        if priorities { ("priority = \"high\"\ndeadline = true\n", "priority = \"low\"\n") } else { ("", "") };
+    format!(
+        "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\n{ic}\
+         [[layout]]\nclient = \"hu\"\nx = 400\ny = 0\nz = 0.6\n{hu}"
+    )
+}
+
+/// This benchmark's `stratad serve`; stopped on drop.
+struct Daemon {
+    child: Child,
+    socket: PathBuf,
+    log: PathBuf,
+}
+
+impl Daemon {
+    fn start(stratad: &Path, config: &Path, log: PathBuf) -> Result<Daemon> {
+        let socket = std::env::temp_dir().join(format!("strata-interference-{}.sock", std::process::id()));
+        let child = Command::new(stratad)
+            .args(["serve", "--output", OUTPUT, "--socket"])
+            .arg(&socket)
+            .arg("--config")
+            .arg(config)
+            .env("RUST_LOG", "warn")
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?)
+            .spawn()
+            .with_context(|| format!("starting {}", stratad.display()))?;
+        let mut d = Daemon { child, socket, log };
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while std::os::unix::net::UnixStream::connect(&d.socket).is_err() {
+            if Instant::now() > deadline || d.child.try_wait()?.is_some() {
+                bail!("stratad did not start; its log {}:\n{}", d.log.display(), tail(&d.log, 15));
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        Ok(d)
+    }
+
+    fn alive(&mut self) -> Result<()> {
+        match self.child.try_wait()? {
+            Some(status) => bail!("stratad exited ({status}); its log:\n{}", tail(&self.log, 15)),
+            None => Ok(()),
+        }
+    }
+}
+
+impl Drop for Daemon {
+    fn drop(&mut self) {
+        stop(&mut self.child, Duration::from_secs(10));
+        let _ = std::fs::remove_file(&self.socket);
+    }
+}
+
+/// Waits up to `limit` for `child` to exit.
+fn wait_for(child: &mut Child, limit: Duration) -> Option<std::process::ExitStatus> {
+    let start = Instant::now();
+    loop {
+        match child.try_wait() {
+            Ok(Some(s)) => return Some(s),
+            Ok(None) if start.elapsed() < limit => std::thread::sleep(Duration::from_millis(20)),
+            _ => return None,
+        }
+    }
+}
+
+/// SIGTERM, then SIGKILL after `grace`.
+fn stop(child: &mut Child, grace: Duration) {
+    // SAFETY: kill(2) on our own child.
+    unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+    if wait_for(child, grace).is_none() {
+        let _ = child.kill();
+        let _ = child.wait();
+    }
+}
+
+/// The last `n` lines of a log file.
+fn tail(path: &Path, n: usize) -> String {
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(n)..].join("\n")
+}
+
+/// `ctl list` and `ctl stats` at one moment, as JSON (so that fields the daemon adds, such as
+/// `deadline_misses`, are read without this code naming them).
+struct Snapshot {
+    at: Instant,
+    surfaces: Vec<Value>,
+    clients: Vec<Value>,
+}
+
+impl Snapshot {
+    fn take(control: &mut ControlConnection) -> Result<Snapshot> {
+        let hint = "(is stratad built from this tree?)";
+        let surfaces = match control.request(&ControlRequest::List).with_context(|| format!("ctl list {hint}"))? {
+            ControlReply::List { surfaces, .. } => surfaces,
+            other => bail!("ctl list: unexpected {other:?}"),
+        };
+        let stats = match control.request(&ControlRequest::Stats).with_context(|| format!("ctl stats {hint}"))? {
+            ControlReply::Stats(s) => serde_json::to_value(s)?,
+            other => bail!("ctl stats: unexpected {other:?}"),
+        };
+        let surfaces = surfaces.iter().map(serde_json::to_value).collect::<Result<_, _>>()?;
+        let clients = stats.get("clients").and_then(Value::as_array).cloned().unwrap_or_default();
+        Ok(Snapshot { at: Instant::now(), surfaces, clients })
+    }
+
+    fn rows<'a>(&'a self, client: &'a str) -> impl Iterator<Item = &'a Value> + 'a {
+        self.surfaces.iter().filter(move |s| s.get("client").and_then(Value::as_str) == Some(client))
+    }
+
+    /// Frames `client` has swapped, all its surfaces together.
+    fn frames(&self, client: &str) -> u64 {
+        self.rows(client).filter_map(|s| s.get("frames")?.as_u64()).sum()
+    }
+
+    /// `client`'s deadline misses, all its surfaces together (None where no row has the field).
+    fn deadline_misses(&self, client: &str) -> Option<u64> {
+        self.rows(client).filter_map(|s| s.get("deadline_misses")?.as_u64()).reduce(|a, b| a + b)
+    }
+
+    fn has_client(&self, client: &str) -> bool {
+        self.clients.iter().any(|c| c.get("name").and_then(Value::as_str) == Some(client))
+    }
+}
+
+/// A running HU load.
+struct Hu {
+    load: Load,
+    child: Child,
+    /// The client's result file (interference-client loads).
+    result: Option<PathBuf>,
+    log: PathBuf,
+}
+
+/// What the glmark2 loads need: a temporary directory, the shim directory and an X server.
+type Glmark2Env = (crate::glmark2::TempDir, PathBuf, crate::glmark2::Xvfb);
+
+/// Everything the phases share.
+struct Bench<'a> {
+    args: &'a Args,
+    exe: PathBuf,
+    daemon: Daemon,
+    control: ControlConnection,
+    glmark2: Option<Glmark2Env>,
+}
+
+impl Bench<'_> {
+    fn start_hu(&self, load: Load) -> Result<Hu> {
+        let name = load.name();
+        let log = self.args.out.join(format!("hu-{name}.log"));
+        let file = std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?;
+        let (mut cmd, result) = if load.is_glmark2() {
+            let (_, shim, x) = self.glmark2.as_ref().context("glmark2-es2 is not set up")?;
+            let mut cmd = Command::new("glmark2-es2");
+            cmd.args(["-b", &format!("{name}:duration=100000"), "-s", &self.args.hu_size, "--swap-mode", "immediate"])
+                .env("DISPLAY", &x.display)
+                .env("LD_LIBRARY_PATH", shim)
+                .env("STRATA_SOCKET", &self.daemon.socket)
+                .env("STRATA_NAME", "hu")
+                .env_remove("STRATA_WINDOW");
+            (cmd, None)
+        } else {
+            let result = self.args.out.join(format!("hu-{name}.json"));
+            let _ = std::fs::remove_file(&result);
+            let mut cmd = Command::new(&self.exe);
+            cmd.args(["interference-client", "--role", &name, "--seconds", "1000000", "--socket"])
+                .arg(&self.daemon.socket)
+                .arg("--out")
+                .arg(&result)
+                .args(["--window", &format!("400,0,{}", self.args.hu_size)])
+                .args(["--iterations", &self.args.iterations.to_string()]);
+            (cmd, Some(result))
+        };
+        let child = cmd
+            .stdin(Stdio::null())
+            .stdout(file.try_clone()?)
+            .stderr(file)
+            .spawn()
+            .with_context(|| format!("starting the {name} load"))?;
+        Ok(Hu { load, child, result, log })
+    }
+
+    /// Stops the HU; returns its own frame rate, and an error if it failed before it was
+    /// stopped. Waits until the daemon has let it go.
+    fn stop_hu(&mut self, mut hu: Hu) -> (Option<f64>, Option<String>) {
+        let early = hu.child.try_wait().ok().flatten();
+        stop(&mut hu.child, Duration::from_secs(10));
+        let error = early.map(|s| format!("the {} load exited early ({s}):\n{}", hu.load.name(), tail(&hu.log, 8)));
+        let fps = match &hu.result {
+            Some(path) => read_outcome(path).ok().map(|o| o.fps),
+            // glmark2 prints `[scene] ...: FPS: N FrameTime: ...` when a scene ends.
+            None => std::fs::read_to_string(&hu.log)
+                .unwrap_or_default()
+                .lines()
+                .rev()
+                .find_map(|l| l.split_once("FPS:")?.1.split_whitespace().next()?.parse().ok()),
+        };
+        let deadline = Instant::now() + Duration::from_secs(60);
+        while Instant::now() < deadline {
+            match Snapshot::take(&mut self.control) {
+                Ok(s) if !s.has_client("hu") => break,
+                Ok(_) => std::thread::sleep(Duration::from_millis(100)),
+                Err(_) => break,
+            }
+        }
+        (fps, error)
+    }
+
+    /// Measures the IC for `--seconds`, beside whatever runs now.
+    fn measure(&mut self, name: &str) -> Result<Phase> {
+        let result = self.args.out.join(format!("ic-{name}.json"));
+        let log = self.args.out.join(format!("ic-{name}.log"));
+        let _ = std::fs::remove_file(&result);
+        let mut child = Command::new(&self.exe)
+            .args(["interference-client", "--role", "ic", "--hold", "--seconds", &self.args.seconds.to_string()])
+            .arg("--socket")
+            .arg(&self.daemon.socket)
+            .arg("--out")
+            .arg(&result)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(std::fs::File::create(&log)?)
+            .spawn()
+            .context("starting the IC")?;
+        let stdin = child.stdin.take();
+        let r = self.measured(name, &mut child, stdin, &result);
+        if wait_for(&mut child, Duration::from_secs(30)).is_none() {
+            stop(&mut child, Duration::from_secs(5));
+        }
+        r.map_err(|e| anyhow!("{e:#}\nthe IC's log:\n{}", tail(&log, 8)))
+    }
+
+    fn measured(&mut self, name: &str, child: &mut Child, stdin: Option<ChildStdin>, result: &Path) -> Result<Phase> {
+        let rx = lines(child.stdout.take().context("the IC's stdout")?);
+        let expect = |what: &str, limit: Duration| -> Result<()> {
+            let until = Instant::now() + limit;
+            loop {
+                let left = until.saturating_duration_since(Instant::now());
+                match rx.recv_timeout(left) {
+                    Ok(line) if line == what => return Ok(()),
+                    Ok(_) => {}
+                    Err(_) => bail!("the IC did not say {what:?} within {limit:?}"),
+                }
+            }
+        };
+        let slack = Duration::from_secs(120);
+        expect("measuring", slack)?;
+        let before = Snapshot::take(&mut self.control)?;
+        expect("end", Duration::from_secs_f64(self.args.seconds) + slack)?;
+        let after = Snapshot::take(&mut self.control)?;
+        drop(stdin);
+        if wait_for(child, Duration::from_secs(30)).is_none_or(|s| !s.success()) {
+            bail!("the IC did not end cleanly");
+        }
+        let outcome = read_outcome(result)?;
+        let secs = (after.at - before.at).as_secs_f64().max(1e-9);
+        let hu = name != "alone";
+        let hu_fps = hu.then(|| after.frames("hu").saturating_sub(before.frames("hu")) as f64 / secs);
+        let hu_interval = after.rows("hu").find_map(|s| s.get("interval")?.as_i64());
+        let misses = match (before.deadline_misses("ic"), after.deadline_misses("ic")) {
+            (Some(b), Some(a)) => Some(a.saturating_sub(b)),
+            _ => None,
+        };
+        let loadavg = std::fs::read_to_string("/proc/loadavg").ok();
+        let ic_surface = after.rows("ic").next().cloned();
+        Ok(Phase {
+            phase: name.to_string(),
+            ic: FrameStats::of(&outcome.frame_times_ms, DEADLINE_MS),
+            daemon_deadline_misses: misses,
+            p50_ratio: None,
+            p99_ratio: None,
+            max_ratio: None,
+            hu_fps,
+            hu_reported_fps: None,
+            hu_interval,
+            hu_error: None,
+            load_average_1m: loadavg.and_then(|l| l.split_whitespace().next()?.parse().ok()),
+            ic_surface,
+            clients: after
+                .clients
+                .iter()
+                .filter(|c| matches!(c.get("name").and_then(Value::as_str), Some("ic" | "hu")))
+                .cloned()
+                .collect(),
+            frame_times_ms: outcome.frame_times_ms,
+        })
+    }
+
+    /// One load's phase: start it, let it settle, measure the IC, stop it.
+    fn load_phase(&mut self, load: Load) -> Result<Phase> {
+        let hu = self.start_hu(load)?;
+        // Measure the steady state: after the HU's first frame (its pipelines compiled, its
+        // passes' costs known to the scheduler), or after `SETTLE_LIMIT` at most.
+        let until = Instant::now() + SETTLE_LIMIT;
+        while Instant::now() < until {
+            match Snapshot::take(&mut self.control) {
+                Ok(s) if s.frames("hu") >= 1 => break,
+                Ok(_) => std::thread::sleep(Duration::from_millis(200)),
+                Err(_) => break,
+            }
+        }
+        std::thread::sleep(SETTLE);
+        let phase = self.measure(&load.name());
+        let (fps, error) = self.stop_hu(hu);
+        let mut phase = phase?;
+        phase.hu_reported_fps = fps;
+        phase.hu_error = error;
+        Ok(phase)
+    }
+}
+
+/// Runs the benchmark.
+pub fn run(args: &Args) -> Result<()> {
+    if !args.seconds.is_finite() || args.seconds <= 0.0 {
+        bail!("--seconds must be positive");
+    }
+    crate::glmark2::size(&args.hu_size)?;
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let exe = std::env::current_exe()?;
+    let stratad = match &args.stratad {
+        Some(p) => p.clone(),
+        None => exe.parent().context("program directory")?.join("stratad"),
+    };
+    if !stratad.is_file() {
+        bail!("{} is not built (cargo build -p strata-server)", stratad.display());
+    }
+    let config_path = args.out.join("stratad.toml");
+    std::fs::write(&config_path, config(!args.no_priorities))
+        .with_context(|| format!("writing {}", config_path.display()))?;
+
+    let mut skipped = Vec::new();
+    let mut loads = args.loads.clone();
+    // glmark2 loads need glmark2-es2, Xvfb and the shim (`prepare` says what is missing).
+    let glmark2 = match loads.iter().any(|l| l.is_glmark2()).then(|| crate::glmark2::prepare(args.shim.as_deref())) {
+        Some(Ok(env)) => Some(env),
+        Some(Err(e)) => {
+            for l in loads.iter().filter(|l| l.is_glmark2()) {
+                skipped.push(format!("{}: skipped: {e:#}", l.name()));
+                if !args.json {
+                    eprintln!("{}", skipped[skipped.len() - 1]);
+                }
+            }
+            loads.retain(|l| !l.is_glmark2());
+            None
+        }
+        None => None,
+    };
+
+    let daemon = Daemon::start(&stratad, &config_path, args.out.join("stratad.log"))?;
+    let control = ControlConnection::connect(&daemon.socket).context("connecting to stratad's control socket")?;
+    let mut bench = Bench { args, exe, daemon, control, glmark2 };
+
+    let pb = if args.json { ProgressBar::hidden() } else { ProgressBar::new(1 + loads.len() as u64) };
+    pb.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} phases: {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    pb.enable_steady_tick(Duration::from_millis(250));
+    pb.set_message("IC alone");
+    let alone = bench.measure("alone").context("the IC alone")?;
+    pb.inc(1);
+    let mut phases = vec![alone];
+    let mut failures = Vec::new();
+    for &load in &loads {
+        pb.set_message(format!("IC beside {}", load.name()));
+        bench.daemon.alive()?;
+        match bench.load_phase(load) {
+            Ok(p) => phases.push(p),
+            Err(e) => {
+                let why = format!("{}: {e:#}", load.name());
+                pb.println(format!("phase failed: {why}"));
+                failures.push(why);
+            }
+        }
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+    bench.daemon.alive()?;
+    let daemon_log = bench.daemon.log.display().to_string();
+    drop(bench);
+    report(args, phases, skipped, failures, &config_path, daemon_log)
+}
+
+fn report(
+    args: &Args,
+    mut phases: Vec<Phase>,
+    skipped: Vec<String>,
+    failures: Vec<String>,
+    config: &Path,
+    daemon_log: String,
+) -> Result<()> {
+    let alone = phases[0].clone();
+    let ratio = |v: f64, a: f64| (a > 0.0 && v.is_finite()).then(|| v / a);
+    for p in phases.iter_mut().skip(1) {
+        p.p50_ratio = ratio(p.ic.p50_ms, alone.ic.p50_ms);
+        p.p99_ratio = ratio(p.ic.p99_ms, alone.ic.p99_ms);
+        p.max_ratio = ratio(p.ic.max_ms, alone.ic.max_ms);
+    }
+    let verdicts: Vec<Verdict> = phases
+        .iter()
+        .skip(1)
+        .map(|p| {
+            let p99_ratio = p.p99_ratio.unwrap_or(f64::INFINITY);
+            let (client_misses, alone_client_misses) = (p.ic.client_misses, alone.ic.client_misses);
+            let (p99_ok, misses_ok) = (p99_ratio <= 1.25, client_misses <= alone_client_misses);
+            let load = p.phase.clone();
+            Verdict {
+                load,
+                p99_ratio,
+                p99_ok,
+                client_misses,
+                alone_client_misses,
+                misses_ok,
+                pass: p99_ok && misses_ok,
+            }
+        })
+        .collect();
+    let plot = args.out.join("interference.png");
+    let curves: Vec<(&str, &[f64])> = phases.iter().map(|p| (p.phase.as_str(), p.frame_times_ms.as_slice())).collect();
+    let plot_result = plot_cdf(&plot, &curves, args.seconds, DEADLINE_MS);
+    let r = Report {
+        benchmark: "interference",
+        seconds: args.seconds,
+        priorities: !args.no_priorities,
+        config: config.display().to_string(),
+        output: OUTPUT,
+        deadline_ms: DEADLINE_MS,
+        phases,
+        skipped,
+        failures,
+        verdicts,
+        plot: plot.display().to_string(),
+        daemon_log,
+    };
+    let json = serde_json::to_string_pretty(&r)?;
+    let json_path = args.out.join("interference.json");
+    std::fs::write(&json_path, &json).with_context(|| format!("writing {}", json_path.display()))?;
+    if args.json {
+        println!("{json}");
+        return plot_result;
+    }
+    print_table(&r);
+    match plot_result {
+        Ok(()) => println!("{} and {}", json_path.display(), r.plot),
+        Err(e) => println!("{} (plot not written: {e:#})", json_path.display()),
+    }
+    Ok(())
+}
+
+fn print_table(r: &Report) {
+    let opt = |v: Option<f64>, d: usize| v.map_or_else(|| "-".into(), |v| format!("{v:.d$}"));
+    println!(
+        "IC (320x320, swap interval 1) beside each HU load, {} s each; priorities {}; deadline {:.1} ms",
+        r.seconds,
+        if r.priorities { "on" } else { "off" },
+        r.deadline_ms
+    );
+    println!("phase      frames  p50 ms  p99 ms   max ms misses daemon  p50 x  p99 x  max x  HU fps  HU own  load");
+    for p in &r.phases {
+        println!(
+            "{:<10} {:>6} {:>7.2} {:>7.2} {:>8.2} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>5}",
+            p.phase,
+            p.ic.frames,
+            p.ic.p50_ms,
+            p.ic.p99_ms,
+            p.ic.max_ms,
+            p.ic.client_misses,
+            p.daemon_deadline_misses.map_or_else(|| "null".into(), |m| m.to_string()),
+            opt(p.p50_ratio, 2),
+            opt(p.p99_ratio, 2),
+            opt(p.max_ratio, 2),
+            opt(p.hu_fps, 2),
+            opt(p.hu_reported_fps, 2),
+            opt(p.load_average_1m, 2),
+        );
+    }
+    for p in &r.phases {
+        if let Some(e) = &p.hu_error {
+            println!("  {}: {e}", p.phase);
+        }
+    }
+    for v in &r.verdicts {
+        println!(
+            "target {:<10} p99 {:.2}x alone ({}), misses {} vs {} alone ({}): {}",
+            v.load,
+            v.p99_ratio,
+            if v.p99_ok { "<= 1.25 ok" } else { "> 1.25" },
+            v.client_misses,
+            v.alone_client_misses,
+            if v.misses_ok { "ok" } else { "more" },
+            if v.pass { "MET" } else { "NOT MET" }
+        );
+    }
+    for s in r.skipped.iter().chain(&r.failures) {
+        println!("  {s}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn config_has_priorities_only_when_asked() {
+        let with = config(true);
+        assert!(with.contains("priority = \"high\"") && with.contains("deadline = true"));
+        assert!(with.contains("priority = \"low\""));
+        let without = config(false);
+        assert!(!without.contains("priority") && !without.contains("deadline"));
+        assert_eq!(without.matches("[[layout]]").count(), 2);
+    }
+}
