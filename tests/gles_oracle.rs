@@ -29,9 +29,14 @@ fn sliced_low_priority_passes_match_mesa() {
     matches_mesa("oracle-sliced", &["--default-priority", "low", "--force-pieces", "3"]);
 }
 
+/// Mesa's GLES2 is loaded into this process, and its contexts must not be used from two
+/// test threads at once.
+static MESA: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Renders every program through a daemon started with `daemon_args` and through Mesa, and
 /// fails listing every program whose images differ.
 fn matches_mesa(tag: &str, daemon_args: &[&str]) {
+    let _one_at_a_time = MESA.lock().unwrap_or_else(|e| e.into_inner());
     let cases = programs::all();
     assert!(cases.len() >= 30, "the suite must have at least 30 programs");
     let mut mesa_probe = match MesaGl::open(W, H) {

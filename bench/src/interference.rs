@@ -40,6 +40,9 @@ pub enum Load {
     HugeDraw,
     /// 64 MiB of texture uploads per frame (`interference-client`).
     Upload,
+    /// No client at all: one busy thread per core outside the daemon, the CPU contention no
+    /// scheduling in the daemon can remove (on lavapipe the "GPU" is the same CPU).
+    CpuHog,
 }
 
 impl Load {
@@ -65,7 +68,7 @@ pub struct Args {
     #[arg(long)]
     pub stratad: Option<PathBuf>,
     /// HU loads, in order (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "terrain,refract,huge-draw,upload")]
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "terrain,refract,huge-draw,upload,cpu-hog")]
     pub loads: Vec<Load>,
     /// Leave `priority` and `deadline` out of the daemon's layout.
     #[arg(long)]
@@ -165,7 +168,7 @@ impl Daemon {
             .arg(&socket)
             .arg("--config")
             .arg(config)
-            .env("RUST_LOG", "warn")
+            .env("RUST_LOG", std::env::var("RUST_LOG").unwrap_or_else(|_| "warn".into()))
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?)
@@ -438,7 +441,7 @@ impl Bench<'_> {
         // Measure the steady state: after the HU's first frame (its pipelines compiled, its
         // passes' costs known to the scheduler), or after `SETTLE_LIMIT` at most.
         let until = Instant::now() + SETTLE_LIMIT;
-        while Instant::now() < until {
+        while load != Load::CpuHog && Instant::now() < until {
             match Snapshot::take(&mut self.control) {
                 Ok(s) if s.frames("hu") >= 1 => break,
                 Ok(_) => std::thread::sleep(Duration::from_millis(200)),

@@ -50,6 +50,8 @@ pub enum Role {
     HugeDraw,
     /// A head unit uploading 64 MiB of texels per frame and drawing one textured quad.
     Upload,
+    /// Not a client: one busy thread per core, the CPU contention no daemon can schedule.
+    CpuHog,
 }
 
 /// The `interference-client` arguments.
@@ -105,6 +107,7 @@ pub fn run(args: &Args) -> Result<()> {
     let (name, default_window, interval) = match args.role {
         Role::Ic => ("ic", "0,0,320x320", 1),
         Role::HugeDraw | Role::Upload => ("hu", "400,0,1280x720", 0),
+        Role::CpuHog => return cpu_hog(args),
     };
     let rect = parse_window(args.window.as_deref().unwrap_or(default_window))?;
     let z = if args.role == Role::Ic { 0.5 } else { 0.6 };
@@ -118,7 +121,33 @@ pub fn run(args: &Args) -> Result<()> {
         Role::Ic => ic(&mut gl, cur, args)?,
         Role::HugeDraw => huge_draw(&mut gl, cur, args)?,
         Role::Upload => upload(&mut gl, cur, args)?,
+        Role::CpuHog => unreachable!("handled before connecting"),
     };
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string(&outcome)?).with_context(|| format!("writing {}", out.display()))?;
+    }
+    Ok(())
+}
+
+/// Spins one thread per core until `--seconds` pass or a signal stops it.
+fn cpu_hog(args: &Args) -> Result<()> {
+    let start = Instant::now();
+    let limit = Duration::from_secs_f64(args.seconds.max(0.0));
+    let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+    std::thread::scope(|s| {
+        for _ in 0..cores {
+            s.spawn(|| {
+                let mut x = 0u64;
+                while !STOP.load(Ordering::Relaxed) && start.elapsed() < limit {
+                    for i in 0..100_000u64 {
+                        x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(i));
+                    }
+                }
+            });
+        }
+    });
+    let seconds = start.elapsed().as_secs_f64();
+    let outcome = Outcome { role: "cpuhog".into(), frames: 0, seconds, fps: 0.0, frame_times_ms: Vec::new() };
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string(&outcome)?).with_context(|| format!("writing {}", out.display()))?;
     }

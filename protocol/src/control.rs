@@ -61,6 +61,8 @@ pub struct Waits {
     pub slices: u64,
     /// Times a low-priority slice waited because the class had used its share of a refresh.
     pub deferred: u64,
+    /// The longest low-priority slice, from submission to completion, microseconds.
+    pub longest_slice_us: u64,
 }
 
 /// Where lighting takes a fragment's normal from.

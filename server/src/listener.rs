@@ -466,6 +466,7 @@ async fn run_client(
     )
     .with_byte_counter(shared.scene.stream_counter(id))
     .with_account(account.clone());
+    let thread_lane = lane.clone();
     let info = ClientInfo { name: hello.name.clone(), role: hello.role.clone(), account, lane };
     shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
     shared.sessions.fetch_add(1, Ordering::Relaxed);
@@ -478,6 +479,9 @@ async fn run_client(
             // Everything the session logs (GPU errors included) carries the client's identity.
             let _span = span.enter();
             let _keep = segment;
+            if let Some(lane) = thread_lane.filter(|l| l.class() == strata_protocol::control::Priority::Low) {
+                lane.lower_thread();
+            }
             let ended = session.run();
             // The session and everything its client held are freed by now: give the pages
             // back, so that clients coming and going leave the daemon's memory where it was.

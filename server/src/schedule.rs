@@ -22,11 +22,15 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 use strata_protocol::control::{Priority, Waits};
-use tracing::warn;
+use tracing::{debug, warn};
 
 /// The longest any wait for the device lasts before it is given up on (a wedged device must
 /// not wedge the daemon's threads).
 const GPU_WAIT_LIMIT: Duration = Duration::from_secs(5);
+
+/// The nice value of a low-priority client's session thread.
+#[cfg(target_os = "linux")]
+const LOW_NICE: libc::c_int = 10;
 
 /// How the scheduler runs, from `stratad serve`'s options.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -235,6 +239,7 @@ struct Counters {
     gpu_us: AtomicU64,
     slices: AtomicU64,
     deferred: AtomicU64,
+    longest_us: AtomicU64,
 }
 
 /// One client's way onto the queue: its class, its newest submission, and where it waited.
@@ -298,6 +303,25 @@ impl Lane {
         }
     }
 
+    /// On the client's session thread: a low-priority client's decoding, translation and
+    /// uploads run at a lower CPU priority (nice 10) than everyone else's, so that on a
+    /// machine short of cores they yield to the high-priority client's and the compositor's.
+    /// (Raising a thread back needs a privilege the daemon does not ask for, so a client
+    /// moved out of `low` keeps it.)
+    pub fn lower_thread(&self) {
+        if !self.scheduler.policy().enabled {
+            return;
+        }
+        #[cfg(target_os = "linux")]
+        // SAFETY: gettid and setpriority on the calling thread only read and set its nice value.
+        unsafe {
+            let tid = libc::gettid();
+            if libc::setpriority(libc::PRIO_PROCESS, tid as libc::id_t, LOW_NICE) != 0 {
+                warn!("could not lower the session thread's CPU priority: {}", std::io::Error::last_os_error());
+            }
+        }
+    }
+
     /// Whether this lane's passes are cut into slices.
     pub fn sliced(&self) -> bool {
         self.class() == Priority::Low && self.scheduler.policy().enabled
@@ -313,10 +337,10 @@ impl Lane {
         self.scheduler.policy().force_pieces
     }
 
-    /// Submits `bufs` in the lane's class. High and normal work go onto the queue at once;
-    /// low work waits its turn and its budget, and this returns once it has completed, with
-    /// the time it took (`None` for the others).
-    pub fn submit(&self, gpu: &crate::gpu::Gpu, bufs: Vec<wgpu::CommandBuffer>) -> Option<Duration> {
+    /// Submits `bufs` (`what` they do, for the log) in the lane's class. High and normal work
+    /// go onto the queue at once; low work waits its turn and its budget, and this returns
+    /// once it has completed, with the time it took (`None` for the others).
+    pub fn submit(&self, gpu: &crate::gpu::Gpu, bufs: Vec<wgpu::CommandBuffer>, what: &str) -> Option<Duration> {
         let policy = self.scheduler.policy();
         let class = if policy.enabled { self.class() } else { Priority::Normal };
         match class {
@@ -343,6 +367,10 @@ impl Lane {
                 let took = start.elapsed();
                 self.scheduler.release_low(took);
                 self.counters.slices.fetch_add(1, Ordering::Relaxed);
+                self.counters.longest_us.fetch_max(micros(took), Ordering::Relaxed);
+                if took > policy.slice * 4 {
+                    debug!(ms = took.as_secs_f64() * 1e3, what, "a low-priority slice ran long");
+                }
                 Some(took)
             }
         }
@@ -396,6 +424,7 @@ impl Lane {
             gpu_us: c.gpu_us.load(Ordering::Relaxed),
             slices: c.slices.load(Ordering::Relaxed),
             deferred: c.deferred.load(Ordering::Relaxed),
+            longest_slice_us: c.longest_us.load(Ordering::Relaxed),
         }
     }
 }

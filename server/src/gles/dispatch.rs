@@ -120,7 +120,7 @@ impl Executor for GlesExecutor {
                 // Uploads are queued writes that the next submission carries, whoever makes
                 // it: a sliced client submits its own at once, so that they run in its turn
                 // and not at the start of another client's work.
-                self.r.lane.submit(&self.gpu, Vec::new());
+                self.r.lane.submit(&self.gpu, Vec::new(), op.name());
             }
             reply
         };

@@ -280,6 +280,10 @@ impl GlesExecutor {
         // The class applies to the whole client; the daemon's configuration wins over it.
         if let (Some(class), false) = (asked, self.policy_fixed) {
             self.r.lane.set_class(class);
+            if class == Priority::Low {
+                // This runs on the client's session thread.
+                self.r.lane.lower_thread();
+            }
             if let Some((scene, client, _)) = &self.scene {
                 scene.set_policy(*client, class, self.deadline);
             }

@@ -87,6 +87,6 @@ impl Renderer {
                 rp.draw(0..3, 0..1);
             }
         }
-        self.lane.submit(&self.gpu, vec![enc.finish()]);
+        self.lane.submit(&self.gpu, vec![enc.finish()], "mipmap generation");
     }
 }

@@ -150,8 +150,9 @@ pub struct Renderer {
     layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
     /// The client's way onto the queue.
     pub lane: Arc<crate::schedule::Lane>,
-    /// What each target's pass took to complete last time, for lanes that slice.
-    pass_costs: HashMap<(u64, u64), std::time::Duration>,
+    /// How each target's pass was cut last time and what each piece took, for lanes that
+    /// slice.
+    pass_costs: HashMap<((u64, u64), u64), slices::Costs>,
 }
 
 /// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::super::enums::*;
-use super::slices::{Part, Piece};
+use super::slices::{Part, Piece, Plan};
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
 
 /// What a recorded draw binds at group 0.
@@ -177,20 +177,16 @@ impl Renderer {
         let ring = self.ring.as_ref().map(|(b, _)| b.clone());
         let groups = self.bind_groups(&pass, ring.as_ref());
         let sliced = self.lane.sliced();
-        let pieces = if sliced { self.pieces(&pass) } else { vec![Piece::whole(&pass)] };
-        let mut took = Some(std::time::Duration::ZERO);
-        for (i, piece) in pieces.iter().enumerate() {
+        let plan = if sliced { self.plan_for(&pass) } else { Plan::whole(&pass) };
+        let mut times = Vec::with_capacity(plan.pieces.len());
+        for (i, piece) in plan.pieces.iter().enumerate() {
             let mut enc =
                 self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
             encode(&mut enc, &pass, &groups, ring.as_ref(), piece, i == 0);
-            let t = self.lane.submit(&self.gpu, vec![enc.finish()]);
-            took = took.zip(t).map(|(a, b)| a + b);
+            times.push(self.lane.submit(&self.gpu, vec![enc.finish()], "a piece of a pass"));
         }
-        if let (true, Some(took)) = (sliced, took) {
-            if self.pass_costs.len() >= 256 {
-                self.pass_costs.clear();
-            }
-            self.pass_costs.insert(pass.target.key, took);
+        if sliced {
+            self.remember(&pass, plan, &times);
         }
         if let Some(e) = pollster::block_on(guard.pop()) {
             self.errors.push(error_chain(&e));

@@ -11,8 +11,12 @@
 //!
 //! How many pieces: what the same target's pass took last time divided by the slice time; a
 //! target not seen yet is cut into `FIRST_PIECES`, since its first pass may be the longest.
+//! Work is rarely spread evenly over a draw's primitives (a few triangles may cover most of
+//! the target), so when a pass is cut as it was last time, each piece that took longer than a
+//! slice is cut again, into bands, by how much longer it took.
 
 use std::ops::Range;
+use std::time::Duration;
 
 use super::passes::{Pass, Recorded};
 use super::Renderer;
@@ -23,6 +27,10 @@ const MAX_PIECES: usize = 512;
 const FIRST_PIECES: usize = 16;
 /// Fewest primitives in one range of a draw cut by primitives.
 const MIN_PRIMITIVES: u32 = 16;
+/// Most bands one long piece is cut into again.
+const MAX_REFINE: u32 = 32;
+/// Targets whose costs are remembered per client.
+const REMEMBERED: usize = 256;
 
 /// A part of one draw: a range of its vertices (or indices), or of its instances.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -134,20 +142,104 @@ pub(super) fn plan(pass: &Pass, k: usize, min_primitives: u32) -> Vec<Piece> {
     pieces
 }
 
+/// How a pass is cut: the pieces before refinement (`base`), the pieces submitted, and for
+/// each of these the base piece it belongs to.
+pub(super) struct Plan {
+    k: usize,
+    base: Vec<Piece>,
+    pub(super) pieces: Vec<Piece>,
+    owner: Vec<usize>,
+}
+
+impl Plan {
+    /// The whole pass in one piece.
+    pub(super) fn whole(pass: &Pass) -> Plan {
+        Plan { k: 1, base: vec![Piece::whole(pass)], pieces: vec![Piece::whole(pass)], owner: vec![0] }
+    }
+
+    fn unrefined(k: usize, base: Vec<Piece>) -> Plan {
+        Plan { k, owner: (0..base.len()).collect(), pieces: base.clone(), base }
+    }
+}
+
+/// What a target's pass took last time: the pieces it was cut into before refinement (about
+/// `k` of them) and the time of each.
+pub(super) struct Costs {
+    k: usize,
+    base: Vec<Piece>,
+    times: Vec<Duration>,
+}
+
+/// `piece` cut into `n` bands of its own band, or of the target's `height` rows.
+fn rebanded(piece: &Piece, n: u32, height: u32) -> Vec<Piece> {
+    let [top, bottom] = piece.band.unwrap_or([0, height.max(1)]);
+    bands(bottom - top, n)
+        .into_iter()
+        .map(|[a, b]| Piece { draws: piece.draws.clone(), part: piece.part, band: Some([top + a, top + b]) })
+        .collect()
+}
+
+/// What identifies "the same pass" across frames: its target and the shape of its draws (a
+/// frame may draw into one target more than once, differently).
+pub(super) fn shape(pass: &Pass) -> ((u64, u64), u64) {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for r in &pass.draws {
+        (r.count, r.first, r.instances, r.index.is_some()).hash(&mut h);
+    }
+    (pass.target.key, h.finish())
+}
+
 impl Renderer {
     /// How to cut `pass`, judging by what the same target's pass took last time.
-    pub(super) fn pieces(&self, pass: &Pass) -> Vec<Piece> {
-        let k = match (self.lane.forced_pieces(), self.pass_costs.get(&pass.target.key)) {
-            // Forced (a test of the image): cut by primitives wherever a draw has enough of
-            // them, so both kinds of cut are exercised.
-            (Some(n), _) => return plan(pass, n.min(MAX_PIECES), 1),
-            (None, Some(est)) => {
-                let target = self.lane.slice_target().as_secs_f64().max(1e-4);
-                (est.as_secs_f64() / target).ceil().clamp(1.0, MAX_PIECES as f64) as usize
-            }
-            (None, None) => FIRST_PIECES,
+    pub(super) fn plan_for(&self, pass: &Pass) -> Plan {
+        if let Some(n) = self.lane.forced_pieces() {
+            // A test of the image: cut by primitives wherever a draw has enough of them, so
+            // both kinds of cut are exercised.
+            return Plan::unrefined(n, plan(pass, n.min(MAX_PIECES), 1));
+        }
+        let slice = self.lane.slice_target().max(Duration::from_micros(100));
+        let Some(costs) = self.pass_costs.get(&shape(pass)) else {
+            return Plan::unrefined(FIRST_PIECES, plan(pass, FIRST_PIECES, MIN_PRIMITIVES));
         };
-        plan(pass, k.min(MAX_PIECES), MIN_PRIMITIVES)
+        // The same pass as last time (the same draws, cut the same way): refine its pieces.
+        // Otherwise cut it anew by what it took in all.
+        let base = plan(pass, costs.k, MIN_PRIMITIVES);
+        if base != costs.base {
+            let total: Duration = costs.times.iter().sum();
+            let k = (total.as_secs_f64() / slice.as_secs_f64()).ceil().clamp(1.0, MAX_PIECES as f64) as usize;
+            return Plan::unrefined(k, plan(pass, k, MIN_PRIMITIVES));
+        }
+        let mut refined = Plan { k: costs.k, base: base.clone(), pieces: Vec::new(), owner: Vec::new() };
+        for (i, (piece, t)) in base.iter().zip(&costs.times).enumerate() {
+            let n = (t.as_secs_f64() / slice.as_secs_f64()).ceil().clamp(1.0, f64::from(MAX_REFINE)) as u32;
+            let cut = if n > 1 { rebanded(piece, n, pass.target.height) } else { vec![piece.clone()] };
+            refined.owner.extend(std::iter::repeat_n(i, cut.len()));
+            refined.pieces.extend(cut);
+        }
+        refined
+    }
+
+    /// Remembers what each base piece of `plan` took (`None`: untimed, nothing is kept).
+    pub(super) fn remember(&mut self, pass: &Pass, plan: Plan, times: &[Option<Duration>]) {
+        let mut per_base = vec![Duration::ZERO; plan.base.len()];
+        for (owner, t) in plan.owner.iter().zip(times) {
+            let (Some(slot), Some(t)) = (per_base.get_mut(*owner), t) else { return };
+            *slot += *t;
+        }
+        tracing::debug!(
+            key = ?pass.target.key,
+            draws = pass.draws.len(),
+            base = plan.base.len(),
+            pieces = plan.pieces.len(),
+            took_ms = per_base.iter().sum::<Duration>().as_secs_f64() * 1e3,
+            longest_ms = times.iter().flatten().max().map(|t| t.as_secs_f64() * 1e3),
+            "sliced pass"
+        );
+        if self.pass_costs.len() >= REMEMBERED {
+            self.pass_costs.clear();
+        }
+        self.pass_costs.insert(shape(pass), Costs { k: plan.k, base: plan.base, times: per_base });
     }
 }
 
