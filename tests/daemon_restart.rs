@@ -10,13 +10,11 @@
 
 mod support;
 
-use std::ffi::c_void;
 use std::path::Path;
 use std::sync::{Arc, Barrier};
 
+use support::egl::{load, Egl, Ptr};
 use support::{Daemon, TempDir};
-
-type Ptr = *mut c_void;
 
 const EGL_FALSE: u32 = 0;
 const EGL_TRUE: u32 = 1;
@@ -40,67 +38,6 @@ const GL_CONTEXT_LOST: u32 = 0x0507;
 const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
 const GL_RGBA: u32 = 0x1908;
 const GL_UNSIGNED_BYTE: u32 = 0x1401;
-
-/// The entry points the test calls, resolved from the shared object.
-#[derive(Clone, Copy)]
-struct Egl {
-    get_error: unsafe extern "C" fn() -> i32,
-    get_display: unsafe extern "C" fn(Ptr) -> Ptr,
-    initialize: unsafe extern "C" fn(Ptr, *mut i32, *mut i32) -> u32,
-    terminate: unsafe extern "C" fn(Ptr) -> u32,
-    choose_config: unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32,
-    bind_api: unsafe extern "C" fn(u32) -> u32,
-    create_pbuffer: unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr,
-    destroy_surface: unsafe extern "C" fn(Ptr, Ptr) -> u32,
-    query_surface: unsafe extern "C" fn(Ptr, Ptr, i32, *mut i32) -> u32,
-    create_context: unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr,
-    destroy_context: unsafe extern "C" fn(Ptr, Ptr) -> u32,
-    query_context: unsafe extern "C" fn(Ptr, Ptr, i32, *mut i32) -> u32,
-    make_current: unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32,
-    current_context: unsafe extern "C" fn() -> Ptr,
-    swap_buffers: unsafe extern "C" fn(Ptr, Ptr) -> u32,
-    gl_get_error: unsafe extern "C" fn() -> u32,
-    clear_color: unsafe extern "C" fn(f32, f32, f32, f32),
-    clear: unsafe extern "C" fn(u32),
-    finish: unsafe extern "C" fn(),
-    read_pixels: unsafe extern "C" fn(i32, i32, i32, i32, u32, u32, *mut c_void),
-}
-
-// SAFETY: plain function pointers into a library that stays loaded for the whole test.
-unsafe impl Send for Egl {}
-
-fn load(lib: &libloading::Library) -> Egl {
-    // SAFETY: each symbol is declared with its C prototype from egl.h / gl2.h.
-    unsafe {
-        macro_rules! sym {
-            ($name:literal) => {
-                *lib.get($name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy($name)))
-            };
-        }
-        Egl {
-            get_error: sym!(b"eglGetError"),
-            get_display: sym!(b"eglGetDisplay"),
-            initialize: sym!(b"eglInitialize"),
-            terminate: sym!(b"eglTerminate"),
-            choose_config: sym!(b"eglChooseConfig"),
-            bind_api: sym!(b"eglBindAPI"),
-            create_pbuffer: sym!(b"eglCreatePbufferSurface"),
-            destroy_surface: sym!(b"eglDestroySurface"),
-            query_surface: sym!(b"eglQuerySurface"),
-            create_context: sym!(b"eglCreateContext"),
-            destroy_context: sym!(b"eglDestroyContext"),
-            query_context: sym!(b"eglQueryContext"),
-            make_current: sym!(b"eglMakeCurrent"),
-            current_context: sym!(b"eglGetCurrentContext"),
-            swap_buffers: sym!(b"eglSwapBuffers"),
-            gl_get_error: sym!(b"glGetError"),
-            clear_color: sym!(b"glClearColor"),
-            clear: sym!(b"glClear"),
-            finish: sym!(b"glFinish"),
-            read_pixels: sym!(b"glReadPixels"),
-        }
-    }
-}
 
 /// A pbuffer and a context current on the calling thread.
 #[derive(Clone, Copy, Debug)]

@@ -7,12 +7,10 @@
 
 mod support;
 
-use std::ffi::c_void;
 use std::sync::{Arc, Barrier};
 
+use support::egl::{load, Ptr};
 use support::{Daemon, TempDir};
-
-type Ptr = *mut c_void;
 
 const EGL_NONE: i32 = 0x3038;
 const EGL_SURFACE_TYPE: i32 = 0x3033;
@@ -26,51 +24,6 @@ const EGL_OPENGL_ES_API: u32 = 0x30A0;
 const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
 const GL_RGBA: u32 = 0x1908;
 const GL_UNSIGNED_BYTE: u32 = 0x1401;
-
-/// The entry points the test calls, resolved from the shared object.
-#[derive(Clone, Copy)]
-struct Egl {
-    get_display: unsafe extern "C" fn(Ptr) -> Ptr,
-    initialize: unsafe extern "C" fn(Ptr, *mut i32, *mut i32) -> u32,
-    choose_config: unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32,
-    bind_api: unsafe extern "C" fn(u32) -> u32,
-    create_pbuffer: unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr,
-    create_context: unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr,
-    make_current: unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32,
-    current_context: unsafe extern "C" fn() -> Ptr,
-    clear_color: unsafe extern "C" fn(f32, f32, f32, f32),
-    clear: unsafe extern "C" fn(u32),
-    finish: unsafe extern "C" fn(),
-    read_pixels: unsafe extern "C" fn(i32, i32, i32, i32, u32, u32, *mut c_void),
-}
-
-// SAFETY: plain function pointers into a library that stays loaded for the whole test.
-unsafe impl Send for Egl {}
-
-fn load(lib: &libloading::Library) -> Egl {
-    // SAFETY: each symbol is declared with its C prototype from egl.h / gl2.h.
-    unsafe {
-        macro_rules! sym {
-            ($name:literal) => {
-                *lib.get($name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy($name)))
-            };
-        }
-        Egl {
-            get_display: sym!(b"eglGetDisplay"),
-            initialize: sym!(b"eglInitialize"),
-            choose_config: sym!(b"eglChooseConfig"),
-            bind_api: sym!(b"eglBindAPI"),
-            create_pbuffer: sym!(b"eglCreatePbufferSurface"),
-            create_context: sym!(b"eglCreateContext"),
-            make_current: sym!(b"eglMakeCurrent"),
-            current_context: sym!(b"eglGetCurrentContext"),
-            clear_color: sym!(b"glClearColor"),
-            clear: sym!(b"glClear"),
-            finish: sym!(b"glFinish"),
-            read_pixels: sym!(b"glReadPixels"),
-        }
-    }
-}
 
 #[test]
 fn each_thread_has_its_own_current_context() {

@@ -64,6 +64,19 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// The `stratad` a benchmark starts: `arg` if given, else the one beside this program; an
+/// error if it is not built.
+pub(crate) fn stratad_binary(arg: Option<&Path>) -> Result<PathBuf> {
+    let stratad = match arg {
+        Some(p) => p.to_path_buf(),
+        None => std::env::current_exe()?.parent().context("program directory")?.join("stratad"),
+    };
+    if !stratad.is_file() {
+        bail!("{} is not built (cargo build -p strata-server)", stratad.display());
+    }
+    Ok(stratad)
+}
+
 /// A program on `PATH`.
 pub(crate) fn which(program: &str) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())

@@ -468,13 +468,7 @@ pub fn run(args: &Args) -> Result<()> {
     crate::glmark2::size(&args.hu_size)?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let exe = std::env::current_exe()?;
-    let stratad = match &args.stratad {
-        Some(p) => p.clone(),
-        None => exe.parent().context("program directory")?.join("stratad"),
-    };
-    if !stratad.is_file() {
-        bail!("{} is not built (cargo build -p strata-server)", stratad.display());
-    }
+    let stratad = crate::glmark2::stratad_binary(args.stratad.as_deref())?;
     let config_path = args.out.join("stratad.toml");
     std::fs::write(&config_path, config(!args.no_priorities))
         .with_context(|| format!("writing {}", config_path.display()))?;

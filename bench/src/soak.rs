@@ -104,13 +104,7 @@ struct Report {
 pub fn run(args: &Args) -> Result<()> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let exe = std::env::current_exe()?;
-    let stratad = match &args.stratad {
-        Some(p) => p.clone(),
-        None => exe.parent().context("program directory")?.join("stratad"),
-    };
-    if !stratad.is_file() {
-        bail!("{} is not built (cargo build --release -p strata-server)", stratad.display());
-    }
+    let stratad = crate::glmark2::stratad_binary(args.stratad.as_deref())?;
     let socket = args.out.join("soak.sock");
     let log = args.out.join("stratad.log");
     let mut daemon = Command::new(&stratad)

@@ -2,6 +2,8 @@
 //! processes, and raw clients that speak the protocol by hand.
 #![allow(dead_code)]
 
+pub mod egl;
+
 use std::io::Write;
 use std::os::unix::net::UnixStream;
 use std::path::{Path, PathBuf};
