@@ -13,7 +13,8 @@
 //! target not seen yet is cut into `FIRST_PIECES`, since its first pass may be the longest.
 //! Work is rarely spread evenly over a draw's primitives (a few triangles may cover most of
 //! the target), so when a pass is cut as it was last time, each piece that took longer than a
-//! slice is cut again, into bands, by how much longer it took.
+//! slice is cut again, into bands, by how much longer it took, and neighbouring pieces that
+//! took little are joined. Frame after frame, the cuts follow where the work is.
 
 use std::ops::Range;
 use std::time::Duration;
@@ -27,13 +28,13 @@ const MAX_PIECES: usize = 512;
 const FIRST_PIECES: usize = 16;
 /// Fewest primitives in one range of a draw cut by primitives.
 const MIN_PRIMITIVES: u32 = 16;
-/// Most bands one long piece is cut into again.
-const MAX_REFINE: u32 = 32;
+/// Most bands one long piece is cut into again at one pass.
+const MAX_REFINE: u32 = 64;
 /// Targets whose costs are remembered per client.
 const REMEMBERED: usize = 256;
 
 /// A part of one draw: a range of its vertices (or indices), or of its instances.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(super) enum Part {
     /// Elements `start..start + count`, relative to the draw's first vertex (or index).
     Elements(u32, u32),
@@ -142,31 +143,28 @@ pub(super) fn plan(pass: &Pass, k: usize, min_primitives: u32) -> Vec<Piece> {
     pieces
 }
 
-/// How a pass is cut: the pieces before refinement (`base`), the pieces submitted, and for
-/// each of these the base piece it belongs to.
+/// How a pass is cut: the pieces before refinement (`base`, about `k` of them), which say
+/// whether the next pass is the same one, and the pieces submitted.
 pub(super) struct Plan {
     k: usize,
     base: Vec<Piece>,
     pub(super) pieces: Vec<Piece>,
-    owner: Vec<usize>,
 }
 
 impl Plan {
     /// The whole pass in one piece.
     pub(super) fn whole(pass: &Pass) -> Plan {
-        Plan { k: 1, base: vec![Piece::whole(pass)], pieces: vec![Piece::whole(pass)], owner: vec![0] }
+        Plan { k: 1, base: vec![Piece::whole(pass)], pieces: vec![Piece::whole(pass)] }
     }
 
     fn unrefined(k: usize, base: Vec<Piece>) -> Plan {
-        Plan { k, owner: (0..base.len()).collect(), pieces: base.clone(), base }
+        Plan { k, pieces: base.clone(), base }
     }
 }
 
-/// What a target's pass took last time: the pieces it was cut into before refinement (about
-/// `k` of them) and the time of each.
+/// What a target's pass took last time: how it was cut (its plan) and the time of each piece.
 pub(super) struct Costs {
-    k: usize,
-    base: Vec<Piece>,
+    plan: Plan,
     times: Vec<Duration>,
 }
 
@@ -177,6 +175,111 @@ fn rebanded(piece: &Piece, n: u32, height: u32) -> Vec<Piece> {
         .into_iter()
         .map(|[a, b]| Piece { draws: piece.draws.clone(), part: piece.part, band: Some([top + a, top + b]) })
         .collect()
+}
+
+/// `a` and `b` (which follows it) as one piece, if they are adjacent parts of the same work:
+/// neighbouring bands of one draw (or part), or neighbouring runs of whole draws.
+fn merged(a: &Piece, b: &Piece) -> Option<Piece> {
+    match (a.band, b.band) {
+        (Some([top, mid]), Some([mid2, bottom])) if a.draws == b.draws && a.part == b.part && mid == mid2 => {
+            Some(Piece { draws: a.draws.clone(), part: a.part, band: Some([top, bottom]) })
+        }
+        (None, None) if a.part.is_none() && b.part.is_none() && a.draws.end == b.draws.start => {
+            Some(Piece { draws: a.draws.start..b.draws.end, part: None, band: None })
+        }
+        _ => None,
+    }
+}
+
+/// What cutting needs to know of a draw: its topology, its elements and, for points drawn as
+/// instanced quads, its instances (else 1).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct DrawSize {
+    topology: wgpu::PrimitiveTopology,
+    count: u32,
+    instances: u32,
+}
+
+impl DrawSize {
+    /// The size of recorded draw `r`.
+    pub(super) fn of(r: &Recorded) -> DrawSize {
+        DrawSize { topology: r.topology, count: r.count, instances: if instanced(r) { r.instances.1 } else { 1 } }
+    }
+}
+
+/// `piece` cut into about `n` pieces, dividing vertex work as well as fragment work where it
+/// can: a run of draws into its draws, a draw (or a part of one) with enough primitives into
+/// ranges of them, and only what is left into bands of rows.
+fn split(piece: &Piece, n: u32, sizes: &[DrawSize], height: u32) -> Vec<Piece> {
+    let draws = piece.draws.clone();
+    if piece.part.is_none() && draws.len() > 1 {
+        let per = n.div_ceil(draws.len() as u32);
+        return draws
+            .flat_map(|d| split(&Piece { draws: d..d + 1, part: None, band: piece.band }, per, sizes, height))
+            .collect();
+    }
+    let sub = match (sizes.get(draws.start), piece.part, piece.band) {
+        (Some(z), part, None) if z.instances > 1 => {
+            let (start, count) = match part {
+                Some(Part::Instances(s, c)) => (s, c),
+                _ => (0, z.instances),
+            };
+            let run = count.div_ceil(n).max(1);
+            (0..count).step_by(run as usize).map(|a| Part::Instances(start + a, run.min(count - a))).collect()
+        }
+        (Some(z), part, None) => {
+            let (start, count) = match part {
+                Some(Part::Elements(s, c)) => (s, c),
+                _ => (0, z.count),
+            };
+            let (per, shared, _) = layout(z.topology);
+            if count.saturating_sub(shared) / per >= n * MIN_PRIMITIVES {
+                element_parts(z.topology, count, n)
+                    .into_iter()
+                    .filter_map(|p| match p {
+                        Part::Elements(s, c) => Some(Part::Elements(start + s, c)),
+                        Part::Instances(..) => None,
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            }
+        }
+        _ => Vec::new(),
+    };
+    if sub.len() > 1 {
+        return sub.into_iter().map(|p| Piece { draws: draws.clone(), part: Some(p), band: None }).collect();
+    }
+    rebanded(piece, n, height)
+}
+
+/// The pieces of last time, each cut again by how much longer than `slice` it took (see
+/// `split`), and neighbours that together took less than half a slice joined. Repeated frame
+/// after frame, the cuts narrow onto where the work is, and the number of submissions stays
+/// near the pass's time divided by the slice (at most `MAX_PIECES`).
+fn refine(pieces: &[Piece], times: &[Duration], slice: Duration, sizes: &[DrawSize], height: u32) -> Vec<Piece> {
+    let mut out: Vec<Piece> = Vec::with_capacity(pieces.len());
+    // What the last piece of `out` took (a slice for one just cut, so nothing joins it).
+    let mut last = slice;
+    for (i, (piece, &t)) in pieces.iter().zip(times).enumerate() {
+        let room = MAX_PIECES.saturating_sub(out.len() + pieces.len() - i) as u32 + 1;
+        let n = (t.as_secs_f64() / slice.as_secs_f64()).ceil().clamp(1.0, f64::from(MAX_REFINE.min(room))) as u32;
+        if n > 1 {
+            out.extend(split(piece, n, sizes, height));
+            last = slice;
+            continue;
+        }
+        if let Some(joined) = out.last().filter(|_| last + t <= slice / 2).and_then(|prev| merged(prev, piece)) {
+            if let Some(prev) = out.last_mut() {
+                *prev = joined;
+            }
+            last += t;
+            continue;
+        }
+        out.push(piece.clone());
+        last = t;
+    }
+    out
 }
 
 /// What identifies "the same pass" across frames: its target and the shape of its draws (a
@@ -204,42 +307,35 @@ impl Renderer {
         };
         // The same pass as last time (the same draws, cut the same way): refine its pieces.
         // Otherwise cut it anew by what it took in all.
-        let base = plan(pass, costs.k, MIN_PRIMITIVES);
-        if base != costs.base {
+        let base = plan(pass, costs.plan.k, MIN_PRIMITIVES);
+        if base != costs.plan.base {
             let total: Duration = costs.times.iter().sum();
             let k = (total.as_secs_f64() / slice.as_secs_f64()).ceil().clamp(1.0, MAX_PIECES as f64) as usize;
             return Plan::unrefined(k, plan(pass, k, MIN_PRIMITIVES));
         }
-        let mut refined = Plan { k: costs.k, base: base.clone(), pieces: Vec::new(), owner: Vec::new() };
-        for (i, (piece, t)) in base.iter().zip(&costs.times).enumerate() {
-            let n = (t.as_secs_f64() / slice.as_secs_f64()).ceil().clamp(1.0, f64::from(MAX_REFINE)) as u32;
-            let cut = if n > 1 { rebanded(piece, n, pass.target.height) } else { vec![piece.clone()] };
-            refined.owner.extend(std::iter::repeat_n(i, cut.len()));
-            refined.pieces.extend(cut);
-        }
-        refined
+        let sizes: Vec<DrawSize> = pass.draws.iter().map(DrawSize::of).collect();
+        let pieces = refine(&costs.plan.pieces, &costs.times, slice, &sizes, pass.target.height);
+        Plan { k: costs.plan.k, base, pieces }
     }
 
-    /// Remembers what each base piece of `plan` took (`None`: untimed, nothing is kept).
+    /// Remembers what each piece of `plan` took (`None`: untimed, nothing is kept).
     pub(super) fn remember(&mut self, pass: &Pass, plan: Plan, times: &[Option<Duration>]) {
-        let mut per_base = vec![Duration::ZERO; plan.base.len()];
-        for (owner, t) in plan.owner.iter().zip(times) {
-            let (Some(slot), Some(t)) = (per_base.get_mut(*owner), t) else { return };
-            *slot += *t;
+        let Some(times) = times.iter().copied().collect::<Option<Vec<Duration>>>() else { return };
+        if times.len() != plan.pieces.len() {
+            return;
         }
         tracing::debug!(
             key = ?pass.target.key,
             draws = pass.draws.len(),
-            base = plan.base.len(),
             pieces = plan.pieces.len(),
-            took_ms = per_base.iter().sum::<Duration>().as_secs_f64() * 1e3,
-            longest_ms = times.iter().flatten().max().map(|t| t.as_secs_f64() * 1e3),
+            took_ms = times.iter().sum::<Duration>().as_secs_f64() * 1e3,
+            longest_ms = times.iter().max().map(|t| t.as_secs_f64() * 1e3),
             "sliced pass"
         );
         if self.pass_costs.len() >= REMEMBERED {
             self.pass_costs.clear();
         }
-        self.pass_costs.insert(shape(pass), Costs { k: plan.k, base: plan.base, times: per_base });
+        self.pass_costs.insert(shape(pass), Costs { plan, times });
     }
 }
 
@@ -293,5 +389,81 @@ mod tests {
             assert_eq!(b.last().map(|b| b[1]), Some(h));
             assert!(b.windows(2).all(|w| w[0][1] == w[1][0]), "{b:?}");
         }
+    }
+
+    /// Every (draw, part, row) the pieces draw, sorted: each fragment's draws keep their
+    /// order within a piece, and the pieces keep the pass's.
+    fn cells(pieces: &[Piece], height: u32) -> Vec<(usize, Option<Part>, u32)> {
+        let mut out = Vec::new();
+        for p in pieces {
+            for d in p.draws.clone() {
+                let [a, b] = p.band.unwrap_or([0, height]);
+                out.extend((a..b).map(|y| (d, p.part, y)));
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    #[test]
+    fn refining_narrows_long_pieces_joins_short_ones_and_draws_everything_once() {
+        let ms = Duration::from_millis;
+        let height = 720;
+        let draws = |r: Range<usize>| Piece { draws: r, part: None, band: None };
+        let pieces = vec![draws(0..2), draws(2..4), draws(4..6), draws(6..7)];
+        let times = [ms(40), Duration::from_micros(300), Duration::from_micros(400), ms(3)];
+        let out = refine(&pieces, &times, ms(2), &[], height);
+        assert!(cells(&out, height) == cells(&pieces, height), "{} pieces", out.len());
+        // 40 ms in 2 ms slices: 20 bands; the two short runs joined; 3 ms in two bands.
+        assert_eq!(out.len(), 20 + 1 + 2, "{out:?}");
+        assert_eq!(out[20], draws(2..6));
+        // Again, with all the time in one band of the first piece: only that band is cut.
+        let mut t = vec![Duration::from_micros(100); out.len()];
+        t[3] = ms(10);
+        let again = refine(&out, &t, ms(2), &[], height);
+        assert!(cells(&again, height) == cells(&pieces, height));
+        // Bands 0–2 joined, band 3 in five, bands 4–19 joined in runs of at most half a
+        // slice (ten), the runs of draws, and the last draw's two bands joined.
+        assert_eq!(again.len(), 1 + 5 + 2 + 1 + 1, "{again:?}");
+        let narrow = again.iter().filter(|p| p.band.is_some_and(|[a, b]| b - a < 36)).count();
+        assert_eq!(narrow, 5, "{again:?}");
+        // Never more than MAX_PIECES, however long.
+        let huge = refine(&out, &vec![ms(1000); out.len()], ms(2), &[], height);
+        assert!(huge.len() <= MAX_PIECES, "{}", huge.len());
+        assert!(cells(&huge, height) == cells(&pieces, height));
+    }
+
+    #[test]
+    fn long_draws_are_cut_by_primitives_before_rows() {
+        use wgpu::PrimitiveTopology as T;
+        let sizes = [
+            DrawSize { topology: T::TriangleList, count: 3000, instances: 1 },
+            DrawSize { topology: T::TriangleStrip, count: 4, instances: 1 },
+            DrawSize { topology: T::TriangleStrip, count: 4, instances: 400 },
+        ];
+        let whole = |d: usize| Piece { draws: d..d + 1, part: None, band: None };
+        // A thousand triangles in four ranges; a range of them in four again, within it.
+        let four = split(&whole(0), 4, &sizes, 100);
+        assert_eq!(four.len(), 4);
+        assert!(four.iter().all(|p| p.band.is_none()), "{four:?}");
+        let again = split(&four[1], 4, &sizes, 100);
+        let elements: Vec<(u32, u32)> = again
+            .iter()
+            .map(|p| match p.part {
+                Some(Part::Elements(s, c)) => (s, c),
+                _ => (0, 0),
+            })
+            .collect();
+        assert_eq!(elements, vec![(750, 189), (939, 189), (1128, 189), (1317, 183)]);
+        // A quad has too few primitives: rows.
+        let quad = split(&whole(1), 4, &sizes, 100);
+        assert_eq!(quad.iter().map(|p| p.band).collect::<Vec<_>>(), [[0, 25], [25, 50], [50, 75], [75, 100]].map(Some));
+        // Points drawn as instances: ranges of instances.
+        let points = split(&whole(2), 4, &sizes, 100);
+        assert_eq!(points[3].part, Some(Part::Instances(300, 100)));
+        // A run of draws: its draws first, each cut on its own.
+        let run = split(&Piece { draws: 0..2, part: None, band: None }, 8, &sizes, 100);
+        assert_eq!(run.len(), 8, "{run:?}");
+        assert_eq!(run.iter().filter(|p| p.draws == (0..1)).count(), 4);
     }
 }
