@@ -331,6 +331,7 @@ impl Root {
                     }
                 }
                 root.scene.refreshed();
+                root.gpu.scheduler.composited(next);
             }
             info!("compositor stopped");
         })

@@ -50,6 +50,10 @@ pub struct Policy {
     /// Cut every low-priority pass into this many pieces, whatever it cost (for testing that
     /// slicing leaves the image unchanged).
     pub force_pieces: Option<usize>,
+    /// While a high client is connected, no low slice starts within this long after a
+    /// composite (when the compositor and the clients whose frames it took run), nor within
+    /// a slice and a millisecond before the next.
+    pub guard: Duration,
 }
 
 impl Default for Policy {
@@ -61,6 +65,7 @@ impl Default for Policy {
             period: Duration::from_secs(1) / 60,
             default_class: Priority::Normal,
             force_pieces: None,
+            guard: Duration::from_millis(4),
         }
     }
 }
@@ -82,6 +87,10 @@ pub struct ScheduleArgs {
     /// for one: high, normal or low.
     #[arg(long, default_value = "normal")]
     pub default_priority: Priority,
+    /// Milliseconds after each composite in which no low-priority slice starts while a
+    /// high-priority client is connected (0: none).
+    #[arg(long, default_value_t = 4.0)]
+    pub guard_ms: f64,
     /// Cut every low-priority pass into this many pieces whatever it costs (testing).
     #[arg(long, hide = true, value_parser = clap::value_parser!(u32).range(1..=512))]
     pub force_pieces: Option<u32>,
@@ -96,6 +105,9 @@ pub enum ScheduleError {
     /// `--low-share` outside 0.05..=1.
     #[error("--low-share {0} must lie in 0.05..=1")]
     Share(f64),
+    /// `--guard-ms` outside 0..=10.
+    #[error("--guard-ms {0} must lie in 0..=10")]
+    Guard(f64),
 }
 
 impl ScheduleArgs {
@@ -107,8 +119,12 @@ impl ScheduleArgs {
         if !(self.low_share.is_finite() && (0.05..=1.0).contains(&self.low_share)) {
             return Err(ScheduleError::Share(self.low_share));
         }
+        if !(self.guard_ms.is_finite() && (0.0..=10.0).contains(&self.guard_ms)) {
+            return Err(ScheduleError::Guard(self.guard_ms));
+        }
         Ok(Policy {
             enabled: !self.no_scheduler,
+            guard: Duration::from_secs_f64(self.guard_ms / 1000.0),
             slice: Duration::from_secs_f64(self.slice_ms / 1000.0),
             low_share: self.low_share,
             default_class: self.default_priority,
@@ -126,6 +142,9 @@ struct State {
     /// Low GPU time left in the current budget, seconds (negative: overdrawn).
     tokens: f64,
     refilled: Instant,
+    /// When the compositor last composited, and when it will next.
+    composited: Option<Instant>,
+    next_composite: Option<Instant>,
 }
 
 /// The daemon's scheduler: one per device.
@@ -141,7 +160,14 @@ impl Default for Scheduler {
     fn default() -> Self {
         Scheduler {
             policy: Mutex::new(Policy::default()),
-            state: Mutex::new(State { high_submitting: 0, low_busy: false, tokens: 0.0, refilled: Instant::now() }),
+            state: Mutex::new(State {
+                high_submitting: 0,
+                low_busy: false,
+                tokens: 0.0,
+                refilled: Instant::now(),
+                composited: None,
+                next_composite: None,
+            }),
             turn: Condvar::new(),
             high_lanes: AtomicUsize::new(0),
         }
@@ -189,6 +215,28 @@ impl Scheduler {
         index
     }
 
+    /// Notes a composite now and when the next is due (the compositor's loop calls this).
+    pub fn composited(&self, next: Instant) {
+        if let Ok(mut s) = self.state.lock() {
+            s.composited = Some(Instant::now());
+            s.next_composite = Some(next);
+        }
+        self.turn.notify_all();
+    }
+
+    /// How long a low slice must wait now to stay out of the guard around composites.
+    fn guarded(s: &State, policy: &Policy, now: Instant) -> Option<Duration> {
+        if policy.guard.is_zero() {
+            return None;
+        }
+        if let Some(at) = s.composited.filter(|&at| now < at + policy.guard) {
+            return Some(at + policy.guard - now);
+        }
+        let before = policy.slice + Duration::from_millis(1);
+        let next = s.next_composite.filter(|&next| now < next && next - now < before)?;
+        Some(next - now + policy.guard)
+    }
+
     /// Waits until a low slice may go onto the queue and marks it there; returns whether it
     /// was deferred for want of budget.
     fn admit_low(&self) -> bool {
@@ -203,13 +251,16 @@ impl Scheduler {
             s.refilled = now;
             s.tokens = (s.tokens + dt * policy.low_share).min(cap);
             let over = budgeted && s.tokens <= 0.0;
-            if s.high_submitting == 0 && !s.low_busy && !over {
+            let guard = if budgeted { Scheduler::guarded(&s, &policy, now) } else { None };
+            if s.high_submitting == 0 && !s.low_busy && !over && guard.is_none() {
                 s.low_busy = true;
                 return deferred;
             }
             deferred |= over;
             let wait = if over {
                 Duration::from_secs_f64((-s.tokens / policy.low_share.max(1e-3)).clamp(1e-4, 0.1))
+            } else if let Some(g) = guard {
+                g.max(Duration::from_micros(100))
             } else {
                 Duration::from_millis(100)
             };
@@ -432,4 +483,35 @@ impl Lane {
 /// Submits the compositor's work: high class, whatever the clients do.
 pub fn submit_compositor(gpu: &crate::gpu::Gpu, bufs: Vec<wgpu::CommandBuffer>) -> wgpu::SubmissionIndex {
     gpu.scheduler.submit_high(&gpu.queue, bufs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn low_slices_keep_out_of_the_guard_around_composites() {
+        let ms = Duration::from_millis;
+        let policy = Policy::default();
+        let t0 = Instant::now();
+        let s = State {
+            high_submitting: 0,
+            low_busy: false,
+            tokens: 0.0,
+            refilled: t0,
+            composited: Some(t0),
+            next_composite: Some(t0 + ms(16)),
+        };
+        // Just after a composite: wait out the guard (4 ms).
+        assert_eq!(Scheduler::guarded(&s, &policy, t0 + ms(1)), Some(ms(3)));
+        // Between composites: go.
+        assert_eq!(Scheduler::guarded(&s, &policy, t0 + ms(8)), None);
+        // Within a slice and a millisecond (3 ms) of the next: wait until after its guard.
+        assert_eq!(Scheduler::guarded(&s, &policy, t0 + ms(14)), Some(ms(2) + ms(4)));
+        // No guard configured, or no compositor yet: go.
+        let off = Policy { guard: Duration::ZERO, ..policy };
+        assert_eq!(Scheduler::guarded(&s, &off, t0 + ms(1)), None);
+        let idle = State { composited: None, next_composite: None, ..s };
+        assert_eq!(Scheduler::guarded(&idle, &policy, t0 + ms(1)), None);
+    }
 }
