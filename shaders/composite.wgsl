@@ -8,7 +8,8 @@
 //                                {{color_binding}} and {{depth_binding}} filled in;
 //   //#if NAME ... //#end         keeps a block when the pass has the property NAME, and
 //   //#if !NAME ... //#end        when it lacks it:
-//     select        several candidates: the depth select runs (otherwise one surface, fetched once);
+//     select        several candidates: the depth select runs (otherwise one surface, fetched once),
+//                   comparing eye-space depths (fn eye);
 //     intermediate  an earlier pass's result is a candidate;
 //     last          the group's last pass, which writes the output (else an intermediate);
 //     lit           uniform Phong lighting; from_depth: normals reconstructed from depth;
@@ -31,8 +32,9 @@ struct Params {
     background: vec4<f32>,
 };
 // rect: x, y (output pixels, from the top), width, height; normal: xyz unit (or zero), w > 0.5
-// when the surface has a depth image.
-struct Surf { rect: vec4<i32>, normal: vec4<f32>, };
+// when the surface has a depth image; proj: its declared projection (kind: 0 orthographic,
+// 1 perspective; near; far; reversed: 0 or 1), [0, 0, 1, 0] when undeclared.
+struct Surf { rect: vec4<i32>, normal: vec4<f32>, proj: vec4<f32>, };
 // origin.xy: the render target's origin in output pixels; origin.zw: the intermediate's.
 struct Draw { origin: vec4<i32>, surf: array<Surf, {{N}}>, };
 @group(0) @binding(0) var<uniform> P: Params;
@@ -55,6 +57,22 @@ struct Draw { origin: vec4<i32>, surf: array<Surf, {{N}}>, };
 @vertex fn vs(@builtin(vertex_index) v: u32, @location(0) r: vec4<f32>) -> @builtin(position) vec4<f32> {
     return vec4<f32>(select(r.x, r.z, (v & 1u) != 0u), select(r.y, r.w, (v & 2u) != 0u), 0.0, 1.0);
 }
+
+//#if select
+// The eye-space depth of window depth `d` under projection `p` (a Surf's proj), by which the
+// select compares surfaces whose projections differ: `d` clamped to [0, 1] and flipped when
+// reversed, then orthographic n + d (f - n), perspective n f / (f - d (f - n)), or n / (1 - d)
+// with f infinite. Undeclared ([0, 0, 1, 0]) gives back `d` itself, exactly: 0 + d (1 - 0).
+fn eye(d_in: f32, p: vec4<f32>) -> f32 {
+    var d = clamp(d_in, 0.0, 1.0);
+    if (p.w > 0.5) { d = 1.0 - d; }
+    if (p.x < 0.5) { return p.y + d * (p.z - p.y); }
+    // Far at +inf (tested by its bits, so that no float optimisation can assume it away); the
+    // far plane itself is +inf, not left to a division by zero.
+    if (bitcast<u32>(p.z) == 0x7f800000u) { return select(p.y / (1.0 - d), p.z, d >= 1.0); }
+    return p.y * p.z / (p.z - d * (p.z - p.y));
+}
+//#end
 
 //#if from_depth
 //#each surface
@@ -106,6 +124,8 @@ struct Out { @location(0) color: vec4<f32>, @location(1) geom: vec4<f32>, };
 //#end
     let px = vec2<i32>(floor(pos.xy)) + D.origin.xy;
 //#if select
+    // The nearest candidate so far (eye depth, colour, normal): the intermediate's, else the
+    // first surface's taken unconditionally, so no "far" initial value bounds eye depth.
     var best_d: f32;
     var best_c: vec4<f32>;
     var best_n = vec3<f32>(0.0, 0.0, 1.0);
@@ -121,8 +141,9 @@ struct Out { @location(0) color: vec4<f32>, @location(1) geom: vec4<f32>, };
         let r = D.surf[{{i}}].rect;
         // Surface images are in GL row order: bottom row first.
         let sp = vec2<i32>(px.x - r.x, r.y + r.w - 1 - px.y);
-        var d: f32 = 1.0;
-        if (D.surf[{{i}}].normal.w > 0.5) { d = textureLoad(depth{{i}}, sp, 0); }
+        // Eye depth; without a depth image the surface lies at its far plane (1 undeclared).
+        var d: f32 = D.surf[{{i}}].proj.z;
+        if (D.surf[{{i}}].normal.w > 0.5) { d = eye(textureLoad(depth{{i}}, sp, 0), D.surf[{{i}}].proj); }
 //#if first
         {
 //#end

@@ -12,6 +12,8 @@ use strata_server::gpu::Gpu;
 mod cells;
 #[path = "compositor/figures.rs"]
 mod figures;
+#[path = "compositor/projection.rs"]
+mod projection;
 
 const OUT_W: u32 = 96;
 const OUT_H: u32 = 64;
@@ -50,7 +52,7 @@ fn surface(i: usize, rect: [i32; 4], z: f32, alpha: u8, depth: bool) -> RefLayer
         }
     }
     let normal = [(i as f32 * 0.3).sin() * 0.5, (i as f32 * 0.7).cos() * 0.5, 1.0];
-    RefLayer { rect, z, color, depth: depth.then_some(d), normal }
+    RefLayer { rect, z, color, depth: depth.then_some(d), normal, projection: None }
 }
 
 fn output(gpu: &Gpu) -> wgpu::Texture {
@@ -76,11 +78,7 @@ fn run_into(
     region: Option<[u32; 4]>,
 ) -> Vec<u8> {
     let up: Vec<Uploaded> = layers.iter().map(|l| upload(gpu, l)).collect();
-    let gl: Vec<Layer<'_>> = layers
-        .iter()
-        .zip(&up)
-        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
-        .collect();
+    let gl: Vec<Layer<'_>> = layers.iter().zip(&up).map(|(l, u)| u.layer(l)).collect();
     comp.composite(&gl, light, out, BACKGROUND, region);
     gpu.read_rgba8(out, [0, 0, OUT_W, OUT_H]).expect("readback")
 }

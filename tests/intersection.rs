@@ -13,13 +13,13 @@ fn local(rect: [i32; 4], px: u32, py: u32) -> Option<(f32, f32)> {
     ((-1.0..1.0).contains(&x) && (-1.0..1.0).contains(&y)).then_some((x, y))
 }
 
-#[test]
-fn two_clients_intersect_per_fragment() {
-    let dir = support::TempDir::new("intersection");
-    let png = dir.0.join("demo.png");
+/// Runs `stratad demo` with `args`, writing `png`, and returns the image.
+fn demo(png: &std::path::Path, args: &[&str]) -> image::RgbaImage {
     let out = std::process::Command::new(support::stratad())
-        .args(["demo", "--frames", "3", "--out"])
-        .arg(&png)
+        .arg("demo")
+        .args(args)
+        .arg("--out")
+        .arg(png)
         .output()
         .expect("demo");
     assert!(
@@ -28,7 +28,13 @@ fn two_clients_intersect_per_fragment() {
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
-    let img = image::open(&png).expect("png").to_rgba8();
+    image::open(png).expect("png").to_rgba8()
+}
+
+#[test]
+fn two_clients_intersect_per_fragment() {
+    let dir = support::TempDir::new("intersection");
+    let img = demo(&dir.0.join("demo.png"), &["--frames", "3"]);
     let (mut ic_wins, mut hu_wins) = (0, 0);
     for py in (0..img.height()).step_by(9) {
         for px in (0..img.width()).step_by(9) {
@@ -60,4 +66,48 @@ fn two_clients_intersect_per_fragment() {
         }
     }
     assert!(ic_wins >= 20 && hu_wins >= 20, "too few probes on each side: dial {ic_wins}, map {hu_wins}");
+}
+
+/// Runs `stratad demo --scene planes` with `projections` and returns, per row of the planes'
+/// rectangle, the column where the blue plane takes over.
+fn plane_line(dir: &support::TempDir, projections: &str) -> Vec<Option<u32>> {
+    let png = dir.0.join(format!("planes-{projections}.png"));
+    let img = demo(&png, &["--scene", "planes", "--frames", "2", "--projections", projections]);
+    strata_server::demo::planes::line_columns(img.as_raw(), img.width())
+}
+
+#[test]
+fn declared_projections_put_the_intersection_where_the_f64_geometry_does() {
+    use strata_server::demo::planes;
+    let dir = support::TempDir::new("projections");
+    let want = planes::expected_column();
+    // The f64 geometry: the planes meet at NDC x = 1/4.1, between columns 248 and 249.
+    assert_eq!(want, 249, "line at NDC x {}", planes::line_x());
+    // Two client processes, each declaring its own near/far: the line lies within a pixel of
+    // the f64 line on every row.
+    let declared = plane_line(&dir, "declared");
+    for (row, c) in declared.iter().enumerate() {
+        let c = c.unwrap_or_else(|| panic!("row {row}: no red-to-blue transition"));
+        assert!(c.abs_diff(want) <= 1, "row {row}: the line is at column {c}, the f64 line at {want}");
+    }
+    // Undeclared, depth is compared raw and the line is misplaced: measure by how much.
+    let raw = plane_line(&dir, "raw");
+    let found: Vec<u32> = raw.into_iter().flatten().collect();
+    assert!(!found.is_empty(), "compared raw, no row shows the planes meeting");
+    let off = found.iter().map(|&c| f64::from(c.abs_diff(want))).sum::<f64>() / found.len() as f64;
+    eprintln!("compared raw, the line is misplaced by {off:.1} pixels on average ({} rows)", found.len());
+    // The raw-depth line, from the same f64 geometry: where the two window depths are equal.
+    let (mut lo, mut hi) = (-1.0f64, planes::line_x());
+    for _ in 0..60 {
+        let mid = (lo + hi) / 2.0;
+        if planes::A.depth(mid) < planes::B.depth(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let raw_col = ((lo + 1.0) / 2.0 * f64::from(planes::RECT[2]) - 0.5).ceil();
+    let raw_mean = found.iter().map(|&c| f64::from(c)).sum::<f64>() / found.len() as f64;
+    assert!((raw_mean - raw_col).abs() <= 1.0, "compared raw, the line is at column {raw_mean}, expected {raw_col}");
+    assert!(off > 100.0, "compared raw, the line should be far off: {off} pixels");
 }

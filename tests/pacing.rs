@@ -308,6 +308,7 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
             color: [color[0], color[1], color[2], 255].repeat(32 * 32),
             depth: None,
             normal,
+            projection: None,
         };
         let want = reference::composite(&[layer], 128, 64, [0.0, 0.0, 0.0, 1.0], &Lighting::default());
         let p = ((30 * 128 + 120) * 4) as usize;

@@ -134,7 +134,14 @@ fn time_composite(
     let (w, h) = (out.width() as i32, out.height() as i32);
     let layers: Vec<Layer<'_>> = surfaces
         .iter()
-        .map(|s| Layer { rect: [0, 0, w, h], z: 0.5, color: &s.color, depth: Some(&s.depth), normal: [0.0, 0.0, 1.0] })
+        .map(|s| Layer {
+            rect: [0, 0, w, h],
+            z: 0.5,
+            color: &s.color,
+            depth: Some(&s.depth),
+            normal: [0.0, 0.0, 1.0],
+            projection: strata_protocol::projection::Projection::RAW,
+        })
         .collect();
     median_ms(frames, || {
         comp.composite(&layers, light, out, [0.0, 0.0, 0.0, 1.0], None);

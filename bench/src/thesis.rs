@@ -350,11 +350,7 @@ fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
     let mut comp = Compositor::new(gpu.clone(), None).context("creating the compositor")?;
     let layers = two_triangles(w, h);
     let up: Vec<_> = layers.iter().map(|l| upload(&gpu, l)).collect();
-    let gl: Vec<Layer<'_>> = layers
-        .iter()
-        .zip(&up)
-        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
-        .collect();
+    let gl: Vec<Layer<'_>> = layers.iter().zip(&up).map(|(l, u)| u.layer(l)).collect();
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let out = crate::composite::texture(&gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     let mut written = Vec::new();

@@ -45,6 +45,21 @@ pub fn egl_context<C>(gl: &mut C, depth: i32, stencil: i32, kind: SurfaceKind) -
 where
     C: Calls<Error = ClientError> + ?Sized,
 {
+    egl_context_with(gl, depth, stencil, kind, &[])
+}
+
+/// As [`egl_context`], with extra window-surface attributes (name, value pairs, without the
+/// closing `EGL_NONE`), such as a declared projection.
+pub fn egl_context_with<C>(
+    gl: &mut C,
+    depth: i32,
+    stencil: i32,
+    kind: SurfaceKind,
+    surface_attribs: &[i32],
+) -> Result<Current, ClientError>
+where
+    C: Calls<Error = ClientError> + ?Sized,
+{
     let d = gl.eglGetDisplay(0)?;
     egl(gl.eglInitialize(d)?, "eglInitialize")?;
     let surface_bit = match kind {
@@ -78,10 +93,13 @@ where
             gl.eglCreatePbufferSurface(d, config, Slice::new(&[0x3057, width, 0x3056, height, EGL_NONE]))?,
             "eglCreatePbufferSurface",
         )?,
-        SurfaceKind::Window { rect, z } => egl(
-            gl.eglCreateWindowSurface(d, config, 0, rect[0], rect[1], z, rect[2], rect[3], Slice::new(&[EGL_NONE]))?,
-            "eglCreateWindowSurface",
-        )?,
+        SurfaceKind::Window { rect, z } => {
+            let attribs: Vec<i32> = surface_attribs.iter().copied().chain([EGL_NONE]).collect();
+            egl(
+                gl.eglCreateWindowSurface(d, config, 0, rect[0], rect[1], z, rect[2], rect[3], Slice::new(&attribs))?,
+                "eglCreateWindowSurface",
+            )?
+        }
     };
     let ctx = egl(gl.eglCreateContext(d, config, 0, Slice::new(&[0x3098, 2, EGL_NONE]))?, "eglCreateContext")?;
     egl(gl.eglMakeCurrent(d, s, s, ctx)?, "eglMakeCurrent")?;

@@ -296,6 +296,10 @@ pub struct SurfaceRow {
     /// `eglSwapBuffers` publishing a frame to the device completing the composite that took
     /// it, p50, p99 and max, in microseconds.
     pub shown_latency_us: [u64; 3],
+    /// The projection in effect for its depth (the layout's, else its EGL surface
+    /// attributes'); `None`: undeclared, compared by raw depth.
+    #[serde(default)]
+    pub projection: Option<crate::projection::Projection>,
 }
 
 /// One output of `stratad ctl list`.

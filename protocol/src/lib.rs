@@ -8,6 +8,7 @@ pub mod commands;
 pub mod control;
 pub mod futex;
 pub mod handshake;
+pub mod projection;
 pub mod ring;
 pub mod segment;
 pub mod tally;

@@ -146,7 +146,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             }
             println!();
             println!(
-                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}",
+                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}  projection",
                 "id",
                 "client",
                 "x",
@@ -164,7 +164,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             );
             for r in surfaces {
                 println!(
-                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}",
+                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}  {}",
                     r.id,
                     format!("{} ({})", r.client, r.client_id),
                     r.rect[0],
@@ -178,7 +178,8 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                     r.stream_bytes,
                     r.priority.name(),
                     if r.deadline { r.deadline_misses.to_string() } else { "-".into() },
-                    format!("{:.1} ms", r.shown_latency_us[1] as f64 / 1000.0)
+                    format!("{:.1} ms", r.shown_latency_us[1] as f64 / 1000.0),
+                    r.projection.map_or_else(|| "-".to_string(), |p| p.to_string())
                 );
             }
             Ok(())

@@ -4,6 +4,8 @@
 
 use std::io::Write;
 
+pub mod planes;
+
 use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ClientError, ConnectOptions, Connection};
 use strata_protocol::{Blob, Slice, Text};
@@ -85,7 +87,6 @@ pub fn run_client(socket: &std::path::Path, role: &str, frames: u32) -> Result<(
     };
     let mut gl = Connection::connect(&opts)?;
     let cur = egl_context(&mut gl, 24, 0, SurfaceKind::Window { rect, z: Z })?;
-    let (d, s) = (cur.display, cur.surface);
     let p = link_program(&mut gl, (1, 2, 3), VS, FS, &["pos", "col"])?;
     let loc = gl.glGetUniformLocation(p, Text::borrowed("plane"))?;
     gl.glEnable(0x0B71)?;
@@ -108,13 +109,23 @@ pub fn run_client(socket: &std::path::Path, role: &str, frames: u32) -> Result<(
             gl.glBufferData(0x8892, bytes.len() as i64, Some(Blob::borrowed(bytes)), 0x88E8)?;
             gl.glDrawArrays(0x0004, 0, (verts.len() / 5) as i32)?;
         }
-        gl.eglSwapBuffers(d, s)?
-            .map_err(|e| ClientError::Unsupported(format!("eglSwapBuffers failed with EGL error {e:#x}")))?;
+        swap(&mut gl, cur)?;
     }
+    ready_until_stdin_closes(&mut gl)
+}
+
+/// Swaps `cur`'s surface, an EGL error becoming a client error.
+fn swap(gl: &mut Connection, cur: strata_client::setup::Current) -> Result<(), ClientError> {
+    gl.eglSwapBuffers(cur.display, cur.surface)?
+        .map_err(|e| ClientError::Unsupported(format!("eglSwapBuffers failed with EGL error {e:#x}")))
+}
+
+/// Finishes the client's work, prints `ready`, and stays connected (and visible) until the
+/// parent closes our stdin.
+fn ready_until_stdin_closes(gl: &mut Connection) -> Result<(), ClientError> {
     gl.glFinish()?;
     println!("ready");
     let _ = std::io::stdout().flush();
-    // Stay connected (and visible) until the parent closes our stdin.
     let mut sink = String::new();
     let _ = std::io::stdin().read_line(&mut sink);
     Ok(())

@@ -4,11 +4,14 @@
 //!
 //! Precedence: a placement the client states (`STRATA_WINDOW`) wins; otherwise the first
 //! layout entry whose `client` equals the client's name; otherwise the surface's own request.
+//! An entry's `priority`, `deadline` and `projection` apply whatever the client states, and win
+//! over what its EGL context or surfaces ask for.
 
 use std::path::Path;
 use std::str::FromStr;
 
 use serde::Deserialize;
+use strata_protocol::projection::{Projection, ProjectionError};
 
 /// One layout entry.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -34,10 +37,16 @@ pub struct LayoutEntry {
     /// `ctl list` count the misses).
     #[serde(default)]
     pub deadline: bool,
+    /// The projection of the client's window surfaces' depth
+    /// (`{ kind = "perspective", near = 0.1, far = 100.0, reversed = false }`); wins over what
+    /// their `EGL_STRATA_surface_projection` attributes declare.
+    #[serde(default)]
+    pub projection: Option<Projection>,
 }
 
 /// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
-/// and optionally `width`, `height`, `priority`, `deadline`; `[[quota]]` tables with `client` and limits.
+/// and optionally `width`, `height`, `priority`, `deadline`, `projection`; `[[quota]]` tables
+/// with `client` and limits.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
@@ -77,13 +86,21 @@ pub enum LayoutError {
         /// What is wrong.
         why: String,
     },
+    /// An entry's projection cannot be used.
+    #[error("layout entry for {client:?}: projection: {source}")]
+    Projection {
+        /// The entry's client.
+        client: String,
+        /// What is wrong with it.
+        source: ProjectionError,
+    },
     /// A `--layout` argument does not parse.
     #[error("--layout {0:?} is not CLIENT=X,Y,Z[,WxH]")]
     Syntax(String),
 }
 
 impl LayoutEntry {
-    /// Checks the values: a finite z, sizes within 1..=8192 when given.
+    /// Checks the values: a finite z, sizes within 1..=8192 when given, a usable projection.
     pub fn validate(&self) -> Result<(), LayoutError> {
         let bad = |why: String| LayoutError::Invalid { client: self.client.clone(), why };
         if self.client.is_empty() {
@@ -99,6 +116,9 @@ impl LayoutEntry {
         }
         if self.width.is_some() != self.height.is_some() {
             return Err(bad("give both width and height, or neither".into()));
+        }
+        if let Some(p) = &self.projection {
+            p.validate().map_err(|source| LayoutError::Projection { client: self.client.clone(), source })?;
         }
         Ok(())
     }
@@ -130,6 +150,7 @@ impl FromStr for LayoutEntry {
             height,
             priority: None,
             deadline: false,
+            projection: None,
         };
         e.validate()?;
         Ok(e)
@@ -204,6 +225,59 @@ mod tests {
             .expect("write");
         let e = Config::load(&bad).expect_err("unknown class").to_string();
         assert!(e.contains("urgent") && e.contains("high") && e.contains("normal") && e.contains("low"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn projections_parse_and_bad_ones_name_the_client_and_the_problem() {
+        use strata_protocol::projection::ProjectionKind;
+        let dir = std::env::temp_dir().join(format!("strata-layout-proj-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let file = dir.join("p.toml");
+        let entry = |client: &str, projection: &str| {
+            format!("[[layout]]\nclient = \"{client}\"\nx = 0\ny = 0\nz = 0.5\nprojection = {projection}\n\n")
+        };
+        let good = entry("ic", "{ kind = \"perspective\", near = 0.1, far = 100.0, reversed = false }")
+            + &entry("hu", "{ kind = \"orthographic\", near = -1, far = 1, reversed = true }")
+            + &entry("sky", "{ kind = \"perspective\", near = 1.0, far = inf }")
+            + "[[layout]]\nclient = \"plain\"\nx = 0\ny = 0\nz = 1\n";
+        std::fs::write(&file, good).expect("write");
+        let c = Config::load(&file).expect("loads");
+        let p = |name| find(&c.layout, name).and_then(|e| e.projection);
+        assert_eq!(
+            p("ic"),
+            Some(Projection { kind: ProjectionKind::Perspective, near: 0.1, far: 100.0, reversed: false })
+        );
+        assert_eq!(
+            p("hu"),
+            Some(Projection { kind: ProjectionKind::Orthographic, near: -1.0, far: 1.0, reversed: true })
+        );
+        assert_eq!(p("sky").map(|p| (p.far, p.reversed)), Some((f32::INFINITY, false)), "reversed defaults to false");
+        assert_eq!(p("plain"), None);
+        // Planes out of order, or a perspective near plane at 0: a start-up error naming the
+        // client and the problem.
+        for (projection, problem) in [
+            ("{ kind = \"perspective\", near = 10.0, far = 1.0 }", "near 10 must be less than far 1"),
+            ("{ kind = \"perspective\", near = 0.0, far = 1.0 }", "needs near > 0"),
+            ("{ kind = \"orthographic\", near = 0.0, far = inf }", "must be finite"),
+        ] {
+            std::fs::write(
+                &file,
+                entry("plain", "{ kind = \"perspective\", near = 1.0, far = 2.0 }") + &entry("cluster", projection),
+            )
+            .expect("write");
+            let e = Config::load(&file).expect_err(projection);
+            assert!(matches!(&e, LayoutError::Projection { client, .. } if client == "cluster"), "{e:?}");
+            let e = e.to_string();
+            assert!(e.contains("\"cluster\"") && e.contains(problem), "{e}");
+        }
+        // An unknown kind names the valid kinds; a missing plane is named.
+        std::fs::write(&file, entry("ic", "{ kind = \"fisheye\", near = 1.0, far = 2.0 }")).expect("write");
+        let e = Config::load(&file).expect_err("unknown kind").to_string();
+        assert!(e.contains("fisheye") && e.contains("perspective") && e.contains("orthographic"), "{e}");
+        std::fs::write(&file, entry("ic", "{ kind = \"perspective\", near = 1.0 }")).expect("write");
+        let e = Config::load(&file).expect_err("no far plane").to_string();
+        assert!(e.contains("far"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -439,8 +439,8 @@ async fn run_client(
         match &shared.gpu {
             Some(gpu) => {
                 let entry = crate::layout::find(&opts.layout, &hello.name);
-                // A placement the client states wins over the daemon's layout; the class and
-                // deadline always come from the daemon's entry.
+                // A placement the client states wins over the daemon's layout; the class,
+                // deadline and projection always come from the daemon's entry.
                 let layout = if hello.placement.is_some() { None } else { entry };
                 if let Some(l) = layout {
                     info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
@@ -452,11 +452,16 @@ async fn run_client(
                 if fixed.is_some() || deadline {
                     info!(priority = class.name(), deadline, "scheduled by the daemon's configuration");
                 }
+                let projection = entry.and_then(|e| e.projection);
+                if let Some(p) = projection {
+                    info!(projection = %p, "window surfaces' projection set by the daemon's configuration");
+                }
                 let executor = GlesExecutor::new(gpu.clone())
                     .with_scene(shared.scene.clone(), id, &hello.name)
                     .with_layout(layout.cloned())
                     .with_account(account.clone())
-                    .with_priority(class, fixed.is_some(), deadline);
+                    .with_priority(class, fixed.is_some(), deadline)
+                    .with_projection(projection);
                 lane = Some(executor.lane());
                 Box::new(executor) as Box<dyn crate::executor::Executor>
             }

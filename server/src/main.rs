@@ -99,12 +99,15 @@ enum Cmd {
         /// Socket path.
         #[arg(long)]
         socket: PathBuf,
-        /// `ic` or `hu`.
+        /// `ic` or `hu` (the dial scene), `plane-a` or `plane-b` (the planes scene).
         #[arg(long)]
         role: String,
         /// Frames to render before reporting ready.
         #[arg(long, default_value_t = 30)]
         frames: u32,
+        /// Declare the plane's projection through EGL_STRATA_surface_projection.
+        #[arg(long)]
+        declare: bool,
     },
     /// Sample client: stream a seeded mix of GLES commands and have the daemon verify them.
     Client {
@@ -139,7 +142,32 @@ enum Cmd {
         /// Where to write the PNG.
         #[arg(long, default_value = "strata-demo.png")]
         out: PathBuf,
+        /// What the clients draw.
+        #[arg(long, value_enum, default_value_t = Scene::Dial)]
+        scene: Scene,
+        /// The planes scene: whether the clients declare their projections (the compositor
+        /// then compares eye-space depth) or not (raw depth).
+        #[arg(long, value_enum, default_value_t = Projections::Declared)]
+        projections: Projections,
     },
+}
+
+/// The demo's scene.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Scene {
+    /// An instrument cluster's dial and a head unit's map, tilted through each other, lit.
+    Dial,
+    /// Two planes under different perspective projections, meeting along a known line, unlit.
+    Planes,
+}
+
+/// Whether the planes' clients declare their projections.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Projections {
+    /// Through EGL_STRATA_surface_projection.
+    Declared,
+    /// Not at all: depth compared raw.
+    Raw,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -229,7 +257,14 @@ fn main() -> Result<()> {
             run_daemon(opts)
         }
         Cmd::Ctl { socket, json, what } => ctl::run(&socket.unwrap_or_else(default_socket_path), json, what),
-        Cmd::DemoClient { socket, role, frames } => Ok(strata_server::demo::run_client(&socket, &role, frames)?),
+        Cmd::DemoClient { socket, role, frames, declare } => {
+            if role.starts_with("plane-") {
+                strata_server::demo::planes::run_client(&socket, &role, frames, declare)?;
+            } else {
+                strata_server::demo::run_client(&socket, &role, frames)?;
+            }
+            Ok(())
+        }
         Cmd::Client { socket, name, role, commands, verify_every, max_upload, seed } => {
             let opts = ConnectOptions {
                 socket: socket.unwrap_or_else(default_socket_path),
@@ -240,7 +275,7 @@ fn main() -> Result<()> {
             };
             sample_client(&opts, commands, verify_every, max_upload, seed)
         }
-        Cmd::Demo { frames, out } => demo(frames, &out),
+        Cmd::Demo { frames, out, scene, projections } => demo(frames, &out, scene, projections),
     }
 }
 
@@ -322,7 +357,7 @@ pub(crate) fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Ve
     Ok(())
 }
 
-fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
+fn demo(frames: u32, out: &std::path::Path, scene: Scene, projections: Projections) -> Result<()> {
     let dir = std::env::temp_dir().join(format!("strata-demo-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let socket = dir.join("strata.sock");
@@ -332,6 +367,8 @@ fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
         .arg(format!("demo={}x{}", strata_server::demo::OUTPUT.0, strata_server::demo::OUTPUT.1))
         .arg("--socket")
         .arg(&socket)
+        // The planes are compared by colour: unlit.
+        .args(if scene == Scene::Planes { &["--lighting", "off"][..] } else { &[] })
         .spawn()
         .context("starting the daemon")?;
     let deadline = Instant::now() + std::time::Duration::from_secs(20);
@@ -344,10 +381,13 @@ fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
     }
     let result = (|| -> Result<()> {
         let mut clients = Vec::new();
-        for role in ["ic", "hu"] {
+        let roles = if scene == Scene::Planes { ["plane-a", "plane-b"] } else { ["ic", "hu"] };
+        let declare = scene == Scene::Planes && projections == Projections::Declared;
+        for role in roles {
             let child = std::process::Command::new(&exe)
                 .args(["demo-client", "--role", role, "--frames", &frames.to_string(), "--socket"])
                 .arg(&socket)
+                .args(if declare { &["--declare"][..] } else { &[] })
                 .stdin(Stdio::piped())
                 .stdout(Stdio::piped())
                 .spawn()
@@ -369,15 +409,35 @@ fn demo(frames: u32, out: &std::path::Path) -> Result<()> {
             drop(child.stdin.take());
             let _ = child.wait();
         }
-        match reply {
-            ControlReply::Image { width, height, rgba } => save_png(out, width, height, rgba.0)?,
+        let (width, rgba) = match reply {
+            ControlReply::Image { width, height, rgba } => {
+                save_png(out, width, height, rgba.0.clone())?;
+                (width, rgba.0)
+            }
             ControlReply::Error(e) => bail!("screenshot failed: {e}"),
             other => bail!("unexpected reply {other:?}"),
+        };
+        if scene == Scene::Planes {
+            use strata_server::demo::planes;
+            let found: Vec<u32> = planes::line_columns(&rgba, width).into_iter().flatten().collect();
+            let want = planes::expected_column();
+            let mean = found.iter().map(|&c| f64::from(c)).sum::<f64>() / found.len().max(1) as f64;
+            println!(
+                "demo: two planes, near/far {}/{} and {}/{}, projections {}: their line is at column {mean:.1} of {} rows (the f64 line: column {want}): {}",
+                planes::A.near,
+                planes::A.far,
+                planes::B.near,
+                planes::B.far,
+                if declare { "declared" } else { "undeclared (raw depth)" },
+                found.len(),
+                out.display()
+            );
+        } else {
+            println!(
+                "demo: instrument cluster and head unit at the same z, composited per fragment with uniform lighting: {}",
+                out.display()
+            );
         }
-        println!(
-            "demo: instrument cluster and head unit at the same z, composited per fragment with uniform lighting: {}",
-            out.display()
-        );
         Ok(())
     })();
     // SAFETY: plain kill(2) on our own child.

@@ -9,6 +9,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use strata_protocol::control::OutputRow;
+use strata_protocol::projection::Projection;
 use tracing::{info, warn};
 
 use crate::compositor::{Compositor, CompositorError, Layer, Mode};
@@ -235,6 +236,7 @@ impl Root {
                             color: s.color.as_ref()?,
                             depth: s.depth.as_ref(),
                             normal: s.normal,
+                            projection: Projection::shader_params(s.projection.as_ref()),
                         })
                     })
                     .collect();

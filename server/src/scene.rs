@@ -63,6 +63,9 @@ pub struct SceneSurface {
     latencies: std::collections::VecDeque<u32>,
     /// Its client's scheduling class.
     pub priority: Priority,
+    /// Its declared projection (the layout's, else its EGL surface attributes'), by which the
+    /// compositor compares its depth with other surfaces'; `None`: raw depth.
+    pub projection: Option<strata_protocol::projection::Projection>,
 }
 
 impl SceneSurface {
@@ -83,6 +86,7 @@ impl SceneSurface {
             deadline: self.deadline,
             deadline_misses: self.deadline_misses,
             shown_latency_us: self.latency_summary(),
+            projection: self.projection,
         }
     }
 
@@ -260,6 +264,7 @@ impl Scene {
                 presented: None,
                 latencies: std::collections::VecDeque::new(),
                 priority,
+                projection: None,
             },
         );
         id
@@ -273,6 +278,21 @@ impl Scene {
         for s in g.surfaces.values_mut().filter(|s| s.client_id == client) {
             s.priority = priority;
             s.deadline = deadline;
+        }
+    }
+
+    /// Sets a surface's declared projection (`None`: compared by raw depth).
+    pub fn set_projection(
+        &self,
+        client: u64,
+        surface: u32,
+        projection: Option<strata_protocol::projection::Projection>,
+    ) {
+        let Some(mut g) = self.lock() else { return };
+        if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
+            s.projection = projection;
+            let r = Region::None.with(s.rect);
+            self.damaged(g, r);
         }
     }
 

@@ -4,6 +4,7 @@
 //! 2D baseline.
 
 use super::*;
+use strata_protocol::projection::Projection;
 use strata_server::compositor::Mode;
 
 /// Lighting off, on (per-surface normals) and on (normals from depth).
@@ -100,11 +101,7 @@ fn only_overlaps_run_the_select_and_only_deep_overlaps_chain() {
 
 /// The GPU layers of `layers`, uploaded as `up`.
 fn layers_of<'a>(layers: &[RefLayer], up: &'a [Uploaded]) -> Vec<Layer<'a>> {
-    layers
-        .iter()
-        .zip(up)
-        .map(|(l, u)| Layer { rect: l.rect, z: l.z, color: &u.color, depth: u.depth.as_ref(), normal: l.normal })
-        .collect()
+    layers.iter().zip(up).map(|(l, u)| u.layer(l)).collect()
 }
 
 /// A 1×1 colour image for layers whose rectangle has no area.
@@ -136,14 +133,21 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
     let mut gl = layers_of(&layers, &up);
     // Rectangles without area, over the visible surface.
     for rect in [[32, 22, 0, 5], [32, 22, 5, 0], [32, 22, -5, 5], [32, 22, i32::MIN, i32::MIN]] {
-        gl.push(Layer { rect, z: 0.1, color: &t, depth: None, normal: [0.0, 0.0, 1.0] });
+        gl.push(Layer { rect, z: 0.1, color: &t, depth: None, normal: [0.0, 0.0, 1.0], projection: Projection::RAW });
     }
     comp.composite(&gl, &off, &out, BACKGROUND, None);
     let img = gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback");
     check("surfaces covering nothing", &img, &want, 0);
     assert_eq!(comp.last_stats.selects, 0, "only surface 0 covers any pixel");
     // Regions without area, or off the output, change nothing and draw nothing.
-    let other = vec![Layer { rect: [0, 0, w, h], z: 0.5, color: &up[0].color, depth: None, normal: [0.0; 3] }];
+    let other = vec![Layer {
+        rect: [0, 0, w, h],
+        z: 0.5,
+        color: &up[0].color,
+        depth: None,
+        normal: [0.0; 3],
+        projection: Projection::RAW,
+    }];
     for region in [[10, 10, 0, 20], [10, 10, 20, 0], [OUT_W, 0, 5, 5], [0, OUT_H, 5, 5], [u32::MAX; 4]] {
         comp.composite(&other, &off, &out, BACKGROUND, Some(region));
         assert_eq!((comp.last_passes, comp.last_stats.draws), (0, 0), "region {region:?} drew");

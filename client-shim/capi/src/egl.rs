@@ -86,7 +86,9 @@ unsafe fn attrib_list(list: *const EGLint) -> Result<Vec<EGLint>, EGLint> {
     Err(EGL_BAD_ATTRIBUTE)
 }
 
-/// Reads an `EGL_NONE`-terminated list of `EGLAttrib` pairs as `EGLint`s.
+/// Reads an `EGL_NONE`-terminated list of `EGLAttrib` pairs as `EGLint`s. A value may also be
+/// a 32-bit pattern widened without its sign (the bits of a `float`, as
+/// `EGL_STRATA_surface_projection`'s planes are, cast from an unsigned type).
 unsafe fn attrib_list_wide(list: *const EGLAttrib) -> Result<Vec<EGLint>, EGLint> {
     let mut out = Vec::new();
     if list.is_null() {
@@ -96,7 +98,11 @@ unsafe fn attrib_list_wide(list: *const EGLAttrib) -> Result<Vec<EGLint>, EGLint
     for i in 0..2 * MAX_ATTRIBS {
         // SAFETY: the application promises an EGL_NONE-terminated list of pairs.
         let a = unsafe { *list.add(i) };
-        let a = EGLint::try_from(a).map_err(|_| EGL_BAD_ATTRIBUTE)?;
+        let a = match EGLint::try_from(a) {
+            Ok(a) => a,
+            Err(_) if i % 2 == 1 => u32::try_from(a).map_err(|_| EGL_BAD_ATTRIBUTE)? as EGLint,
+            Err(_) => return Err(EGL_BAD_ATTRIBUTE),
+        };
         out.push(a);
         if i % 2 == 0 && a == EGL_NONE {
             return Ok(out);
@@ -214,7 +220,9 @@ crate::entry_points! {
             EGL_VENDOR => c"Strata",
             EGL_VERSION => c"1.4 Strata",
             EGL_CLIENT_APIS => c"OpenGL_ES",
-            EGL_EXTENSIONS => c"EGL_IMG_context_priority",
+            // The daemon answers both (`EGL_STRATA_surface_projection`: surface attributes the
+            // library passes through, see docs/projection.md).
+            EGL_EXTENSIONS => c"EGL_IMG_context_priority EGL_STRATA_surface_projection",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();
@@ -347,7 +355,8 @@ crate::entry_points! {
         boolean(r)
     }
 
-    /// Width, height, config id, render buffer and swap behaviour of a surface.
+    /// Width, height, config id, render buffer and swap behaviour of a surface, and (the daemon
+    /// answers) its `EGL_STRATA_surface_projection` attributes.
     fn eglQuerySurface(dpy: EGLDisplay, surface: EGLSurface, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
         let r = (|| {
             if value.is_null() {
@@ -528,5 +537,26 @@ crate::entry_points! {
                 None
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wide_attribute_values_may_be_unsigned_bit_patterns() {
+        let bits = (-1.0f32).to_bits();
+        let list: [EGLAttrib; 5] = [0x3F03, bits as EGLAttrib, 0x3F04, -5, EGL_NONE as EGLAttrib];
+        // SAFETY: an EGL_NONE-terminated list of pairs.
+        let got = unsafe { attrib_list_wide(list.as_ptr()) }.expect("reads");
+        assert_eq!(got, vec![0x3F03, bits as EGLint, 0x3F04, -5, EGL_NONE]);
+        // An attribute name, or a value beyond 32 bits, is refused.
+        let list: [EGLAttrib; 3] = [1 << 32, 0, EGL_NONE as EGLAttrib];
+        // SAFETY: as above.
+        assert_eq!(unsafe { attrib_list_wide(list.as_ptr()) }, Err(EGL_BAD_ATTRIBUTE));
+        let list: [EGLAttrib; 3] = [0x3F03, 1 << 33, EGL_NONE as EGLAttrib];
+        // SAFETY: as above.
+        assert_eq!(unsafe { attrib_list_wide(list.as_ptr()) }, Err(EGL_BAD_ATTRIBUTE));
     }
 }

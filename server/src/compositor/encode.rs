@@ -70,7 +70,8 @@ pub fn unit_normal(n: [f32; 3]) -> [f32; 3] {
     }
 }
 
-/// A surface's entry in a uniform block: rectangle, unit normal (or zero), has-depth flag.
+/// A surface's entry in a uniform block (`Surf`, `SURF_SIZE` bytes): rectangle, unit normal
+/// (or zero) and has-depth flag, projection.
 fn surf_bytes(l: &Layer<'_>, out: &mut Vec<u8>) {
     let unit = unit_normal(l.normal);
     out.extend_from_slice(bytemuck::cast_slice(&l.rect));
@@ -80,6 +81,7 @@ fn surf_bytes(l: &Layer<'_>, out: &mut Vec<u8>) {
         unit[2],
         if l.depth.is_some() { 1.0 } else { 0.0 },
     ]));
+    out.extend_from_slice(bytemuck::cast_slice(&l.projection));
 }
 
 impl<'a> Builder<'a> {
@@ -150,8 +152,11 @@ impl<'a> Builder<'a> {
     pub fn light_map(&mut self, n: [f32; 3], view: wgpu::TextureView) {
         let at = self.uniforms.len().next_multiple_of(self.align as usize);
         self.uniforms.resize(at, 0);
+        // The origins and one `Surf`: no rectangle, the normal, no projection.
         self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0i32; 8]));
         self.uniforms.extend_from_slice(bytemuck::cast_slice(&[n[0], n[1], n[2], 0.0]));
+        self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0.0f32; 4]));
+        debug_assert_eq!((self.uniforms.len() - at) as u64, block_size(1));
         let instances = self.rects(&[[0, 0, self.size.0 as i32, self.size.1 as i32]], [0, 0], self.size);
         let draw = DrawOp { kind: Some(PassKind::light_map()), views: Vec::new(), block: at as u32, instances };
         self.passes.push(PassOp { target: Some(vec![view]), draws: vec![draw] });

@@ -1,9 +1,12 @@
 //! The 3D compositor (the thesis' "root surface", §4.5–4.6): every surface's colour and depth
 //! are combined into one output image. Surfaces are grouped by z and the groups drawn far
 //! (larger z) to near. Within a group each output fragment takes the surface with the nearest
-//! depth; on equal depth the surface later in stacking order wins. Outside its rectangle a
-//! surface has no fragment. The selected colour (straight alpha) is lit, premultiplied, and
-//! blended over what lies beneath.
+//! depth; on equal depth the surface later in stacking order wins. Depth is compared in eye
+//! space: each surface's window depth is linearised by its declared projection
+//! (`Layer::projection`); an undeclared surface's eye depth is its raw depth, and a surface
+//! without a depth image lies at its far plane. Outside its rectangle a surface has no
+//! fragment. The selected colour (straight alpha) is lit, premultiplied, and blended over what
+//! lies beneath.
 //!
 //! A composite costs what its region needs (`plan`): the region is cut into cells by coverage;
 //! a cell no surface covers is filled with the background, a cell one surface of a group covers
@@ -13,8 +16,8 @@
 //!
 //! A pass can sample at most `m` textures; a surface needs two (colour and depth), so one pass
 //! takes `p = ⌊m/2⌋` surfaces. Where more overlap, passes are chained: each further pass takes
-//! the previous pass's intermediate (the selected colour, RGBA8, and its depth and normal, f32)
-//! plus `p − 1` new surfaces. Because an intermediate holds exactly what a single pass would
+//! the previous pass's intermediate (the selected colour, RGBA8, and its eye depth and normal,
+//! f32) plus `p − 1` new surfaces. Because an intermediate holds exactly what a single pass would
 //! have selected, and lighting runs only in the last pass, a chain is bit-identical to one pass.
 //!
 //! `Mode::TwoD` is the 2D baseline: painter's order by z only, no depth, no lighting, each
@@ -49,10 +52,15 @@ pub struct Layer<'a> {
     pub z: f32,
     /// Colour (RGBA8, rows in GL order: bottom first).
     pub color: &'a wgpu::TextureView,
-    /// Depth (a depth format, same size), or `None`: depth 1 everywhere.
+    /// Depth (a depth format, same size), or `None`: at its far plane everywhere (depth 1 when
+    /// undeclared).
     pub depth: Option<&'a wgpu::TextureView>,
     /// The surface's normal for `NormalSource::PerSurface`.
     pub normal: [f32; 3],
+    /// Its declared projection as the shader takes it (`Projection::shader_params`): kind (0
+    /// orthographic, 1 perspective), near, far, reversed (0 or 1); `Projection::RAW` when
+    /// undeclared, which compares its raw depth.
+    pub projection: [f32; 4],
 }
 
 /// How surfaces are combined.

@@ -1,6 +1,8 @@
 //! The reference compositor: plain f64 code written from the thesis (§4.5–4.6), used as the
 //! oracle for the GPU compositor. Deliberately simple: one loop over output pixels.
 
+use strata_protocol::projection::Projection;
+
 use super::{Lighting, NormalSource};
 use crate::gpu::Gpu;
 
@@ -13,10 +15,13 @@ pub struct RefLayer {
     pub z: f32,
     /// RGBA8 rows, bottom row first (GL order), straight alpha.
     pub color: Vec<u8>,
-    /// Depth rows (bottom first) in [0, 1], or `None` for a surface without depth (depth 1).
+    /// Depth rows (bottom first) in [0, 1], or `None` for a surface without depth (at its far
+    /// plane: depth 1 when undeclared).
     pub depth: Option<Vec<f32>>,
     /// The per-surface normal.
     pub normal: [f32; 3],
+    /// The declared projection by which its depth is compared (`None`: raw depth).
+    pub projection: Option<Projection>,
 }
 
 fn normalize(v: [f64; 3]) -> [f64; 3] {
@@ -37,6 +42,19 @@ fn depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
     match &l.depth {
         Some(d) => f64::from(d[(sy * w + sx) as usize]),
         None => 1.0,
+    }
+}
+
+/// Eye-space depth of `l` at surface pixel (sx, sy), by which a group selects: its window depth
+/// linearised by its projection, the raw depth when it declares none; without a depth image
+/// the surface lies at its far plane (1 when undeclared).
+fn eye_depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
+    match (&l.depth, &l.projection) {
+        (Some(_), p) => {
+            let d = depth_at(l, sx, sy);
+            p.map_or(d, |p| p.eye_depth(d))
+        }
+        (None, p) => p.map_or(1.0, |p| f64::from(p.far)),
     }
 }
 
@@ -63,7 +81,7 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
             // Premultiplied accumulation.
             let mut acc = [bg[0] * bg[3], bg[1] * bg[3], bg[2] * bg[3], bg[3]];
             for &z in &zs {
-                // Within the group: nearest depth wins; on a tie the later surface wins.
+                // Within the group: nearest eye depth wins; on a tie the later surface wins.
                 let mut best: Option<(f64, &RefLayer, i32, i32)> = None;
                 for l in layers.iter().filter(|l| l.z == z) {
                     // In 64 bits: a rectangle may lie anywhere in the i32 plane.
@@ -74,7 +92,7 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
                     // Inside the rectangle, so both fit in an i32.
                     let (lx, ly) = (lx as i32, ly as i32);
                     let sy = l.rect[3] - 1 - ly;
-                    let d = depth_at(l, lx, sy);
+                    let d = eye_depth_at(l, lx, sy);
                     if best.is_none_or(|b| d <= b.0) {
                         best = Some((d, l, lx, sy));
                     }
@@ -127,6 +145,20 @@ pub struct Uploaded {
     pub color: wgpu::TextureView,
     /// The depth image, if the layer has depth.
     pub depth: Option<wgpu::TextureView>,
+}
+
+impl Uploaded {
+    /// The GPU compositor's layer of `l` (uploaded as `self`), with the same projection.
+    pub fn layer(&self, l: &RefLayer) -> super::Layer<'_> {
+        super::Layer {
+            rect: l.rect,
+            z: l.z,
+            color: &self.color,
+            depth: self.depth.as_ref(),
+            normal: l.normal,
+            projection: Projection::shader_params(l.projection.as_ref()),
+        }
+    }
 }
 
 /// Uploads a reference layer's colour and depth images, so that the GPU compositor can draw

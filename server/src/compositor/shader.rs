@@ -207,6 +207,7 @@ mod tests {
                 assert_eq!(src.matches("var color").count(), surfaces);
                 assert_eq!(src.matches("var depth").count(), if k.depth() { surfaces } else { 0 });
                 assert_eq!(src.contains("var igeom"), k.intermediate);
+                assert_eq!(src.contains("fn eye("), k.select(), "eye depth where the select runs");
                 assert_eq!(src.contains("var lmap"), k.map);
                 assert_eq!(src.contains("light(best_c"), k.last && k.lit && !k.copy);
                 assert_eq!(src.matches("fn dn").count(), if k.from_depth { surfaces } else { 0 });

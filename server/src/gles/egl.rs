@@ -1,7 +1,11 @@
 //! EGL on the daemon side: the configs offered and their matching as `eglChooseConfig`
 //! specifies it, displays, contexts, and the EGL calls on surfaces (which `surface` holds).
+//! Surfaces may declare their depth's projection (`EGL_STRATA_surface_projection`, see
+//! `docs/projection.md`); the daemon's layout entry for the client wins over a window
+//! surface's declaration.
 
 use strata_protocol::control::Priority;
+use strata_protocol::projection::Projection;
 use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
@@ -125,6 +129,15 @@ pub fn choose(attribs: &[i32]) -> Result<Vec<u32>, i32> {
     Ok(out.into_iter().map(|c| c.id).collect())
 }
 
+/// The projection a surface attribute list declares (`EGL_STRATA_surface_projection`), if
+/// any; an invalid declaration is `EGL_BAD_ATTRIBUTE`, logged with what is wrong with it.
+fn declared_projection(call: &str, attribs: &[i32]) -> Result<Option<Projection>, i32> {
+    Projection::from_egl_attribs(attribs).map_err(|e| {
+        tracing::warn!(error = ?e, "{call}: EGL_BAD_ATTRIBUTE: invalid EGL_STRATA_surface_projection declaration: {e}");
+        EGL_BAD_ATTRIBUTE
+    })
+}
+
 /// Reads `EGL_WIDTH`/`EGL_HEIGHT` from a pbuffer attribute list.
 pub fn pbuffer_size(attribs: &[i32]) -> Result<(i32, i32), i32> {
     let (mut w, mut h) = (0, 0);
@@ -214,11 +227,15 @@ impl GlesExecutor {
     ) -> EglResult<EglHandle> {
         self.check_display(display)?;
         let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
-        let (w, h) = pbuffer_size(&attribs.to_vec())?;
-        self.make_surface(c, w, h, false)
+        let attribs = attribs.to_vec();
+        let (w, h) = pbuffer_size(&attribs)?;
+        // Not composited, so the layout's projection is not for it: it keeps its own.
+        let projection = declared_projection("eglCreatePbufferSurface", &attribs)?;
+        self.make_surface(c, w, h, false, projection)
     }
 
-    /// The daemon's layout entry for this client, if any, overrides the placement asked for.
+    /// The daemon's layout entry for this client, if any, overrides the placement asked for,
+    /// and its projection the one the attributes declare.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn eglCreateWindowSurface(
         &mut self,
@@ -230,7 +247,7 @@ impl GlesExecutor {
         mut z: f32,
         mut width: i32,
         mut height: i32,
-        _attribs: Slice<'_, i32>,
+        attribs: Slice<'_, i32>,
     ) -> EglResult<EglHandle> {
         if let Some(l) = &self.layout {
             (x, y, z) = (l.x, l.y, l.z);
@@ -240,12 +257,23 @@ impl GlesExecutor {
         }
         self.check_display(display)?;
         let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
+        let declared = declared_projection("eglCreateWindowSurface", &attribs.to_vec())?;
         if !z.is_finite() || width <= 0 || height <= 0 {
             return Err(EGL_BAD_NATIVE_WINDOW);
         }
-        let id = self.make_surface(c, width, height, true)?;
+        // The daemon's configuration wins over the surface's declaration.
+        let projection = self.projection.or(declared);
+        if let (Some(fixed), Some(asked)) = (self.projection, declared) {
+            if fixed != asked {
+                tracing::debug!(%asked, %fixed, "the surface's projection is overridden by the daemon's layout");
+            }
+        }
+        let id = self.make_surface(c, width, height, true, projection)?;
         if let Some((scene, client, name)) = &self.scene {
             scene.add(*client, id, name, [x, y, width, height], z);
+            if projection.is_some() {
+                scene.set_projection(*client, id, projection);
+            }
         }
         Ok(id)
     }
@@ -359,7 +387,8 @@ impl GlesExecutor {
             EGL_CONFIG_ID => Ok(s.config.id as i32),
             EGL_RENDER_BUFFER => Ok(EGL_BACK_BUFFER),
             EGL_SWAP_BEHAVIOR => Ok(EGL_BUFFER_DESTROYED),
-            _ => Err(EGL_BAD_ATTRIBUTE),
+            // `EGL_STRATA_surface_projection`: the projection in effect.
+            a => Projection::egl_query(s.projection.as_ref(), a).ok_or(EGL_BAD_ATTRIBUTE),
         }
     }
 
@@ -409,5 +438,32 @@ mod tests {
         assert_eq!(d, vec![3, 1], "smallest sufficient depth first");
         assert_eq!(choose(&[EGL_STENCIL_SIZE, 16, EGL_NONE]).expect("none"), Vec::<u32>::new());
         assert_eq!(choose(&[0x7777, 1, EGL_NONE]), Err(EGL_BAD_ATTRIBUTE));
+    }
+
+    #[test]
+    fn invalid_projection_declarations_are_bad_attributes() {
+        use strata_protocol::projection::*;
+        let near = (0.0f32).to_bits() as i32;
+        let far = (1.0f32).to_bits() as i32;
+        let attribs = |kind| {
+            [
+                EGL_WIDTH,
+                4,
+                EGL_PROJECTION_STRATA,
+                kind,
+                EGL_PROJECTION_NEAR_STRATA,
+                near,
+                EGL_PROJECTION_FAR_STRATA,
+                far,
+                EGL_NONE,
+            ]
+        };
+        // Near 0 is fine for an orthographic projection, not for a perspective one.
+        let p = declared_projection("test", &attribs(EGL_PROJECTION_ORTHOGRAPHIC_STRATA)).expect("valid");
+        assert_eq!(p.map(|p| (p.near, p.far)), Some((0.0, 1.0)));
+        assert_eq!(declared_projection("test", &attribs(EGL_PROJECTION_PERSPECTIVE_STRATA)), Err(EGL_BAD_ATTRIBUTE));
+        assert_eq!(declared_projection("test", &attribs(0x1234)), Err(EGL_BAD_ATTRIBUTE));
+        // Unknown attributes are not this extension's business; nothing declared is `None`.
+        assert_eq!(declared_projection("test", &[0x7777, 1, EGL_NONE]), Ok(None));
     }
 }

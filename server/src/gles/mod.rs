@@ -73,6 +73,9 @@ pub struct GlesExecutor {
     /// ignored), and whether its surfaces have deadlines.
     policy_fixed: bool,
     deadline: bool,
+    /// The projection the daemon's configuration gives this client's window surfaces: wins
+    /// over what their EGL attributes declare.
+    projection: Option<strata_protocol::projection::Projection>,
 }
 
 impl Drop for GlesExecutor {
@@ -101,6 +104,7 @@ impl GlesExecutor {
             account: crate::quota::Account::unlimited(),
             policy_fixed: false,
             deadline: false,
+            projection: None,
         }
     }
 
@@ -121,6 +125,13 @@ impl GlesExecutor {
     /// Places this client's window surfaces by `layout` instead of where it asks.
     pub fn with_layout(mut self, layout: Option<crate::layout::LayoutEntry>) -> Self {
         self.layout = layout;
+        self
+    }
+
+    /// Declares `projection` for this client's window surfaces, whatever their EGL attributes
+    /// declare (`None`: theirs apply).
+    pub fn with_projection(mut self, projection: Option<strata_protocol::projection::Projection>) -> Self {
+        self.projection = projection;
         self
     }
 

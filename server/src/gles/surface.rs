@@ -22,6 +22,9 @@ pub struct Surface {
     pub config: Config,
     /// Window surface (composited) rather than pbuffer.
     pub window: bool,
+    /// The projection in effect for its depth (`EGL_STRATA_surface_projection`; the daemon's
+    /// layout's for a window surface when it gives one), as `eglQuerySurface` reports it.
+    pub projection: Option<strata_protocol::projection::Projection>,
     /// The images' memory, held against the client's quota.
     _reserved: crate::quota::Reservation,
 }
@@ -94,8 +97,16 @@ impl GlesExecutor {
         (target, sample)
     }
 
-    /// A new pbuffer or window surface of `width`×`height`; its handle, or the EGL error.
-    pub(super) fn make_surface(&mut self, config: Config, width: i32, height: i32, window: bool) -> Result<u32, i32> {
+    /// A new pbuffer or window surface of `width`×`height` with `projection` in effect; its
+    /// handle, or the EGL error.
+    pub(super) fn make_surface(
+        &mut self,
+        config: Config,
+        width: i32,
+        height: i32,
+        window: bool,
+        projection: Option<strata_protocol::projection::Projection>,
+    ) -> Result<u32, i32> {
         if width < 0 || height < 0 {
             return Err(EGL_BAD_PARAMETER);
         }
@@ -111,7 +122,8 @@ impl GlesExecutor {
         let front = window.then(|| self.make_target(config, w, h));
         let id = self.next_handle;
         self.next_handle += 1;
-        self.surfaces.insert(id, Surface { target, depth_sample, front, config, window, _reserved: reserved });
+        self.surfaces
+            .insert(id, Surface { target, depth_sample, front, config, window, projection, _reserved: reserved });
         Ok(id)
     }
 
