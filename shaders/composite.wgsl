@@ -58,31 +58,51 @@ struct Draw { origin: vec4<i32>, surf: array<Surf, {{N}}>, };
     return vec4<f32>(select(r.x, r.z, (v & 1u) != 0u), select(r.y, r.w, (v & 2u) != 0u), 0.0, 1.0);
 }
 
+//#if depth
+// A depth texel as the compositor reads it, under projection `p` (a Surf's proj): NaN as the far
+// plane's window depth (1, or 0 when reversed), then clamped to [0, 1] (so -inf reads 0 and
+// +inf 1). NaN is found by its bits: WGSL lets a compiler assume floats are never NaN.
+fn texel(v: f32, p: vec4<f32>) -> f32 {
+    let nan = (bitcast<u32>(v) & 0x7fffffffu) > 0x7f800000u;
+    return clamp(select(v, select(1.0, 0.0, p.w > 0.5), nan), 0.0, 1.0);
+}
+//#end
+
 //#if select
 // The eye-space depth of window depth `d` under projection `p` (a Surf's proj), by which the
-// select compares surfaces whose projections differ: `d` clamped to [0, 1] and flipped when
-// reversed, then orthographic n + d (f - n), perspective n f / (f - d (f - n)), or n / (1 - d)
-// with f infinite. Undeclared ([0, 0, 1, 0]) gives back `d` itself, exactly: 0 + d (1 - 0).
+// select compares surfaces whose projections differ: `d` read as a texel (NaN at the far
+// plane, clamped to [0, 1]) and flipped when reversed, then orthographic n + d (f - n),
+// perspective n f / (f - d (f - n)), or n / (1 - d) with f infinite. Undeclared
+// ([0, 0, 1, 0]) gives back `d` itself, exactly: 0 + d (1 - 0).
 fn eye(d_in: f32, p: vec4<f32>) -> f32 {
-    var d = clamp(d_in, 0.0, 1.0);
-    if (p.w > 0.5) { d = 1.0 - d; }
-    if (p.x < 0.5) { return p.y + d * (p.z - p.y); }
+    let d = texel(d_in, p);
     // Far at +inf (tested by its bits, so that no float optimisation can assume it away); the
     // far plane itself is +inf, not left to a division by zero.
-    if (bitcast<u32>(p.z) == 0x7f800000u) { return select(p.y / (1.0 - d), p.z, d >= 1.0); }
+    let infinite = bitcast<u32>(p.z) == 0x7f800000u;
+    if (p.w > 0.5) {
+        // Reversed: from d itself, not from 1 - d, which would throw away the precision that
+        // float depth has near 0 (the far plane).
+        if (p.x < 0.5) { return p.z - d * (p.z - p.y); }
+        if (infinite) { return select(p.y / d, p.z, d <= 0.0); }
+        return p.y * p.z / (p.y + d * (p.z - p.y));
+    }
+    if (p.x < 0.5) { return p.y + d * (p.z - p.y); }
+    if (infinite) { return select(p.y / (1.0 - d), p.z, d >= 1.0); }
     return p.y * p.z / (p.z - d * (p.z - p.y));
 }
 //#end
 
 //#if from_depth
 //#each surface
-// Surface {{i}}'s normal at p from its depth by central differences (one-sided at edges).
+// Surface {{i}}'s normal at p from its depth (read as texels) by central differences
+// (one-sided at edges).
 fn dn{{i}}(p: vec2<i32>, size: vec2<i32>) -> vec3<f32> {
     let x0 = max(p.x - 1, 0); let x1 = min(p.x + 1, size.x - 1);
     let y0 = max(p.y - 1, 0); let y1 = min(p.y + 1, size.y - 1);
     var dzdx = 0.0; var dzdy = 0.0;
-    if (x1 > x0) { dzdx = (textureLoad(depth{{i}}, vec2<i32>(x1, p.y), 0) - textureLoad(depth{{i}}, vec2<i32>(x0, p.y), 0)) / f32(x1 - x0); }
-    if (y1 > y0) { dzdy = (textureLoad(depth{{i}}, vec2<i32>(p.x, y1), 0) - textureLoad(depth{{i}}, vec2<i32>(p.x, y0), 0)) / f32(y1 - y0); }
+    let pr = D.surf[{{i}}].proj;
+    if (x1 > x0) { dzdx = (texel(textureLoad(depth{{i}}, vec2<i32>(x1, p.y), 0), pr) - texel(textureLoad(depth{{i}}, vec2<i32>(x0, p.y), 0), pr)) / f32(x1 - x0); }
+    if (y1 > y0) { dzdy = (texel(textureLoad(depth{{i}}, vec2<i32>(p.x, y1), 0), pr) - texel(textureLoad(depth{{i}}, vec2<i32>(p.x, y0), 0), pr)) / f32(y1 - y0); }
     return normalize(vec3<f32>(-dzdx * P.light_color.w, -dzdy * P.light_color.w, 1.0));
 }
 //#end
@@ -90,8 +110,10 @@ fn dn{{i}}(p: vec2<i32>, size: vec2<i32>) -> vec3<f32> {
 
 //#if lit
 // The Phong factor ambient + diffuse + specular of a fragment on the plane z = 0 with normal `n`
-// (a unit vector or zero).
+// (a unit vector, or zero: no direction, ambient only). Shininess 0 makes specular 1, as
+// x^0 = 1 for every x (WGSL leaves pow(0, 0) undefined).
 fn factor(n: vec3<f32>, frag_px: vec2<f32>) -> f32 {
+    if (all(n == vec3<f32>(0.0))) { return P.misc.x; }
     let frag = vec3<f32>(frag_px.x / P.misc.z * 2.0 - 1.0, 1.0 - frag_px.y / P.misc.w * 2.0, 0.0);
     let ld = normalize(P.light_pos.xyz - frag);
     let vd = normalize(P.view_pos.xyz - frag);

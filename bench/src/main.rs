@@ -8,6 +8,7 @@ mod interference;
 mod interference_client;
 mod mesh;
 mod plot;
+mod precision;
 mod soak;
 mod soak_client;
 mod thesis;
@@ -74,6 +75,9 @@ enum Cmd {
     /// One client of the interference benchmark (started by `interference` itself).
     #[command(hide = true)]
     InterferenceClient(interference_client::Args),
+    /// Precision knobs, one row per setting: composite ms beside depth, selection and colour
+    /// error against the f64 reference compositor, measured in the same run.
+    Precision(precision::Args),
 }
 
 fn main() -> Result<()> {
@@ -92,5 +96,6 @@ fn main() -> Result<()> {
         Cmd::SoakClient(args) => soak_client::run(&args),
         Cmd::Interference(args) => interference::run(&args),
         Cmd::InterferenceClient(args) => interference_client::run(&args),
+        Cmd::Precision(args) => precision::run(&args),
     }
 }

@@ -8,7 +8,8 @@ use plotters::prelude::*;
 /// Font files tried for axis labels (Debian's fonts-dejavu-core).
 const FONTS: [&str; 2] = ["/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"];
 
-fn register_font() -> Result<()> {
+/// Registers the sans-serif font plots label with.
+pub(crate) fn register_font() -> Result<()> {
     static DONE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     let ok = *DONE.get_or_init(|| {
         FONTS.iter().find_map(|p| std::fs::read(p).ok()).is_some_and(|bytes| {

@@ -115,12 +115,15 @@ impl Projection {
     /// The eye-space distance of window depth `d` (clamped to [0, 1]), in f64.
     pub fn eye_depth(&self, d: f64) -> f64 {
         let d = d.clamp(0.0, 1.0);
-        let d = if self.reversed { 1.0 - d } else { d };
         let (n, f) = (f64::from(self.near), f64::from(self.far));
-        match self.kind {
-            ProjectionKind::Orthographic => n + d * (f - n),
-            ProjectionKind::Perspective if f.is_infinite() => n / (1.0 - d),
-            ProjectionKind::Perspective => n * f / (f - d * (f - n)),
+        // Reversed depth is used as it is (not as 1 - d), as the shader does.
+        match (self.kind, self.reversed) {
+            (ProjectionKind::Orthographic, false) => n + d * (f - n),
+            (ProjectionKind::Orthographic, true) => f - d * (f - n),
+            (ProjectionKind::Perspective, false) if f.is_infinite() => n / (1.0 - d),
+            (ProjectionKind::Perspective, true) if f.is_infinite() => n / d,
+            (ProjectionKind::Perspective, false) => n * f / (f - d * (f - n)),
+            (ProjectionKind::Perspective, true) => n * f / (n + d * (f - n)),
         }
     }
 

@@ -42,6 +42,8 @@ pub struct ServeOptions {
     pub max_textures: Option<u32>,
     /// How the compositor combines surfaces (3D, or the 2D baseline).
     pub compositor: crate::compositor::Mode,
+    /// The colour format of chained compositor passes' intermediates.
+    pub intermediate: crate::compositor::Intermediate,
     /// Uniform lighting of composited output (initially; `stratad ctl light` changes it).
     pub lighting: crate::compositor::Lighting,
     /// The outputs the compositor draws.
@@ -81,6 +83,7 @@ impl Default for ServeOptions {
             executor: ExecutorKind::Gles,
             max_textures: None,
             compositor: crate::compositor::Mode::ThreeD,
+            intermediate: crate::compositor::Intermediate::Rgba8,
             lighting: crate::compositor::Lighting::default(),
             outputs: vec![crate::root::OutputSpec::default()],
             refresh_hz: 60.0,
@@ -200,8 +203,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
     let root = match &gpu {
         Some(gpu) => {
-            let (outputs, m) = (&opts.outputs, opts.max_textures);
-            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, opts.compositor)?))
+            let (outputs, m, inter) = (&opts.outputs, opts.max_textures, opts.intermediate);
+            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, opts.compositor, inter)?))
         }
         None => None,
     };

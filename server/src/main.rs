@@ -10,7 +10,7 @@ use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
-use strata_server::compositor::{Lighting, Mode, NormalSource};
+use strata_server::compositor::{Intermediate, Lighting, Mode, NormalSource};
 use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
@@ -49,6 +49,9 @@ enum Cmd {
         /// painter's order by z, every surface an opaque copy, no depth, no lighting).
         #[arg(long, value_enum, default_value_t = Mode::ThreeD)]
         compositor: Mode,
+        /// The colour format of chained compositor passes' intermediates.
+        #[arg(long, value_enum, default_value_t = Intermediate::Rgba8)]
+        intermediate: Intermediate,
         /// Uniform Phong lighting of the composited output.
         #[arg(long, value_enum, default_value_t = Switch::On)]
         lighting: Switch,
@@ -211,6 +214,7 @@ fn main() -> Result<()> {
             executor,
             max_textures,
             compositor,
+            intermediate,
             lighting,
             normals,
             outputs,
@@ -244,6 +248,7 @@ fn main() -> Result<()> {
                 executor,
                 max_textures,
                 compositor,
+                intermediate,
                 lighting,
                 outputs: if outputs.is_empty() { vec![OutputSpec::default()] } else { outputs },
                 refresh_hz,

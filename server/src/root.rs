@@ -12,7 +12,7 @@ use strata_protocol::control::OutputRow;
 use strata_protocol::projection::Projection;
 use tracing::{info, warn};
 
-use crate::compositor::{Compositor, CompositorError, Layer, Mode};
+use crate::compositor::{Compositor, CompositorError, Intermediate, Layer, Mode};
 use crate::gpu::Gpu;
 use crate::scene::{Region, Scene, Work};
 
@@ -139,16 +139,17 @@ pub enum RootError {
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 impl Root {
-    /// Creates the outputs, composited in `mode`; fails if the texture limit cannot chain or
-    /// exceeds the device's, or a window output cannot open.
+    /// Creates the outputs, composited in `mode` (chained passes through `intermediate`); fails
+    /// if the texture limit cannot chain or exceeds the device's, or a window output cannot open.
     pub fn new(
         gpu: Arc<Gpu>,
         scene: Arc<Scene>,
         outputs: &[OutputSpec],
         max_textures: Option<u32>,
         mode: Mode,
+        intermediate: Intermediate,
     ) -> Result<Root, RootError> {
-        let compositor = Compositor::new(gpu.clone(), max_textures)?.with_mode(mode);
+        let compositor = Compositor::new(gpu.clone(), max_textures)?.with_mode(mode).with_intermediate(intermediate);
         let mut made = Vec::new();
         for spec in outputs {
             let window = match spec.kind {

@@ -1,11 +1,11 @@
 //! The compositor's cells (the region cut by coverage) against the f64 reference: surfaces
 //! straddling each other's edges, 1-pixel surfaces, surfaces larger than the output, bad input
-//! (surfaces covering nothing, off the output, regions without area, a 16384² output), and the
-//! 2D baseline.
+//! (surfaces covering nothing, off the output, regions without area, a 16384² output), the
+//! 2D baseline, and an RGBA16F intermediate.
 
 use super::*;
 use strata_protocol::projection::Projection;
-use strata_server::compositor::Mode;
+use strata_server::compositor::{Intermediate, Mode};
 
 /// Lighting off, on (per-surface normals) and on (normals from depth).
 fn lightings() -> [(&'static str, Lighting); 3] {
@@ -262,4 +262,23 @@ fn the_2d_baseline_is_painters_order_of_opaque_copies() {
             assert_eq!(&partial[at..at + 4], expect, "2D partial: pixel {x},{y}");
         }
     }
+}
+
+#[test]
+fn an_rgba16f_intermediate_chains_to_within_one_level_of_one_pass() {
+    let Some(gpu) = gpu() else { return };
+    let mut single = Compositor::new(gpu.clone(), None).expect("device limit");
+    let mut half = Compositor::new(gpu.clone(), Some(4)).expect("limit").with_intermediate(Intermediate::Rgba16f);
+    assert_eq!(half.intermediate(), Intermediate::Rgba16f);
+    let mut chained = 0;
+    for (name, light) in lightings() {
+        for k in [4, 9] {
+            let layers = scene(k, true, 200);
+            let want = run(&gpu, &mut single, &layers, &light);
+            let got = run(&gpu, &mut half, &layers, &light);
+            chained += half.last_stats.chained;
+            check(&format!("{k} surfaces, {name}, RGBA16F intermediate"), &got, &want, 1);
+        }
+    }
+    assert!(chained > 0, "the scenes chain at --max-textures 4");
 }

@@ -19,6 +19,8 @@
 //! the previous pass's intermediate (the selected colour, RGBA8, and its eye depth and normal,
 //! f32) plus `p − 1` new surfaces. Because an intermediate holds exactly what a single pass would
 //! have selected, and lighting runs only in the last pass, a chain is bit-identical to one pass.
+//! `with_intermediate` can make the intermediate's colour RGBA16F instead (twice the bytes; an
+//! RGBA8 texel then passes through a 16-bit float, which holds k/255 to within 2⁻¹¹ relative).
 //!
 //! `Mode::TwoD` is the 2D baseline: painter's order by z only, no depth, no lighting, each
 //! visible part of a surface copied as it is.
@@ -76,6 +78,29 @@ pub enum Mode {
     TwoD,
 }
 
+/// The colour format of chained passes' intermediates (the last pass writes the output as
+/// before).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Intermediate {
+    /// RGBA8 unorm: holds a selected surface texel exactly (the default).
+    #[default]
+    #[value(name = "rgba8")]
+    Rgba8,
+    /// RGBA16 float: twice the bytes per pixel.
+    #[value(name = "rgba16f")]
+    Rgba16f,
+}
+
+impl Intermediate {
+    /// Its texture format.
+    pub fn format(self) -> wgpu::TextureFormat {
+        match self {
+            Intermediate::Rgba8 => wgpu::TextureFormat::Rgba8Unorm,
+            Intermediate::Rgba16f => wgpu::TextureFormat::Rgba16Float,
+        }
+    }
+}
+
 /// A compositor configuration the device cannot honour.
 #[derive(Debug, thiserror::Error)]
 pub enum CompositorError {
@@ -113,6 +138,7 @@ pub struct Compositor {
     per_pass: usize,
     max_textures: u32,
     mode: Mode,
+    intermediate: Intermediate,
     res: Resources,
     /// Passes the last composite's z-groups take by the thesis' count (`passes(k)` per group
     /// of `k` surfaces in the region); cells where fewer surfaces overlap chain less.
@@ -141,6 +167,7 @@ impl Compositor {
             per_pass: (m / 2) as usize,
             max_textures: m,
             mode: Mode::ThreeD,
+            intermediate: Intermediate::default(),
             last_passes: 0,
             last_stats: Stats::default(),
             last_submission: None,
@@ -151,6 +178,18 @@ impl Compositor {
     pub fn with_mode(mut self, mode: Mode) -> Compositor {
         self.mode = mode;
         self
+    }
+
+    /// The same compositor with chained passes' intermediate colour in `format`.
+    pub fn with_intermediate(mut self, format: Intermediate) -> Compositor {
+        self.intermediate = format;
+        self.res.set_intermediate_format(format.format());
+        self
+    }
+
+    /// The colour format of chained passes' intermediates.
+    pub fn intermediate(&self) -> Intermediate {
+        self.intermediate
     }
 
     /// How it combines surfaces.

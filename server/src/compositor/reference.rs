@@ -24,9 +24,10 @@ pub struct RefLayer {
     pub projection: Option<Projection>,
 }
 
+/// `v` scaled to unit length, or zero for a zero or non-finite length (`encode::unit_normal`).
 fn normalize(v: [f64; 3]) -> [f64; 3] {
     let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if l == 0.0 {
+    if !(l > 0.0 && l.is_finite()) {
         return [0.0, 0.0, 0.0];
     }
     [v[0] / l, v[1] / l, v[2] / l]
@@ -36,11 +37,24 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Depth of `l` at surface pixel (sx, sy) (sy counted from the bottom), 1 without depth.
+/// Depth of `l` at surface pixel (sx, sy) (sy counted from the bottom), 1 without depth, read
+/// as the shader reads a texel: NaN as the far plane's window depth (1, or 0 when reversed),
+/// then clamped to [0, 1].
 fn depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
     let w = l.rect[2];
     match &l.depth {
-        Some(d) => f64::from(d[(sy * w + sx) as usize]),
+        Some(d) => {
+            let v = f64::from(d[(sy * w + sx) as usize]);
+            if v.is_nan() {
+                if l.projection.is_some_and(|p| p.reversed) {
+                    0.0
+                } else {
+                    1.0
+                }
+            } else {
+                v.clamp(0.0, 1.0)
+            }
+        }
         None => 1.0,
     }
 }
@@ -106,6 +120,8 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
                         NormalSource::PerSurface => normalize(l.normal.map(f64::from)),
                         NormalSource::FromDepth => depth_normal(l, sx, sy, f64::from(light.depth_normal_scale)),
                     };
+                    // A zero normal (also a non-finite one) has no direction: ambient only.
+                    let zero = n == [0.0; 3];
                     let frag = [
                         (f64::from(px) + 0.5) / f64::from(width) * 2.0 - 1.0,
                         1.0 - (f64::from(py) + 0.5) / f64::from(height) * 2.0,
@@ -120,7 +136,8 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
                     let nl = dot(n, ld);
                     let r = [-ld[0] + 2.0 * nl * n[0], -ld[1] + 2.0 * nl * n[1], -ld[2] + 2.0 * nl * n[2]];
                     let specular = dot(vd, r).max(0.0).powf(f64::from(light.shininess));
-                    let f = f64::from(light.ambient) + diffuse + specular;
+                    // Shininess 0 gives specular 1 everywhere: powf(0, 0) = 1.
+                    let f = f64::from(light.ambient) + if zero { 0.0 } else { diffuse + specular };
                     for (i, ch) in rgb.iter_mut().enumerate() {
                         *ch = (*ch * f * f64::from(light.color[i])).clamp(0.0, 1.0);
                     }

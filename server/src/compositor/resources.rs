@@ -33,7 +33,7 @@ pub struct Intermediates {
     pub size: (u32, u32),
     /// What the geometry images hold.
     pub geom: Geom,
-    /// Colour images (RGBA8) and views.
+    /// Colour images (the intermediate format: RGBA8 unless chosen otherwise) and views.
     pub color: [(wgpu::Texture, wgpu::TextureView); 2],
     /// Geometry images and views.
     pub geometry: [(wgpu::Texture, wgpu::TextureView); 2],
@@ -92,6 +92,8 @@ pub struct Resources {
     generation: u64,
     /// The device's alignment of dynamic uniform offsets.
     pub align: u64,
+    /// The colour format of chained passes' intermediates.
+    intermediate_format: wgpu::TextureFormat,
 }
 
 fn layout_entry(binding: u32, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
@@ -144,6 +146,7 @@ impl Resources {
             dummy_depth,
             generation: 0,
             align,
+            intermediate_format: COLOR_FORMAT,
             gpu,
         }
     }
@@ -236,7 +239,7 @@ impl Resources {
             operation: wgpu::BlendOperation::Add,
         };
         let targets: Vec<Option<wgpu::ColorTargetState>> = if !k.last {
-            vec![Some(COLOR_FORMAT.into()), Some(k.geom().format().into())]
+            vec![Some(self.intermediate_format.into()), Some(k.geom().format().into())]
         } else {
             let blend = (!k.base && !k.copy).then_some(wgpu::BlendState { color: over, alpha: over });
             vec![Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL })]
@@ -313,6 +316,17 @@ impl Resources {
         }
     }
 
+    /// Sets the colour format of the intermediates, dropping the pipelines, bind groups and
+    /// intermediates made for another.
+    pub fn set_intermediate_format(&mut self, format: wgpu::TextureFormat) {
+        if format != self.intermediate_format {
+            self.intermediate_format = format;
+            self.pipelines.clear();
+            self.groups.clear();
+            self.intermediates = None;
+        }
+    }
+
     /// Intermediates of at least `size` holding `geom`, reallocated (dropping the bind groups
     /// that named the old ones) when the current ones are too small or hold other geometry.
     pub fn intermediates(&mut self, size: (u32, u32), geom: Geom) -> &Intermediates {
@@ -340,7 +354,10 @@ impl Resources {
             self.intermediates = Some(Intermediates {
                 size,
                 geom,
-                color: [make(COLOR_FORMAT, "compositor intermediate"), make(COLOR_FORMAT, "compositor intermediate")],
+                color: [
+                    make(self.intermediate_format, "compositor intermediate"),
+                    make(self.intermediate_format, "compositor intermediate"),
+                ],
                 geometry: [
                     make(geom.format(), "compositor intermediate"),
                     make(geom.format(), "compositor intermediate"),
