@@ -109,7 +109,7 @@ fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
 
 /// The median of `frames` timings of `f` (after one warm-up), in milliseconds; the median
 /// resists other load on a shared machine.
-fn median_ms(frames: u32, mut f: impl FnMut()) -> f64 {
+pub(crate) fn median_ms(frames: u32, mut f: impl FnMut()) -> f64 {
     f();
     let mut times: Vec<f64> = (0..frames)
         .map(|_| {

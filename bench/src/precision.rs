@@ -26,7 +26,6 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -272,20 +271,6 @@ fn quantile(v: &mut [f64], p: f64) -> f64 {
     *v.select_nth_unstable_by(k, f64::total_cmp).1
 }
 
-/// The median of `frames` timings of `f` (after one warm-up), in milliseconds.
-fn median_ms(frames: u32, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut times: Vec<f64> = (0..frames)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
-}
-
 /// The scene's images for one setting, on the CPU.
 struct Images {
     /// Colour per surface (rows bottom first).
@@ -433,7 +418,7 @@ fn measure(
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let out = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     let mut comp = Compositor::new(gpu.clone(), s.max_textures)?.with_intermediate(s.intermediate);
-    let ms = median_ms(frames, || {
+    let ms = crate::composite::median_ms(frames, || {
         comp.composite(&layers, &light, &out, BACKGROUND, None);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     });
