@@ -10,6 +10,8 @@ use strata_server::gpu::Gpu;
 
 #[path = "compositor/cells.rs"]
 mod cells;
+#[path = "compositor/cull.rs"]
+mod cull;
 #[path = "compositor/extremes.rs"]
 mod extremes;
 #[path = "compositor/figures.rs"]

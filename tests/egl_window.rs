@@ -56,27 +56,22 @@ fn load(lib: &libloading::Library) -> Egl {
     // SAFETY: each symbol is declared with its C prototype from egl.h / gl2.h (on x86-64 an
     // EGLNativeWindowType is an X11 Window, a 64-bit integer).
     unsafe {
-        macro_rules! sym {
-            ($name:literal) => {
-                *lib.get($name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy($name)))
-            };
-        }
         Egl {
-            get_display: sym!(b"eglGetDisplay"),
-            initialize: sym!(b"eglInitialize"),
-            choose_config: sym!(b"eglChooseConfig"),
-            create_window: sym!(b"eglCreateWindowSurface"),
-            create_context: sym!(b"eglCreateContext"),
-            make_current: sym!(b"eglMakeCurrent"),
-            current_surface: sym!(b"eglGetCurrentSurface"),
-            query_surface: sym!(b"eglQuerySurface"),
-            swap_buffers: sym!(b"eglSwapBuffers"),
-            get_error: sym!(b"eglGetError"),
-            viewport: sym!(b"glViewport"),
-            clear_color: sym!(b"glClearColor"),
-            clear: sym!(b"glClear"),
-            read_pixels: sym!(b"glReadPixels"),
-            gl_error: sym!(b"glGetError"),
+            get_display: support::egl::sym(lib, b"eglGetDisplay"),
+            initialize: support::egl::sym(lib, b"eglInitialize"),
+            choose_config: support::egl::sym(lib, b"eglChooseConfig"),
+            create_window: support::egl::sym(lib, b"eglCreateWindowSurface"),
+            create_context: support::egl::sym(lib, b"eglCreateContext"),
+            make_current: support::egl::sym(lib, b"eglMakeCurrent"),
+            current_surface: support::egl::sym(lib, b"eglGetCurrentSurface"),
+            query_surface: support::egl::sym(lib, b"eglQuerySurface"),
+            swap_buffers: support::egl::sym(lib, b"eglSwapBuffers"),
+            get_error: support::egl::sym(lib, b"eglGetError"),
+            viewport: support::egl::sym(lib, b"glViewport"),
+            clear_color: support::egl::sym(lib, b"glClearColor"),
+            clear: support::egl::sym(lib, b"glClear"),
+            read_pixels: support::egl::sym(lib, b"glReadPixels"),
+            gl_error: support::egl::sym(lib, b"glGetError"),
         }
     }
 }

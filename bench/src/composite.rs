@@ -141,6 +141,7 @@ fn time_composite(
             depth: Some(&s.depth),
             normal: [0.0, 0.0, 1.0],
             projection: strata_protocol::projection::Projection::RAW,
+            opaque: false,
         })
         .collect();
     median_ms(frames, || {

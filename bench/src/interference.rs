@@ -19,6 +19,7 @@ use strata_client::ControlConnection;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 
 use crate::interference_client::{lines, read_outcome, FrameStats};
+use crate::stratad::{stop, tail, wait_for, Stratad};
 
 mod report;
 
@@ -155,82 +156,6 @@ fn config(priorities: bool) -> String {
     )
 }
 
-/// This benchmark's `stratad serve`; stopped on drop.
-struct Daemon {
-    child: Child,
-    socket: PathBuf,
-    log: PathBuf,
-}
-
-impl Daemon {
-    fn start(stratad: &Path, config: &Path, log: PathBuf) -> Result<Daemon> {
-        let socket = std::env::temp_dir().join(format!("strata-interference-{}.sock", std::process::id()));
-        let child = Command::new(stratad)
-            .args(["serve", "--output", OUTPUT, "--socket"])
-            .arg(&socket)
-            .arg("--config")
-            .arg(config)
-            .env("RUST_LOG", std::env::var("RUST_LOG").unwrap_or_else(|_| "warn".into()))
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .stderr(std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?)
-            .spawn()
-            .with_context(|| format!("starting {}", stratad.display()))?;
-        let mut d = Daemon { child, socket, log };
-        let deadline = Instant::now() + Duration::from_secs(30);
-        while std::os::unix::net::UnixStream::connect(&d.socket).is_err() {
-            if Instant::now() > deadline || d.child.try_wait()?.is_some() {
-                bail!("stratad did not start; its log {}:\n{}", d.log.display(), tail(&d.log, 15));
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        Ok(d)
-    }
-
-    fn alive(&mut self) -> Result<()> {
-        match self.child.try_wait()? {
-            Some(status) => bail!("stratad exited ({status}); its log:\n{}", tail(&self.log, 15)),
-            None => Ok(()),
-        }
-    }
-}
-
-impl Drop for Daemon {
-    fn drop(&mut self) {
-        stop(&mut self.child, Duration::from_secs(10));
-        let _ = std::fs::remove_file(&self.socket);
-    }
-}
-
-/// Waits up to `limit` for `child` to exit.
-fn wait_for(child: &mut Child, limit: Duration) -> Option<std::process::ExitStatus> {
-    let start = Instant::now();
-    loop {
-        match child.try_wait() {
-            Ok(Some(s)) => return Some(s),
-            Ok(None) if start.elapsed() < limit => std::thread::sleep(Duration::from_millis(20)),
-            _ => return None,
-        }
-    }
-}
-
-/// SIGTERM, then SIGKILL after `grace`.
-fn stop(child: &mut Child, grace: Duration) {
-    // SAFETY: kill(2) on our own child.
-    unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
-    if wait_for(child, grace).is_none() {
-        let _ = child.kill();
-        let _ = child.wait();
-    }
-}
-
-/// The last `n` lines of a log file.
-fn tail(path: &Path, n: usize) -> String {
-    let text = std::fs::read_to_string(path).unwrap_or_default();
-    let lines: Vec<&str> = text.lines().collect();
-    lines[lines.len().saturating_sub(n)..].join("\n")
-}
-
 /// `ctl list` and `ctl stats` at one moment, as JSON (so that fields the daemon adds, such as
 /// `deadline_misses`, are read without this code naming them).
 struct Snapshot {
@@ -290,7 +215,7 @@ type Glmark2Env = (crate::glmark2::TempDir, PathBuf, crate::glmark2::Xvfb);
 struct Bench<'a> {
     args: &'a Args,
     exe: PathBuf,
-    daemon: Daemon,
+    daemon: Stratad,
     control: ControlConnection,
     glmark2: Option<Glmark2Env>,
 }
@@ -491,7 +416,9 @@ pub fn run(args: &Args) -> Result<()> {
         None => None,
     };
 
-    let daemon = Daemon::start(&stratad, &config_path, args.out.join("stratad.log"))?;
+    let socket = std::env::temp_dir().join(format!("strata-interference-{}.sock", std::process::id()));
+    let daemon_args = ["--output".as_ref(), OUTPUT.as_ref(), "--config".as_ref(), config_path.as_os_str()];
+    let daemon = Stratad::start(&stratad, daemon_args, socket, args.out.join("stratad.log"), true)?;
     let control = ControlConnection::connect(&daemon.socket).context("connecting to stratad's control socket")?;
     let mut bench = Bench { args, exe, daemon, control, glmark2 };
 

@@ -11,6 +11,7 @@ mod plot;
 mod precision;
 mod soak;
 mod soak_client;
+mod stratad;
 mod thesis;
 mod transport;
 

@@ -21,7 +21,13 @@
 //!   within 2e-6 of the plane; with normals from depth, the setting's own window depth
 //!   unquantised in f32, since the normal is taken from the window depth's slope).
 //!
-//! Vertex-data formats (FIXED/HALF/FLOAT on the wire) are not a knob here.
+//! The vertex data wire format (`--vertex-wire`) has a row per format: the client's frame time
+//! and the eye-space error of the quantised geometry (see `wire`).
+//!
+//! The depth format rows model the formats (quantised f64 depth, synthetic images); the
+//! "daemon depth" rows run them: `stratad serve --depth-format … [--reversed-z]` with two
+//! clients drawing the planes, the composite's wrong selections and the clients' frame time
+//! (see `daemon`).
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -37,7 +43,10 @@ use strata_server::gpu::Gpu;
 use crate::composite::texture;
 use report::Row;
 
+mod daemon;
+mod model;
 mod report;
+mod wire;
 
 /// `strata-bench precision` options.
 #[derive(clap::Args)]
@@ -286,6 +295,23 @@ struct Images {
     compared: Vec<Vec<f64>>,
 }
 
+impl Images {
+    /// The reference compositor's layers of the first `surfaces` surfaces, exact depths, at
+    /// one z over `rect`.
+    fn ref_layers(&self, surfaces: usize, rect: [i32; 4]) -> Vec<RefLayer> {
+        (0..surfaces)
+            .map(|i| RefLayer {
+                rect,
+                z: 0.5,
+                color: self.colour[i].clone(),
+                depth: Some(self.reference[i].0.clone()),
+                normal: NORMALS[i],
+                projection: Some(self.reference[i].1),
+            })
+            .collect()
+    }
+}
+
 fn images(s: &Setting, w: u32, h: u32) -> Images {
     let n = (w * h) as usize;
     let mut im = Images {
@@ -413,6 +439,7 @@ fn measure(
             } else {
                 Projection::RAW
             },
+            opaque: false,
         })
         .collect();
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
@@ -434,16 +461,7 @@ fn measure(
         if s.from_depth { format!("{:?}", s.reversed) } else { "linear".into() }
     );
     if !refs.contains_key(&key) {
-        let ref_layers: Vec<RefLayer> = (0..s.surfaces)
-            .map(|i| RefLayer {
-                rect,
-                z: 0.5,
-                color: im.colour[i].clone(),
-                depth: Some(im.reference[i].0.clone()),
-                normal: NORMALS[i],
-                projection: Some(im.reference[i].1),
-            })
-            .collect();
+        let ref_layers = im.ref_layers(s.surfaces, rect);
         refs.insert(key.clone(), reference::composite(&ref_layers, w, h, BACKGROUND, &light));
     }
     let want = &refs[&key];
@@ -517,6 +535,11 @@ pub fn run(args: &Args) -> Result<()> {
         rows.push(measure(&gpu, s, w, h, frames, &mut refs)?);
         pb.inc(1);
     }
+    pb.set_message("culling, depth target");
+    rows.extend(model::rows(&gpu, w, h, frames, &mut refs)?);
+    pb.set_message("vertex wire");
+    rows.extend(wire::rows(w, h)?);
+    rows.extend(daemon::rows(w, h, |s| pb.set_message(format!("daemon depth {s}")))?);
     pb.finish_and_clear();
     if !args.json {
         report::print(&rows, w, h, frames);

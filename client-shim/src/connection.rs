@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use strata_protocol::codec::{self, CodecError, MAX_MESSAGE_LEN};
 use strata_protocol::handshake::{
-    self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, PROTOCOL_VERSION,
+    self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, VertexWire, PROTOCOL_VERSION,
 };
 use strata_protocol::ring::{Reader, RingError, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
@@ -96,6 +96,7 @@ pub struct Connection {
     replies: Reader,
     tally: Option<Tally>,
     client_id: u64,
+    vertex_wire: VertexWire,
     _segment: Segment,
 }
 
@@ -133,9 +134,9 @@ impl Connection {
                 _ => Err(HandshakeError::Io(e).into()),
             };
         }
-        let (client_id, name, cmd_capacity, reply_capacity) = match reply? {
-            ServerMessage::Welcome { client_id, segment, cmd_capacity, reply_capacity } => {
-                (client_id, segment, cmd_capacity, reply_capacity)
+        let (client_id, name, cmd_capacity, reply_capacity, vertex_wire) = match reply? {
+            ServerMessage::Welcome { client_id, segment, cmd_capacity, reply_capacity, vertex_wire } => {
+                (client_id, segment, cmd_capacity, reply_capacity, vertex_wire)
             }
             ServerMessage::Refused { reason } => return Err(HandshakeError::Refused(reason).into()),
             ServerMessage::ControlReady => {
@@ -151,6 +152,7 @@ impl Connection {
             stream,
             tally: opts.tally.then(Tally::default),
             client_id,
+            vertex_wire,
             _segment: segment,
         })
     }
@@ -158,6 +160,11 @@ impl Connection {
     /// The daemon's number for this client.
     pub fn client_id(&self) -> u64 {
         self.client_id
+    }
+
+    /// How the daemon asked for `GL_FLOAT` client-side vertex arrays to be sent.
+    pub fn vertex_wire(&self) -> VertexWire {
+        self.vertex_wire
     }
 
     /// Publishes every queued command.

@@ -4,6 +4,7 @@
 
 pub mod connection;
 pub mod setup;
+pub mod vertex_wire;
 pub mod workload;
 
 pub use connection::{ClientError, ConnectOptions, Connection, ControlConnection};

@@ -229,6 +229,11 @@ command_set! {
         strataDebugCallback => DebugCallback { installed: bool };
         /// `GL_EXT_discard_framebuffer`: the listed attachments' contents may be discarded.
         glDiscardFramebufferEXT => DiscardFramebufferEXT { target: GLenum, attachments: Slice<'a, GLenum> };
+        /// A client-side `GL_FLOAT` array that the client converted for the wire (`stratad
+        /// serve --vertex-wire`): components of `attrib_type` (`GL_HALF_FLOAT_OES` or `GL_FIXED`;
+        /// `GL_FLOAT` is accepted too), tightly packed, which the next draw reads in place of the
+        /// pointer's type and stride. Queries still answer what the application set.
+        strataVertexAttribDataPacked => VertexAttribDataPacked { index: GLuint, attrib_type: GLenum, data: Blob<'a> };
     }
     sync {
         glCheckFramebufferStatus => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -370,5 +375,28 @@ mod strategies {
         fn arbitrary_with(_: ()) -> Self::Strategy {
             proptest::collection::vec(any::<u8>(), 0..300).prop_map(Bytes).boxed()
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codec::{decode_command, encode_to_vec};
+
+    #[test]
+    fn packed_vertex_data_names_its_type_and_is_appended() {
+        let data = [0x00u8, 0x3C, 0x00, 0x40];
+        let cmd = Command::VertexAttribDataPacked { index: 3, attrib_type: 0x8D61, data: Blob::borrowed(&data) };
+        let bytes = encode_to_vec(&cmd).expect("encode");
+        match decode_command(&bytes).expect("decode") {
+            Command::VertexAttribDataPacked { index: 3, attrib_type: 0x8D61, data: d } => {
+                assert_eq!(d.as_bytes(), data)
+            }
+            other => panic!("decoded {other:?}"),
+        }
+        // Wire order is table order: the new command comes after every earlier one.
+        let pos = |op: Opcode| Opcode::ALL.iter().position(|&o| o == op).expect("listed");
+        assert!(pos(Opcode::VertexAttribDataPacked) > pos(Opcode::DiscardFramebufferEXT));
+        assert!(pos(Opcode::VertexAttribDataPacked) > pos(Opcode::VertexAttribData));
     }
 }

@@ -14,7 +14,7 @@ use crate::codec::{self, CodecError};
 pub use crate::control::{ControlReply, ControlRequest, SurfaceRow};
 
 /// The protocol version this build speaks.
-pub const PROTOCOL_VERSION: u32 = 8;
+pub const PROTOCOL_VERSION: u32 = 9;
 /// The first four bytes a client sends.
 pub const PREAMBLE_MAGIC: [u8; 4] = *b"STRT";
 /// Largest framed control message the daemon accepts.
@@ -74,6 +74,8 @@ pub enum ServerMessage {
         cmd_capacity: u32,
         /// Reply ring capacity in bytes.
         reply_capacity: u32,
+        /// How the client sends the `GL_FLOAT` client-side vertex arrays its draws read.
+        vertex_wire: VertexWire,
     },
     /// Refused, with the reason.
     Refused {
@@ -82,6 +84,68 @@ pub enum ServerMessage {
     },
     /// A control connection is accepted; send `ControlRequest`s.
     ControlReady,
+}
+
+/// The number format of `GL_FLOAT` client-side vertex arrays on the wire (`stratad serve
+/// --vertex-wire`). Buffer objects and arrays of other types travel as the application gave them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+pub enum VertexWire {
+    /// IEEE binary32, as the application gave them (4 bytes a component).
+    #[default]
+    Float,
+    /// IEEE binary16, rounded to nearest even (2 bytes a component, `GL_HALF_FLOAT_OES`).
+    Half,
+    /// Signed 16.16 fixed point, rounded to nearest and saturated (4 bytes, `GL_FIXED`).
+    Fixed,
+}
+
+impl VertexWire {
+    /// Every format, in the order the benchmark reports them.
+    pub const ALL: [VertexWire; 3] = [VertexWire::Float, VertexWire::Half, VertexWire::Fixed];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            VertexWire::Float => "float",
+            VertexWire::Half => "half",
+            VertexWire::Fixed => "fixed",
+        }
+    }
+
+    /// The GL component type the client sends (`GL_FLOAT`, `GL_HALF_FLOAT_OES`, `GL_FIXED`).
+    pub fn gl_type(self) -> u32 {
+        match self {
+            VertexWire::Float => 0x1406,
+            VertexWire::Half => 0x8D61,
+            VertexWire::Fixed => 0x140C,
+        }
+    }
+
+    /// Bytes per component on the wire.
+    pub fn component_bytes(self) -> usize {
+        match self {
+            VertexWire::Half => 2,
+            VertexWire::Float | VertexWire::Fixed => 4,
+        }
+    }
+}
+
+impl std::fmt::Display for VertexWire {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A `--vertex-wire` value that names no format.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown vertex wire format {0:?} (expected float, half or fixed)")]
+pub struct UnknownVertexWire(pub String);
+
+impl std::str::FromStr for VertexWire {
+    type Err = UnknownVertexWire;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        VertexWire::ALL.into_iter().find(|w| w.name() == s).ok_or_else(|| UnknownVertexWire(s.to_string()))
+    }
 }
 
 /// The client's messages on the control socket after the hello.
@@ -221,6 +285,27 @@ mod tests {
         assert!(msg.contains(&format!("version {PROTOCOL_VERSION}")), "{msg}");
         assert!(matches!(check_preamble(*b"GET / HT"), Err(HandshakeError::NotStrata(_))));
         check_preamble(preamble(PROTOCOL_VERSION)).expect("same version");
+    }
+
+    #[test]
+    fn welcome_carries_the_vertex_wire() {
+        for wire in VertexWire::ALL {
+            let sent = ServerMessage::Welcome {
+                client_id: 7,
+                segment: "/strata-x".into(),
+                cmd_capacity: 1 << 20,
+                reply_capacity: 1 << 16,
+                vertex_wire: wire,
+            };
+            let framed = frame(&sent).expect("frame");
+            let got: ServerMessage = read_message(&mut &framed[..], "welcome").expect("decode");
+            assert_eq!(got, sent);
+            assert_eq!(wire.name().parse::<VertexWire>().expect("parse"), wire);
+        }
+        // The GL enumerants are the spec's (GLES 2.0 §2.8 table 2.4, OES_vertex_half_float).
+        assert_eq!(VertexWire::Half.gl_type(), 0x8D61);
+        assert_eq!(VertexWire::Fixed.gl_type(), 0x140C);
+        assert!("double".parse::<VertexWire>().is_err());
     }
 
     #[test]

@@ -18,8 +18,10 @@ pub enum GpuError {
 
 /// Optional device features the executor uses where the adapter has them: linear filtering
 /// of RGBA32F (`OES_texture_float_linear`), and BC and ETC2 block formats (compressed textures
-/// sampled natively instead of decoded on upload).
+/// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
+/// 32float` for configs with stencil).
 const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
+    .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
     .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2);
 

@@ -44,6 +44,13 @@ pub struct ServeOptions {
     pub compositor: crate::compositor::Mode,
     /// The colour format of chained compositor passes' intermediates.
     pub intermediate: crate::compositor::Intermediate,
+    /// How surfaces' depth is stored: format and reversed-Z (`--depth-format`, `--reversed-z`).
+    pub depth: crate::gles::DepthOptions,
+    /// How render clients send `GL_FLOAT` client-side vertex arrays (told in the welcome).
+    pub vertex_wire: strata_protocol::handshake::VertexWire,
+    /// Whether the compositor leaves out surfaces under opaque nearer groups (the image is the
+    /// same either way).
+    pub cull: bool,
     /// Uniform lighting of composited output (initially; `stratad ctl light` changes it).
     pub lighting: crate::compositor::Lighting,
     /// The outputs the compositor draws.
@@ -84,6 +91,9 @@ impl Default for ServeOptions {
             max_textures: None,
             compositor: crate::compositor::Mode::ThreeD,
             intermediate: crate::compositor::Intermediate::Rgba8,
+            depth: crate::gles::DepthOptions::default(),
+            vertex_wire: strata_protocol::handshake::VertexWire::Float,
+            cull: true,
             lighting: crate::compositor::Lighting::default(),
             outputs: vec![crate::root::OutputSpec::default()],
             refresh_hz: 60.0,
@@ -204,7 +214,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     let root = match &gpu {
         Some(gpu) => {
             let (outputs, m, inter) = (&opts.outputs, opts.max_textures, opts.intermediate);
-            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, opts.compositor, inter)?))
+            let (mode, cull) = (opts.compositor, opts.cull);
+            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, mode, inter, cull)?))
         }
         None => None,
     };
@@ -424,6 +435,7 @@ async fn run_client(
         segment: segment.name().to_string(),
         cmd_capacity: opts.cmd_ring,
         reply_capacity: opts.reply_ring,
+        vertex_wire: opts.vertex_wire,
     };
     timed(send(stream, &welcome)).await?;
     let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
@@ -464,7 +476,8 @@ async fn run_client(
                     .with_layout(layout.cloned())
                     .with_account(account.clone())
                     .with_priority(class, fixed.is_some(), deadline)
-                    .with_projection(projection);
+                    .with_projection(projection)
+                    .with_depth(opts.depth);
                 lane = Some(executor.lane());
                 Box::new(executor) as Box<dyn crate::executor::Executor>
             }

@@ -9,8 +9,9 @@ use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::default_socket_path;
-use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_protocol::handshake::{ControlReply, ControlRequest, VertexWire};
 use strata_server::compositor::{Intermediate, Lighting, Mode, NormalSource};
+use strata_server::gles::{DepthFormat, DepthOptions};
 use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
 use strata_server::{serve, ExecutorKind, ServeOptions};
@@ -52,6 +53,24 @@ enum Cmd {
         /// The colour format of chained compositor passes' intermediates.
         #[arg(long, value_enum, default_value_t = Intermediate::Rgba8)]
         intermediate: Intermediate,
+        /// The depth image format of surfaces whose config has depth: config (the config's
+        /// EGL_DEPTH_SIZE decides), or one format for all (configs with stencil keep a stencil
+        /// aspect: 32float only where the device has Depth32FloatStencil8).
+        #[arg(long, value_enum, default_value_t = DepthFormat::Config)]
+        depth_format: DepthFormat,
+        /// Store the depth of surfaces that declare a forward perspective projection reversed
+        /// (1 at the near plane), transparently to the application: with 32float, far more
+        /// precise.
+        #[arg(long)]
+        reversed_z: bool,
+        /// How render clients send GL_FLOAT client-side vertex arrays: float (as given), half
+        /// (IEEE binary16) or fixed (16.16); buffer objects and other types go as given.
+        #[arg(long, default_value_t = VertexWire::Float)]
+        vertex_wire: VertexWire,
+        /// Leave out of the composite what an opaque nearer z-group covers (the image is the
+        /// same; off only to measure what culling saves).
+        #[arg(long, value_enum, default_value_t = Switch::On)]
+        cull: Switch,
         /// Uniform Phong lighting of the composited output.
         #[arg(long, value_enum, default_value_t = Switch::On)]
         lighting: Switch,
@@ -215,6 +234,10 @@ fn main() -> Result<()> {
             max_textures,
             compositor,
             intermediate,
+            vertex_wire,
+            depth_format,
+            reversed_z,
+            cull,
             lighting,
             normals,
             outputs,
@@ -249,6 +272,9 @@ fn main() -> Result<()> {
                 max_textures,
                 compositor,
                 intermediate,
+                vertex_wire,
+                depth: DepthOptions { format: depth_format, reversed_z },
+                cull: matches!(cull, Switch::On),
                 lighting,
                 outputs: if outputs.is_empty() { vec![OutputSpec::default()] } else { outputs },
                 refresh_hz,

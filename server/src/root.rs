@@ -139,8 +139,9 @@ pub enum RootError {
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 impl Root {
-    /// Creates the outputs, composited in `mode` (chained passes through `intermediate`); fails
-    /// if the texture limit cannot chain or exceeds the device's, or a window output cannot open.
+    /// Creates the outputs, composited in `mode` (chained passes through `intermediate`, surfaces
+    /// under opaque nearer groups culled when `cull`); fails if the texture limit cannot chain or
+    /// exceeds the device's, or a window output cannot open.
     pub fn new(
         gpu: Arc<Gpu>,
         scene: Arc<Scene>,
@@ -148,8 +149,12 @@ impl Root {
         max_textures: Option<u32>,
         mode: Mode,
         intermediate: Intermediate,
+        cull: bool,
     ) -> Result<Root, RootError> {
-        let compositor = Compositor::new(gpu.clone(), max_textures)?.with_mode(mode).with_intermediate(intermediate);
+        let compositor = Compositor::new(gpu.clone(), max_textures)?
+            .with_mode(mode)
+            .with_intermediate(intermediate)
+            .with_culling(cull);
         let mut made = Vec::new();
         for spec in outputs {
             let window = match spec.kind {
@@ -238,6 +243,7 @@ impl Root {
                             depth: s.depth.as_ref(),
                             normal: s.normal,
                             projection: Projection::shader_params(s.projection.as_ref()),
+                            opaque: s.opaque,
                         })
                     })
                     .collect();

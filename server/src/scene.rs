@@ -41,6 +41,8 @@ pub struct SceneSurface {
     pub color: Option<wgpu::TextureView>,
     /// Front depth (depth aspect only), if the surface has depth.
     pub depth: Option<wgpu::TextureView>,
+    /// Its config has no alpha: its colour's alpha reads as 1 everywhere.
+    pub opaque: bool,
     /// Frames swapped so far.
     pub frames: u64,
     /// The newest frame a composite has taken.
@@ -253,6 +255,7 @@ impl Scene {
                 z,
                 color: None,
                 depth: None,
+                opaque: false,
                 frames: 0,
                 shown: 0,
                 interval: 1,
@@ -296,13 +299,21 @@ impl Scene {
         }
     }
 
-    /// Publishes a completed frame's front images.
-    pub fn present(&self, client: u64, surface: u32, color: wgpu::TextureView, depth: Option<wgpu::TextureView>) {
+    /// Publishes a completed frame's front images; `opaque`: the colour buffer has no alpha.
+    pub fn present(
+        &self,
+        client: u64,
+        surface: u32,
+        color: wgpu::TextureView,
+        depth: Option<wgpu::TextureView>,
+        opaque: bool,
+    ) {
         let Some(mut g) = self.lock() else { return };
         let refreshes = g.refreshes;
         if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
             s.color = Some(color);
             s.depth = depth;
+            s.opaque = opaque;
             s.frames += 1;
             s.presented = Some((Instant::now(), refreshes));
             let old = s.rect;

@@ -133,7 +133,15 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
     let mut gl = layers_of(&layers, &up);
     // Rectangles without area, over the visible surface.
     for rect in [[32, 22, 0, 5], [32, 22, 5, 0], [32, 22, -5, 5], [32, 22, i32::MIN, i32::MIN]] {
-        gl.push(Layer { rect, z: 0.1, color: &t, depth: None, normal: [0.0, 0.0, 1.0], projection: Projection::RAW });
+        gl.push(Layer {
+            rect,
+            z: 0.1,
+            color: &t,
+            depth: None,
+            normal: [0.0, 0.0, 1.0],
+            projection: Projection::RAW,
+            opaque: false,
+        });
     }
     comp.composite(&gl, &off, &out, BACKGROUND, None);
     let img = gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback");
@@ -147,6 +155,7 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
         depth: None,
         normal: [0.0; 3],
         projection: Projection::RAW,
+        opaque: false,
     }];
     for region in [[10, 10, 0, 20], [10, 10, 20, 0], [OUT_W, 0, 5, 5], [0, OUT_H, 5, 5], [u32::MAX; 4]] {
         comp.composite(&other, &off, &out, BACKGROUND, Some(region));

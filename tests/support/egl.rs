@@ -34,36 +34,40 @@ pub struct Egl {
 // SAFETY: plain function pointers into a library that stays loaded for the whole test.
 unsafe impl Send for Egl {}
 
+/// Resolves one C entry point of `lib` by name; panics naming a missing one.
+///
+/// # Safety
+/// `T` must be the entry point's C prototype.
+pub unsafe fn sym<T: Copy>(lib: &libloading::Library, name: &[u8]) -> T {
+    // SAFETY: see the function's contract.
+    unsafe { *lib.get::<T>(name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy(name))) }
+}
+
 /// Resolves every entry point of [`Egl`] from `lib`; panics naming a missing one.
 pub fn load(lib: &libloading::Library) -> Egl {
     // SAFETY: each symbol is declared with its C prototype from egl.h / gl2.h.
     unsafe {
-        macro_rules! sym {
-            ($name:literal) => {
-                *lib.get($name).unwrap_or_else(|e| panic!("{}: {e}", String::from_utf8_lossy($name)))
-            };
-        }
         Egl {
-            get_error: sym!(b"eglGetError"),
-            get_display: sym!(b"eglGetDisplay"),
-            initialize: sym!(b"eglInitialize"),
-            terminate: sym!(b"eglTerminate"),
-            choose_config: sym!(b"eglChooseConfig"),
-            bind_api: sym!(b"eglBindAPI"),
-            create_pbuffer: sym!(b"eglCreatePbufferSurface"),
-            destroy_surface: sym!(b"eglDestroySurface"),
-            query_surface: sym!(b"eglQuerySurface"),
-            create_context: sym!(b"eglCreateContext"),
-            destroy_context: sym!(b"eglDestroyContext"),
-            query_context: sym!(b"eglQueryContext"),
-            make_current: sym!(b"eglMakeCurrent"),
-            current_context: sym!(b"eglGetCurrentContext"),
-            swap_buffers: sym!(b"eglSwapBuffers"),
-            gl_get_error: sym!(b"glGetError"),
-            clear_color: sym!(b"glClearColor"),
-            clear: sym!(b"glClear"),
-            finish: sym!(b"glFinish"),
-            read_pixels: sym!(b"glReadPixels"),
+            get_error: sym(lib, b"eglGetError"),
+            get_display: sym(lib, b"eglGetDisplay"),
+            initialize: sym(lib, b"eglInitialize"),
+            terminate: sym(lib, b"eglTerminate"),
+            choose_config: sym(lib, b"eglChooseConfig"),
+            bind_api: sym(lib, b"eglBindAPI"),
+            create_pbuffer: sym(lib, b"eglCreatePbufferSurface"),
+            destroy_surface: sym(lib, b"eglDestroySurface"),
+            query_surface: sym(lib, b"eglQuerySurface"),
+            create_context: sym(lib, b"eglCreateContext"),
+            destroy_context: sym(lib, b"eglDestroyContext"),
+            query_context: sym(lib, b"eglQueryContext"),
+            make_current: sym(lib, b"eglMakeCurrent"),
+            current_context: sym(lib, b"eglGetCurrentContext"),
+            swap_buffers: sym(lib, b"eglSwapBuffers"),
+            gl_get_error: sym(lib, b"glGetError"),
+            clear_color: sym(lib, b"glClearColor"),
+            clear: sym(lib, b"glClear"),
+            finish: sym(lib, b"glFinish"),
+            read_pixels: sym(lib, b"glReadPixels"),
         }
     }
 }

@@ -56,7 +56,7 @@ pub(super) fn print(rows: &[Row], w: u32, h: u32, frames: u32) {
     );
     for (i, r) in rows.iter().enumerate() {
         println!(
-            "{:>2} {:<12} {:<25} {:>7.2} {:>6} {:>10.2e} {:>10.2e} {:>9} {:>9} {:>9} {:>5} {:>7.4}",
+            "{:>2} {:<12} {:<25} {:>7.2} {:>6} {:>10.2e} {:>10.2e} {:>9} {:>9} {:>9} {:>5} {:>7}",
             i + 1,
             r.knob,
             r.setting,
@@ -67,8 +67,8 @@ pub(super) fn print(rows: &[Row], w: u32, h: u32, frames: u32) {
             pct(r.stored_wrong_line),
             pct(r.wrong_line),
             pct(r.wrong_all),
-            r.colour_err_max,
-            r.colour_err_mean
+            colour(r).map_or_else(|| "-".into(), |(max, _)| max.to_string()),
+            colour(r).map_or_else(|| "-".into(), |(_, mean)| format!("{mean:.4}"))
         );
     }
     println!("depth max/p99: eye-space error of the stored depth (scene units; planes 20..60 away)");
@@ -80,47 +80,71 @@ pub(super) fn print(rows: &[Row], w: u32, h: u32, frames: u32) {
     for (i, r) in rows.iter().enumerate().filter(|(_, r)| !r.note.is_empty()) {
         println!("  {}: {}", i + 1, r.note);
     }
-    println!("not measured: vertex-data formats (FIXED/HALF/FLOAT on the wire)");
+    println!(
+        "vertex wire rows: ms is a client's frame time; depth max/p99 and fmt@ln are the wire-quantised vertices' (no composite)"
+    );
+    println!(
+        "daemon depth rows: a real stratad and two clients; ms is a client's frame time; wrong@ln/all read off a screenshot"
+    );
 }
 
-/// Writes the error-against-speed plot: one numbered point per row.
+/// The colour error (max, mean) of a row that composited (`None` for rows measured without a
+/// composite of their own: the vertex wire and daemon rows).
+fn colour(r: &Row) -> Option<(u8, f64)> {
+    (r.passes > 0).then_some((r.colour_err_max, r.colour_err_mean))
+}
+
+/// Wrongly selected pixels near an intersection line: the compositor's where it ran, else
+/// what an exact select of the row's stored depths gets wrong.
+fn wrong_near_line(r: &Row) -> Option<f64> {
+    r.wrong_line.or(r.stored_wrong_line)
+}
+
+/// Writes the error-against-speed plot: one numbered point per row, in two panels (the colour
+/// error of the rows that composite, and the wrongly selected pixels near the line of every
+/// row that has a line), with the rows named beside them.
 pub(super) fn scatter(path: &Path, title: &str, rows: &[Row]) -> Result<()> {
     crate::plot::register_font()?;
-    let x1 = rows.iter().map(|r| r.ms).fold(0.0, f64::max).max(1e-3) * 1.15;
-    // A log axis: the errors span orders of magnitude; an error of 0 is drawn at the floor.
-    const FLOOR: f64 = 1e-3;
-    let y1 = rows.iter().map(|r| r.colour_err_mean).fold(FLOOR, f64::max) * 3.0;
-    let root = BitMapBackend::new(path, (1100, 620)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1500, 640)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(44)
-        .y_label_area_size(72)
-        .build_cartesian_2d(0.0..x1, (FLOOR..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("composite ms (median, GPU-completed)")
-        .y_desc("mean |RGBA8 difference| from the f64 reference (log; 0 at 0.001)")
-        .label_style(("sans-serif", 15))
-        .draw()?;
+    let root = root.titled(title, ("sans-serif", 22))?;
+    let (charts, legend) = root.split_horizontally(1080);
+    let (left, right) = charts.split_horizontally(540);
     let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(120, 120, 120)];
+    let colour_points: Vec<(usize, f64, f64)> =
+        rows.iter().enumerate().filter_map(|(i, r)| colour(r).map(|(_, mean)| (i, r.ms, mean))).collect();
+    let line_points: Vec<(usize, f64, f64)> =
+        rows.iter().enumerate().filter_map(|(i, r)| wrong_near_line(r).map(|w| (i, r.ms, w * 100.0))).collect();
+    for (area, points, y_desc, floor) in [
+        (&left, &colour_points, "mean |RGBA8 difference| from the f64 reference (log; 0 at 0.001)", 1e-3),
+        (&right, &line_points, "wrongly selected pixels near the line, % (log; 0 at 0.01)", 1e-2),
+    ] {
+        let x1 = points.iter().map(|p| p.1).filter(|v| v.is_finite()).fold(1e-3, f64::max) * 1.15;
+        let y1 = points.iter().map(|p| p.2).fold(floor, f64::max) * 3.0;
+        let mut chart = ChartBuilder::on(area)
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.0..x1, (floor..y1).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("ms (composite; client frame for 17+)")
+            .y_desc(y_desc)
+            .label_style(("sans-serif", 13))
+            .draw()?;
+        for &(i, ms, y) in points.iter().filter(|p| p.1.is_finite()) {
+            let at = (ms, y.max(floor));
+            let color = palette[i % palette.len()];
+            chart.draw_series([Circle::new(at, 4, color.filled())])?;
+            chart.draw_series([Text::new(format!("{}", i + 1), at, ("sans-serif", 14).into_font())])?;
+        }
+    }
     for (i, r) in rows.iter().enumerate() {
         let color = palette[i % palette.len()];
-        let at = (r.ms, r.colour_err_mean.max(FLOOR));
-        chart
-            .draw_series([Circle::new(at, 4, color.filled())])?
-            .label(format!("{} {}: {}", i + 1, r.knob, r.setting))
-            .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
-        chart.draw_series([Text::new(format!("{}", i + 1), at, ("sans-serif", 14).into_font())])?;
+        let y = 30 + 22 * i as i32;
+        legend.draw(&Circle::new((14, y + 7), 4, color.filled()))?;
+        legend.draw(&Text::new(format!("{} {}: {}", i + 1, r.knob, r.setting), (26, y), ("sans-serif", 14)))?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
     root.present().with_context(|| format!("writing {}", path.display()))?;
     Ok(())
 }

@@ -9,6 +9,7 @@ use std::collections::HashMap;
 use std::ffi::{c_void, CStr, CString};
 use std::sync::{LazyLock, Mutex};
 
+use strata_client::vertex_wire::{self, VertexWire};
 use strata_client::{ClientError, Connection};
 use strata_protocol::{Blob, Calls, Slice, Text};
 
@@ -332,6 +333,20 @@ unsafe fn bytes<'a>(ptr: *const c_void, len: usize) -> &'a [u8] {
     }
 }
 
+/// Borrows `size` bytes of application memory for a call whose size argument the application
+/// gives; a negative size records `GL_INVALID_VALUE` and gives `None`.
+///
+/// # Safety
+/// A non-null `ptr` must be valid for `size` bytes, as GL requires of the application.
+unsafe fn sized_bytes<'a>(st: &mut GlState, ptr: *const c_void, size: isize) -> Option<&'a [u8]> {
+    let Ok(len) = usize::try_from(size) else {
+        st.err(GL_INVALID_VALUE);
+        return None;
+    };
+    // SAFETY: see the function's contract.
+    Some(unsafe { bytes(ptr, len) })
+}
+
 /// Borrows `n` values of application memory (empty for a null pointer or negative count).
 ///
 /// # Safety
@@ -409,7 +424,8 @@ fn intern(s: String) -> *const GLubyte {
     c.as_ptr().cast()
 }
 
-/// Sends the bytes of every enabled client-side array that a draw of `vertices` vertices reads.
+/// Sends the bytes of every enabled client-side array that a draw of `vertices` vertices reads;
+/// `GL_FLOAT` ones in the daemon's vertex wire format.
 fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64) -> Result<(), ClientError> {
     if vertices == 0 {
         return Ok(());
@@ -425,7 +441,18 @@ fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64) -> Result<(), ClientError>
         };
         // SAFETY: the application promised `ptr` holds every vertex the draw reads.
         let data = unsafe { bytes(ptr as *const c_void, len as usize) };
-        gl.conn.strataVertexAttribData(i as u32, Blob::borrowed(data))?;
+        let wire = gl.conn.vertex_wire();
+        // GL_FLOAT arrays go as the daemon asked (packed); everything else as it is.
+        match (ty, wire) {
+            (_, VertexWire::Float) => gl.conn.strataVertexAttribData(i as u32, Blob::borrowed(data))?,
+            (GL_FLOAT, _) => {
+                let Some(packed) = vertex_wire::pack(wire, data, element / 4, stride, vertices as usize) else {
+                    continue;
+                };
+                gl.conn.strataVertexAttribDataPacked(i as u32, wire.gl_type(), Blob::owned(packed))?;
+            }
+            _ => gl.conn.strataVertexAttribData(i as u32, Blob::borrowed(data))?,
+        }
     }
     Ok(())
 }
@@ -446,319 +473,8 @@ fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
     max.map_or(0, |m| u64::from(m) + 1)
 }
 
-/// `glUniform*v`: `count` elements of `n` values each.
-macro_rules! uniform_v {
-    ($( $name:ident : $t:ty , $n:literal ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: copies `count` × ", stringify!($n), " values.")]
-                fn $name(location: GLint, count: GLsizei, value: *const $t) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if count < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        // SAFETY: the application passes `count` elements.
-                        let v = unsafe { values(value, i64::from(count) * $n) };
-                        gl.conn.$name(location, Slice::new(v))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// `glUniformMatrix*fv`: `count` matrices of `n` floats.
-macro_rules! uniform_matrix {
-    ($( $name:ident , $n:literal ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: copies `count` matrices of ", stringify!($n), " floats.")]
-                fn $name(location: GLint, count: GLsizei, transpose: GLboolean, value: *const GLfloat) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if count < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        // SAFETY: the application passes `count` matrices.
-                        let v = unsafe { values(value, i64::from(count) * $n) };
-                        gl.conn.$name(location, transpose != 0, Slice::new(v))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// `glVertexAttrib*fv`: `n` floats.
-macro_rules! vertex_attrib_v {
-    ($( $name:ident , $n:literal ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: copies ", stringify!($n), " floats.")]
-                fn $name(index: GLuint, value: *const GLfloat) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if value.is_null() {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        // SAFETY: the application passes `n` floats.
-                        let v = unsafe { values(value, $n) };
-                        gl.conn.$name(index, Slice::new(v))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// `glGen*`: client-allocated names, written to the application's array and sent.
-macro_rules! gen_names {
-    ($( $name:ident ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: names are allocated here and sent to the daemon.")]
-                fn $name(n: GLsizei, names: *mut GLuint) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if n < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        if names.is_null() {
-                            return Ok(());
-                        }
-                        let new = gl.names(n as usize);
-                        // SAFETY: the application's array has room for `n` names.
-                        unsafe { write_out(names, &new) };
-                        gl.conn.$name(Slice::new(&new))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// `glDelete*` for textures, framebuffers and renderbuffers.
-macro_rules! delete_names {
-    ($( $name:ident ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: copies `n` names.")]
-                fn $name(n: GLsizei, names: *const GLuint) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if n < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        // SAFETY: the application passes `n` names.
-                        let v = unsafe { values(names, i64::from(n)) };
-                        gl.conn.$name(Slice::new(v))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// Parameter queries that return one integer.
-macro_rules! get_one_int {
-    ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: writes one integer.")]
-                fn $name( $( $arg : $ty, )* params: *mut GLint) {
-                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl_args(stringify!($name), &args, (), |gl| {
-                        let v = gl.conn.$name( $( $arg ),* )?;
-                        // SAFETY: `params` points at one GLint.
-                        unsafe { put(params, v) };
-                        Ok(())
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// Queries that return an array, written to the caller's.
-macro_rules! get_array {
-    ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) -> $t:ty ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: writes the values the daemon returns.")]
-                fn $name( $( $arg : $ty, )* params: *mut $t) {
-                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl_args(stringify!($name), &args, (), |gl| {
-                        let v = gl.conn.$name( $( $arg ),* )?;
-                        // SAFETY: the caller's array has room for what the query returns.
-                        unsafe { write_out(params, &v) };
-                        Ok(())
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// Info logs and sources, copied into the caller's buffer.
-macro_rules! get_string {
-    ($( $name:ident ( $obj:ident ) ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: copies the text, NUL-terminated and truncated.")]
-                fn $name($obj: GLuint, buf_size: GLsizei, length: *mut GLsizei, out: *mut GLchar) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if buf_size < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        let s = gl.conn.$name($obj)?;
-                        // SAFETY: `out` has room for `buf_size` bytes.
-                        unsafe { copy_string(&s, buf_size, length, out) };
-                        Ok(())
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// `glGetActiveAttrib` / `glGetActiveUniform`.
-macro_rules! get_active {
-    ($( $name:ident ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`: size, type and name of one active variable.")]
-                fn $name(
-                    program: GLuint,
-                    index: GLuint,
-                    buf_size: GLsizei,
-                    length: *mut GLsizei,
-                    size: *mut GLint,
-                    ty: *mut GLenum,
-                    name: *mut GLchar,
-                ) {
-                    with_gl(stringify!($name), (), |gl| {
-                        if buf_size < 0 {
-                            gl.st.err(GL_INVALID_VALUE);
-                            return Ok(());
-                        }
-                        if let Some(v) = gl.conn.$name(program, index)? {
-                            // SAFETY: out-pointers as GL specifies; `name` has `buf_size` bytes.
-                            unsafe {
-                                put(size, v.size);
-                                put(ty, v.ty);
-                                copy_string(&v.name, buf_size, length, name);
-                            }
-                        }
-                        Ok(())
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// Uniform arrays.
-pub mod uniforms {
-    use super::*;
-    uniform_v! {
-    glUniform1fv: GLfloat, 1;
-    glUniform2fv: GLfloat, 2;
-    glUniform3fv: GLfloat, 3;
-    glUniform4fv: GLfloat, 4;
-    glUniform1iv: GLint, 1;
-    glUniform2iv: GLint, 2;
-    glUniform3iv: GLint, 3;
-    glUniform4iv: GLint, 4;
-    }
-}
-
-/// Matrix uniforms.
-pub mod matrix {
-    use super::*;
-    uniform_matrix! {
-        glUniformMatrix2fv, 4;
-        glUniformMatrix3fv, 9;
-        glUniformMatrix4fv, 16;
-    }
-}
-
-/// Current vertex attribute values from arrays.
-pub mod attrib {
-    use super::*;
-    vertex_attrib_v! {
-        glVertexAttrib1fv, 1;
-        glVertexAttrib2fv, 2;
-        glVertexAttrib3fv, 3;
-        glVertexAttrib4fv, 4;
-    }
-}
-
-/// Name allocation and deletion.
-pub mod names {
-    use super::*;
-    gen_names! {
-        glGenFramebuffers;
-        glGenRenderbuffers;
-        glGenTextures;
-    }
-}
-
-/// Name deletion.
-pub mod delete {
-    use super::*;
-    delete_names! {
-        glDeleteFramebuffers;
-        glDeleteRenderbuffers;
-        glDeleteTextures;
-    }
-}
-
-/// Integer parameter queries.
-pub mod get_int {
-    use super::*;
-    get_one_int! {
-        glGetFramebufferAttachmentParameteriv(target: GLenum, attachment: GLenum, pname: GLenum);
-        glGetProgramiv(program: GLuint, pname: GLenum);
-        glGetRenderbufferParameteriv(target: GLenum, pname: GLenum);
-        glGetShaderiv(shader: GLuint, pname: GLenum);
-    }
-}
-
-/// Array queries.
-pub mod get_arrays {
-    use super::*;
-    get_array! {
-        glGetFloatv(pname: GLenum) -> GLfloat;
-        glGetIntegerv(pname: GLenum) -> GLint;
-        glGetTexParameterfv(target: GLenum, pname: GLenum) -> GLfloat;
-        glGetTexParameteriv(target: GLenum, pname: GLenum) -> GLint;
-        glGetUniformfv(program: GLuint, location: GLint) -> GLfloat;
-        glGetUniformiv(program: GLuint, location: GLint) -> GLint;
-        glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
-        glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
-    }
-}
-
-/// Logs and sources.
-pub mod get_strings {
-    use super::*;
-    get_string! {
-        glGetProgramInfoLog(program);
-        glGetShaderInfoLog(shader);
-        glGetShaderSource(shader);
-    }
-}
-
-/// Active variables.
-pub mod active {
-    use super::*;
-    get_active! {
-        glGetActiveAttrib;
-        glGetActiveUniform;
-    }
-}
+mod families;
+pub use families::{active, attrib, delete, get_arrays, get_int, get_strings, matrix, names, uniforms};
 
 /// The names of every GL entry point, by module.
 #[cfg(test)]

@@ -153,5 +153,7 @@ pub const GL_VERTEX_ATTRIB_ARRAY_POINTER: GLenum = 0x8645;
 pub const GL_UNSIGNED_BYTE: GLenum = 0x1401;
 /// `GL_UNSIGNED_SHORT`.
 pub const GL_UNSIGNED_SHORT: GLenum = 0x1403;
+/// `GL_FLOAT`.
+pub const GL_FLOAT: GLenum = 0x1406;
 /// `GL_UNSIGNED_INT`.
 pub const GL_UNSIGNED_INT: GLenum = 0x1405;

@@ -113,6 +113,9 @@ pub struct Plan {
     pub fill: Vec<Rect>,
     /// The z-groups, far (larger z) to near.
     pub groups: Vec<GroupPlan>,
+    /// Surfaces left out of cells (counted once per cell) because a nearer group of opaque
+    /// surfaces covers the cell.
+    pub culled: usize,
 }
 
 /// Distinct finite z values, far (larger) to near.
@@ -123,22 +126,33 @@ pub fn depth_layers(zs: impl Iterator<Item = f32>) -> Vec<f32> {
     v
 }
 
-/// The 3D plan for surfaces at depths `z` (stacking order) covering `cells`.
-pub fn plan_3d(cells: &[Cell], z: &[f32]) -> Plan {
+/// The 3D plan for surfaces at depths `z` (stacking order) covering `cells`. With `opaque`
+/// (culling on; `opaque[i]`: surface `i`'s colour has alpha 1 everywhere), a cell drops every
+/// group farther than the nearest group whose members there are all opaque: that group covers
+/// every pixel of the cell with alpha 1, so nothing beneath it can show, and it is laid on the
+/// background instead. Which surface each remaining group selects at a pixel does not change.
+pub fn plan_3d(cells: &[Cell], z: &[f32], opaque: Option<&[bool]>) -> Plan {
     let layers = depth_layers(z.iter().copied());
-    let mut plan = Plan { fill: Vec::new(), groups: layers.iter().map(|_| GroupPlan::default()).collect() };
+    let mut plan = Plan { groups: layers.iter().map(|_| GroupPlan::default()).collect(), ..Plan::default() };
     for cell in cells {
-        let mut first = true;
-        for (g, &lz) in layers.iter().enumerate() {
-            let members: Vec<u32> = cell.members.iter().copied().filter(|&m| z[m as usize] == lz).collect();
-            if members.is_empty() {
-                continue;
-            }
-            plan.groups[g].draws.entry((members, first)).or_default().push(cell.rect);
-            first = false;
-        }
-        if first {
+        let present: Vec<(usize, Vec<u32>)> = layers
+            .iter()
+            .enumerate()
+            .filter_map(|(g, &lz)| {
+                let members: Vec<u32> = cell.members.iter().copied().filter(|&m| z[m as usize] == lz).collect();
+                (!members.is_empty()).then_some((g, members))
+            })
+            .collect();
+        if present.is_empty() {
             plan.fill.push(cell.rect);
+            continue;
+        }
+        let start = opaque
+            .and_then(|o| present.iter().rposition(|(_, m)| m.iter().all(|&i| o.get(i as usize) == Some(&true))))
+            .unwrap_or(0);
+        plan.culled += present[..start].iter().map(|(_, m)| m.len()).sum::<usize>();
+        for (at, (g, members)) in present.into_iter().enumerate().skip(start) {
+            plan.groups[g].draws.entry((members, at == start)).or_default().push(cell.rect);
         }
     }
     plan
@@ -262,7 +276,7 @@ mod tests {
         let region = [0, 0, 10, 10];
         let rects = [clip([0, 0, 6, 10], region), clip([4, 0, 6, 10], region)];
         let cs = cells(&rects, region);
-        let plan = plan_3d(&cs, &[0.5, 0.2]);
+        let plan = plan_3d(&cs, &[0.5, 0.2], None);
         assert!(plan.fill.is_empty());
         // Group 0 (z 0.5, far): surface 0 everywhere it is, always on the background.
         assert_eq!(plan.groups[0].draws.keys().collect::<Vec<_>>(), [&(vec![0], true)]);
@@ -273,5 +287,51 @@ mod tests {
         assert!(fill.is_empty());
         assert_eq!(copies[&0], vec![[0, 0, 4, 10]]);
         assert_eq!(copies[&1], vec![[4, 0, 6, 10], [6, 0, 10, 10]]);
+    }
+
+    #[test]
+    fn an_opaque_nearer_group_culls_what_lies_beneath() {
+        // Surface 0 (z 0.9) fills the region; 1 and 2 (z 0.5) lie side by side over its left
+        // half; 3 (z 0.1) covers x 2..6. Cells by x: [0,2) {0,1}, [2,4) {0,1,3}, [4,5) {0,2,3},
+        // [5,6) {0,3}, [6,10) {0}.
+        let region = [0, 0, 10, 4];
+        let raw = [[0, 0, 10, 4], [0, 0, 4, 4], [4, 0, 1, 4], [2, 0, 4, 4]];
+        let rects: Vec<Option<Rect>> = raw.iter().map(|&r| clip(r, region)).collect();
+        let cs = cells(&rects, region);
+        let z = [0.9, 0.5, 0.5, 0.1];
+        let draws = |p: &Plan, g: usize| -> Vec<(Vec<u32>, bool, Vec<Rect>)> {
+            p.groups[g].draws.iter().map(|((m, b), r)| (m.clone(), *b, r.clone())).collect()
+        };
+        // Culling off, or nothing opaque: every group is drawn wherever it is.
+        let off = plan_3d(&cs, &z, None);
+        assert_eq!(plan_3d(&cs, &z, Some(&[false; 4])), off);
+        assert_eq!(off.culled, 0);
+        let every = vec![[0, 0, 2, 4], [2, 0, 4, 4], [4, 0, 5, 4], [5, 0, 6, 4], [6, 0, 10, 4]];
+        assert_eq!(draws(&off, 0), vec![(vec![0], true, every)]);
+        // Surface 1 opaque, 2 not: group z 0.5 is all opaque only where 1 alone covers, so
+        // surface 0 is dropped at x 0..4 (two cells) and stays under surface 2.
+        let on = plan_3d(&cs, &z, Some(&[false, true, false, false]));
+        assert_eq!(on.culled, 2);
+        assert_eq!(draws(&on, 0), vec![(vec![0], true, vec![[4, 0, 5, 4], [5, 0, 6, 4], [6, 0, 10, 4]])]);
+        assert_eq!(
+            draws(&on, 1),
+            vec![(vec![1], true, vec![[0, 0, 2, 4], [2, 0, 4, 4]]), (vec![2], false, vec![[4, 0, 5, 4]])]
+        );
+        // Nearer groups are untouched.
+        assert_eq!(on.groups[2], off.groups[2]);
+        // Surface 3 opaque: at x 2..6 only it is drawn, on the background; the farther ones
+        // are dropped there (0 and 1 at x 2..4, 0 and 2 at 4..5, 0 at 5..6).
+        let near = plan_3d(&cs, &z, Some(&[false, false, false, true]));
+        assert_eq!(near.culled, 5);
+        assert_eq!(draws(&near, 2), vec![(vec![3], true, vec![[2, 0, 4, 4], [4, 0, 5, 4], [5, 0, 6, 4]])]);
+        assert_eq!(draws(&near, 1), vec![(vec![1], false, vec![[0, 0, 2, 4]])]);
+        // A group of which one member is transparent culls nothing: where 1 and 2 would
+        // overlap, the select may show either.
+        let rects2 = [clip([0, 0, 10, 4], region), clip([0, 0, 6, 4], region), clip([3, 0, 6, 4], region)];
+        let cs2 = cells(&rects2, region);
+        let mixed = plan_3d(&cs2, &[0.9, 0.5, 0.5], Some(&[false, true, false]));
+        assert_eq!(mixed.culled, 1, "only the cell x 0..3, where surface 1 alone covers");
+        assert!(mixed.groups[0].draws.values().flatten().all(|r| r[0] >= 3));
+        assert!(plan_3d(&cs, &z, Some(&[true; 4])).fill.is_empty());
     }
 }

@@ -165,7 +165,8 @@ pub struct Uploaded {
 }
 
 impl Uploaded {
-    /// The GPU compositor's layer of `l` (uploaded as `self`), with the same projection.
+    /// The GPU compositor's layer of `l` (uploaded as `self`), with the same projection; not
+    /// marked opaque (a caller whose layer has alpha 1 everywhere may set `opaque`).
     pub fn layer(&self, l: &RefLayer) -> super::Layer<'_> {
         super::Layer {
             rect: l.rect,
@@ -174,6 +175,7 @@ impl Uploaded {
             depth: self.depth.as_ref(),
             normal: l.normal,
             projection: Projection::shader_params(l.projection.as_ref()),
+            opaque: false,
         }
     }
 }

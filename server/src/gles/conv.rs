@@ -9,6 +9,11 @@
 //! - **Window coordinates.** Because of the flip, viewport and scissor rectangles are used as
 //!   GL gives them, bottom-left origin included ([`viewport`], [`clip_rect`]).
 //! - **Depth range.** `glDepthRangef` becomes the viewport's depth range ([`viewport`]).
+//! - **Reversed Z.** Framebuffer 0 of a surface with a declared forward perspective
+//!   projection under `stratad serve --reversed-z` stores 1 − GL's depth: its vertex stages
+//!   compute clip z as `n·(f − w)/(f − n)` (`glsl/link.rs`), and the depth state is mirrored
+//!   ([`Mirror`]): compare functions swap less and greater, a clear value c becomes 1 − c, the
+//!   depth range [a, b] becomes [1 − b, 1 − a], polygon offset is negated.
 //! - **Texture origin.** GL's first uploaded row is the bottom row (t = 0), which is memory
 //!   row 0: uploads, render-to-texture and `glReadPixels` need no flips.
 
@@ -256,6 +261,39 @@ pub fn compare(f: u32) -> wgpu::CompareFunction {
         NOTEQUAL => wgpu::CompareFunction::NotEqual,
         GEQUAL => wgpu::CompareFunction::GreaterEqual,
         _ => wgpu::CompareFunction::Always,
+    }
+}
+
+/// The depth state of a reversed-Z framebuffer: GL's depth d is stored as 1 − d, so every
+/// depth comparison, value and offset the application gives is mirrored.
+pub struct Mirror;
+
+impl Mirror {
+    /// The compare function that orders 1 − d as `f` orders d.
+    pub fn compare(f: wgpu::CompareFunction) -> wgpu::CompareFunction {
+        use wgpu::CompareFunction as C;
+        match f {
+            C::Less => C::Greater,
+            C::LessEqual => C::GreaterEqual,
+            C::Greater => C::Less,
+            C::GreaterEqual => C::LessEqual,
+            other => other,
+        }
+    }
+
+    /// The stored value of depth `d` (a clear value).
+    pub fn depth(d: f32) -> f32 {
+        1.0 - d
+    }
+
+    /// The depth range `[a, b]` as stored: `[1 − b, 1 − a]`.
+    pub fn range([a, b]: [f32; 2]) -> [f32; 2] {
+        [1.0 - b, 1.0 - a]
+    }
+
+    /// Polygon offset (factor bits, units) as stored: both negated.
+    pub fn bias((factor, units): (u32, i32)) -> (u32, i32) {
+        ((-f32::from_bits(factor)).to_bits(), units.saturating_neg())
     }
 }
 

@@ -8,14 +8,21 @@ use strata_protocol::Blob;
 use super::context::{Context, StencilFace};
 use super::conv::{
     blend_component, clip_rect, color_writes, compare, component, float_format, native_format, stencil_op, type_size,
-    viewport, IndexType, Primitive,
+    viewport, IndexType, Mirror, Primitive,
 };
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::glsl::Ty;
 use super::programs::LinkedProgram;
-use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
+use super::render::{error_chain, DrawSpec, RasterState, Source, Target, VertexInput};
+use super::surface::ReversedZ;
 use super::GlesExecutor;
+
+/// A reversed-Z draw's vertex stage and, when the program reads `gl_FragCoord`, fragment stage.
+type Stages = (wgpu::ShaderModule, Option<wgpu::ShaderModule>);
+
+/// Reversed-Z stages one surface keeps (by linked program) before it forgets them all.
+const MAX_REVERSED_STAGES: usize = 64;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.
 const MAX_CONVERTED: usize = 256 << 20;
@@ -287,13 +294,16 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
             color_writes(blend.color_mask)
         },
         points: false,
+        reversed_z: None,
     }
 }
 
-/// Validates a draw of the current program into `target`; `None` if it draws nothing.
+/// Validates a draw of the current program into `target` (a reversed-Z framebuffer 0 with
+/// `reversed`); `None` if it draws nothing.
 fn plan_draw<'c>(
     ctx: &'c Context,
     target: &Target,
+    reversed: Option<ReversedZ>,
     prim: Primitive,
     count: u32,
     indices: Option<(IndexType, Indices<'_>)>,
@@ -342,7 +352,14 @@ fn plan_draw<'c>(
         raster.front_ccw = true;
         raster.points = true;
     }
-    let Some(viewport) = viewport(ctx.raster.viewport, ctx.depth_stencil.depth_range) else {
+    let mut depth_range = ctx.depth_stencil.depth_range;
+    if let Some(r) = reversed {
+        raster.depth = raster.depth.map(|(f, write)| (Mirror::compare(f), write));
+        raster.bias = raster.bias.map(Mirror::bias);
+        raster.reversed_z = Some((r.near.to_bits(), r.far.to_bits()));
+        depth_range = Mirror::range(depth_range);
+    }
+    let Some(viewport) = viewport(ctx.raster.viewport, depth_range) else {
         return Ok(None);
     };
     let scissor = if ctx.raster.scissor_test {
@@ -352,6 +369,7 @@ fn plan_draw<'c>(
     };
     Ok(Some(DrawSpec {
         vs: program.vs.clone(),
+        fs: None,
         program,
         uniforms: &p.data,
         textures,
@@ -379,9 +397,25 @@ impl GlesExecutor {
         };
         let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
         let gpu = self.gpu.clone();
+        let reversed = self.reversed_target();
+        let reversed_stages = match reversed {
+            Some(r) => match self.reversed_stages(r, prim == Primitive::Points) {
+                Some(Ok(stages)) => Some(stages),
+                Some(Err(e)) => {
+                    // GL has no error for this: the draw is dropped, and the reason logged.
+                    tracing::warn!("draw dropped: a reversed-Z stage failed: {e}");
+                    return Ok(());
+                }
+                None => None,
+            },
+            None => None,
+        };
         let (ctx, renderer) = self.ctx_renderer();
-        let Some(mut spec) = plan_draw(ctx, &target, prim, count, indices, first)? else { return Ok(()) };
-        if spec.raster.points {
+        let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first)? else { return Ok(()) };
+        if let Some((vs, fs)) = reversed_stages {
+            spec.vs = vs;
+            spec.fs = fs;
+        } else if spec.raster.points {
             match spec.program.points_vs(&gpu) {
                 Ok(vs) => spec.vs = vs,
                 Err(e) => {
@@ -427,6 +461,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let reversed = self.reversed_target().is_some();
         let (ctx, renderer) = self.ctx_renderer();
         let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
         let writes = color_writes(blend.color_mask);
@@ -438,8 +473,9 @@ impl GlesExecutor {
             }
             (c, writes)
         });
+        let clear_depth = if reversed { Mirror::depth(ds.clear_depth) } else { ds.clear_depth };
         let depth =
-            (mask & DEPTH_BUFFER_BIT != 0 && target.depth.is_some() && ds.depth_mask).then_some((ds.clear_depth, true));
+            (mask & DEPTH_BUFFER_BIT != 0 && target.depth.is_some() && ds.depth_mask).then_some((clear_depth, true));
         let stencil = (mask & STENCIL_BUFFER_BIT != 0 && target.has_stencil() && ds.stencil[0].write & 0xff != 0)
             .then_some((ds.clear_stencil as u32 & 0xff, ds.stencil[0].write & 0xff));
         let scissor = ctx.raster.scissor_test.then(|| clip_rect(ctx.raster.scissor, &target));
@@ -448,6 +484,57 @@ impl GlesExecutor {
         }
         renderer.clear(&target, color, depth, stencil, scissor);
         Ok(())
+    }
+
+    /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's
+    /// framebuffer 0.
+    fn reversed_target(&self) -> Option<ReversedZ> {
+        let (cid, sid) = self.current?;
+        if self.contexts.get(&cid)?.bindings.framebuffer != 0 {
+            return None;
+        }
+        self.surfaces.get(&sid)?.reversed
+    }
+
+    /// The current program's reversed-Z stages for the current surface `r`: the vertex stage
+    /// (`points`: its points variant) and, if it reads `gl_FragCoord`, the fragment stage;
+    /// created on first use and kept by the surface; `None` without a linked program.
+    fn reversed_stages(&mut self, r: ReversedZ, points: bool) -> Option<Result<Stages, String>> {
+        let (cid, sid) = self.current?;
+        let ctx = self.contexts.get(&cid)?;
+        let program = ctx.objects.programs.get(&ctx.bindings.program)?.linked.clone()?;
+        let surface = self.surfaces.get_mut(&sid)?;
+        if let Some(stages) = surface.reversed_stages.get(&(program.id, points)) {
+            return Some(Ok(stages.clone()));
+        }
+        let d = &self.gpu.device;
+        let module = |label, module| {
+            let guard = d.push_error_scope(wgpu::ErrorFilter::Validation);
+            let m = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
+            });
+            match pollster::block_on(guard.pop()) {
+                Some(e) => Err(error_chain(&e)),
+                None => Ok(m),
+            }
+        };
+        let made = (|| {
+            let vs = module("vs reversed-z", program.info.reversed_vertex(points, r.near, r.far)?)?;
+            let fs = match program.info.reversed_fragment() {
+                Some(fs) => Some(module("fs reversed-z", fs?)?),
+                None => None,
+            };
+            Ok((vs, fs))
+        })();
+        if let Ok(stages) = &made {
+            // Programs relinked frame after frame would otherwise grow the cache without end.
+            if surface.reversed_stages.len() >= MAX_REVERSED_STAGES {
+                surface.reversed_stages.clear();
+            }
+            surface.reversed_stages.insert((program.id, points), stages.clone());
+        }
+        Some(made)
     }
 
     pub(super) fn glFlush(&mut self) -> GlResult {

@@ -33,6 +33,8 @@ pub const CONFIGS: &[Config] = &[
     Config { id: 3, rgba: [8, 8, 8, 8], depth: 16, stencil: 0 },
     Config { id: 4, rgba: [8, 8, 8, 0], depth: 24, stencil: 8 },
     Config { id: 5, rgba: [8, 8, 8, 0], depth: 0, stencil: 0 },
+    Config { id: 6, rgba: [8, 8, 8, 8], depth: 32, stencil: 0 },
+    Config { id: 7, rgba: [8, 8, 8, 0], depth: 32, stencil: 0 },
 ];
 
 impl Config {
@@ -271,8 +273,12 @@ impl GlesExecutor {
         let id = self.make_surface(c, width, height, true, projection)?;
         if let Some((scene, client, name)) = &self.scene {
             scene.add(*client, id, name, [x, y, width, height], z);
-            if projection.is_some() {
-                scene.set_projection(*client, id, projection);
+            // The compositor reads the depth as stored: reversed where the daemon reverses it
+            // (`--reversed-z`); `eglQuerySurface` keeps answering what was declared.
+            let reversed = self.surfaces.get(&id).and_then(|s| s.reversed);
+            let stored = projection.map(|p| reversed.map_or(p, |r| r.stored(p)));
+            if stored.is_some() {
+                scene.set_projection(*client, id, stored);
             }
         }
         Ok(id)
@@ -431,11 +437,43 @@ mod tests {
     use super::*;
 
     #[test]
+    fn depth_32_configs_never_displace_a_first_choice() {
+        assert_eq!(choose(&[EGL_DEPTH_SIZE, 32, EGL_NONE]).expect("depth 32"), vec![7, 6]);
+        assert_eq!(choose(&[EGL_DEPTH_SIZE, 25, EGL_ALPHA_SIZE, 1, EGL_NONE]).expect("alpha"), vec![6]);
+        // Without configs 6 and 7 every request got what the older configs give, in the same
+        // order: its first choice must stay among them.
+        for depth in [EGL_DONT_CARE, 0, 1, 16, 24] {
+            for stencil in [EGL_DONT_CARE, 0, 1, 8] {
+                for alpha in [EGL_DONT_CARE, 0, 8] {
+                    for red in [EGL_DONT_CARE, 0, 1, 8] {
+                        let req = [
+                            EGL_DEPTH_SIZE,
+                            depth,
+                            EGL_STENCIL_SIZE,
+                            stencil,
+                            EGL_ALPHA_SIZE,
+                            alpha,
+                            EGL_RED_SIZE,
+                            red,
+                            EGL_NONE,
+                        ];
+                        let got = choose(&req).expect("valid");
+                        let old: Vec<u32> = got.iter().copied().filter(|&id| id <= 5).collect();
+                        if let Some(first) = old.first() {
+                            assert_eq!(got.first(), Some(first), "{req:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
     fn choose_filters_and_orders() {
         let all = choose(&[EGL_NONE]).expect("all");
         assert_eq!(all.len(), CONFIGS.len());
         let d = choose(&[EGL_DEPTH_SIZE, 1, EGL_ALPHA_SIZE, 8, EGL_NONE]).expect("depth");
-        assert_eq!(d, vec![3, 1], "smallest sufficient depth first");
+        assert_eq!(d, vec![3, 1, 6], "smallest sufficient depth first");
         assert_eq!(choose(&[EGL_STENCIL_SIZE, 16, EGL_NONE]).expect("none"), Vec::<u32>::new());
         assert_eq!(choose(&[0x7777, 1, EGL_NONE]), Err(EGL_BAD_ATTRIBUTE));
     }

@@ -46,7 +46,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 pub use render::Fixed as RendererFixed;
-pub use surface::Surface;
+pub use surface::{DepthFormat, DepthOptions, Surface};
 
 use crate::gpu::Gpu;
 use context::Context;
@@ -76,6 +76,8 @@ pub struct GlesExecutor {
     /// The projection the daemon's configuration gives this client's window surfaces: wins
     /// over what their EGL attributes declare.
     projection: Option<strata_protocol::projection::Projection>,
+    /// How surfaces' depth is stored (`--depth-format`, `--reversed-z`).
+    depth: DepthOptions,
 }
 
 impl Drop for GlesExecutor {
@@ -105,6 +107,7 @@ impl GlesExecutor {
             policy_fixed: false,
             deadline: false,
             projection: None,
+            depth: DepthOptions::default(),
         }
     }
 
@@ -132,6 +135,12 @@ impl GlesExecutor {
     /// declare (`None`: theirs apply).
     pub fn with_projection(mut self, projection: Option<strata_protocol::projection::Projection>) -> Self {
         self.projection = projection;
+        self
+    }
+
+    /// Stores this client's surfaces' depth as `depth` says.
+    pub fn with_depth(mut self, depth: DepthOptions) -> Self {
+        self.depth = depth;
         self
     }
 

@@ -30,6 +30,9 @@ pub struct Attrib {
     pub current: [f32; 4],
     /// A client-side array's bytes for the next draw (`buffer` is 0).
     pub client: Option<Vec<u8>>,
+    /// The type and stride the application set, while `client` holds an array the client
+    /// converted for the wire (`ty` and `stride` then describe those bytes, tightly packed).
+    pub declared: Option<(u32, i32)>,
 }
 
 impl Default for Attrib {
@@ -44,17 +47,34 @@ impl Default for Attrib {
             buffer: 0,
             current: [0.0, 0.0, 0.0, 1.0],
             client: None,
+            declared: None,
         }
     }
 }
 
+impl Attrib {
+    /// Puts back the type and stride the application set, if a wire array stood in for them.
+    fn restore_declared(&mut self) {
+        if let Some((ty, stride)) = self.declared.take() {
+            self.ty = ty;
+            self.stride = stride;
+        }
+    }
+}
+
+/// The component types a client may convert a `GL_FLOAT` array to for the wire.
+fn wire_type(ty: u32) -> bool {
+    matches!(ty, FLOAT | HALF_FLOAT_OES | FIXED)
+}
+
 /// An integer parameter of an attribute's array, `None` if `pname` is not one.
 fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
+    let (ty, stride) = a.declared.unwrap_or((a.ty, a.stride));
     Some(match pname {
         VERTEX_ATTRIB_ARRAY_ENABLED => i32::from(a.enabled),
         VERTEX_ATTRIB_ARRAY_SIZE => a.size,
-        VERTEX_ATTRIB_ARRAY_STRIDE => a.stride,
-        VERTEX_ATTRIB_ARRAY_TYPE => a.ty as i32,
+        VERTEX_ATTRIB_ARRAY_STRIDE => stride,
+        VERTEX_ATTRIB_ARRAY_TYPE => ty as i32,
         VERTEX_ATTRIB_ARRAY_NORMALIZED => i32::from(a.normalized),
         VERTEX_ATTRIB_ARRAY_BUFFER_BINDING => a.buffer as i32,
         _ => return None,
@@ -106,6 +126,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidOperation);
         }
         let a = &mut ctx.attribs[index as usize];
+        a.declared = None;
         a.size = size;
         a.ty = attrib_type;
         a.normalized = normalized;
@@ -117,10 +138,33 @@ impl GlesExecutor {
 
     pub(super) fn strataVertexAttribData(&mut self, index: u32, data: Blob<'_>) -> GlResult {
         match self.ctx().attribs.get_mut(index as usize) {
-            Some(a) if a.buffer == 0 => a.client = Some(data.as_bytes().to_vec()),
+            Some(a) if a.buffer == 0 => {
+                a.restore_declared();
+                a.client = Some(data.as_bytes().to_vec());
+            }
             Some(_) => return Err(GlError::InvalidOperation),
             None => return Err(GlError::InvalidValue),
         }
+        Ok(())
+    }
+
+    /// A `GL_FLOAT` client-side array converted for the wire: the next draw reads `data` as
+    /// tightly packed `attrib_type` components; queries keep answering the application's type
+    /// and stride. An unknown type is `GL_INVALID_ENUM`, an array that is not a client-side
+    /// `GL_FLOAT` one `GL_INVALID_OPERATION`; either leaves the attribute as it was.
+    pub(super) fn strataVertexAttribDataPacked(&mut self, index: u32, attrib_type: u32, data: Blob<'_>) -> GlResult {
+        let a = self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
+        if !wire_type(attrib_type) {
+            return Err(GlError::InvalidEnum);
+        }
+        let declared = a.declared.unwrap_or((a.ty, a.stride));
+        if a.buffer != 0 || declared.0 != FLOAT {
+            return Err(GlError::InvalidOperation);
+        }
+        a.declared = Some(declared);
+        a.ty = attrib_type;
+        a.stride = 0;
+        a.client = Some(data.as_bytes().to_vec());
         Ok(())
     }
 

@@ -259,12 +259,8 @@ crate::entry_points! {
     /// Copies `size` bytes (or allocates), keeping a shadow of the contents.
     fn glBufferData(target: GLenum, size: GLsizeiptr, data: *const c_void, usage: GLenum) {
         with_gl("glBufferData", (), |gl| {
-            if size < 0 {
-                gl.st.err(GL_INVALID_VALUE);
-                return Ok(());
-            }
             // SAFETY: a non-null `data` holds `size` bytes.
-            let d = unsafe { bytes(data, size as usize) };
+            let Some(d) = (unsafe { sized_bytes(gl.st, data, size) }) else { return Ok(()) };
             if let Some(b) = gl.st.bound(target).filter(|&b| b != 0) {
                 let shadow = if data.is_null() { vec![0; size as usize] } else { d.to_vec() };
                 gl.st.buffers.insert(b, shadow);
@@ -496,12 +492,8 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexImage2D", (), |gl| {
-            if image_size < 0 {
-                gl.st.err(GL_INVALID_VALUE);
-                return Ok(());
-            }
             // SAFETY: `data` holds `image_size` bytes.
-            let d = unsafe { bytes(data, image_size as usize) };
+            let Some(d) = (unsafe { sized_bytes(gl.st, data, image_size as isize) }) else { return Ok(()) };
             gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, Blob::borrowed(d))
         })
     }
@@ -519,12 +511,8 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexSubImage2D", (), |gl| {
-            if image_size < 0 {
-                gl.st.err(GL_INVALID_VALUE);
-                return Ok(());
-            }
             // SAFETY: `data` holds `image_size` bytes.
-            let d = unsafe { bytes(data, image_size as usize) };
+            let Some(d) = (unsafe { sized_bytes(gl.st, data, image_size as isize) }) else { return Ok(()) };
             gl.conn.glCompressedTexSubImage2D(
                 target,
                 level,

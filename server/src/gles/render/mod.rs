@@ -93,6 +93,9 @@ pub struct RasterState {
     /// `GL_POINTS` drawn as squares: four vertices per instance, one instance per point,
     /// every vertex input stepped per instance.
     pub points: bool,
+    /// Reversed-Z framebuffer 0 (near and far bits): the vertex stage is its reversed-Z
+    /// variant, so pipelines differ.
+    pub reversed_z: Option<(u32, u32)>,
 }
 
 /// Everything a validated draw needs.
@@ -101,6 +104,9 @@ pub struct DrawSpec<'a> {
     pub program: Arc<LinkedProgram>,
     /// Its vertex module for this draw (the points variant for `GL_POINTS`).
     pub vs: wgpu::ShaderModule,
+    /// Its fragment module for this draw when not the program's (the reversed-Z variant of a
+    /// stage reading `gl_FragCoord`).
+    pub fs: Option<wgpu::ShaderModule>,
     /// Uniform block bytes.
     pub uniforms: &'a [u8],
     /// Per sampler: texture view, its uid, sampling state, and whether the image cannot be

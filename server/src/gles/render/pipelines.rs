@@ -179,7 +179,7 @@ impl Renderer {
             depth_stencil,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &spec.program.fs,
+                module: spec.fs.as_ref().unwrap_or(&spec.program.fs),
                 entry_point: Some("main"),
                 compilation_options: Default::default(),
                 targets: if key.color { &targets } else { &[] },
