@@ -132,10 +132,17 @@ pub fn choose(attribs: &[i32]) -> Result<Vec<u32>, i32> {
 }
 
 /// The projection a surface attribute list declares (`EGL_STRATA_surface_projection`), if
-/// any; an invalid declaration is `EGL_BAD_ATTRIBUTE`, logged with what is wrong with it.
-fn declared_projection(call: &str, attribs: &[i32]) -> Result<Option<Projection>, i32> {
+/// any; an invalid declaration is `EGL_BAD_ATTRIBUTE`, logged with what is wrong with it: at
+/// warn the first time (`first`), at debug after that, since a client may repeat it every
+/// frame.
+fn declared_projection(call: &str, attribs: &[i32], first: bool) -> Result<Option<Projection>, i32> {
     Projection::from_egl_attribs(attribs).map_err(|e| {
-        tracing::warn!(error = ?e, "{call}: EGL_BAD_ATTRIBUTE: invalid EGL_STRATA_surface_projection declaration: {e}");
+        let what = "EGL_BAD_ATTRIBUTE: invalid EGL_STRATA_surface_projection declaration";
+        if first {
+            tracing::warn!(error = ?e, "{call}: {what}: {e} (this client's further ones are logged at debug)");
+        } else {
+            tracing::debug!(error = ?e, "{call}: {what}: {e}");
+        }
         EGL_BAD_ATTRIBUTE
     })
 }
@@ -157,6 +164,13 @@ pub fn pbuffer_size(attribs: &[i32]) -> Result<(i32, i32), i32> {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    /// [`declared_projection`], counting this client's invalid declarations.
+    fn declared_projection(&mut self, call: &str, attribs: &[i32]) -> Result<Option<Projection>, i32> {
+        let first = self.bad_projections == 0;
+        declared_projection(call, attribs, first)
+            .inspect_err(|_| self.bad_projections = self.bad_projections.saturating_add(1))
+    }
+
     /// `Ok` for the one display once initialised.
     pub(super) fn check_display(&self, display: u32) -> Result<(), i32> {
         if display != 1 {
@@ -232,7 +246,7 @@ impl GlesExecutor {
         let attribs = attribs.to_vec();
         let (w, h) = pbuffer_size(&attribs)?;
         // Not composited, so the layout's projection is not for it: it keeps its own.
-        let projection = declared_projection("eglCreatePbufferSurface", &attribs)?;
+        let projection = self.declared_projection("eglCreatePbufferSurface", &attribs)?;
         self.make_surface(c, w, h, false, projection)
     }
 
@@ -259,7 +273,7 @@ impl GlesExecutor {
         }
         self.check_display(display)?;
         let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
-        let declared = declared_projection("eglCreateWindowSurface", &attribs.to_vec())?;
+        let declared = self.declared_projection("eglCreateWindowSurface", &attribs.to_vec())?;
         if !z.is_finite() || width <= 0 || height <= 0 {
             return Err(EGL_BAD_NATIVE_WINDOW);
         }
@@ -497,11 +511,14 @@ mod tests {
             ]
         };
         // Near 0 is fine for an orthographic projection, not for a perspective one.
-        let p = declared_projection("test", &attribs(EGL_PROJECTION_ORTHOGRAPHIC_STRATA)).expect("valid");
+        let p = declared_projection("test", &attribs(EGL_PROJECTION_ORTHOGRAPHIC_STRATA), true).expect("valid");
         assert_eq!(p.map(|p| (p.near, p.far)), Some((0.0, 1.0)));
-        assert_eq!(declared_projection("test", &attribs(EGL_PROJECTION_PERSPECTIVE_STRATA)), Err(EGL_BAD_ATTRIBUTE));
-        assert_eq!(declared_projection("test", &attribs(0x1234)), Err(EGL_BAD_ATTRIBUTE));
+        assert_eq!(
+            declared_projection("test", &attribs(EGL_PROJECTION_PERSPECTIVE_STRATA), true),
+            Err(EGL_BAD_ATTRIBUTE)
+        );
+        assert_eq!(declared_projection("test", &attribs(0x1234), false), Err(EGL_BAD_ATTRIBUTE));
         // Unknown attributes are not this extension's business; nothing declared is `None`.
-        assert_eq!(declared_projection("test", &[0x7777, 1, EGL_NONE]), Ok(None));
+        assert_eq!(declared_projection("test", &[0x7777, 1, EGL_NONE], true), Ok(None));
     }
 }

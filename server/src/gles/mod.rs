@@ -62,6 +62,9 @@ pub struct GlesExecutor {
     next_handle: u32,
     /// The current (context, surface).
     current: Option<(u32, u32)>,
+    /// Invalid `EGL_STRATA_surface_projection` declarations this client made (only the first
+    /// is logged at warn).
+    bad_projections: u32,
     uid: u64,
     /// Where window surfaces are shown: the scene, this client's id and name.
     scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
@@ -108,6 +111,7 @@ impl GlesExecutor {
             deadline: false,
             projection: None,
             depth: DepthOptions::default(),
+            bad_projections: 0,
         }
     }
 
