@@ -59,17 +59,28 @@ fn surface(i: usize, rect: [i32; 4], z: f32, alpha: u8, depth: bool) -> RefLayer
     RefLayer { rect, z, color, depth: depth.then_some(d), normal, projection: None }
 }
 
-fn output(gpu: &Gpu) -> wgpu::Texture {
+/// A `w`×`h` 2D image of one level.
+fn texture(gpu: &Gpu, w: u32, h: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: None,
-        size: wgpu::Extent3d { width: OUT_W, height: OUT_H, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        format,
+        usage,
         view_formats: &[],
     })
+}
+
+/// An output image of `w`×`h` the compositor draws and the test reads back.
+fn output_of(gpu: &Gpu, w: u32, h: u32) -> wgpu::Texture {
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage)
+}
+
+fn output(gpu: &Gpu) -> wgpu::Texture {
+    output_of(gpu, OUT_W, OUT_H)
 }
 
 /// Composites `layers` into `out` (only `region` of it, if given) and reads `out` back.

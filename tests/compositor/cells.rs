@@ -199,16 +199,7 @@ fn a_16384_square_output_composites_in_bounded_tiles() {
         surface(3, [s - 40, s - 30, 40, 30], 0.5, 255, true),
         surface(4, [-5, -5, 20, 20], 0.3, 150, true),
     ];
-    let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let out = output_of(&gpu, side, side);
     let mut comp = Compositor::new(gpu.clone(), Some(4)).expect("compositor");
     let windows = [[0, 0, 32, 32], [2028, 2028, 40, 40], [s - 48, s - 40, 48, 40], [8000, 8000, 8, 8]];
     let compare = |layers: &[RefLayer], what: &str| {

@@ -299,18 +299,9 @@ fn nan_and_infinite_depth_texels_read_as_the_far_plane_and_clamped() {
     let mut comp = Compositor::new(gpu.clone(), None).expect("compositor");
     check("+inf eye depths", &run(&gpu, &mut comp, &at_inf, &unlit()), &img, 0);
     // The device's depth image for those texels (wgpu writes depth through a fragment's depth).
-    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d { width: w as u32, height: h as u32, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Depth32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let usage =
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    let tex = texture(&gpu, w as u32, h as u32, wgpu::TextureFormat::Depth32Float, usage);
     gpu.write_depth(&tex, w as u32, h as u32, &odd);
     let stored = read_depth(&gpu, &tex);
     let shown: Vec<String> = stored[..10].iter().map(|v| format!("{v:?}")).collect();
