@@ -3,10 +3,6 @@
 //! The two images must agree within the tolerance stated beside each program; the default is
 //! at most 1/255 per channel on at least 99.9 % of pixels. On failure the actual, expected and
 //! difference images are written under `target/oracle-failures/`.
-//!
-//! The same programs run a second time as low-priority clients whose every pass the daemon
-//! cuts into pieces submitted one by one (runs of draws, or scissored bands of the target),
-//! which must leave every image as Mesa draws it.
 
 mod programs;
 mod support;
@@ -20,13 +16,6 @@ use support::Daemon;
 #[test]
 fn executor_matches_mesa() {
     matches_mesa("oracle", &[]);
-}
-
-#[test]
-fn sliced_low_priority_passes_match_mesa() {
-    // Three pieces: passes of three draws or more are cut into runs of draws; shorter ones
-    // draw by draw, into ranges of primitives where a draw has enough, else into bands.
-    matches_mesa("oracle-sliced", &["--default-priority", "low", "--force-pieces", "3"]);
 }
 
 /// Mesa's GLES2 is loaded into this process, and its contexts must not be used from two

@@ -89,6 +89,9 @@ pub struct Args {
     /// Print only the JSON (no progress bar, no table).
     #[arg(long)]
     pub json: bool,
+    /// One more option for the daemon (repeatable), e.g. `--daemon-arg=--devices=shared`.
+    #[arg(long = "daemon-arg", allow_hyphen_values = true)]
+    pub daemon_args: Vec<String>,
 }
 
 /// One phase: the IC alone or beside one load.
@@ -106,6 +109,11 @@ struct Phase {
     hu_fps: Option<f64>,
     /// The HU's own frame rate (the client's result, or glmark2's last FPS line).
     hu_reported_fps: Option<f64>,
+    /// The HU's frames per second with no IC connected, measured just before (from the
+    /// daemon's frame counter, over as many seconds).
+    hu_alone_fps: Option<f64>,
+    /// `hu_fps` over `hu_alone_fps`: what the IC costs the HU.
+    hu_vs_alone: Option<f64>,
     /// The HU surface's swap interval as the daemon lists it.
     hu_interval: Option<i64>,
     hu_error: Option<String>,
@@ -118,7 +126,8 @@ struct Phase {
     frame_times_ms: Vec<f64>,
 }
 
-/// The target for one load: p99 within 1.25× alone, and no more client-side misses.
+/// The target for one load: p99 within 1.25× alone, no more client-side misses, and the HU
+/// keeps at least 0.7 of the frame rate it has with no IC.
 #[derive(Debug, Serialize)]
 struct Verdict {
     load: String,
@@ -127,6 +136,8 @@ struct Verdict {
     client_misses: u64,
     alone_client_misses: u64,
     misses_ok: bool,
+    hu_vs_alone: Option<f64>,
+    hu_ok: bool,
     pass: bool,
 }
 
@@ -348,6 +359,8 @@ impl Bench<'_> {
             max_ratio: None,
             hu_fps,
             hu_reported_fps: None,
+            hu_alone_fps: None,
+            hu_vs_alone: None,
             hu_interval,
             hu_error: None,
             load_average_1m: loadavg.and_then(|l| l.split_whitespace().next()?.parse().ok()),
@@ -362,7 +375,17 @@ impl Bench<'_> {
         })
     }
 
-    /// One load's phase: start it, let it settle, measure the IC, stop it.
+    /// The HU's frames per second over `--seconds` with no IC connected.
+    fn hu_alone(&mut self) -> Result<f64> {
+        let before = Snapshot::take(&mut self.control)?;
+        std::thread::sleep(Duration::from_secs_f64(self.args.seconds));
+        let after = Snapshot::take(&mut self.control)?;
+        let secs = (after.at - before.at).as_secs_f64().max(1e-9);
+        Ok(after.frames("hu").saturating_sub(before.frames("hu")) as f64 / secs)
+    }
+
+    /// One load's phase: start it, let it settle, measure it alone, then the IC beside it,
+    /// and stop it.
     fn load_phase(&mut self, load: Load) -> Result<Phase> {
         let hu = self.start_hu(load)?;
         // Measure the steady state: after the HU's first frame (its pipelines compiled, its
@@ -376,11 +399,18 @@ impl Bench<'_> {
             }
         }
         std::thread::sleep(SETTLE);
-        let phase = self.measure(&load.name());
+        // The HU alone first, over as long as the IC is measured beside it.
+        let alone = (load != Load::CpuHog).then(|| self.hu_alone()).transpose();
+        let phase = alone.and_then(|alone| Ok((alone, self.measure(&load.name())?)));
         let (fps, error) = self.stop_hu(hu);
-        let mut phase = phase?;
+        let (alone, mut phase) = phase?;
         phase.hu_reported_fps = fps;
         phase.hu_error = error;
+        phase.hu_alone_fps = alone;
+        phase.hu_vs_alone = match (phase.hu_fps, alone) {
+            (Some(with), Some(a)) if a > 0.0 => Some(with / a),
+            _ => None,
+        };
         Ok(phase)
     }
 }
@@ -417,7 +447,9 @@ pub fn run(args: &Args) -> Result<()> {
     };
 
     let socket = std::env::temp_dir().join(format!("strata-interference-{}.sock", std::process::id()));
-    let daemon_args = ["--output".as_ref(), OUTPUT.as_ref(), "--config".as_ref(), config_path.as_os_str()];
+    let mut daemon_args: Vec<&std::ffi::OsStr> =
+        vec!["--output".as_ref(), OUTPUT.as_ref(), "--config".as_ref(), config_path.as_os_str()];
+    daemon_args.extend(args.daemon_args.iter().map(std::ffi::OsStr::new));
     let daemon = Stratad::start(&stratad, daemon_args, socket, args.out.join("stratad.log"), true)?;
     let control = ControlConnection::connect(&daemon.socket).context("connecting to stratad's control socket")?;
     let mut bench = Bench { args, exe, daemon, control, glmark2 };

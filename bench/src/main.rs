@@ -1,6 +1,7 @@
 //! `strata-bench`: throughput benchmarks for Strata. Every figure is reported beside a baseline
 //! measured in the same run, because shared machines are noisy.
 
+mod clients;
 mod composite;
 mod execute;
 mod glmark2;
@@ -58,7 +59,19 @@ enum Cmd {
         /// Textures per compositor pass, as for `stratad serve --max-textures`.
         #[arg(long)]
         max_textures: Option<u32>,
+        /// Which device each client renders on, as for `stratad serve --devices`.
+        #[arg(long, value_enum, default_value_t = strata_server::DeviceMode::PerClient)]
+        devices: strata_server::DeviceMode,
+        /// How frames reach the compositor, as for `stratad serve --frame-transfer`.
+        #[arg(long, value_enum, default_value_t = strata_server::gles::TransferMode::Auto)]
+        frame_transfer: strata_server::gles::TransferMode,
+        /// As for `stratad serve --client-rasterizer-threads`.
+        #[arg(long, default_value_t = 1)]
+        client_rasterizer_threads: u32,
     },
+    /// What an idle client costs the daemon: resident memory and threads per connected client
+    /// at 10 and 64 clients, against the empty daemon.
+    Clients(clients::Args),
     /// The thesis' evaluation (chapter 5) on this machine: n = 1…10 glmark2-es2 instances over
     /// one area at one z, natively, at one z each, and through the 2D baseline; JSON and a PNG
     /// per figure.
@@ -82,6 +95,8 @@ enum Cmd {
 }
 
 fn main() -> Result<()> {
+    // Before any thread starts (see `settle_environment`).
+    strata_server::gpu::settle_environment();
     let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into());
     tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).init();
     match Cli::parse().command {
@@ -89,10 +104,30 @@ fn main() -> Result<()> {
         Cmd::Execute(args) => execute::run(&args),
         Cmd::Composite(args) => composite::run(&args),
         Cmd::Glmark2(args) => glmark2::run(&args),
-        Cmd::Daemon { socket, executor, outputs, compositor, max_textures } => {
-            transport::daemon(socket, executor, outputs, compositor, max_textures)
+        Cmd::Daemon {
+            socket,
+            executor,
+            outputs,
+            compositor,
+            max_textures,
+            devices,
+            frame_transfer,
+            client_rasterizer_threads,
+        } => {
+            let opts = strata_server::ServeOptions {
+                socket,
+                executor,
+                compositor,
+                max_textures,
+                devices,
+                frame_transfer,
+                client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
+                ..Default::default()
+            };
+            transport::daemon(opts, outputs)
         }
         Cmd::Thesis(args) => thesis::run(&args),
+        Cmd::Clients(args) => clients::run(&args),
         Cmd::Soak(args) => soak::run(&args),
         Cmd::SoakClient(args) => soak_client::run(&args),
         Cmd::Interference(args) => interference::run(&args),

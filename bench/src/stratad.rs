@@ -55,6 +55,11 @@ impl Stratad {
         Ok(d)
     }
 
+    /// The daemon's process id.
+    pub(crate) fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// An error with the end of its log if the daemon has exited.
     pub(crate) fn alive(&mut self) -> Result<()> {
         match self.child.try_wait()? {

@@ -69,6 +69,16 @@ pub struct Args {
     /// Directory for thesis.json and one PNG per figure.
     #[arg(long, default_value = "target/strata-bench/thesis")]
     out: PathBuf,
+    /// One more option for every daemon the benchmark starts (repeatable), e.g.
+    /// `--daemon-arg=--devices=shared` to measure the one shared device.
+    #[arg(long = "daemon-arg", allow_hyphen_values = true)]
+    daemon_args: Vec<String>,
+    /// Only these tables (5.1, 5.2, 5.3, 5.4; repeatable) [default: all four].
+    #[arg(long = "table")]
+    tables: Vec<String>,
+    /// Skip the data path (one instance per model).
+    #[arg(long)]
+    no_data_path: bool,
 }
 
 /// One table of the evaluation.
@@ -122,6 +132,22 @@ struct Row {
     composites: Option<u64>,
     /// Passes of the busiest composite seen (chaining stages; Strata only).
     stages: Option<u64>,
+    /// The compositor's share of the machine over the run: the CPU time of its device's
+    /// threads and of its own thread, over the run's time on every core (Strata on a CPU
+    /// rasterizer only).
+    compositor_share: Option<f64>,
+}
+
+/// The compositor's busy time so far: its device's, plus its thread's planning and encoding
+/// (microseconds).
+fn compositor_busy(socket: &std::path::Path) -> Result<u64> {
+    let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
+    let device = match c.request(&ControlRequest::Stats)? {
+        ControlReply::Stats(s) => s.compositor_device.map_or(0, |d| d.busy_us),
+        other => bail!("unexpected control reply {other:?}"),
+    };
+    let (outputs, _) = list(socket)?;
+    Ok(device + outputs.iter().map(|o| o.encode_us).sum::<u64>())
 }
 
 /// `ctl list`: the daemon's outputs and surfaces.
@@ -183,6 +209,8 @@ impl Bench<'_> {
     /// n instances at once; with a daemon, its compositor's figures over the run.
     fn row(&self, t: &Table, socket: Option<&std::path::Path>, n: u32) -> Result<Row> {
         let before = socket.map(output_stats).transpose()?;
+        let busy_before = socket.map(compositor_busy).transpose()?;
+        let started = std::time::Instant::now();
         let children: Vec<Child> = (0..n)
             .map(|i| self.command(t, socket, i).spawn().context("starting glmark2-es2"))
             .collect::<Result<_>>()?;
@@ -207,6 +235,14 @@ impl Bench<'_> {
         let stages = sampler.and_then(|h| h.join().ok());
         let fps: Vec<u32> = outcomes.into_iter().collect::<Result<_>>()?;
         let after = socket.map(output_stats).transpose()?;
+        let busy_after = socket.map(compositor_busy).transpose()?;
+        let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as f64;
+        let compositor_share = match (busy_before, busy_after) {
+            (Some(b), Some(a)) => {
+                Some((a.saturating_sub(b) as f64 / 1e6 / (started.elapsed().as_secs_f64() * cores)).min(1.0))
+            }
+            _ => None,
+        };
         let (composites, composite_ms) = match (before, after) {
             (Some(b), Some(a)) if a.0 > b.0 => {
                 let count = a.0 - b.0;
@@ -223,6 +259,7 @@ impl Bench<'_> {
             composite_ms,
             composites,
             stages,
+            compositor_share,
         })
     }
 }
@@ -286,7 +323,7 @@ pub fn run(args: &Args) -> Result<()> {
     let pb = if args.json {
         ProgressBar::hidden()
     } else {
-        ProgressBar::new(4 * u64::from(args.max_instances) + MODELS.len() as u64)
+        ProgressBar::new(4 * u64::from(args.max_instances) + if args.no_data_path { 0 } else { MODELS.len() as u64 })
     };
     pb.set_style(
         ProgressStyle::with_template("{msg:>28} [{bar:40}] {pos}/{len} {elapsed} eta {eta}")
@@ -295,7 +332,7 @@ pub fn run(args: &Args) -> Result<()> {
     );
     let mut tables = Vec::new();
     let mut paths = Vec::new();
-    for t in &TABLES {
+    for t in TABLES.iter().filter(|t| args.tables.is_empty() || args.tables.iter().any(|n| n == t.table)) {
         let log = tmp.0.join(format!("daemon-{}.log", t.table));
         let daemon = match t.side {
             Side::Native => None,
@@ -308,12 +345,15 @@ pub fn run(args: &Args) -> Result<()> {
                     t.compositor.into(),
                     "--max-textures".into(),
                     args.max_textures.to_string(),
-                ],
+                ]
+                .into_iter()
+                .chain(args.daemon_args.iter().cloned())
+                .collect::<Vec<_>>(),
                 Some(&log),
             )?),
         };
         // The data path, with the first daemon (one model at a time).
-        if let (Some(d), true) = (&daemon, paths.is_empty()) {
+        if let (Some(d), true, false) = (&daemon, paths.is_empty(), args.no_data_path) {
             for k in 0..MODELS.len() as u32 {
                 pb.set_message(format!("data path: {}", MODELS[k as usize]));
                 paths.push(bench.data_path(t, &d.1, k)?);
@@ -373,22 +413,31 @@ fn report(args: &Args, tables: &[(&Table, Vec<Row>)], paths: &[DataPath]) -> Res
             "glmark2-es2 -b build:model=M:duration={} -s {}, M cycling {MODELS:?}; headless {} output, --max-textures {}",
             args.duration, args.size, args.output, args.max_textures
         );
+        let native = tables.iter().find(|(t, _)| t.side == Side::Native).map(|(_, rows)| rows);
         for (t, rows) in tables {
             println!();
             println!("Table {} (figure {}): {}", t.table, t.figure, t.what);
             println!(
-                "{:>3} {:>10} {:>14} {:>13} {:>7}  fps of each",
-                "n", "total fps", "per instance", "composite ms", "stages"
+                "{:>3} {:>10} {:>14} {:>13} {:>7} {:>7} {:>9} {:>9}  fps of each",
+                "n", "total fps", "per instance", "composite ms", "stages", "comp %", "x native", "bound x"
             );
             for r in rows {
                 let stages = r.stages.map_or_else(|| "-".to_string(), |s| s.to_string());
+                let native_fps =
+                    native.and_then(|n| n.iter().find(|x| x.instances == r.instances)).map(|x| x.total_fps);
+                let vs = native_fps.filter(|_| t.side == Side::Strata).map(|n| r.total_fps / n.max(1e-9));
+                // What the compositor's share leaves the clients: 0.95 × (1 − share).
+                let bound = r.compositor_share.map(|s| 0.95 * (1.0 - s));
                 println!(
-                    "{:>3} {:>10.0} {:>14.1} {:>13} {:>7}  {:?}",
+                    "{:>3} {:>10.0} {:>14.1} {:>13} {:>7} {:>7} {:>9} {:>9}  {:?}",
                     r.instances,
                     r.total_fps,
                     r.per_instance_fps,
                     opt(r.composite_ms, 2),
                     stages,
+                    opt(r.compositor_share.map(|s| s * 100.0), 1),
+                    opt(vs, 2),
+                    opt(bound, 2),
                     r.fps
                 );
             }

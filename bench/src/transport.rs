@@ -26,17 +26,10 @@ pub struct Args {
     bulk: u64,
 }
 
-/// Runs the daemon half until killed, with `outputs` (none: the daemon's default output),
-/// `compositor` and its texture limit per pass.
-pub fn daemon(
-    socket: PathBuf,
-    executor: strata_server::ExecutorKind,
-    outputs: Vec<strata_server::root::OutputSpec>,
-    compositor: strata_server::compositor::Mode,
-    max_textures: Option<u32>,
-) -> Result<()> {
+/// Runs the daemon half with `opts` until killed, with `outputs` (none: the daemon's default
+/// output).
+pub fn daemon(mut opts: strata_server::ServeOptions, outputs: Vec<strata_server::root::OutputSpec>) -> Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
-    let mut opts = strata_server::ServeOptions { socket, executor, compositor, max_textures, ..Default::default() };
     if !outputs.is_empty() {
         opts.outputs = outputs;
     }

@@ -5,20 +5,21 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-/// A client's scheduling class on the daemon's one GPU queue.
+/// A client's priority class: what CPU and GPU priority its session and device get.
 ///
-/// `high` work is submitted at once and never waits behind the others; `low` work is
-/// submitted in bounded slices, one at a time, within a share of each refresh period while a
-/// `high` client is connected; `normal` work is submitted as it comes.
+/// Each client renders on a device of its own. `high` (an instrument cluster) gets the
+/// highest priority the platform grants (nice −5 where the daemon may raise it, the queue's
+/// `HIGH` global priority where the GPU offers it), `low` the lowest (its threads idle-class,
+/// at nice 19; `LOW` global priority), and `normal` the default.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Priority {
-    /// The instrument cluster's class: never queued behind other work.
+    /// The instrument cluster's class: the highest priority the platform grants.
     High,
     /// The default.
     #[default]
     Normal,
-    /// Sliced and budgeted: may be deferred, never dropped.
+    /// Runs on what the others leave.
     Low,
 }
 
@@ -50,19 +51,11 @@ impl Priority {
 /// Where a client's frames waited, summed over its session, in microseconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Waits {
-    /// In `eglSwapBuffers`, for the compositor to take a frame or for the swap interval.
+    /// In `eglSwapBuffers`, for the swap interval, frames in flight, or a free buffer.
     pub swap_us: u64,
-    /// For the scheduler to let its work onto the queue.
-    pub queue_us: u64,
-    /// For the GPU to finish its work (readbacks, `glFinish`, the previous frame at a swap,
-    /// and each low-priority slice).
+    /// For its own device to finish its work (readbacks, `glFinish`, the previous frame at a
+    /// swap).
     pub gpu_us: u64,
-    /// Low-priority slices submitted.
-    pub slices: u64,
-    /// Times a low-priority slice waited because the class had used its share of a refresh.
-    pub deferred: u64,
-    /// The longest low-priority slice, from submission to completion, microseconds.
-    pub longest_slice_us: u64,
 }
 
 /// Where lighting takes a fragment's normal from.
@@ -208,6 +201,39 @@ pub enum ControlRequest {
     },
     /// The daemon's memory, and every client's resources against its quota.
     Stats,
+    /// Destroys client `client`'s GPU device, as a fault or a driver reset would lose it
+    /// (only when the daemon was started with `--allow-fault-injection`; for tests).
+    LoseDevice {
+        /// The client's number, as `Stats` shows it.
+        client: u64,
+    },
+}
+
+/// One thread of a device's driver.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DeviceThread {
+    /// Its thread id.
+    pub tid: i32,
+    /// Its name (`/proc/self/task/TID/comm`).
+    pub name: String,
+    /// Its nice value.
+    pub nice: i32,
+}
+
+/// A device as `stratad ctl stats` shows it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct DeviceStats {
+    /// Whether it is the client's own device (else the compositor's, shared).
+    pub own: bool,
+    /// The threads its driver started (lavapipe's queue and rasterizer threads).
+    pub threads: Vec<DeviceThread>,
+    /// The queue global priority the driver granted (`None`: not offered).
+    pub global_priority: Option<String>,
+    /// Time the device has been busy, microseconds: on a CPU rasterizer the CPU time of its
+    /// threads; on a GPU, the time from each frame's last submission to its completion.
+    pub busy_us: u64,
+    /// Whether the device was lost.
+    pub lost: bool,
 }
 
 /// One client's resources, as `stratad ctl stats` shows them.
@@ -235,6 +261,8 @@ pub struct ClientStats {
     pub waits: Waits,
     /// Deadline misses of its surfaces (see `SurfaceRow::deadline_misses`).
     pub deadline_misses: u64,
+    /// The device it renders on, once its session has opened it.
+    pub device: Option<DeviceStats>,
 }
 
 /// The daemon's resources, as `stratad ctl stats` shows them.
@@ -260,6 +288,8 @@ pub struct DaemonStats {
     /// Objects alive on the device, by type, as the GPU layer counts them (clients' and the
     /// compositor's).
     pub device_objects: BTreeMap<String, u64>,
+    /// The compositor's device.
+    pub compositor_device: Option<DeviceStats>,
 }
 
 /// One row of `stratad ctl list`: a window surface.
@@ -317,9 +347,17 @@ pub struct OutputRow {
     pub passes: u64,
     /// The part of the output the last composite redrew: x, y, width, height.
     pub region: [i32; 4],
-    /// Time spent compositing into it so far (encoding, submitting and waiting for the
-    /// device), in microseconds: divided by `composites`, the cost of a composite.
+    /// The composites' own device time so far (between timestamps at the start of a
+    /// composite's first pass and the end of its last; where the device has no timestamps,
+    /// from submission to completion), microseconds: divided by `composites`, what a
+    /// composite costs the device.
     pub composite_us: u64,
+    /// Time the composites waited on the compositor's queue before and around their own
+    /// work (submission to completion, less their device time), microseconds.
+    pub queue_us: u64,
+    /// CPU time the compositor thread spent planning, encoding and submitting composites,
+    /// microseconds.
+    pub encode_us: u64,
 }
 
 /// The daemon's answer to a `ControlRequest`.

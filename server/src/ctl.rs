@@ -52,6 +52,13 @@ pub enum CtlCmd {
         #[command(subcommand)]
         what: LightCmd,
     },
+    /// Destroy a client's GPU device, as a fault or a driver reset would lose it (only on a
+    /// daemon started with `--allow-fault-injection`; for tests).
+    #[command(hide = true)]
+    LoseDevice {
+        /// Client number (as `stats` shows it).
+        client: u64,
+    },
 }
 
 #[derive(Subcommand)]
@@ -96,6 +103,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     let request = match &what {
         CtlCmd::List => ControlRequest::List,
         CtlCmd::Stats => ControlRequest::Stats,
+        CtlCmd::LoseDevice { client } => ControlRequest::LoseDevice { client: *client },
         CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
         CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
         CtlCmd::Normal { surface, normal } => ControlRequest::Normal { surface: *surface, normal: *normal },
@@ -122,14 +130,15 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 return Ok(());
             }
             println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9}  last redrawn",
-                "output", "kind", "x", "y", "w", "h", "composites", "passes", "ms each"
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9} {:>8} {:>9}  last redrawn",
+                "output", "kind", "x", "y", "w", "h", "composites", "passes", "device ms", "queue ms", "encode ms"
             );
             for o in outputs {
                 let r = o.region;
-                let ms = o.composite_us as f64 / 1000.0 / o.composites.max(1) as f64;
+                let each = |us: u64| us as f64 / 1000.0 / o.composites.max(1) as f64;
+                let (ms, queue, encode) = (each(o.composite_us), each(o.queue_us), each(o.encode_us));
                 println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2}  {}x{}+{}+{}",
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2}  {}x{}+{}+{}",
                     o.name,
                     o.kind,
                     o.rect[0],
@@ -234,6 +243,23 @@ fn mib(bytes: u64) -> String {
     format!("{:.1} MiB", bytes as f64 / (1 << 20) as f64)
 }
 
+/// One device as `ctl stats` prints it: busy time, its driver threads' nice values, the global
+/// priority granted, whether it is the client's own and whether it was lost.
+fn device_line(d: &strata_protocol::control::DeviceStats) -> String {
+    let mut nice: Vec<i32> = d.threads.iter().map(|t| t.nice).collect();
+    nice.sort_unstable();
+    nice.dedup();
+    format!(
+        "busy {:.1} ms, {} threads at nice {:?}, global priority {}{}{}",
+        d.busy_us as f64 / 1000.0,
+        d.threads.len(),
+        nice,
+        d.global_priority.as_deref().unwrap_or("not offered"),
+        if d.own { "" } else { ", shared" },
+        if d.lost { ", LOST" } else { "" }
+    )
+}
+
 fn print_stats(s: &strata_protocol::control::DaemonStats) {
     println!("daemon: rss {} (peak {}), {} sessions started", mib(s.rss_bytes), mib(s.peak_rss_bytes), s.sessions);
     println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
@@ -276,20 +302,18 @@ fn print_stats(s: &strata_protocol::control::DaemonStats) {
         print!(" {:>13}", s.objects[*k]);
     }
     println!();
-    println!("where frames waited (ms): swap, queue, gpu; low-priority slices and deferrals");
+    println!("where frames waited (ms): swap, device; each device: busy ms, threads at nice, global priority");
     for c in &s.clients {
         let w = &c.waits;
         let ms = |us: u64| us as f64 / 1000.0;
-        println!(
-            "{:>4} {:<20} {:>10.1} {:>10.1} {:>10.1} {:>8} {:>8}",
-            c.id,
-            c.name,
-            ms(w.swap_us),
-            ms(w.queue_us),
-            ms(w.gpu_us),
-            w.slices,
-            w.deferred
-        );
+        print!("{:>4} {:<20} {:>10.1} {:>10.1}", c.id, c.name, ms(w.swap_us), ms(w.gpu_us));
+        match &c.device {
+            Some(d) => println!("  {}", device_line(d)),
+            None => println!(),
+        }
+    }
+    if let Some(d) = &s.compositor_device {
+        println!("{:>4} {:<20} {:>10} {:>10}  {}", "", "(compositor)", "", "", device_line(d));
     }
     if !s.device_objects.is_empty() {
         let live: Vec<String> = s.device_objects.iter().map(|(k, v)| format!("{k} {v}")).collect();

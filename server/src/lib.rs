@@ -6,7 +6,7 @@ pub mod executor;
 pub mod listener;
 pub mod session;
 
-pub use listener::{serve, ExecutorKind, ServeOptions, ServerError};
+pub use listener::{serve, DeviceMode, ExecutorKind, ServeOptions, ServerError};
 pub mod compositor;
 pub mod demo;
 pub mod gles;

@@ -11,10 +11,10 @@ use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::default_socket_path;
 use strata_protocol::handshake::{ControlReply, ControlRequest, VertexWire};
 use strata_server::compositor::{Intermediate, Lighting, Mode, NormalSource};
-use strata_server::gles::{DepthFormat, DepthOptions};
+use strata_server::gles::{DepthFormat, DepthOptions, TransferMode};
 use strata_server::layout::{Config, LayoutEntry};
 use strata_server::root::OutputSpec;
-use strata_server::{serve, ExecutorKind, ServeOptions};
+use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
 mod ctl;
@@ -100,9 +100,30 @@ enum Cmd {
         /// client by name), and the total.
         #[command(flatten)]
         quota: strata_server::quota::QuotaArgs,
-        /// How clients' work is scheduled on the GPU queue by class.
+        /// The class of clients the configuration does not name.
         #[command(flatten)]
         schedule: strata_server::schedule::ScheduleArgs,
+        /// Which device each client renders on: per-client (a device and instance of its
+        /// own, at its class's priority; frames reach the compositor's device through shared
+        /// memory) or shared (the compositor's, one queue for all).
+        #[arg(long, value_enum, default_value_t = DeviceMode::PerClient)]
+        devices: DeviceMode,
+        /// How window surfaces' frames reach the compositor's device: auto (the same memory,
+        /// exported and imported, where the driver can share it; else copied) or copy (always
+        /// copied through host memory).
+        #[arg(long, value_enum, default_value_t = TransferMode::Auto)]
+        frame_transfer: TransferMode,
+        /// Do not ask for a queue global priority by class (VK_KHR/EXT_global_priority).
+        #[arg(long)]
+        no_global_priority: bool,
+        /// Rasterizer threads of each client's device on a CPU rasterizer (lavapipe): one
+        /// keeps clients from contending for cores inside each other's draws; 0: the driver's
+        /// default (one per core). The compositor's device keeps the default.
+        #[arg(long, default_value_t = 1)]
+        client_rasterizer_threads: u32,
+        /// Let `ctl` destroy a client's device, as a fault would (for tests).
+        #[arg(long, hide = true)]
+        allow_fault_injection: bool,
     },
     /// Administer a running daemon.
     Ctl {
@@ -171,6 +192,10 @@ enum Cmd {
         /// then compares eye-space depth) or not (raw depth).
         #[arg(long, value_enum, default_value_t = Projections::Declared)]
         projections: Projections,
+        /// One more option for the demo's daemon (repeatable), e.g.
+        /// `--daemon-arg=--frame-transfer=copy`.
+        #[arg(long = "daemon-arg", allow_hyphen_values = true)]
+        daemon_args: Vec<String>,
     },
 }
 
@@ -224,6 +249,8 @@ fn init_logging() {
 }
 
 fn main() -> Result<()> {
+    // Before any thread starts (see `settle_environment`).
+    strata_server::gpu::settle_environment();
     init_logging();
     match Cli::parse().command {
         Cmd::Serve {
@@ -247,6 +274,11 @@ fn main() -> Result<()> {
             mut layouts,
             quota,
             schedule,
+            devices,
+            frame_transfer,
+            no_global_priority,
+            allow_fault_injection,
+            client_rasterizer_threads,
         } => {
             let mut quotas = Vec::new();
             if let Some(path) = config {
@@ -283,7 +315,12 @@ fn main() -> Result<()> {
                 limits: quota.limits(),
                 quotas,
                 total_gpu_bytes: quota.total(),
-                schedule: schedule.policy()?,
+                default_class: schedule.default_priority,
+                devices,
+                frame_transfer,
+                global_priority: !no_global_priority,
+                fault_injection: allow_fault_injection,
+                client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
             };
             run_daemon(opts)
         }
@@ -306,7 +343,9 @@ fn main() -> Result<()> {
             };
             sample_client(&opts, commands, verify_every, max_upload, seed)
         }
-        Cmd::Demo { frames, out, scene, projections } => demo(frames, &out, scene, projections),
+        Cmd::Demo { frames, out, scene, projections, daemon_args } => {
+            demo(frames, &out, scene, projections, &daemon_args)
+        }
     }
 }
 
@@ -388,7 +427,13 @@ pub(crate) fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Ve
     Ok(())
 }
 
-fn demo(frames: u32, out: &std::path::Path, scene: Scene, projections: Projections) -> Result<()> {
+fn demo(
+    frames: u32,
+    out: &std::path::Path,
+    scene: Scene,
+    projections: Projections,
+    daemon_args: &[String],
+) -> Result<()> {
     let dir = std::env::temp_dir().join(format!("strata-demo-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let socket = dir.join("strata.sock");
@@ -400,6 +445,7 @@ fn demo(frames: u32, out: &std::path::Path, scene: Scene, projections: Projectio
         .arg(&socket)
         // The planes are compared by colour: unlit.
         .args(if scene == Scene::Planes { &["--lighting", "off"][..] } else { &[] })
+        .args(daemon_args)
         .spawn()
         .context("starting the daemon")?;
     let deadline = Instant::now() + std::time::Duration::from_secs(20);

@@ -14,7 +14,7 @@ use tracing::{info, warn};
 
 use crate::compositor::{Compositor, CompositorError, Intermediate, Layer, Mode};
 use crate::gpu::Gpu;
-use crate::scene::{Region, Scene, Work};
+use crate::scene::{Part, Region, Scene, Work};
 
 /// Default output: the width and height of a typical automotive centre display.
 pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
@@ -106,8 +106,12 @@ struct Output {
     region: [i32; 4],
     /// Whether the last composite reached the window (if any).
     presented: bool,
-    /// Time spent compositing into it so far.
-    busy: Duration,
+    /// The composites' own device time so far.
+    device: Duration,
+    /// Time they waited on the queue.
+    queue: Duration,
+    /// Time spent planning, encoding and submitting them.
+    encode: Duration,
 }
 
 struct Inner {
@@ -134,6 +138,9 @@ pub enum RootError {
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),
 }
+
+/// The longest the compositor waits for one composite (a wedged device must not wedge it).
+const COMPOSITE_WAIT_LIMIT: Duration = Duration::from_secs(5);
 
 /// Background of every output: opaque black.
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
@@ -192,7 +199,9 @@ impl Root {
                 passes: 0,
                 region: [0; 4],
                 presented: true,
-                busy: Duration::ZERO,
+                device: Duration::ZERO,
+                queue: Duration::ZERO,
+                encode: Duration::ZERO,
             });
         }
         Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs: made, composited: None }) })
@@ -201,6 +210,14 @@ impl Root {
     /// Composites every output if the scene changed since the last composite; returns the
     /// damage count the outputs now reflect.
     pub fn composite_if_damaged(&self) -> Option<u64> {
+        self.composite_part(Part::All)
+    }
+
+    /// Composites `part` of what changed on every output: with `Part::All`, everything, if
+    /// anything changed since the last composite (returning the damage count the outputs now
+    /// reflect); with `Part::High`, only high-priority surfaces' new frames (returning `None`
+    /// when the compositor is unavailable).
+    pub fn composite_part(&self, part: Part) -> Option<u64> {
         let mut inner = self.inner.lock().ok()?;
         let damage = self.scene.damage();
         if inner.composited == Some(damage) {
@@ -211,7 +228,7 @@ impl Root {
         let mut composited = Vec::new();
         // Encode and submit under the scene lock: no swap can interleave, so every front
         // image sampled here is a completed frame.
-        let (_, seen, shown) = self.scene.compose(|surfaces, light, changed| {
+        let (_, seen, shown) = self.scene.compose(part, |surfaces, light, changed| {
             for (index, out) in outputs.iter_mut().enumerate() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
                 // The changed region in this output's pixels; nothing to do if it misses it.
@@ -256,23 +273,37 @@ impl Root {
                 out.presented = false;
             }
         })?;
-        inner.composited = Some(seen);
+        if part == Part::All {
+            inner.composited = Some(seen);
+        }
+        let submitted = Instant::now();
         for out in inner.outputs.iter_mut().filter(|o| !o.presented) {
             out.presented = true;
             if let Some(w) = &mut out.window {
                 w.present(&self.gpu, &out.texture);
             }
         }
-        // Wait for this composite only: work clients submitted meanwhile is theirs to wait for.
-        if let Some(index) = inner.compositor.last_submission.take() {
-            let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: Some(index), timeout: None });
-        }
+        // Wait for this composite: nothing else runs on the compositor's device.
+        let waited = match inner.compositor.last_submission.take() {
+            Some(index) => {
+                let wait = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(COMPOSITE_WAIT_LIMIT) };
+                if let Err(e) = self.gpu.device.poll(wait) {
+                    warn!("waiting for a composite: {e}");
+                }
+                submitted.elapsed()
+            }
+            None => Duration::ZERO,
+        };
+        let device = inner.compositor.take_device_time().unwrap_or(waited).min(waited);
         self.scene.shown(shown);
         // Each output composited shares the round's time (one output: its composite's cost).
-        let share = started.elapsed() / composited.len().max(1) as u32;
+        let n = composited.len().max(1) as u32;
+        let encode = submitted.duration_since(started);
         for &i in &composited {
             if let Some(out) = inner.outputs.get_mut(i) {
-                out.busy += share;
+                out.device += device / n;
+                out.queue += (waited - device) / n;
+                out.encode += encode / n;
             }
         }
         Some(seen)
@@ -291,7 +322,9 @@ impl Root {
                 composites: o.composites,
                 passes: o.passes,
                 region: o.region,
-                composite_us: o.busy.as_micros() as u64,
+                composite_us: o.device.as_micros() as u64,
+                queue_us: o.queue.as_micros() as u64,
+                encode_us: o.encode.as_micros() as u64,
             })
             .collect()
     }
@@ -319,7 +352,10 @@ impl Root {
         let period = Duration::from_secs_f64(1.0 / refresh_hz.clamp(1.0, 1000.0));
         self.scene.set_root(true);
         std::thread::Builder::new().name("compositor".into()).spawn(move || {
-            info!(refresh_hz, "compositor running");
+            // The compositor is on every frame's path to the output: it runs at the high
+            // class's CPU priority where the daemon may raise it.
+            let nice = crate::gpu::set_thread_nice(crate::gpu::nice_for(strata_protocol::control::Priority::High));
+            info!(refresh_hz, nice, "compositor running");
             let mut next = Instant::now();
             let mut seen = None;
             loop {
@@ -331,7 +367,11 @@ impl Root {
                     std::thread::sleep(next - now);
                 }
                 next = (next + period).max(now);
-                match root.composite_if_damaged() {
+                // High-priority surfaces' new frames first, and the refresh counted once they
+                // are shown; then whatever else changed, which may take longer.
+                let high = root.composite_part(Part::High);
+                root.scene.refreshed();
+                match high.and_then(|_| root.composite_part(Part::All)) {
                     Some(d) => seen = Some(d),
                     None => {
                         warn!("the compositor's state is poisoned; stopping it");
@@ -339,8 +379,6 @@ impl Root {
                         break;
                     }
                 }
-                root.scene.refreshed();
-                root.gpu.scheduler.composited(next);
             }
             info!("compositor stopped");
         })

@@ -20,6 +20,9 @@ pub enum SessionEnd {
     LeftMidCommand,
     /// The client broke the protocol; the text is the logged reason.
     Violation(String),
+    /// The daemon could not go on serving the client (its GPU device was lost, or none could
+    /// be opened); the text is the logged reason.
+    Failed(String),
 }
 
 impl std::fmt::Display for SessionEnd {
@@ -28,6 +31,7 @@ impl std::fmt::Display for SessionEnd {
             SessionEnd::ClientLeft => f.write_str("client disconnected"),
             SessionEnd::LeftMidCommand => f.write_str("client disconnected in the middle of a command"),
             SessionEnd::Violation(r) => write!(f, "protocol violation: {r}"),
+            SessionEnd::Failed(r) => write!(f, "session ended: {r}"),
         }
     }
 }
@@ -167,6 +171,7 @@ impl Session {
                     let end = if reader.mid_message() { SessionEnd::LeftMidCommand } else { SessionEnd::ClientLeft };
                     return (end, *stats);
                 }
+                Err(Stop::Exec(e)) => return (SessionEnd::Failed(e.to_string()), *stats),
                 Err(e) => return (SessionEnd::Violation(e.to_string()), *stats),
             }
         }

@@ -4,7 +4,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use strata_protocol::control::{ClientStats, DaemonStats};
+use strata_protocol::control::{ClientStats, DaemonStats, DeviceStats, DeviceThread};
 
 use crate::gpu::Gpu;
 use crate::listener::ClientInfo;
@@ -49,6 +49,26 @@ fn device_objects(gpu: &Gpu) -> BTreeMap<String, u64> {
     .collect()
 }
 
+/// Thread `tid` of this process, if it still runs.
+fn thread(tid: i32) -> Option<DeviceThread> {
+    let stat = std::fs::read_to_string(format!("/proc/self/task/{tid}/stat")).ok()?;
+    let name = std::fs::read_to_string(format!("/proc/self/task/{tid}/comm")).ok()?.trim_end().to_string();
+    // Fields after the command name (which may hold spaces): nice is field 19, the 17th after it.
+    let nice = stat.rsplit_once(')').and_then(|(_, rest)| rest.split_whitespace().nth(16)?.parse().ok())?;
+    Some(DeviceThread { tid, name, nice })
+}
+
+/// What `ctl stats` shows of a device; `own`: not the compositor's.
+pub fn device_stats(gpu: &Gpu, own: bool) -> DeviceStats {
+    DeviceStats {
+        own,
+        threads: gpu.threads.iter().filter_map(|&t| thread(t)).collect(),
+        global_priority: gpu.global_priority.map(str::to_string),
+        busy_us: gpu.busy().as_micros().min(u128::from(u64::MAX)) as u64,
+        lost: gpu.is_lost(),
+    }
+}
+
 /// Gathers the daemon's statistics.
 pub fn collect(
     gpu: Option<&Gpu>,
@@ -84,6 +104,7 @@ pub fn collect(
                 priority: c.lane.as_ref().map(|l| l.class()).unwrap_or_default(),
                 waits: c.lane.as_ref().map(|l| l.waits()).unwrap_or_default(),
                 deadline_misses: surfaces.iter().filter(|r| r.client_id == id).map(|r| r.deadline_misses).sum(),
+                device: c.device.get().map(|d| device_stats(d, gpu.is_none_or(|g| !std::ptr::eq(g, &**d)))),
             }
         })
         .collect();
@@ -97,5 +118,6 @@ pub fn collect(
         gpu_bytes_limit: pool.limit(),
         objects,
         device_objects: gpu.map(device_objects).unwrap_or_default(),
+        compositor_device: gpu.map(|g| device_stats(g, false)),
     }
 }

@@ -176,7 +176,7 @@ impl WindowOutput {
             rp.set_bind_group(0, &bind, &[]);
             rp.draw(0..3, 0..1);
         }
-        crate::schedule::submit_compositor(gpu, vec![enc.finish()]);
+        gpu.queue.submit([enc.finish()]);
         self.window.pre_present_notify();
         gpu.queue.present(frame);
     }

@@ -171,9 +171,15 @@ fn a_surface_without_alpha_is_opaque() {
     }
     // GLES 2.0 §4.3.1: reading a colour buffer without alpha gives A = 1.
     assert_eq!(read, [vec![255, 0, 0, 0], vec![255, 0, 0, 255]], "glReadPixels after the clear");
+    // A frame is published once its work has completed on the client's device.
+    let start = std::time::Instant::now();
+    while scene.rows().iter().any(|r| r.frames == 0) {
+        assert!(start.elapsed() < std::time::Duration::from_secs(10), "the swapped frames were never published");
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
     let out = output(&gpu);
     let ((img, opaque, culled), _, _) = scene
-        .compose(|surfaces, _, _| {
+        .compose(strata_server::scene::Part::All, |surfaces, _, _| {
             let layers: Vec<Layer<'_>> = surfaces
                 .iter()
                 .map(|s| Layer {

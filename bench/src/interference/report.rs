@@ -31,6 +31,8 @@ pub(super) fn report(
             let p99_ratio = p.p99_ratio.unwrap_or(f64::INFINITY);
             let (client_misses, alone_client_misses) = (p.ic.client_misses, alone.ic.client_misses);
             let (p99_ok, misses_ok) = (p99_ratio <= 1.25, client_misses <= alone_client_misses);
+            // A load without a HU (the CPU hog) has nothing to keep.
+            let hu_ok = p.hu_alone_fps.is_none() || p.hu_vs_alone.is_some_and(|r| r >= 0.7);
             let load = p.phase.clone();
             Verdict {
                 load,
@@ -39,7 +41,9 @@ pub(super) fn report(
                 client_misses,
                 alone_client_misses,
                 misses_ok,
-                pass: p99_ok && misses_ok,
+                hu_vs_alone: p.hu_vs_alone,
+                hu_ok,
+                pass: p99_ok && misses_ok && hu_ok,
             }
         })
         .collect();
@@ -84,10 +88,12 @@ fn print_table(r: &Report) {
         if r.priorities { "on" } else { "off" },
         r.deadline_ms
     );
-    println!("phase      frames  p50 ms  p99 ms   max ms misses daemon  p50 x  p99 x  max x  HU fps  HU own  load");
+    println!(
+        "phase      frames  p50 ms  p99 ms   max ms misses daemon  p50 x  p99 x  max x  HU fps  HU own HU alone HU/alone  load"
+    );
     for p in &r.phases {
         println!(
-            "{:<10} {:>6} {:>7.2} {:>7.2} {:>8.2} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>5}",
+            "{:<10} {:>6} {:>7.2} {:>7.2} {:>8.2} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>8} {:>8} {:>5}",
             p.phase,
             p.ic.frames,
             p.ic.p50_ms,
@@ -100,6 +106,8 @@ fn print_table(r: &Report) {
             opt(p.max_ratio, 2),
             opt(p.hu_fps, 2),
             opt(p.hu_reported_fps, 2),
+            opt(p.hu_alone_fps, 2),
+            opt(p.hu_vs_alone, 2),
             opt(p.load_average_1m, 2),
         );
     }
@@ -109,14 +117,16 @@ fn print_table(r: &Report) {
         }
     }
     for v in &r.verdicts {
+        let hu = v.hu_vs_alone.map_or_else(|| "no HU".to_string(), |r| format!("{r:.2}x"));
         println!(
-            "target {:<10} p99 {:.2}x alone ({}), misses {} vs {} alone ({}): {}",
+            "target {:<10} p99 {:.2}x alone ({}), misses {} vs {} alone ({}), HU {hu} of alone ({}): {}",
             v.load,
             v.p99_ratio,
             if v.p99_ok { "<= 1.25 ok" } else { "> 1.25" },
             v.client_misses,
             v.alone_client_misses,
             if v.misses_ok { "ok" } else { "more" },
+            if v.hu_ok { ">= 0.7 ok" } else { "< 0.7" },
             if v.pass { "MET" } else { "NOT MET" }
         );
     }

@@ -38,6 +38,7 @@ mod plan;
 pub mod reference;
 mod resources;
 mod shader;
+mod timing;
 
 use std::sync::Arc;
 
@@ -161,6 +162,8 @@ pub struct Compositor {
     pub last_stats: Stats,
     /// The queue submission of the last composite that drew anything.
     pub last_submission: Option<wgpu::SubmissionIndex>,
+    /// Timestamps around each composite, where the device has them.
+    timing: Option<timing::Timing>,
 }
 
 impl Compositor {
@@ -176,6 +179,7 @@ impl Compositor {
             return Err(CompositorError::ExceedsDevice { requested: m, device });
         }
         Ok(Compositor {
+            timing: timing::Timing::new(&gpu),
             res: Resources::new(gpu.clone()),
             gpu,
             per_pass: (m / 2) as usize,
@@ -227,6 +231,13 @@ impl Compositor {
     /// The texture limit in force.
     pub fn max_textures(&self) -> u32 {
         self.max_textures
+    }
+
+    /// The device time of the last composite (from timestamps at the start of its first pass
+    /// and the end of its last), once it has completed; `None` where the device has no
+    /// timestamps or the composite drew nothing.
+    pub fn take_device_time(&mut self) -> Option<std::time::Duration> {
+        self.timing.as_mut()?.device_time(&self.gpu)
     }
 
     /// Passes a group of `k` surfaces takes: `1 + ⌈(k − p)/(p − 1)⌉` beyond `p`.
@@ -335,7 +346,8 @@ impl Compositor {
         let out_view = output.create_view(&Default::default());
         let d = self.gpu.device.clone();
         let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("composite") });
-        for pass in passes {
+        let n = passes.len();
+        for (i, pass) in passes.into_iter().enumerate() {
             let attach = |view| {
                 Some(wgpu::RenderPassColorAttachment {
                     view,
@@ -352,7 +364,7 @@ impl Compositor {
                 label: Some("composite pass"),
                 color_attachments: &attachments,
                 depth_stencil_attachment: None,
-                timestamp_writes: None,
+                timestamp_writes: self.timing.as_ref().and_then(|t| t.writes(i, n)),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -378,6 +390,9 @@ impl Compositor {
                 rp.draw(0..4, draw.instances);
             }
         }
-        self.last_submission = Some(crate::schedule::submit_compositor(&self.gpu, vec![enc.finish()]));
+        if let (Some(t), true) = (&mut self.timing, n > 0) {
+            t.resolve(&mut enc);
+        }
+        self.last_submission = Some(self.gpu.queue.submit([enc.finish()]));
     }
 }

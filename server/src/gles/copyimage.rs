@@ -123,7 +123,7 @@ impl GlesExecutor {
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
         );
         self.flush();
-        self.r.lane.submit(&self.gpu, vec![enc.finish()], "a copy to a texture");
+        self.r.lane.submit(&self.gpu, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.
             let view = dst_tex.create_view(&wgpu::TextureViewDescriptor {

@@ -102,6 +102,11 @@ fn flushes_first(op: Opcode) -> bool {
 impl Executor for GlesExecutor {
     fn execute(&mut self, cmd: Command<'_>) -> Result<Option<Reply>, ExecError> {
         let op = cmd.opcode();
+        if self.gpu.is_lost() {
+            // Only this client's device: it is told by the end of its session, and every
+            // other client and the compositor go on.
+            return Err(ExecError("its GPU device was lost".into()));
+        }
         // Everything a command does on the device is charged to this client.
         let scope = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let reply = if self.current.is_none() && needs_context(op) {
@@ -115,14 +120,7 @@ impl Executor for GlesExecutor {
             if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
                 ctx.call = op.name();
             }
-            let reply = self.dispatch(cmd);
-            if flushes_first(op) && self.r.lane.sliced() {
-                // Uploads are queued writes that the next submission carries, whoever makes
-                // it: a sliced client submits its own at once, so that they run in its turn
-                // and not at the start of another client's work.
-                self.r.lane.submit(&self.gpu, Vec::new(), op.name());
-            }
-            reply
+            self.dispatch(cmd)
         };
         let caught = pollster::block_on(scope.pop());
         if caught.is_some() || !self.r.errors.is_empty() {

@@ -544,5 +544,9 @@ impl GlesExecutor {
 
     pub(super) fn glFinish(&mut self) {
         self.r.finish();
+        // Every command before it has completed, the swaps too: their frames are published.
+        if let Some((scene, client, _)) = &self.scene {
+            scene.wait_published(*client);
+        }
     }
 }

@@ -247,7 +247,7 @@ impl GlesExecutor {
         let (w, h) = pbuffer_size(&attribs)?;
         // Not composited, so the layout's projection is not for it: it keeps its own.
         let projection = self.declared_projection("eglCreatePbufferSurface", &attribs)?;
-        self.make_surface(c, w, h, false, projection)
+        self.make_surface(c, w, h, false, projection).map(|(id, _)| id)
     }
 
     /// The daemon's layout entry for this client, if any, overrides the placement asked for,
@@ -284,9 +284,10 @@ impl GlesExecutor {
                 tracing::debug!(%asked, %fixed, "the surface's projection is overridden by the daemon's layout");
             }
         }
-        let id = self.make_surface(c, width, height, true, projection)?;
+        let (id, views) = self.make_surface(c, width, height, true, projection)?;
         if let Some((scene, client, name)) = &self.scene {
             scene.add(*client, id, name, [x, y, width, height], z);
+            self.register_buffers(id, views);
             // The compositor reads the depth as stored: reversed where the daemon reverses it
             // (`--reversed-z`); `eglQuerySurface` keeps answering what was declared.
             let reversed = self.surfaces.get(&id).and_then(|s| s.reversed);
@@ -328,10 +329,7 @@ impl GlesExecutor {
         // The class applies to the whole client; the daemon's configuration wins over it.
         if let (Some(class), false) = (asked, self.policy_fixed) {
             self.r.lane.set_class(class);
-            if class == Priority::Low {
-                // This runs on the client's session thread.
-                self.r.lane.lower_thread();
-            }
+            self.apply_class_priority(class);
             if let Some((scene, client, _)) = &self.scene {
                 scene.set_policy(*client, class, self.deadline);
             }

@@ -37,9 +37,6 @@ pub struct TextureImage {
     _reserved: Reservation,
 }
 
-/// Most bytes of one upload a sliced client submits at once (see [`Image::write_in_turns`]).
-const UPLOAD_SLICE: usize = 2 << 20;
-
 /// A rectangle of one level of one face.
 #[derive(Debug, Clone, Copy)]
 pub struct Region {
@@ -146,28 +143,6 @@ impl TextureImage {
             wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(bytes_per_row), rows_per_image: None },
             wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
         );
-    }
-
-    /// Writes like [`Image::write`]; for a `lane` whose work is sliced, a large upload goes in
-    /// bands of rows of at most `UPLOAD_SLICE` bytes, each submitted in the lane's turn, so
-    /// that no upload holds the queue much longer than a slice.
-    pub fn write_in_turns(&self, gpu: &Gpu, r: Region, data: &[u8], lane: &crate::schedule::Lane) {
-        // A policy that forces pieces (a test of the image) cuts even small uploads.
-        let limit = if lane.forced_pieces().is_some() { 64 } else { UPLOAD_SLICE };
-        if !lane.sliced() || matches!(self.storage, Storage::Native(_)) || data.len() <= limit {
-            return self.write(gpu, r, data);
-        }
-        let row = r.width as usize * self.storage.texel_bytes() as usize;
-        if row == 0 {
-            return self.write(gpu, r, data);
-        }
-        let rows = (limit / row).max(1);
-        for (i, band) in data.chunks(rows * row).take(r.height.div_ceil(rows as u32) as usize).enumerate() {
-            let y = (i * rows) as u32;
-            let height = (band.len() / row) as u32;
-            self.write(gpu, Region { y: r.y + y, height: height.min(r.height - y), ..r }, band);
-            lane.submit(gpu, Vec::new(), "a band of an upload");
-        }
     }
 
     /// Writes compressed blocks covering `r` (a block-aligned rectangle of one level) and

@@ -25,6 +25,7 @@ pub mod enums;
 mod error;
 mod formats;
 mod framebuffers;
+mod frames;
 pub mod glsl;
 mod images;
 mod labels;
@@ -45,6 +46,7 @@ mod vertex;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+pub use frames::TransferMode;
 pub use render::Fixed as RendererFixed;
 pub use surface::{DepthFormat, DepthOptions, Surface};
 
@@ -81,6 +83,10 @@ pub struct GlesExecutor {
     projection: Option<strata_protocol::projection::Projection>,
     /// How surfaces' depth is stored (`--depth-format`, `--reversed-z`).
     depth: DepthOptions,
+    /// How window surfaces' frames reach the compositor (`--frame-transfer`).
+    frame_transfer: TransferMode,
+    /// Publishes each swapped frame once its work has completed on this client's device.
+    completions: frames::Completions,
 }
 
 impl Drop for GlesExecutor {
@@ -97,6 +103,8 @@ impl GlesExecutor {
     pub fn new(gpu: Arc<Gpu>) -> Self {
         GlesExecutor {
             r: Renderer::new(gpu.clone()),
+            completions: frames::Completions::new(gpu.clone(), "frames".into()),
+            frame_transfer: TransferMode::Auto,
             gpu,
             initialized: false,
             surfaces: HashMap::new(),
@@ -124,6 +132,12 @@ impl GlesExecutor {
         self
     }
 
+    /// Submits this client's work through `lane` (one of the daemon's scheduler's).
+    pub fn with_lane(mut self, lane: Arc<crate::schedule::Lane>) -> Self {
+        self.r.lane = lane;
+        self
+    }
+
     /// This client's way onto the queue.
     pub fn lane(&self) -> Arc<crate::schedule::Lane> {
         self.r.lane.clone()
@@ -148,6 +162,12 @@ impl GlesExecutor {
         self
     }
 
+    /// Hands window surfaces' frames to the compositor as `mode` says.
+    pub fn with_frame_transfer(mut self, mode: TransferMode) -> Self {
+        self.frame_transfer = mode;
+        self
+    }
+
     /// Holds this client to `account`'s quota.
     pub fn with_account(mut self, account: Arc<crate::quota::Account>) -> Self {
         self.account = account;
@@ -157,7 +177,34 @@ impl GlesExecutor {
     /// Shows this client's window surfaces in `scene` as client `id` named `name`.
     pub fn with_scene(mut self, scene: Arc<crate::scene::Scene>, id: u64, name: &str) -> Self {
         self.scene = Some((scene, id, name.to_string()));
+        self.completions = frames::Completions::new(self.gpu.clone(), format!("frames-{id}"));
         self
+    }
+
+    /// Whether this client renders on a device of its own (not the compositor's).
+    fn own_device(&self) -> bool {
+        let comp = self.scene.as_ref().and_then(|(scene, _, _)| scene.compositor());
+        comp.is_none_or(|c| !Arc::ptr_eq(&c, &self.gpu))
+    }
+
+    /// Moves this client's threads to `class`'s CPU priority (on its session thread): its
+    /// session thread and, with a device of its own, the device's driver threads. Raising
+    /// needs `CAP_SYS_NICE`; without it, only lowering takes effect.
+    pub(super) fn apply_class_priority(&self, class: strata_protocol::control::Priority) {
+        let nice = crate::gpu::nice_for(class);
+        crate::gpu::set_thread_nice(nice);
+        let idle = class == strata_protocol::control::Priority::Low;
+        if idle {
+            crate::gpu::set_thread_idle(0);
+        }
+        if self.own_device() {
+            self.gpu.renice(nice);
+            if idle {
+                for &t in &self.gpu.threads {
+                    crate::gpu::set_thread_idle(t);
+                }
+            }
+        }
     }
 
     /// Pipelines created because none in the cache matched.

@@ -11,8 +11,10 @@ use strata_protocol::EglResult;
 use super::context::MAX_TEXTURE;
 use super::egl::Config;
 use super::enums::*;
+use super::frames::{self, Buffer, CopyPath, Transfer, Window};
 use super::render::{Target, COLOR_FORMAT};
 use super::GlesExecutor;
+use crate::scene::{Acquired, Views};
 
 /// The depth image format of surfaces whose config has depth (`stratad serve --depth-format`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -115,10 +117,8 @@ impl ReversedZ {
 pub struct Surface {
     /// The render target framebuffer 0 resolves to (the back buffer of a window surface).
     pub target: Target,
-    /// A depth-only view of the target's depth, for the compositor.
-    depth_sample: Option<wgpu::TextureView>,
-    /// A window surface's front buffer: the last completed frame.
-    front: Option<(Target, Option<wgpu::TextureView>)>,
+    /// A window surface's buffers, of which `target` is the back one (`None`: a pbuffer).
+    pub(super) frames: Option<Window>,
     /// The config it was made with.
     pub config: Config,
     /// Window surface (composited) rather than pbuffer.
@@ -131,13 +131,13 @@ pub struct Surface {
     /// Stages of reversed-Z draws (the vertex stage with the reversed-Z epilogue, and a
     /// fragment stage reading `gl_FragCoord` as GL's depth), by program id and points variant.
     pub(super) reversed_stages: HashMap<(u64, bool), (wgpu::ShaderModule, Option<wgpu::ShaderModule>)>,
-    /// The images' memory, held against the client's quota.
-    _reserved: crate::quota::Reservation,
+    /// A pbuffer's memory, held against the client's quota (a window's buffers hold theirs).
+    _reserved: Option<crate::quota::Reservation>,
 }
 
-/// Bytes of the images of a `w`×`h` surface with depth/stencil `format`: colour and
-/// depth/stencil, twice for a window surface's front buffer.
-fn surface_bytes(format: Option<wgpu::TextureFormat>, w: u32, h: u32, window: bool) -> u64 {
+/// Bytes of the images of one `w`×`h` buffer with depth/stencil `format`: colour and
+/// depth/stencil.
+fn surface_bytes(format: Option<wgpu::TextureFormat>, w: u32, h: u32) -> u64 {
     use wgpu::TextureFormat as F;
     let depth = match format {
         None => 0,
@@ -145,7 +145,19 @@ fn surface_bytes(format: Option<wgpu::TextureFormat>, w: u32, h: u32, window: bo
         Some(F::Depth32FloatStencil8) => 8,
         Some(_) => 4,
     };
-    u64::from(w) * u64::from(h) * (4 + depth) * if window { 2 } else { 1 }
+    u64::from(w) * u64::from(h) * (4 + depth)
+}
+
+/// Most buffers a window surface has: the back buffer, the newest frame, and one whose work
+/// is still running (so that a swap never waits for its own frame to complete), and at swap
+/// interval 0 also one a composite still reads, so that such a swap never waits for the
+/// compositor.
+fn most_buffers(interval: i32) -> usize {
+    if interval == 0 {
+        4
+    } else {
+        3
+    }
 }
 
 impl GlesExecutor {
@@ -154,10 +166,17 @@ impl GlesExecutor {
         self.depth.format(config, self.gpu.features)
     }
 
-    /// One colour (+ depth) render target of a surface, cleared to transparent black as Mesa's
-    /// are (opaque black without alpha, which then stays 1; depth to the far plane: 0 when
-    /// `reversed`), with a depth-only view for sampling.
-    fn make_target(&mut self, config: Config, w: u32, h: u32, reversed: bool) -> (Target, Option<wgpu::TextureView>) {
+    /// One colour (+ depth) render target of a surface, in `images` when given (else new
+    /// ones), cleared to transparent black as Mesa's are (opaque black without alpha, which
+    /// then stays 1; depth to the far plane: 0 when `reversed`); with its depth texture.
+    fn make_target(
+        &mut self,
+        config: Config,
+        w: u32,
+        h: u32,
+        reversed: bool,
+        images: Option<(wgpu::Texture, Option<wgpu::Texture>)>,
+    ) -> (Target, Option<wgpu::Texture>) {
         let depth_format = self.depth_format(config);
         let d = &self.gpu.device;
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
@@ -165,35 +184,27 @@ impl GlesExecutor {
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST;
         let size = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
-        let color = d.create_texture(&wgpu::TextureDescriptor {
-            label: Some("surface colour"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: COLOR_FORMAT,
-            usage,
-            view_formats: &[],
-        });
-        let color_view = color.create_view(&Default::default());
-        let mut sample = None;
-        let depth = depth_format.map(|format| {
-            let t = d.create_texture(&wgpu::TextureDescriptor {
-                label: Some("surface depth"),
+        let new = |label, format, usage| {
+            d.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
                 size,
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                usage,
                 view_formats: &[],
-            });
-            sample = Some(t.create_view(&wgpu::TextureViewDescriptor {
-                aspect: wgpu::TextureAspect::DepthOnly,
-                ..Default::default()
-            }));
-            (t.create_view(&Default::default()), format)
-        });
+            })
+        };
+        let (color, depth_tex) = match images {
+            Some(images) => images,
+            None => {
+                let depth_usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+                (new("surface colour", COLOR_FORMAT, usage), depth_format.map(|f| new("surface depth", f, depth_usage)))
+            }
+        };
+        let color_view = color.create_view(&Default::default());
+        let depth = depth_tex.as_ref().map(|t| (t.create_view(&Default::default()), t.format()));
         let uid = self.next_uid();
         let opaque = config.rgba[3] == 0;
         let target = Target { key: (uid, 0), color: Some((color, color_view)), depth, width: w, height: h, opaque };
@@ -204,11 +215,82 @@ impl GlesExecutor {
             target.has_stencil().then_some((0, 0xff)),
             None,
         );
-        (target, sample)
+        (target, depth_tex)
+    }
+
+    /// How window surfaces of `config` hand their frames to the compositor.
+    fn transfer_for(&self, config: Config) -> Transfer {
+        let comp = self.scene.as_ref().and_then(|(scene, _, _)| scene.compositor());
+        frames::transfer(&self.gpu, comp.as_ref(), self.depth_format(config), self.frame_transfer)
+    }
+
+    /// One buffer of a `w`×`h` window surface, reserved against the quota, and the
+    /// compositor's views of it.
+    fn make_buffer(
+        &mut self,
+        config: Config,
+        w: u32,
+        h: u32,
+        reversed: bool,
+        transfer: &mut Transfer,
+    ) -> Result<(Buffer, Views), i32> {
+        let depth_format = self.depth_format(config);
+        let extra = if *transfer == Transfer::Copy { CopyPath::bytes((w, h), depth_format.is_some()) } else { 0 };
+        let reserved = self.account.reserve(surface_bytes(depth_format, w, h) + extra).map_err(|_| EGL_BAD_ALLOC)?;
+        let comp = self.scene.as_ref().and_then(|(scene, _, _)| scene.compositor());
+        if let (Transfer::Export, Some(comp)) = (*transfer, &comp) {
+            match frames::shared_images(&self.gpu, comp, (w, h), depth_format) {
+                Ok((images, views)) => {
+                    let (target, _) = self.make_target(config, w, h, reversed, Some(images));
+                    return Ok((Buffer { target, copy: None, _reserved: reserved }, views));
+                }
+                Err(e) => {
+                    tracing::warn!("sharing a window surface's images failed ({e}); its frames are copied instead");
+                    *transfer = Transfer::Copy;
+                    return self.make_buffer(config, w, h, reversed, transfer);
+                }
+            }
+        }
+        let (target, depth_tex) = self.make_target(config, w, h, reversed, None);
+        let depth_view = depth_tex.as_ref().map(frames::depth_view);
+        match (*transfer, comp) {
+            (Transfer::Copy, Some(comp)) => {
+                let (path, views) = CopyPath::new(&self.gpu, &comp, (w, h), depth_view.as_ref());
+                Ok((Buffer { target, copy: Some(std::sync::Arc::new(path)), _reserved: reserved }, views))
+            }
+            _ => {
+                let color = target.color.as_ref().map(|(_, v)| v.clone()).ok_or(EGL_BAD_ALLOC)?;
+                Ok((Buffer { target, copy: None, _reserved: reserved }, (color, depth_view)))
+            }
+        }
+    }
+
+    /// A window surface's first two buffers (the first is the back buffer) and their views.
+    fn make_window(&mut self, config: Config, w: u32, h: u32, reversed: bool) -> Result<(Window, Vec<Views>), i32> {
+        let mut transfer = self.transfer_for(config);
+        let mut buffers = Vec::new();
+        let mut views = Vec::new();
+        for _ in 0..2 {
+            let (b, v) = self.make_buffer(config, w, h, reversed, &mut transfer)?;
+            buffers.push(b);
+            views.push(v);
+        }
+        Ok((Window { buffers, back: 0, transfer }, views))
+    }
+
+    /// Shows surface `id`'s buffers to the scene (the back one as such).
+    pub(super) fn register_buffers(&self, id: u32, views: Vec<Views>) {
+        if let Some((scene, client, _)) = &self.scene {
+            let back = self.surfaces.get(&id).and_then(|s| s.frames.as_ref()).map_or(0, |w| w.back);
+            for (i, v) in views.into_iter().enumerate() {
+                scene.add_buffer(*client, id, v, i == back);
+            }
+        }
     }
 
     /// A new pbuffer or window surface of `width`×`height` with `projection` in effect; its
-    /// handle, or the EGL error.
+    /// handle, or the EGL error, and for a window surface the compositor's views of its
+    /// buffers (for [`GlesExecutor::register_buffers`]).
     pub(super) fn make_surface(
         &mut self,
         config: Config,
@@ -216,7 +298,7 @@ impl GlesExecutor {
         height: i32,
         window: bool,
         projection: Option<Projection>,
-    ) -> Result<u32, i32> {
+    ) -> Result<(u32, Vec<Views>), i32> {
         if width < 0 || height < 0 {
             return Err(EGL_BAD_PARAMETER);
         }
@@ -224,57 +306,122 @@ impl GlesExecutor {
             return Err(if window { EGL_BAD_NATIVE_WINDOW } else { EGL_BAD_PARAMETER });
         }
         let (w, h) = ((width as u32).max(1), (height as u32).max(1));
-        let exceeded = |_| EGL_BAD_ALLOC;
-        self.account.admit(crate::quota::Kind::Surface, self.surfaces.len() as u64, 1).map_err(exceeded)?;
-        let reserved =
-            self.account.reserve(surface_bytes(self.depth_format(config), w, h, window)).map_err(exceeded)?;
+        self.account.admit(crate::quota::Kind::Surface, self.surfaces.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
         let reversed = if config.depth > 0 { self.depth.reversed(projection.as_ref()) } else { None };
-        let (target, depth_sample) = self.make_target(config, w, h, reversed.is_some());
-        // Window surfaces are double-buffered: a front buffer holds the last completed frame.
-        let front = window.then(|| self.make_target(config, w, h, reversed.is_some()));
+        let (target, frames, views, reserved) = if window {
+            let (win, views) = self.make_window(config, w, h, reversed.is_some())?;
+            (win.buffers[0].target.clone(), Some(win), views, None)
+        } else {
+            let bytes = surface_bytes(self.depth_format(config), w, h);
+            let reserved = self.account.reserve(bytes).map_err(|_| EGL_BAD_ALLOC)?;
+            let (target, _) = self.make_target(config, w, h, reversed.is_some(), None);
+            (target, None, Vec::new(), Some(reserved))
+        };
         let id = self.next_handle;
         self.next_handle += 1;
-        let reversed_stages = HashMap::new();
         let s = Surface {
             target,
-            depth_sample,
-            front,
+            frames,
             config,
             window,
             projection,
             reversed,
-            reversed_stages,
+            reversed_stages: HashMap::new(),
             _reserved: reserved,
         };
         self.surfaces.insert(id, s);
-        Ok(id)
+        Ok((id, views))
     }
 
-    /// `eglSwapBuffers`: the back buffer becomes the front (and is shown), the old front
-    /// becomes the next back buffer.
+    /// `eglSwapBuffers`: the back buffer's frame is published once its work completes on this
+    /// client's device (the compositor then takes it), and a free buffer becomes the back one.
     pub(super) fn swap(&mut self, surface: u32) -> Result<(), i32> {
         self.flush();
-        let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
-        let Some((front, front_depth)) = &mut s.front else { return Ok(()) };
-        std::mem::swap(&mut s.target, front);
-        std::mem::swap(&mut s.depth_sample, front_depth);
-        if let (Some(scene), Some((_, view))) = (&self.scene, &front.color) {
-            scene.0.present(scene.1, surface, view.clone(), front_depth.clone(), front.opaque);
-            let start = std::time::Instant::now();
-            scene.0.throttle(scene.1, surface);
-            self.r.lane.add_swap_wait(start.elapsed());
+        if !self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?.window {
+            return Ok(());
         }
-        // At most one frame of this client on the queue: whatever is submitted after it
-        // never waits behind a backlog of its frames.
+        let Some((scene, client, _)) = self.scene.clone() else {
+            // No compositor: the two buffers take turns.
+            let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
+            if let Some(win) = &mut s.frames {
+                win.back = (win.back + 1) % win.buffers.len();
+                s.target = win.buffers[win.back].target.clone();
+            }
+            return Ok(());
+        };
+        let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
+        let Some(win) = &mut s.frames else { return Ok(()) };
+        let back = win.back;
+        let opaque = s.target.opaque;
+        scene.submit(client, surface, back);
+        let copy = win.buffers[back].copy.clone();
+        if let Some(c) = &copy {
+            c.record(&self.gpu, &win.buffers[back].target);
+        }
+        // Marks the end of everything this frame submitted.
+        let index = self.gpu.queue.submit([]);
+        let comp = scene.compositor();
+        let publish = scene.clone();
+        self.completions.after(
+            index,
+            Box::new(move || {
+                if let (Some(c), Some(comp)) = (&copy, &comp) {
+                    if !c.deliver(comp) {
+                        tracing::warn!(surface, "a frame could not be read back, so it is not shown");
+                        return;
+                    }
+                }
+                publish.complete(client, surface, back, opaque);
+            }),
+        );
+        let next = self.next_back(&scene, client, surface)?;
+        if let Some(s) = self.surfaces.get_mut(&surface) {
+            if let Some(win) = &mut s.frames {
+                win.back = next;
+                s.target = win.buffers[next].target.clone();
+            }
+        }
+        let start = std::time::Instant::now();
+        scene.throttle(client, surface);
+        self.r.lane.add_swap_wait(start.elapsed());
+        // At most one frame of this client in flight on its device.
         self.r.lane.frame_boundary(&self.gpu);
         Ok(())
     }
 
-    /// `strataResizeSurface`: a window surface gets new back and front images of
-    /// `width`×`height` (cleared, as new surfaces are), keeping its handle, which is its scene
-    /// id, placement, depth layer, normal, swap interval and pacing; the scene shows the last
-    /// frame until the next swap presents one of the new size. A size the daemon's layout fixes
-    /// stays as it is.
+    /// The buffer surface `surface` draws its next frame into: a free one, a new one while
+    /// the surface has fewer than its swap interval needs, else the first to become free.
+    fn next_back(&mut self, scene: &crate::scene::Scene, client: u64, surface: u32) -> Result<usize, i32> {
+        let most = most_buffers(scene.interval(client, surface));
+        match scene.acquire(client, surface, most) {
+            Acquired::Buffer(i) => Ok(i),
+            Acquired::Grow => {
+                let s = self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?;
+                let (config, w, h, reversed) = (s.config, s.target.width, s.target.height, s.reversed.is_some());
+                let mut transfer = s.frames.as_ref().map_or(Transfer::Same, |f| f.transfer);
+                let (buffer, views) = self.make_buffer(config, w, h, reversed, &mut transfer)?;
+                let i = scene.add_buffer(client, surface, views, true).ok_or(EGL_BAD_SURFACE)?;
+                let win = self.surfaces.get_mut(&surface).and_then(|s| s.frames.as_mut()).ok_or(EGL_BAD_SURFACE)?;
+                win.transfer = transfer;
+                win.buffers.push(buffer);
+                debug_assert_eq!(win.buffers.len(), i + 1);
+                Ok(i)
+            }
+            Acquired::TimedOut => {
+                tracing::warn!(
+                    surface,
+                    "no buffer became free in time (a wedged compositor?); drawing into the one shown"
+                );
+                Ok(scene.take_any(client, surface).ok_or(EGL_BAD_SURFACE)?)
+            }
+            Acquired::Gone => Err(EGL_BAD_SURFACE),
+        }
+    }
+
+    /// `strataResizeSurface`: a window surface gets new buffers of `width`×`height` (cleared,
+    /// as new surfaces are), keeping its handle, which is its scene id, placement, depth layer,
+    /// normal, swap interval and pacing; the scene shows the last frame until the next swap
+    /// presents one of the new size. A size the daemon's layout fixes stays as it is.
     #[allow(non_snake_case)]
     pub(super) fn strataResizeSurface(
         &mut self,
@@ -297,21 +444,16 @@ impl GlesExecutor {
             return Ok(());
         }
         let (config, reversed) = (s.config, s.reversed.is_some());
-        // The new images are reserved before the old ones are given back, which they are once
-        // replaced.
-        let bytes = surface_bytes(self.depth_format(config), w, h, true);
-        let reserved = self.account.reserve(bytes).map_err(|_| EGL_BAD_ALLOC)?;
-        // Work recorded for the old images goes first.
+        // Work recorded for the old images goes first. The new buffers are reserved before
+        // the old ones are given back, which they are once replaced.
         self.flush();
-        let (target, depth_sample) = self.make_target(config, w, h, reversed);
-        let front = self.make_target(config, w, h, reversed);
+        let (win, views) = self.make_window(config, w, h, reversed)?;
         let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
-        s.target = target;
-        s.depth_sample = depth_sample;
-        s.front = Some(front);
-        s._reserved = reserved;
+        s.target = win.buffers[0].target.clone();
+        s.frames = Some(win);
         if let Some((scene, client, _)) = &self.scene {
             scene.resize(*client, surface, width, height);
+            scene.replace_buffers(*client, surface, views);
         }
         Ok(())
     }
@@ -347,10 +489,10 @@ mod tests {
         assert_eq!(opts(DepthFormat::Float32).format(config(24, 8), none), Some(F::Depth24PlusStencil8));
         assert_eq!(opts(DepthFormat::Unorm16).format(config(24, 8), with), Some(F::Depth24PlusStencil8));
         // Quota bytes follow the format: 4 colour + 2, 4 or 8 depth bytes per pixel.
-        assert_eq!(surface_bytes(Some(F::Depth16Unorm), 10, 10, false), 600);
-        assert_eq!(surface_bytes(Some(F::Depth32Float), 10, 10, true), 1600);
-        assert_eq!(surface_bytes(Some(F::Depth32FloatStencil8), 10, 10, false), 1200);
-        assert_eq!(surface_bytes(None, 10, 10, false), 400);
+        assert_eq!(surface_bytes(Some(F::Depth16Unorm), 10, 10), 600);
+        assert_eq!(surface_bytes(Some(F::Depth32Float), 10, 10), 800);
+        assert_eq!(surface_bytes(Some(F::Depth32FloatStencil8), 10, 10), 1200);
+        assert_eq!(surface_bytes(None, 10, 10), 400);
     }
 
     #[test]

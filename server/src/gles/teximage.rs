@@ -102,7 +102,6 @@ impl GlesExecutor {
         validate_size(image, level, width, height, border)?;
         let (uid, uid2) = (self.next_uid(), self.next_uid());
         let account = self.account.clone();
-        let lane = self.r.lane.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
@@ -132,7 +131,7 @@ impl GlesExecutor {
         t.defined[face as usize] |= 1 << level;
         let region = Region { face, level, x: 0, y: 0, width: w, height: h };
         match texels {
-            Some(data) => img.write_in_turns(gpu, region, &data, &lane),
+            Some(data) => img.write(gpu, region, &data),
             None => img.write(gpu, region, &blank(w * h, format, storage)),
         }
         Ok(())
@@ -192,7 +191,6 @@ impl GlesExecutor {
         }
         let uid = self.next_uid();
         let account = self.account.clone();
-        let lane = self.r.lane.clone();
         let (ctx, gpu) = self.ctx_gpu();
         let unpack = Unpack::of(&ctx.pixel_store);
         let name = image_texture(ctx, image);
@@ -238,7 +236,7 @@ impl GlesExecutor {
             .ok_or(GlError::InvalidOperation)?;
         t.decompress(gpu, &account, uid)?;
         if let Some(img) = &t.gpu {
-            img.write_in_turns(gpu, region, &data, &lane);
+            img.write(gpu, region, &data);
         }
         Ok(())
     }

@@ -73,7 +73,6 @@ impl Renderer {
             scissor,
             stencil_ref: stencil.map(|(s, _)| s).unwrap_or(0),
             blend_color: [0.0; 4],
-            topology: wgpu::PrimitiveTopology::TriangleList,
         });
     }
 

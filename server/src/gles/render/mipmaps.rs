@@ -3,10 +3,6 @@
 use super::super::enums::*;
 use super::{Renderer, SamplerState};
 
-/// Most destination pixels in one band of a level when a sliced client's mipmaps are
-/// generated (each band is a slice of its own).
-const MIP_BAND_PIXELS: u32 = 1 << 16;
-
 impl Renderer {
     /// Fills levels 1.. of every face of a (filterable, renderable) `format` texture from level
     /// 0 with a 2×2 box filter.
@@ -50,10 +46,6 @@ impl Renderer {
         let linear =
             self.sampler(SamplerState { min: LINEAR, mag: LINEAR, wrap_s: CLAMP_TO_EDGE, wrap_t: CLAMP_TO_EDGE });
         let d = &self.gpu.device;
-        // A sliced client's levels go one band of rows at a time, each submitted in its turn.
-        let sliced = self.lane.sliced();
-        // A policy that forces pieces (a test of the image) cuts even small levels.
-        let band_pixels = if self.lane.forced_pieces().is_some() { 16 } else { MIP_BAND_PIXELS };
         let mut enc = d.create_command_encoder(&Default::default());
         for layer in 0..layers {
             for level in 1..mips {
@@ -77,10 +69,7 @@ impl Renderer {
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&linear) },
                     ],
                 });
-                let (w, h) = ((tex.width() >> level).max(1), (tex.height() >> level).max(1));
-                let bands = if sliced { (w * h).div_ceil(band_pixels).clamp(1, h) } else { 1 };
-                let rows = h.div_ceil(bands);
-                for y in (0..h).step_by(rows as usize) {
+                {
                     let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("mipmap"),
                         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -96,18 +85,10 @@ impl Renderer {
                     });
                     rp.set_pipeline(&pipeline);
                     rp.set_bind_group(0, &group, &[]);
-                    rp.set_scissor_rect(0, y, w, rows.min(h - y));
                     rp.draw(0..3, 0..1);
-                    drop(rp);
-                    if sliced {
-                        let done = std::mem::replace(&mut enc, d.create_command_encoder(&Default::default()));
-                        self.lane.submit(&self.gpu, vec![done.finish()], "a band of mipmap generation");
-                    }
                 }
             }
         }
-        if !sliced {
-            self.lane.submit(&self.gpu, vec![enc.finish()], "mipmap generation");
-        }
+        self.lane.submit(&self.gpu, vec![enc.finish()]);
     }
 }

@@ -16,7 +16,6 @@ mod mipmaps;
 mod passes;
 mod pipelines;
 mod readback;
-mod slices;
 mod targets;
 
 use std::collections::HashMap;
@@ -156,9 +155,6 @@ pub struct Renderer {
     layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
     /// The client's way onto the queue.
     pub lane: Arc<crate::schedule::Lane>,
-    /// How each target's pass was cut last time and what each piece took, for lanes that
-    /// slice.
-    pass_costs: HashMap<((u64, u64), u64), slices::Costs>,
 }
 
 /// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.
@@ -276,10 +272,9 @@ impl Renderer {
     pub fn new(gpu: Arc<Gpu>) -> Self {
         let fixed = gpu.gles.get_or_init(|| Arc::new(Fixed::new(&gpu))).clone();
         let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment).max(16);
-        let lane = gpu.scheduler.lane(strata_protocol::control::Priority::Normal);
+        let lane = crate::schedule::Lane::new(strata_protocol::control::Priority::Normal);
         Renderer {
             lane,
-            pass_costs: HashMap::new(),
             gpu,
             pipelines: HashMap::new(),
             clear_pipelines: HashMap::new(),

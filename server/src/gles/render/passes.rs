@@ -6,7 +6,6 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::super::enums::*;
-use super::slices::{Part, Piece, Plan};
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
 
 /// What a recorded draw binds at group 0.
@@ -46,8 +45,6 @@ pub(super) struct Recorded {
     pub(super) stencil_ref: u32,
     /// Blend constant.
     pub(super) blend_color: [f64; 4],
-    /// Primitive topology (points are instanced triangle strips).
-    pub(super) topology: wgpu::PrimitiveTopology,
 }
 
 /// The open pass: its target, load operations and recorded draws.
@@ -162,13 +159,11 @@ impl Renderer {
             scissor: spec.scissor,
             stencil_ref: spec.stencil_ref,
             blend_color: spec.blend_color,
-            topology: spec.raster.topology,
         };
         self.pass_for(target).draws.push(rec);
     }
 
-    /// Encodes and submits the open pass: whole, or for a lane that slices, in pieces sized
-    /// by what this target's pass cost last time. A GPU validation error is queued in `errors`.
+    /// Encodes and submits the open pass. A GPU validation error is queued in `errors`.
     pub fn flush(&mut self) {
         let Some(pass) = self.pass.take() else { return };
         self.passes += 1;
@@ -176,18 +171,10 @@ impl Renderer {
         self.upload_staging();
         let ring = self.ring.as_ref().map(|(b, _)| b.clone());
         let groups = self.bind_groups(&pass, ring.as_ref());
-        let sliced = self.lane.sliced();
-        let plan = if sliced { self.plan_for(&pass) } else { Plan::whole(&pass) };
-        let mut times = Vec::with_capacity(plan.pieces.len());
-        for (i, piece) in plan.pieces.iter().enumerate() {
-            let mut enc =
-                self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
-            encode(&mut enc, &pass, &groups, ring.as_ref(), piece, i == 0);
-            times.push(self.lane.submit(&self.gpu, vec![enc.finish()], "a piece of a pass"));
-        }
-        if sliced {
-            self.remember(&pass, plan, &times);
-        }
+        let mut enc =
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
+        encode(&mut enc, &pass, &groups, ring.as_ref());
+        self.lane.submit(&self.gpu, vec![enc.finish()]);
         if let Some(e) = pollster::block_on(guard.pop()) {
             self.errors.push(error_chain(&e));
         }
@@ -296,18 +283,14 @@ impl Renderer {
 }
 
 /// Encodes `pass` with the bind groups from `bind_groups` and the ring holding its staged data.
-/// Encodes `piece` of `pass` (its load operations only in the first piece; later pieces load
-/// what the earlier ones stored).
 fn encode(
     enc: &mut wgpu::CommandEncoder,
     pass: &Pass,
     groups: &[Option<wgpu::BindGroup>],
     ring: Option<&wgpu::Buffer>,
-    piece: &Piece,
-    first: bool,
 ) {
     let t = &pass.target;
-    let clear = |op: Option<wgpu::Color>| op.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load);
+    let clear = |op: Option<wgpu::Color>| op.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load);
     let color = t.color.as_ref().map(|(_, view)| wgpu::RenderPassColorAttachment {
         view,
         depth_slice: None,
@@ -317,11 +300,11 @@ fn encode(
     let depth = t.depth.as_ref().map(|(view, f)| wgpu::RenderPassDepthStencilAttachment {
         view,
         depth_ops: Some(wgpu::Operations {
-            load: pass.clear_depth.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
+            load: pass.clear_depth.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
             store: wgpu::StoreOp::Store,
         }),
         stencil_ops: f.has_stencil_aspect().then(|| wgpu::Operations {
-            load: pass.clear_stencil.filter(|_| first).map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
+            load: pass.clear_stencil.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
             store: wgpu::StoreOp::Store,
         }),
     });
@@ -334,19 +317,8 @@ fn encode(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    let range = piece.draws.clone();
-    for (r, g) in pass.draws[range.clone()].iter().zip(&groups[range]) {
+    for (r, g) in pass.draws.iter().zip(groups) {
         let [sx, sy, sw, sh] = r.scissor;
-        let (sy, sh) = match piece.band {
-            None => (sy, sh),
-            Some([top, bottom]) => {
-                let (y0, y1) = (sy.max(top), (sy + sh).min(bottom));
-                if y1 <= y0 {
-                    continue;
-                }
-                (y0, y1 - y0)
-            }
-        };
         if sw == 0 || sh == 0 {
             continue;
         }
@@ -383,19 +355,11 @@ fn encode(
                         }
                     }
                 }
-                let (s, n) = match piece.part {
-                    Some(Part::Elements(s, n)) => (s, n),
-                    _ => (0, r.count),
-                };
-                rp.draw_indexed(s..s + n, 0, 0..1);
+                rp.draw_indexed(0..r.count, 0, 0..1);
             }
             None => {
                 let (i0, n) = r.instances;
-                match piece.part {
-                    Some(Part::Elements(s, c)) => rp.draw(r.first + s..r.first + s + c, i0..i0 + n),
-                    Some(Part::Instances(s, c)) => rp.draw(r.first..r.first + r.count, i0 + s..i0 + s + c),
-                    None => rp.draw(r.first..r.first + r.count, i0..i0 + n),
-                }
+                rp.draw(r.first..r.first + r.count, i0..i0 + n);
             }
         }
     }

@@ -8,6 +8,13 @@
 //! per pixel, the one surface's colour where one surface covers it (plus its depth when
 //! normals come from depth), and where k surfaces overlap every depth and the winner's colour.
 //! CPU memcpy of the same bytes is printed beside it as a second reference.
+//!
+//! The shader floor is measured on the same device too (`floor`): one pass that loads every
+//! surface's colour and depth and keeps the nearest. On a CPU rasterizer the copy floor says
+//! little (the per-fragment shader is the cost); actual over the shader floor shows what
+//! lighting, chaining and planning add.
+
+mod floor;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -177,6 +184,8 @@ struct Point {
     ms_per_frame: f64,
     device_floor_ms: f64,
     memcpy_floor_ms: f64,
+    /// The shader floor (`None` where the device cannot sample every surface in one pass).
+    shader_floor_ms: Option<f64>,
 }
 
 /// Runs the benchmark and prints its report; the last line is JSON.
@@ -233,6 +242,20 @@ pub fn run(args: &Args) -> Result<()> {
             k as u64 + 2
         }
     };
+    // The shader floor of each k, on the same device.
+    let pb = bar(ks.clone().count() as u64, "shader floor");
+    let out_view = out.create_view(&Default::default());
+    let shader_floor: Vec<Option<f64>> = ks
+        .clone()
+        .map(|k| {
+            pb.inc(1);
+            let f = floor::Floor::new(&gpu, k, wgpu::TextureFormat::Rgba8Unorm)?;
+            let views: Vec<_> = surfaces[..k].iter().map(|s| (&s.color, &s.depth)).collect();
+            Some(median_ms(args.frames, || f.run(&gpu, &views, &out_view)))
+        })
+        .collect();
+    pb.finish();
+    let shader = |k: usize| shader_floor.get(k - *ks.start()).copied().flatten();
     let mut points = Vec::new();
     for &m in &limits {
         let mut comp = Compositor::new(gpu.clone(), Some(m))?;
@@ -246,6 +269,7 @@ pub fn run(args: &Args) -> Result<()> {
                 ms_per_frame: ms,
                 device_floor_ms: images(k) as f64 * copy_ms,
                 memcpy_floor_ms: images(k) as f64 * memcpy_ms,
+                shader_floor_ms: shader(k),
             });
             pb.inc(1);
         }
@@ -262,20 +286,32 @@ pub fn run(args: &Args) -> Result<()> {
             "device copy of one {w}x{h} RGBA8 image: {copy_ms:.3} ms; memcpy of it: {memcpy_ms:.3} ms ({memcpy_gbps:.2} GB/s), same run"
         );
         println!(
-            "{:>5} {:>3} {:>7} {:>10} {:>10} {:>12} {:>10} {:>12}",
-            "limit", "k", "passes", "ms/frame", "floor ms", "floor/actual", "memcpy ms", "memcpy/act."
+            "{:>5} {:>3} {:>7} {:>10} {:>10} {:>12} {:>10} {:>12} {:>10} {:>13}",
+            "limit",
+            "k",
+            "passes",
+            "ms/frame",
+            "copy ms",
+            "actual/copy",
+            "memcpy ms",
+            "memcpy/act.",
+            "shader ms",
+            "actual/shader"
         );
         for p in &points {
+            let opt = |v: Option<f64>, d: usize| v.map_or_else(|| "-".to_string(), |v| format!("{v:.d$}"));
             println!(
-                "{:>5} {:>3} {:>7} {:>10.2} {:>10.2} {:>12.3} {:>10.2} {:>12.3}",
+                "{:>5} {:>3} {:>7} {:>10.2} {:>10.2} {:>12.2} {:>10.2} {:>12.3} {:>10} {:>13}",
                 p.max_textures,
                 p.k,
                 p.passes,
                 p.ms_per_frame,
                 p.device_floor_ms,
-                p.device_floor_ms / p.ms_per_frame,
+                p.ms_per_frame / p.device_floor_ms,
                 p.memcpy_floor_ms,
-                p.memcpy_floor_ms / p.ms_per_frame
+                p.memcpy_floor_ms / p.ms_per_frame,
+                opt(p.shader_floor_ms, 2),
+                opt(p.shader_floor_ms.map(|f| p.ms_per_frame / f), 2)
             );
         }
     }
@@ -297,6 +333,15 @@ pub fn run(args: &Args) -> Result<()> {
         "memcpy_bandwidth_gb_per_s": memcpy_gbps,
         "images_moved_per_frame": images(k10),
         "device_floor_ms": images(k10) as f64 * copy_ms,
+        "shader_floor_ms": shader(k10),
+        "actual_over_shader_floor": {
+            format!("max_textures_{}", args.max_textures): chained.zip(shader(k10)).map(|(c, f)| c / f),
+            format!("device_{device_limit}"): device.zip(shader(k10)).map(|(d, f)| d / f),
+        },
+        "actual_over_copy_floor": {
+            format!("max_textures_{}", args.max_textures): chained.map(|c| c / (images(k10) as f64 * copy_ms)),
+            format!("device_{device_limit}"): device.map(|d| d / (images(k10) as f64 * copy_ms)),
+        },
         "ms_per_frame": { format!("max_textures_{}", args.max_textures): chained, format!("device_{device_limit}"): device },
         "chained_over_single_pass": chained.zip(device).map(|(c, d)| c / d),
         "device_floor_over_actual": {
@@ -327,6 +372,11 @@ pub fn run(args: &Args) -> Result<()> {
         .chain(std::iter::once(Series {
             name: "floor: the same bytes copied by the device".into(),
             points: ks.clone().map(|k| (k as f64, images(k) as f64 * copy_ms)).collect(),
+            reference: true,
+        }))
+        .chain(std::iter::once(Series {
+            name: "floor: one pass loading every colour and depth, nearest kept".into(),
+            points: ks.clone().filter_map(|k| Some((k as f64, shader(k)?))).collect(),
             reference: true,
         }))
         .collect();

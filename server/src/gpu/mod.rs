@@ -1,9 +1,15 @@
-//! The one GPU device the daemon owns, shared by every client's executor.
+//! A GPU device: the compositor's, and one per client (each on an instance of its own). A
+//! client's window surfaces live in memory its device exports and the compositor's imports
+//! (`share`); `open` opens a device at a class's priority.
+
+mod open;
+mod share;
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use tracing::{error, info};
+pub use open::{nice_for, set_thread_idle, set_thread_nice, settle_environment, DeviceOptions, RASTERIZER_THREADS};
+pub use share::{shared_usage, DeviceIdentity, Exported, ShareError};
 
 /// Why no GPU device could be opened.
 #[derive(Debug, thiserror::Error)]
@@ -14,13 +20,17 @@ pub enum GpuError {
     /// The adapter refused to open a device.
     #[error("opening the device failed: {0}")]
     Device(#[from] wgpu::RequestDeviceError),
+    /// The device could not be opened with a queue global priority.
+    #[error("opening the device with a queue global priority failed")]
+    Priority,
 }
 
 /// Optional device features the executor uses where the adapter has them: linear filtering
 /// of RGBA32F (`OES_texture_float_linear`), and BC and ETC2 block formats (compressed textures
 /// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
-/// 32float` for configs with stencil).
-const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
+/// 32float` for configs with stencil), and timestamps (the composite's own device time).
+pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
+    .union(wgpu::Features::TIMESTAMP_QUERY)
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
     .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2);
@@ -28,7 +38,7 @@ const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
 /// The pipelines of `write_depth`, one per depth format.
 type DepthWriters = HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>;
 
-/// The device and queue every executor draws with.
+/// A device and its queue: the compositor's, or one client's.
 pub struct Gpu {
     /// Lazily built pipelines for `write_depth`.
     depth_writers: Mutex<DepthWriters>,
@@ -48,8 +58,93 @@ pub struct Gpu {
     pub adapter: wgpu::Adapter,
     /// What every client's GLES renderer shares, built by the first one.
     pub gles: std::sync::OnceLock<Arc<crate::gles::RendererFixed>>,
-    /// Decides when each client's work goes onto the queue.
-    pub scheduler: Arc<crate::schedule::Scheduler>,
+    /// The queue's global priority the driver granted (`None`: not offered or not asked).
+    pub global_priority: Option<&'static str>,
+    /// Set when the device is lost (a fault, a reset, or destroyed): nothing more runs on it.
+    pub lost: Arc<std::sync::atomic::AtomicBool>,
+    /// The pipeline that reads a depth image as floats (`depth_read.wgsl`), built on first use.
+    depth_reader: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::RenderPipeline)>,
+    /// Frame completion time the frame waiter measured (for devices that are not CPU
+    /// rasterizers), microseconds.
+    pub(crate) waited_us: std::sync::atomic::AtomicU64,
+    /// The threads the driver started for this device (lavapipe's queue and rasterizer
+    /// threads), which inherited the nice value of the thread that opened it.
+    pub threads: Vec<i32>,
+}
+
+impl std::fmt::Debug for Gpu {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Gpu").field("adapter", &self.info.name).field("threads", &self.threads).finish()
+    }
+}
+
+impl Gpu {
+    /// Whether the device was lost.
+    pub fn is_lost(&self) -> bool {
+        self.lost.load(std::sync::atomic::Ordering::Acquire)
+    }
+
+    /// The pipeline drawing a full-screen triangle that writes the depth image bound at 0
+    /// into an R32Float target, and its bind group layout.
+    pub fn depth_reader(&self) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
+        self.depth_reader
+            .get_or_init(|| {
+                self.fullscreen_pipeline(
+                    "depth read",
+                    include_str!("../../../shaders/depth_read.wgsl"),
+                    &[texture_entry(0, wgpu::TextureSampleType::Depth)],
+                    &[Some(wgpu::ColorTargetState {
+                        format: wgpu::TextureFormat::R32Float,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                    None,
+                )
+            })
+            .clone()
+    }
+
+    /// How long the device has been busy: on a CPU rasterizer (lavapipe) the CPU time of its
+    /// driver threads, which is exactly its work; on a GPU, the time from each frame's last
+    /// submission to its completion, as the frame waiter saw it.
+    pub fn busy(&self) -> std::time::Duration {
+        if self.info.device_type == wgpu::DeviceType::Cpu {
+            self.threads_cpu_time()
+        } else {
+            std::time::Duration::from_micros(self.waited_us.load(std::sync::atomic::Ordering::Relaxed))
+        }
+    }
+
+    /// Sets the nice value of the driver's threads of this device (a client moved to another
+    /// class); raising needs `CAP_SYS_NICE`, without which they stay where they are.
+    pub fn renice(&self, nice: i32) {
+        for &tid in &self.threads {
+            #[cfg(target_os = "linux")]
+            // SAFETY: setpriority on one of this process's threads only sets its nice value.
+            unsafe {
+                libc::setpriority(libc::PRIO_PROCESS, tid as libc::id_t, nice);
+            }
+        }
+    }
+
+    /// CPU time the driver's threads of this device have used (on a CPU rasterizer such as
+    /// lavapipe, the time the device was busy), read from `/proc/self/task/*/stat`.
+    pub fn threads_cpu_time(&self) -> std::time::Duration {
+        // SAFETY: sysconf only reads a constant.
+        let ticks = unsafe { libc::sysconf(libc::_SC_CLK_TCK) }.max(1) as f64;
+        let total: u64 = self
+            .threads
+            .iter()
+            .filter_map(|t| {
+                let stat = std::fs::read_to_string(format!("/proc/self/task/{t}/stat")).ok()?;
+                // Fields after the command name (which may hold spaces) start at its ')'.
+                let rest = stat.rsplit_once(')')?.1;
+                let f: Vec<&str> = rest.split_whitespace().collect();
+                Some(f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?)
+            })
+            .sum();
+        std::time::Duration::from_secs_f64(total as f64 / ticks)
+    }
 }
 
 /// A fragment-stage binding of a 2D texture read with `textureLoad` (`sample_type`: a
@@ -161,7 +256,7 @@ impl Gpu {
                 .or_insert_with(|| {
                     self.fullscreen_pipeline(
                         "depth upload",
-                        include_str!("../../shaders/depth_upload.wgsl"),
+                        include_str!("../../../shaders/depth_upload.wgsl"),
                         &[texture_entry(0, UNFILTERED)],
                         &[],
                         Some(wgpu::DepthStencilState {
@@ -285,49 +380,5 @@ impl Gpu {
         drop(data);
         buf.unmap();
         Some(out)
-    }
-
-    /// Opens the first Vulkan adapter (lavapipe on machines without a GPU). The uncaptured
-    /// error handler only logs: errors are charged to clients through error scopes.
-    pub fn open() -> Result<Arc<Gpu>, GpuError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
-            backends: wgpu::Backends::VULKAN,
-            flags: wgpu::InstanceFlags::empty(),
-            memory_budget_thresholds: Default::default(),
-            backend_options: Default::default(),
-            display: None,
-        });
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
-        let info = adapter.get_info();
-        let limits = adapter.limits();
-        let features = adapter.features() & OPTIONAL_FEATURES;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("stratad"),
-            required_features: features,
-            required_limits: limits.clone(),
-            experimental_features: Default::default(),
-            memory_hints: wgpu::MemoryHints::Performance,
-            trace: wgpu::Trace::Off,
-        }))?;
-        device.on_uncaptured_error(Arc::new(|e: wgpu::Error| error!("uncaptured GPU error: {e}")));
-        info!(adapter = %info.name, driver = %info.driver, features = ?features, "GPU opened");
-        Ok(Arc::new(Gpu {
-            depth_writers: Mutex::new(HashMap::new()),
-            features,
-            device,
-            queue,
-            info,
-            limits,
-            instance,
-            adapter,
-            gles: std::sync::OnceLock::new(),
-            scheduler: Arc::default(),
-        }))
     }
 }

@@ -1,6 +1,8 @@
-//! What the compositor sees: every client's window surfaces with their placement and the
-//! front images of their last completed frame, and the lighting. Executors publish on swap;
-//! the compositor reads under the same lock, so a frame is either wholly visible or not at all.
+//! What the compositor sees: every client's window surfaces with their placement and their
+//! buffers (`mailbox`), and the lighting. A frame is published when its work has completed on
+//! its client's device, and every composite takes each surface's newest complete frame, so a
+//! frame is either wholly visible or not at all; the buffer a composite reads is not drawn
+//! into again until that composite has completed.
 //!
 //! The scene also carries the pacing between the two sides. Every change that needs a new
 //! composite bumps a damage counter; the compositor thread ("root") sleeps until it moves.
@@ -15,6 +17,13 @@ use std::time::{Duration, Instant};
 
 use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 use tracing::warn;
+
+mod frames;
+mod mailbox;
+mod region;
+
+pub use mailbox::{Buffers, Use, Views};
+pub use region::Region;
 
 /// Swap-to-shown latencies kept per surface for `ctl list`.
 const LATENCIES: usize = 1024;
@@ -37,10 +46,13 @@ pub struct SceneSurface {
     pub rect: [i32; 4],
     /// Depth layer: larger is farther.
     pub z: f32,
-    /// Front colour (RGBA8, GL row order).
+    /// The newest complete frame's colour (RGBA8, GL row order), as the compositor's device
+    /// sees it.
     pub color: Option<wgpu::TextureView>,
-    /// Front depth (depth aspect only), if the surface has depth.
+    /// Its depth (depth aspect only), if the surface has depth.
     pub depth: Option<wgpu::TextureView>,
+    /// The surface's buffers and what each is used for.
+    pub buffers: Buffers,
     /// Its config has no alpha: its colour's alpha reads as 1 everywhere.
     pub opaque: bool,
     /// Frames swapped so far.
@@ -108,49 +120,14 @@ impl SceneSurface {
 #[derive(Debug, Default)]
 pub struct Shown(Vec<((u64, u32), Instant)>);
 
-/// The part of the output space that changed since the last composite.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Region {
-    /// Nothing.
-    None,
-    /// This rectangle (x, y, width, height), the bounding box of every change; 64-bit, so
-    /// that the box of rectangles anywhere in the `i32` output space cannot overflow.
-    Rect([i64; 4]),
-    /// Everything (the first composite, a lighting change).
-    Full,
-}
-
-impl Region {
-    /// This region grown to cover `r` (x, y, width, height) as well; a rectangle without area
-    /// adds nothing.
-    pub fn with(self, r: [i32; 4]) -> Region {
-        if r[2] <= 0 || r[3] <= 0 {
-            return self;
-        }
-        self.union(Region::Rect(r.map(i64::from)))
-    }
-
-    /// The smallest region covering both.
-    pub fn union(self, other: Region) -> Region {
-        match (self, other) {
-            (Region::Full, _) | (_, Region::Full) => Region::Full,
-            (Region::None, o) | (o, Region::None) => o,
-            (Region::Rect(a), Region::Rect(r)) => {
-                let (x0, y0) = (a[0].min(r[0]), a[1].min(r[1]));
-                let x1 = (a[0] + a[2]).max(r[0] + r[2]);
-                let y1 = (a[1] + a[3]).max(r[1] + r[3]);
-                Region::Rect([x0, y0, x1 - x0, y1 - y0])
-            }
-        }
-    }
-}
-
 struct State {
     surfaces: BTreeMap<(u64, u32), SceneSurface>,
     next_id: u64,
     damage: u64,
-    /// What changed since the last composite.
+    /// What changed since the last composite, but for high-priority surfaces' new frames.
     region: Region,
+    /// Where high-priority surfaces' new frames changed the output since the last composite.
+    region_high: Region,
     refreshes: u64,
     /// A compositor thread consumes frames; without one, swaps never wait.
     root: bool,
@@ -168,12 +145,37 @@ pub struct Scene {
     frames_in_flight: u64,
     /// Each connected client's count of command-stream bytes, by client id.
     streams: Mutex<HashMap<u64, Arc<AtomicU64>>>,
+    /// The compositor's device, which reads the surfaces' buffers.
+    compositor: std::sync::OnceLock<Arc<crate::gpu::Gpu>>,
 }
 
 impl Default for Scene {
     fn default() -> Self {
         Scene::new(2, Lighting::default())
     }
+}
+
+/// Which damage a composite redraws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Only where high-priority surfaces' new frames changed the output: drawn first at each
+    /// refresh, so that a large change elsewhere never delays them.
+    High,
+    /// Everything that changed.
+    All,
+}
+
+/// What [`Scene::acquire`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Acquired {
+    /// This buffer is now the back buffer.
+    Buffer(usize),
+    /// None is free, and the surface may have another.
+    Grow,
+    /// None became free in time.
+    TimedOut,
+    /// The surface is gone.
+    Gone,
 }
 
 /// What the compositor thread should do next.
@@ -194,6 +196,7 @@ impl Scene {
                 next_id: 0,
                 damage: 0,
                 region: Region::Full,
+                region_high: Region::None,
                 refreshes: 0,
                 root: false,
                 pacing_waiters: 0,
@@ -203,7 +206,18 @@ impl Scene {
             changed: Condvar::new(),
             frames_in_flight: u64::from(frames_in_flight.max(1)),
             streams: Mutex::new(HashMap::new()),
+            compositor: std::sync::OnceLock::new(),
         }
+    }
+
+    /// Names the compositor's device (once): clients' buffers are made readable on it.
+    pub fn set_compositor(&self, gpu: Arc<crate::gpu::Gpu>) {
+        let _ = self.compositor.set(gpu);
+    }
+
+    /// The compositor's device, if one was named.
+    pub fn compositor(&self) -> Option<Arc<crate::gpu::Gpu>> {
+        self.compositor.get().cloned()
     }
 
     /// The counter client `client`'s session adds its command-stream bytes to; `ctl list`
@@ -232,9 +246,19 @@ impl Scene {
         self.state.lock().ok()
     }
 
-    fn damaged(&self, mut g: MutexGuard<'_, State>, r: Region) {
+    fn damaged(&self, g: MutexGuard<'_, State>, r: Region) {
+        self.damaged_as(g, r, false);
+    }
+
+    /// Records damage `r`; `high`: a high-priority surface's new frame, which the compositor
+    /// draws first (`Part::High`).
+    fn damaged_as(&self, mut g: MutexGuard<'_, State>, r: Region, high: bool) {
         g.damage += 1;
-        g.region = g.region.union(r);
+        if high {
+            g.region_high = g.region_high.union(r);
+        } else {
+            g.region = g.region.union(r);
+        }
         drop(g);
         self.changed.notify_all();
     }
@@ -255,6 +279,7 @@ impl Scene {
                 z,
                 color: None,
                 depth: None,
+                buffers: Buffers::default(),
                 opaque: false,
                 frames: 0,
                 shown: 0,
@@ -295,33 +320,6 @@ impl Scene {
         if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
             s.projection = projection;
             let r = Region::None.with(s.rect);
-            self.damaged(g, r);
-        }
-    }
-
-    /// Publishes a completed frame's front images; `opaque`: the colour buffer has no alpha.
-    pub fn present(
-        &self,
-        client: u64,
-        surface: u32,
-        color: wgpu::TextureView,
-        depth: Option<wgpu::TextureView>,
-        opaque: bool,
-    ) {
-        let Some(mut g) = self.lock() else { return };
-        let refreshes = g.refreshes;
-        if let Some(s) = g.surfaces.get_mut(&(client, surface)) {
-            s.color = Some(color);
-            s.depth = depth;
-            s.opaque = opaque;
-            s.frames += 1;
-            s.presented = Some((Instant::now(), refreshes));
-            let old = s.rect;
-            if let Some((w, h)) = s.resized.take() {
-                s.rect[2] = w;
-                s.rect[3] = h;
-            }
-            let r = Region::None.with(old).with(s.rect);
             self.damaged(g, r);
         }
     }
@@ -465,25 +463,39 @@ impl Scene {
     }
 
     /// Runs `f` on the surfaces (in stacking order), the lighting and the region changed since
-    /// the last composite, while holding the lock, so no swap can interleave with what `f`
-    /// submits; the frames it saw count as shown. Returns `f`'s result, the damage count it
-    /// reflects, and the new frames it took (for [`Scene::shown`]).
-    pub fn compose<R>(&self, f: impl FnOnce(&[SceneSurface], &Lighting, Region) -> R) -> Option<(R, u64, Shown)> {
+    /// the last composite (`part` of it). The newest frame of each surface is marked as read
+    /// until [`Scene::shown`], so no client draws into it meanwhile; `f` runs without the
+    /// lock. Returns `f`'s result, the damage count it reflects, and the new frames it took
+    /// (for [`Scene::shown`]).
+    pub fn compose<R>(
+        &self,
+        part: Part,
+        f: impl FnOnce(&[SceneSurface], &Lighting, Region) -> R,
+    ) -> Option<(R, u64, Shown)> {
         let mut g = self.lock()?;
-        let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
-        v.sort_by_key(|s| s.id);
-        let region = std::mem::replace(&mut g.region, Region::None);
-        let r = f(&v, &g.lighting, region);
+        let high = std::mem::replace(&mut g.region_high, Region::None);
+        let region = match part {
+            Part::High => high,
+            Part::All => std::mem::replace(&mut g.region, Region::None).union(high),
+        };
         let mut taken = Vec::new();
         for (key, s) in g.surfaces.iter_mut() {
+            if part == Part::High && s.priority != Priority::High {
+                s.buffers.read_latest();
+                continue;
+            }
             if let (true, Some((at, _))) = (s.frames > s.shown, s.presented) {
                 taken.push((*key, at));
             }
             s.shown = s.frames;
+            s.buffers.read_latest();
         }
-        let damage = g.damage;
+        let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
+        v.sort_by_key(|s| s.id);
+        let (damage, lighting) = (g.damage, g.lighting);
         drop(g);
         self.changed.notify_all();
+        let r = f(&v, &lighting, region);
         Some((r, damage, Shown(taken)))
     }
 
@@ -492,6 +504,9 @@ impl Scene {
     pub fn shown(&self, frames: Shown) {
         let now = Instant::now();
         let Some(mut g) = self.lock() else { return };
+        for s in g.surfaces.values_mut() {
+            s.buffers.done_reading();
+        }
         for (key, at) in frames.0 {
             if let Some(s) = g.surfaces.get_mut(&key) {
                 if s.latencies.len() == LATENCIES {
@@ -500,6 +515,9 @@ impl Scene {
                 s.latencies.push_back(now.duration_since(at).as_micros().min(u128::from(u32::MAX)) as u32);
             }
         }
+        drop(g);
+        // Buffers no composite reads any more may be drawn into again.
+        self.changed.notify_all();
     }
 
     /// Marks that a compositor thread consumes frames (or, with `false`, that none does any

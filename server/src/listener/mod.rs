@@ -4,25 +4,22 @@
 use std::collections::HashMap;
 use std::os::unix::fs::{FileTypeExt, PermissionsExt};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use strata_protocol::codec::MAX_MESSAGE_LEN;
-use strata_protocol::handshake::{
-    self, ClientMessage, ControlReply, ControlRequest, HandshakeError, Hello, Purpose, ServerMessage,
-};
-use strata_protocol::ring::{Reader, Writer};
-use strata_protocol::segment::{Segment, SegmentError};
+use strata_protocol::control::Priority;
+use strata_protocol::handshake::{self, HandshakeError, Hello, Purpose, ServerMessage};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{UnixListener, UnixStream};
-use tokio::sync::{oneshot, watch};
+use tokio::sync::watch;
 use tracing::{debug, info, warn, Instrument};
 
-use crate::executor::Drain;
-use crate::gles::GlesExecutor;
 use crate::gpu::Gpu;
-use crate::session::{Session, SessionEnd};
+use crate::session::SessionEnd;
+
+mod client;
+mod control;
 
 /// How long a client may take over each handshake step.
 const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
@@ -67,8 +64,33 @@ pub struct ServeOptions {
     pub quotas: Vec<crate::quota::QuotaEntry>,
     /// GPU memory all clients together may hold.
     pub total_gpu_bytes: u64,
-    /// How clients' work is scheduled on the queue (its period is the refresh period).
-    pub schedule: crate::schedule::Policy,
+    /// The class of clients the configuration does not name and whose contexts do not ask.
+    pub default_class: Priority,
+    /// Whether each client renders on a device of its own or all share the compositor's.
+    pub devices: DeviceMode,
+    /// How window surfaces' frames reach the compositor's device.
+    pub frame_transfer: crate::gles::TransferMode,
+    /// Whether devices ask for a queue global priority by class where the adapter offers it.
+    pub global_priority: bool,
+    /// Whether `ctl` may destroy a client's device (`ControlRequest::LoseDevice`; tests).
+    pub fault_injection: bool,
+    /// Rasterizer threads of each client's device on a CPU rasterizer (`None`: the driver's
+    /// default).
+    pub client_rasterizer_threads: Option<u32>,
+}
+
+/// Which device each client renders on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum DeviceMode {
+    /// A device (and instance) of its own, created on its session thread at its class's
+    /// priority; its window surfaces' frames reach the compositor's device through shared
+    /// memory.
+    #[default]
+    PerClient,
+    /// The compositor's device, one queue for everyone: no parallelism between clients and no
+    /// isolation from each other's faults; a client's class only sets its session thread's
+    /// CPU priority (to compare, or for a driver that cannot open a device per client).
+    Shared,
 }
 
 /// The executor each client session gets.
@@ -102,7 +124,12 @@ impl Default for ServeOptions {
             limits: crate::quota::Limits::default(),
             quotas: Vec::new(),
             total_gpu_bytes: crate::quota::default_total(),
-            schedule: crate::schedule::Policy::default(),
+            default_class: Priority::Normal,
+            devices: DeviceMode::PerClient,
+            frame_transfer: crate::gles::TransferMode::Auto,
+            global_priority: true,
+            fault_injection: false,
+            client_rasterizer_threads: Some(1),
         }
     }
 }
@@ -172,6 +199,8 @@ pub struct ClientInfo {
     pub account: Arc<crate::quota::Account>,
     /// Its way onto the GPU queue: class, and where its frames waited.
     pub lane: Option<Arc<crate::schedule::Lane>>,
+    /// The device it renders on, once its session has opened it.
+    pub device: Arc<std::sync::OnceLock<Arc<Gpu>>>,
 }
 
 struct Shared {
@@ -186,6 +215,28 @@ struct Shared {
     shutdown: watch::Receiver<bool>,
 }
 
+/// Opens the compositor's device from a thread at the high class's nice value, so that the
+/// driver's threads of that device inherit it (and the caller's own thread keeps its own).
+fn open_compositor_device(global_priority: bool) -> Result<Arc<Gpu>, ServerError> {
+    use strata_protocol::control::Priority;
+    let opts = crate::gpu::DeviceOptions {
+        priority: Priority::High,
+        global_priority,
+        label: "compositor",
+        ..Default::default()
+    };
+    let opened = std::thread::Builder::new()
+        .name("open-compositor".into())
+        .spawn(move || {
+            crate::gpu::set_thread_nice(crate::gpu::nice_for(Priority::High));
+            Gpu::open_with(opts)
+        })
+        .map_err(io_err("starting the thread that opens the compositor's device"))?
+        .join()
+        .map_err(|_| ServerError::Outputs("opening the compositor's device panicked".into()))?;
+    Ok(opened?)
+}
+
 /// Serves clients on `opts.socket` until `shutdown` resolves, then stops every session and
 /// removes the socket.
 pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output = ()>) -> Result<(), ServerError> {
@@ -195,13 +246,9 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
     }
     let gpu = match opts.executor {
-        ExecutorKind::Gles => Some(Gpu::open()?),
+        ExecutorKind::Gles => Some(open_compositor_device(opts.global_priority)?),
         ExecutorKind::Drain => None,
     };
-    if let Some(gpu) = &gpu {
-        let period = std::time::Duration::from_secs_f64(1.0 / opts.refresh_hz.clamp(1.0, 1000.0));
-        gpu.scheduler.configure(crate::schedule::Policy { period, ..opts.schedule });
-    }
     if opts.outputs.is_empty() {
         return Err(ServerError::Outputs("at least one output is needed".into()));
     }
@@ -211,6 +258,9 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
     }
     let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
+    if let Some(gpu) = &gpu {
+        scene.set_compositor(gpu.clone());
+    }
     let root = match &gpu {
         Some(gpu) => {
             let (outputs, m, inter) = (&opts.outputs, opts.max_textures, opts.intermediate);
@@ -313,233 +363,18 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
         }
     };
     if hello.purpose == Purpose::Control {
-        if let Err(e) = serve_control(&mut stream, &shared).await {
+        if let Err(e) = control::serve_control(&mut stream, &shared).await {
             debug!(client = id, "control connection ended: {e}");
         }
         return;
     }
     let span = tracing::info_span!("client", id, name = %hello.name, role = %hello.role);
-    match run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
+    match client::run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
         Ok(end) => match end {
-            SessionEnd::Violation(_) => span.in_scope(|| warn!("disconnected: {end}")),
+            SessionEnd::Violation(_) | SessionEnd::Failed(_) => span.in_scope(|| warn!("disconnected: {end}")),
             _ => span.in_scope(|| info!("{end}")),
         },
         Err(e) => span.in_scope(|| warn!("session setup failed: {e}")),
     }
     shared.clients.lock().map(|mut c| c.remove(&id)).ok();
-}
-
-/// Answers `stratad ctl` requests until the connection closes.
-async fn serve_control(stream: &mut UnixStream, shared: &Arc<Shared>) -> Result<(), HandshakeError> {
-    send(stream, &ServerMessage::ControlReady).await?;
-    loop {
-        let req: ControlRequest = recv(stream, "control request").await?;
-        let shared2 = shared.clone();
-        let reply = tokio::task::spawn_blocking(move || control(&shared2, req))
-            .await
-            .unwrap_or_else(|e| ControlReply::Error(format!("control request failed: {e}")));
-        stream.write_all(&handshake::frame_limited(&reply, handshake::MAX_CONTROL_REPLY)?).await?;
-    }
-}
-
-fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
-    match req {
-        ControlRequest::List => ControlReply::List {
-            outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
-            surfaces: shared.scene.rows(),
-        },
-        ControlRequest::Stats => ControlReply::Stats(crate::stats::collect(
-            shared.gpu.as_deref(),
-            &shared.pool,
-            shared.sessions.load(Ordering::Relaxed),
-            &shared.clients.lock().map(|c| c.clone()).unwrap_or_default(),
-            &shared.scene,
-        )),
-        ControlRequest::Screenshot { output } => {
-            let Some(root) = &shared.root else {
-                return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
-            };
-            match root.screenshot(&output) {
-                Ok((width, height, rgba)) => ControlReply::Image { width, height, rgba: strata_protocol::Bytes(rgba) },
-                Err(e) => ControlReply::Error(e),
-            }
-        }
-        ControlRequest::Move { surface, x, y, z } => {
-            if !z.is_finite() {
-                return ControlReply::Error(format!("z {z} is not a finite number"));
-            }
-            match shared.scene.move_surface(surface, x, y, z) {
-                Some(row) => {
-                    info!(surface, x, y, z, "surface moved");
-                    ControlReply::Moved(row)
-                }
-                None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
-            }
-        }
-        ControlRequest::Normal { surface, normal } => {
-            if !normal.iter().all(|v| v.is_finite()) || normal.iter().all(|v| *v == 0.0) {
-                return ControlReply::Error(format!("normal {normal:?} must be finite and not zero"));
-            }
-            match shared.scene.set_normal(surface, normal) {
-                Some(row) => {
-                    info!(surface, ?normal, "surface normal set");
-                    ControlReply::Moved(row)
-                }
-                None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
-            }
-        }
-        ControlRequest::Light(change) => match change.validate() {
-            Ok(()) => {
-                let light = shared.scene.change_lighting(&change);
-                if change != Default::default() {
-                    info!(?light, "lighting changed");
-                }
-                ControlReply::Light(light)
-            }
-            Err(e) => ControlReply::Error(e),
-        },
-    }
-}
-
-/// Returns the allocator's free pages to the system (glibc keeps them in its heaps otherwise).
-fn release_free_memory() {
-    #[cfg(target_env = "gnu")]
-    // SAFETY: malloc_trim only releases free memory; it is safe to call from any thread.
-    unsafe {
-        libc::malloc_trim(0);
-    }
-}
-
-#[derive(Debug, thiserror::Error)]
-enum SetupError {
-    #[error(transparent)]
-    Handshake(#[from] HandshakeError),
-    #[error(transparent)]
-    Segment(#[from] SegmentError),
-    #[error("starting the session thread: {0}")]
-    Thread(std::io::Error),
-}
-
-async fn run_client(
-    stream: &mut UnixStream,
-    shared: &Shared,
-    id: u64,
-    hello: &Hello,
-) -> Result<SessionEnd, SetupError> {
-    let opts = &shared.opts;
-    let limits = crate::quota::limits_for(opts.limits, &opts.quotas, &hello.name);
-    let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
-    let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
-    let welcome = ServerMessage::Welcome {
-        client_id: id,
-        segment: segment.name().to_string(),
-        cmd_capacity: opts.cmd_ring,
-        reply_capacity: opts.reply_ring,
-        vertex_wire: opts.vertex_wire,
-    };
-    timed(send(stream, &welcome)).await?;
-    let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
-    let ClientMessage::Mapped = mapped;
-    segment.unlink()?;
-    let cmd_ring = segment.command_ring()?;
-    let reply_ring = segment.reply_ring()?;
-    let waker = cmd_ring.clone();
-    let closed = Arc::new(AtomicBool::new(false));
-    let mut lane = None;
-    let session = Session::new(
-        // Larger commands are skipped unread and refused (see `Session::with_account`).
-        Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN)),
-        Writer::new(reply_ring, 0),
-        hello.tally,
-        match &shared.gpu {
-            Some(gpu) => {
-                let entry = crate::layout::find(&opts.layout, &hello.name);
-                // A placement the client states wins over the daemon's layout; the class,
-                // deadline and projection always come from the daemon's entry.
-                let layout = if hello.placement.is_some() { None } else { entry };
-                if let Some(l) = layout {
-                    info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
-                }
-                let fixed = entry.and_then(|e| e.priority);
-                let class = fixed.unwrap_or(opts.schedule.default_class);
-                let deadline = entry.is_some_and(|e| e.deadline);
-                shared.scene.set_policy(id, class, deadline);
-                if fixed.is_some() || deadline {
-                    info!(priority = class.name(), deadline, "scheduled by the daemon's configuration");
-                }
-                let projection = entry.and_then(|e| e.projection);
-                if let Some(p) = projection {
-                    info!(projection = %p, "window surfaces' projection set by the daemon's configuration");
-                }
-                let executor = GlesExecutor::new(gpu.clone())
-                    .with_scene(shared.scene.clone(), id, &hello.name)
-                    .with_layout(layout.cloned())
-                    .with_account(account.clone())
-                    .with_priority(class, fixed.is_some(), deadline)
-                    .with_projection(projection)
-                    .with_depth(opts.depth);
-                lane = Some(executor.lane());
-                Box::new(executor) as Box<dyn crate::executor::Executor>
-            }
-            None => Box::new(Drain::default()),
-        },
-        closed.clone(),
-    )
-    .with_byte_counter(shared.scene.stream_counter(id))
-    .with_account(account.clone());
-    let thread_lane = lane.clone();
-    let info = ClientInfo { name: hello.name.clone(), role: hello.role.clone(), account, lane };
-    shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
-    shared.sessions.fetch_add(1, Ordering::Relaxed);
-    info!(segment = segment.name(), "client connected");
-    let (done_tx, mut done_rx) = oneshot::channel();
-    let span = tracing::Span::current();
-    std::thread::Builder::new()
-        .name(format!("session-{id}"))
-        .spawn(move || {
-            // Everything the session logs (GPU errors included) carries the client's identity.
-            let _span = span.enter();
-            let _keep = segment;
-            if let Some(lane) = thread_lane.filter(|l| l.class() == strata_protocol::control::Priority::Low) {
-                lane.lower_thread();
-            }
-            let ended = session.run();
-            // The session and everything its client held are freed by now: give the pages
-            // back, so that clients coming and going leave the daemon's memory where it was.
-            release_free_memory();
-            let _ = done_tx.send(ended);
-        })
-        .map_err(|e| {
-            shared.scene.forget_stream(id);
-            SetupError::Thread(e)
-        })?;
-
-    let mut shutdown = shared.shutdown.clone();
-    let mut buf = [0u8; 64];
-    let mut socket_open = true;
-    let mut forced: Option<SessionEnd> = None;
-    loop {
-        tokio::select! {
-            done = &mut done_rx => {
-                let (end, stats) = done.unwrap_or((SessionEnd::Violation("session thread panicked".into()), Default::default()));
-                info!(commands = stats.commands, bytes = stats.bytes, "session ended");
-                shared.scene.forget_stream(id);
-                return Ok(forced.unwrap_or(end));
-            }
-            read = stream.read(&mut buf), if socket_open => {
-                socket_open = false;
-                if let Ok(n @ 1..) = read {
-                    forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the control socket")));
-                }
-                closed.store(true, Ordering::Release);
-                waker.wake_reader();
-                waker.wake_writer();
-            }
-            _ = shutdown.changed() => {
-                closed.store(true, Ordering::Release);
-                waker.wake_reader();
-                waker.wake_writer();
-            }
-        }
-    }
 }

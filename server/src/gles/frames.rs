@@ -1,0 +1,359 @@
+//! A window surface's frames on their way to the compositor: the buffers the client draws into
+//! on its own device, how each reaches the compositor's device, and the swap that publishes a
+//! frame once its work has completed there (`scene::mailbox` keeps what each buffer is used
+//! for).
+//!
+//! How a buffer reaches the compositor ([`Transfer`]):
+//! - `Same`: the client draws on the compositor's device (`stratad serve --devices shared`, or
+//!   no compositor), which samples the client's own images;
+//! - `Export`: the images live in memory the client's device exports and the compositor's
+//!   imports, so both read and write the same bytes and nothing is copied;
+//! - `Copy`: where the driver cannot share images between devices, each frame is copied: its
+//!   colour, and its depth read as 32-bit floats, into a buffer the client's device maps, then
+//!   into the compositor's own images.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
+use std::time::Duration;
+
+use tracing::{info, warn};
+
+use super::render::{Target, COLOR_FORMAT};
+use crate::gpu::Gpu;
+use crate::scene::Views;
+
+/// The longest the frame waiter waits for one frame's work (a wedged device must not wedge it).
+const FRAME_WAIT_LIMIT: Duration = Duration::from_secs(5);
+
+/// How window surfaces' frames reach the compositor (`stratad serve --frame-transfer`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum TransferMode {
+    /// Share the images' memory where both devices can (`VK_KHR_external_memory_fd`), else
+    /// copy each frame through host memory.
+    #[default]
+    Auto,
+    /// Always copy each frame through host memory (to measure it, or to avoid a driver's
+    /// sharing).
+    Copy,
+}
+
+/// How one surface's frames reach the compositor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Transfer {
+    /// One device for both: the compositor samples the client's images.
+    Same,
+    /// The same memory, exported by the client's device and imported by the compositor's.
+    Export,
+    /// Copied through host memory at every swap.
+    Copy,
+}
+
+/// Whether "frames go through host memory" was logged (once per daemon).
+static COPY_LOGGED: AtomicBool = AtomicBool::new(false);
+
+/// How frames of `depth` surfaces travel from `client` to `compositor`.
+pub fn transfer(
+    client: &Arc<Gpu>,
+    compositor: Option<&Arc<Gpu>>,
+    depth: Option<wgpu::TextureFormat>,
+    mode: TransferMode,
+) -> Transfer {
+    let Some(comp) = compositor.filter(|c| !Arc::ptr_eq(c, client)) else { return Transfer::Same };
+    let why = match mode {
+        TransferMode::Copy => "--frame-transfer copy".to_string(),
+        TransferMode::Auto => {
+            let shared = client.exportable(comp, COLOR_FORMAT).and_then(|()| match depth {
+                Some(f) => client.exportable(comp, f),
+                None => Ok(()),
+            });
+            match shared {
+                Ok(()) => return Transfer::Export,
+                Err(e) => e.to_string(),
+            }
+        }
+    };
+    if !COPY_LOGGED.swap(true, Ordering::Relaxed) {
+        info!(driver = %client.info.driver, "window surfaces' frames are copied through host memory: {why}");
+    }
+    Transfer::Copy
+}
+
+/// One buffer of a window surface.
+pub(super) struct Buffer {
+    /// What the client draws into.
+    pub(super) target: Target,
+    /// How frames drawn into it are copied, for `Transfer::Copy`.
+    pub(super) copy: Option<Arc<CopyPath>>,
+    /// Its memory, held against the client's quota.
+    pub(super) _reserved: crate::quota::Reservation,
+}
+
+/// A window surface's buffers; `target` of the surface is the back one's.
+pub(super) struct Window {
+    /// The buffers, by the index the scene knows them by.
+    pub(super) buffers: Vec<Buffer>,
+    /// The back buffer.
+    pub(super) back: usize,
+    /// How its frames reach the compositor.
+    pub(super) transfer: Transfer,
+}
+
+/// A buffer's copy through host memory: a readback buffer on the client's device (colour
+/// rows, then depth rows, each padded to 256 bytes), the float image its depth is read into,
+/// and the compositor's own images.
+pub(super) struct CopyPath {
+    readback: wgpu::Buffer,
+    depth_float: Option<(wgpu::Texture, wgpu::TextureView, wgpu::BindGroup)>,
+    color: wgpu::Texture,
+    depth: Option<wgpu::Texture>,
+    size: (u32, u32),
+    mapped: Arc<AtomicBool>,
+}
+
+/// Bytes of one row of `width` 4-byte texels, padded as buffer copies require.
+fn padded_row(width: u32) -> u32 {
+    (width * 4).div_ceil(256) * 256
+}
+
+fn texture(
+    gpu: &Gpu,
+    label: &str,
+    format: wgpu::TextureFormat,
+    size: (u32, u32),
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// A depth-aspect view, as the compositor samples depth.
+pub(super) fn depth_view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor { aspect: wgpu::TextureAspect::DepthOnly, ..Default::default() })
+}
+
+impl CopyPath {
+    /// The copy path of a buffer of `size` whose depth the client's `depth` view shows; the
+    /// compositor's images and their views.
+    pub(super) fn new(
+        client: &Gpu,
+        comp: &Gpu,
+        size: (u32, u32),
+        depth: Option<&wgpu::TextureView>,
+    ) -> (CopyPath, Views) {
+        let row = u64::from(padded_row(size.0));
+        let rows = u64::from(size.1) * if depth.is_some() { 2 } else { 1 };
+        let readback = client.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame readback"),
+            size: row * rows,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let depth_float = depth.map(|view| {
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+            let t = texture(client, "frame depth as float", wgpu::TextureFormat::R32Float, size, usage);
+            let v = t.create_view(&Default::default());
+            let (bgl, _) = client.depth_reader();
+            let group = client.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("frame depth read"),
+                layout: &bgl,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(view) }],
+            });
+            (t, v, group)
+        });
+        let color = texture(
+            comp,
+            "frame colour copy",
+            COLOR_FORMAT,
+            size,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let depth_tex =
+            depth.map(|_| texture(comp, "frame depth copy", wgpu::TextureFormat::Depth32Float, size, usage));
+        let views = (color.create_view(&Default::default()), depth_tex.as_ref().map(depth_view));
+        let path = CopyPath { readback, depth_float, color, depth: depth_tex, size, mapped: Arc::default() };
+        (path, views)
+    }
+
+    /// Bytes of host memory and images it adds: readback, float depth, the compositor's copies.
+    pub(super) fn bytes(size: (u32, u32), depth: bool) -> u64 {
+        let px = u64::from(size.0) * u64::from(size.1);
+        px * if depth { 4 * 5 } else { 4 * 2 }
+    }
+
+    /// Records the copies of `target`'s images into the readback buffer and submits them on
+    /// the client's device, then asks for the buffer to be mapped once they complete.
+    pub(super) fn record(&self, gpu: &Gpu, target: &Target) {
+        let Some((color, _)) = &target.color else { return };
+        let (w, h) = self.size;
+        let row = padded_row(w);
+        let extent = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
+        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame copy") });
+        let copy = |enc: &mut wgpu::CommandEncoder, texture: &wgpu::Texture, offset: u64| {
+            enc.copy_texture_to_buffer(
+                texture.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &self.readback,
+                    layout: wgpu::TexelCopyBufferLayout { offset, bytes_per_row: Some(row), rows_per_image: None },
+                },
+                extent,
+            );
+        };
+        copy(&mut enc, color, 0);
+        if let Some((t, v, group)) = &self.depth_float {
+            let (_, pipeline) = gpu.depth_reader();
+            {
+                let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("frame depth read"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: v,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                rp.set_pipeline(&pipeline);
+                rp.set_bind_group(0, group, &[]);
+                rp.draw(0..3, 0..1);
+            }
+            copy(&mut enc, t, u64::from(row) * u64::from(h));
+        }
+        gpu.queue.submit([enc.finish()]);
+        let mapped = self.mapped.clone();
+        mapped.store(false, Ordering::Release);
+        self.readback.slice(..).map_async(wgpu::MapMode::Read, move |r| mapped.store(r.is_ok(), Ordering::Release));
+    }
+
+    /// Once the copies have completed (and the client's device was polled): writes the frame
+    /// into the compositor's images. Returns whether it could.
+    pub(super) fn deliver(&self, comp: &Gpu) -> bool {
+        if !self.mapped.load(Ordering::Acquire) {
+            return false;
+        }
+        let (w, h) = self.size;
+        let row = padded_row(w) as usize;
+        {
+            let Ok(data) = self.readback.slice(..).get_mapped_range() else { return false };
+            comp.queue.write_texture(
+                self.color.as_image_copy(),
+                &data[..row * h as usize],
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row as u32), rows_per_image: None },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
+            if let Some(depth) = &self.depth {
+                let mut values = Vec::with_capacity((w * h) as usize);
+                for r in 0..h as usize {
+                    let start = row * (h as usize + r);
+                    values.extend_from_slice(bytemuck::cast_slice::<u8, f32>(&data[start..start + 4 * w as usize]));
+                }
+                comp.write_depth(depth, w, h, &values);
+            }
+        }
+        self.readback.unmap();
+        self.mapped.store(false, Ordering::Release);
+        true
+    }
+}
+
+/// The buffer's images on the client's device, made exportable when frames are shared: the
+/// colour and depth textures, and the compositor's views of the same memory.
+pub(super) fn shared_images(
+    client: &Gpu,
+    comp: &Gpu,
+    size: (u32, u32),
+    depth: Option<wgpu::TextureFormat>,
+) -> Result<((wgpu::Texture, Option<wgpu::Texture>), Views), crate::gpu::ShareError> {
+    let (color, memory) = client.create_exported("surface colour", COLOR_FORMAT, size)?;
+    let color_in = comp.import("surface colour (imported)", COLOR_FORMAT, size, memory)?;
+    let (depth, depth_in) = match depth {
+        Some(f) => {
+            let (d, memory) = client.create_exported("surface depth", f, size)?;
+            (Some(d), Some(comp.import("surface depth (imported)", f, size, memory)?))
+        }
+        None => (None, None),
+    };
+    let views = (color_in.create_view(&Default::default()), depth_in.as_ref().map(depth_view));
+    Ok(((color, depth), views))
+}
+
+type Job = (wgpu::SubmissionIndex, std::time::Instant, Box<dyn FnOnce() + Send>);
+
+/// The frame waiter of one client's device: a thread (started at the first swap) that waits
+/// for each swapped frame's work to complete and then publishes it, so that neither the
+/// client's session nor the compositor ever waits for it.
+pub(super) struct Completions {
+    gpu: Arc<Gpu>,
+    tx: Option<mpsc::Sender<Job>>,
+    thread: Option<std::thread::JoinHandle<()>>,
+    name: String,
+}
+
+impl Completions {
+    /// The waiter of `gpu`'s frames; its thread is named `name`.
+    pub(super) fn new(gpu: Arc<Gpu>, name: String) -> Completions {
+        Completions { gpu, tx: None, thread: None, name }
+    }
+
+    /// Runs `job` once the work up to `index` has completed on the device.
+    pub(super) fn after(&mut self, index: wgpu::SubmissionIndex, job: Box<dyn FnOnce() + Send>) {
+        if self.tx.is_none() {
+            let (tx, rx) = mpsc::channel::<Job>();
+            let gpu = self.gpu.clone();
+            let span = tracing::Span::current();
+            match std::thread::Builder::new().name(self.name.clone()).spawn(move || {
+                let _span = span.enter();
+                let mut last_done = std::time::Instant::now();
+                for (index, submitted, job) in rx {
+                    let wait = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(FRAME_WAIT_LIMIT) };
+                    match gpu.device.poll(wait) {
+                        Ok(_) => {
+                            let done = std::time::Instant::now();
+                            let busy = done.saturating_duration_since(submitted.max(last_done));
+                            gpu.waited_us.fetch_add(busy.as_micros() as u64, Ordering::Relaxed);
+                            last_done = done;
+                            job()
+                        }
+                        Err(e) => warn!("a frame's work did not complete, so it is not shown: {e}"),
+                    }
+                }
+            }) {
+                Ok(t) => {
+                    self.tx = Some(tx);
+                    self.thread = Some(t);
+                }
+                Err(e) => warn!("could not start the frame waiter ({e}); frames are published at the swap"),
+            }
+        }
+        let job = match &self.tx {
+            Some(tx) => match tx.send((index, std::time::Instant::now(), job)) {
+                Ok(()) => return,
+                Err(mpsc::SendError((_, _, job))) => job,
+            },
+            None => job,
+        };
+        // No waiter: wait here.
+        let _ = self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: Some(FRAME_WAIT_LIMIT) });
+        job();
+    }
+}
+
+impl Drop for Completions {
+    fn drop(&mut self) {
+        self.tx = None;
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}

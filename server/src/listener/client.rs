@@ -1,0 +1,224 @@
+//! One render client's session: its segment, its executor (built on its session thread, with a
+//! device of its own opened there at its class's priority) and the session thread itself.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use strata_protocol::codec::MAX_MESSAGE_LEN;
+use strata_protocol::control::Priority;
+use strata_protocol::handshake::{ClientMessage, HandshakeError, Hello, ServerMessage};
+use strata_protocol::ring::{Reader, Writer};
+use strata_protocol::segment::{Segment, SegmentError};
+use tokio::io::AsyncReadExt;
+use tokio::net::UnixStream;
+use tokio::sync::oneshot;
+use tracing::info;
+
+use super::{recv, send, timed, ClientInfo, DeviceMode, Shared};
+use crate::executor::Drain;
+use crate::gles::GlesExecutor;
+use crate::gpu::Gpu;
+use crate::session::{Session, SessionEnd};
+
+/// Returns the allocator's free pages to the system (glibc keeps them in its heaps otherwise).
+fn release_free_memory() {
+    #[cfg(target_env = "gnu")]
+    // SAFETY: malloc_trim only releases free memory; it is safe to call from any thread.
+    unsafe {
+        libc::malloc_trim(0);
+    }
+}
+
+/// What a session thread builds its GLES executor from.
+struct ExecutorPlan {
+    compositor: Arc<Gpu>,
+    lane: Arc<crate::schedule::Lane>,
+    layout: Option<crate::layout::LayoutEntry>,
+    class: Priority,
+    fixed: bool,
+    deadline: bool,
+    projection: Option<strata_protocol::projection::Projection>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub(super) enum SetupError {
+    #[error(transparent)]
+    Handshake(#[from] HandshakeError),
+    #[error(transparent)]
+    Segment(#[from] SegmentError),
+    #[error("starting the session thread: {0}")]
+    Thread(std::io::Error),
+}
+
+pub(super) async fn run_client(
+    stream: &mut UnixStream,
+    shared: &Shared,
+    id: u64,
+    hello: &Hello,
+) -> Result<SessionEnd, SetupError> {
+    let opts = &shared.opts;
+    let limits = crate::quota::limits_for(opts.limits, &opts.quotas, &hello.name);
+    let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
+    let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
+    let welcome = ServerMessage::Welcome {
+        client_id: id,
+        segment: segment.name().to_string(),
+        cmd_capacity: opts.cmd_ring,
+        reply_capacity: opts.reply_ring,
+        vertex_wire: opts.vertex_wire,
+    };
+    timed(send(stream, &welcome)).await?;
+    let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
+    let ClientMessage::Mapped = mapped;
+    segment.unlink()?;
+    let cmd_ring = segment.command_ring()?;
+    let reply_ring = segment.reply_ring()?;
+    let waker = cmd_ring.clone();
+    let closed = Arc::new(AtomicBool::new(false));
+    let closed_for_thread = closed.clone();
+    let reader =
+        // Larger commands are skipped unread and refused (see `Session::with_account`).
+        Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN));
+    let writer = Writer::new(reply_ring, 0);
+    let device = Arc::new(std::sync::OnceLock::new());
+    // What the session thread builds its executor from.
+    let plan = match &shared.gpu {
+        Some(gpu) => {
+            let entry = crate::layout::find(&opts.layout, &hello.name);
+            // A placement the client states wins over the daemon's layout; the class,
+            // deadline and projection always come from the daemon's entry.
+            let layout = if hello.placement.is_some() { None } else { entry };
+            if let Some(l) = layout {
+                info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
+            }
+            let fixed = entry.and_then(|e| e.priority);
+            let class = fixed.unwrap_or(opts.default_class);
+            let deadline = entry.is_some_and(|e| e.deadline);
+            shared.scene.set_policy(id, class, deadline);
+            if fixed.is_some() || deadline {
+                info!(priority = class.name(), deadline, "scheduled by the daemon's configuration");
+            }
+            let projection = entry.and_then(|e| e.projection);
+            if let Some(p) = projection {
+                info!(projection = %p, "window surfaces' projection set by the daemon's configuration");
+            }
+            Some(ExecutorPlan {
+                compositor: gpu.clone(),
+                lane: crate::schedule::Lane::new(class),
+                layout: layout.cloned(),
+                class,
+                fixed: fixed.is_some(),
+                deadline,
+                projection,
+            })
+        }
+        None => None,
+    };
+    let lane = plan.as_ref().map(|p| p.lane.clone());
+    let info = ClientInfo {
+        name: hello.name.clone(),
+        role: hello.role.clone(),
+        account: account.clone(),
+        lane,
+        device: device.clone(),
+    };
+    shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
+    shared.sessions.fetch_add(1, Ordering::Relaxed);
+    info!(segment = segment.name(), "client connected");
+    let (done_tx, mut done_rx) = oneshot::channel();
+    let span = tracing::Span::current();
+    let (scene, counter, name, tally) =
+        (shared.scene.clone(), shared.scene.stream_counter(id), hello.name.clone(), hello.tally);
+    let (devices, frame_transfer, depth, global_priority) =
+        (opts.devices, opts.frame_transfer, opts.depth, opts.global_priority);
+    let rasterizer_threads = opts.client_rasterizer_threads;
+    std::thread::Builder::new()
+        .name(format!("session-{id}"))
+        .spawn(move || {
+            // Everything the session logs (GPU errors included) carries the client's identity.
+            let _span = span.enter();
+            let _keep = segment;
+            let executor: Box<dyn crate::executor::Executor> = match plan {
+                Some(p) => {
+                    let class = p.class;
+                    // The session's decoding, and the driver threads of a device opened here,
+                    // run at the class's priority: low-priority ones only on what the others
+                    // leave (idle class, nice 19).
+                    crate::gpu::set_thread_nice(crate::gpu::nice_for(class));
+                    if class == Priority::Low {
+                        crate::gpu::set_thread_idle(0);
+                    }
+                    let gpu = match devices {
+                        DeviceMode::Shared => Ok(p.compositor.clone()),
+                        DeviceMode::PerClient => Gpu::open_with(crate::gpu::DeviceOptions {
+                            priority: class,
+                            global_priority,
+                            label: "client",
+                            rasterizer_threads,
+                        }),
+                    };
+                    let gpu = match gpu {
+                        Ok(g) => g,
+                        Err(e) => {
+                            let _ = done_tx
+                                .send((SessionEnd::Failed(format!("no GPU device for it: {e}")), Default::default()));
+                            return;
+                        }
+                    };
+                    let _ = device.set(gpu.clone());
+                    let executor = GlesExecutor::new(gpu)
+                        .with_lane(p.lane)
+                        .with_scene(scene, id, &name)
+                        .with_layout(p.layout)
+                        .with_account(account.clone())
+                        .with_priority(class, p.fixed, p.deadline)
+                        .with_projection(p.projection)
+                        .with_depth(depth)
+                        .with_frame_transfer(frame_transfer);
+                    Box::new(executor)
+                }
+                None => Box::new(Drain::default()),
+            };
+            let session = Session::new(reader, writer, tally, executor, closed_for_thread)
+                .with_byte_counter(counter)
+                .with_account(account);
+            let ended = session.run();
+            // The session and everything its client held are freed by now: give the pages
+            // back, so that clients coming and going leave the daemon's memory where it was.
+            release_free_memory();
+            let _ = done_tx.send(ended);
+        })
+        .map_err(|e| {
+            shared.scene.forget_stream(id);
+            SetupError::Thread(e)
+        })?;
+
+    let mut shutdown = shared.shutdown.clone();
+    let mut buf = [0u8; 64];
+    let mut socket_open = true;
+    let mut forced: Option<SessionEnd> = None;
+    loop {
+        tokio::select! {
+            done = &mut done_rx => {
+                let (end, stats) = done.unwrap_or((SessionEnd::Violation("session thread panicked".into()), Default::default()));
+                info!(commands = stats.commands, bytes = stats.bytes, "session ended");
+                shared.scene.forget_stream(id);
+                return Ok(forced.unwrap_or(end));
+            }
+            read = stream.read(&mut buf), if socket_open => {
+                socket_open = false;
+                if let Ok(n @ 1..) = read {
+                    forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the control socket")));
+                }
+                closed.store(true, Ordering::Release);
+                waker.wake_reader();
+                waker.wake_writer();
+            }
+            _ = shutdown.changed() => {
+                closed.store(true, Ordering::Release);
+                waker.wake_reader();
+                waker.wake_writer();
+            }
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! A window surface's buffers as a mailbox between its client's device and the compositor's.
+//!
+//! Each buffer is an image pair (colour and depth) the client draws into on its own device and
+//! the compositor reads on its own, through the same memory. A buffer is, at any time:
+//! - `Back`: the client draws into it (framebuffer 0);
+//! - `Pending`: swapped, its work not yet complete on the client's device;
+//! - `Latest`: the newest complete frame, which every composite takes;
+//! - `Free`: none of these.
+//!
+//! Besides, the buffer the composite in flight reads is marked as read until that composite
+//! completes on the compositor's device. A client takes a new back buffer only among the free
+//! buffers that no composite reads; a frame that completes replaces the latest at once, so a
+//! frame the compositor never took is dropped, never queued (mailbox).
+
+/// What a buffer is used for now.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Use {
+    /// Neither drawn into, nor waiting, nor the newest frame.
+    Free,
+    /// The client draws into it.
+    Back,
+    /// Swapped; its work is not yet complete on the client's device.
+    Pending,
+    /// The newest complete frame.
+    Latest,
+}
+
+/// The compositor's views of one buffer: colour, and depth (depth aspect only) if it has one.
+pub type Views = (wgpu::TextureView, Option<wgpu::TextureView>);
+
+/// A window surface's buffers.
+#[derive(Clone, Default)]
+pub struct Buffers {
+    views: Vec<Views>,
+    uses: Vec<Use>,
+    /// The buffer the composite in flight reads.
+    reading: Option<usize>,
+}
+
+impl Buffers {
+    /// How many buffers the surface has.
+    pub fn len(&self) -> usize {
+        self.views.len()
+    }
+
+    /// Whether it has none yet.
+    pub fn is_empty(&self) -> bool {
+        self.views.is_empty()
+    }
+
+    /// Adds a buffer, in use as the back buffer if `back`; its index.
+    pub fn add(&mut self, views: Views, back: bool) -> usize {
+        self.views.push(views);
+        self.uses.push(if back { Use::Back } else { Use::Free });
+        self.views.len() - 1
+    }
+
+    /// Each buffer's use.
+    pub fn uses(&self) -> &[Use] {
+        &self.uses
+    }
+
+    /// The newest complete frame's buffer.
+    pub fn latest(&self) -> Option<usize> {
+        self.uses.iter().position(|u| *u == Use::Latest)
+    }
+
+    /// A free buffer no composite reads, now the back buffer.
+    pub fn take_free(&mut self) -> Option<usize> {
+        let i = (0..self.uses.len()).find(|&i| self.uses[i] == Use::Free && self.reading != Some(i))?;
+        self.uses[i] = Use::Back;
+        Some(i)
+    }
+
+    /// Any buffer that is not pending, now the back buffer (when none became free in time).
+    pub fn take_any(&mut self) -> Option<usize> {
+        let i = (0..self.uses.len()).find(|&i| matches!(self.uses[i], Use::Free | Use::Latest))?;
+        self.uses[i] = Use::Back;
+        Some(i)
+    }
+
+    /// The back buffer `i` was swapped: it waits for its work.
+    pub fn submit(&mut self, i: usize) {
+        if let Some(u) = self.uses.get_mut(i) {
+            *u = Use::Pending;
+        }
+    }
+
+    /// Buffer `i`'s work completed: it is the newest frame, and the previous newest is free
+    /// (or, while a composite reads it, free once that completes). Its views, if it exists.
+    pub fn complete(&mut self, i: usize) -> Option<Views> {
+        if self.uses.get(i) != Some(&Use::Pending) {
+            return None;
+        }
+        for u in self.uses.iter_mut().filter(|u| **u == Use::Latest) {
+            *u = Use::Free;
+        }
+        self.uses[i] = Use::Latest;
+        Some(self.views[i].clone())
+    }
+
+    /// A composite reads the newest frame until [`Buffers::done_reading`].
+    pub fn read_latest(&mut self) {
+        self.reading = self.latest();
+    }
+
+    /// The composite that read has completed.
+    pub fn done_reading(&mut self) {
+        self.reading = None;
+    }
+
+    /// The buffer the composite in flight reads.
+    pub fn reading(&self) -> Option<usize> {
+        self.reading
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn views() -> Vec<Views> {
+        let Ok(gpu) = crate::gpu::Gpu::open() else { return Vec::new() };
+        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        (0..4).map(|_| (tex.create_view(&Default::default()), None)).collect()
+    }
+
+    #[test]
+    fn a_buffer_read_or_newest_is_never_handed_out() {
+        let v = views();
+        if v.is_empty() {
+            return;
+        }
+        let mut b = Buffers::default();
+        assert_eq!(b.add(v[0].clone(), true), 0);
+        b.add(v[1].clone(), false);
+        b.add(v[2].clone(), false);
+        // Frame 1 in buffer 0 completes; the compositor reads it.
+        b.submit(0);
+        assert_eq!(b.take_free(), Some(1));
+        assert!(b.complete(0).is_some());
+        b.read_latest();
+        assert_eq!(b.reading(), Some(0));
+        // Frame 2 (buffer 1) completes while the composite still reads buffer 0: buffer 0 is
+        // free but read, so the only buffer to hand out is 2.
+        b.submit(1);
+        assert_eq!(b.take_free(), Some(2));
+        assert!(b.complete(1).is_some());
+        assert_eq!(b.latest(), Some(1));
+        b.submit(2);
+        assert_eq!(b.take_free(), None, "buffer 0 is read, 1 newest, 2 pending");
+        b.done_reading();
+        assert_eq!(b.take_free(), Some(0));
+        // A frame never composited is dropped when a newer one completes (mailbox).
+        assert!(b.complete(2).is_some());
+        assert_eq!(b.uses(), [Use::Back, Use::Free, Use::Latest]);
+        // Completing a buffer that is not pending changes nothing.
+        assert!(b.complete(1).is_none());
+    }
+}
