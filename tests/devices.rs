@@ -111,7 +111,8 @@ fn one_clients_long_frame_never_holds_up_another() {
             }
             let start = Instant::now();
             gl.glFinish().expect("io");
-            start.elapsed()
+            // The connection stays open until its device's figures are read.
+            (start.elapsed(), gl)
         })
     };
     // B: short frames, each waited for, counted while A's frame runs.
@@ -126,7 +127,7 @@ fn one_clients_long_frame_never_holds_up_another() {
         during += 1;
         assert!(start.elapsed() < Duration::from_secs(120), "the long frame never finished");
     }
-    let took = long.join().expect("long client");
+    let (took, _long) = long.join().expect("long client");
     // On one shared queue every glFinish of B waits behind A's frame: B finishes at most a
     // frame or two while it runs. On devices of their own, B goes on.
     assert!(during >= 10, "the short client finished only {during} frames while the long one took {took:?}");
@@ -326,4 +327,44 @@ fn frames_copied_through_host_memory_composite_as_shared_ones_do() {
     let orange = shared.pixels().filter(|p| u16::from(p[0]) > u16::from(p[2]) + 40).count();
     let blue = shared.pixels().filter(|p| u16::from(p[2]) > u16::from(p[0]) + 40).count();
     assert!(orange > 1000 && blue > 1000, "orange {orange}, blue {blue}");
+}
+
+#[test]
+fn clients_beyond_the_device_limit_share_the_compositors_device() {
+    let daemon =
+        Daemon::start("limit", &["--lighting", "off", "--output", "headless:m=128x64", "--max-client-devices", "1"]);
+    let socket = daemon.socket.clone();
+    let own = |name: &str| {
+        let start = Instant::now();
+        loop {
+            let s = stats(&socket);
+            if let Some(d) = s.clients.iter().find(|c| c.name == name).and_then(|c| c.device.clone()) {
+                return d.own;
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "{name} never got a device");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    };
+    let mut a = connect(&socket, "a");
+    let ca = window(&mut a, [0, 0, 64, 64], 1);
+    assert!(own("a"), "the first client has a device of its own");
+    let mut b = connect(&socket, "b");
+    let cb = window(&mut b, [64, 0, 64, 64], 1);
+    assert!(!own("b"), "the second client shares the compositor's device");
+    for (gl, cur, c) in [(&mut a, ca, [200, 40, 40]), (&mut b, cb, [40, 200, 40])] {
+        clear(gl, c);
+        gl.eglSwapBuffers(cur.display, cur.surface).expect("io").expect("swap");
+    }
+    wait_for_pixel(&socket, 32, 32, [200, 40, 40]);
+    wait_for_pixel(&socket, 96, 32, [40, 200, 40]);
+    assert!(daemon.log_text().contains("shares the compositor's device"), "the fallback is not logged");
+    // The first client's place is free again once it leaves.
+    drop(a);
+    let start = Instant::now();
+    while stats(&socket).clients.len() > 1 {
+        assert!(start.elapsed() < Duration::from_secs(20), "the first client never left");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let _c = connect(&socket, "c");
+    assert!(own("c"), "a later client takes the freed place");
 }

@@ -59,9 +59,10 @@ pub fn run(args: &Args) -> Result<()> {
         while clients.len() < n {
             let i = clients.len();
             let opts = ConnectOptions { socket: socket.clone(), name: format!("idle-{i}"), ..Default::default() };
-            let mut gl = Connection::connect(&opts).context("connecting a client")?;
+            let why = || format!("client {i}; the daemon's log:\n{}", crate::stratad::tail(&daemon.log, 10));
+            let mut gl = Connection::connect(&opts).with_context(why)?;
             let rect = [(i % 16) as i32 * 40, (i / 16) as i32 * 40, 32, 32];
-            egl_context(&mut gl, 24, 0, SurfaceKind::Window { rect, z: 0.5 }).context("a window surface")?;
+            egl_context(&mut gl, 24, 0, SurfaceKind::Window { rect, z: 0.5 }).with_context(why)?;
             clients.push(gl);
         }
         // Every session has opened its device.

@@ -13,7 +13,7 @@ use strata_protocol::{Blob, Slice, Text};
 use strata_server::gles::glsl;
 
 use crate::mesh::{self, Mesh};
-use crate::transport::{bar, start_daemon};
+use crate::transport::{bar, start_daemon_with};
 
 /// Options of `strata-bench execute`.
 #[derive(clap::Args)]
@@ -27,6 +27,11 @@ pub struct Args {
     /// Square framebuffer size.
     #[arg(long, default_value_t = 540)]
     size: u32,
+    /// Rasterizer threads of the client's device on lavapipe, as for `stratad serve
+    /// --client-rasterizer-threads` [default: 0, the driver's one per core, as the baseline's
+    /// device has: the two sides then differ only in the path the commands take].
+    #[arg(long, default_value_t = 0)]
+    client_rasterizer_threads: u32,
 }
 
 const VS: &str = "attribute vec3 position;
@@ -66,7 +71,8 @@ fn matrices(f: u32, aspect: f32) -> ([f32; 16], [f32; 16]) {
 type StrataRun = (f64, strata_protocol::ExecStats, Vec<u8>);
 
 fn strata(mesh: &Mesh, args: &Args) -> Result<StrataRun> {
-    let daemon = start_daemon(strata_server::ExecutorKind::Gles)?;
+    let threads = ["--client-rasterizer-threads".to_string(), args.client_rasterizer_threads.to_string()];
+    let daemon = start_daemon_with(strata_server::ExecutorKind::Gles, &threads, None)?;
     let opts = ConnectOptions { socket: daemon.1.clone(), name: "execute-bench".into(), ..ConnectOptions::default() };
     let mut gl = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
     let size = args.size as i32;
@@ -329,8 +335,17 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     println!(
-        "execute: {} ({} triangles) at {}x{}, {} frames each",
-        mesh.source, triangles, args.size, args.size, args.frames
+        "execute: {} ({} triangles) at {}x{}, {} frames each; the client's device has {} rasterizer threads",
+        mesh.source,
+        triangles,
+        args.size,
+        args.size,
+        args.frames,
+        if args.client_rasterizer_threads == 0 {
+            "the driver's".to_string()
+        } else {
+            args.client_rasterizer_threads.to_string()
+        }
     );
     println!("  through stratad:     {strata_fps:>8.1} fps");
     println!("  native wgpu:         {native_wgpu_fps:>8.1} fps");

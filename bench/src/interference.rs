@@ -121,7 +121,7 @@ struct Phase {
     /// The IC's surface as `ctl list` showed it at the end of the phase.
     ic_surface: Option<Value>,
     /// The IC's and the HU's `ctl stats` rows at the end of the phase: class, and where their
-    /// frames waited (swap, scheduler, device; low-priority slices and deferrals).
+    /// frames waited (swap, device), and their devices (busy time, threads, global priority).
     clients: Vec<Value>,
     frame_times_ms: Vec<f64>,
 }
@@ -389,7 +389,7 @@ impl Bench<'_> {
     fn load_phase(&mut self, load: Load) -> Result<Phase> {
         let hu = self.start_hu(load)?;
         // Measure the steady state: after the HU's first frame (its pipelines compiled, its
-        // passes' costs known to the scheduler), or after `SETTLE_LIMIT` at most.
+        // first uploads done), or after `SETTLE_LIMIT` at most.
         let until = Instant::now() + SETTLE_LIMIT;
         while load != Load::CpuHog && Instant::now() < until {
             match Snapshot::take(&mut self.control) {

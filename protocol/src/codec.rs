@@ -139,6 +139,12 @@ pub fn decode_owned<T: DeserializeOwned>(bytes: &[u8], what: &'static str) -> Re
     }
 }
 
+/// Decodes an owned value from a peer the reader trusts (the daemon, for a client), within the
+/// whole message limit. Every byte must be used.
+pub fn decode_trusted<T: DeserializeOwned>(bytes: &[u8], what: &'static str) -> Result<T, CodecError> {
+    decode_owned_within::<T, MAX_MESSAGE_LEN>(bytes, what)
+}
+
 /// [`decode_owned`] with at most `LIMIT` bytes of owned strings and byte arrays.
 fn decode_owned_within<T: DeserializeOwned, const LIMIT: usize>(
     bytes: &[u8],

@@ -242,7 +242,10 @@ pub fn read_message<T: DeserializeOwned>(r: &mut impl Read, what: &'static str) 
     read_message_limited(r, what, MAX_CONTROL_MESSAGE)
 }
 
-/// Reads one framed message of at most `limit` bytes from a blocking stream.
+/// Reads one framed message of at most `limit` bytes from a blocking stream. The client reads
+/// the daemon's messages with it and trusts them: a control reply's decoded size may be many
+/// times its encoded size (`ctl stats` lists many small items), so it decodes within the whole
+/// message limit rather than one that follows its size.
 pub fn read_message_limited<T: DeserializeOwned>(
     r: &mut impl Read,
     what: &'static str,
@@ -256,7 +259,7 @@ pub fn read_message_limited<T: DeserializeOwned>(
     }
     let mut body = vec![0u8; len];
     r.read_exact(&mut body)?;
-    Ok(codec::decode_owned(&body, what)?)
+    Ok(codec::decode_trusted(&body, what)?)
 }
 
 /// The socket path when none is given: `$STRATA_SOCKET`, else `$XDG_RUNTIME_DIR/strata.sock`,
@@ -285,6 +288,34 @@ mod tests {
         assert!(msg.contains(&format!("version {PROTOCOL_VERSION}")), "{msg}");
         assert!(matches!(check_preamble(*b"GET / HT"), Err(HandshakeError::NotStrata(_))));
         check_preamble(preamble(PROTOCOL_VERSION)).expect("same version");
+    }
+
+    #[test]
+    fn a_control_reply_of_many_small_items_is_read_whole() {
+        use crate::control::{DeviceStats, DeviceThread};
+        // Many empty strings and short lists: a few bytes each on the wire, many more decoded.
+        let thread = DeviceThread { tid: 1, name: String::new(), nice: 0 };
+        let device = DeviceStats { threads: vec![thread; 400], ..Default::default() };
+        let reply = ControlReply::Error(String::new());
+        let stats = crate::control::DaemonStats {
+            rss_bytes: 0,
+            peak_rss_bytes: 0,
+            rss_anon_bytes: 0,
+            sessions: 0,
+            clients: Vec::new(),
+            gpu_bytes: 0,
+            gpu_bytes_limit: 0,
+            objects: Default::default(),
+            device_objects: Default::default(),
+            compositor_device: Some(device),
+        };
+        for msg in [reply, ControlReply::Stats(stats)] {
+            let framed = frame(&msg).expect("encode");
+            assert!(framed.len() < 4 << 10, "a small message: {} bytes", framed.len());
+            let got: ControlReply =
+                read_message_limited(&mut &framed[..], "control reply", MAX_CONTROL_REPLY).expect("decode");
+            assert_eq!(got, msg);
+        }
     }
 
     #[test]

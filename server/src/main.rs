@@ -121,6 +121,10 @@ enum Cmd {
         /// default (one per core). The compositor's device keeps the default.
         #[arg(long, default_value_t = 1)]
         client_rasterizer_threads: u32,
+        /// Most clients' devices open at once (0: as many as the driver opens); clients beyond
+        /// it, and any whose device the driver refuses, share the compositor's device.
+        #[arg(long, default_value_t = 0)]
+        max_client_devices: usize,
         /// Let `ctl` destroy a client's device, as a fault would (for tests).
         #[arg(long, hide = true)]
         allow_fault_injection: bool,
@@ -279,6 +283,7 @@ fn main() -> Result<()> {
             no_global_priority,
             allow_fault_injection,
             client_rasterizer_threads,
+            max_client_devices,
         } => {
             let mut quotas = Vec::new();
             if let Some(path) = config {
@@ -321,6 +326,7 @@ fn main() -> Result<()> {
                 global_priority: !no_global_priority,
                 fault_injection: allow_fault_injection,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
+                max_client_devices: (max_client_devices > 0).then_some(max_client_devices),
             };
             run_daemon(opts)
         }

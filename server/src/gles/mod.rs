@@ -132,7 +132,7 @@ impl GlesExecutor {
         self
     }
 
-    /// Submits this client's work through `lane` (one of the daemon's scheduler's).
+    /// Submits this client's work through `lane`, whose class the daemon set.
     pub fn with_lane(mut self, lane: Arc<crate::schedule::Lane>) -> Self {
         self.r.lane = lane;
         self

@@ -1,7 +1,7 @@
 //! One render client's session: its segment, its executor (built on its session thread, with a
 //! device of its own opened there at its class's priority) and the session thread itself.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use strata_protocol::codec::MAX_MESSAGE_LEN;
@@ -12,7 +12,7 @@ use strata_protocol::segment::{Segment, SegmentError};
 use tokio::io::AsyncReadExt;
 use tokio::net::UnixStream;
 use tokio::sync::oneshot;
-use tracing::info;
+use tracing::{info, warn};
 
 use super::{recv, send, timed, ClientInfo, DeviceMode, Shared};
 use crate::executor::Drain;
@@ -26,6 +26,24 @@ fn release_free_memory() {
     // SAFETY: malloc_trim only releases free memory; it is safe to call from any thread.
     unsafe {
         libc::malloc_trim(0);
+    }
+}
+
+/// One of the `--max-client-devices` places, held while a client's own device is open.
+struct DeviceSlot(Arc<AtomicUsize>);
+
+impl DeviceSlot {
+    /// A place if fewer than `max` are taken (any number without a maximum).
+    fn take(count: &Arc<AtomicUsize>, max: Option<usize>) -> Option<DeviceSlot> {
+        let limit = max.unwrap_or(usize::MAX);
+        count.fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| (n < limit).then_some(n + 1)).ok()?;
+        Some(DeviceSlot(count.clone()))
+    }
+}
+
+impl Drop for DeviceSlot {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::AcqRel);
     }
 }
 
@@ -132,13 +150,15 @@ pub(super) async fn run_client(
     let (devices, frame_transfer, depth, global_priority) =
         (opts.devices, opts.frame_transfer, opts.depth, opts.global_priority);
     let rasterizer_threads = opts.client_rasterizer_threads;
+    let (client_devices, max_client_devices) = (shared.client_devices.clone(), opts.max_client_devices);
     std::thread::Builder::new()
         .name(format!("session-{id}"))
         .spawn(move || {
             // Everything the session logs (GPU errors included) carries the client's identity.
             let _span = span.enter();
             let _keep = segment;
-            let executor: Box<dyn crate::executor::Executor> = match plan {
+            // The device's place (`--max-client-devices`) is held for the whole session.
+            let (executor, _slot): (Box<dyn crate::executor::Executor>, Option<DeviceSlot>) = match plan {
                 Some(p) => {
                     let class = p.class;
                     // The session's decoding, and the driver threads of a device opened here,
@@ -148,22 +168,35 @@ pub(super) async fn run_client(
                     if class == Priority::Low {
                         crate::gpu::set_thread_idle(0);
                     }
-                    let gpu = match devices {
-                        DeviceMode::Shared => Ok(p.compositor.clone()),
-                        DeviceMode::PerClient => Gpu::open_with(crate::gpu::DeviceOptions {
-                            priority: class,
-                            global_priority,
-                            label: "client",
-                            rasterizer_threads,
-                        }),
+                    let own = match devices {
+                        DeviceMode::Shared => None,
+                        DeviceMode::PerClient => match DeviceSlot::take(&client_devices, max_client_devices) {
+                            None => {
+                                warn!(
+                                    "--max-client-devices devices are open: it shares the compositor's device, without \
+                                     isolation"
+                                );
+                                None
+                            }
+                            Some(slot) => match Gpu::open_with(crate::gpu::DeviceOptions {
+                                priority: class,
+                                global_priority,
+                                label: "client",
+                                rasterizer_threads,
+                            }) {
+                                Ok(g) => Some((g, slot)),
+                                // A driver may refuse more devices (NVIDIA opens 64 per
+                                // process): the client still renders, on the compositor's.
+                                Err(e) => {
+                                    warn!("no device of its own ({e}): it shares the compositor's, without isolation");
+                                    None
+                                }
+                            },
+                        },
                     };
-                    let gpu = match gpu {
-                        Ok(g) => g,
-                        Err(e) => {
-                            let _ = done_tx
-                                .send((SessionEnd::Failed(format!("no GPU device for it: {e}")), Default::default()));
-                            return;
-                        }
+                    let (gpu, slot) = match own {
+                        Some((g, slot)) => (g, Some(slot)),
+                        None => (p.compositor.clone(), None),
                     };
                     let _ = device.set(gpu.clone());
                     let executor = GlesExecutor::new(gpu)
@@ -175,9 +208,9 @@ pub(super) async fn run_client(
                         .with_projection(p.projection)
                         .with_depth(depth)
                         .with_frame_transfer(frame_transfer);
-                    Box::new(executor)
+                    (Box::new(executor), slot)
                 }
-                None => Box::new(Drain::default()),
+                None => (Box::new(Drain::default()), None),
             };
             let session = Session::new(reader, writer, tally, executor, closed_for_thread)
                 .with_byte_counter(counter)

@@ -77,6 +77,9 @@ pub struct ServeOptions {
     /// Rasterizer threads of each client's device on a CPU rasterizer (`None`: the driver's
     /// default).
     pub client_rasterizer_threads: Option<u32>,
+    /// Most clients' devices open at once (`None`: as many as the driver opens); clients
+    /// beyond it share the compositor's device.
+    pub max_client_devices: Option<usize>,
 }
 
 /// Which device each client renders on.
@@ -130,6 +133,7 @@ impl Default for ServeOptions {
             global_priority: true,
             fault_injection: false,
             client_rasterizer_threads: Some(1),
+            max_client_devices: None,
         }
     }
 }
@@ -212,6 +216,8 @@ struct Shared {
     clients: Mutex<HashMap<u64, ClientInfo>>,
     pool: Arc<crate::quota::Pool>,
     sessions: AtomicU64,
+    /// Clients' devices open now (for `--max-client-devices`).
+    client_devices: Arc<std::sync::atomic::AtomicUsize>,
     shutdown: watch::Receiver<bool>,
 }
 
@@ -237,9 +243,27 @@ fn open_compositor_device(global_priority: bool) -> Result<Arc<Gpu>, ServerError
     Ok(opened?)
 }
 
+/// Raises this process's soft limit on open files to its hard limit: every client's device
+/// holds descriptors of its own (a GPU driver's device files, shared images), so the common
+/// soft limit of 1024 would refuse clients long before memory or quotas do.
+fn raise_open_file_limit() {
+    // SAFETY: getrlimit and setrlimit on this process with a valid struct.
+    unsafe {
+        let mut lim = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        if libc::getrlimit(libc::RLIMIT_NOFILE, &mut lim) == 0 && lim.rlim_cur < lim.rlim_max {
+            let old = lim.rlim_cur;
+            lim.rlim_cur = lim.rlim_max;
+            if libc::setrlimit(libc::RLIMIT_NOFILE, &lim) == 0 {
+                debug!(from = old, to = lim.rlim_max, "open file limit raised");
+            }
+        }
+    }
+}
+
 /// Serves clients on `opts.socket` until `shutdown` resolves, then stops every session and
 /// removes the socket.
 pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output = ()>) -> Result<(), ServerError> {
+    raise_open_file_limit();
     for cap in [opts.cmd_ring, opts.reply_ring] {
         if !cap.is_power_of_two() || !(4096..=1 << 30).contains(&cap) {
             return Err(ServerError::BadRing(cap));
@@ -284,6 +308,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
         sessions: AtomicU64::new(0),
+        client_devices: Arc::default(),
         shutdown: stop_rx,
         opts,
     });
