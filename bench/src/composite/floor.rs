@@ -80,25 +80,7 @@ impl Floor {
             entries: &entries,
         });
         let mut enc = gpu.device.create_command_encoder(&Default::default());
-        {
-            let ops = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
-            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("composite floor"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: out,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops,
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            rp.set_pipeline(&self.pipeline);
-            rp.set_bind_group(0, &group, &[]);
-            rp.draw(0..3, 0..1);
-        }
+        strata_server::gpu::fullscreen_pass(&mut enc, "composite floor", out, &self.pipeline, &group);
         gpu.queue.submit([enc.finish()]);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     }

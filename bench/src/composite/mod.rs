@@ -75,16 +75,7 @@ pub(crate) fn texture(
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
 ) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("bench image"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
+    gpu.texture_2d("bench image", format, (w, h), usage)
 }
 
 /// Surface `i`: a colour gradient and a tilted depth plane, so the surfaces intersect.

@@ -115,25 +115,6 @@ fn padded_row(width: u32) -> u32 {
     (width * 4).div_ceil(256) * 256
 }
 
-fn texture(
-    gpu: &Gpu,
-    label: &str,
-    format: wgpu::TextureFormat,
-    size: (u32, u32),
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
-}
-
 /// A depth-aspect view, as the compositor samples depth.
 pub(super) fn depth_view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor { aspect: wgpu::TextureAspect::DepthOnly, ..Default::default() })
@@ -158,7 +139,7 @@ impl CopyPath {
         });
         let depth_float = depth.map(|view| {
             let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-            let t = texture(client, "frame depth as float", wgpu::TextureFormat::R32Float, size, usage);
+            let t = client.texture_2d("frame depth as float", wgpu::TextureFormat::R32Float, size, usage);
             let v = t.create_view(&Default::default());
             let (bgl, _) = client.depth_reader();
             let group = client.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -168,8 +149,7 @@ impl CopyPath {
             });
             (t, v, group)
         });
-        let color = texture(
-            comp,
+        let color = comp.texture_2d(
             "frame colour copy",
             COLOR_FORMAT,
             size,
@@ -177,7 +157,7 @@ impl CopyPath {
         );
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let depth_tex =
-            depth.map(|_| texture(comp, "frame depth copy", wgpu::TextureFormat::Depth32Float, size, usage));
+            depth.map(|_| comp.texture_2d("frame depth copy", wgpu::TextureFormat::Depth32Float, size, usage));
         let views = (color.create_view(&Default::default()), depth_tex.as_ref().map(depth_view));
         let path = CopyPath { readback, depth_float, color, depth: depth_tex, size, mapped: Arc::default() };
         (path, views)
@@ -210,24 +190,7 @@ impl CopyPath {
         copy(&mut enc, color, 0);
         if let Some((t, v, group)) = &self.depth_float {
             let (_, pipeline) = gpu.depth_reader();
-            {
-                let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("frame depth read"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: v,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                rp.set_pipeline(&pipeline);
-                rp.set_bind_group(0, group, &[]);
-                rp.draw(0..3, 0..1);
-            }
+            crate::gpu::fullscreen_pass(&mut enc, "frame depth read", v, &pipeline, group);
             copy(&mut enc, t, u64::from(row) * u64::from(h));
         }
         gpu.queue.submit([enc.finish()]);

@@ -176,10 +176,57 @@ pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// Records one full-screen triangle drawn with `pipeline` and `group` into `target`, which keeps
+/// what it held elsewhere (loaded and stored).
+pub fn fullscreen_pass(
+    enc: &mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+) {
+    let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    rp.set_pipeline(pipeline);
+    rp.set_bind_group(0, group, &[]);
+    rp.draw(0..3, 0..1);
+}
+
 /// Non-filterable float textures, for [`texture_entry`].
 pub const UNFILTERED: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: false };
 
 impl Gpu {
+    /// A single-level, single-sample 2D texture of `format` and `(width, height)` for `usage`.
+    pub fn texture_2d(
+        &self,
+        label: &str,
+        format: wgpu::TextureFormat,
+        (width, height): (u32, u32),
+        usage: wgpu::TextureUsages,
+    ) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    }
+
     /// A pipeline that draws one full-screen triangle with the `vs` and `fs` entry points of
     /// `wgsl`, one bind group of `entries`, into `targets` (and a depth attachment if `depth`).
     pub fn fullscreen_pipeline(

@@ -373,16 +373,8 @@ mod tests {
 
     /// The depth values of `tex` as `gpu` samples them (through the depth reader).
     fn read_depth(gpu: &Gpu, tex: &wgpu::Texture, (w, h): (u32, u32)) -> Vec<f32> {
-        let out = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let out = gpu.texture_2d("depth as float", wgpu::TextureFormat::R32Float, (w, h), usage);
         let (bgl, pipeline) = gpu.depth_reader();
         let src = tex
             .create_view(&wgpu::TextureViewDescriptor { aspect: wgpu::TextureAspect::DepthOnly, ..Default::default() });
@@ -393,25 +385,7 @@ mod tests {
         });
         let dst = out.create_view(&Default::default());
         let mut enc = gpu.device.create_command_encoder(&Default::default());
-        {
-            let ops = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
-            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &dst,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops,
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            rp.set_pipeline(&pipeline);
-            rp.set_bind_group(0, &group, &[]);
-            rp.draw(0..3, 0..1);
-        }
+        crate::gpu::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
         gpu.queue.submit([enc.finish()]);
         // Four bytes a texel, as RGBA8 rows are.
         let bytes = gpu.read_rgba8(&out, [0, 0, w, h]).expect("read back");

@@ -69,24 +69,7 @@ impl Renderer {
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&linear) },
                     ],
                 });
-                {
-                    let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("mipmap"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: &dst,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-                        })],
-                        depth_stencil_attachment: None,
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    });
-                    rp.set_pipeline(&pipeline);
-                    rp.set_bind_group(0, &group, &[]);
-                    rp.draw(0..3, 0..1);
-                }
+                crate::gpu::fullscreen_pass(&mut enc, "mipmap", &dst, &pipeline, &group);
             }
         }
         self.lane.submit(&self.gpu, vec![enc.finish()]);
