@@ -226,8 +226,8 @@ impl Root {
         let Inner { compositor, outputs, .. } = &mut *inner;
         let started = Instant::now();
         let mut composited = Vec::new();
-        // Encode and submit under the scene lock: no swap can interleave, so every front
-        // image sampled here is a completed frame.
+        // Every surface's newest complete frame, marked as read until this composite has
+        // completed (`Scene::shown`), so no client draws into it meanwhile.
         let (_, seen, shown) = self.scene.compose(part, |surfaces, light, changed| {
             for (index, out) in outputs.iter_mut().enumerate() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
