@@ -9,31 +9,12 @@ mod support;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use strata_client::setup::{egl_context, Current, SurfaceKind};
-use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
+use strata_client::setup::{egl_context, SurfaceKind};
+use strata_client::{Calls, ControlConnection};
 use strata_protocol::control::{ClientStats, DaemonStats};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
+use support::gl::{clear, connect, window, GL_SCISSOR_TEST};
 use support::Daemon;
-
-const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
-const GL_SCISSOR_TEST: u32 = 0x0C11;
-
-fn connect(socket: &Path, name: &str) -> Connection {
-    Connection::connect(&ConnectOptions { socket: socket.into(), name: name.into(), ..Default::default() })
-        .expect("connect")
-}
-
-fn window(gl: &mut Connection, rect: [i32; 4], interval: i32) -> Current {
-    let cur = egl_context(gl, 24, 0, SurfaceKind::Window { rect, z: 0.5 }).expect("context");
-    gl.eglSwapInterval(cur.display, interval).expect("io").expect("eglSwapInterval");
-    cur
-}
-
-fn clear(gl: &mut Connection, c: [u8; 3]) {
-    let f = |v: u8| f32::from(v) / 255.0;
-    gl.glClearColor(f(c[0]), f(c[1]), f(c[2]), 1.0).expect("io");
-    gl.glClear(GL_COLOR_BUFFER_BIT).expect("io");
-}
 
 fn control(socket: &Path, req: ControlRequest) -> ControlReply {
     ControlConnection::connect(socket).expect("control").request(&req).expect("control request")

@@ -16,6 +16,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use serde_json::Value;
 use strata_client::ControlConnection;
+use strata_protocol::control::Priority;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 
 use crate::interference_client::{lines, read_outcome, FrameStats};
@@ -92,6 +93,11 @@ pub struct Args {
     /// One more option for the daemon (repeatable), e.g. `--daemon-arg=--devices=shared`.
     #[arg(long = "daemon-arg", allow_hyphen_values = true)]
     pub daemon_args: Vec<String>,
+    /// Start the IC's and the HU's processes at this benchmark's own nice value, instead of at
+    /// the nice value the daemon gives their classes' device threads (IC high: −5, HU low: 19),
+    /// as a deployment's service units would (systemd's `Nice=`).
+    #[arg(long)]
+    pub same_process_nice: bool,
 }
 
 /// One phase: the IC alone or beside one load.
@@ -232,13 +238,25 @@ struct Bench<'a> {
 }
 
 impl Bench<'_> {
+    /// A client process of `class`: run through `nice` at the class's nice value unless
+    /// `--same-process-nice` (or `--no-priorities`). Raising priority needs `CAP_SYS_NICE`;
+    /// without it `nice` says so and runs the program at the benchmark's own value.
+    fn process(&self, program: &Path, class: Priority) -> Command {
+        if self.args.same_process_nice || self.args.no_priorities {
+            return Command::new(program);
+        }
+        let mut cmd = Command::new("nice");
+        cmd.args(["-n", &strata_server::gpu::nice_for(class).to_string()]).arg(program);
+        cmd
+    }
+
     fn start_hu(&self, load: Load) -> Result<Hu> {
         let name = load.name();
         let log = self.args.out.join(format!("hu-{name}.log"));
         let file = std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?;
         let (mut cmd, result) = if load.is_glmark2() {
             let (_, shim, x) = self.glmark2.as_ref().context("glmark2-es2 is not set up")?;
-            let mut cmd = Command::new("glmark2-es2");
+            let mut cmd = self.process("glmark2-es2".as_ref(), Priority::Low);
             cmd.args(["-b", &format!("{name}:duration=100000"), "-s", &self.args.hu_size, "--swap-mode", "immediate"])
                 .env("DISPLAY", &x.display)
                 .env("LD_LIBRARY_PATH", shim)
@@ -249,7 +267,7 @@ impl Bench<'_> {
         } else {
             let result = self.args.out.join(format!("hu-{name}.json"));
             let _ = std::fs::remove_file(&result);
-            let mut cmd = Command::new(&self.exe);
+            let mut cmd = self.process(&self.exe, Priority::Low);
             cmd.args(["interference-client", "--role", &name, "--seconds", "1000000", "--socket"])
                 .arg(&self.daemon.socket)
                 .arg("--out")
@@ -298,7 +316,8 @@ impl Bench<'_> {
         let result = self.args.out.join(format!("ic-{name}.json"));
         let log = self.args.out.join(format!("ic-{name}.log"));
         let _ = std::fs::remove_file(&result);
-        let mut child = Command::new(&self.exe)
+        let mut child = self
+            .process(&self.exe, Priority::High)
             .args(["interference-client", "--role", "ic", "--hold", "--seconds", &self.args.seconds.to_string()])
             .arg("--socket")
             .arg(&self.daemon.socket)

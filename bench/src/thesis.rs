@@ -132,8 +132,8 @@ struct Row {
     composites: Option<u64>,
     /// Passes of the busiest composite seen (chaining stages; Strata only).
     stages: Option<u64>,
-    /// The compositor's share of the machine over the run: the CPU time of its device's
-    /// threads and of its own thread, over the run's time on every core (Strata on a CPU
+    /// The compositor's share of the machine while all n instances drew: the CPU time of its
+    /// device's threads and of its own thread, over that time on every core (Strata on a CPU
     /// rasterizer only).
     compositor_share: Option<f64>,
 }
@@ -209,40 +209,24 @@ impl Bench<'_> {
     /// n instances at once; with a daemon, its compositor's figures over the run.
     fn row(&self, t: &Table, socket: Option<&std::path::Path>, n: u32) -> Result<Row> {
         let before = socket.map(output_stats).transpose()?;
-        let busy_before = socket.map(compositor_busy).transpose()?;
-        let started = std::time::Instant::now();
         let children: Vec<Child> = (0..n)
             .map(|i| self.command(t, socket, i).spawn().context("starting glmark2-es2"))
             .collect::<Result<_>>()?;
-        // The passes of the busiest composite, sampled while the instances run.
+        // Sampled while the instances run: the passes of the busiest composite, and the
+        // compositor's busy time while all n draw (the window their frame rates cover).
         let stop = Arc::new(AtomicBool::new(false));
         let sampler = socket.map(|s| {
             let (s, stop) = (s.to_path_buf(), stop.clone());
-            std::thread::spawn(move || {
-                let mut most = 0;
-                while !stop.load(Ordering::Acquire) {
-                    if let Ok((_, _, passes)) = output_stats(&s) {
-                        most = most.max(passes);
-                    }
-                    std::thread::sleep(Duration::from_millis(250));
-                }
-                most
-            })
+            std::thread::spawn(move || sample(&s, n, &stop))
         });
         let deadline = Duration::from_secs(u64::from(self.args.duration) * 3 + 120);
         let outcomes: Vec<Result<u32>> = children.into_iter().map(|c| finish(c, deadline).map(|r| r.score)).collect();
         stop.store(true, Ordering::Release);
-        let stages = sampler.and_then(|h| h.join().ok());
+        let sampled = sampler.and_then(|h| h.join().ok());
         let fps: Vec<u32> = outcomes.into_iter().collect::<Result<_>>()?;
         let after = socket.map(output_stats).transpose()?;
-        let busy_after = socket.map(compositor_busy).transpose()?;
         let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as f64;
-        let compositor_share = match (busy_before, busy_after) {
-            (Some(b), Some(a)) => {
-                Some((a.saturating_sub(b) as f64 / 1e6 / (started.elapsed().as_secs_f64() * cores)).min(1.0))
-            }
-            _ => None,
-        };
+        let compositor_share = sampled.as_ref().and_then(|s| s.share(cores));
         let (composites, composite_ms) = match (before, after) {
             (Some(b), Some(a)) if a.0 > b.0 => {
                 let count = a.0 - b.0;
@@ -258,10 +242,50 @@ impl Bench<'_> {
             fps,
             composite_ms,
             composites,
-            stages,
+            stages: sampled.map(|s| s.passes),
             compositor_share,
         })
     }
+}
+
+/// What a row's sampler saw of the daemon.
+struct Sampled {
+    /// Passes of the busiest composite.
+    passes: u64,
+    /// The compositor's busy time (µs) when all n instances were first seen drawing, and the
+    /// last time they all still were.
+    all_drawing: Option<((std::time::Instant, u64), (std::time::Instant, u64))>,
+}
+
+impl Sampled {
+    /// The compositor's share of the machine while all n instances drew: its busy time over
+    /// that window's time on every core.
+    fn share(&self, cores: f64) -> Option<f64> {
+        let ((t0, b0), (t1, b1)) = self.all_drawing?;
+        let secs = t1.duration_since(t0).as_secs_f64();
+        (secs > 0.5).then(|| (b1.saturating_sub(b0) as f64 / 1e6 / (secs * cores)).min(1.0))
+    }
+}
+
+/// Samples the daemon at `socket` every 250 ms until `stop`: the busiest composite's passes,
+/// and the compositor's busy time over the window in which all `n` surfaces exist and have
+/// shown a frame (glmark2 reports its frame rate over its drawing, not over its start-up,
+/// and the first instance to finish ends the window).
+fn sample(socket: &std::path::Path, n: u32, stop: &AtomicBool) -> Sampled {
+    let mut out = Sampled { passes: 0, all_drawing: None };
+    while !stop.load(Ordering::Acquire) {
+        if let Ok((outputs, surfaces)) = list(socket) {
+            out.passes = out.passes.max(outputs.first().map_or(0, |o| o.passes));
+            if surfaces.len() == n as usize && surfaces.iter().all(|r| r.frames > 0) {
+                if let Ok(busy) = compositor_busy(socket) {
+                    let at = (std::time::Instant::now(), busy);
+                    out.all_drawing = Some(out.all_drawing.map_or((at, at), |(first, _)| (first, at)));
+                }
+            }
+        }
+        std::thread::sleep(Duration::from_millis(250));
+    }
+    out
 }
 
 impl Bench<'_> {

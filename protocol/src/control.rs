@@ -343,6 +343,8 @@ pub struct OutputRow {
     pub rect: [i32; 4],
     /// Frames composited into it so far (only when something changed).
     pub composites: u64,
+    /// Of those, the ones drawn band by band over several refreshes (`--band-above-ms`).
+    pub banded: u64,
     /// Passes the last composite drew.
     pub passes: u64,
     /// The part of the output the last composite redrew: x, y, width, height.

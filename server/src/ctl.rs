@@ -130,15 +130,26 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 return Ok(());
             }
             println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>9} {:>8} {:>9}  last redrawn",
-                "output", "kind", "x", "y", "w", "h", "composites", "passes", "device ms", "queue ms", "encode ms"
+                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {:>9} {:>8} {:>9}  last redrawn",
+                "output",
+                "kind",
+                "x",
+                "y",
+                "w",
+                "h",
+                "composites",
+                "banded",
+                "passes",
+                "device ms",
+                "queue ms",
+                "encode ms"
             );
             for o in outputs {
                 let r = o.region;
                 let each = |us: u64| us as f64 / 1000.0 / o.composites.max(1) as f64;
                 let (ms, queue, encode) = (each(o.composite_us), each(o.queue_us), each(o.encode_us));
                 println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2}  {}x{}+{}+{}",
+                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2}  {}x{}+{}+{}",
                     o.name,
                     o.kind,
                     o.rect[0],
@@ -146,6 +157,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                     o.rect[2],
                     o.rect[3],
                     o.composites,
+                    o.banded,
                     o.passes,
                     r[2],
                     r[3],

@@ -125,6 +125,15 @@ enum Cmd {
         /// it, and any whose device the driver refuses, share the compositor's device.
         #[arg(long, default_value_t = 0)]
         max_client_devices: usize,
+        /// A change of lower-priority surfaces that the compositor predicts will take longer
+        /// than this (milliseconds) is drawn band by band between refreshes, so that it never
+        /// holds up a high-priority surface's next composite (0: every such change; a very
+        /// large value: none).
+        #[arg(long, default_value_t = 4.0)]
+        band_above_ms: f64,
+        /// What each band is sized to take, in milliseconds (0: the smallest bands, 8 rows).
+        #[arg(long, default_value_t = 2.0)]
+        band_ms: f64,
         /// Let `ctl` destroy a client's device, as a fault would (for tests).
         #[arg(long, hide = true)]
         allow_fault_injection: bool,
@@ -284,6 +293,8 @@ fn main() -> Result<()> {
             allow_fault_injection,
             client_rasterizer_threads,
             max_client_devices,
+            band_above_ms,
+            band_ms,
         } => {
             let mut quotas = Vec::new();
             if let Some(path) = config {
@@ -296,6 +307,14 @@ fn main() -> Result<()> {
             if !(refresh_hz.is_finite() && (1.0..=1000.0).contains(&refresh_hz)) {
                 bail!("--refresh-hz {refresh_hz} must lie in 1..=1000");
             }
+            let ms = |name: &str, v: f64| -> Result<std::time::Duration> {
+                std::time::Duration::try_from_secs_f64(v / 1000.0)
+                    .map_err(|_| anyhow::anyhow!("--{name} {v} must be a number of milliseconds, 0 or more"))
+            };
+            let bands = strata_server::root::BandOptions {
+                above: ms("band-above-ms", band_above_ms)?,
+                target: ms("band-ms", band_ms)?,
+            };
             if let Some(m) = max_textures {
                 if m < 4 {
                     bail!("{}", strata_server::compositor::CompositorError::TooFewTextures(m));
@@ -327,6 +346,7 @@ fn main() -> Result<()> {
                 fault_injection: allow_fault_injection,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
                 max_client_devices: (max_client_devices > 0).then_some(max_client_devices),
+                bands,
             };
             run_daemon(opts)
         }

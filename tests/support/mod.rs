@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod egl;
+pub mod gl;
 
 use std::io::Write;
 use std::os::unix::net::UnixStream;

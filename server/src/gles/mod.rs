@@ -188,22 +188,18 @@ impl GlesExecutor {
     }
 
     /// Moves this client's threads to `class`'s CPU priority (on its session thread): its
-    /// session thread and, with a device of its own, the device's driver threads. Raising
-    /// needs `CAP_SYS_NICE`; without it, only lowering takes effect.
+    /// session thread's nice value and, with a device of its own, the device's driver threads'
+    /// (in the idle class when low, as `Gpu::open_with` puts them). Raising needs
+    /// `CAP_SYS_NICE`; without it, only lowering takes effect.
     pub(super) fn apply_class_priority(&self, class: strata_protocol::control::Priority) {
         let nice = crate::gpu::nice_for(class);
         crate::gpu::set_thread_nice(nice);
-        let idle = class == strata_protocol::control::Priority::Low;
-        if idle {
-            crate::gpu::set_thread_idle(0);
-        }
         if self.own_device() {
-            self.gpu.renice(nice);
-            if idle {
-                for &t in &self.gpu.threads {
-                    crate::gpu::set_thread_idle(t);
-                }
+            let idle = class == strata_protocol::control::Priority::Low;
+            for &t in &self.gpu.threads {
+                crate::gpu::set_thread_idle(t, idle);
             }
+            self.gpu.renice(nice);
         }
     }
 

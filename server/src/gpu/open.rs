@@ -146,19 +146,19 @@ fn ours(tid: i32) -> bool {
     comm == "compositor" || ["session-", "frames-", "tokio"].iter().any(|p| comm.starts_with(p))
 }
 
-/// Moves thread `tid` (0: the calling thread) to `SCHED_IDLE` (Linux): it runs only when no
-/// other thread wants the core, and threads it creates inherit that. Lowering needs no
-/// privilege.
-pub fn set_thread_idle(tid: i32) -> bool {
+/// Moves thread `tid` (0: the calling thread) to `SCHED_IDLE` when `idle` (Linux): it runs
+/// only when no other thread wants the core, and threads it creates inherit that; otherwise
+/// back to `SCHED_OTHER`. Needs no privilege within the thread's nice limit.
+pub fn set_thread_idle(tid: i32, idle: bool) -> bool {
     #[cfg(target_os = "linux")]
     // SAFETY: sched_setscheduler on one of this process's threads with a valid parameter.
     unsafe {
         let param = libc::sched_param { sched_priority: 0 };
-        libc::sched_setscheduler(tid, libc::SCHED_IDLE, &param) == 0
+        libc::sched_setscheduler(tid, if idle { libc::SCHED_IDLE } else { libc::SCHED_OTHER }, &param) == 0
     }
     #[cfg(not(target_os = "linux"))]
     {
-        let _ = tid;
+        let _ = (tid, idle);
         false
     }
 }
@@ -239,6 +239,11 @@ impl Gpu {
 
     /// [`Gpu::open_with`] on the calling thread.
     fn open_here(opts: DeviceOptions) -> Result<Arc<Gpu>, GpuError> {
+        // A low-priority device's driver threads run only on what the others leave (idle
+        // class), inherited from this thread, which exists only to open the device.
+        if opts.priority == Priority::Low {
+            set_thread_idle(0, true);
+        }
         // Devices open one at a time, so that the threads that appear meanwhile are this
         // device's (its driver's queue and rasterizer threads).
         let _one = OPENING.lock().unwrap_or_else(|e| e.into_inner());

@@ -162,12 +162,10 @@ pub(super) async fn run_client(
                 Some(p) => {
                     let class = p.class;
                     // The session's decoding, and the driver threads of a device opened here,
-                    // run at the class's priority: low-priority ones only on what the others
-                    // leave (idle class, nice 19).
+                    // run at the class's nice value. A low-priority device's driver threads are
+                    // also in the idle class (`Gpu::open_with`); the session itself is not, as it
+                    // takes the scene's lock, which the compositor waits for.
                     crate::gpu::set_thread_nice(crate::gpu::nice_for(class));
-                    if class == Priority::Low {
-                        crate::gpu::set_thread_idle(0);
-                    }
                     let own = match devices {
                         DeviceMode::Shared => None,
                         DeviceMode::PerClient => match DeviceSlot::take(&client_devices, max_client_devices) {

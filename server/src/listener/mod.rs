@@ -80,6 +80,8 @@ pub struct ServeOptions {
     /// Most clients' devices open at once (`None`: as many as the driver opens); clients
     /// beyond it share the compositor's device.
     pub max_client_devices: Option<usize>,
+    /// When the compositor draws a lower-priority change band by band between refreshes.
+    pub bands: crate::root::BandOptions,
 }
 
 /// Which device each client renders on.
@@ -133,6 +135,7 @@ impl Default for ServeOptions {
             global_priority: true,
             fault_injection: false,
             client_rasterizer_threads: Some(1),
+            bands: crate::root::BandOptions::default(),
             max_client_devices: None,
         }
     }
@@ -289,7 +292,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         Some(gpu) => {
             let (outputs, m, inter) = (&opts.outputs, opts.max_textures, opts.intermediate);
             let (mode, cull) = (opts.compositor, opts.cull);
-            Some(Arc::new(crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, mode, inter, cull)?))
+            let root = crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, mode, inter, cull)?;
+            Some(Arc::new(root.with_bands(opts.bands)))
         }
         None => None,
     };

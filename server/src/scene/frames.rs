@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use strata_protocol::control::Priority;
 
-use super::{Acquired, Buffers, Region, Scene, Use, Views, MAX_SWAP_WAIT};
+use super::{Acquired, Buffers, Region, Scene, Shown, Use, Views, MAX_SWAP_WAIT};
 
 impl Scene {
     /// Adds a buffer to a surface (as its back buffer if `back`); its index, or `None` if
@@ -116,5 +116,21 @@ impl Scene {
         }
         drop(g);
         self.changed.notify_all();
+    }
+
+    /// The composite just taken (by [`Scene::compose`]) goes on over several refreshes: the
+    /// frames it reads stay read until [`Scene::release`], whatever composites run meanwhile.
+    pub fn hold(&self) {
+        if let Some(mut g) = self.lock() {
+            for s in g.surfaces.values_mut() {
+                s.buffers.hold();
+            }
+        }
+    }
+
+    /// The composite held over several refreshes has completed: its frames may be drawn into
+    /// again, and how long each waited from its swap is recorded.
+    pub fn release(&self, frames: Shown) {
+        self.done(frames, Buffers::release);
     }
 }

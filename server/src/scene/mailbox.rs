@@ -35,6 +35,8 @@ pub struct Buffers {
     uses: Vec<Use>,
     /// The buffer the composite in flight reads.
     reading: Option<usize>,
+    /// The buffer a composite drawn band by band over several refreshes reads.
+    held: Option<usize>,
 }
 
 impl Buffers {
@@ -67,7 +69,8 @@ impl Buffers {
 
     /// A free buffer no composite reads, now the back buffer.
     pub fn take_free(&mut self) -> Option<usize> {
-        let i = (0..self.uses.len()).find(|&i| self.uses[i] == Use::Free && self.reading != Some(i))?;
+        let i = (0..self.uses.len())
+            .find(|&i| self.uses[i] == Use::Free && self.reading != Some(i) && self.held != Some(i))?;
         self.uses[i] = Use::Back;
         Some(i)
     }
@@ -112,6 +115,17 @@ impl Buffers {
     /// The buffer the composite in flight reads.
     pub fn reading(&self) -> Option<usize> {
         self.reading
+    }
+
+    /// The composite in flight goes on over several refreshes: what it reads stays read until
+    /// [`Buffers::release`], whatever composites run meanwhile.
+    pub fn hold(&mut self) {
+        self.held = self.reading;
+    }
+
+    /// The composite drawn over several refreshes has completed.
+    pub fn release(&mut self) {
+        self.held = None;
     }
 }
 
@@ -165,5 +179,35 @@ mod tests {
         assert_eq!(b.uses(), [Use::Back, Use::Free, Use::Latest]);
         // Completing a buffer that is not pending changes nothing.
         assert!(b.complete(1).is_none());
+    }
+
+    #[test]
+    fn a_buffer_held_over_refreshes_stays_read_through_other_composites() {
+        let v = views();
+        if v.is_empty() {
+            return;
+        }
+        let mut b = Buffers::default();
+        b.add(v[0].clone(), true);
+        b.add(v[1].clone(), false);
+        b.add(v[2].clone(), false);
+        b.submit(0);
+        assert!(b.complete(0).is_some());
+        // A composite drawn over several refreshes reads buffer 0.
+        b.read_latest();
+        b.hold();
+        b.done_reading();
+        // Frame 2 completes; a composite of another part reads it and completes.
+        assert_eq!(b.take_free(), Some(1));
+        b.submit(1);
+        assert!(b.complete(1).is_some());
+        b.read_latest();
+        b.done_reading();
+        // Buffer 0 is free but still held: only buffer 2 can be handed out.
+        assert_eq!(b.take_free(), Some(2));
+        b.submit(2);
+        assert_eq!(b.take_free(), None, "buffer 0 held, 1 newest, 2 pending");
+        b.release();
+        assert_eq!(b.take_free(), Some(0));
     }
 }

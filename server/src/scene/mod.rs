@@ -502,10 +502,16 @@ impl Scene {
     /// Records, once a composite has completed on the device, how long each frame it took
     /// waited from its swap.
     pub fn shown(&self, frames: Shown) {
+        self.done(frames, Buffers::done_reading);
+    }
+
+    /// Ends a composite's reads (`end` on every surface's buffers) and records how long each
+    /// frame it took waited from its swap.
+    fn done(&self, frames: Shown, end: fn(&mut Buffers)) {
         let now = Instant::now();
         let Some(mut g) = self.lock() else { return };
         for s in g.surfaces.values_mut() {
-            s.buffers.done_reading();
+            end(&mut s.buffers);
         }
         for (key, at) in frames.0 {
             if let Some(s) = g.surfaces.get_mut(&key) {
@@ -518,6 +524,20 @@ impl Scene {
         drop(g);
         // Buffers no composite reads any more may be drawn into again.
         self.changed.notify_all();
+    }
+
+    /// Records that `r` must be composited again, as if it had changed.
+    pub fn redraw(&self, r: Region) {
+        if let Some(g) = self.lock() {
+            self.damaged(g, r);
+        }
+    }
+
+    /// The rectangles (x, y, width, height in the output space) of high-priority surfaces.
+    pub fn high_rects(&self) -> Vec<[i32; 4]> {
+        self.lock()
+            .map(|g| g.surfaces.values().filter(|s| s.priority == Priority::High).map(|s| s.rect).collect())
+            .unwrap_or_default()
     }
 
     /// Marks that a compositor thread consumes frames (or, with `false`, that none does any

@@ -8,13 +8,17 @@ use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use strata_protocol::control::OutputRow;
+use strata_protocol::control::{OutputRow, Priority};
 use strata_protocol::projection::Projection;
 use tracing::{info, warn};
 
 use crate::compositor::{Compositor, CompositorError, Intermediate, Layer, Mode};
 use crate::gpu::Gpu;
-use crate::scene::{Part, Region, Scene, Work};
+use crate::scene::{Part, Region, Scene, Shown, Work};
+pub use bands::BandOptions;
+use bands::{Banded, Cost, Job, KeptLayer};
+
+mod bands;
 
 /// Default output: the width and height of a typical automotive centre display.
 pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
@@ -101,6 +105,8 @@ struct Output {
     texture: wgpu::Texture,
     window: Option<crate::window::WindowOutput>,
     composites: u64,
+    /// Of those, the ones drawn band by band.
+    banded: u64,
     passes: u64,
     /// The part the last composite redrew (output pixels).
     region: [i32; 4],
@@ -112,6 +118,25 @@ struct Output {
     queue: Duration,
     /// Time spent planning, encoding and submitting them.
     encode: Duration,
+    /// Where banded composites are drawn before they are copied in (made when first needed).
+    staging: Option<wgpu::Texture>,
+}
+
+impl Output {
+    /// The output's staging image, made on first use.
+    fn staging(&mut self, gpu: &Gpu) -> &wgpu::Texture {
+        let (w, h) = (self.spec.width, self.spec.height);
+        self.staging.get_or_insert_with(|| output_texture(gpu, "output staging", w, h))
+    }
+}
+
+/// An output-sized image the compositor draws into and copies from and to.
+fn output_texture(gpu: &Gpu, label: &str, width: u32, height: u32) -> wgpu::Texture {
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+        | wgpu::TextureUsages::COPY_SRC
+        | wgpu::TextureUsages::COPY_DST
+        | wgpu::TextureUsages::TEXTURE_BINDING;
+    gpu.texture_2d(label, wgpu::TextureFormat::Rgba8Unorm, (width, height), usage)
 }
 
 struct Inner {
@@ -119,6 +144,10 @@ struct Inner {
     outputs: Vec<Output>,
     /// The damage count the outputs reflect (`None`: never composited).
     composited: Option<u64>,
+    /// A composite in progress band by band over several refreshes.
+    bands: Option<Banded>,
+    /// The compositor's time per pixel, which decides what is banded and how.
+    cost: Cost,
 }
 
 /// The compositor thread's state, shared with control requests (screenshots, listings).
@@ -126,6 +155,8 @@ pub struct Root {
     gpu: Arc<Gpu>,
     scene: Arc<Scene>,
     inner: Mutex<Inner>,
+    /// When changes are drawn band by band.
+    bands: BandOptions,
 }
 
 /// Why the root surface could not start.
@@ -182,35 +213,33 @@ impl Root {
             };
             made.push(Output {
                 window,
-                texture: gpu.device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some("output"),
-                    size: wgpu::Extent3d { width: spec.width, height: spec.height, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba8Unorm,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                        | wgpu::TextureUsages::COPY_SRC
-                        | wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                }),
+                texture: output_texture(&gpu, "output", spec.width, spec.height),
                 spec: spec.clone(),
                 composites: 0,
+                banded: 0,
                 passes: 0,
                 region: [0; 4],
                 presented: true,
                 device: Duration::ZERO,
                 queue: Duration::ZERO,
                 encode: Duration::ZERO,
+                staging: None,
             });
         }
-        Ok(Root { gpu, scene, inner: Mutex::new(Inner { compositor, outputs: made, composited: None }) })
+        let inner = Inner { compositor, outputs: made, composited: None, bands: None, cost: Cost::default() };
+        Ok(Root { gpu, scene, inner: Mutex::new(inner), bands: BandOptions::default() })
     }
 
-    /// Composites every output if the scene changed since the last composite; returns the
-    /// damage count the outputs now reflect.
+    /// Draws changes band by band as `bands` says.
+    pub fn with_bands(mut self, bands: BandOptions) -> Self {
+        self.bands = bands;
+        self
+    }
+
+    /// Composites every output if the scene changed since the last composite (finishing a
+    /// banded composite first); returns the damage count the outputs now reflect.
     pub fn composite_if_damaged(&self) -> Option<u64> {
-        self.composite_part(Part::All)
+        self.composite(Part::All, None)
     }
 
     /// Composites `part` of what changed on every output: with `Part::All`, everything, if
@@ -218,17 +247,41 @@ impl Root {
     /// reflect); with `Part::High`, only high-priority surfaces' new frames (returning `None`
     /// when the compositor is unavailable).
     pub fn composite_part(&self, part: Part) -> Option<u64> {
+        self.composite(part, None)
+    }
+
+    /// Whether a composite is being drawn band by band (the compositor thread must go on
+    /// without waiting for new damage).
+    pub fn banding(&self) -> bool {
+        self.inner.lock().is_ok_and(|i| i.bands.is_some())
+    }
+
+    /// [`Root::composite_part`]; with a `deadline` (the next refresh), a `Part::All` change
+    /// predicted to take longer than [`BandOptions::above`], while high-priority surfaces are
+    /// shown but none overlaps it, is drawn band by band, as much of it now as fits before the
+    /// deadline.
+    fn composite(&self, part: Part, deadline: Option<Instant>) -> Option<u64> {
         let mut inner = self.inner.lock().ok()?;
+        if part == Part::All && inner.bands.is_some() {
+            self.run_bands(&mut inner, deadline);
+            if inner.bands.is_some() {
+                return Some(self.scene.damage());
+            }
+        }
         let damage = self.scene.damage();
         if inner.composited == Some(damage) {
             return Some(damage);
         }
-        let Inner { compositor, outputs, .. } = &mut *inner;
+        let Inner { compositor, outputs, cost, .. } = &mut *inner;
         let started = Instant::now();
         let mut composited = Vec::new();
+        let mut jobs = Vec::new();
+        let mut light_taken = None;
+        let mut pixels = 0u64;
         // Every surface's newest complete frame, marked as read until this composite has
         // completed (`Scene::shown`), so no client draws into it meanwhile.
         let (_, seen, shown) = self.scene.compose(part, |surfaces, light, changed| {
+            light_taken = Some(*light);
             for (index, out) in outputs.iter_mut().enumerate() {
                 let (ox, oy) = (out.spec.x, out.spec.y);
                 // The changed region in this output's pixels; nothing to do if it misses it.
@@ -264,18 +317,45 @@ impl Root {
                         })
                     })
                     .collect();
+                let r = local.unwrap_or([0, 0, out.spec.width, out.spec.height]);
+                let area = u64::from(r[2]) * u64::from(r[3]);
+                let in_output = |s: [i32; 4]| [s[0] - ox, s[1] - oy, s[2], s[3]].map(i64::from);
+                // Banded only where there is a high-priority surface to protect, and not under it.
+                let high = surfaces.iter().filter(|s| s.priority == Priority::High);
+                let band = part == Part::All
+                    && deadline.is_some()
+                    && high.clone().next().is_some()
+                    && cost.predict(area).is_some_and(|t| t > self.bands.above)
+                    && !high.clone().any(|s| bands::overlaps(in_output(s.rect), r.map(i64::from)));
+                if band {
+                    let layers = layers.iter().map(KeptLayer::keep).collect();
+                    jobs.push(Job { output: index, region: r, rows_done: 0, layers });
+                    continue;
+                }
                 compositor.composite(&layers, light, &out.texture, BACKGROUND, local);
+                pixels += area;
                 out.composites += 1;
                 composited.push(index);
                 out.passes = compositor.last_passes as u64;
-                out.region =
-                    local.map_or([0, 0, out.spec.width as i32, out.spec.height as i32], |r| r.map(|v| v as i32));
+                out.region = r.map(|v| v as i32);
                 out.presented = false;
             }
         })?;
-        if part == Part::All {
-            inner.composited = Some(seen);
-        }
+        let banded = !jobs.is_empty();
+        let shown = match light_taken {
+            Some(light) if banded => {
+                // The frames the bands read stay read until the last band is copied in.
+                self.scene.hold();
+                inner.bands = Some(Banded { jobs, light, shown, seen });
+                Shown::default()
+            }
+            _ => {
+                if part == Part::All {
+                    inner.composited = Some(seen);
+                }
+                shown
+            }
+        };
         let submitted = Instant::now();
         for out in inner.outputs.iter_mut().filter(|o| !o.presented) {
             out.presented = true;
@@ -283,19 +363,11 @@ impl Root {
                 w.present(&self.gpu, &out.texture);
             }
         }
-        // Wait for this composite: nothing else runs on the compositor's device.
-        let waited = match inner.compositor.last_submission.take() {
-            Some(index) => {
-                let wait = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(COMPOSITE_WAIT_LIMIT) };
-                if let Err(e) = self.gpu.device.poll(wait) {
-                    warn!("waiting for a composite: {e}");
-                }
-                submitted.elapsed()
-            }
-            None => Duration::ZERO,
-        };
-        let device = inner.compositor.take_device_time().unwrap_or(waited).min(waited);
+        let (device, waited) = self.wait_composite(&mut inner);
         self.scene.shown(shown);
+        if part == Part::All {
+            inner.cost.record(pixels, started.elapsed());
+        }
         // Each output composited shares the round's time (one output: its composite's cost).
         let n = composited.len().max(1) as u32;
         let encode = submitted.duration_since(started);
@@ -306,7 +378,27 @@ impl Root {
                 out.encode += encode / n;
             }
         }
+        if banded {
+            self.run_bands(&mut inner, deadline);
+        }
         Some(seen)
+    }
+
+    /// Waits for the compositor's last submission; its own device time, and the whole wait.
+    fn wait_composite(&self, inner: &mut Inner) -> (Duration, Duration) {
+        let submitted = Instant::now();
+        // Nothing else runs on the compositor's device.
+        let waited = match inner.compositor.last_submission.take() {
+            Some(index) => {
+                let wait = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(COMPOSITE_WAIT_LIMIT) };
+                if let Err(e) = self.gpu.device.poll(wait) {
+                    warn!("waiting for a composite: {e}");
+                }
+                submitted.elapsed()
+            }
+            None => Duration::ZERO,
+        };
+        (inner.compositor.take_device_time().unwrap_or(waited).min(waited), waited)
     }
 
     /// The outputs as `stratad ctl list` shows them.
@@ -320,6 +412,7 @@ impl Root {
                 kind: if o.window.is_some() { "window" } else { "headless" }.into(),
                 rect: [o.spec.x, o.spec.y, o.spec.width as i32, o.spec.height as i32],
                 composites: o.composites,
+                banded: o.banded,
                 passes: o.passes,
                 region: o.region,
                 composite_us: o.device.as_micros() as u64,
@@ -371,7 +464,10 @@ impl Root {
                 // are shown; then whatever else changed, which may take longer.
                 let high = root.composite_part(Part::High);
                 root.scene.refreshed();
-                match high.and_then(|_| root.composite_part(Part::All)) {
+                // Whatever else changed, banded where it would hold up the next refresh.
+                match high.and_then(|_| root.composite(Part::All, Some(next))) {
+                    // A banded composite goes on at the next refresh, new damage or not.
+                    Some(_) if root.banding() => seen = None,
                     Some(d) => seen = Some(d),
                     None => {
                         warn!("the compositor's state is poisoned; stopping it");
