@@ -3,14 +3,27 @@
 //! `arbitrary::Arbitrary` commands for fuzzing, and `command_table!`, which hands the same table
 //! to a macro of another crate (the daemon derives its dispatch from it).
 
+/// What the command table says of a command besides its fields and reply, written in
+/// brackets after its name (`glBufferData [Flush] => ...`); the daemon's dispatch reads these
+/// rather than keeping lists of its own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Attribute {
+    /// It writes a buffer or texture that a draw already recorded may read, so the daemon
+    /// submits the pending pass before it.
+    Flush,
+    /// It needs no current context (EGL calls, Strata's own); every other command does
+    /// nothing without one.
+    NoContext,
+}
+
 /// Expands the command table (see `commands.rs`) into every derived item.
 macro_rules! command_set {
     (
         async {
-            $( $(#[doc = $adoc:literal])* $agl:ident => $av:ident { $( $af:ident : $aty:ty ),* $(,)? } ; )*
+            $( $(#[doc = $adoc:literal])* $agl:ident $([ $($aat:ident),* ])? => $av:ident { $( $af:ident : $aty:ty ),* $(,)? } ; )*
         }
         sync {
-            $( $(#[doc = $sdoc:literal])* $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
+            $( $(#[doc = $sdoc:literal])* $sgl:ident $([ $($sat:ident),* ])? => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
         }
     ) => {
         /// Hands the whole command table to `$callback!`, in the form
@@ -67,6 +80,27 @@ macro_rules! command_set {
                     $( Opcode::$av => false, )*
                     $( Opcode::$sv => true, )*
                 }
+            }
+
+            /// The attributes the table gives this command (`glName [Attribute, ...] => ...`).
+            pub fn attributes(self) -> &'static [crate::Attribute] {
+                use crate::Attribute::*;
+                match self {
+                    $( Opcode::$av => &[ $( $( $aat ),* )? ], )*
+                    $( Opcode::$sv => &[ $( $( $sat ),* )? ], )*
+                }
+            }
+
+            /// Whether the command writes a buffer or texture that a recorded draw may read
+            /// ([`Attribute::Flush`](crate::Attribute::Flush)).
+            pub fn flushes_first(self) -> bool {
+                self.attributes().contains(&crate::Attribute::Flush)
+            }
+
+            /// Whether the command acts on the current context, and so does nothing without one
+            /// (all but those marked [`Attribute::NoContext`](crate::Attribute::NoContext)).
+            pub fn needs_context(self) -> bool {
+                !self.attributes().contains(&crate::Attribute::NoContext)
             }
 
             /// The opcode with wire number `index`, if the protocol defines one.

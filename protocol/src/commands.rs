@@ -103,18 +103,18 @@ command_set! {
         glBlendFunc => BlendFunc { sfactor: GLenum, dfactor: GLenum };
         glBlendFuncSeparate => BlendFuncSeparate { src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum };
         /// `data` is `None` when the application passed NULL (allocate only).
-        glBufferData => BufferData { target: GLenum, size: i64, data: Option<Blob<'a>>, usage: GLenum };
-        glBufferSubData => BufferSubData { target: GLenum, offset: i64, data: Blob<'a> };
+        glBufferData [Flush] => BufferData { target: GLenum, size: i64, data: Option<Blob<'a>>, usage: GLenum };
+        glBufferSubData [Flush] => BufferSubData { target: GLenum, offset: i64, data: Blob<'a> };
         glClear => Clear { mask: GLbitfield };
         glClearColor => ClearColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
         glClearDepthf => ClearDepthf { depth: GLfloat };
         glClearStencil => ClearStencil { s: GLint };
         glColorMask => ColorMask { red: bool, green: bool, blue: bool, alpha: bool };
         glCompileShader => CompileShader { shader: GLuint };
-        glCompressedTexImage2D => CompressedTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, data: Blob<'a> };
-        glCompressedTexSubImage2D => CompressedTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, data: Blob<'a> };
-        glCopyTexImage2D => CopyTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint };
-        glCopyTexSubImage2D => CopyTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        glCompressedTexImage2D [Flush] => CompressedTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, data: Blob<'a> };
+        glCompressedTexSubImage2D [Flush] => CompressedTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, data: Blob<'a> };
+        glCopyTexImage2D [Flush] => CopyTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint };
+        glCopyTexSubImage2D [Flush] => CopyTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
         /// `name` is the program name the client allocated.
         glCreateProgram => CreateProgram { name: GLuint };
         /// `name` is the shader name the client allocated.
@@ -142,7 +142,7 @@ command_set! {
         glFramebufferTexture2D => FramebufferTexture2D { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint };
         glFrontFace => FrontFace { mode: GLenum };
         glGenBuffers => GenBuffers { names: Slice<'a, GLuint> };
-        glGenerateMipmap => GenerateMipmap { target: GLenum };
+        glGenerateMipmap [Flush] => GenerateMipmap { target: GLenum };
         glGenFramebuffers => GenFramebuffers { names: Slice<'a, GLuint> };
         glGenRenderbuffers => GenRenderbuffers { names: Slice<'a, GLuint> };
         glGenTextures => GenTextures { names: Slice<'a, GLuint> };
@@ -165,12 +165,12 @@ command_set! {
         glStencilOp => StencilOp { fail: GLenum, zfail: GLenum, zpass: GLenum };
         glStencilOpSeparate => StencilOpSeparate { face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum };
         /// `pixels` is `None` when the application passed NULL (allocate only).
-        glTexImage2D => TexImage2D { target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
+        glTexImage2D [Flush] => TexImage2D { target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
         glTexParameterf => TexParameterf { target: GLenum, pname: GLenum, param: GLfloat };
         glTexParameterfv => TexParameterfv { target: GLenum, pname: GLenum, params: Slice<'a, GLfloat> };
         glTexParameteri => TexParameteri { target: GLenum, pname: GLenum, param: GLint };
         glTexParameteriv => TexParameteriv { target: GLenum, pname: GLenum, params: Slice<'a, GLint> };
-        glTexSubImage2D => TexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
+        glTexSubImage2D [Flush] => TexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
         glUniform1f => Uniform1f { location: GLint, x: GLfloat };
         glUniform1fv => Uniform1fv { location: GLint, values: Slice<'a, GLfloat> };
         glUniform1i => Uniform1i { location: GLint, x: GLint };
@@ -274,31 +274,31 @@ command_set! {
         glIsShader => IsShader { name: GLuint } -> bool;
         glIsTexture => IsTexture { name: GLuint } -> bool;
         glReadPixels => ReadPixels { x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum } -> Bytes;
-        eglGetDisplay => GetDisplay { native_display: u64 } -> EglHandle;
-        eglGetPlatformDisplay => GetPlatformDisplay { platform: GLenum, native_display: u64, attribs: Slice<'a, EGLint> } -> EglHandle;
+        eglGetDisplay [NoContext] => GetDisplay { native_display: u64 } -> EglHandle;
+        eglGetPlatformDisplay [NoContext] => GetPlatformDisplay { platform: GLenum, native_display: u64, attribs: Slice<'a, EGLint> } -> EglHandle;
         /// Reply: (major, minor) version.
-        eglInitialize => Initialize { display: EglHandle } -> EglResult<(EGLint, EGLint)>;
-        eglChooseConfig => ChooseConfig { display: EglHandle, attribs: Slice<'a, EGLint>, config_size: EGLint } -> EglResult<Vec<EglHandle>>;
-        eglGetConfigAttrib => GetConfigAttrib { display: EglHandle, config: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        eglInitialize [NoContext] => Initialize { display: EglHandle } -> EglResult<(EGLint, EGLint)>;
+        eglChooseConfig [NoContext] => ChooseConfig { display: EglHandle, attribs: Slice<'a, EGLint>, config_size: EGLint } -> EglResult<Vec<EglHandle>>;
+        eglGetConfigAttrib [NoContext] => GetConfigAttrib { display: EglHandle, config: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
         /// Placement (x, y, z, width, height) of the daemon-owned surface.
-        eglCreateWindowSurface => CreateWindowSurface { display: EglHandle, config: EglHandle, native_window: u64, x: GLint, y: GLint, z: GLfloat, width: GLsizei, height: GLsizei, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
-        eglCreatePbufferSurface => CreatePbufferSurface { display: EglHandle, config: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
-        eglCreateContext => CreateContext { display: EglHandle, config: EglHandle, share_context: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
-        eglMakeCurrent => MakeCurrent { display: EglHandle, draw: EglHandle, read: EglHandle, context: EglHandle } -> EglResult<()>;
-        eglSwapInterval => SwapInterval { display: EglHandle, interval: EGLint } -> EglResult<()>;
-        eglQuerySurface => QuerySurface { display: EglHandle, surface: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
-        eglDestroySurface => DestroySurface { display: EglHandle, surface: EglHandle } -> EglResult<()>;
-        eglDestroyContext => DestroyContext { display: EglHandle, context: EglHandle } -> EglResult<()>;
-        eglTerminate => Terminate { display: EglHandle } -> EglResult<()>;
+        eglCreateWindowSurface [NoContext] => CreateWindowSurface { display: EglHandle, config: EglHandle, native_window: u64, x: GLint, y: GLint, z: GLfloat, width: GLsizei, height: GLsizei, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglCreatePbufferSurface [NoContext] => CreatePbufferSurface { display: EglHandle, config: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglCreateContext [NoContext] => CreateContext { display: EglHandle, config: EglHandle, share_context: EglHandle, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglMakeCurrent [NoContext] => MakeCurrent { display: EglHandle, draw: EglHandle, read: EglHandle, context: EglHandle } -> EglResult<()>;
+        eglSwapInterval [NoContext] => SwapInterval { display: EglHandle, interval: EGLint } -> EglResult<()>;
+        eglQuerySurface [NoContext] => QuerySurface { display: EglHandle, surface: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        eglDestroySurface [NoContext] => DestroySurface { display: EglHandle, surface: EglHandle } -> EglResult<()>;
+        eglDestroyContext [NoContext] => DestroyContext { display: EglHandle, context: EglHandle } -> EglResult<()>;
+        eglTerminate [NoContext] => Terminate { display: EglHandle } -> EglResult<()>;
         /// Round trip: every earlier command has been decoded when the token comes back.
-        strataPing => Ping { token: u64 } -> u64;
+        strataPing [NoContext] => Ping { token: u64 } -> u64;
         /// The daemon compares the client's count and CRC-32 of all earlier messages with its own.
         strataVerify => Verify { commands: u64, crc32: u32 } -> StreamTally;
         /// The executor's counters for this client.
-        strataStats => Stats {} -> ExecStats;
+        strataStats [NoContext] => Stats {} -> ExecStats;
         /// Blocks while the surface has K frames in flight (and, with a swap interval n ≥ 1,
         /// until n output frames have passed since the previous swap).
-        eglSwapBuffers => SwapBuffers { display: EglHandle, surface: EglHandle } -> EglResult<()>;
+        eglSwapBuffers [NoContext] => SwapBuffers { display: EglHandle, surface: EglHandle } -> EglResult<()>;
         glIsVertexArrayOES => IsVertexArrayOES { array: GLuint } -> bool;
         /// At most `count` messages, oldest first; with `log` (the application passed a message
         /// buffer) only as many as fit in `buf_size` bytes with their NULs.
@@ -312,10 +312,10 @@ command_set! {
         /// Reallocates a window surface's colour and depth images at a new size, keeping its
         /// id, placement, depth layer, normal, swap interval and pacing; the last shown frame
         /// stays on screen until the next swap.
-        strataResizeSurface => ResizeSurface { display: EglHandle, surface: EglHandle, width: GLsizei, height: GLsizei } -> EglResult<()>;
+        strataResizeSurface [NoContext] => ResizeSurface { display: EglHandle, surface: EglHandle, width: GLsizei, height: GLsizei } -> EglResult<()>;
         /// A context attribute only the daemon knows (`EGL_CONTEXT_PRIORITY_LEVEL_IMG`: the class
         /// its client is scheduled in).
-        eglQueryContext => QueryContext { display: EglHandle, context: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        eglQueryContext [NoContext] => QueryContext { display: EglHandle, context: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
     }
 }
 
@@ -398,5 +398,28 @@ mod tests {
         let pos = |op: Opcode| Opcode::ALL.iter().position(|&o| o == op).expect("listed");
         assert!(pos(Opcode::VertexAttribDataPacked) > pos(Opcode::DiscardFramebufferEXT));
         assert!(pos(Opcode::VertexAttribDataPacked) > pos(Opcode::VertexAttribData));
+    }
+
+    #[test]
+    fn egl_calls_need_no_context_and_gl_calls_do() {
+        for &op in Opcode::ALL {
+            if op.name().starts_with("egl") {
+                assert!(!op.needs_context(), "{} needs no current context", op.name());
+            }
+            if op.name().starts_with("gl") {
+                assert!(op.needs_context(), "{} does nothing without a current context", op.name());
+            }
+        }
+    }
+
+    #[test]
+    fn every_image_and_buffer_upload_flushes_first() {
+        for &op in Opcode::ALL {
+            let n = op.name();
+            let upload = n.starts_with("gl")
+                && (n.contains("Image") || n.contains("Mipmap") || (n.contains("Buffer") && n.ends_with("Data")));
+            assert_eq!(op.flushes_first(), upload, "{n}: the flush rule");
+            assert!(!op.flushes_first() || op.needs_context(), "{n}: a flush needs a context");
+        }
     }
 }

@@ -14,6 +14,7 @@ pub mod segment;
 pub mod tally;
 pub mod wire;
 
+pub use command_set::Attribute;
 pub use commands::{
     ActiveVariable, Bytes, Calls, Command, DebugMessage, EglResult, ExecStats, Opcode, Reply, StreamTally,
 };

@@ -54,51 +54,6 @@ macro_rules! gles_dispatch {
 
 strata_protocol::command_table!(gles_dispatch);
 
-/// Whether `op` is a GL call, which needs a current context (EGL and Strata's own calls do not).
-fn needs_context(op: Opcode) -> bool {
-    use Opcode as O;
-    !matches!(
-        op,
-        O::Ping
-            | O::Stats
-            | O::GetDisplay
-            | O::GetPlatformDisplay
-            | O::Initialize
-            | O::Terminate
-            | O::ChooseConfig
-            | O::GetConfigAttrib
-            | O::CreatePbufferSurface
-            | O::CreateWindowSurface
-            | O::CreateContext
-            | O::MakeCurrent
-            | O::SwapInterval
-            | O::QuerySurface
-            | O::DestroySurface
-            | O::DestroyContext
-            | O::SwapBuffers
-            | O::ResizeSurface
-            | O::QueryContext
-    )
-}
-
-/// Whether `op` writes a buffer or texture that a recorded draw may read, so the pending pass
-/// must be submitted first.
-fn flushes_first(op: Opcode) -> bool {
-    use Opcode as O;
-    matches!(
-        op,
-        O::BufferData
-            | O::BufferSubData
-            | O::TexImage2D
-            | O::TexSubImage2D
-            | O::CompressedTexImage2D
-            | O::CompressedTexSubImage2D
-            | O::CopyTexImage2D
-            | O::CopyTexSubImage2D
-            | O::GenerateMipmap
-    )
-}
-
 impl Executor for GlesExecutor {
     fn execute(&mut self, cmd: Command<'_>) -> Result<Option<Reply>, ExecError> {
         let op = cmd.opcode();
@@ -109,11 +64,11 @@ impl Executor for GlesExecutor {
         }
         // Everything a command does on the device is charged to this client.
         let scope = self.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let reply = if self.current.is_none() && needs_context(op) {
+        let reply = if self.current.is_none() && op.needs_context() {
             // No current context: GL calls have no effect. Queries still get an answer.
             op.is_sync().then(|| Reply::Unsupported(format!("{}: no current context", op.name())))
         } else {
-            if flushes_first(op) && self.r.pending() {
+            if op.flushes_first() && self.r.pending() {
                 self.flush();
             }
             // Debug messages about the errors a call records name it.
@@ -137,7 +92,7 @@ impl Executor for GlesExecutor {
 }
 
 impl GlesExecutor {
-    /// The current context. GL handlers run only with one (see `needs_context`), and
+    /// The current context. GL handlers run only with one (see `Opcode::needs_context`), and
     /// `eglDestroyContext` of the current context also ends its currency.
     pub(super) fn ctx(&mut self) -> &mut Context {
         let (cid, _) = self.current.expect("GL handlers run with a current context");
