@@ -61,16 +61,7 @@ fn surface(i: usize, rect: [i32; 4], z: f32, alpha: u8, depth: bool) -> RefLayer
 
 /// A `w`×`h` 2D image of one level.
 fn texture(gpu: &Gpu, w: u32, h: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
+    gpu.texture_2d("test image", format, (w, h), usage)
 }
 
 /// An output image of `w`×`h` the compositor draws and the test reads back.

@@ -10,38 +10,18 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use strata_client::setup::{egl_context, Current, SurfaceKind};
-use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
-use strata_protocol::control::DaemonStats;
+use strata_client::{Calls, Connection};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
-use support::Daemon;
-
-const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
-
-fn connect(socket: &Path, name: &str) -> Connection {
-    Connection::connect(&ConnectOptions { socket: socket.into(), name: name.into(), ..Default::default() })
-        .expect("connect")
-}
+use support::gl::{clear, connect, control};
+use support::{stats, Daemon};
 
 fn window(gl: &mut Connection, rect: [i32; 4]) -> Current {
     egl_context(gl, 24, 0, SurfaceKind::Window { rect, z: 0.5 }).expect("context")
 }
 
 fn frame(gl: &mut Connection, cur: Current, c: [u8; 3]) {
-    let f = |v: u8| f32::from(v) / 255.0;
-    gl.glClearColor(f(c[0]), f(c[1]), f(c[2]), 1.0).expect("io");
-    gl.glClear(GL_COLOR_BUFFER_BIT).expect("io");
+    clear(gl, c);
     gl.eglSwapBuffers(cur.display, cur.surface).expect("io").expect("swap");
-}
-
-fn control(socket: &Path, req: ControlRequest) -> ControlReply {
-    ControlConnection::connect(socket).expect("control").request(&req).expect("control request")
-}
-
-fn stats(socket: &Path) -> DaemonStats {
-    match control(socket, ControlRequest::Stats) {
-        ControlReply::Stats(s) => s,
-        other => panic!("stats: {other:?}"),
-    }
 }
 
 fn pixel(socket: &Path, x: u32, y: u32) -> [u8; 3] {

@@ -10,22 +10,11 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use strata_client::setup::{egl_context, SurfaceKind};
-use strata_client::{Calls, ControlConnection};
+use strata_client::Calls;
 use strata_protocol::control::{ClientStats, DaemonStats};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
-use support::gl::{clear, connect, window, GL_SCISSOR_TEST};
-use support::Daemon;
-
-fn control(socket: &Path, req: ControlRequest) -> ControlReply {
-    ControlConnection::connect(socket).expect("control").request(&req).expect("control request")
-}
-
-fn stats(socket: &Path) -> DaemonStats {
-    match control(socket, ControlRequest::Stats) {
-        ControlReply::Stats(s) => s,
-        other => panic!("stats: {other:?}"),
-    }
-}
+use support::gl::{clear, connect, control, window, GL_SCISSOR_TEST};
+use support::{stats, Daemon};
 
 fn client<'a>(s: &'a DaemonStats, name: &str) -> &'a ClientStats {
     s.clients.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no client {name} in {s:?}"))

@@ -136,30 +136,11 @@ fn native(mesh: &Mesh, args: &Args) -> Result<(f64, Vec<u8>)> {
     let linked = glsl::link(&vs, &fs, &bindings, 16).map_err(|e| anyhow!("{e}"))?;
     let gpu = strata_server::gpu::Gpu::open()?;
     let d = &gpu.device;
-    let size = wgpu::Extent3d { width: args.size, height: args.size, depth_or_array_layers: 1 };
-    let target = |format, usage| {
-        d.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
-    };
-    let color_tex = d.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let square = (args.size, args.size);
+    let target =
+        |format, usage| gpu.texture_2d("execute target", format, square, usage).create_view(&Default::default());
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    let color_tex = gpu.texture_2d("execute colour", wgpu::TextureFormat::Rgba8Unorm, square, usage);
     let color = color_tex.create_view(&Default::default());
     let depth = target(wgpu::TextureFormat::Depth24PlusStencil8, wgpu::TextureUsages::RENDER_ATTACHMENT);
     let buffer = |bytes: &[u8], usage: wgpu::BufferUsages| {

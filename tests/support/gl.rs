@@ -1,10 +1,11 @@
 //! A client of the daemon through the protocol's Rust client: connecting, a window surface,
-//! and clearing it.
+//! clearing it, and control requests.
 
 use std::path::Path;
 
 use strata_client::setup::{egl_context, Current, SurfaceKind};
-use strata_client::{Calls, ConnectOptions, Connection};
+use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
+use strata_protocol::handshake::{ControlReply, ControlRequest};
 
 /// `GL_COLOR_BUFFER_BIT`.
 pub const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
@@ -29,4 +30,9 @@ pub fn clear(gl: &mut Connection, c: [u8; 3]) {
     let f = |v: u8| f32::from(v) / 255.0;
     gl.glClearColor(f(c[0]), f(c[1]), f(c[2]), 1.0).expect("io");
     gl.glClear(GL_COLOR_BUFFER_BIT).expect("io");
+}
+
+/// The daemon's answer to one control request.
+pub fn control(socket: &Path, req: ControlRequest) -> ControlReply {
+    ControlConnection::connect(socket).expect("control").request(&req).expect("control request")
 }

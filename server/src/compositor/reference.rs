@@ -184,18 +184,7 @@ impl Uploaded {
 /// what the reference draws.
 pub fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
     let size = wgpu::Extent3d { width: l.rect[2] as u32, height: l.rect[3] as u32, depth_or_array_layers: 1 };
-    let mk = |format, usage| {
-        gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
+    let mk = |format, usage| gpu.texture_2d("reference layer", format, (size.width, size.height), usage);
     let c = mk(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
     gpu.queue.write_texture(
         c.as_image_copy(),

@@ -178,24 +178,11 @@ impl GlesExecutor {
         images: Option<(wgpu::Texture, Option<wgpu::Texture>)>,
     ) -> (Target, Option<wgpu::Texture>) {
         let depth_format = self.depth_format(config);
-        let d = &self.gpu.device;
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST;
-        let size = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
-        let new = |label, format, usage| {
-            d.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let new = |label, format, usage| self.gpu.texture_2d(label, format, (w, h), usage);
         let (color, depth_tex) = match images {
             Some(images) => images,
             None => {

@@ -206,6 +206,26 @@ pub fn fullscreen_pass(
 /// Non-filterable float textures, for [`texture_entry`].
 pub const UNFILTERED: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: false };
 
+/// The descriptor of a single-level, single-sample 2D texture of `format` and `(width, height)`
+/// for `usage` (what [`Gpu::texture_2d`] creates, and what shared images are described as).
+pub fn descriptor_2d(
+    label: &str,
+    format: wgpu::TextureFormat,
+    (width, height): (u32, u32),
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureDescriptor<'_> {
+    wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    }
+}
+
 impl Gpu {
     /// A single-level, single-sample 2D texture of `format` and `(width, height)` for `usage`.
     pub fn texture_2d(
@@ -215,16 +235,7 @@ impl Gpu {
         (width, height): (u32, u32),
         usage: wgpu::TextureUsages,
     ) -> wgpu::Texture {
-        self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
+        self.device.create_texture(&descriptor_2d(label, format, (width, height), usage))
     }
 
     /// A pipeline that draws one full-screen triangle with the `vs` and `fs` entry points of

@@ -118,21 +118,8 @@ fn image_info<'a>(
         .push_next(external)
 }
 
-fn descriptor(
-    label: &'static str,
-    format: wgpu::TextureFormat,
-    (width, height): (u32, u32),
-) -> wgpu::TextureDescriptor<'static> {
-    wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: shared_usage(format),
-        view_formats: &[],
-    }
+fn descriptor(label: &'static str, format: wgpu::TextureFormat, size: (u32, u32)) -> wgpu::TextureDescriptor<'static> {
+    super::descriptor_2d(label, format, size, shared_usage(format))
 }
 
 const HANDLE: vk::ExternalMemoryHandleTypeFlags = vk::ExternalMemoryHandleTypeFlags::OPAQUE_FD;
