@@ -4,26 +4,44 @@
 //! to a macro of another crate (the daemon derives its dispatch from it).
 
 /// What the command table says of a command besides its fields and reply, written in
-/// brackets after its name (`glBufferData [Flush] => ...`); the daemon's dispatch reads these
+/// brackets after its name (`glBufferData [Context, Flush] => ...`); the daemon's dispatch reads these
 /// rather than keeping lists of its own.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Attribute {
+    /// It acts on the current context (every GL call), and does nothing without one.
+    Context,
+    /// It needs no current context (EGL calls, Strata's own).
+    NoContext,
     /// It writes a buffer or texture that a draw already recorded may read, so the daemon
     /// submits the pending pass before it.
     Flush,
-    /// It needs no current context (EGL calls, Strata's own); every other command does
-    /// nothing without one.
-    NoContext,
+}
+
+impl Attribute {
+    /// Whether `attributes` state exactly one of [`Attribute::Context`] and
+    /// [`Attribute::NoContext`]: the table's rule, checked when it compiles.
+    pub const fn states_context(attributes: &[Attribute]) -> bool {
+        let (mut context, mut none, mut i) = (0, 0, 0);
+        while i < attributes.len() {
+            match attributes[i] {
+                Attribute::Context => context += 1,
+                Attribute::NoContext => none += 1,
+                Attribute::Flush => {}
+            }
+            i += 1;
+        }
+        context + none == 1
+    }
 }
 
 /// Expands the command table (see `commands.rs`) into every derived item.
 macro_rules! command_set {
     (
         async {
-            $( $(#[doc = $adoc:literal])* $agl:ident $([ $($aat:ident),* ])? => $av:ident { $( $af:ident : $aty:ty ),* $(,)? } ; )*
+            $( $(#[doc = $adoc:literal])* $agl:ident [ $($aat:ident),+ ] => $av:ident { $( $af:ident : $aty:ty ),* $(,)? } ; )*
         }
         sync {
-            $( $(#[doc = $sdoc:literal])* $sgl:ident $([ $($sat:ident),* ])? => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
+            $( $(#[doc = $sdoc:literal])* $sgl:ident [ $($sat:ident),+ ] => $sv:ident { $( $sf:ident : $sty:ty ),* $(,)? } -> $ret:ty ; )*
         }
     ) => {
         /// Hands the whole command table to `$callback!`, in the form
@@ -41,6 +59,17 @@ macro_rules! command_set {
                 }
             };
         }
+
+        // Every command states whether it needs a current context: one that states nothing
+        // does not compile.
+        $( const _: () = assert!(
+            crate::Attribute::states_context(&[ $( crate::Attribute::$aat ),+ ]),
+            concat!(stringify!($agl), " must state exactly one of [Context] and [NoContext]")
+        ); )*
+        $( const _: () = assert!(
+            crate::Attribute::states_context(&[ $( crate::Attribute::$sat ),+ ]),
+            concat!(stringify!($sgl), " must state exactly one of [Context] and [NoContext]")
+        ); )*
 
         /// One call a client streams to the daemon, decoded in place from the ring.
         #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -86,8 +115,8 @@ macro_rules! command_set {
             pub fn attributes(self) -> &'static [crate::Attribute] {
                 use crate::Attribute::*;
                 match self {
-                    $( Opcode::$av => &[ $( $( $aat ),* )? ], )*
-                    $( Opcode::$sv => &[ $( $( $sat ),* )? ], )*
+                    $( Opcode::$av => &[ $( $aat ),+ ], )*
+                    $( Opcode::$sv => &[ $( $sat ),+ ], )*
                 }
             }
 
@@ -98,9 +127,9 @@ macro_rules! command_set {
             }
 
             /// Whether the command acts on the current context, and so does nothing without one
-            /// (all but those marked [`Attribute::NoContext`](crate::Attribute::NoContext)).
+            /// ([`Attribute::Context`](crate::Attribute::Context)).
             pub fn needs_context(self) -> bool {
-                !self.attributes().contains(&crate::Attribute::NoContext)
+                self.attributes().contains(&crate::Attribute::Context)
             }
 
             /// The opcode with wire number `index`, if the protocol defines one.

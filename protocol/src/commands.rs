@@ -90,190 +90,190 @@ impl<'de> Deserialize<'de> for Bytes {
 
 command_set! {
     async {
-        glActiveTexture => ActiveTexture { texture: GLenum };
-        glAttachShader => AttachShader { program: GLuint, shader: GLuint };
-        glBindAttribLocation => BindAttribLocation { program: GLuint, index: GLuint, name: Text<'a> };
-        glBindBuffer => BindBuffer { target: GLenum, buffer: GLuint };
-        glBindFramebuffer => BindFramebuffer { target: GLenum, framebuffer: GLuint };
-        glBindRenderbuffer => BindRenderbuffer { target: GLenum, renderbuffer: GLuint };
-        glBindTexture => BindTexture { target: GLenum, texture: GLuint };
-        glBlendColor => BlendColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
-        glBlendEquation => BlendEquation { mode: GLenum };
-        glBlendEquationSeparate => BlendEquationSeparate { mode_rgb: GLenum, mode_alpha: GLenum };
-        glBlendFunc => BlendFunc { sfactor: GLenum, dfactor: GLenum };
-        glBlendFuncSeparate => BlendFuncSeparate { src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum };
+        glActiveTexture [Context] => ActiveTexture { texture: GLenum };
+        glAttachShader [Context] => AttachShader { program: GLuint, shader: GLuint };
+        glBindAttribLocation [Context] => BindAttribLocation { program: GLuint, index: GLuint, name: Text<'a> };
+        glBindBuffer [Context] => BindBuffer { target: GLenum, buffer: GLuint };
+        glBindFramebuffer [Context] => BindFramebuffer { target: GLenum, framebuffer: GLuint };
+        glBindRenderbuffer [Context] => BindRenderbuffer { target: GLenum, renderbuffer: GLuint };
+        glBindTexture [Context] => BindTexture { target: GLenum, texture: GLuint };
+        glBlendColor [Context] => BlendColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
+        glBlendEquation [Context] => BlendEquation { mode: GLenum };
+        glBlendEquationSeparate [Context] => BlendEquationSeparate { mode_rgb: GLenum, mode_alpha: GLenum };
+        glBlendFunc [Context] => BlendFunc { sfactor: GLenum, dfactor: GLenum };
+        glBlendFuncSeparate [Context] => BlendFuncSeparate { src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum };
         /// `data` is `None` when the application passed NULL (allocate only).
-        glBufferData [Flush] => BufferData { target: GLenum, size: i64, data: Option<Blob<'a>>, usage: GLenum };
-        glBufferSubData [Flush] => BufferSubData { target: GLenum, offset: i64, data: Blob<'a> };
-        glClear => Clear { mask: GLbitfield };
-        glClearColor => ClearColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
-        glClearDepthf => ClearDepthf { depth: GLfloat };
-        glClearStencil => ClearStencil { s: GLint };
-        glColorMask => ColorMask { red: bool, green: bool, blue: bool, alpha: bool };
-        glCompileShader => CompileShader { shader: GLuint };
-        glCompressedTexImage2D [Flush] => CompressedTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, data: Blob<'a> };
-        glCompressedTexSubImage2D [Flush] => CompressedTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, data: Blob<'a> };
-        glCopyTexImage2D [Flush] => CopyTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint };
-        glCopyTexSubImage2D [Flush] => CopyTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        glBufferData [Context, Flush] => BufferData { target: GLenum, size: i64, data: Option<Blob<'a>>, usage: GLenum };
+        glBufferSubData [Context, Flush] => BufferSubData { target: GLenum, offset: i64, data: Blob<'a> };
+        glClear [Context] => Clear { mask: GLbitfield };
+        glClearColor [Context] => ClearColor { red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat };
+        glClearDepthf [Context] => ClearDepthf { depth: GLfloat };
+        glClearStencil [Context] => ClearStencil { s: GLint };
+        glColorMask [Context] => ColorMask { red: bool, green: bool, blue: bool, alpha: bool };
+        glCompileShader [Context] => CompileShader { shader: GLuint };
+        glCompressedTexImage2D [Context, Flush] => CompressedTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, data: Blob<'a> };
+        glCompressedTexSubImage2D [Context, Flush] => CompressedTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, data: Blob<'a> };
+        glCopyTexImage2D [Context, Flush] => CopyTexImage2D { target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint };
+        glCopyTexSubImage2D [Context, Flush] => CopyTexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
         /// `name` is the program name the client allocated.
-        glCreateProgram => CreateProgram { name: GLuint };
+        glCreateProgram [Context] => CreateProgram { name: GLuint };
         /// `name` is the shader name the client allocated.
-        glCreateShader => CreateShader { shader_type: GLenum, name: GLuint };
-        glCullFace => CullFace { mode: GLenum };
-        glDeleteBuffers => DeleteBuffers { names: Slice<'a, GLuint> };
-        glDeleteFramebuffers => DeleteFramebuffers { names: Slice<'a, GLuint> };
-        glDeleteProgram => DeleteProgram { program: GLuint };
-        glDeleteRenderbuffers => DeleteRenderbuffers { names: Slice<'a, GLuint> };
-        glDeleteShader => DeleteShader { shader: GLuint };
-        glDeleteTextures => DeleteTextures { names: Slice<'a, GLuint> };
-        glDepthFunc => DepthFunc { func: GLenum };
-        glDepthMask => DepthMask { flag: bool };
-        glDepthRangef => DepthRangef { near: GLfloat, far: GLfloat };
-        glDetachShader => DetachShader { program: GLuint, shader: GLuint };
-        glDisable => Disable { cap: GLenum };
-        glDisableVertexAttribArray => DisableVertexAttribArray { index: GLuint };
-        glDrawArrays => DrawArrays { mode: GLenum, first: GLint, count: GLsizei };
+        glCreateShader [Context] => CreateShader { shader_type: GLenum, name: GLuint };
+        glCullFace [Context] => CullFace { mode: GLenum };
+        glDeleteBuffers [Context] => DeleteBuffers { names: Slice<'a, GLuint> };
+        glDeleteFramebuffers [Context] => DeleteFramebuffers { names: Slice<'a, GLuint> };
+        glDeleteProgram [Context] => DeleteProgram { program: GLuint };
+        glDeleteRenderbuffers [Context] => DeleteRenderbuffers { names: Slice<'a, GLuint> };
+        glDeleteShader [Context] => DeleteShader { shader: GLuint };
+        glDeleteTextures [Context] => DeleteTextures { names: Slice<'a, GLuint> };
+        glDepthFunc [Context] => DepthFunc { func: GLenum };
+        glDepthMask [Context] => DepthMask { flag: bool };
+        glDepthRangef [Context] => DepthRangef { near: GLfloat, far: GLfloat };
+        glDetachShader [Context] => DetachShader { program: GLuint, shader: GLuint };
+        glDisable [Context] => Disable { cap: GLenum };
+        glDisableVertexAttribArray [Context] => DisableVertexAttribArray { index: GLuint };
+        glDrawArrays [Context] => DrawArrays { mode: GLenum, first: GLint, count: GLsizei };
         /// `offset` is the byte offset into the bound `GL_ELEMENT_ARRAY_BUFFER`.
-        glDrawElements => DrawElements { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64 };
-        glEnable => Enable { cap: GLenum };
-        glEnableVertexAttribArray => EnableVertexAttribArray { index: GLuint };
-        glFlush => Flush {};
-        glFramebufferRenderbuffer => FramebufferRenderbuffer { target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint };
-        glFramebufferTexture2D => FramebufferTexture2D { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint };
-        glFrontFace => FrontFace { mode: GLenum };
-        glGenBuffers => GenBuffers { names: Slice<'a, GLuint> };
-        glGenerateMipmap [Flush] => GenerateMipmap { target: GLenum };
-        glGenFramebuffers => GenFramebuffers { names: Slice<'a, GLuint> };
-        glGenRenderbuffers => GenRenderbuffers { names: Slice<'a, GLuint> };
-        glGenTextures => GenTextures { names: Slice<'a, GLuint> };
-        glHint => Hint { target: GLenum, mode: GLenum };
-        glLineWidth => LineWidth { width: GLfloat };
-        glLinkProgram => LinkProgram { program: GLuint };
-        glPixelStorei => PixelStorei { pname: GLenum, param: GLint };
-        glPolygonOffset => PolygonOffset { factor: GLfloat, units: GLfloat };
-        glReleaseShaderCompiler => ReleaseShaderCompiler {};
-        glRenderbufferStorage => RenderbufferStorage { target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei };
-        glSampleCoverage => SampleCoverage { value: GLfloat, invert: bool };
-        glScissor => Scissor { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
-        glShaderBinary => ShaderBinary { shaders: Slice<'a, GLuint>, binary_format: GLenum, binary: Blob<'a> };
+        glDrawElements [Context] => DrawElements { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64 };
+        glEnable [Context] => Enable { cap: GLenum };
+        glEnableVertexAttribArray [Context] => EnableVertexAttribArray { index: GLuint };
+        glFlush [Context] => Flush {};
+        glFramebufferRenderbuffer [Context] => FramebufferRenderbuffer { target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint };
+        glFramebufferTexture2D [Context] => FramebufferTexture2D { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint };
+        glFrontFace [Context] => FrontFace { mode: GLenum };
+        glGenBuffers [Context] => GenBuffers { names: Slice<'a, GLuint> };
+        glGenerateMipmap [Context, Flush] => GenerateMipmap { target: GLenum };
+        glGenFramebuffers [Context] => GenFramebuffers { names: Slice<'a, GLuint> };
+        glGenRenderbuffers [Context] => GenRenderbuffers { names: Slice<'a, GLuint> };
+        glGenTextures [Context] => GenTextures { names: Slice<'a, GLuint> };
+        glHint [Context] => Hint { target: GLenum, mode: GLenum };
+        glLineWidth [Context] => LineWidth { width: GLfloat };
+        glLinkProgram [Context] => LinkProgram { program: GLuint };
+        glPixelStorei [Context] => PixelStorei { pname: GLenum, param: GLint };
+        glPolygonOffset [Context] => PolygonOffset { factor: GLfloat, units: GLfloat };
+        glReleaseShaderCompiler [Context] => ReleaseShaderCompiler {};
+        glRenderbufferStorage [Context] => RenderbufferStorage { target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei };
+        glSampleCoverage [Context] => SampleCoverage { value: GLfloat, invert: bool };
+        glScissor [Context] => Scissor { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        glShaderBinary [Context] => ShaderBinary { shaders: Slice<'a, GLuint>, binary_format: GLenum, binary: Blob<'a> };
         /// The client joins the application's string array into one source.
-        glShaderSource => ShaderSource { shader: GLuint, source: Text<'a> };
-        glStencilFunc => StencilFunc { func: GLenum, reference: GLint, mask: GLuint };
-        glStencilFuncSeparate => StencilFuncSeparate { face: GLenum, func: GLenum, reference: GLint, mask: GLuint };
-        glStencilMask => StencilMask { mask: GLuint };
-        glStencilMaskSeparate => StencilMaskSeparate { face: GLenum, mask: GLuint };
-        glStencilOp => StencilOp { fail: GLenum, zfail: GLenum, zpass: GLenum };
-        glStencilOpSeparate => StencilOpSeparate { face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum };
+        glShaderSource [Context] => ShaderSource { shader: GLuint, source: Text<'a> };
+        glStencilFunc [Context] => StencilFunc { func: GLenum, reference: GLint, mask: GLuint };
+        glStencilFuncSeparate [Context] => StencilFuncSeparate { face: GLenum, func: GLenum, reference: GLint, mask: GLuint };
+        glStencilMask [Context] => StencilMask { mask: GLuint };
+        glStencilMaskSeparate [Context] => StencilMaskSeparate { face: GLenum, mask: GLuint };
+        glStencilOp [Context] => StencilOp { fail: GLenum, zfail: GLenum, zpass: GLenum };
+        glStencilOpSeparate [Context] => StencilOpSeparate { face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum };
         /// `pixels` is `None` when the application passed NULL (allocate only).
-        glTexImage2D [Flush] => TexImage2D { target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
-        glTexParameterf => TexParameterf { target: GLenum, pname: GLenum, param: GLfloat };
-        glTexParameterfv => TexParameterfv { target: GLenum, pname: GLenum, params: Slice<'a, GLfloat> };
-        glTexParameteri => TexParameteri { target: GLenum, pname: GLenum, param: GLint };
-        glTexParameteriv => TexParameteriv { target: GLenum, pname: GLenum, params: Slice<'a, GLint> };
-        glTexSubImage2D [Flush] => TexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
-        glUniform1f => Uniform1f { location: GLint, x: GLfloat };
-        glUniform1fv => Uniform1fv { location: GLint, values: Slice<'a, GLfloat> };
-        glUniform1i => Uniform1i { location: GLint, x: GLint };
-        glUniform1iv => Uniform1iv { location: GLint, values: Slice<'a, GLint> };
-        glUniform2f => Uniform2f { location: GLint, x: GLfloat, y: GLfloat };
-        glUniform2fv => Uniform2fv { location: GLint, values: Slice<'a, GLfloat> };
-        glUniform2i => Uniform2i { location: GLint, x: GLint, y: GLint };
-        glUniform2iv => Uniform2iv { location: GLint, values: Slice<'a, GLint> };
-        glUniform3f => Uniform3f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat };
-        glUniform3fv => Uniform3fv { location: GLint, values: Slice<'a, GLfloat> };
-        glUniform3i => Uniform3i { location: GLint, x: GLint, y: GLint, z: GLint };
-        glUniform3iv => Uniform3iv { location: GLint, values: Slice<'a, GLint> };
-        glUniform4f => Uniform4f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
-        glUniform4fv => Uniform4fv { location: GLint, values: Slice<'a, GLfloat> };
-        glUniform4i => Uniform4i { location: GLint, x: GLint, y: GLint, z: GLint, w: GLint };
-        glUniform4iv => Uniform4iv { location: GLint, values: Slice<'a, GLint> };
-        glUniformMatrix2fv => UniformMatrix2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
-        glUniformMatrix3fv => UniformMatrix3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
-        glUniformMatrix4fv => UniformMatrix4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
-        glUseProgram => UseProgram { program: GLuint };
-        glValidateProgram => ValidateProgram { program: GLuint };
-        glVertexAttrib1f => VertexAttrib1f { index: GLuint, x: GLfloat };
-        glVertexAttrib1fv => VertexAttrib1fv { index: GLuint, values: Slice<'a, GLfloat> };
-        glVertexAttrib2f => VertexAttrib2f { index: GLuint, x: GLfloat, y: GLfloat };
-        glVertexAttrib2fv => VertexAttrib2fv { index: GLuint, values: Slice<'a, GLfloat> };
-        glVertexAttrib3f => VertexAttrib3f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat };
-        glVertexAttrib3fv => VertexAttrib3fv { index: GLuint, values: Slice<'a, GLfloat> };
-        glVertexAttrib4f => VertexAttrib4f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
-        glVertexAttrib4fv => VertexAttrib4fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glTexImage2D [Context, Flush] => TexImage2D { target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
+        glTexParameterf [Context] => TexParameterf { target: GLenum, pname: GLenum, param: GLfloat };
+        glTexParameterfv [Context] => TexParameterfv { target: GLenum, pname: GLenum, params: Slice<'a, GLfloat> };
+        glTexParameteri [Context] => TexParameteri { target: GLenum, pname: GLenum, param: GLint };
+        glTexParameteriv [Context] => TexParameteriv { target: GLenum, pname: GLenum, params: Slice<'a, GLint> };
+        glTexSubImage2D [Context, Flush] => TexSubImage2D { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
+        glUniform1f [Context] => Uniform1f { location: GLint, x: GLfloat };
+        glUniform1fv [Context] => Uniform1fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform1i [Context] => Uniform1i { location: GLint, x: GLint };
+        glUniform1iv [Context] => Uniform1iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform2f [Context] => Uniform2f { location: GLint, x: GLfloat, y: GLfloat };
+        glUniform2fv [Context] => Uniform2fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform2i [Context] => Uniform2i { location: GLint, x: GLint, y: GLint };
+        glUniform2iv [Context] => Uniform2iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform3f [Context] => Uniform3f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat };
+        glUniform3fv [Context] => Uniform3fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform3i [Context] => Uniform3i { location: GLint, x: GLint, y: GLint, z: GLint };
+        glUniform3iv [Context] => Uniform3iv { location: GLint, values: Slice<'a, GLint> };
+        glUniform4f [Context] => Uniform4f { location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
+        glUniform4fv [Context] => Uniform4fv { location: GLint, values: Slice<'a, GLfloat> };
+        glUniform4i [Context] => Uniform4i { location: GLint, x: GLint, y: GLint, z: GLint, w: GLint };
+        glUniform4iv [Context] => Uniform4iv { location: GLint, values: Slice<'a, GLint> };
+        glUniformMatrix2fv [Context] => UniformMatrix2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix3fv [Context] => UniformMatrix3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix4fv [Context] => UniformMatrix4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUseProgram [Context] => UseProgram { program: GLuint };
+        glValidateProgram [Context] => ValidateProgram { program: GLuint };
+        glVertexAttrib1f [Context] => VertexAttrib1f { index: GLuint, x: GLfloat };
+        glVertexAttrib1fv [Context] => VertexAttrib1fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib2f [Context] => VertexAttrib2f { index: GLuint, x: GLfloat, y: GLfloat };
+        glVertexAttrib2fv [Context] => VertexAttrib2fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib3f [Context] => VertexAttrib3f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat };
+        glVertexAttrib3fv [Context] => VertexAttrib3fv { index: GLuint, values: Slice<'a, GLfloat> };
+        glVertexAttrib4f [Context] => VertexAttrib4f { index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat };
+        glVertexAttrib4fv [Context] => VertexAttrib4fv { index: GLuint, values: Slice<'a, GLfloat> };
         /// `offset` is the byte offset into the bound `GL_ARRAY_BUFFER`.
-        glVertexAttribPointer => VertexAttribPointer { index: GLuint, size: GLint, attrib_type: GLenum, normalized: bool, stride: GLsizei, offset: u64 };
-        glViewport => Viewport { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        glVertexAttribPointer [Context] => VertexAttribPointer { index: GLuint, size: GLint, attrib_type: GLenum, normalized: bool, stride: GLsizei, offset: u64 };
+        glViewport [Context] => Viewport { x: GLint, y: GLint, width: GLsizei, height: GLsizei };
         /// A client-side vertex array, copied at draw time: the bytes of attribute `index`
         /// from the array's start through the last vertex the next draw reads.
-        strataVertexAttribData => VertexAttribData { index: GLuint, data: Blob<'a> };
+        strataVertexAttribData [Context] => VertexAttribData { index: GLuint, data: Blob<'a> };
         /// `glDrawElements` with a client-side index array.
-        strataDrawElementsData => DrawElementsData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a> };
-        glGenVertexArraysOES => GenVertexArraysOES { names: Slice<'a, GLuint> };
-        glBindVertexArrayOES => BindVertexArrayOES { array: GLuint };
-        glDeleteVertexArraysOES => DeleteVertexArraysOES { names: Slice<'a, GLuint> };
+        strataDrawElementsData [Context] => DrawElementsData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a> };
+        glGenVertexArraysOES [Context] => GenVertexArraysOES { names: Slice<'a, GLuint> };
+        glBindVertexArrayOES [Context] => BindVertexArrayOES { array: GLuint };
+        glDeleteVertexArraysOES [Context] => DeleteVertexArraysOES { names: Slice<'a, GLuint> };
         /// `ids` holds the first `count` ids (none when `count` is not positive).
-        glDebugMessageControlKHR => DebugMessageControlKHR { source: GLenum, ty: GLenum, severity: GLenum, count: GLsizei, ids: Slice<'a, GLuint>, enabled: bool };
+        glDebugMessageControlKHR [Context] => DebugMessageControlKHR { source: GLenum, ty: GLenum, severity: GLenum, count: GLsizei, ids: Slice<'a, GLuint>, enabled: bool };
         /// `text` holds the message: `length` bytes, or with a negative `length` the bytes before
         /// the NUL, at most `MAX_DEBUG_MESSAGE_LENGTH` of either (enough to refuse a longer one).
-        glDebugMessageInsertKHR => DebugMessageInsertKHR { source: GLenum, ty: GLenum, id: GLuint, severity: GLenum, length: GLsizei, text: Blob<'a> };
+        glDebugMessageInsertKHR [Context] => DebugMessageInsertKHR { source: GLenum, ty: GLenum, id: GLuint, severity: GLenum, length: GLsizei, text: Blob<'a> };
         /// `text` as for `glDebugMessageInsertKHR`.
-        glPushDebugGroupKHR => PushDebugGroupKHR { source: GLenum, id: GLuint, length: GLsizei, text: Blob<'a> };
-        glPopDebugGroupKHR => PopDebugGroupKHR {};
+        glPushDebugGroupKHR [Context] => PushDebugGroupKHR { source: GLenum, id: GLuint, length: GLsizei, text: Blob<'a> };
+        glPopDebugGroupKHR [Context] => PopDebugGroupKHR {};
         /// `label` is `None` for NULL (remove the label); else as `text` of `glDebugMessageInsertKHR`
         /// with `MAX_LABEL_LENGTH`.
-        glObjectLabelKHR => ObjectLabelKHR { identifier: GLenum, name: GLuint, length: GLsizei, label: Option<Blob<'a>> };
+        glObjectLabelKHR [Context] => ObjectLabelKHR { identifier: GLenum, name: GLuint, length: GLsizei, label: Option<Blob<'a>> };
         /// `ptr` is the application's sync object pointer.
-        glObjectPtrLabelKHR => ObjectPtrLabelKHR { ptr: u64, length: GLsizei, label: Option<Blob<'a>> };
+        glObjectPtrLabelKHR [Context] => ObjectPtrLabelKHR { ptr: u64, length: GLsizei, label: Option<Blob<'a>> };
         /// Whether the application has a `GL_KHR_debug` callback: while it has, new messages
         /// wait for `strataDebugMessages` instead of entering the message log.
-        strataDebugCallback => DebugCallback { installed: bool };
+        strataDebugCallback [Context] => DebugCallback { installed: bool };
         /// `GL_EXT_discard_framebuffer`: the listed attachments' contents may be discarded.
-        glDiscardFramebufferEXT => DiscardFramebufferEXT { target: GLenum, attachments: Slice<'a, GLenum> };
+        glDiscardFramebufferEXT [Context] => DiscardFramebufferEXT { target: GLenum, attachments: Slice<'a, GLenum> };
         /// A client-side `GL_FLOAT` array that the client converted for the wire (`stratad
         /// serve --vertex-wire`): components of `attrib_type` (`GL_HALF_FLOAT_OES` or `GL_FIXED`;
         /// `GL_FLOAT` is accepted too), tightly packed, which the next draw reads in place of the
         /// pointer's type and stride. Queries still answer what the application set.
-        strataVertexAttribDataPacked => VertexAttribDataPacked { index: GLuint, attrib_type: GLenum, data: Blob<'a> };
+        strataVertexAttribDataPacked [Context] => VertexAttribDataPacked { index: GLuint, attrib_type: GLenum, data: Blob<'a> };
     }
     sync {
-        glCheckFramebufferStatus => CheckFramebufferStatus { target: GLenum } -> GLenum;
-        glFinish => Finish {} -> ();
-        glGetActiveAttrib => GetActiveAttrib { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
-        glGetActiveUniform => GetActiveUniform { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
-        glGetAttachedShaders => GetAttachedShaders { program: GLuint } -> Vec<GLuint>;
-        glGetAttribLocation => GetAttribLocation { program: GLuint, name: Text<'a> } -> GLint;
-        glGetBooleanv => GetBooleanv { pname: GLenum } -> Vec<bool>;
-        glGetBufferParameteriv => GetBufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
-        glGetError => GetError {} -> GLenum;
-        glGetFloatv => GetFloatv { pname: GLenum } -> Vec<GLfloat>;
-        glGetFramebufferAttachmentParameteriv => GetFramebufferAttachmentParameteriv { target: GLenum, attachment: GLenum, pname: GLenum } -> GLint;
-        glGetIntegerv => GetIntegerv { pname: GLenum } -> Vec<GLint>;
-        glGetProgramiv => GetProgramiv { program: GLuint, pname: GLenum } -> GLint;
-        glGetProgramInfoLog => GetProgramInfoLog { program: GLuint } -> String;
-        glGetRenderbufferParameteriv => GetRenderbufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
-        glGetShaderiv => GetShaderiv { shader: GLuint, pname: GLenum } -> GLint;
-        glGetShaderInfoLog => GetShaderInfoLog { shader: GLuint } -> String;
+        glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
+        glFinish [Context] => Finish {} -> ();
+        glGetActiveAttrib [Context] => GetActiveAttrib { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
+        glGetActiveUniform [Context] => GetActiveUniform { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
+        glGetAttachedShaders [Context] => GetAttachedShaders { program: GLuint } -> Vec<GLuint>;
+        glGetAttribLocation [Context] => GetAttribLocation { program: GLuint, name: Text<'a> } -> GLint;
+        glGetBooleanv [Context] => GetBooleanv { pname: GLenum } -> Vec<bool>;
+        glGetBufferParameteriv [Context] => GetBufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
+        glGetError [Context] => GetError {} -> GLenum;
+        glGetFloatv [Context] => GetFloatv { pname: GLenum } -> Vec<GLfloat>;
+        glGetFramebufferAttachmentParameteriv [Context] => GetFramebufferAttachmentParameteriv { target: GLenum, attachment: GLenum, pname: GLenum } -> GLint;
+        glGetIntegerv [Context] => GetIntegerv { pname: GLenum } -> Vec<GLint>;
+        glGetProgramiv [Context] => GetProgramiv { program: GLuint, pname: GLenum } -> GLint;
+        glGetProgramInfoLog [Context] => GetProgramInfoLog { program: GLuint } -> String;
+        glGetRenderbufferParameteriv [Context] => GetRenderbufferParameteriv { target: GLenum, pname: GLenum } -> GLint;
+        glGetShaderiv [Context] => GetShaderiv { shader: GLuint, pname: GLenum } -> GLint;
+        glGetShaderInfoLog [Context] => GetShaderInfoLog { shader: GLuint } -> String;
         /// Reply: (range, precision).
-        glGetShaderPrecisionFormat => GetShaderPrecisionFormat { shader_type: GLenum, precision_type: GLenum } -> ([GLint; 2], GLint);
-        glGetShaderSource => GetShaderSource { shader: GLuint } -> String;
+        glGetShaderPrecisionFormat [Context] => GetShaderPrecisionFormat { shader_type: GLenum, precision_type: GLenum } -> ([GLint; 2], GLint);
+        glGetShaderSource [Context] => GetShaderSource { shader: GLuint } -> String;
         /// `None` stands for the NULL a driver returns on error.
-        glGetString => GetString { name: GLenum } -> Option<String>;
-        glGetTexParameterfv => GetTexParameterfv { target: GLenum, pname: GLenum } -> Vec<GLfloat>;
-        glGetTexParameteriv => GetTexParameteriv { target: GLenum, pname: GLenum } -> Vec<GLint>;
-        glGetUniformfv => GetUniformfv { program: GLuint, location: GLint } -> Vec<GLfloat>;
-        glGetUniformiv => GetUniformiv { program: GLuint, location: GLint } -> Vec<GLint>;
-        glGetUniformLocation => GetUniformLocation { program: GLuint, name: Text<'a> } -> GLint;
-        glGetVertexAttribfv => GetVertexAttribfv { index: GLuint, pname: GLenum } -> Vec<GLfloat>;
-        glGetVertexAttribiv => GetVertexAttribiv { index: GLuint, pname: GLenum } -> Vec<GLint>;
-        glGetVertexAttribPointerv => GetVertexAttribPointerv { index: GLuint, pname: GLenum } -> u64;
-        glIsBuffer => IsBuffer { name: GLuint } -> bool;
-        glIsEnabled => IsEnabled { cap: GLenum } -> bool;
-        glIsFramebuffer => IsFramebuffer { name: GLuint } -> bool;
-        glIsProgram => IsProgram { name: GLuint } -> bool;
-        glIsRenderbuffer => IsRenderbuffer { name: GLuint } -> bool;
-        glIsShader => IsShader { name: GLuint } -> bool;
-        glIsTexture => IsTexture { name: GLuint } -> bool;
-        glReadPixels => ReadPixels { x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum } -> Bytes;
+        glGetString [Context] => GetString { name: GLenum } -> Option<String>;
+        glGetTexParameterfv [Context] => GetTexParameterfv { target: GLenum, pname: GLenum } -> Vec<GLfloat>;
+        glGetTexParameteriv [Context] => GetTexParameteriv { target: GLenum, pname: GLenum } -> Vec<GLint>;
+        glGetUniformfv [Context] => GetUniformfv { program: GLuint, location: GLint } -> Vec<GLfloat>;
+        glGetUniformiv [Context] => GetUniformiv { program: GLuint, location: GLint } -> Vec<GLint>;
+        glGetUniformLocation [Context] => GetUniformLocation { program: GLuint, name: Text<'a> } -> GLint;
+        glGetVertexAttribfv [Context] => GetVertexAttribfv { index: GLuint, pname: GLenum } -> Vec<GLfloat>;
+        glGetVertexAttribiv [Context] => GetVertexAttribiv { index: GLuint, pname: GLenum } -> Vec<GLint>;
+        glGetVertexAttribPointerv [Context] => GetVertexAttribPointerv { index: GLuint, pname: GLenum } -> u64;
+        glIsBuffer [Context] => IsBuffer { name: GLuint } -> bool;
+        glIsEnabled [Context] => IsEnabled { cap: GLenum } -> bool;
+        glIsFramebuffer [Context] => IsFramebuffer { name: GLuint } -> bool;
+        glIsProgram [Context] => IsProgram { name: GLuint } -> bool;
+        glIsRenderbuffer [Context] => IsRenderbuffer { name: GLuint } -> bool;
+        glIsShader [Context] => IsShader { name: GLuint } -> bool;
+        glIsTexture [Context] => IsTexture { name: GLuint } -> bool;
+        glReadPixels [Context] => ReadPixels { x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, pixel_type: GLenum } -> Bytes;
         eglGetDisplay [NoContext] => GetDisplay { native_display: u64 } -> EglHandle;
         eglGetPlatformDisplay [NoContext] => GetPlatformDisplay { platform: GLenum, native_display: u64, attribs: Slice<'a, EGLint> } -> EglHandle;
         /// Reply: (major, minor) version.
@@ -293,22 +293,22 @@ command_set! {
         /// Round trip: every earlier command has been decoded when the token comes back.
         strataPing [NoContext] => Ping { token: u64 } -> u64;
         /// The daemon compares the client's count and CRC-32 of all earlier messages with its own.
-        strataVerify => Verify { commands: u64, crc32: u32 } -> StreamTally;
+        strataVerify [Context] => Verify { commands: u64, crc32: u32 } -> StreamTally;
         /// The executor's counters for this client.
         strataStats [NoContext] => Stats {} -> ExecStats;
         /// Blocks while the surface has K frames in flight (and, with a swap interval n ≥ 1,
         /// until n output frames have passed since the previous swap).
         eglSwapBuffers [NoContext] => SwapBuffers { display: EglHandle, surface: EglHandle } -> EglResult<()>;
-        glIsVertexArrayOES => IsVertexArrayOES { array: GLuint } -> bool;
+        glIsVertexArrayOES [Context] => IsVertexArrayOES { array: GLuint } -> bool;
         /// At most `count` messages, oldest first; with `log` (the application passed a message
         /// buffer) only as many as fit in `buf_size` bytes with their NULs.
-        glGetDebugMessageLogKHR => GetDebugMessageLogKHR { count: GLuint, buf_size: GLsizei, log: bool } -> Vec<DebugMessage>;
+        glGetDebugMessageLogKHR [Context] => GetDebugMessageLogKHR { count: GLuint, buf_size: GLsizei, log: bool } -> Vec<DebugMessage>;
         /// The whole label (the client truncates it to `buf_size`), `None` after a GL error.
-        glGetObjectLabelKHR => GetObjectLabelKHR { identifier: GLenum, name: GLuint, buf_size: GLsizei } -> Option<Bytes>;
+        glGetObjectLabelKHR [Context] => GetObjectLabelKHR { identifier: GLenum, name: GLuint, buf_size: GLsizei } -> Option<Bytes>;
         /// As `glGetObjectLabelKHR`, for a sync object.
-        glGetObjectPtrLabelKHR => GetObjectPtrLabelKHR { ptr: u64, buf_size: GLsizei } -> Option<Bytes>;
+        glGetObjectPtrLabelKHR [Context] => GetObjectPtrLabelKHR { ptr: u64, buf_size: GLsizei } -> Option<Bytes>;
         /// The messages generated for the application's debug callback since the last call.
-        strataDebugMessages => DebugMessages {} -> Vec<DebugMessage>;
+        strataDebugMessages [Context] => DebugMessages {} -> Vec<DebugMessage>;
         /// Reallocates a window surface's colour and depth images at a new size, keeping its
         /// id, placement, depth layer, normal, swap interval and pacing; the last shown frame
         /// stays on screen until the next swap.

@@ -1,14 +1,16 @@
 //! The extension calls the Mesa reference forwards: `GL_OES_vertex_array_object` and
 //! `GL_KHR_debug`, looked up with `eglGetProcAddress` (glvnd's libGLESv2 exports only core
 //! entry points). The debug callback is the client library's, so `strataDebugCallback` and
-//! `strataDebugMessages` have no Mesa counterpart and are not forwarded.
+//! `strataDebugMessages` have no Mesa counterpart and say so, as do the sync-object labels,
+//! which ES 2.0 has no objects for.
 
 use std::ffi::CString;
 
 use strata_client::ClientError;
-use strata_protocol::{Bytes, Command, DebugMessage, Reply};
+use strata_protocol::wire::*;
+use strata_protocol::{Bytes, DebugMessage};
 
-use super::{unsupported, MesaGl, Ptr};
+use super::{unsupported, Arms, MesaGl, Ptr};
 
 impl MesaGl {
     /// Mesa's name for the client's vertex array `n` (one Mesa never generated if it has none).
@@ -59,149 +61,220 @@ fn text_ptr(b: Option<&[u8]>) -> *const u8 {
     b.map_or(std::ptr::null(), <[u8]>::as_ptr)
 }
 
-/// Forwards an asynchronous extension command.
-pub(super) fn send(m: &mut MesaGl, cmd: &Command<'_>) -> Result<(), ClientError> {
-    use Command as C;
-    match cmd {
-        C::GenVertexArraysOES { names } => {
-            for n in names.iter() {
-                let mut real = 0u32;
-                ext!(m, "glGenVertexArraysOES", fn(i32, *mut u32) -> (), 1, &mut real);
-                m.vaos.insert(n, real);
-            }
+impl Arms<'_> {
+    pub(super) fn glGenVertexArraysOES(&mut self, names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
+        for n in names.iter() {
+            let mut real = 0u32;
+            ext!(self, "glGenVertexArraysOES", fn(i32, *mut u32) -> (), 1, &mut real);
+            self.vaos.insert(n, real);
         }
-        C::BindVertexArrayOES { array } => {
-            let a = m.vao(*array);
-            ext!(m, "glBindVertexArrayOES", fn(u32) -> (), a)
-        }
-        C::DeleteVertexArraysOES { names } => {
-            let v: Vec<u32> = names.iter().map(|n| m.vao(n)).collect();
-            for n in names.iter() {
-                m.vaos.remove(&n);
-            }
-            ext!(m, "glDeleteVertexArraysOES", fn(i32, *const u32) -> (), v.len() as i32, v.as_ptr())
-        }
-        C::DebugMessageControlKHR { source, ty, severity, count, ids, enabled } => {
-            let v = ids.to_vec();
-            let p = if v.is_empty() { std::ptr::null() } else { v.as_ptr() };
-            ext!(
-                m,
-                "glDebugMessageControlKHR",
-                fn(u32, u32, u32, i32, *const u32, u8) -> (),
-                *source,
-                *ty,
-                *severity,
-                *count,
-                p,
-                u8::from(*enabled)
-            )
-        }
-        C::DebugMessageInsertKHR { source, ty, id, severity, length, text } => {
-            let z = nul_terminated(text.as_bytes(), *length);
-            ext!(
-                m,
-                "glDebugMessageInsertKHR",
-                fn(u32, u32, u32, u32, i32, *const u8) -> (),
-                *source,
-                *ty,
-                *id,
-                *severity,
-                *length,
-                z.as_ptr()
-            )
-        }
-        C::PushDebugGroupKHR { source, id, length, text } => {
-            let z = nul_terminated(text.as_bytes(), *length);
-            ext!(m, "glPushDebugGroupKHR", fn(u32, u32, i32, *const u8) -> (), *source, *id, *length, z.as_ptr())
-        }
-        C::PopDebugGroupKHR {} => ext!(m, "glPopDebugGroupKHR", fn() -> (),),
-        C::ObjectLabelKHR { identifier, name, length, label } => {
-            let z = label.as_ref().map(|l| nul_terminated(l.as_bytes(), *length));
-            let p = text_ptr(z.as_deref());
-            let (identifier, name) = (*identifier, m.object_for(*identifier, *name));
-            ext!(m, "glObjectLabelKHR", fn(u32, u32, i32, *const u8) -> (), identifier, name, *length, p)
-        }
-        other => return Err(unsupported(other.opcode().name())),
+        Ok(())
     }
-    Ok(())
-}
 
-/// Forwards a synchronous extension command; `None` if it is not one.
-pub(super) fn call(m: &mut MesaGl, cmd: &Command<'_>) -> Option<Result<Reply, ClientError>> {
-    use Command as C;
-    let r = (|| {
-        Ok(match cmd {
-            C::IsVertexArrayOES { array } => {
-                let a = m.vao(*array);
-                Reply::IsVertexArrayOES(ext!(m, "glIsVertexArrayOES", fn(u32) -> u8, a) != 0)
-            }
-            // The binding in the client's names.
-            C::GetIntegerv { pname: 0x85B5 } => {
-                let mut v = 0i32;
-                call!(m, "glGetIntegerv", fn(u32, *mut i32) -> (), 0x85B5, &mut v);
-                let client = m.vaos.iter().find(|(_, &real)| real as i32 == v).map_or(v, |(&c, _)| c as i32);
-                Reply::GetIntegerv(vec![client])
-            }
-            C::GetObjectLabelKHR { identifier, name, buf_size } => {
-                let name = m.object_for(*identifier, *name);
-                let mut buf = vec![0u8; (*buf_size).max(1) as usize];
-                // Left at -1 when the call fails with a GL error.
-                let mut len = -1i32;
-                ext!(
-                    m,
-                    "glGetObjectLabelKHR",
-                    fn(u32, u32, i32, *mut i32, *mut u8) -> (),
-                    *identifier,
-                    name,
-                    *buf_size,
-                    &mut len,
-                    buf.as_mut_ptr()
-                );
-                buf.truncate(len.max(0) as usize);
-                Reply::GetObjectLabelKHR((len >= 0).then_some(Bytes(buf)))
-            }
-            C::GetDebugMessageLogKHR { count, buf_size, log } => {
-                let n = *count as usize;
-                let (mut sources, mut types, mut ids, mut severities, mut lengths) =
-                    (vec![0u32; n], vec![0u32; n], vec![0u32; n], vec![0u32; n], vec![0i32; n]);
-                let mut text = vec![0u8; (*buf_size).max(0) as usize];
-                let tp = if *log { text.as_mut_ptr() } else { std::ptr::null_mut() };
-                let got = ext!(
-                    m,
-                    "glGetDebugMessageLogKHR",
-                    fn(u32, i32, *mut u32, *mut u32, *mut u32, *mut u32, *mut i32, *mut u8) -> u32,
-                    *count,
-                    *buf_size,
-                    sources.as_mut_ptr(),
-                    types.as_mut_ptr(),
-                    ids.as_mut_ptr(),
-                    severities.as_mut_ptr(),
-                    lengths.as_mut_ptr(),
-                    tp
-                ) as usize;
-                let mut at = 0usize;
-                let mut out = Vec::new();
-                for i in 0..got.min(n) {
-                    let len = (lengths[i].max(1) - 1) as usize;
-                    let t =
-                        if *log { text.get(at..at + len).map(<[u8]>::to_vec).unwrap_or_default() } else { Vec::new() };
-                    at += len + 1;
-                    out.push(DebugMessage {
-                        source: sources[i],
-                        ty: types[i],
-                        id: ids[i],
-                        severity: severities[i],
-                        text: Bytes(t),
-                    });
-                }
-                Reply::GetDebugMessageLogKHR(out)
-            }
-            _ => return Err(unsupported("")),
-        })
-    })();
-    match r {
-        Err(ClientError::Unsupported(why)) if why.ends_with("forward ") => None,
-        r => Some(r),
+    pub(super) fn glBindVertexArrayOES(&mut self, array: &GLuint) -> Result<(), ClientError> {
+        let a = self.vao(*array);
+        ext!(self, "glBindVertexArrayOES", fn(u32) -> (), a);
+        Ok(())
+    }
+
+    pub(super) fn glDeleteVertexArraysOES(&mut self, names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
+        let v: Vec<u32> = names.iter().map(|n| self.vao(n)).collect();
+        for n in names.iter() {
+            self.vaos.remove(&n);
+        }
+        ext!(self, "glDeleteVertexArraysOES", fn(i32, *const u32) -> (), v.len() as i32, v.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glDebugMessageControlKHR(
+        &mut self,
+        source: &GLenum,
+        ty: &GLenum,
+        severity: &GLenum,
+        count: &GLsizei,
+        ids: &Slice<'_, GLuint>,
+        enabled: &bool,
+    ) -> Result<(), ClientError> {
+        let v = ids.to_vec();
+        let p = if v.is_empty() { std::ptr::null() } else { v.as_ptr() };
+        ext!(
+            self,
+            "glDebugMessageControlKHR",
+            fn(u32, u32, u32, i32, *const u32, u8) -> (),
+            *source,
+            *ty,
+            *severity,
+            *count,
+            p,
+            u8::from(*enabled)
+        );
+        Ok(())
+    }
+
+    pub(super) fn glDebugMessageInsertKHR(
+        &mut self,
+        source: &GLenum,
+        ty: &GLenum,
+        id: &GLuint,
+        severity: &GLenum,
+        length: &GLsizei,
+        text: &Blob<'_>,
+    ) -> Result<(), ClientError> {
+        let z = nul_terminated(text.as_bytes(), *length);
+        ext!(
+            self,
+            "glDebugMessageInsertKHR",
+            fn(u32, u32, u32, u32, i32, *const u8) -> (),
+            *source,
+            *ty,
+            *id,
+            *severity,
+            *length,
+            z.as_ptr()
+        );
+        Ok(())
+    }
+
+    pub(super) fn glPushDebugGroupKHR(
+        &mut self,
+        source: &GLenum,
+        id: &GLuint,
+        length: &GLsizei,
+        text: &Blob<'_>,
+    ) -> Result<(), ClientError> {
+        let z = nul_terminated(text.as_bytes(), *length);
+        ext!(self, "glPushDebugGroupKHR", fn(u32, u32, i32, *const u8) -> (), *source, *id, *length, z.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glPopDebugGroupKHR(&mut self) -> Result<(), ClientError> {
+        ext!(self, "glPopDebugGroupKHR", fn() -> (),);
+        Ok(())
+    }
+
+    pub(super) fn glObjectLabelKHR(
+        &mut self,
+        identifier: &GLenum,
+        name: &GLuint,
+        length: &GLsizei,
+        label: &Option<Blob<'_>>,
+    ) -> Result<(), ClientError> {
+        let z = label.as_ref().map(|l| nul_terminated(l.as_bytes(), *length));
+        let p = text_ptr(z.as_deref());
+        let (identifier, name) = (*identifier, self.object_for(*identifier, *name));
+        ext!(self, "glObjectLabelKHR", fn(u32, u32, i32, *const u8) -> (), identifier, name, *length, p);
+        Ok(())
+    }
+
+    pub(super) fn glObjectPtrLabelKHR(
+        &mut self,
+        ptr: &u64,
+        length: &GLsizei,
+        label: &Option<Blob<'_>>,
+    ) -> Result<(), ClientError> {
+        let _ = (ptr, length, label);
+        Err(unsupported("glObjectPtrLabelKHR: sync objects are not part of ES 2.0, so the reference has none to label"))
+    }
+
+    pub(super) fn strataDebugCallback(&mut self, installed: &bool) -> Result<(), ClientError> {
+        let _ = installed;
+        Err(unsupported("strataDebugCallback: the debug callback is the client library's; Mesa's log is read instead"))
+    }
+
+    pub(super) fn glDiscardFramebufferEXT(
+        &mut self,
+        target: &GLenum,
+        attachments: &Slice<'_, GLenum>,
+    ) -> Result<(), ClientError> {
+        let list: Vec<u32> = attachments.iter().collect();
+        let n = list.len() as i32;
+        call!(self, "glDiscardFramebufferEXT", fn(u32, i32, *const u32) -> (), *target, n, list.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glIsVertexArrayOES(&mut self, array: &GLuint) -> Result<bool, ClientError> {
+        let a = self.vao(*array);
+        Ok(ext!(self, "glIsVertexArrayOES", fn(u32) -> u8, a) != 0)
+    }
+
+    pub(super) fn glGetDebugMessageLogKHR(
+        &mut self,
+        count: &GLuint,
+        buf_size: &GLsizei,
+        log: &bool,
+    ) -> Result<Vec<DebugMessage>, ClientError> {
+        let n = *count as usize;
+        let (mut sources, mut types, mut ids, mut severities, mut lengths) =
+            (vec![0u32; n], vec![0u32; n], vec![0u32; n], vec![0u32; n], vec![0i32; n]);
+        let mut text = vec![0u8; (*buf_size).max(0) as usize];
+        let tp = if *log { text.as_mut_ptr() } else { std::ptr::null_mut() };
+        let got = ext!(
+            self,
+            "glGetDebugMessageLogKHR",
+            fn(u32, i32, *mut u32, *mut u32, *mut u32, *mut u32, *mut i32, *mut u8) -> u32,
+            *count,
+            *buf_size,
+            sources.as_mut_ptr(),
+            types.as_mut_ptr(),
+            ids.as_mut_ptr(),
+            severities.as_mut_ptr(),
+            lengths.as_mut_ptr(),
+            tp
+        ) as usize;
+        let mut at = 0usize;
+        let mut out = Vec::new();
+        for i in 0..got.min(n) {
+            let len = (lengths[i].max(1) - 1) as usize;
+            let t = if *log { text.get(at..at + len).map(<[u8]>::to_vec).unwrap_or_default() } else { Vec::new() };
+            at += len + 1;
+            out.push(DebugMessage {
+                source: sources[i],
+                ty: types[i],
+                id: ids[i],
+                severity: severities[i],
+                text: Bytes(t),
+            });
+        }
+        Ok(out)
+    }
+
+    pub(super) fn glGetObjectLabelKHR(
+        &mut self,
+        identifier: &GLenum,
+        name: &GLuint,
+        buf_size: &GLsizei,
+    ) -> Result<Option<Bytes>, ClientError> {
+        let name = self.object_for(*identifier, *name);
+        let mut buf = vec![0u8; (*buf_size).max(1) as usize];
+        // Left at -1 when the call fails with a GL error.
+        let mut len = -1i32;
+        ext!(
+            self,
+            "glGetObjectLabelKHR",
+            fn(u32, u32, i32, *mut i32, *mut u8) -> (),
+            *identifier,
+            name,
+            *buf_size,
+            &mut len,
+            buf.as_mut_ptr()
+        );
+        buf.truncate(len.max(0) as usize);
+        Ok((len >= 0).then_some(Bytes(buf)))
+    }
+
+    pub(super) fn glGetObjectPtrLabelKHR(
+        &mut self,
+        ptr: &u64,
+        buf_size: &GLsizei,
+    ) -> Result<Option<Bytes>, ClientError> {
+        let _ = (ptr, buf_size);
+        Err(unsupported(
+            "glGetObjectPtrLabelKHR: sync objects are not part of ES 2.0, so the reference has none to label",
+        ))
+    }
+
+    pub(super) fn strataDebugMessages(&mut self) -> Result<Vec<DebugMessage>, ClientError> {
+        Err(unsupported("strataDebugMessages: the debug callback is the client library's; Mesa's log is read instead"))
     }
 }
 
