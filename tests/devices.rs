@@ -64,6 +64,37 @@ fn nice(pid: u32, tid: i32) -> Option<i32> {
     stat.rsplit_once(')')?.1.split_whitespace().nth(16)?.parse().ok()
 }
 
+/// The scheduler slice (ns) of thread `tid` of process `pid`, where the kernel shows it.
+fn slice(pid: u32, tid: i32) -> Option<u64> {
+    let sched = std::fs::read_to_string(format!("/proc/{pid}/task/{tid}/sched")).ok()?;
+    sched.lines().find(|l| l.starts_with("se.slice"))?.split(':').nth(1)?.trim().parse().ok()
+}
+
+/// Whether this kernel takes a thread's own slice (Linux 6.12 and later show and honour it).
+fn kernel_takes_slices() -> bool {
+    std::thread::spawn(|| {
+        // SAFETY: gettid has no preconditions.
+        let tid = unsafe { libc::gettid() };
+        strata_server::gpu::set_thread_slice(0, Some(strata_server::gpu::HIGH_SLICE))
+            && slice(std::process::id(), tid) == Some(strata_server::gpu::HIGH_SLICE.as_nanos() as u64)
+    })
+    .join()
+    .unwrap_or(false)
+}
+
+/// The ids of process `pid`'s threads named `name`.
+fn threads_named(pid: u32, name: &str) -> Vec<i32> {
+    std::fs::read_dir(format!("/proc/{pid}/task"))
+        .map(|d| {
+            d.filter_map(|e| e.ok()?.file_name().to_str()?.parse().ok())
+                .filter(|t: &i32| {
+                    std::fs::read_to_string(format!("/proc/{pid}/task/{t}/comm")).is_ok_and(|c| c.trim_end() == name)
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 #[test]
 fn one_clients_long_frame_never_holds_up_another() {
     let daemon = Daemon::start("parallel", &["--lighting", "off", "--output", "headless:p=128x64"]);
@@ -146,8 +177,26 @@ fn a_class_sets_the_nice_value_of_its_device_threads() {
     let ic = niced("ic");
     assert!(ic.iter().all(|&n| n <= 0), "the high-priority client's device threads run at {ic:?}");
     let comp = stats(&socket).compositor_device.expect("compositor device");
-    let comp: Vec<i32> = comp.threads.iter().filter(driver).map(|t| nice(pid, t.tid).expect("alive")).collect();
+    let comp_threads: Vec<i32> = comp.threads.iter().filter(driver).map(|t| t.tid).collect();
+    let comp: Vec<i32> = comp_threads.iter().map(|&t| nice(pid, t).expect("alive")).collect();
     assert!(!comp.is_empty() && comp.iter().all(|&n| n <= 0), "the compositor's device threads run at {comp:?}");
+    // The high class's threads ask for the short slice: the compositor's thread and device
+    // threads, and the high-priority client's device threads; the low class's do not.
+    if !kernel_takes_slices() {
+        eprintln!("SKIPPED the slice checks: this kernel does not take a thread's own slice");
+        return;
+    }
+    let short = strata_server::gpu::HIGH_SLICE.as_nanos() as u64;
+    let compositor = threads_named(pid, "compositor");
+    assert_eq!(compositor.len(), 1, "one compositor thread");
+    let ic_threads: Vec<i32> = device_threads(&socket, "ic").iter().filter(driver).map(|t| t.tid).collect();
+    for &t in compositor.iter().chain(&comp_threads).chain(&ic_threads) {
+        assert_eq!(slice(pid, t), Some(short), "high-class thread {t} runs with the kernel's slice");
+    }
+    let hu_threads: Vec<i32> = device_threads(&socket, "hu").iter().filter(driver).map(|t| t.tid).collect();
+    for &t in &hu_threads {
+        assert_ne!(slice(pid, t), Some(short), "low-class thread {t} has the high class's slice");
+    }
 }
 
 #[test]

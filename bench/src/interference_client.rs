@@ -104,6 +104,12 @@ pub fn run(args: &Args) -> Result<()> {
         libc::signal(libc::SIGTERM, on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t);
         libc::signal(libc::SIGINT, on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t);
     }
+    if args.role == Role::Ic {
+        // As the instrument cluster's own process would: the high class's short slice, so that
+        // its thread preempts longer-slice work sooner when its swap returns.
+        let slice = strata_server::gpu::slice_for(strata_protocol::control::Priority::High);
+        strata_server::gpu::set_thread_slice(0, slice);
+    }
     let (name, default_window, interval) = match args.role {
         Role::Ic => ("ic", "0,0,320x320", 1),
         Role::HugeDraw | Role::Upload => ("hu", "400,0,1280x720", 0),

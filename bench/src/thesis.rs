@@ -252,7 +252,7 @@ impl Bench<'_> {
 struct Sampled {
     /// Passes of the busiest composite.
     passes: u64,
-    /// The compositor's busy time (µs) when all n instances were first seen drawing, and the
+    /// The compositor's busy time (µs) when the most instances were first seen drawing, and the
     /// last time they all still were.
     all_drawing: Option<((std::time::Instant, u64), (std::time::Instant, u64))>,
 }
@@ -268,18 +268,23 @@ impl Sampled {
 }
 
 /// Samples the daemon at `socket` every 250 ms until `stop`: the busiest composite's passes,
-/// and the compositor's busy time over the window in which all `n` surfaces exist and have
-/// shown a frame (glmark2 reports its frame rate over its drawing, not over its start-up,
-/// and the first instance to finish ends the window).
+/// and the compositor's busy time over the window in which the most surfaces (all `n`, unless
+/// the first instance finished before the last started) exist and have shown a frame
+/// (glmark2 reports its frame rate over its drawing, not over its start-up).
 fn sample(socket: &std::path::Path, n: u32, stop: &AtomicBool) -> Sampled {
     let mut out = Sampled { passes: 0, all_drawing: None };
+    let mut most = 0;
     while !stop.load(Ordering::Acquire) {
         if let Ok((outputs, surfaces)) = list(socket) {
             out.passes = out.passes.max(outputs.first().map_or(0, |o| o.passes));
-            if surfaces.len() == n as usize && surfaces.iter().all(|r| r.frames > 0) {
+            let drawing = surfaces.iter().filter(|r| r.frames > 0).count().min(n as usize);
+            if drawing > 0 && drawing >= most {
                 if let Ok(busy) = compositor_busy(socket) {
                     let at = (std::time::Instant::now(), busy);
-                    out.all_drawing = Some(out.all_drawing.map_or((at, at), |(first, _)| (first, at)));
+                    // More drawing than ever before starts the window again.
+                    let first = out.all_drawing.filter(|_| drawing == most).map_or(at, |(first, _)| first);
+                    out.all_drawing = Some((first, at));
+                    most = drawing;
                 }
             }
         }
@@ -344,19 +349,26 @@ pub fn run(args: &Args) -> Result<()> {
     let window = format!("{},{}", out_w.saturating_sub(win_w) / 2, out_h.saturating_sub(win_h) / 2);
     let bench = Bench { args, display: x.display.clone(), shim, window };
 
+    let chosen: Vec<&Table> =
+        TABLES.iter().filter(|t| args.tables.is_empty() || args.tables.iter().any(|n| n == t.table)).collect();
     let pb = if args.json {
         ProgressBar::hidden()
     } else {
-        ProgressBar::new(4 * u64::from(args.max_instances) + if args.no_data_path { 0 } else { MODELS.len() as u64 })
+        ProgressBar::new(
+            chosen.len() as u64 * u64::from(args.max_instances)
+                + if args.no_data_path { 0 } else { MODELS.len() as u64 },
+        )
     };
     pb.set_style(
         ProgressStyle::with_template("{msg:>28} [{bar:40}] {pos}/{len} {elapsed} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
-    let mut tables = Vec::new();
-    let mut paths = Vec::new();
-    for t in TABLES.iter().filter(|t| args.tables.is_empty() || args.tables.iter().any(|n| n == t.table)) {
+    // Every table's daemon up front, so that each n runs table after table: native and
+    // Strata at the same n then see the machine in the same state (minutes apart, its load
+    // and clocks drift more than the figures differ).
+    let mut daemons = Vec::new();
+    for t in &chosen {
         let log = tmp.0.join(format!("daemon-{}.log", t.table));
         let daemon = match t.side {
             Side::Native => None,
@@ -376,28 +388,35 @@ pub fn run(args: &Args) -> Result<()> {
                 Some(&log),
             )?),
         };
-        // The data path, with the first daemon (one model at a time).
-        if let (Some(d), true, false) = (&daemon, paths.is_empty(), args.no_data_path) {
-            for k in 0..MODELS.len() as u32 {
-                pb.set_message(format!("data path: {}", MODELS[k as usize]));
-                paths.push(bench.data_path(t, &d.1, k)?);
-                pb.inc(1);
+        daemons.push((daemon, log));
+    }
+    // The data path, with the first daemon (one model at a time).
+    let mut paths = Vec::new();
+    if let Some((t, (Some(d), _))) = chosen.iter().zip(&daemons).find(|(_, (d, _))| d.is_some()) {
+        for k in 0..MODELS.len() as u32 {
+            if args.no_data_path {
+                break;
             }
+            pb.set_message(format!("data path: {}", MODELS[k as usize]));
+            paths.push(bench.data_path(t, &d.1, k)?);
+            pb.inc(1);
         }
-        let mut rows = Vec::new();
-        for n in 1..=args.max_instances {
+    }
+    let mut rows: Vec<Vec<Row>> = chosen.iter().map(|_| Vec::new()).collect();
+    for n in 1..=args.max_instances {
+        for ((t, (daemon, log)), rows) in chosen.iter().zip(&daemons).zip(&mut rows) {
             pb.set_message(format!("table {}: {n} instance(s)", t.table));
             let row = bench.row(t, daemon.as_ref().map(|d| d.1.as_path()), n).map_err(|e| {
-                let tail = std::fs::read_to_string(&log).unwrap_or_default();
+                let tail = std::fs::read_to_string(log).unwrap_or_default();
                 let tail: Vec<&str> = tail.lines().rev().take(20).collect();
                 anyhow::anyhow!("{e:#}\ndaemon log (last lines, newest first):\n{}", tail.join("\n"))
             })?;
             rows.push(row);
             pb.inc(1);
         }
-        drop(daemon);
-        tables.push((t, rows));
     }
+    drop(daemons);
+    let tables: Vec<(&Table, Vec<Row>)> = chosen.into_iter().zip(rows).collect();
     pb.finish_and_clear();
     drop(x);
     report(args, &tables, &paths)

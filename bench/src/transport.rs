@@ -60,7 +60,10 @@ pub fn start_daemon_with(
     extra: &[String],
     log: Option<&std::path::Path>,
 ) -> Result<DaemonProc> {
-    let socket = std::env::temp_dir().join(format!("strata-bench-{}.sock", std::process::id()));
+    // One socket per daemon: a benchmark may run several side by side.
+    static STARTED: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let k = STARTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let socket = std::env::temp_dir().join(format!("strata-bench-{}-{k}.sock", std::process::id()));
     let kind = match executor {
         strata_server::ExecutorKind::Gles => "gles",
         strata_server::ExecutorKind::Drain => "drain",

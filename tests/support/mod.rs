@@ -128,7 +128,14 @@ impl Daemon {
     pub fn stop(mut self) -> std::process::ExitStatus {
         // SAFETY: kill(2) on our own child.
         unsafe { libc::kill(self.child.id() as i32, libc::SIGTERM) };
-        self.child.wait().expect("wait stratad")
+        let status = self.child.wait().expect("wait stratad");
+        if !status.success() {
+            // What a failing test shows of why.
+            let log = self.log_text();
+            let tail: Vec<&str> = log.lines().rev().take(30).collect();
+            eprintln!("stratad exited with {status}; its log's last lines, newest first:\n{}", tail.join("\n"));
+        }
+        status
     }
 }
 

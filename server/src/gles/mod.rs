@@ -188,18 +188,21 @@ impl GlesExecutor {
     }
 
     /// Moves this client's threads to `class`'s CPU priority (on its session thread): its
-    /// session thread's nice value and, with a device of its own, the device's driver threads'
-    /// (in the idle class when low, as `Gpu::open_with` puts them). Raising needs
+    /// session thread's nice value and slice and, with a device of its own, the device's driver
+    /// threads' (in the idle class when low, as `Gpu::open_with` puts them). Raising needs
     /// `CAP_SYS_NICE`; without it, only lowering takes effect.
     pub(super) fn apply_class_priority(&self, class: strata_protocol::control::Priority) {
         let nice = crate::gpu::nice_for(class);
-        crate::gpu::set_thread_nice(nice);
+        crate::gpu::set_thread_class(class);
         if self.own_device() {
             let idle = class == strata_protocol::control::Priority::Low;
             for &t in &self.gpu.threads {
                 crate::gpu::set_thread_idle(t, idle);
             }
             self.gpu.renice(nice);
+            for &t in &self.gpu.threads {
+                crate::gpu::set_thread_slice(t, crate::gpu::slice_for(class));
+            }
         }
     }
 

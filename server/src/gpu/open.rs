@@ -88,6 +88,75 @@ pub fn set_thread_nice(nice: i32) -> i32 {
     }
 }
 
+/// The slice the high class's threads ask the scheduler for (EEVDF's request size; the
+/// kernel's default is 0.75 ms times 1 + log2 of the cores, up to 3 ms). A thread with a
+/// shorter slice gets an earlier deadline when it wakes, and so preempts a thread with a longer
+/// one sooner (Linux 6.12's `PREEMPT_SHORT`): each hop on the instrument cluster's path (the
+/// compositor's refresh, the session's reply, the client's next frame) waits less behind work
+/// of the same or a lower class that is running. Needs no privilege.
+pub const HIGH_SLICE: std::time::Duration = std::time::Duration::from_micros(300);
+
+/// The slice `class`'s threads ask for ([`HIGH_SLICE`] for the high class; the kernel's
+/// default otherwise).
+pub fn slice_for(class: Priority) -> Option<std::time::Duration> {
+    (class == Priority::High).then_some(HIGH_SLICE)
+}
+
+/// Sets thread `tid`'s (0: the calling thread) scheduler slice to `slice`, or back to the
+/// kernel's default with `None`, keeping its nice value; for threads in `SCHED_OTHER` only.
+/// Returns whether the kernel took it (Linux 6.12 or later).
+pub fn set_thread_slice(tid: i32, slice: Option<std::time::Duration>) -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        /// `struct sched_attr` as of its first version (48 bytes).
+        #[repr(C)]
+        struct SchedAttr {
+            size: u32,
+            policy: u32,
+            flags: u64,
+            nice: i32,
+            priority: u32,
+            runtime: u64,
+            deadline: u64,
+            period: u64,
+        }
+        // SAFETY: sched_getscheduler, getpriority and sched_setattr on one of this process's
+        // threads, with a sched_attr of the size the call is told.
+        unsafe {
+            let id = if tid == 0 { libc::gettid() } else { tid };
+            if libc::sched_getscheduler(id) != libc::SCHED_OTHER {
+                return false;
+            }
+            *libc::__errno_location() = 0;
+            let nice = libc::getpriority(libc::PRIO_PROCESS, id as libc::id_t);
+            let attr = SchedAttr {
+                size: std::mem::size_of::<SchedAttr>() as u32,
+                policy: libc::SCHED_OTHER as u32,
+                flags: 0,
+                nice,
+                priority: 0,
+                runtime: slice.map_or(0, |s| s.as_nanos().min(u128::from(u64::MAX)) as u64),
+                deadline: 0,
+                period: 0,
+            };
+            libc::syscall(libc::SYS_sched_setattr, id, &attr as *const SchedAttr, 0u32) == 0
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = (tid, slice);
+        false
+    }
+}
+
+/// Puts the calling thread at `class`'s CPU priority: its nice value ([`nice_for`]) and slice
+/// ([`slice_for`]). Returns the nice value in force (see [`set_thread_nice`]).
+pub fn set_thread_class(class: Priority) -> i32 {
+    let nice = set_thread_nice(nice_for(class));
+    set_thread_slice(0, slice_for(class));
+    nice
+}
+
 /// The variable llvmpipe (lavapipe's rasterizer) reads its thread count from when an instance
 /// enumerates its devices.
 pub const RASTERIZER_THREADS: &str = "LP_NUM_THREADS";
@@ -119,13 +188,43 @@ impl Drop for EnvOverride {
 }
 
 /// Gives [`RASTERIZER_THREADS`] its default value (one thread per core) if the environment
-/// does not set it. Call it before starting any thread: later devices then only replace its
-/// value.
+/// does not set it, and keeps the C allocator from returning memory on every free (see
+/// [`keep_freed_memory`]). Call it before starting any thread: later devices then only replace
+/// its value.
 pub fn settle_environment() {
     if std::env::var_os(RASTERIZER_THREADS).is_none() {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         std::env::set_var(RASTERIZER_THREADS, cores.to_string());
     }
+    keep_freed_memory();
+}
+
+/// Above this much free memory at the top of one of the C allocator's heaps, it is returned
+/// to the system (glibc's `M_TRIM_THRESHOLD`; glibc's heaps are at most 64 MiB).
+pub const TRIM_THRESHOLD: i32 = 64 << 20;
+
+/// Allocations above this size get a mapping of their own (`M_MMAP_THRESHOLD`, glibc's most).
+pub const MMAP_THRESHOLD: i32 = 32 << 20;
+
+/// Sets glibc's trim and mapping thresholds ([`TRIM_THRESHOLD`], [`MMAP_THRESHOLD`]) unless
+/// `GLIBC_TUNABLES` sets malloc's own; returns whether it set them. lavapipe allocates and
+/// frees its vertex and binning memory on its own threads every draw. With glibc's defaults
+/// each free of a thread's heap top gives the pages back, and the next draw faults them in
+/// again (zeroed): glmark2's bunny drew at 17 fps through the daemon against 62 with these
+/// thresholds (docs/architecture.md, "Devices and frames"). The cost is that the daemon's
+/// resident memory stays at its high-water mark per heap rather than shrinking after a peak.
+pub fn keep_freed_memory() -> bool {
+    let tuned = std::env::var("GLIBC_TUNABLES").is_ok_and(|t| t.contains("glibc.malloc."));
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    if !tuned {
+        // SAFETY: mallopt with documented parameters; it only changes allocator settings.
+        return unsafe {
+            libc::mallopt(libc::M_TRIM_THRESHOLD, TRIM_THRESHOLD) == 1
+                && libc::mallopt(libc::M_MMAP_THRESHOLD, MMAP_THRESHOLD) == 1
+        };
+    }
+    let _ = tuned;
+    false
 }
 
 /// Held while a device opens.
@@ -308,6 +407,12 @@ impl Gpu {
             error!(device = label, ?reason, "GPU device lost: {message}");
         });
         let threads: Vec<i32> = task_ids().difference(&before).copied().filter(|&t| !ours(t)).collect();
+        // The class's slice on the driver's threads (an idle-class thread keeps its own).
+        if let Some(slice) = slice_for(opts.priority) {
+            for &t in &threads {
+                set_thread_slice(t, Some(slice));
+            }
+        }
         let asked = ext.map(|_| priority_name(wanted));
         let got = granted.map(priority_name);
         if granted.is_some() && granted != Some(wanted) {

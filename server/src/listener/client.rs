@@ -165,7 +165,7 @@ pub(super) async fn run_client(
                     // run at the class's nice value. A low-priority device's driver threads are
                     // also in the idle class (`Gpu::open_with`); the session itself is not, as it
                     // takes the scene's lock, which the compositor waits for.
-                    crate::gpu::set_thread_nice(crate::gpu::nice_for(class));
+                    crate::gpu::set_thread_class(class);
                     let own = match devices {
                         DeviceMode::Shared => None,
                         DeviceMode::PerClient => match DeviceSlot::take(&client_devices, max_client_devices) {

@@ -237,7 +237,7 @@ fn open_compositor_device(global_priority: bool) -> Result<Arc<Gpu>, ServerError
     let opened = std::thread::Builder::new()
         .name("open-compositor".into())
         .spawn(move || {
-            crate::gpu::set_thread_nice(crate::gpu::nice_for(Priority::High));
+            crate::gpu::set_thread_class(Priority::High);
             Gpu::open_with(opts)
         })
         .map_err(io_err("starting the thread that opens the compositor's device"))?

@@ -447,7 +447,7 @@ impl Root {
         std::thread::Builder::new().name("compositor".into()).spawn(move || {
             // The compositor is on every frame's path to the output: it runs at the high
             // class's CPU priority where the daemon may raise it.
-            let nice = crate::gpu::set_thread_nice(crate::gpu::nice_for(strata_protocol::control::Priority::High));
+            let nice = crate::gpu::set_thread_class(strata_protocol::control::Priority::High);
             info!(refresh_hz, nice, "compositor running");
             let mut next = Instant::now();
             let mut seen = None;
