@@ -132,7 +132,7 @@ struct Row {
     composites: Option<u64>,
     /// Passes of the busiest composite seen (chaining stages; Strata only).
     stages: Option<u64>,
-    /// The compositor's share of the machine while all n instances drew: the CPU time of its
+    /// The compositor's share of the machine while the most instances drew: the CPU time of its
     /// device's threads and of its own thread, over that time on every core (Strata on a CPU
     /// rasterizer only).
     compositor_share: Option<f64>,
@@ -248,43 +248,45 @@ impl Bench<'_> {
     }
 }
 
+/// The compositor's busy time (µs) at an instant.
+type Busy = (std::time::Instant, u64);
+
 /// What a row's sampler saw of the daemon.
 struct Sampled {
     /// Passes of the busiest composite.
     passes: u64,
-    /// The compositor's busy time (µs) when the most instances were first seen drawing, and the
-    /// last time they all still were.
-    all_drawing: Option<((std::time::Instant, u64), (std::time::Instant, u64))>,
+    /// Per count c of instances drawing (index c − 1): the compositor's busy time (µs) when at
+    /// least c were first seen drawing, and the last time at least c were.
+    drawing: Vec<Option<(Busy, Busy)>>,
 }
 
 impl Sampled {
-    /// The compositor's share of the machine while all n instances drew: its busy time over
-    /// that window's time on every core.
+    /// The compositor's share of the machine while the most instances drew, over a window of
+    /// at least a second (all n, unless the first instance finished before the last had
+    /// drawn for that long): its busy time over that window's time on every core.
     fn share(&self, cores: f64) -> Option<f64> {
-        let ((t0, b0), (t1, b1)) = self.all_drawing?;
-        let secs = t1.duration_since(t0).as_secs_f64();
-        (secs > 0.5).then(|| (b1.saturating_sub(b0) as f64 / 1e6 / (secs * cores)).min(1.0))
+        self.drawing.iter().rev().flatten().find_map(|&((t0, b0), (t1, b1))| {
+            let secs = t1.duration_since(t0).as_secs_f64();
+            (secs >= 1.0).then(|| (b1.saturating_sub(b0) as f64 / 1e6 / (secs * cores)).min(1.0))
+        })
     }
 }
 
 /// Samples the daemon at `socket` every 250 ms until `stop`: the busiest composite's passes,
-/// and the compositor's busy time over the window in which the most surfaces (all `n`, unless
-/// the first instance finished before the last started) exist and have shown a frame
-/// (glmark2 reports its frame rate over its drawing, not over its start-up).
+/// and the compositor's busy time while 1, 2, … `n` surfaces have shown a frame (glmark2
+/// reports its frame rate over its drawing, not over its start-up).
 fn sample(socket: &std::path::Path, n: u32, stop: &AtomicBool) -> Sampled {
-    let mut out = Sampled { passes: 0, all_drawing: None };
-    let mut most = 0;
+    let mut out = Sampled { passes: 0, drawing: vec![None; n as usize] };
     while !stop.load(Ordering::Acquire) {
         if let Ok((outputs, surfaces)) = list(socket) {
             out.passes = out.passes.max(outputs.first().map_or(0, |o| o.passes));
             let drawing = surfaces.iter().filter(|r| r.frames > 0).count().min(n as usize);
-            if drawing > 0 && drawing >= most {
+            if drawing > 0 {
                 if let Ok(busy) = compositor_busy(socket) {
                     let at = (std::time::Instant::now(), busy);
-                    // More drawing than ever before starts the window again.
-                    let first = out.all_drawing.filter(|_| drawing == most).map_or(at, |(first, _)| first);
-                    out.all_drawing = Some((first, at));
-                    most = drawing;
+                    for w in &mut out.drawing[..drawing] {
+                        *w = Some(w.map_or((at, at), |(first, _)| (first, at)));
+                    }
                 }
             }
         }
