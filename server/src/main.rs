@@ -406,7 +406,15 @@ fn run_daemon(opts: ServeOptions) -> Result<()> {
         };
         serve(opts, shutdown).await
     })?;
-    Ok(())
+    drop(rt);
+    // Every session, device and output is closed by now. Leave without running the C
+    // libraries' exit handlers: the Vulkan loader may already have unloaded a driver that
+    // registered one (lavapipe's), and calling into it crashed one stop in ten.
+    use std::io::Write;
+    let _ = std::io::stdout().flush();
+    let _ = std::io::stderr().flush();
+    // SAFETY: _exit ends the process at once; nothing after it runs.
+    unsafe { libc::_exit(0) }
 }
 
 fn sample_client(opts: &ConnectOptions, commands: u64, verify_every: u64, max_upload: usize, seed: u64) -> Result<()> {

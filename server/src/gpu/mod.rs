@@ -209,6 +209,15 @@ pub fn fullscreen_pass(
 /// Non-filterable float textures, for [`texture_entry`].
 pub const UNFILTERED: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: false };
 
+/// The vertex input of a [`Gpu::pipeline`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexInput {
+    /// None: the vertex shader makes its positions from the vertex index.
+    None,
+    /// One `vec4<f32>` per instance at location 0 (a rectangle), drawn as a four-vertex strip.
+    InstanceRect,
+}
+
 /// The descriptor of a single-level, single-sample 2D texture of `format` and `(width, height)`
 /// for `usage` (what [`Gpu::texture_2d`] creates, and what shared images are described as).
 pub fn descriptor_2d(
@@ -251,6 +260,21 @@ impl Gpu {
         targets: &[Option<wgpu::ColorTargetState>],
         depth: Option<wgpu::DepthStencilState>,
     ) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
+        self.pipeline(label, wgsl, entries, targets, depth, VertexInput::None)
+    }
+
+    /// A pipeline with the `vs` and `fs` entry points of `wgsl`, one bind group of `entries`,
+    /// `vertex` input, into `targets` (and a depth attachment if `depth`): the one pipeline
+    /// builder behind full-screen passes and the compositor's cells.
+    pub fn pipeline(
+        &self,
+        label: &str,
+        wgsl: &str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        targets: &[Option<wgpu::ColorTargetState>],
+        depth: Option<wgpu::DepthStencilState>,
+        vertex: VertexInput,
+    ) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
         let d = &self.device;
         let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
@@ -262,6 +286,19 @@ impl Gpu {
             bind_group_layouts: &[Some(&bgl)],
             immediate_size: 0,
         });
+        // One vec4 per instance (a rectangle), drawn as a four-vertex strip.
+        let rect = [wgpu::VertexAttribute { format: wgpu::VertexFormat::Float32x4, offset: 0, shader_location: 0 }];
+        let (buffers, primitive) = match vertex {
+            VertexInput::None => (vec![], Default::default()),
+            VertexInput::InstanceRect => (
+                vec![Some(wgpu::VertexBufferLayout {
+                    array_stride: 16,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &rect,
+                })],
+                wgpu::PrimitiveState { topology: wgpu::PrimitiveTopology::TriangleStrip, ..Default::default() },
+            ),
+        };
         let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(label),
             layout: Some(&layout),
@@ -269,9 +306,9 @@ impl Gpu {
                 module: &module,
                 entry_point: Some("vs"),
                 compilation_options: Default::default(),
-                buffers: &[],
+                buffers: &buffers,
             },
-            primitive: Default::default(),
+            primitive,
             depth_stencil: depth,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
