@@ -126,12 +126,13 @@ impl WindowOutput {
         config.format = format;
         config.present_mode = present_mode;
         surface.configure(&gpu.device, &config);
-        let (layout, pipeline) = gpu.fullscreen_pipeline(
+        let (layout, pipeline) = gpu.pipeline(
             "window blit",
             BLIT,
             &[crate::gpu::texture_entry(0, crate::gpu::UNFILTERED)],
             &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
             None,
+            crate::gpu::VertexInput::None,
         );
         info!(window = title, width, height, ?format, ?present_mode, "window output open");
         Ok(WindowOutput { window, surface, config, layout, pipeline })

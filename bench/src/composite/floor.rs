@@ -53,7 +53,14 @@ impl Floor {
             })
             .collect();
         let target = wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL };
-        let (layout, pipeline) = gpu.fullscreen_pipeline("composite floor", &wgsl(k), &entries, &[Some(target)], None);
+        let (layout, pipeline) = gpu.pipeline(
+            "composite floor",
+            &wgsl(k),
+            &entries,
+            &[Some(target)],
+            None,
+            strata_server::gpu::VertexInput::None,
+        );
         Some(Floor { layout, pipeline })
     }
 

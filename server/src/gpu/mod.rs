@@ -92,7 +92,7 @@ impl Gpu {
     pub fn depth_reader(&self) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
         self.depth_reader
             .get_or_init(|| {
-                self.fullscreen_pipeline(
+                self.pipeline(
                     "depth read",
                     include_str!("../../../shaders/depth_read.wgsl"),
                     &[texture_entry(0, wgpu::TextureSampleType::Depth)],
@@ -102,6 +102,7 @@ impl Gpu {
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
                     None,
+                    VertexInput::None,
                 )
             })
             .clone()
@@ -250,22 +251,10 @@ impl Gpu {
         self.device.create_texture(&descriptor_2d(label, format, (width, height), usage))
     }
 
-    /// A pipeline that draws one full-screen triangle with the `vs` and `fs` entry points of
-    /// `wgsl`, one bind group of `entries`, into `targets` (and a depth attachment if `depth`).
-    pub fn fullscreen_pipeline(
-        &self,
-        label: &str,
-        wgsl: &str,
-        entries: &[wgpu::BindGroupLayoutEntry],
-        targets: &[Option<wgpu::ColorTargetState>],
-        depth: Option<wgpu::DepthStencilState>,
-    ) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
-        self.pipeline(label, wgsl, entries, targets, depth, VertexInput::None)
-    }
-
     /// A pipeline with the `vs` and `fs` entry points of `wgsl`, one bind group of `entries`,
-    /// `vertex` input, into `targets` (and a depth attachment if `depth`): the one pipeline
-    /// builder behind full-screen passes and the compositor's cells.
+    /// `vertex` input (none: one full-screen triangle from the vertex index), into `targets`
+    /// (and a depth attachment if `depth`): the one pipeline builder behind full-screen passes
+    /// and the compositor's cells.
     pub fn pipeline(
         &self,
         label: &str,
@@ -352,7 +341,7 @@ impl Gpu {
             writers
                 .entry(format)
                 .or_insert_with(|| {
-                    self.fullscreen_pipeline(
+                    self.pipeline(
                         "depth upload",
                         include_str!("../../../shaders/depth_upload.wgsl"),
                         &[texture_entry(0, UNFILTERED)],
@@ -364,6 +353,7 @@ impl Gpu {
                             stencil: Default::default(),
                             bias: Default::default(),
                         }),
+                        VertexInput::None,
                     )
                 })
                 .clone()

@@ -6,6 +6,32 @@ use strata_protocol::wire::*;
 
 use super::*;
 
+/// A `glUniform*v` call: `values` as `count` arrays of `n` components.
+macro_rules! uniform_array {
+    ($self:ident, $name:literal, $t:ty, $location:expr, $values:expr, $n:expr) => {{
+        let v = $values.to_vec();
+        call!($self, $name, fn(i32, i32, *const $t) -> (), *$location, v.len() as i32 / $n, v.as_ptr());
+        Ok(())
+    }};
+}
+
+/// A `glUniformMatrix*fv` call: `values` as `count` matrices of `n` floats.
+macro_rules! uniform_matrices {
+    ($self:ident, $name:literal, $location:expr, $transpose:expr, $values:expr, $n:expr) => {{
+        let v = $values.to_vec();
+        call!(
+            $self,
+            $name,
+            fn(i32, i32, u8, *const f32) -> (),
+            *$location,
+            v.len() as i32 / $n,
+            u8::from(*$transpose),
+            v.as_ptr()
+        );
+        Ok(())
+    }};
+}
+
 impl Arms<'_> {
     pub(super) fn glAttachShader(&mut self, program: &GLuint, shader: &GLuint) -> Result<(), ClientError> {
         let (p, s) = (self.shader(*program), self.shader(*shader));
@@ -107,9 +133,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform1fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform1fv", fn(i32, i32, *const f32) -> (), *location, v.len() as i32, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform1fv", f32, location, values, 1)
     }
 
     pub(super) fn glUniform1i(&mut self, location: &GLint, x: &GLint) -> Result<(), ClientError> {
@@ -118,9 +142,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform1iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform1iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform1iv", i32, location, values, 1)
     }
 
     pub(super) fn glUniform2f(&mut self, location: &GLint, x: &GLfloat, y: &GLfloat) -> Result<(), ClientError> {
@@ -129,9 +151,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform2fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform2fv", fn(i32, i32, *const f32) -> (), *location, v.len() as i32 / 2, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform2fv", f32, location, values, 2)
     }
 
     pub(super) fn glUniform2i(&mut self, location: &GLint, x: &GLint, y: &GLint) -> Result<(), ClientError> {
@@ -140,9 +160,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform2iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform2iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 2, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform2iv", i32, location, values, 2)
     }
 
     pub(super) fn glUniform3f(
@@ -157,9 +175,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform3fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform3fv", fn(i32, i32, *const f32) -> (), *location, v.len() as i32 / 3, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform3fv", f32, location, values, 3)
     }
 
     pub(super) fn glUniform3i(&mut self, location: &GLint, x: &GLint, y: &GLint, z: &GLint) -> Result<(), ClientError> {
@@ -168,9 +184,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform3iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform3iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 3, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform3iv", i32, location, values, 3)
     }
 
     pub(super) fn glUniform4f(
@@ -186,9 +200,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform4fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform4fv", fn(i32, i32, *const f32) -> (), *location, v.len() as i32 / 4, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform4fv", f32, location, values, 4)
     }
 
     pub(super) fn glUniform4i(
@@ -204,9 +216,7 @@ impl Arms<'_> {
     }
 
     pub(super) fn glUniform4iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(self, "glUniform4iv", fn(i32, i32, *const i32) -> (), *location, v.len() as i32 / 4, v.as_ptr());
-        Ok(())
+        uniform_array!(self, "glUniform4iv", i32, location, values, 4)
     }
 
     pub(super) fn glUniformMatrix2fv(
@@ -215,17 +225,7 @@ impl Arms<'_> {
         transpose: &bool,
         values: &Slice<'_, GLfloat>,
     ) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(
-            self,
-            "glUniformMatrix2fv",
-            fn(i32, i32, u8, *const f32) -> (),
-            *location,
-            v.len() as i32 / 4,
-            u8::from(*transpose),
-            v.as_ptr()
-        );
-        Ok(())
+        uniform_matrices!(self, "glUniformMatrix2fv", location, transpose, values, 4)
     }
 
     pub(super) fn glUniformMatrix3fv(
@@ -234,17 +234,7 @@ impl Arms<'_> {
         transpose: &bool,
         values: &Slice<'_, GLfloat>,
     ) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(
-            self,
-            "glUniformMatrix3fv",
-            fn(i32, i32, u8, *const f32) -> (),
-            *location,
-            v.len() as i32 / 9,
-            u8::from(*transpose),
-            v.as_ptr()
-        );
-        Ok(())
+        uniform_matrices!(self, "glUniformMatrix3fv", location, transpose, values, 9)
     }
 
     pub(super) fn glUniformMatrix4fv(
@@ -253,17 +243,7 @@ impl Arms<'_> {
         transpose: &bool,
         values: &Slice<'_, GLfloat>,
     ) -> Result<(), ClientError> {
-        let v = values.to_vec();
-        call!(
-            self,
-            "glUniformMatrix4fv",
-            fn(i32, i32, u8, *const f32) -> (),
-            *location,
-            v.len() as i32 / 16,
-            u8::from(*transpose),
-            v.as_ptr()
-        );
-        Ok(())
+        uniform_matrices!(self, "glUniformMatrix4fv", location, transpose, values, 16)
     }
 
     pub(super) fn glUseProgram(&mut self, program: &GLuint) -> Result<(), ClientError> {
