@@ -45,8 +45,8 @@ macro_rules! command_set {
         }
     ) => {
         /// Hands the whole command table to `$callback!`, in the form
-        /// `async { glName => Variant { field: Type, ... }; ... }
-        /// sync { glName => Variant { field: Type, ... } -> ReplyType; ... }`,
+        /// `async { glName [Attribute, ...] => Variant { field: Type, ... }; ... }
+        /// sync { glName [Attribute, ...] => Variant { field: Type, ... } -> ReplyType; ... }`,
         /// so that another crate can derive code from it (a dispatch, a trait) and cannot
         /// miss a command. The field types name `strata_protocol::wire` and
         /// `strata_protocol::commands` items, which the caller brings into scope.
@@ -54,8 +54,8 @@ macro_rules! command_set {
         macro_rules! command_table {
             ($callback:ident) => {
                 $callback! {
-                    async { $( $agl => $av { $( $af : $aty ),* } ; )* }
-                    sync { $( $sgl => $sv { $( $sf : $sty ),* } -> $ret ; )* }
+                    async { $( $agl [ $($aat),+ ] => $av { $( $af : $aty ),* } ; )* }
+                    sync { $( $sgl [ $($sat),+ ] => $sv { $( $sf : $sty ),* } -> $ret ; )* }
                 }
             };
         }

@@ -285,7 +285,7 @@ fn wait_change(
 mod reader;
 mod writer;
 
-pub use reader::{Message, Reader, OVERSIZED_HEAD};
+pub use reader::{Message, Oversized, Reader, OVERSIZED_HEAD};
 pub use writer::Writer;
 
 #[cfg(test)]
@@ -370,7 +370,7 @@ mod tests {
         let mut r = Reader::new(reader_ring, 10_000);
         let mut seen = Vec::new();
         while seen.len() < 3 {
-            r.recv_messages::<RingError>(&|| true, |m| {
+            r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m| {
                 seen.push(match m {
                     Message::Whole(b) => (b.len() as u64, b.to_vec()),
                     Message::Oversized { len, head } => (len, head.to_vec()),

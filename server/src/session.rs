@@ -109,7 +109,7 @@ impl Session {
         let alive = move || !closed.load(Ordering::Acquire);
         let Session { reader, replies, tally, executor, stats, counter, account, .. } = &mut self;
         loop {
-            let r = reader.recv_messages::<Stop>(&alive, |message| {
+            let r = reader.recv_messages::<Stop>(&alive, strata_protocol::ring::Oversized::Skip, |message| {
                 let (bytes, len) = match message {
                     Message::Whole(bytes) => (bytes, bytes.len() as u64),
                     // The reader kept only its start; it is refused below.

@@ -245,8 +245,8 @@ impl std::ops::DerefMut for Arms<'_> {
 /// path (`Arms::glX`), so that a missing arm cannot resolve to `Calls::glX` through `Deref`.
 macro_rules! mesa_dispatch {
     (
-        async { $( $agl:ident => $av:ident { $( $af:ident : $aty:ty ),* } ; )* }
-        sync { $( $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* } -> $ret:ty ; )* }
+        async { $( $agl:ident [ $($aat:ident),+ ] => $av:ident { $( $af:ident : $aty:ty ),* } ; )* }
+        sync { $( $sgl:ident [ $($sat:ident),+ ] => $sv:ident { $( $sf:ident : $sty:ty ),* } -> $ret:ty ; )* }
     ) => {
         impl Calls for MesaGl {
             type Error = ClientError;

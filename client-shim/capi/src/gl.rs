@@ -38,12 +38,19 @@ impl Gl<'_> {
     }
 }
 
-/// Runs a GL call against the calling thread's current context. Without one, or once the
-/// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`). Debug
-/// messages fetched for the application's callback after the call (see `debug`) are delivered
-/// once the library's lock is released.
-pub(crate) fn with_gl<R>(name: &'static str, default: R, f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>) -> R {
-    with_gl_args(name, &String::new, default, f)
+/// A GL call as `STRATA_CHECK_ERRORS` names it: the entry point and, for calls that have
+/// them, its scalar arguments shown when it raises an error. A bare name has none.
+pub(crate) struct Call<'a> {
+    /// The entry point's name.
+    pub name: &'static str,
+    /// The arguments' text, made only when an error is logged.
+    pub args: &'a dyn Fn() -> String,
+}
+
+impl From<&'static str> for Call<'static> {
+    fn from(name: &'static str) -> Self {
+        Call { name, args: &String::new }
+    }
 }
 
 /// A call argument as `STRATA_CHECK_ERRORS` shows it: enums in hex, numbers as they are.
@@ -63,14 +70,17 @@ macro_rules! show_plain {
 }
 show_plain!(i32, f32, u8);
 
-/// [`with_gl`] for a call whose arguments `args` formats, so that `STRATA_CHECK_ERRORS` can
-/// name them with the error (formatted only when there is one).
-pub(crate) fn with_gl_args<R>(
-    name: &'static str,
-    args: &dyn Fn() -> String,
+/// Runs a GL call against the calling thread's current context. Without one, or once the
+/// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`). Debug
+/// messages fetched for the application's callback after the call (see `debug`) are delivered
+/// once the library's lock is released. With `STRATA_CHECK_ERRORS`, an error it raises is
+/// logged with the call's arguments.
+pub(crate) fn with_gl<'a, R>(
+    call: impl Into<Call<'a>>,
     default: R,
     f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>,
 ) -> R {
+    let Call { name, args } = call.into();
     let mut delivery = None;
     let r = with_gl_locked(name, args, default, f, &mut delivery);
     if let Some(d) = delivery {
@@ -79,7 +89,7 @@ pub(crate) fn with_gl_args<R>(
     r
 }
 
-/// [`with_gl_args`] under the library's lock; the messages for the callback go to `delivery`.
+/// [`with_gl`] under the library's lock; the messages for the callback go to `delivery`.
 fn with_gl_locked<R>(
     name: &'static str,
     args: &dyn Fn() -> String,
@@ -191,7 +201,7 @@ macro_rules! simple_calls {
                 #[doc = concat!("`", stringify!($name), "`, forwarded to the daemon as it is.")]
                 fn $name( $( $arg : $ty ),* ) $( -> $ret )? {
                     let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl_args(stringify!($name), &args, crate::Fallback::fallback(), |gl| {
+                    with_gl(Call { name: stringify!($name), args: &args }, crate::Fallback::fallback(), |gl| {
                         Ok(ToC::to_c(gl.conn.$name( $( Wire::wire($arg) ),* )?))
                     })
                 }

@@ -5,6 +5,15 @@ use std::sync::atomic::Ordering;
 
 use super::*;
 
+/// What the reader does with a message beyond its limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Oversized {
+    /// Fails the read with [`RingError::TooLarge`].
+    Refuse,
+    /// Skips a chunked one and reports it as [`Message::Oversized`].
+    Skip,
+}
+
 /// A message as the reader delivers it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Message<'a> {
@@ -61,28 +70,21 @@ impl Reader {
         mut on_message: impl FnMut(&[u8]) -> Result<(), E>,
     ) -> Result<usize, E> {
         let limit = self.max_message;
-        self.receive(alive, false, |m| match m {
+        self.recv_messages(alive, Oversized::Refuse, |m| match m {
             Message::Whole(bytes) => on_message(bytes),
             Message::Oversized { len, .. } => Err(RingError::TooLarge { len, limit }.into()),
         })
     }
 
-    /// As [`Reader::recv_batch`], except that a chunked message beyond the limit is skipped
-    /// without being kept, and reported as [`Message::Oversized`] once its last chunk is read,
-    /// so that the stream goes on after it.
+    /// Waits until frames are published, then hands every message among them to `on_message`,
+    /// in order; returns the number delivered. A message beyond the limit is refused at once
+    /// with [`Oversized::Refuse`]; with [`Oversized::Skip`] a chunked one is skipped without
+    /// being kept and reported as [`Message::Oversized`] once its last chunk is read, so that
+    /// the stream goes on after it.
     pub fn recv_messages<E: From<RingError>>(
         &mut self,
         alive: &dyn Fn() -> bool,
-        on_message: impl FnMut(Message<'_>) -> Result<(), E>,
-    ) -> Result<usize, E> {
-        self.receive(alive, true, on_message)
-    }
-
-    /// Delivers messages; an oversized one is skipped when `skip`, else refused at once.
-    fn receive<E: From<RingError>>(
-        &mut self,
-        alive: &dyn Fn() -> bool,
-        skip: bool,
+        oversized: Oversized,
         mut on_message: impl FnMut(Message<'_>) -> Result<(), E>,
     ) -> Result<usize, E> {
         let ctl = self.ring.ctl();
@@ -144,7 +146,7 @@ impl Reader {
                     if (rest.len() as u64) > total {
                         return Err(RingError::BadChunk("chunk exceeds the announced size").into());
                     }
-                    if total > self.max_message as u64 && !skip {
+                    if total > self.max_message as u64 && oversized == Oversized::Refuse {
                         return Err(RingError::TooLarge { len: total, limit: self.max_message }.into());
                     }
                     if total > self.max_message as u64 {

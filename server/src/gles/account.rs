@@ -3,6 +3,7 @@
 //! given back when it is dropped. A refusal is `GL_OUT_OF_MEMORY` (or `EGL_BAD_ALLOC`) for this
 //! client alone; see [`crate::quota`].
 
+use super::context::Context;
 use crate::quota::{Kind, Reservation};
 
 use super::error::{GlError, GlResult};
@@ -10,10 +11,11 @@ use super::formats::Storage;
 use super::GlesExecutor;
 
 impl GlesExecutor {
-    /// Objects of `kind` this client has now, over all its contexts.
-    pub(super) fn have(&self, kind: Kind) -> u64 {
+    /// Objects of `kind` this client has now, over all its contexts: those in the table and
+    /// `current`, the current context while a handler holds it.
+    pub(super) fn have(&self, kind: Kind, current: Option<&Context>) -> u64 {
         let tables = |f: fn(&super::context::Objects) -> usize| -> u64 {
-            self.contexts.values().map(|c| f(&c.objects) as u64).sum()
+            self.contexts.values().chain(current).map(|c| f(&c.objects) as u64).sum()
         };
         match kind {
             Kind::Buffer => tables(|o| o.buffers.len()),
@@ -23,42 +25,18 @@ impl GlesExecutor {
             Kind::Shader => tables(|o| o.shaders.len()),
             Kind::Program => tables(|o| o.programs.len()),
             Kind::VertexArray => tables(|o| o.vertex_arrays.len()),
-            Kind::Context => self.contexts.len() as u64,
+            Kind::Context => (self.contexts.len() + usize::from(current.is_some())) as u64,
             Kind::Surface => self.surfaces.len() as u64,
         }
     }
 
-    /// Whether `more` new objects of `kind` fit this client's quota.
-    pub(super) fn admit(&self, kind: Kind, more: u64) -> GlResult {
+    /// Whether `more` new objects of `kind` fit this client's quota (`ctx`: the current
+    /// context, held by the handler asking).
+    pub(super) fn admit(&self, ctx: &Context, kind: Kind, more: u64) -> GlResult {
         if more == 0 {
             return Ok(());
         }
-        self.account.admit(kind, self.have(kind), more).map_err(|_| GlError::OutOfMemory)
-    }
-
-    /// Whether the current context has object `name` of `kind` (contexts and surfaces are
-    /// not named by the context, so they count as known).
-    fn known(&mut self, kind: Kind, name: u32) -> bool {
-        let o = &self.ctx().objects;
-        match kind {
-            Kind::Buffer => o.buffers.contains_key(&name),
-            Kind::Texture => o.textures.contains_key(&name),
-            Kind::Renderbuffer => o.renderbuffers.contains_key(&name),
-            Kind::Framebuffer => o.framebuffers.contains_key(&name),
-            Kind::Shader => o.shaders.contains_key(&name),
-            Kind::Program => o.programs.contains_key(&name),
-            Kind::VertexArray => o.vertex_arrays.contains_key(&name),
-            Kind::Context | Kind::Surface => true,
-        }
-    }
-
-    /// Whether the names among `names` that are not yet objects of `kind` fit the quota
-    /// (generating or binding a new name creates the object).
-    pub(super) fn admit_names(&mut self, kind: Kind, names: impl IntoIterator<Item = u32>) -> GlResult {
-        let mut fresh: Vec<u32> = names.into_iter().filter(|&n| n != 0 && !self.known(kind, n)).collect();
-        fresh.sort_unstable();
-        fresh.dedup();
-        self.admit(kind, fresh.len() as u64)
+        self.account.admit(kind, self.have(kind, Some(ctx)), more).map_err(|_| GlError::OutOfMemory)
     }
 
     /// Reserves `bytes` of GPU memory for an object this client allocates.
@@ -69,7 +47,7 @@ impl GlesExecutor {
     /// Publishes the object counts for `ctl stats`.
     pub(super) fn publish_usage(&self) {
         for kind in Kind::ALL {
-            self.account.set_count(kind, self.have(kind));
+            self.account.set_count(kind, self.have(kind, None));
         }
     }
 }

@@ -46,57 +46,55 @@ fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blo
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glGenBuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        self.admit_names(Kind::Buffer, names.iter())?;
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.buffers.entry(n).or_default();
-        }
+    pub(super) fn glGenBuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Buffer, ctx.objects.buffers.fresh(names.iter()))?;
+        ctx.objects.buffers.generate(names.iter());
         Ok(())
     }
 
-    pub(super) fn glDeleteBuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let ctx = self.ctx();
-        for n in names.iter() {
-            if ctx.objects.buffers.remove(&n).is_some() {
-                ctx.objects.forget_label(BUFFER_KHR, n);
-                if ctx.bindings.array_buffer == n {
-                    ctx.bindings.array_buffer = 0;
-                }
-                if ctx.bindings.element_buffer == n {
-                    ctx.bindings.element_buffer = 0;
-                }
-                for a in &mut ctx.attribs {
-                    if a.buffer == n {
-                        a.buffer = 0;
-                    }
+    pub(super) fn glDeleteBuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.buffers.delete(names.iter()) {
+            ctx.objects.forget_label(BUFFER_KHR, n);
+            if ctx.bindings.array_buffer == n {
+                ctx.bindings.array_buffer = 0;
+            }
+            if ctx.bindings.element_buffer == n {
+                ctx.bindings.element_buffer = 0;
+            }
+            for a in &mut ctx.attribs {
+                if a.buffer == n {
+                    a.buffer = 0;
                 }
             }
         }
         Ok(())
     }
 
-    pub(super) fn glBindBuffer(&mut self, target: u32, buffer: u32) -> GlResult {
+    pub(super) fn glBindBuffer(&mut self, ctx: &mut Context, target: u32, buffer: u32) -> GlResult {
         let target = BufferTarget::from_gl(target)?;
-        self.admit_names(Kind::Buffer, [buffer])?;
-        let ctx = self.ctx();
+        self.admit(ctx, Kind::Buffer, ctx.objects.buffers.fresh([buffer]))?;
         match target {
             BufferTarget::Array => ctx.bindings.array_buffer = buffer,
             BufferTarget::ElementArray => ctx.bindings.element_buffer = buffer,
         }
-        if buffer != 0 {
-            ctx.objects.buffers.entry(buffer).or_default();
-        }
+        ctx.objects.buffers.bind(buffer);
         Ok(())
     }
 
-    pub(super) fn glIsBuffer(&mut self, name: u32) -> bool {
-        name != 0 && self.ctx().objects.buffers.contains_key(&name)
+    pub(super) fn glIsBuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.buffers.is(name)
     }
 
-    pub(super) fn glBufferData(&mut self, target: u32, size: i64, data: Option<Blob<'_>>, usage: u32) -> GlResult {
+    pub(super) fn glBufferData(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        size: i64,
+        data: Option<Blob<'_>>,
+        usage: u32,
+    ) -> GlResult {
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let name = validate_buffer_data(ctx, target, size, data.as_ref(), usage)?;
         let b = ctx.objects.buffers.entry(name).or_default();
         // The old contents' memory is given back before the new contents' is reserved.
@@ -119,8 +117,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glBufferSubData(&mut self, target: u32, offset: i64, data: Blob<'_>) -> GlResult {
-        let (ctx, gpu) = self.ctx_gpu();
+    pub(super) fn glBufferSubData(&mut self, ctx: &mut Context, target: u32, offset: i64, data: Blob<'_>) -> GlResult {
+        let gpu = &self.gpu;
         let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
         let b = ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         let end = offset.checked_add(data.len() as i64);
@@ -143,8 +141,7 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glGetBufferParameteriv(&mut self, target: u32, pname: u32) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetBufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {
         let name = match BufferTarget::from_gl(target) {
             Ok(t) => ctx.bindings.buffer(t),
             Err(e) => {

@@ -10,6 +10,7 @@ use super::egl::Config;
 use super::enums::*;
 use super::error::{ErrorFlag, GlError};
 use super::framebuffers::{Framebuffer, Renderbuffer};
+use super::names::Names;
 use super::programs::Program;
 use super::shaders::ShaderObj;
 use super::textures::Texture;
@@ -30,19 +31,19 @@ pub const MAX_POINT_SIZE: f32 = 1024.0;
 #[derive(Default)]
 pub struct Objects {
     /// Buffer objects.
-    pub buffers: HashMap<u32, Buffer>,
+    pub buffers: Names<Buffer>,
     /// Texture objects.
-    pub textures: HashMap<u32, Texture>,
+    pub textures: Names<Texture>,
     /// Renderbuffer objects.
-    pub renderbuffers: HashMap<u32, Renderbuffer>,
+    pub renderbuffers: Names<Renderbuffer>,
     /// Framebuffer objects.
-    pub framebuffers: HashMap<u32, Framebuffer>,
+    pub framebuffers: Names<Framebuffer>,
     /// Shader objects (one namespace with programs).
     pub shaders: HashMap<u32, ShaderObj>,
     /// Program objects.
     pub programs: HashMap<u32, Program>,
     /// Vertex array objects other than the bound one, whose state is in `Context::attribs`.
-    pub vertex_arrays: HashMap<u32, VertexArray>,
+    pub vertex_arrays: Names<VertexArray>,
     /// `GL_KHR_debug` object labels by (namespace, name).
     pub labels: HashMap<(u32, u32), Vec<u8>>,
 }

@@ -1,6 +1,7 @@
 //! Texture images copied from the framebuffer: `glCopyTexImage2D` and `glCopyTexSubImage2D`
 //! (into 8-bit colour images only: float, depth and compressed images are not copy targets).
 
+use super::context::Context;
 use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -14,6 +15,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glCopyTexImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         internalformat: u32,
@@ -23,12 +25,13 @@ impl GlesExecutor {
         height: i32,
         border: i32,
     ) -> GlResult {
-        self.copy_tex(target, level, Some(internalformat), 0, 0, x, y, width, height, border)
+        self.copy_tex(ctx, target, level, Some(internalformat), 0, 0, x, y, width, height, border)
     }
 
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glCopyTexSubImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -38,7 +41,7 @@ impl GlesExecutor {
         width: i32,
         height: i32,
     ) -> GlResult {
-        self.copy_tex(target, level, None, xoffset, yoffset, x, y, width, height, 0)
+        self.copy_tex(ctx, target, level, None, xoffset, yoffset, x, y, width, height, 0)
     }
 
     /// Copies a rectangle of the framebuffer's colour into a texture level; with `internal`
@@ -46,6 +49,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     fn copy_tex(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         internal: Option<u32>,
@@ -57,10 +61,10 @@ impl GlesExecutor {
         h: i32,
         border: i32,
     ) -> GlResult {
-        let src = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let src = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
         let uid = self.next_uid();
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let image = ImageTarget::from_gl(target)?;
         if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
             return Err(GlError::InvalidValue);
@@ -122,7 +126,7 @@ impl GlesExecutor {
             },
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
         );
-        self.flush();
+        self.r.flush();
         self.r.lane.submit(&self.gpu, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.

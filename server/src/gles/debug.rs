@@ -16,6 +16,7 @@
 //! severity is `LOW`, and then as the last rule that matches it says. A rule that matches a
 //! superset of an older rule's messages replaces it, which keeps the list short.
 
+use super::context::Context;
 use std::collections::VecDeque;
 
 use strata_protocol::commands::{DebugMessage, MAX_DEBUG_MESSAGE_LENGTH};
@@ -199,8 +200,10 @@ impl DebugState {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glDebugMessageControlKHR(
         &mut self,
+        ctx: &mut Context,
         source: u32,
         ty: u32,
         severity: u32,
@@ -222,11 +225,13 @@ impl GlesExecutor {
             // Ids that were not sent (a null array) select nothing.
             return Ok(());
         }
-        self.ctx().debug.control(Rule { source, ty, severity, ids, enabled })
+        ctx.debug.control(Rule { source, ty, severity, ids, enabled })
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glDebugMessageInsertKHR(
         &mut self,
+        ctx: &mut Context,
         source: u32,
         ty: u32,
         id: u32,
@@ -241,16 +246,23 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         let text = message_text(length, &text, MAX_DEBUG_MESSAGE_LENGTH)?;
-        self.ctx().debug.emit(source, ty, id, severity, text);
+        ctx.debug.emit(source, ty, id, severity, text);
         Ok(())
     }
 
-    pub(super) fn glPushDebugGroupKHR(&mut self, source: u32, id: u32, length: i32, text: Blob<'_>) -> GlResult {
+    pub(super) fn glPushDebugGroupKHR(
+        &mut self,
+        ctx: &mut Context,
+        source: u32,
+        id: u32,
+        length: i32,
+        text: Blob<'_>,
+    ) -> GlResult {
         if !matches!(source, DEBUG_SOURCE_APPLICATION | DEBUG_SOURCE_THIRD_PARTY) {
             return Err(GlError::InvalidEnum);
         }
         let text = message_text(length, &text, MAX_DEBUG_MESSAGE_LENGTH)?;
-        let debug = &mut self.ctx().debug;
+        let debug = &mut ctx.debug;
         if debug.groups.len() >= MAX_GROUP_DEPTH {
             return Err(GlError::StackOverflow);
         }
@@ -260,8 +272,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glPopDebugGroupKHR(&mut self) -> GlResult {
-        let debug = &mut self.ctx().debug;
+    pub(super) fn glPopDebugGroupKHR(&mut self, ctx: &mut Context) -> GlResult {
+        let debug = &mut ctx.debug;
         if debug.groups.len() <= 1 {
             return Err(GlError::StackUnderflow);
         }
@@ -271,8 +283,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn strataDebugCallback(&mut self, installed: bool) -> GlResult {
-        let debug = &mut self.ctx().debug;
+    pub(super) fn strataDebugCallback(&mut self, ctx: &mut Context, installed: bool) -> GlResult {
+        let debug = &mut ctx.debug;
         debug.callback = installed;
         if !installed {
             // Messages not yet delivered are lost with the callback, as a driver's would be.
@@ -281,12 +293,17 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn strataDebugMessages(&mut self) -> Vec<DebugMessage> {
-        self.ctx().debug.pending.drain(..).collect()
+    pub(super) fn strataDebugMessages(&mut self, ctx: &mut Context) -> Vec<DebugMessage> {
+        ctx.debug.pending.drain(..).collect()
     }
 
-    pub(super) fn glGetDebugMessageLogKHR(&mut self, count: u32, buf_size: i32, log: bool) -> Vec<DebugMessage> {
-        let ctx = self.ctx();
+    pub(super) fn glGetDebugMessageLogKHR(
+        &mut self,
+        ctx: &mut Context,
+        count: u32,
+        buf_size: i32,
+        log: bool,
+    ) -> Vec<DebugMessage> {
         if log && buf_size < 0 {
             ctx.record(GlError::InvalidValue);
             return Vec::new();

@@ -20,31 +20,48 @@ use tracing::warn;
 
 use super::context::Context;
 use super::error::{GlError, GlResult};
-use super::render::Renderer;
 use super::GlesExecutor;
 use crate::executor::{ExecError, Executor};
-use crate::gpu::Gpu;
+
+/// One handler's call, as its attributes say: a `[Context]` command's handler is handed the
+/// current context (`None` when there is none), a `[NoContext]` command's runs on the executor
+/// alone. The first of `Context` and `NoContext` in the list decides; the table states exactly
+/// one.
+macro_rules! handler_call {
+    ($exec:ident . $gl:ident [Context $(, $rest:ident)*] ( $( $arg:ident ),* )) => {
+        $exec.with_current(|exec, ctx| exec.$gl(ctx, $( $arg ),*))
+    };
+    ($exec:ident . $gl:ident [NoContext $(, $rest:ident)*] ( $( $arg:ident ),* )) => {
+        Some($exec.$gl($( $arg ),*))
+    };
+    ($exec:ident . $gl:ident [$other:ident $(, $rest:ident)*] $args:tt) => {
+        handler_call!($exec . $gl [$( $rest ),*] $args)
+    };
+}
 
 /// Generates `GlesExecutor::dispatch` from the command table.
 macro_rules! gles_dispatch {
     (
-        async { $( $agl:ident => $av:ident { $( $af:ident : $aty:ty ),* } ; )* }
-        sync { $( $sgl:ident => $sv:ident { $( $sf:ident : $sty:ty ),* } -> $ret:ty ; )* }
+        async { $( $agl:ident [ $($aat:ident),+ ] => $av:ident { $( $af:ident : $aty:ty ),* } ; )* }
+        sync { $( $sgl:ident [ $($sat:ident),+ ] => $sv:ident { $( $sf:ident : $sty:ty ),* } -> $ret:ty ; )* }
     ) => {
         impl GlesExecutor {
             /// Runs `cmd`'s handler; synchronous commands return their reply.
             fn dispatch(&mut self, cmd: Command<'_>) -> Option<Reply> {
                 match cmd {
                     $( Command::$av { $( $af ),* } => {
-                        let result: GlResult = self.$agl($( $af ),*);
-                        if let Err(e) = result {
+                        let result: Option<GlResult> = handler_call!(self . $agl [ $($aat),+ ] ( $( $af ),* ));
+                        if let Some(Err(e)) = result {
                             self.record(e);
                         }
                         None
                     } )*
                     $( Command::$sv { $( $sf ),* } => {
-                        let value: $ret = self.$sgl($( $sf ),*);
-                        Some(Reply::$sv(value))
+                        let value: Option<$ret> = handler_call!(self . $sgl [ $($sat),+ ] ( $( $sf ),* ));
+                        Some(match value {
+                            Some(v) => Reply::$sv(v),
+                            None => Reply::Unsupported(concat!(stringify!($sgl), ": no current context").into()),
+                        })
                     } )*
                 }
             }
@@ -69,7 +86,7 @@ impl Executor for GlesExecutor {
             op.is_sync().then(|| Reply::Unsupported(format!("{}: no current context", op.name())))
         } else {
             if op.flushes_first() && self.r.pending() {
-                self.flush();
+                self.r.flush();
             }
             // Debug messages about the errors a call records name it.
             if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
@@ -92,23 +109,14 @@ impl Executor for GlesExecutor {
 }
 
 impl GlesExecutor {
-    /// The current context. GL handlers run only with one (see `Opcode::needs_context`), and
-    /// `eglDestroyContext` of the current context also ends its currency.
-    pub(super) fn ctx(&mut self) -> &mut Context {
-        let (cid, _) = self.current.expect("GL handlers run with a current context");
-        self.contexts.get_mut(&cid).expect("the current context exists")
-    }
-
-    /// The current context and the GPU, borrowed together.
-    pub(super) fn ctx_gpu(&mut self) -> (&mut Context, &Gpu) {
-        let (cid, _) = self.current.expect("GL handlers run with a current context");
-        (self.contexts.get_mut(&cid).expect("the current context exists"), &self.gpu)
-    }
-
-    /// The current context and the renderer, borrowed together.
-    pub(super) fn ctx_renderer(&mut self) -> (&mut Context, &mut Renderer) {
-        let (cid, _) = self.current.expect("GL handlers run with a current context");
-        (self.contexts.get_mut(&cid).expect("the current context exists"), &mut self.r)
+    /// Runs `f` with the current context, taken out of the table meanwhile so that the
+    /// handler holds it beside the executor; `None` when no context is current.
+    fn with_current<R>(&mut self, f: impl FnOnce(&mut Self, &mut Context) -> R) -> Option<R> {
+        let (cid, _) = self.current?;
+        let mut ctx = self.contexts.remove(&cid)?;
+        let result = f(self, &mut ctx);
+        self.contexts.insert(cid, ctx);
+        Some(result)
     }
 
     /// Records `e` in the current context, if there is one.
@@ -122,11 +130,6 @@ impl GlesExecutor {
     pub(super) fn next_uid(&mut self) -> u64 {
         self.uid += 1;
         self.uid
-    }
-
-    /// Submits the pending pass.
-    pub(super) fn flush(&mut self) {
-        self.r.flush();
     }
 
     /// Logs every GPU error caught since the last command against this client and records
@@ -154,7 +157,7 @@ impl GlesExecutor {
     /// The session answers `strataVerify` from its own stream tally before commands reach an
     /// executor; an executor keeps none, so it answers as a session without a tally does.
     #[allow(non_snake_case)]
-    pub(super) fn strataVerify(&mut self, _commands: u64, _crc32: u32) -> StreamTally {
+    pub(super) fn strataVerify(&mut self, _ctx: &mut Context, _commands: u64, _crc32: u32) -> StreamTally {
         StreamTally { commands: 0, crc32: 0, matches: false }
     }
 }

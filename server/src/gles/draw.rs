@@ -389,17 +389,24 @@ fn plan_draw<'c>(
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// Validates a draw, plans it and records it into the target's pass.
-    fn draw(&mut self, mode: u32, count: u32, indices: Option<(u32, Indices<'_>)>, first: u32) -> GlResult {
+    fn draw(
+        &mut self,
+        ctx: &mut Context,
+        mode: u32,
+        count: u32,
+        indices: Option<(u32, Indices<'_>)>,
+        first: u32,
+    ) -> GlResult {
         let prim = Primitive::from_gl(mode)?;
         let indices = match indices {
             Some((ty, i)) => Some((IndexType::from_gl(ty)?, i)),
             None => None,
         };
-        let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
         let gpu = self.gpu.clone();
-        let reversed = self.reversed_target();
+        let reversed = self.reversed_target(ctx);
         let reversed_stages = match reversed {
-            Some(r) => match self.reversed_stages(r, prim == Primitive::Points) {
+            Some(r) => match self.reversed_stages(ctx, r, prim == Primitive::Points) {
                 Some(Ok(stages)) => Some(stages),
                 Some(Err(e)) => {
                     // GL has no error for this: the draw is dropped, and the reason logged.
@@ -410,7 +417,7 @@ impl GlesExecutor {
             },
             None => None,
         };
-        let (ctx, renderer) = self.ctx_renderer();
+        let renderer = &mut self.r;
         let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first)? else { return Ok(()) };
         if let Some((vs, fs)) = reversed_stages {
             spec.vs = vs;
@@ -429,22 +436,30 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glDrawArrays(&mut self, mode: u32, first: i32, count: i32) -> GlResult {
+    pub(super) fn glDrawArrays(&mut self, ctx: &mut Context, mode: u32, first: i32, count: i32) -> GlResult {
         if first < 0 || count < 0 {
             return Err(GlError::InvalidValue);
         }
-        self.draw(mode, count as u32, None, first as u32)
+        self.draw(ctx, mode, count as u32, None, first as u32)
     }
 
-    pub(super) fn glDrawElements(&mut self, mode: u32, count: i32, index_type: u32, offset: u64) -> GlResult {
+    pub(super) fn glDrawElements(
+        &mut self,
+        ctx: &mut Context,
+        mode: u32,
+        count: i32,
+        index_type: u32,
+        offset: u64,
+    ) -> GlResult {
         if count < 0 {
             return Err(GlError::InvalidValue);
         }
-        self.draw(mode, count as u32, Some((index_type, Indices::Buffer(offset))), 0)
+        self.draw(ctx, mode, count as u32, Some((index_type, Indices::Buffer(offset))), 0)
     }
 
     pub(super) fn strataDrawElementsData(
         &mut self,
+        ctx: &mut Context,
         mode: u32,
         count: i32,
         index_type: u32,
@@ -453,16 +468,16 @@ impl GlesExecutor {
         if count < 0 {
             return Err(GlError::InvalidValue);
         }
-        self.draw(mode, count as u32, Some((index_type, Indices::Client(indices.as_bytes()))), 0)
+        self.draw(ctx, mode, count as u32, Some((index_type, Indices::Client(indices.as_bytes()))), 0)
     }
 
-    pub(super) fn glClear(&mut self, mask: u32) -> GlResult {
+    pub(super) fn glClear(&mut self, ctx: &mut Context, mask: u32) -> GlResult {
         if mask & !(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT | STENCIL_BUFFER_BIT) != 0 {
             return Err(GlError::InvalidValue);
         }
-        let target = self.draw_target().map_err(|_| GlError::InvalidFramebufferOperation)?;
-        let reversed = self.reversed_target().is_some();
-        let (ctx, renderer) = self.ctx_renderer();
+        let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let reversed = self.reversed_target(ctx).is_some();
+        let renderer = &mut self.r;
         let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
         let writes = color_writes(blend.color_mask);
         let color = (mask & COLOR_BUFFER_BIT != 0 && target.color.is_some() && !writes.is_empty()).then(|| {
@@ -488,9 +503,9 @@ impl GlesExecutor {
 
     /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's
     /// framebuffer 0.
-    fn reversed_target(&self) -> Option<ReversedZ> {
-        let (cid, sid) = self.current?;
-        if self.contexts.get(&cid)?.bindings.framebuffer != 0 {
+    fn reversed_target(&self, ctx: &Context) -> Option<ReversedZ> {
+        let (_, sid) = self.current?;
+        if ctx.bindings.framebuffer != 0 {
             return None;
         }
         self.surfaces.get(&sid)?.reversed
@@ -499,9 +514,8 @@ impl GlesExecutor {
     /// The current program's reversed-Z stages for the current surface `r`: the vertex stage
     /// (`points`: its points variant) and, if it reads `gl_FragCoord`, the fragment stage;
     /// created on first use and kept by the surface; `None` without a linked program.
-    fn reversed_stages(&mut self, r: ReversedZ, points: bool) -> Option<Result<Stages, String>> {
-        let (cid, sid) = self.current?;
-        let ctx = self.contexts.get(&cid)?;
+    fn reversed_stages(&mut self, ctx: &Context, r: ReversedZ, points: bool) -> Option<Result<Stages, String>> {
+        let (_, sid) = self.current?;
         let program = ctx.objects.programs.get(&ctx.bindings.program)?.linked.clone()?;
         let surface = self.surfaces.get_mut(&sid)?;
         if let Some(stages) = surface.reversed_stages.get(&(program.id, points)) {
@@ -537,12 +551,12 @@ impl GlesExecutor {
         Some(made)
     }
 
-    pub(super) fn glFlush(&mut self) -> GlResult {
-        self.flush();
+    pub(super) fn glFlush(&mut self, _ctx: &mut Context) -> GlResult {
+        self.r.flush();
         Ok(())
     }
 
-    pub(super) fn glFinish(&mut self) {
+    pub(super) fn glFinish(&mut self, _ctx: &mut Context) {
         self.r.finish();
         // Every command before it has completed, the swaps too: their frames are published.
         if let Some((scene, client, _)) = &self.scene {

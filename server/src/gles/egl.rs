@@ -366,7 +366,7 @@ impl GlesExecutor {
             if draw != 0 || read != 0 {
                 return Err(EGL_BAD_MATCH);
             }
-            self.flush();
+            self.r.flush();
             self.current = None;
             return Ok(());
         }
@@ -381,7 +381,7 @@ impl GlesExecutor {
             ctx.raster.viewport = [0, 0, w, h];
             ctx.raster.scissor = [0, 0, w, h];
         }
-        self.flush();
+        self.r.flush();
         self.current = Some((context, draw));
         Ok(())
     }
@@ -422,7 +422,7 @@ impl GlesExecutor {
     pub(super) fn eglDestroyContext(&mut self, display: EglHandle, context: EglHandle) -> EglResult<()> {
         self.check_display(display)?;
         if self.current.is_some_and(|(c, _)| c == context) {
-            self.flush();
+            self.r.flush();
             self.current = None;
         }
         self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)

@@ -178,28 +178,22 @@ impl GlesExecutor {
     /// What draws, clears and reads address: the current surface for framebuffer 0, else the
     /// bound framebuffer object; `Err` is the `GL_FRAMEBUFFER_*` status that makes it
     /// incomplete.
-    pub(super) fn draw_target(&self) -> Result<Target, u32> {
-        let (cid, sid) = self.current.ok_or(FRAMEBUFFER_UNSUPPORTED)?;
-        let ctx = self.contexts.get(&cid).ok_or(FRAMEBUFFER_UNSUPPORTED)?;
+    pub(super) fn draw_target(&self, ctx: &Context) -> Result<Target, u32> {
+        let (_, sid) = self.current.ok_or(FRAMEBUFFER_UNSUPPORTED)?;
         if ctx.bindings.framebuffer == 0 {
             return self.surfaces.get(&sid).map(|s| s.target.clone()).ok_or(FRAMEBUFFER_UNSUPPORTED);
         }
         resolve_object(ctx)
     }
 
-    pub(super) fn glGenRenderbuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        self.admit_names(Kind::Renderbuffer, names.iter())?;
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.renderbuffers.entry(n).or_default();
-        }
+    pub(super) fn glGenRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh(names.iter()))?;
+        ctx.objects.renderbuffers.generate(names.iter());
         Ok(())
     }
 
-    pub(super) fn glDeleteRenderbuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.renderbuffers.remove(&n);
+    pub(super) fn glDeleteRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.renderbuffers.delete(names.iter()) {
             ctx.objects.forget_label(RENDERBUFFER, n);
             if ctx.bindings.renderbuffer == n {
                 ctx.bindings.renderbuffer = 0;
@@ -208,25 +202,23 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glBindRenderbuffer(&mut self, target: u32, renderbuffer: u32) -> GlResult {
+    pub(super) fn glBindRenderbuffer(&mut self, ctx: &mut Context, target: u32, renderbuffer: u32) -> GlResult {
         if target != RENDERBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        self.admit_names(Kind::Renderbuffer, [renderbuffer])?;
-        let ctx = self.ctx();
-        if renderbuffer != 0 {
-            ctx.objects.renderbuffers.entry(renderbuffer).or_default();
-        }
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh([renderbuffer]))?;
+        ctx.objects.renderbuffers.bind(renderbuffer);
         ctx.bindings.renderbuffer = renderbuffer;
         Ok(())
     }
 
-    pub(super) fn glIsRenderbuffer(&mut self, name: u32) -> bool {
-        name != 0 && self.ctx().objects.renderbuffers.contains_key(&name)
+    pub(super) fn glIsRenderbuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.renderbuffers.is(name)
     }
 
     pub(super) fn glRenderbufferStorage(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         internalformat: u32,
         width: i32,
@@ -247,7 +239,6 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
-        let ctx = self.ctx();
         let name = ctx.bindings.renderbuffer;
         let Some(rb) = ctx.objects.renderbuffers.get_mut(&name).filter(|_| name != 0) else {
             return Err(GlError::InvalidOperation);
@@ -261,21 +252,10 @@ impl GlesExecutor {
         };
         let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
         let reserved = Some(self.reserve(bytes)?);
-        let (_, gpu) = self.ctx_gpu();
-        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("renderbuffer"),
-            size: wgpu::Extent3d {
-                width: (width as u32).max(1),
-                height: (height as u32).max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let gpu = &self.gpu;
+        let size = ((width as u32).max(1), (height as u32).max(1));
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
         if matches!(internalformat, RGB565 | RGB8_OES) && width > 0 && height > 0 {
             // Alpha reads as 1 in a buffer without alpha; draws never change it (see `Target`).
@@ -284,7 +264,7 @@ impl GlesExecutor {
             let t = Target { key: (uid, 2), color, depth: None, width: w, height: h, opaque: true };
             self.r.clear(&t, Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALL)), None, None, None);
         }
-        let rb = self.ctx().objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         *rb = Renderbuffer {
             format: internalformat,
             width: width as u32,
@@ -296,8 +276,7 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glGetRenderbufferParameteriv(&mut self, target: u32, pname: u32) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetRenderbufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {
         let rb = ctx.objects.renderbuffers.get(&ctx.bindings.renderbuffer);
         let v = match (target, pname, rb) {
             (RENDERBUFFER, RENDERBUFFER_WIDTH, Some(rb)) => Ok(rb.width as i32),
@@ -314,19 +293,14 @@ impl GlesExecutor {
         })
     }
 
-    pub(super) fn glGenFramebuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        self.admit_names(Kind::Framebuffer, names.iter())?;
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.framebuffers.entry(n).or_default();
-        }
+    pub(super) fn glGenFramebuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Framebuffer, ctx.objects.framebuffers.fresh(names.iter()))?;
+        ctx.objects.framebuffers.generate(names.iter());
         Ok(())
     }
 
-    pub(super) fn glDeleteFramebuffers(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.framebuffers.remove(&n);
+    pub(super) fn glDeleteFramebuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.framebuffers.delete(names.iter()) {
             ctx.objects.forget_label(FRAMEBUFFER, n);
             if ctx.bindings.framebuffer == n {
                 ctx.bindings.framebuffer = 0;
@@ -335,25 +309,23 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glBindFramebuffer(&mut self, target: u32, framebuffer: u32) -> GlResult {
+    pub(super) fn glBindFramebuffer(&mut self, ctx: &mut Context, target: u32, framebuffer: u32) -> GlResult {
         if target != FRAMEBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        self.admit_names(Kind::Framebuffer, [framebuffer])?;
-        let ctx = self.ctx();
-        if framebuffer != 0 {
-            ctx.objects.framebuffers.entry(framebuffer).or_default();
-        }
+        self.admit(ctx, Kind::Framebuffer, ctx.objects.framebuffers.fresh([framebuffer]))?;
+        ctx.objects.framebuffers.bind(framebuffer);
         ctx.bindings.framebuffer = framebuffer;
         Ok(())
     }
 
-    pub(super) fn glIsFramebuffer(&mut self, name: u32) -> bool {
-        name != 0 && self.ctx().objects.framebuffers.contains_key(&name)
+    pub(super) fn glIsFramebuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.framebuffers.is(name)
     }
 
     pub(super) fn glFramebufferTexture2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         attachment: u32,
         textarget: u32,
@@ -367,7 +339,6 @@ impl GlesExecutor {
         if level != 0 && texture != 0 {
             return Err(GlError::InvalidValue);
         }
-        let ctx = self.ctx();
         if texture != 0 && !ctx.objects.textures.contains_key(&texture) {
             return Err(GlError::InvalidOperation);
         }
@@ -377,6 +348,7 @@ impl GlesExecutor {
 
     pub(super) fn glFramebufferRenderbuffer(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         attachment: u32,
         renderbuffertarget: u32,
@@ -385,7 +357,6 @@ impl GlesExecutor {
         if target != FRAMEBUFFER || renderbuffertarget != RENDERBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        let ctx = self.ctx();
         if renderbuffer != 0 && !ctx.objects.renderbuffers.contains_key(&renderbuffer) {
             return Err(GlError::InvalidOperation);
         }
@@ -393,8 +364,13 @@ impl GlesExecutor {
         set_attachment(ctx, attachment, a)
     }
 
-    pub(super) fn glGetFramebufferAttachmentParameteriv(&mut self, target: u32, attachment: u32, pname: u32) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetFramebufferAttachmentParameteriv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachment: u32,
+        pname: u32,
+    ) -> i32 {
         let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
         let a = match (target, fb, attachment) {
             (FRAMEBUFFER, Some(fb), COLOR_ATTACHMENT0) => fb.color,
@@ -430,12 +406,12 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glCheckFramebufferStatus(&mut self, target: u32) -> u32 {
+    pub(super) fn glCheckFramebufferStatus(&mut self, ctx: &mut Context, target: u32) -> u32 {
         if target != FRAMEBUFFER {
-            self.record(GlError::InvalidEnum);
+            ctx.record(GlError::InvalidEnum);
             return 0;
         }
-        match self.draw_target() {
+        match self.draw_target(ctx) {
             Ok(_) => FRAMEBUFFER_COMPLETE,
             Err(status) => status,
         }
@@ -443,11 +419,16 @@ impl GlesExecutor {
 
     /// `EXT_discard_framebuffer`. Validated as the extension specifies; the contents are kept,
     /// which the extension allows (a discard only makes them undefined).
-    pub(super) fn glDiscardFramebufferEXT(&mut self, target: u32, attachments: Slice<'_, u32>) -> GlResult {
+    pub(super) fn glDiscardFramebufferEXT(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachments: Slice<'_, u32>,
+    ) -> GlResult {
         if target != FRAMEBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        let valid: [u32; 3] = if self.ctx().bindings.framebuffer == 0 {
+        let valid: [u32; 3] = if ctx.bindings.framebuffer == 0 {
             [COLOR_EXT, DEPTH_EXT, STENCIL_EXT]
         } else {
             [COLOR_ATTACHMENT0, DEPTH_ATTACHMENT, STENCIL_ATTACHMENT]

@@ -5,6 +5,7 @@
 //! Labels live beside the objects, in `Objects::labels`, keyed by the label namespace and the
 //! name; deleting an object forgets its label, so a name that is used again starts unlabelled.
 
+use super::context::Context;
 use strata_protocol::commands::MAX_LABEL_LENGTH;
 use strata_protocol::{Blob, Bytes};
 
@@ -47,12 +48,12 @@ impl Objects {
 impl GlesExecutor {
     pub(super) fn glObjectLabelKHR(
         &mut self,
+        ctx: &mut Context,
         identifier: u32,
         name: u32,
         length: i32,
         label: Option<Blob<'_>>,
     ) -> GlResult {
-        let ctx = self.ctx();
         check_object(&ctx.objects, ctx.bindings.vertex_array, identifier, name)?;
         match label {
             None => {
@@ -70,8 +71,13 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glGetObjectLabelKHR(&mut self, identifier: u32, name: u32, buf_size: i32) -> Option<Bytes> {
-        let ctx = self.ctx();
+    pub(super) fn glGetObjectLabelKHR(
+        &mut self,
+        ctx: &mut Context,
+        identifier: u32,
+        name: u32,
+        buf_size: i32,
+    ) -> Option<Bytes> {
         let checked = if buf_size < 0 {
             Err(GlError::InvalidValue)
         } else {
@@ -87,13 +93,19 @@ impl GlesExecutor {
     }
 
     /// ES 2.0 has no sync objects, so no pointer names one.
-    pub(super) fn glObjectPtrLabelKHR(&mut self, _ptr: u64, _length: i32, _label: Option<Blob<'_>>) -> GlResult {
+    pub(super) fn glObjectPtrLabelKHR(
+        &mut self,
+        _ctx: &mut Context,
+        _ptr: u64,
+        _length: i32,
+        _label: Option<Blob<'_>>,
+    ) -> GlResult {
         Err(GlError::InvalidValue)
     }
 
     /// ES 2.0 has no sync objects, so no pointer names one.
-    pub(super) fn glGetObjectPtrLabelKHR(&mut self, _ptr: u64, _buf_size: i32) -> Option<Bytes> {
-        self.ctx().record(GlError::InvalidValue);
+    pub(super) fn glGetObjectPtrLabelKHR(&mut self, ctx: &mut Context, _ptr: u64, _buf_size: i32) -> Option<Bytes> {
+        ctx.record(GlError::InvalidValue);
         None
     }
 }

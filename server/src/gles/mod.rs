@@ -29,6 +29,7 @@ mod frames;
 pub mod glsl;
 mod images;
 mod labels;
+mod names;
 mod pixels;
 mod programs;
 mod queries;

@@ -1,6 +1,7 @@
 //! Pixel transfer to the client: `glReadPixels` honouring `PACK_ALIGNMENT` (uploads are in
 //! `unpack`).
 
+use super::context::Context;
 use strata_protocol::Bytes;
 
 use super::conv::type_size;
@@ -23,8 +24,10 @@ fn packed_size(width: usize, height: usize, bpp: usize, alignment: usize) -> usi
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glReadPixels(
         &mut self,
+        ctx: &mut Context,
         x: i32,
         y: i32,
         width: i32,
@@ -33,26 +36,26 @@ impl GlesExecutor {
         pixel_type: u32,
     ) -> Bytes {
         if width < 0 || height < 0 {
-            self.record(GlError::InvalidValue);
+            ctx.record(GlError::InvalidValue);
             return Bytes(Vec::new());
         }
         if !(format == RGBA && pixel_type == UNSIGNED_BYTE) {
             let known =
                 matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA) && type_size(pixel_type).is_some();
-            self.record(if known { GlError::InvalidOperation } else { GlError::InvalidEnum });
+            ctx.record(if known { GlError::InvalidOperation } else { GlError::InvalidEnum });
             return Bytes(Vec::new());
         }
-        let Ok(target) = self.draw_target() else {
-            self.record(GlError::InvalidFramebufferOperation);
+        let Ok(target) = self.draw_target(ctx) else {
+            ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
         };
-        let align = self.ctx().pixel_store.pack_alignment.max(1) as usize;
+        let align = ctx.pixel_store.pack_alignment.max(1) as usize;
         let (w, h) = (width as usize, height as usize);
         // The reply holds the whole rectangle: one beyond what a reply can carry cannot be
         // returned (GL's only error for a request too large to serve is OUT_OF_MEMORY).
         let row = (w * 4).div_ceil(align) * align;
         if row.checked_mul(h).is_none_or(|n| n > MAX_READ_BYTES) {
-            self.record(GlError::OutOfMemory);
+            ctx.record(GlError::OutOfMemory);
             return Bytes(Vec::new());
         }
         let mut out = vec![0u8; packed_size(w, h, 4, align)];

@@ -156,21 +156,20 @@ fn create_gpu_program(gpu: &Gpu, info: glsl::Linked, id: u64) -> Result<LinkedPr
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glCreateProgram(&mut self, name: u32) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glCreateProgram(&mut self, ctx: &mut Context, name: u32) -> GlResult {
+        let objects = &mut ctx.objects;
         if name == 0 || objects.shaders.contains_key(&name) || objects.programs.contains_key(&name) {
             return Err(GlError::InvalidValue);
         }
-        self.admit(crate::quota::Kind::Program, 1)?;
-        self.ctx().objects.programs.insert(name, Program::default());
+        self.admit(ctx, crate::quota::Kind::Program, 1)?;
+        ctx.objects.programs.insert(name, Program::default());
         Ok(())
     }
 
-    pub(super) fn glDeleteProgram(&mut self, program: u32) -> GlResult {
+    pub(super) fn glDeleteProgram(&mut self, ctx: &mut Context, program: u32) -> GlResult {
         if program == 0 {
             return Ok(());
         }
-        let ctx = self.ctx();
         let objects = &mut ctx.objects;
         if !objects.programs.contains_key(&program) {
             return Err(objects.shader_or_program_error(program));
@@ -186,8 +185,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glAttachShader(&mut self, program: u32, shader: u32) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glAttachShader(&mut self, ctx: &mut Context, program: u32, shader: u32) -> GlResult {
+        let objects = &mut ctx.objects;
         let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
         let Some(stage) = objects.shaders.get(&shader).map(|s| s.stage) else {
             return Err(objects.shader_or_program_error(shader));
@@ -202,8 +201,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glDetachShader(&mut self, program: u32, shader: u32) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glDetachShader(&mut self, ctx: &mut Context, program: u32, shader: u32) -> GlResult {
+        let objects = &mut ctx.objects;
         if !objects.programs.contains_key(&program) {
             return Err(objects.shader_or_program_error(program));
         }
@@ -217,14 +216,20 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glBindAttribLocation(&mut self, program: u32, index: u32, name: Text<'_>) -> GlResult {
+    pub(super) fn glBindAttribLocation(
+        &mut self,
+        ctx: &mut Context,
+        program: u32,
+        index: u32,
+        name: Text<'_>,
+    ) -> GlResult {
         if index as usize >= MAX_ATTRIBS {
             return Err(GlError::InvalidValue);
         }
         if name.as_str().starts_with("gl_") {
             return Err(GlError::InvalidOperation);
         }
-        let objects = &mut self.ctx().objects;
+        let objects = &mut ctx.objects;
         match objects.programs.get_mut(&program) {
             Some(p) => {
                 p.bindings.insert(name.as_str().to_string(), index);
@@ -234,9 +239,9 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glLinkProgram(&mut self, program: u32) -> GlResult {
+    pub(super) fn glLinkProgram(&mut self, ctx: &mut Context, program: u32) -> GlResult {
         let id = self.next_uid();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let objects = &mut ctx.objects;
         let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
         let result = link_stages(objects, p).and_then(|info| create_gpu_program(gpu, info, id));
@@ -257,8 +262,7 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glUseProgram(&mut self, program: u32) -> GlResult {
-        let ctx = self.ctx();
+    pub(super) fn glUseProgram(&mut self, ctx: &mut Context, program: u32) -> GlResult {
         let objects = &mut ctx.objects;
         if program != 0 && !objects.programs.get(&program).is_some_and(|p| p.link_ok) {
             return Err(objects.shader_or_program_error(program));
@@ -274,8 +278,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glValidateProgram(&mut self, program: u32) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glValidateProgram(&mut self, ctx: &mut Context, program: u32) -> GlResult {
+        let objects = &mut ctx.objects;
         match objects.programs.get_mut(&program) {
             Some(p) => {
                 p.validated = p.link_ok;
@@ -285,12 +289,11 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glIsProgram(&mut self, name: u32) -> bool {
-        self.ctx().objects.programs.contains_key(&name)
+    pub(super) fn glIsProgram(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.programs.contains_key(&name)
     }
 
-    pub(super) fn glGetProgramiv(&mut self, program: u32, pname: u32) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetProgramiv(&mut self, ctx: &mut Context, program: u32, pname: u32) -> i32 {
         let v = match ctx.objects.programs.get(&program) {
             Some(p) => {
                 let linked = p.linked.as_ref();
@@ -323,16 +326,15 @@ impl GlesExecutor {
         })
     }
 
-    pub(super) fn glGetProgramInfoLog(&mut self, program: u32) -> String {
-        with_program(self.ctx(), program, String::new(), |p| p.log.clone())
+    pub(super) fn glGetProgramInfoLog(&mut self, ctx: &mut Context, program: u32) -> String {
+        with_program(ctx, program, String::new(), |p| p.log.clone())
     }
 
-    pub(super) fn glGetAttachedShaders(&mut self, program: u32) -> Vec<u32> {
-        with_program(self.ctx(), program, vec![], |p| p.attached.clone())
+    pub(super) fn glGetAttachedShaders(&mut self, ctx: &mut Context, program: u32) -> Vec<u32> {
+        with_program(ctx, program, vec![], |p| p.attached.clone())
     }
 
-    pub(super) fn glGetAttribLocation(&mut self, program: u32, name: Text<'_>) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetAttribLocation(&mut self, ctx: &mut Context, program: u32, name: Text<'_>) -> i32 {
         let v = match ctx.objects.programs.get(&program) {
             Some(p) => match &p.linked {
                 Some(l) => Ok(l.info.attributes.iter().find(|a| a.0.name == name.as_str()).map_or(-1, |a| a.1 as i32)),
@@ -346,8 +348,7 @@ impl GlesExecutor {
         })
     }
 
-    pub(super) fn glGetActiveAttrib(&mut self, program: u32, index: u32) -> Option<ActiveVariable> {
-        let ctx = self.ctx();
+    pub(super) fn glGetActiveAttrib(&mut self, ctx: &mut Context, program: u32, index: u32) -> Option<ActiveVariable> {
         let v = linked_for_query(&ctx.objects, program).and_then(|l| {
             let (a, _) = l.info.attributes.get(index as usize).ok_or(GlError::InvalidValue)?;
             Ok(ActiveVariable { size: 1, ty: a.ty.gl_enum(), name: a.name.clone() })

@@ -194,19 +194,19 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// State `pname`, recording `GL_INVALID_ENUM` (and answering nothing) if there is none.
-    fn state(&mut self, pname: u32) -> Value {
-        let (ctx, gpu) = self.ctx_gpu();
+    fn state(&mut self, ctx: &mut Context, pname: u32) -> Value {
+        let gpu = &self.gpu;
         get_state(ctx, gpu, pname).unwrap_or_else(|| {
             ctx.record(GlError::InvalidEnum);
             Value::Ints(vec![])
         })
     }
 
-    pub(super) fn glGetError(&mut self) -> u32 {
-        self.ctx().error.take()
+    pub(super) fn glGetError(&mut self, ctx: &mut Context) -> u32 {
+        ctx.error.take()
     }
 
-    pub(super) fn glGetString(&mut self, name: u32) -> Option<String> {
+    pub(super) fn glGetString(&mut self, ctx: &mut Context, name: u32) -> Option<String> {
         Some(match name {
             VENDOR => "Strata".to_string(),
             RENDERER => format!("Strata on {}", self.gpu.info.name),
@@ -214,14 +214,14 @@ impl GlesExecutor {
             SHADING_LANGUAGE_VERSION => "OpenGL ES GLSL ES 1.00".to_string(),
             EXTENSIONS => format!("{EXTENSIONS_STRING} {}", texture_extensions(self.gpu.features)),
             _ => {
-                self.record(GlError::InvalidEnum);
+                ctx.record(GlError::InvalidEnum);
                 return None;
             }
         })
     }
 
-    pub(super) fn glGetIntegerv(&mut self, pname: u32) -> Vec<i32> {
-        match self.state(pname) {
+    pub(super) fn glGetIntegerv(&mut self, ctx: &mut Context, pname: u32) -> Vec<i32> {
+        match self.state(ctx, pname) {
             Value::Ints(v) => v,
             // Colours and depths map [-1, 1] linearly onto the whole integer range.
             Value::Floats(f) if matches!(pname, COLOR_CLEAR_VALUE | BLEND_COLOR | DEPTH_RANGE | DEPTH_CLEAR_VALUE) => {
@@ -232,16 +232,16 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glGetFloatv(&mut self, pname: u32) -> Vec<f32> {
-        match self.state(pname) {
+    pub(super) fn glGetFloatv(&mut self, ctx: &mut Context, pname: u32) -> Vec<f32> {
+        match self.state(ctx, pname) {
             Value::Ints(v) => v.iter().map(|&x| x as f32).collect(),
             Value::Floats(f) => f,
             Value::Bools(b) => b.iter().map(|&x| f32::from(u8::from(x))).collect(),
         }
     }
 
-    pub(super) fn glGetBooleanv(&mut self, pname: u32) -> Vec<bool> {
-        match self.state(pname) {
+    pub(super) fn glGetBooleanv(&mut self, ctx: &mut Context, pname: u32) -> Vec<bool> {
+        match self.state(ctx, pname) {
             Value::Ints(v) => v.iter().map(|&x| x != 0).collect(),
             Value::Floats(f) => f.iter().map(|&x| x != 0.0).collect(),
             Value::Bools(b) => b,

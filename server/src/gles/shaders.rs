@@ -38,18 +38,18 @@ fn with_shader<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&Shad
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glCreateShader(&mut self, shader_type: u32, name: u32) -> GlResult {
+    pub(super) fn glCreateShader(&mut self, ctx: &mut Context, shader_type: u32, name: u32) -> GlResult {
         let stage = match shader_type {
             VERTEX_SHADER => Stage::Vertex,
             FRAGMENT_SHADER => Stage::Fragment,
             _ => return Err(GlError::InvalidEnum),
         };
-        let objects = &mut self.ctx().objects;
+        let objects = &mut ctx.objects;
         if name == 0 || objects.shaders.contains_key(&name) || objects.programs.contains_key(&name) {
             return Err(GlError::InvalidValue);
         }
-        self.admit(crate::quota::Kind::Shader, 1)?;
-        let objects = &mut self.ctx().objects;
+        self.admit(ctx, crate::quota::Kind::Shader, 1)?;
+        let objects = &mut ctx.objects;
         objects.shaders.insert(
             name,
             ShaderObj {
@@ -64,8 +64,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glShaderSource(&mut self, shader: u32, source: Text<'_>) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glShaderSource(&mut self, ctx: &mut Context, shader: u32, source: Text<'_>) -> GlResult {
+        let objects = &mut ctx.objects;
         match objects.shaders.get_mut(&shader) {
             Some(s) => s.source = source.as_str().to_string(),
             None => return Err(objects.shader_or_program_error(shader)),
@@ -73,8 +73,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glCompileShader(&mut self, shader: u32) -> GlResult {
-        let objects = &mut self.ctx().objects;
+    pub(super) fn glCompileShader(&mut self, ctx: &mut Context, shader: u32) -> GlResult {
+        let objects = &mut ctx.objects;
         let Some(s) = objects.shaders.get_mut(&shader) else { return Err(objects.shader_or_program_error(shader)) };
         match glsl::compile(s.stage, &s.source) {
             Ok(c) => {
@@ -93,6 +93,7 @@ impl GlesExecutor {
     /// No binary format is offered (`GL_NUM_SHADER_BINARY_FORMATS` is 0).
     pub(super) fn glShaderBinary(
         &mut self,
+        _ctx: &mut Context,
         _shaders: Slice<'_, u32>,
         _binary_format: u32,
         _binary: Blob<'_>,
@@ -101,15 +102,15 @@ impl GlesExecutor {
     }
 
     /// A hint that needs no action: the compiler holds no resources between compiles.
-    pub(super) fn glReleaseShaderCompiler(&mut self) -> GlResult {
+    pub(super) fn glReleaseShaderCompiler(&mut self, _ctx: &mut Context) -> GlResult {
         Ok(())
     }
 
-    pub(super) fn glDeleteShader(&mut self, shader: u32) -> GlResult {
+    pub(super) fn glDeleteShader(&mut self, ctx: &mut Context, shader: u32) -> GlResult {
         if shader == 0 {
             return Ok(());
         }
-        let objects = &mut self.ctx().objects;
+        let objects = &mut ctx.objects;
         if !objects.shaders.contains_key(&shader) {
             return Err(objects.shader_or_program_error(shader));
         }
@@ -124,12 +125,11 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glIsShader(&mut self, name: u32) -> bool {
-        self.ctx().objects.shaders.contains_key(&name)
+    pub(super) fn glIsShader(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.shaders.contains_key(&name)
     }
 
-    pub(super) fn glGetShaderiv(&mut self, shader: u32, pname: u32) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetShaderiv(&mut self, ctx: &mut Context, shader: u32, pname: u32) -> i32 {
         let v = match ctx.objects.shaders.get(&shader) {
             Some(s) => match pname {
                 SHADER_TYPE => Ok(if s.stage == Stage::Vertex { VERTEX_SHADER as i32 } else { FRAGMENT_SHADER as i32 }),
@@ -147,18 +147,23 @@ impl GlesExecutor {
         })
     }
 
-    pub(super) fn glGetShaderInfoLog(&mut self, shader: u32) -> String {
-        with_shader(self.ctx(), shader, String::new(), |s| s.log.clone())
+    pub(super) fn glGetShaderInfoLog(&mut self, ctx: &mut Context, shader: u32) -> String {
+        with_shader(ctx, shader, String::new(), |s| s.log.clone())
     }
 
-    pub(super) fn glGetShaderSource(&mut self, shader: u32) -> String {
-        with_shader(self.ctx(), shader, String::new(), |s| s.source.clone())
+    pub(super) fn glGetShaderSource(&mut self, ctx: &mut Context, shader: u32) -> String {
+        with_shader(ctx, shader, String::new(), |s| s.source.clone())
     }
 
-    pub(super) fn glGetShaderPrecisionFormat(&mut self, shader_type: u32, precision_type: u32) -> ([i32; 2], i32) {
+    pub(super) fn glGetShaderPrecisionFormat(
+        &mut self,
+        ctx: &mut Context,
+        shader_type: u32,
+        precision_type: u32,
+    ) -> ([i32; 2], i32) {
         if !matches!(shader_type, VERTEX_SHADER | FRAGMENT_SHADER) || !(LOW_FLOAT..=HIGH_INT).contains(&precision_type)
         {
-            self.record(GlError::InvalidEnum);
+            ctx.record(GlError::InvalidEnum);
             return ([0, 0], 0);
         }
         if precision_type <= LOW_FLOAT + 2 {

@@ -66,18 +66,17 @@ fn stencil_op(ctx: &mut Context, face: u32, fail: u32, zfail: u32, zpass: u32) -
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glEnable(&mut self, cap: u32) -> GlResult {
-        *self.ctx().enabled_mut(Capability::from_gl(cap)?) = true;
+    pub(super) fn glEnable(&mut self, ctx: &mut Context, cap: u32) -> GlResult {
+        *ctx.enabled_mut(Capability::from_gl(cap)?) = true;
         Ok(())
     }
 
-    pub(super) fn glDisable(&mut self, cap: u32) -> GlResult {
-        *self.ctx().enabled_mut(Capability::from_gl(cap)?) = false;
+    pub(super) fn glDisable(&mut self, ctx: &mut Context, cap: u32) -> GlResult {
+        *ctx.enabled_mut(Capability::from_gl(cap)?) = false;
         Ok(())
     }
 
-    pub(super) fn glIsEnabled(&mut self, cap: u32) -> bool {
-        let ctx = self.ctx();
+    pub(super) fn glIsEnabled(&mut self, ctx: &mut Context, cap: u32) -> bool {
         match Capability::from_gl(cap) {
             Ok(c) => ctx.enabled(c),
             Err(e) => {
@@ -87,167 +86,189 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glViewport(&mut self, x: i32, y: i32, width: i32, height: i32) -> GlResult {
+    pub(super) fn glViewport(&mut self, ctx: &mut Context, x: i32, y: i32, width: i32, height: i32) -> GlResult {
         if width < 0 || height < 0 {
             return Err(GlError::InvalidValue);
         }
-        self.ctx().raster.viewport = [x, y, width.min(MAX_TEXTURE as i32), height.min(MAX_TEXTURE as i32)];
+        ctx.raster.viewport = [x, y, width.min(MAX_TEXTURE as i32), height.min(MAX_TEXTURE as i32)];
         Ok(())
     }
 
-    pub(super) fn glScissor(&mut self, x: i32, y: i32, width: i32, height: i32) -> GlResult {
+    pub(super) fn glScissor(&mut self, ctx: &mut Context, x: i32, y: i32, width: i32, height: i32) -> GlResult {
         if width < 0 || height < 0 {
             return Err(GlError::InvalidValue);
         }
-        self.ctx().raster.scissor = [x, y, width, height];
+        ctx.raster.scissor = [x, y, width, height];
         Ok(())
     }
 
-    pub(super) fn glClearColor(&mut self, red: f32, green: f32, blue: f32, alpha: f32) -> GlResult {
+    pub(super) fn glClearColor(&mut self, ctx: &mut Context, red: f32, green: f32, blue: f32, alpha: f32) -> GlResult {
         // `clampf` parameters are clamped to [0, 1] when specified (ES 2.0 §2.3).
-        self.ctx().blend.clear_color = [red, green, blue, alpha].map(clampf);
+        ctx.blend.clear_color = [red, green, blue, alpha].map(clampf);
         Ok(())
     }
 
-    pub(super) fn glClearDepthf(&mut self, depth: f32) -> GlResult {
-        self.ctx().depth_stencil.clear_depth = clampf(depth);
+    pub(super) fn glClearDepthf(&mut self, ctx: &mut Context, depth: f32) -> GlResult {
+        ctx.depth_stencil.clear_depth = clampf(depth);
         Ok(())
     }
 
-    pub(super) fn glClearStencil(&mut self, s: i32) -> GlResult {
-        self.ctx().depth_stencil.clear_stencil = s;
+    pub(super) fn glClearStencil(&mut self, ctx: &mut Context, s: i32) -> GlResult {
+        ctx.depth_stencil.clear_stencil = s;
         Ok(())
     }
 
-    pub(super) fn glColorMask(&mut self, red: bool, green: bool, blue: bool, alpha: bool) -> GlResult {
-        self.ctx().blend.color_mask = [red, green, blue, alpha];
+    pub(super) fn glColorMask(
+        &mut self,
+        ctx: &mut Context,
+        red: bool,
+        green: bool,
+        blue: bool,
+        alpha: bool,
+    ) -> GlResult {
+        ctx.blend.color_mask = [red, green, blue, alpha];
         Ok(())
     }
 
-    pub(super) fn glDepthMask(&mut self, flag: bool) -> GlResult {
-        self.ctx().depth_stencil.depth_mask = flag;
+    pub(super) fn glDepthMask(&mut self, ctx: &mut Context, flag: bool) -> GlResult {
+        ctx.depth_stencil.depth_mask = flag;
         Ok(())
     }
 
-    pub(super) fn glDepthFunc(&mut self, func: u32) -> GlResult {
+    pub(super) fn glDepthFunc(&mut self, ctx: &mut Context, func: u32) -> GlResult {
         if !valid_func(func) {
             return Err(GlError::InvalidEnum);
         }
-        self.ctx().depth_stencil.depth_func = func;
+        ctx.depth_stencil.depth_func = func;
         Ok(())
     }
 
-    pub(super) fn glDepthRangef(&mut self, near: f32, far: f32) -> GlResult {
-        self.ctx().depth_stencil.depth_range = [clampf(near), clampf(far)];
+    pub(super) fn glDepthRangef(&mut self, ctx: &mut Context, near: f32, far: f32) -> GlResult {
+        ctx.depth_stencil.depth_range = [clampf(near), clampf(far)];
         Ok(())
     }
 
-    pub(super) fn glCullFace(&mut self, mode: u32) -> GlResult {
+    pub(super) fn glCullFace(&mut self, ctx: &mut Context, mode: u32) -> GlResult {
         if !matches!(mode, FRONT | BACK | FRONT_AND_BACK) {
             return Err(GlError::InvalidEnum);
         }
-        self.ctx().raster.cull_face = mode;
+        ctx.raster.cull_face = mode;
         Ok(())
     }
 
-    pub(super) fn glFrontFace(&mut self, mode: u32) -> GlResult {
+    pub(super) fn glFrontFace(&mut self, ctx: &mut Context, mode: u32) -> GlResult {
         if !matches!(mode, CW | CCW) {
             return Err(GlError::InvalidEnum);
         }
-        self.ctx().raster.front_face = mode;
+        ctx.raster.front_face = mode;
         Ok(())
     }
 
-    pub(super) fn glBlendFunc(&mut self, sfactor: u32, dfactor: u32) -> GlResult {
-        set_blend_func(self.ctx(), [sfactor, dfactor, sfactor, dfactor])
+    pub(super) fn glBlendFunc(&mut self, ctx: &mut Context, sfactor: u32, dfactor: u32) -> GlResult {
+        set_blend_func(ctx, [sfactor, dfactor, sfactor, dfactor])
     }
 
     pub(super) fn glBlendFuncSeparate(
         &mut self,
+        ctx: &mut Context,
         src_rgb: u32,
         dst_rgb: u32,
         src_alpha: u32,
         dst_alpha: u32,
     ) -> GlResult {
-        set_blend_func(self.ctx(), [src_rgb, dst_rgb, src_alpha, dst_alpha])
+        set_blend_func(ctx, [src_rgb, dst_rgb, src_alpha, dst_alpha])
     }
 
-    pub(super) fn glBlendEquation(&mut self, mode: u32) -> GlResult {
+    pub(super) fn glBlendEquation(&mut self, ctx: &mut Context, mode: u32) -> GlResult {
         blend_op(mode).ok_or(GlError::InvalidEnum)?;
-        self.ctx().blend.eq = [mode, mode];
+        ctx.blend.eq = [mode, mode];
         Ok(())
     }
 
-    pub(super) fn glBlendEquationSeparate(&mut self, mode_rgb: u32, mode_alpha: u32) -> GlResult {
+    pub(super) fn glBlendEquationSeparate(&mut self, ctx: &mut Context, mode_rgb: u32, mode_alpha: u32) -> GlResult {
         if blend_op(mode_rgb).is_none() || blend_op(mode_alpha).is_none() {
             return Err(GlError::InvalidEnum);
         }
-        self.ctx().blend.eq = [mode_rgb, mode_alpha];
+        ctx.blend.eq = [mode_rgb, mode_alpha];
         Ok(())
     }
 
-    pub(super) fn glBlendColor(&mut self, red: f32, green: f32, blue: f32, alpha: f32) -> GlResult {
-        self.ctx().blend.color = [red, green, blue, alpha].map(clampf);
+    pub(super) fn glBlendColor(&mut self, ctx: &mut Context, red: f32, green: f32, blue: f32, alpha: f32) -> GlResult {
+        ctx.blend.color = [red, green, blue, alpha].map(clampf);
         Ok(())
     }
 
-    pub(super) fn glStencilFunc(&mut self, func: u32, reference: i32, mask: u32) -> GlResult {
-        stencil_func(self.ctx(), FRONT_AND_BACK, func, reference, mask)
+    pub(super) fn glStencilFunc(&mut self, ctx: &mut Context, func: u32, reference: i32, mask: u32) -> GlResult {
+        stencil_func(ctx, FRONT_AND_BACK, func, reference, mask)
     }
 
-    pub(super) fn glStencilFuncSeparate(&mut self, face: u32, func: u32, reference: i32, mask: u32) -> GlResult {
-        stencil_func(self.ctx(), face, func, reference, mask)
+    pub(super) fn glStencilFuncSeparate(
+        &mut self,
+        ctx: &mut Context,
+        face: u32,
+        func: u32,
+        reference: i32,
+        mask: u32,
+    ) -> GlResult {
+        stencil_func(ctx, face, func, reference, mask)
     }
 
-    pub(super) fn glStencilMask(&mut self, mask: u32) -> GlResult {
-        set_stencil(self.ctx(), FRONT_AND_BACK, |f| f.write = mask, true)
+    pub(super) fn glStencilMask(&mut self, ctx: &mut Context, mask: u32) -> GlResult {
+        set_stencil(ctx, FRONT_AND_BACK, |f| f.write = mask, true)
     }
 
-    pub(super) fn glStencilMaskSeparate(&mut self, face: u32, mask: u32) -> GlResult {
-        set_stencil(self.ctx(), face, |f| f.write = mask, true)
+    pub(super) fn glStencilMaskSeparate(&mut self, ctx: &mut Context, face: u32, mask: u32) -> GlResult {
+        set_stencil(ctx, face, |f| f.write = mask, true)
     }
 
-    pub(super) fn glStencilOp(&mut self, fail: u32, zfail: u32, zpass: u32) -> GlResult {
-        stencil_op(self.ctx(), FRONT_AND_BACK, fail, zfail, zpass)
+    pub(super) fn glStencilOp(&mut self, ctx: &mut Context, fail: u32, zfail: u32, zpass: u32) -> GlResult {
+        stencil_op(ctx, FRONT_AND_BACK, fail, zfail, zpass)
     }
 
-    pub(super) fn glStencilOpSeparate(&mut self, face: u32, fail: u32, zfail: u32, zpass: u32) -> GlResult {
-        stencil_op(self.ctx(), face, fail, zfail, zpass)
+    pub(super) fn glStencilOpSeparate(
+        &mut self,
+        ctx: &mut Context,
+        face: u32,
+        fail: u32,
+        zfail: u32,
+        zpass: u32,
+    ) -> GlResult {
+        stencil_op(ctx, face, fail, zfail, zpass)
     }
 
-    pub(super) fn glPolygonOffset(&mut self, factor: f32, units: f32) -> GlResult {
-        self.ctx().raster.polygon_offset = [factor, units];
+    pub(super) fn glPolygonOffset(&mut self, ctx: &mut Context, factor: f32, units: f32) -> GlResult {
+        ctx.raster.polygon_offset = [factor, units];
         Ok(())
     }
 
-    pub(super) fn glLineWidth(&mut self, width: f32) -> GlResult {
+    pub(super) fn glLineWidth(&mut self, ctx: &mut Context, width: f32) -> GlResult {
         if width <= 0.0 || width.is_nan() {
             return Err(GlError::InvalidValue);
         }
-        self.ctx().raster.line_width = width;
+        ctx.raster.line_width = width;
         Ok(())
     }
 
-    pub(super) fn glHint(&mut self, target: u32, mode: u32) -> GlResult {
+    pub(super) fn glHint(&mut self, ctx: &mut Context, target: u32, mode: u32) -> GlResult {
         if !matches!(mode, FASTEST | NICEST | DONT_CARE) {
             return Err(GlError::InvalidEnum);
         }
         match target {
-            GENERATE_MIPMAP_HINT => self.ctx().mipmap_hint = mode,
-            FRAGMENT_SHADER_DERIVATIVE_HINT_OES => self.ctx().derivative_hint = mode,
+            GENERATE_MIPMAP_HINT => ctx.mipmap_hint = mode,
+            FRAGMENT_SHADER_DERIVATIVE_HINT_OES => ctx.derivative_hint = mode,
             _ => return Err(GlError::InvalidEnum),
         }
         Ok(())
     }
 
     /// Multisampling is not implemented, so coverage parameters are only kept for queries.
-    pub(super) fn glSampleCoverage(&mut self, value: f32, invert: bool) -> GlResult {
-        self.ctx().raster.coverage = (clampf(value), invert);
+    pub(super) fn glSampleCoverage(&mut self, ctx: &mut Context, value: f32, invert: bool) -> GlResult {
+        ctx.raster.coverage = (clampf(value), invert);
         Ok(())
     }
 
-    pub(super) fn glPixelStorei(&mut self, pname: u32, param: i32) -> GlResult {
-        let store = &mut self.ctx().pixel_store;
+    pub(super) fn glPixelStorei(&mut self, ctx: &mut Context, pname: u32, param: i32) -> GlResult {
+        let store = &mut ctx.pixel_store;
         match pname {
             UNPACK_ALIGNMENT | PACK_ALIGNMENT if matches!(param, 1 | 2 | 4 | 8) => {
                 if pname == UNPACK_ALIGNMENT {

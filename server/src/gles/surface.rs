@@ -323,7 +323,7 @@ impl GlesExecutor {
     /// `eglSwapBuffers`: the back buffer's frame is published once its work completes on this
     /// client's device (the compositor then takes it), and a free buffer becomes the back one.
     pub(super) fn swap(&mut self, surface: u32) -> Result<(), i32> {
-        self.flush();
+        self.r.flush();
         if !self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?.window {
             return Ok(());
         }
@@ -433,7 +433,7 @@ impl GlesExecutor {
         let (config, reversed) = (s.config, s.reversed.is_some());
         // Work recorded for the old images goes first. The new buffers are reserved before
         // the old ones are given back, which they are once replaced.
-        self.flush();
+        self.r.flush();
         let (win, views) = self.make_window(config, w, h, reversed)?;
         let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
         s.target = win.buffers[0].target.clone();

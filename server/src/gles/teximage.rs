@@ -10,7 +10,8 @@ use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{internal_accepts, upload_storage, Compressed, Storage};
-use super::images::Region;
+use super::images::{Region, TextureImage};
+use super::textures::Texture;
 use super::unpack::{depth_stencil_values, to_storage, Unpack};
 use super::GlesExecutor;
 
@@ -48,10 +49,51 @@ pub fn validate_rect(level_size: (u32, u32), x: i32, y: i32, width: i32, height:
     Ok(())
 }
 
+/// The part of a texture image that a sub-image upload writes, once checked.
+pub struct SubImage<'a> {
+    /// The texture bound for the image's target.
+    pub texture: &'a mut Texture,
+    /// Where the data goes.
+    pub region: Region,
+    /// The size of the level written.
+    pub size: (u32, u32),
+}
+
+/// The checks `glTexSubImage2D` and `glCompressedTexSubImage2D` share, in GL's order: a level
+/// outside 0..=13 is `GL_INVALID_VALUE`; no texture bound, an undefined image, or data that
+/// `format_fits` refuses for the texture is `GL_INVALID_OPERATION`; a rectangle outside the
+/// level is `GL_INVALID_VALUE`; and on a compressed image, a rectangle that is not whole blocks
+/// (`EXT_texture_compression_s3tc`) is `GL_INVALID_OPERATION`.
+pub fn sub_image<'a>(
+    ctx: &'a mut Context,
+    image: ImageTarget,
+    level: i32,
+    [x, y, width, height]: [i32; 4],
+    format_fits: impl FnOnce(&Texture, &TextureImage) -> bool,
+) -> GlResult<SubImage<'a>> {
+    if !(0..=MAX_LEVEL).contains(&level) {
+        return Err(GlError::InvalidValue);
+    }
+    let name = image_texture(ctx, image);
+    let texture = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    let (face, level) = (image.face, level as u32);
+    let img = texture.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+    if texture.defined[face as usize] & (1 << level) == 0 || !format_fits(texture, img) {
+        return Err(GlError::InvalidOperation);
+    }
+    let size = img.level_size(level);
+    validate_rect(size, x, y, width, height)?;
+    if Compressed::from_gl(texture.format).is_some() && !block_aligned(size, x, y, width, height) {
+        return Err(GlError::InvalidOperation);
+    }
+    let region = Region { face, level, x: x as u32, y: y as u32, width: width as u32, height: height as u32 };
+    Ok(SubImage { texture, region, size })
+}
+
 /// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image: the
 /// rectangle starts on a block boundary and covers whole blocks, except where it reaches the
 /// level's right or top edge.
-pub fn block_aligned(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
+fn block_aligned(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
     let edge = |o: i32, n: i32, size: u32| n % 4 == 0 || i64::from(o) + i64::from(n) == i64::from(size);
     x % 4 == 0 && y % 4 == 0 && edge(x, width, level_size.0) && edge(y, height, level_size.1)
 }
@@ -74,6 +116,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glTexImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         internalformat: i32,
@@ -94,7 +137,7 @@ impl GlesExecutor {
             }
             validate_size(image, level, width, height, border)?;
             let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            return self.depth_tex_image(width as u32, height as u32, format, pixel_type, storage, pixels);
+            return self.depth_tex_image(ctx, width as u32, height as u32, format, pixel_type, storage, pixels);
         }
         if !internal_accepts(internal, format, self.gpu.features) {
             return Err(GlError::InvalidOperation);
@@ -102,7 +145,7 @@ impl GlesExecutor {
         validate_size(image, level, width, height, border)?;
         let (uid, uid2) = (self.next_uid(), self.next_uid());
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
@@ -138,8 +181,10 @@ impl GlesExecutor {
     }
 
     /// `glTexImage2D` of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image (2D, level 0).
+    #[allow(clippy::too_many_arguments)]
     fn depth_tex_image(
         &mut self,
+        ctx: &mut Context,
         w: u32,
         h: u32,
         format: u32,
@@ -149,7 +194,7 @@ impl GlesExecutor {
     ) -> GlResult {
         let uid = self.next_uid();
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let unpack = Unpack::of(&ctx.pixel_store);
         let values = match pixels {
             Some(b) => {
@@ -174,6 +219,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glTexSubImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -186,42 +232,25 @@ impl GlesExecutor {
     ) -> GlResult {
         let image = ImageTarget::from_gl(target)?;
         let storage = upload_storage(format, pixel_type)?;
-        if !(0..=MAX_LEVEL).contains(&level) {
-            return Err(GlError::InvalidValue);
-        }
         let uid = self.next_uid();
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let unpack = Unpack::of(&ctx.pixel_store);
-        let name = image_texture(ctx, image);
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
-        let (face, level) = (image.face, level as u32);
-        if t.defined[face as usize] & (1 << level) == 0 {
-            return Err(GlError::InvalidOperation);
-        }
-        let size = img.level_size(level);
-        match Compressed::from_gl(t.format) {
+        let fits = |t: &Texture, img: &TextureImage| match Compressed::from_gl(t.format) {
             // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture).
-            Some(Compressed::Etc1) => return Err(GlError::InvalidOperation),
-            Some(Compressed::S3tc(_))
-                if !internal_accepts(t.format, format, gpu.features)
-                    || !block_aligned(size, xoffset, yoffset, width, height) =>
-            {
-                return Err(GlError::InvalidOperation)
-            }
-            Some(Compressed::S3tc(_)) => {}
+            Some(Compressed::Etc1) => false,
+            Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
             // ES 2.0: the format must be the image's; the type must give the same storage.
-            None if t.format != format || storage != img.storage => return Err(GlError::InvalidOperation),
-            None => {}
-        }
-        validate_rect(size, xoffset, yoffset, width, height)?;
-        let (w, h) = (width as u32, height as u32);
+            None => t.format == format && storage == img.storage,
+        };
+        let SubImage { texture: t, region, size } =
+            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
+        let (w, h) = (region.width, region.height);
         if pixels.is_empty() || w == 0 || h == 0 {
             // No data (a null pointer): nothing to write.
             return Ok(());
         }
-        let region = Region { face, level, x: xoffset as u32, y: yoffset as u32, width: w, height: h };
+        let Some(img) = &t.gpu else { return Ok(()) };
         if storage.is_depth() {
             let (depths, stencil) = depth_stencil_values(pixels.as_bytes(), w as usize, h as usize, pixel_type, unpack)
                 .ok_or(GlError::InvalidOperation)?;

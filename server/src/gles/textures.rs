@@ -127,35 +127,27 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glGenTextures(&mut self, names: Slice<'_, u32>) -> GlResult {
-        self.admit_names(crate::quota::Kind::Texture, names.iter())?;
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            ctx.objects.textures.entry(n).or_default();
-        }
+    pub(super) fn glGenTextures(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, crate::quota::Kind::Texture, ctx.objects.textures.fresh(names.iter()))?;
+        ctx.objects.textures.generate(names.iter());
         Ok(())
     }
 
-    pub(super) fn glDeleteTextures(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            if ctx.objects.textures.remove(&n).is_some() {
-                ctx.objects.forget_label(TEXTURE, n);
-                for u in &mut ctx.bindings.units {
-                    for s in u.iter_mut() {
-                        if *s == n {
-                            *s = 0;
-                        }
-                    }
+    pub(super) fn glDeleteTextures(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.textures.delete(names.iter()) {
+            ctx.objects.forget_label(TEXTURE, n);
+            for s in ctx.bindings.units.iter_mut().flatten() {
+                if *s == n {
+                    *s = 0;
                 }
             }
         }
         Ok(())
     }
 
-    pub(super) fn glActiveTexture(&mut self, texture: u32) -> GlResult {
+    pub(super) fn glActiveTexture(&mut self, ctx: &mut Context, texture: u32) -> GlResult {
         let unit = texture.wrapping_sub(TEXTURE0) as usize;
-        let bindings = &mut self.ctx().bindings;
+        let bindings = &mut ctx.bindings;
         if unit >= bindings.units.len() {
             return Err(GlError::InvalidEnum);
         }
@@ -163,13 +155,11 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glBindTexture(&mut self, target: u32, texture: u32) -> GlResult {
+    pub(super) fn glBindTexture(&mut self, ctx: &mut Context, target: u32, texture: u32) -> GlResult {
         let target = TextureTarget::from_gl(target)?;
-        self.admit_names(crate::quota::Kind::Texture, [texture])?;
-        let ctx = self.ctx();
-        if texture != 0 {
+        self.admit(ctx, crate::quota::Kind::Texture, ctx.objects.textures.fresh([texture]))?;
+        if let Some(t) = ctx.objects.textures.bind(texture) {
             // A texture takes the target it is first bound to, and keeps it.
-            let t = ctx.objects.textures.entry(texture).or_default();
             if t.target == 0 {
                 t.target = target.as_gl();
             } else if t.target != target.as_gl() {
@@ -180,38 +170,49 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glIsTexture(&mut self, name: u32) -> bool {
-        self.ctx().objects.textures.get(&name).is_some_and(|t| t.target != 0)
+    pub(super) fn glIsTexture(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.textures.get(&name).is_some_and(|t| t.target != 0)
     }
 
-    pub(super) fn glTexParameteri(&mut self, target: u32, pname: u32, param: i32) -> GlResult {
-        tex_parameter(self.ctx(), target, pname, param as f32)
+    pub(super) fn glTexParameteri(&mut self, ctx: &mut Context, target: u32, pname: u32, param: i32) -> GlResult {
+        tex_parameter(ctx, target, pname, param as f32)
     }
 
-    pub(super) fn glTexParameterf(&mut self, target: u32, pname: u32, param: f32) -> GlResult {
-        tex_parameter(self.ctx(), target, pname, param)
+    pub(super) fn glTexParameterf(&mut self, ctx: &mut Context, target: u32, pname: u32, param: f32) -> GlResult {
+        tex_parameter(ctx, target, pname, param)
     }
 
-    pub(super) fn glTexParameteriv(&mut self, target: u32, pname: u32, params: Slice<'_, i32>) -> GlResult {
+    pub(super) fn glTexParameteriv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        pname: u32,
+        params: Slice<'_, i32>,
+    ) -> GlResult {
         let v = params.get(0).ok_or(GlError::InvalidValue)?;
-        tex_parameter(self.ctx(), target, pname, v as f32)
+        tex_parameter(ctx, target, pname, v as f32)
     }
 
-    pub(super) fn glTexParameterfv(&mut self, target: u32, pname: u32, params: Slice<'_, f32>) -> GlResult {
+    pub(super) fn glTexParameterfv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        pname: u32,
+        params: Slice<'_, f32>,
+    ) -> GlResult {
         let v = params.get(0).ok_or(GlError::InvalidValue)?;
-        tex_parameter(self.ctx(), target, pname, v)
+        tex_parameter(ctx, target, pname, v)
     }
 
-    pub(super) fn glGetTexParameteriv(&mut self, target: u32, pname: u32) -> Vec<i32> {
-        get_tex_parameter(self.ctx(), target, pname)
+    pub(super) fn glGetTexParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
+        get_tex_parameter(ctx, target, pname)
     }
 
-    pub(super) fn glGetTexParameterfv(&mut self, target: u32, pname: u32) -> Vec<f32> {
-        get_tex_parameter(self.ctx(), target, pname).into_iter().map(|x| x as f32).collect()
+    pub(super) fn glGetTexParameterfv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
+        get_tex_parameter(ctx, target, pname).into_iter().map(|x| x as f32).collect()
     }
 
-    pub(super) fn glGenerateMipmap(&mut self, target: u32) -> GlResult {
-        let ctx = self.ctx();
+    pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, target: u32) -> GlResult {
         let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };

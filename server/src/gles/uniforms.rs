@@ -142,8 +142,7 @@ fn get_uniform(ctx: &Context, program: u32, location: i32) -> GlResult<Vec<f32>>
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glGetUniformLocation(&mut self, program: u32, name: Text<'_>) -> i32 {
-        let ctx = self.ctx();
+    pub(super) fn glGetUniformLocation(&mut self, ctx: &mut Context, program: u32, name: Text<'_>) -> i32 {
         let v = match ctx.objects.programs.get(&program) {
             Some(p) => match &p.linked {
                 Some(l) => Ok(uniform_location(l, name.as_str())),
@@ -157,8 +156,7 @@ impl GlesExecutor {
         })
     }
 
-    pub(super) fn glGetActiveUniform(&mut self, program: u32, index: u32) -> Option<ActiveVariable> {
-        let ctx = self.ctx();
+    pub(super) fn glGetActiveUniform(&mut self, ctx: &mut Context, program: u32, index: u32) -> Option<ActiveVariable> {
         let v = linked_for_query(&ctx.objects, program).and_then(|l| {
             let u = l.info.uniforms.get(index as usize).ok_or(GlError::InvalidValue)?;
             Ok(ActiveVariable {
@@ -170,91 +168,108 @@ impl GlesExecutor {
         v.map_err(|e| ctx.record(e)).ok()
     }
 
-    pub(super) fn glUniform1f(&mut self, location: i32, x: f32) -> GlResult {
-        set_uniform(self.ctx(), location, 1, 0, Vals::F(&[x]))
+    pub(super) fn glUniform1f(&mut self, ctx: &mut Context, location: i32, x: f32) -> GlResult {
+        set_uniform(ctx, location, 1, 0, Vals::F(&[x]))
     }
 
-    pub(super) fn glUniform2f(&mut self, location: i32, x: f32, y: f32) -> GlResult {
-        set_uniform(self.ctx(), location, 2, 0, Vals::F(&[x, y]))
+    pub(super) fn glUniform2f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32) -> GlResult {
+        set_uniform(ctx, location, 2, 0, Vals::F(&[x, y]))
     }
 
-    pub(super) fn glUniform3f(&mut self, location: i32, x: f32, y: f32, z: f32) -> GlResult {
-        set_uniform(self.ctx(), location, 3, 0, Vals::F(&[x, y, z]))
+    pub(super) fn glUniform3f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32, z: f32) -> GlResult {
+        set_uniform(ctx, location, 3, 0, Vals::F(&[x, y, z]))
     }
 
-    pub(super) fn glUniform4f(&mut self, location: i32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
-        set_uniform(self.ctx(), location, 4, 0, Vals::F(&[x, y, z, w]))
+    pub(super) fn glUniform4f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
+        set_uniform(ctx, location, 4, 0, Vals::F(&[x, y, z, w]))
     }
 
-    pub(super) fn glUniform1i(&mut self, location: i32, x: i32) -> GlResult {
-        set_uniform(self.ctx(), location, 1, 0, Vals::I(&[x]))
+    pub(super) fn glUniform1i(&mut self, ctx: &mut Context, location: i32, x: i32) -> GlResult {
+        set_uniform(ctx, location, 1, 0, Vals::I(&[x]))
     }
 
-    pub(super) fn glUniform2i(&mut self, location: i32, x: i32, y: i32) -> GlResult {
-        set_uniform(self.ctx(), location, 2, 0, Vals::I(&[x, y]))
+    pub(super) fn glUniform2i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32) -> GlResult {
+        set_uniform(ctx, location, 2, 0, Vals::I(&[x, y]))
     }
 
-    pub(super) fn glUniform3i(&mut self, location: i32, x: i32, y: i32, z: i32) -> GlResult {
-        set_uniform(self.ctx(), location, 3, 0, Vals::I(&[x, y, z]))
+    pub(super) fn glUniform3i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32, z: i32) -> GlResult {
+        set_uniform(ctx, location, 3, 0, Vals::I(&[x, y, z]))
     }
 
-    pub(super) fn glUniform4i(&mut self, location: i32, x: i32, y: i32, z: i32, w: i32) -> GlResult {
-        set_uniform(self.ctx(), location, 4, 0, Vals::I(&[x, y, z, w]))
+    pub(super) fn glUniform4i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32, z: i32, w: i32) -> GlResult {
+        set_uniform(ctx, location, 4, 0, Vals::I(&[x, y, z, w]))
     }
 
-    pub(super) fn glUniform1fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(self.ctx(), location, 1, 0, Vals::F(&values.to_vec()))
+    pub(super) fn glUniform1fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(ctx, location, 1, 0, Vals::F(&values.to_vec()))
     }
 
-    pub(super) fn glUniform2fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(self.ctx(), location, 2, 0, Vals::F(&values.to_vec()))
+    pub(super) fn glUniform2fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(ctx, location, 2, 0, Vals::F(&values.to_vec()))
     }
 
-    pub(super) fn glUniform3fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(self.ctx(), location, 3, 0, Vals::F(&values.to_vec()))
+    pub(super) fn glUniform3fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(ctx, location, 3, 0, Vals::F(&values.to_vec()))
     }
 
-    pub(super) fn glUniform4fv(&mut self, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(self.ctx(), location, 4, 0, Vals::F(&values.to_vec()))
+    pub(super) fn glUniform4fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
+        set_uniform(ctx, location, 4, 0, Vals::F(&values.to_vec()))
     }
 
-    pub(super) fn glUniform1iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(self.ctx(), location, 1, 0, Vals::I(&values.to_vec()))
+    pub(super) fn glUniform1iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(ctx, location, 1, 0, Vals::I(&values.to_vec()))
     }
 
-    pub(super) fn glUniform2iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(self.ctx(), location, 2, 0, Vals::I(&values.to_vec()))
+    pub(super) fn glUniform2iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(ctx, location, 2, 0, Vals::I(&values.to_vec()))
     }
 
-    pub(super) fn glUniform3iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(self.ctx(), location, 3, 0, Vals::I(&values.to_vec()))
+    pub(super) fn glUniform3iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(ctx, location, 3, 0, Vals::I(&values.to_vec()))
     }
 
-    pub(super) fn glUniform4iv(&mut self, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(self.ctx(), location, 4, 0, Vals::I(&values.to_vec()))
+    pub(super) fn glUniform4iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
+        set_uniform(ctx, location, 4, 0, Vals::I(&values.to_vec()))
     }
 
-    pub(super) fn glUniformMatrix2fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
-        set_matrix(self.ctx(), location, transpose, 2, &values.to_vec())
+    pub(super) fn glUniformMatrix2fv(
+        &mut self,
+        ctx: &mut Context,
+        location: i32,
+        transpose: bool,
+        values: Slice<'_, f32>,
+    ) -> GlResult {
+        set_matrix(ctx, location, transpose, 2, &values.to_vec())
     }
 
-    pub(super) fn glUniformMatrix3fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
-        set_matrix(self.ctx(), location, transpose, 3, &values.to_vec())
+    pub(super) fn glUniformMatrix3fv(
+        &mut self,
+        ctx: &mut Context,
+        location: i32,
+        transpose: bool,
+        values: Slice<'_, f32>,
+    ) -> GlResult {
+        set_matrix(ctx, location, transpose, 3, &values.to_vec())
     }
 
-    pub(super) fn glUniformMatrix4fv(&mut self, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
-        set_matrix(self.ctx(), location, transpose, 4, &values.to_vec())
+    pub(super) fn glUniformMatrix4fv(
+        &mut self,
+        ctx: &mut Context,
+        location: i32,
+        transpose: bool,
+        values: Slice<'_, f32>,
+    ) -> GlResult {
+        set_matrix(ctx, location, transpose, 4, &values.to_vec())
     }
 
-    pub(super) fn glGetUniformfv(&mut self, program: u32, location: i32) -> Vec<f32> {
-        let ctx = self.ctx();
+    pub(super) fn glGetUniformfv(&mut self, ctx: &mut Context, program: u32, location: i32) -> Vec<f32> {
         get_uniform(ctx, program, location).unwrap_or_else(|e| {
             ctx.record(e);
             vec![]
         })
     }
 
-    pub(super) fn glGetUniformiv(&mut self, program: u32, location: i32) -> Vec<i32> {
-        self.glGetUniformfv(program, location).iter().map(|v| *v as i32).collect()
+    pub(super) fn glGetUniformiv(&mut self, ctx: &mut Context, program: u32, location: i32) -> Vec<i32> {
+        self.glGetUniformfv(ctx, program, location).iter().map(|v| *v as i32).collect()
     }
 }

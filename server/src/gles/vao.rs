@@ -26,9 +26,9 @@ pub struct VertexArray {
     ever_bound: bool,
 }
 
-impl VertexArray {
+impl Default for VertexArray {
     /// A generated name's initial state.
-    fn new() -> Self {
+    fn default() -> Self {
         VertexArray { attribs: vec![Attrib::default(); MAX_ATTRIBS], element_buffer: 0, ever_bound: false }
     }
 }
@@ -59,36 +59,32 @@ fn bind(ctx: &mut Context, array: u32) -> GlResult {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    pub(super) fn glGenVertexArraysOES(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let bound = self.ctx().bindings.vertex_array;
-        self.admit_names(crate::quota::Kind::VertexArray, names.iter().filter(|&n| n != bound))?;
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0 && n != ctx.bindings.vertex_array) {
-            ctx.objects.vertex_arrays.entry(n).or_insert_with(VertexArray::new);
-        }
+    pub(super) fn glGenVertexArraysOES(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        let bound = ctx.bindings.vertex_array;
+        // The bound array is not in the table (its state is the context's) and stays as it is.
+        let fresh = || names.iter().filter(move |&n| n != bound);
+        self.admit(ctx, crate::quota::Kind::VertexArray, ctx.objects.vertex_arrays.fresh(fresh()))?;
+        ctx.objects.vertex_arrays.generate(fresh());
         Ok(())
     }
 
-    pub(super) fn glBindVertexArrayOES(&mut self, array: u32) -> GlResult {
-        bind(self.ctx(), array)
+    pub(super) fn glBindVertexArrayOES(&mut self, ctx: &mut Context, array: u32) -> GlResult {
+        bind(ctx, array)
     }
 
     /// Deleting the bound vertex array binds the default one; unknown names and 0 are ignored.
-    pub(super) fn glDeleteVertexArraysOES(&mut self, names: Slice<'_, u32>) -> GlResult {
-        let ctx = self.ctx();
-        for n in names.iter().filter(|&n| n != 0) {
-            if n == ctx.bindings.vertex_array {
-                bind(ctx, 0)?;
-            }
-            if ctx.objects.vertex_arrays.remove(&n).is_some() {
-                ctx.objects.forget_label(VERTEX_ARRAY_KHR, n);
-            }
+    pub(super) fn glDeleteVertexArraysOES(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        let bound = ctx.bindings.vertex_array;
+        if bound != 0 && names.iter().any(|n| n == bound) {
+            bind(ctx, 0)?;
+        }
+        for n in ctx.objects.vertex_arrays.delete(names.iter()) {
+            ctx.objects.forget_label(VERTEX_ARRAY_KHR, n);
         }
         Ok(())
     }
 
-    pub(super) fn glIsVertexArrayOES(&mut self, array: u32) -> bool {
-        let ctx = self.ctx();
+    pub(super) fn glIsVertexArrayOES(&mut self, ctx: &mut Context, array: u32) -> bool {
         array != 0
             && (array == ctx.bindings.vertex_array
                 || ctx.objects.vertex_arrays.get(&array).is_some_and(|v| v.ever_bound))

@@ -102,8 +102,10 @@ fn current_from(values: &Slice<'_, f32>, n: usize) -> GlResult<[f32; 4]> {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glVertexAttribPointer(
         &mut self,
+        ctx: &mut Context,
         index: u32,
         size: i32,
         attrib_type: u32,
@@ -111,7 +113,6 @@ impl GlesExecutor {
         stride: i32,
         offset: u64,
     ) -> GlResult {
-        let ctx = self.ctx();
         if index as usize >= MAX_ATTRIBS || !(1..=4).contains(&size) || stride < 0 {
             return Err(GlError::InvalidValue);
         }
@@ -136,8 +137,8 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn strataVertexAttribData(&mut self, index: u32, data: Blob<'_>) -> GlResult {
-        match self.ctx().attribs.get_mut(index as usize) {
+    pub(super) fn strataVertexAttribData(&mut self, ctx: &mut Context, index: u32, data: Blob<'_>) -> GlResult {
+        match ctx.attribs.get_mut(index as usize) {
             Some(a) if a.buffer == 0 => {
                 a.restore_declared();
                 a.client = Some(data.as_bytes().to_vec());
@@ -152,8 +153,14 @@ impl GlesExecutor {
     /// tightly packed `attrib_type` components; queries keep answering the application's type
     /// and stride. An unknown type is `GL_INVALID_ENUM`, an array that is not a client-side
     /// `GL_FLOAT` one `GL_INVALID_OPERATION`; either leaves the attribute as it was.
-    pub(super) fn strataVertexAttribDataPacked(&mut self, index: u32, attrib_type: u32, data: Blob<'_>) -> GlResult {
-        let a = self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
+    pub(super) fn strataVertexAttribDataPacked(
+        &mut self,
+        ctx: &mut Context,
+        index: u32,
+        attrib_type: u32,
+        data: Blob<'_>,
+    ) -> GlResult {
+        let a = ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
         if !wire_type(attrib_type) {
             return Err(GlError::InvalidEnum);
         }
@@ -168,50 +175,57 @@ impl GlesExecutor {
         Ok(())
     }
 
-    pub(super) fn glEnableVertexAttribArray(&mut self, index: u32) -> GlResult {
-        self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = true;
+    pub(super) fn glEnableVertexAttribArray(&mut self, ctx: &mut Context, index: u32) -> GlResult {
+        ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = true;
         Ok(())
     }
 
-    pub(super) fn glDisableVertexAttribArray(&mut self, index: u32) -> GlResult {
-        self.ctx().attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = false;
+    pub(super) fn glDisableVertexAttribArray(&mut self, ctx: &mut Context, index: u32) -> GlResult {
+        ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?.enabled = false;
         Ok(())
     }
 
-    pub(super) fn glVertexAttrib1f(&mut self, index: u32, x: f32) -> GlResult {
-        set_current(self.ctx(), index, [x, 0.0, 0.0, 1.0])
+    pub(super) fn glVertexAttrib1f(&mut self, ctx: &mut Context, index: u32, x: f32) -> GlResult {
+        set_current(ctx, index, [x, 0.0, 0.0, 1.0])
     }
 
-    pub(super) fn glVertexAttrib2f(&mut self, index: u32, x: f32, y: f32) -> GlResult {
-        set_current(self.ctx(), index, [x, y, 0.0, 1.0])
+    pub(super) fn glVertexAttrib2f(&mut self, ctx: &mut Context, index: u32, x: f32, y: f32) -> GlResult {
+        set_current(ctx, index, [x, y, 0.0, 1.0])
     }
 
-    pub(super) fn glVertexAttrib3f(&mut self, index: u32, x: f32, y: f32, z: f32) -> GlResult {
-        set_current(self.ctx(), index, [x, y, z, 1.0])
+    pub(super) fn glVertexAttrib3f(&mut self, ctx: &mut Context, index: u32, x: f32, y: f32, z: f32) -> GlResult {
+        set_current(ctx, index, [x, y, z, 1.0])
     }
 
-    pub(super) fn glVertexAttrib4f(&mut self, index: u32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
-        set_current(self.ctx(), index, [x, y, z, w])
+    pub(super) fn glVertexAttrib4f(
+        &mut self,
+        ctx: &mut Context,
+        index: u32,
+        x: f32,
+        y: f32,
+        z: f32,
+        w: f32,
+    ) -> GlResult {
+        set_current(ctx, index, [x, y, z, w])
     }
 
-    pub(super) fn glVertexAttrib1fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
-        set_current(self.ctx(), index, current_from(&values, 1)?)
+    pub(super) fn glVertexAttrib1fv(&mut self, ctx: &mut Context, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(ctx, index, current_from(&values, 1)?)
     }
 
-    pub(super) fn glVertexAttrib2fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
-        set_current(self.ctx(), index, current_from(&values, 2)?)
+    pub(super) fn glVertexAttrib2fv(&mut self, ctx: &mut Context, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(ctx, index, current_from(&values, 2)?)
     }
 
-    pub(super) fn glVertexAttrib3fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
-        set_current(self.ctx(), index, current_from(&values, 3)?)
+    pub(super) fn glVertexAttrib3fv(&mut self, ctx: &mut Context, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(ctx, index, current_from(&values, 3)?)
     }
 
-    pub(super) fn glVertexAttrib4fv(&mut self, index: u32, values: Slice<'_, f32>) -> GlResult {
-        set_current(self.ctx(), index, current_from(&values, 4)?)
+    pub(super) fn glVertexAttrib4fv(&mut self, ctx: &mut Context, index: u32, values: Slice<'_, f32>) -> GlResult {
+        set_current(ctx, index, current_from(&values, 4)?)
     }
 
-    pub(super) fn glGetVertexAttribfv(&mut self, index: u32, pname: u32) -> Vec<f32> {
-        let ctx = self.ctx();
+    pub(super) fn glGetVertexAttribfv(&mut self, ctx: &mut Context, index: u32, pname: u32) -> Vec<f32> {
         let Some(a) = ctx.attribs.get(index as usize) else {
             ctx.record(GlError::InvalidValue);
             return vec![];
@@ -228,8 +242,7 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glGetVertexAttribiv(&mut self, index: u32, pname: u32) -> Vec<i32> {
-        let ctx = self.ctx();
+    pub(super) fn glGetVertexAttribiv(&mut self, ctx: &mut Context, index: u32, pname: u32) -> Vec<i32> {
         let Some(a) = ctx.attribs.get(index as usize) else {
             ctx.record(GlError::InvalidValue);
             return vec![];
@@ -246,8 +259,7 @@ impl GlesExecutor {
         }
     }
 
-    pub(super) fn glGetVertexAttribPointerv(&mut self, index: u32, pname: u32) -> u64 {
-        let ctx = self.ctx();
+    pub(super) fn glGetVertexAttribPointerv(&mut self, ctx: &mut Context, index: u32, pname: u32) -> u64 {
         if pname != VERTEX_ATTRIB_ARRAY_POINTER {
             ctx.record(GlError::InvalidEnum);
             return 0;

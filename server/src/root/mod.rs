@@ -236,30 +236,19 @@ impl Root {
         self
     }
 
-    /// Composites every output if the scene changed since the last composite (finishing a
-    /// banded composite first); returns the damage count the outputs now reflect.
-    pub fn composite_if_damaged(&self) -> Option<u64> {
-        self.composite(Part::All, None)
-    }
-
-    /// Composites `part` of what changed on every output: with `Part::All`, everything, if
-    /// anything changed since the last composite (returning the damage count the outputs now
-    /// reflect); with `Part::High`, only high-priority surfaces' new frames (returning `None`
-    /// when the compositor is unavailable).
-    pub fn composite_part(&self, part: Part) -> Option<u64> {
-        self.composite(part, None)
-    }
-
     /// Whether a composite is being drawn band by band (the compositor thread must go on
     /// without waiting for new damage).
     pub fn banding(&self) -> bool {
         self.inner.lock().is_ok_and(|i| i.bands.is_some())
     }
 
-    /// [`Root::composite_part`]; with a `deadline` (the next refresh), a `Part::All` change
-    /// predicted to take longer than [`BandOptions::above`], while high-priority surfaces are
-    /// shown but none overlaps it, is drawn band by band, as much of it now as fits before the
-    /// deadline.
+    /// Composites `part` of what changed on every output: with `Part::All`, everything, if
+    /// anything changed since the last composite (finishing a banded composite first), and
+    /// returns the damage count the outputs now reflect; with `Part::High`, only high-priority
+    /// surfaces' new frames (`None` when the compositor is unavailable). With a `deadline` (the
+    /// next refresh), a `Part::All` change predicted to take longer than
+    /// [`BandOptions::above`], while high-priority surfaces are shown but none overlaps it, is
+    /// drawn band by band, as much of it now as fits before the deadline.
     fn composite(&self, part: Part, deadline: Option<Instant>) -> Option<u64> {
         let mut inner = self.inner.lock().ok()?;
         if part == Part::All && inner.bands.is_some() {
@@ -425,7 +414,7 @@ impl Root {
     /// The named output's current image (RGBA8, top row first), composited first if the
     /// scene changed. An empty name means the first output.
     pub fn screenshot(&self, name: &str) -> Result<(u32, u32, Vec<u8>), String> {
-        self.composite_if_damaged().ok_or("the compositor is unavailable")?;
+        self.composite(Part::All, None).ok_or("the compositor is unavailable")?;
         let inner = self.inner.lock().map_err(|_| "the compositor is unavailable")?;
         let out =
             if name.is_empty() { inner.outputs.first() } else { inner.outputs.iter().find(|o| o.spec.name == name) };
@@ -462,7 +451,7 @@ impl Root {
                 next = (next + period).max(now);
                 // High-priority surfaces' new frames first, and the refresh counted once they
                 // are shown; then whatever else changed, which may take longer.
-                let high = root.composite_part(Part::High);
+                let high = root.composite(Part::High, None);
                 root.scene.refreshed();
                 // Whatever else changed, banded where it would hold up the next refresh.
                 match high.and_then(|_| root.composite(Part::All, Some(next))) {

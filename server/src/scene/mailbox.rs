@@ -135,16 +135,7 @@ mod tests {
 
     fn views() -> Vec<Views> {
         let Ok(gpu) = crate::gpu::Gpu::open() else { return Vec::new() };
-        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
+        let tex = gpu.texture_2d("test", wgpu::TextureFormat::Rgba8Unorm, (1, 1), wgpu::TextureUsages::TEXTURE_BINDING);
         (0..4).map(|_| (tex.create_view(&Default::default()), None)).collect()
     }
 

@@ -127,7 +127,7 @@ macro_rules! get_one_int {
                 #[doc = concat!("`", stringify!($name), "`: writes one integer.")]
                 fn $name( $( $arg : $ty, )* params: *mut GLint) {
                     let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl_args(stringify!($name), &args, (), |gl| {
+                    with_gl(crate::gl::Call { name: stringify!($name), args: &args }, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: `params` points at one GLint.
                         unsafe { put(params, v) };
@@ -147,7 +147,7 @@ macro_rules! get_array {
                 #[doc = concat!("`", stringify!($name), "`: writes the values the daemon returns.")]
                 fn $name( $( $arg : $ty, )* params: *mut $t) {
                     let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl_args(stringify!($name), &args, (), |gl| {
+                    with_gl(crate::gl::Call { name: stringify!($name), args: &args }, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: the caller's array has room for what the query returns.
                         unsafe { write_out(params, &v) };

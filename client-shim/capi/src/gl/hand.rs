@@ -42,7 +42,7 @@ crate::entry_points! {
 
     /// Booleans as `GLboolean`s.
     fn glGetBooleanv(pname: GLenum, params: *mut GLboolean) {
-        with_gl_args("glGetBooleanv", &|| pname.show(), (), |gl| {
+        with_gl(Call { name: "glGetBooleanv", args: &|| pname.show() }, (), |gl| {
             let v: Vec<GLboolean> = gl.conn.glGetBooleanv(pname)?.into_iter().map(GLboolean::from).collect();
             // SAFETY: the caller's array has room for what the query returns.
             unsafe { write_out(params, &v) };

@@ -6,13 +6,14 @@
 pub mod etc1;
 pub mod s3tc;
 
+use crate::gles::context::Context;
 use strata_protocol::Blob;
 
 use super::conv::ImageTarget;
 use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
 use super::images::Region;
-use super::teximage::{block_aligned, image_texture, validate_rect, validate_size, MAX_LEVEL};
+use super::teximage::{image_texture, sub_image, validate_size, SubImage};
 use super::GlesExecutor;
 
 #[allow(non_snake_case)]
@@ -20,6 +21,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glCompressedTexImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         internalformat: u32,
@@ -37,7 +39,7 @@ impl GlesExecutor {
         }
         let uid = self.next_uid();
         let account = self.account.clone();
-        let (ctx, gpu) = self.ctx_gpu();
+        let gpu = &self.gpu;
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         if level == 0 {
@@ -66,6 +68,7 @@ impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glCompressedTexSubImage2D(
         &mut self,
+        ctx: &mut Context,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -77,28 +80,16 @@ impl GlesExecutor {
     ) -> GlResult {
         let image = ImageTarget::from_gl(target)?;
         let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidEnum)?;
-        if !(0..=MAX_LEVEL).contains(&level) {
-            return Err(GlError::InvalidValue);
-        }
-        let (ctx, gpu) = self.ctx_gpu();
-        let name = image_texture(ctx, image);
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        let (face, level) = (image.face, level as u32);
+        let gpu = &self.gpu;
         // ETC1 images cannot be updated in part; the others only by data of their own format.
-        if c == Compressed::Etc1 || t.defined[face as usize] & (1 << level) == 0 || t.format != format {
-            return Err(GlError::InvalidOperation);
-        }
-        let img = t.gpu.as_mut().ok_or(GlError::InvalidOperation)?;
-        let size = img.level_size(level);
-        validate_rect(size, xoffset, yoffset, width, height)?;
-        if !block_aligned(size, xoffset, yoffset, width, height) {
-            return Err(GlError::InvalidOperation);
-        }
-        let (w, h) = (width as u32, height as u32);
-        if data.len() != c.image_size(w, h) {
+        let fits = |t: &super::textures::Texture, _: &_| c != Compressed::Etc1 && t.format == format;
+        let SubImage { texture: t, region, .. } =
+            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
+        if data.len() != c.image_size(region.width, region.height) {
             return Err(GlError::InvalidValue);
         }
-        let region = Region { face, level, x: xoffset as u32, y: yoffset as u32, width: w, height: h };
+        let Some(img) = &mut t.gpu else { return Ok(()) };
+        let (w, h) = (region.width, region.height);
         match img.storage {
             Storage::Native(_) => img.write_blocks(gpu, region, data.as_bytes()),
             _ => img.write(gpu, region, &c.decode(data.as_bytes(), w, h)),
