@@ -6,6 +6,7 @@ use strata_protocol::{Blob, Slice};
 
 use super::context::Context;
 use super::conv::BufferTarget;
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::GlesExecutor;
@@ -24,6 +25,11 @@ pub struct Buffer {
     pub generation: u64,
     /// The memory of the shadow and the GPU copy, held against the client's quota.
     pub _reserved: Option<crate::quota::Reservation>,
+}
+
+/// Writes whole 4-byte `words` into `buffer` at `offset`, after the pending pass.
+fn write_words(gpu: &crate::gpu::Gpu, _: &Flushed, buffer: &wgpu::Buffer, offset: u64, words: &[u8]) {
+    gpu.queue.write_buffer(buffer, offset, words);
 }
 
 /// Checks `glBufferData`; the name of the buffer it replaces.
@@ -88,6 +94,7 @@ impl GlesExecutor {
     pub(super) fn glBufferData(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         size: i64,
         data: Option<Blob<'_>>,
@@ -112,12 +119,19 @@ impl GlesExecutor {
         });
         let mut padded_data = b.data.clone();
         padded_data.resize(padded as usize, 0);
-        gpu.queue.write_buffer(&gbuf, 0, &padded_data);
+        write_words(gpu, flushed, &gbuf, 0, &padded_data);
         b.gpu = Some(gbuf);
         Ok(())
     }
 
-    pub(super) fn glBufferSubData(&mut self, ctx: &mut Context, target: u32, offset: i64, data: Blob<'_>) -> GlResult {
+    pub(super) fn glBufferSubData(
+        &mut self,
+        ctx: &mut Context,
+        flushed: &Flushed,
+        target: u32,
+        offset: i64,
+        data: Blob<'_>,
+    ) -> GlResult {
         let gpu = &self.gpu;
         let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
         let b = ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
@@ -135,7 +149,7 @@ impl GlesExecutor {
             let mut words = b.data[start..stop.min(b.data.len())].to_vec();
             words.resize(stop - start, 0);
             if !words.is_empty() {
-                gpu.queue.write_buffer(g, start as u64, &words);
+                write_words(gpu, flushed, g, start as u64, &words);
             }
         }
         Ok(())

@@ -3,6 +3,7 @@
 
 use super::context::Context;
 use super::conv::ImageTarget;
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
@@ -16,6 +17,7 @@ impl GlesExecutor {
     pub(super) fn glCopyTexImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         internalformat: u32,
@@ -25,13 +27,14 @@ impl GlesExecutor {
         height: i32,
         border: i32,
     ) -> GlResult {
-        self.copy_tex(ctx, target, level, Some(internalformat), 0, 0, x, y, width, height, border)
+        self.copy_tex(ctx, flushed, target, level, Some(internalformat), 0, 0, x, y, width, height, border)
     }
 
     #[allow(clippy::too_many_arguments)]
     pub(super) fn glCopyTexSubImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -41,7 +44,7 @@ impl GlesExecutor {
         width: i32,
         height: i32,
     ) -> GlResult {
-        self.copy_tex(ctx, target, level, None, xoffset, yoffset, x, y, width, height, 0)
+        self.copy_tex(ctx, flushed, target, level, None, xoffset, yoffset, x, y, width, height, 0)
     }
 
     /// Copies a rectangle of the framebuffer's colour into a texture level; with `internal`
@@ -50,6 +53,7 @@ impl GlesExecutor {
     fn copy_tex(
         &mut self,
         ctx: &mut Context,
+        _flushed: &Flushed,
         target: u32,
         level: i32,
         internal: Option<u32>,
@@ -126,7 +130,7 @@ impl GlesExecutor {
             },
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
         );
-        self.r.flush();
+        // The pending pass, whose draws the copy may read, went before this command (`Flushed`).
         self.r.lane.submit(&self.gpu, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.

@@ -6,7 +6,10 @@
 //! - **No current context.** GL calls without a current context have no effect; synchronous
 //!   ones still get an answer (`Reply::Unsupported`), so the client never waits forever.
 //! - **Flush rule.** A call that rewrites a buffer or texture a recorded draw may read first
-//!   submits the pending pass, so the draw reads the old contents, as GL orders it.
+//!   submits the pending pass, so the draw reads the old contents, as GL orders it. The table
+//!   marks such calls `[Flush]`; their handlers are handed a [`Flushed`] proof, which the
+//!   functions that write images and buffers require, so a handler that writes without the
+//!   attribute does not compile.
 //! - **Dispatch.** The match is generated from the protocol's command table
 //!   (`strata_protocol::command_table!`): each command calls the handler method named like its
 //!   `Calls` method (`glBufferData`, `eglSwapBuffers`, `strataPing`) with its fields. A command
@@ -24,20 +27,35 @@ use super::GlesExecutor;
 use crate::executor::{ExecError, Executor};
 
 /// One handler's call, as its attributes say: a `[Context]` command's handler is handed the
-/// current context (`None` when there is none), a `[NoContext]` command's runs on the executor
-/// alone. The first of `Context` and `NoContext` in the list decides; the table states exactly
-/// one.
+/// current context (`None` when there is none), a `[Context, Flush]` command's also the proof
+/// that the pending pass was submitted first ([`Flushed`]), a `[NoContext]` command's runs on
+/// the executor alone. Any other list of attributes does not compile.
 macro_rules! handler_call {
-    ($exec:ident . $gl:ident [Context $(, $rest:ident)*] ( $( $arg:ident ),* )) => {
+    ($exec:ident . $gl:ident [Context] ( $( $arg:ident ),* )) => {
         $exec.with_current(|exec, ctx| exec.$gl(ctx, $( $arg ),*))
     };
-    ($exec:ident . $gl:ident [NoContext $(, $rest:ident)*] ( $( $arg:ident ),* )) => {
+    ($exec:ident . $gl:ident [Context, Flush] ( $( $arg:ident ),* )) => {
+        $exec.with_current(|exec, ctx| {
+            let flushed = exec.flush_first();
+            exec.$gl(ctx, &flushed, $( $arg ),*)
+        })
+    };
+    ($exec:ident . $gl:ident [NoContext] ( $( $arg:ident ),* )) => {
         Some($exec.$gl($( $arg ),*))
     };
-    ($exec:ident . $gl:ident [$other:ident $(, $rest:ident)*] $args:tt) => {
-        handler_call!($exec . $gl [$( $rest ),*] $args)
+    ($exec:ident . $gl:ident [ $( $other:ident ),* ] $args:tt) => {
+        compile_error!(concat!(
+            stringify!($gl),
+            ": the dispatch knows [Context], [Context, Flush] and [NoContext], not [",
+            $( stringify!($other), " ", )* "]"
+        ))
     };
 }
+
+/// Proof that the pending pass was submitted before the command that holds it: whatever writes
+/// a buffer or texture that a recorded draw may read takes one, so that the write cannot land
+/// before that draw. Only the dispatch of a command the table marks `[Flush]` makes one.
+pub struct Flushed(());
 
 /// Generates `GlesExecutor::dispatch` from the command table.
 macro_rules! gles_dispatch {
@@ -85,9 +103,6 @@ impl Executor for GlesExecutor {
             // No current context: GL calls have no effect. Queries still get an answer.
             op.is_sync().then(|| Reply::Unsupported(format!("{}: no current context", op.name())))
         } else {
-            if op.flushes_first() && self.r.pending() {
-                self.r.flush();
-            }
             // Debug messages about the errors a call records name it.
             if let Some(ctx) = self.current.and_then(|(c, _)| self.contexts.get_mut(&c)) {
                 ctx.call = op.name();
@@ -117,6 +132,14 @@ impl GlesExecutor {
         let result = f(self, &mut ctx);
         self.contexts.insert(cid, ctx);
         Some(result)
+    }
+
+    /// Submits the pending pass, if any, for a `[Flush]` command: the proof it did.
+    fn flush_first(&mut self) -> Flushed {
+        if self.r.pending() {
+            self.r.flush();
+        }
+        Flushed(())
     }
 
     /// Records `e` in the current context, if there is one.

@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::Storage;
@@ -116,7 +117,7 @@ impl TextureImage {
 
     /// Writes tightly packed texels of the image's storage (RGBA8, RGBA16F or RGBA32F) into
     /// `r`, or, for a natively compressed image, whole blocks covering `r` (rows of blocks).
-    pub fn write(&self, gpu: &Gpu, r: Region, data: &[u8]) {
+    pub fn write(&self, gpu: &Gpu, _: &Flushed, r: Region, data: &[u8]) {
         if r.width == 0 || r.height == 0 {
             return;
         }
@@ -147,7 +148,7 @@ impl TextureImage {
 
     /// Writes compressed blocks covering `r` (a block-aligned rectangle of one level) and
     /// records them, so the level can still be decoded later.
-    pub fn write_blocks(&mut self, gpu: &Gpu, r: Region, data: &[u8]) {
+    pub fn write_blocks(&mut self, gpu: &Gpu, flushed: &Flushed, r: Region, data: &[u8]) {
         let Storage::Native(c) = self.storage else { return };
         if r.width == 0 || r.height == 0 {
             return;
@@ -163,7 +164,7 @@ impl TextureImage {
                 dst.copy_from_slice(src);
             }
         }
-        self.write(gpu, r, data);
+        self.write(gpu, flushed, r, data);
     }
 }
 
@@ -193,14 +194,14 @@ impl Texture {
 
     /// Turns a natively compressed image into an RGBA8 one holding the decoded levels, so that
     /// uncompressed data can be written to it; other images are left as they are.
-    pub fn decompress(&mut self, gpu: &Gpu, account: &Arc<Account>, uid: u64) -> GlResult {
+    pub fn decompress(&mut self, gpu: &Gpu, flushed: &Flushed, account: &Arc<Account>, uid: u64) -> GlResult {
         let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return Ok(()) };
         let Storage::Native(c) = old.storage else { return Ok(()) };
         let img = TextureImage::new(gpu, account, self.target, old.width, old.height, Storage::Rgba8)?;
         for (&(face, level), blocks) in &old.blocks {
             let (width, height) = img.level_size(level);
             let region = Region { face, level, x: 0, y: 0, width, height };
-            img.write(gpu, region, &c.decode(blocks, width, height));
+            img.write(gpu, flushed, region, &c.decode(blocks, width, height));
         }
         self.gpu = Some(img);
         self.uid = uid;

@@ -7,6 +7,7 @@ use strata_protocol::Blob;
 
 use super::context::{Context, MAX_TEXTURE};
 use super::conv::ImageTarget;
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{internal_accepts, upload_storage, Compressed, Storage};
@@ -117,6 +118,7 @@ impl GlesExecutor {
     pub(super) fn glTexImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         internalformat: i32,
@@ -137,7 +139,16 @@ impl GlesExecutor {
             }
             validate_size(image, level, width, height, border)?;
             let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            return self.depth_tex_image(ctx, width as u32, height as u32, format, pixel_type, storage, pixels);
+            return self.depth_tex_image(
+                ctx,
+                flushed,
+                width as u32,
+                height as u32,
+                format,
+                pixel_type,
+                storage,
+                pixels,
+            );
         }
         if !internal_accepts(internal, format, self.gpu.features) {
             return Err(GlError::InvalidOperation);
@@ -162,7 +173,7 @@ impl GlesExecutor {
             t.format = internal;
         } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
             // Uncompressed data for a level of a natively compressed image.
-            t.decompress(gpu, &account, uid2)?;
+            t.decompress(gpu, flushed, &account, uid2)?;
         }
         let face = image.face;
         let Some(img) = &t.gpu else { return Ok(()) };
@@ -174,8 +185,8 @@ impl GlesExecutor {
         t.defined[face as usize] |= 1 << level;
         let region = Region { face, level, x: 0, y: 0, width: w, height: h };
         match texels {
-            Some(data) => img.write(gpu, region, &data),
-            None => img.write(gpu, region, &blank(w * h, format, storage)),
+            Some(data) => img.write(gpu, flushed, region, &data),
+            None => img.write(gpu, flushed, region, &blank(w * h, format, storage)),
         }
         Ok(())
     }
@@ -185,6 +196,7 @@ impl GlesExecutor {
     fn depth_tex_image(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         w: u32,
         h: u32,
         format: u32,
@@ -211,7 +223,7 @@ impl GlesExecutor {
         let texture = img.texture.clone();
         if let Some((depths, stencil)) = values.filter(|_| w > 0 && h > 0) {
             let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
-            self.r.upload_depth(&texture, (w, h), [0, 0, w, h], &depths, stencil);
+            self.r.upload_depth(flushed, &texture, (w, h), [0, 0, w, h], &depths, stencil);
         }
         Ok(())
     }
@@ -220,6 +232,7 @@ impl GlesExecutor {
     pub(super) fn glTexSubImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -257,15 +270,15 @@ impl GlesExecutor {
             let texture = img.texture.clone();
             let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
             let rect = [region.x, region.y, w, h];
-            self.r.upload_depth(&texture, size, rect, &depths, stencil);
+            self.r.upload_depth(flushed, &texture, size, rect, &depths, stencil);
             return Ok(());
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };
         let data = to_storage(pixels.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, target_storage)
             .ok_or(GlError::InvalidOperation)?;
-        t.decompress(gpu, &account, uid)?;
+        t.decompress(gpu, flushed, &account, uid)?;
         if let Some(img) = &t.gpu {
-            img.write(gpu, region, &data);
+            img.write(gpu, flushed, region, &data);
         }
         Ok(())
     }

@@ -5,6 +5,7 @@ use strata_protocol::Slice;
 
 use super::context::Context;
 use super::conv::TextureTarget;
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
@@ -212,7 +213,7 @@ impl GlesExecutor {
         get_tex_parameter(ctx, target, pname).into_iter().map(|x| x as f32).collect()
     }
 
-    pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, target: u32) -> GlResult {
+    pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, flushed: &Flushed, target: u32) -> GlResult {
         let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
@@ -229,7 +230,7 @@ impl GlesExecutor {
         for d in &mut t.defined[..layers] {
             *d = (1 << mips) - 1;
         }
-        self.r.generate_mipmaps(&tex, mips, layers as u32, format);
+        self.r.generate_mipmaps(flushed, &tex, mips, layers as u32, format);
         Ok(())
     }
 }

@@ -15,6 +15,7 @@ use super::formats::{Compressed, Storage};
 use super::images::Region;
 use super::teximage::{image_texture, sub_image, validate_size, SubImage};
 use super::GlesExecutor;
+use crate::gles::dispatch::Flushed;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
@@ -22,6 +23,7 @@ impl GlesExecutor {
     pub(super) fn glCompressedTexImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         internalformat: u32,
@@ -58,8 +60,8 @@ impl GlesExecutor {
         }
         let region = Region { face, level, x: 0, y: 0, width: w, height: h };
         match img.storage {
-            Storage::Native(_) => img.write_blocks(gpu, region, data.as_bytes()),
-            _ => img.write(gpu, region, &c.decode(data.as_bytes(), w, h)),
+            Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
+            _ => img.write(gpu, flushed, region, &c.decode(data.as_bytes(), w, h)),
         }
         t.defined[face as usize] |= 1 << level;
         Ok(())
@@ -69,6 +71,7 @@ impl GlesExecutor {
     pub(super) fn glCompressedTexSubImage2D(
         &mut self,
         ctx: &mut Context,
+        flushed: &Flushed,
         target: u32,
         level: i32,
         xoffset: i32,
@@ -91,8 +94,8 @@ impl GlesExecutor {
         let Some(img) = &mut t.gpu else { return Ok(()) };
         let (w, h) = (region.width, region.height);
         match img.storage {
-            Storage::Native(_) => img.write_blocks(gpu, region, data.as_bytes()),
-            _ => img.write(gpu, region, &c.decode(data.as_bytes(), w, h)),
+            Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
+            _ => img.write(gpu, flushed, region, &c.decode(data.as_bytes(), w, h)),
         }
         Ok(())
     }

@@ -1,13 +1,20 @@
 //! Mipmap generation: each level drawn from the one above with a 2×2 box filter.
 
+use super::super::dispatch::Flushed;
 use super::super::enums::*;
 use super::{Renderer, SamplerState};
 
 impl Renderer {
     /// Fills levels 1.. of every face of a (filterable, renderable) `format` texture from level
-    /// 0 with a 2×2 box filter.
-    pub fn generate_mipmaps(&mut self, tex: &wgpu::Texture, mips: u32, layers: u32, format: wgpu::TextureFormat) {
-        self.flush();
+    /// 0 with a 2×2 box filter, after the pending pass (`[Flush]`).
+    pub fn generate_mipmaps(
+        &mut self,
+        _: &Flushed,
+        tex: &wgpu::Texture,
+        mips: u32,
+        layers: u32,
+        format: wgpu::TextureFormat,
+    ) {
         let d = &self.gpu.device;
         // Compiled once for all clients (each compile costs the driver memory it keeps).
         let mut shared = self.fixed.mip_pipelines.lock().unwrap_or_else(|e| e.into_inner());

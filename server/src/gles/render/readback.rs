@@ -1,5 +1,7 @@
-//! Readback, depth uploads, and waiting for the GPU: each first submits the open pass.
+//! Readback, depth uploads, and waiting for the GPU. Reads and waits first submit the open
+//! pass; a depth upload runs in a `[Flush]` command, after it.
 
+use super::super::dispatch::Flushed;
 use super::{Renderer, Target};
 
 impl Renderer {
@@ -21,13 +23,13 @@ impl Renderer {
     /// rectangle `[x, y, w, h]` of a `size` depth or depth-stencil texture.
     pub fn upload_depth(
         &mut self,
+        _: &Flushed,
         tex: &wgpu::Texture,
         size: (u32, u32),
         rect: [u32; 4],
         depths: &[f32],
         stencil: Option<&[u8]>,
     ) {
-        self.flush();
         self.gpu.write_depth_region(tex, size, rect, depths, stencil);
     }
 }
