@@ -140,6 +140,57 @@ fn get_uniform(ctx: &Context, program: u32, location: i32) -> GlResult<Vec<f32>>
         .collect())
 }
 
+/// `glUniform{1,2,3,4}{f,i}`, their `v` forms and `glUniformMatrix{2,3,4}fv`: one body each, by
+/// component count and type.
+macro_rules! uniform_setters {
+    (
+        scalars { $( $sgl:ident: $sn:literal, $sty:ty, $svals:ident ( $( $c:ident ),+ ); )* }
+        vectors { $( $vgl:ident: $vn:literal, $vty:ty, $vvals:ident; )* }
+        matrices { $( $mgl:ident: $mn:literal; )* }
+    ) => {
+        #[allow(non_snake_case)]
+        impl GlesExecutor {
+            $( pub(super) fn $sgl(&mut self, ctx: &mut Context, location: i32, $( $c: $sty ),+) -> GlResult {
+                set_uniform(ctx, location, $sn, 0, Vals::$svals(&[$( $c ),+]))
+            } )*
+            $( pub(super) fn $vgl(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, $vty>) -> GlResult {
+                set_uniform(ctx, location, $vn, 0, Vals::$vvals(&values.to_vec()))
+            } )*
+            $( pub(super) fn $mgl(&mut self, ctx: &mut Context, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
+                set_matrix(ctx, location, transpose, $mn, &values.to_vec())
+            } )*
+        }
+    };
+}
+
+uniform_setters! {
+    scalars {
+        glUniform1f: 1, f32, F(x);
+        glUniform2f: 2, f32, F(x, y);
+        glUniform3f: 3, f32, F(x, y, z);
+        glUniform4f: 4, f32, F(x, y, z, w);
+        glUniform1i: 1, i32, I(x);
+        glUniform2i: 2, i32, I(x, y);
+        glUniform3i: 3, i32, I(x, y, z);
+        glUniform4i: 4, i32, I(x, y, z, w);
+    }
+    vectors {
+        glUniform1fv: 1, f32, F;
+        glUniform2fv: 2, f32, F;
+        glUniform3fv: 3, f32, F;
+        glUniform4fv: 4, f32, F;
+        glUniform1iv: 1, i32, I;
+        glUniform2iv: 2, i32, I;
+        glUniform3iv: 3, i32, I;
+        glUniform4iv: 4, i32, I;
+    }
+    matrices {
+        glUniformMatrix2fv: 2;
+        glUniformMatrix3fv: 3;
+        glUniformMatrix4fv: 4;
+    }
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glGetUniformLocation(&mut self, ctx: &mut Context, program: u32, name: Text<'_>) -> i32 {
@@ -166,100 +217,6 @@ impl GlesExecutor {
             })
         });
         v.map_err(|e| ctx.record(e)).ok()
-    }
-
-    pub(super) fn glUniform1f(&mut self, ctx: &mut Context, location: i32, x: f32) -> GlResult {
-        set_uniform(ctx, location, 1, 0, Vals::F(&[x]))
-    }
-
-    pub(super) fn glUniform2f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32) -> GlResult {
-        set_uniform(ctx, location, 2, 0, Vals::F(&[x, y]))
-    }
-
-    pub(super) fn glUniform3f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32, z: f32) -> GlResult {
-        set_uniform(ctx, location, 3, 0, Vals::F(&[x, y, z]))
-    }
-
-    pub(super) fn glUniform4f(&mut self, ctx: &mut Context, location: i32, x: f32, y: f32, z: f32, w: f32) -> GlResult {
-        set_uniform(ctx, location, 4, 0, Vals::F(&[x, y, z, w]))
-    }
-
-    pub(super) fn glUniform1i(&mut self, ctx: &mut Context, location: i32, x: i32) -> GlResult {
-        set_uniform(ctx, location, 1, 0, Vals::I(&[x]))
-    }
-
-    pub(super) fn glUniform2i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32) -> GlResult {
-        set_uniform(ctx, location, 2, 0, Vals::I(&[x, y]))
-    }
-
-    pub(super) fn glUniform3i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32, z: i32) -> GlResult {
-        set_uniform(ctx, location, 3, 0, Vals::I(&[x, y, z]))
-    }
-
-    pub(super) fn glUniform4i(&mut self, ctx: &mut Context, location: i32, x: i32, y: i32, z: i32, w: i32) -> GlResult {
-        set_uniform(ctx, location, 4, 0, Vals::I(&[x, y, z, w]))
-    }
-
-    pub(super) fn glUniform1fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(ctx, location, 1, 0, Vals::F(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform2fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(ctx, location, 2, 0, Vals::F(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform3fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(ctx, location, 3, 0, Vals::F(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform4fv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, f32>) -> GlResult {
-        set_uniform(ctx, location, 4, 0, Vals::F(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform1iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(ctx, location, 1, 0, Vals::I(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform2iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(ctx, location, 2, 0, Vals::I(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform3iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(ctx, location, 3, 0, Vals::I(&values.to_vec()))
-    }
-
-    pub(super) fn glUniform4iv(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, i32>) -> GlResult {
-        set_uniform(ctx, location, 4, 0, Vals::I(&values.to_vec()))
-    }
-
-    pub(super) fn glUniformMatrix2fv(
-        &mut self,
-        ctx: &mut Context,
-        location: i32,
-        transpose: bool,
-        values: Slice<'_, f32>,
-    ) -> GlResult {
-        set_matrix(ctx, location, transpose, 2, &values.to_vec())
-    }
-
-    pub(super) fn glUniformMatrix3fv(
-        &mut self,
-        ctx: &mut Context,
-        location: i32,
-        transpose: bool,
-        values: Slice<'_, f32>,
-    ) -> GlResult {
-        set_matrix(ctx, location, transpose, 3, &values.to_vec())
-    }
-
-    pub(super) fn glUniformMatrix4fv(
-        &mut self,
-        ctx: &mut Context,
-        location: i32,
-        transpose: bool,
-        values: Slice<'_, f32>,
-    ) -> GlResult {
-        set_matrix(ctx, location, transpose, 4, &values.to_vec())
     }
 
     pub(super) fn glGetUniformfv(&mut self, ctx: &mut Context, program: u32, location: i32) -> Vec<f32> {
