@@ -18,6 +18,8 @@ use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
 mod ctl;
+#[cfg(test)]
+mod readme_commands;
 
 /// Strata: a consolidated 3D compositing window manager daemon.
 #[derive(Parser)]
@@ -140,11 +142,11 @@ enum Cmd {
     },
     /// Administer a running daemon.
     Ctl {
-        /// Socket path [default: as for serve].
-        #[arg(long, env = "STRATA_SOCKET")]
+        /// Socket path [default: as for serve]; before or after the command.
+        #[arg(long, env = "STRATA_SOCKET", global = true)]
         socket: Option<PathBuf>,
-        /// Answer in JSON.
-        #[arg(long)]
+        /// Answer in JSON; before or after the command.
+        #[arg(long, global = true)]
         json: bool,
         #[command(subcommand)]
         what: ctl::CtlCmd,
