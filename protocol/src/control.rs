@@ -295,7 +295,9 @@ pub struct DaemonStats {
 /// One row of `stratad ctl list`: a window surface.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceRow {
-    /// Surface id, unique for the daemon's lifetime; also the stacking order.
+    /// Surface ID: stable where the layout, `STRATA_SURFACE_ID` or the application fixed one
+    /// (see [`crate::surface_id`]), else a runtime ID; no two live surfaces share one. `ctl
+    /// list` gives rows in stacking order (creation order; later on top when depths tie).
     pub id: u64,
     /// Owning client's number.
     pub client_id: u64,

@@ -11,6 +11,7 @@ pub mod handshake;
 pub mod projection;
 pub mod ring;
 pub mod segment;
+pub mod surface_id;
 pub mod tally;
 pub mod wire;
 

@@ -42,10 +42,43 @@ pub struct LayoutEntry {
     /// their `EGL_STRATA_surface_projection` attributes declare.
     #[serde(default)]
     pub projection: Option<Projection>,
+    /// Stable IDs of the client's window surfaces, in the order it creates them (`id = 1000`,
+    /// or `id = [1000, 1001]`); surfaces beyond the list get runtime IDs.
+    #[serde(default)]
+    pub id: SurfaceIds,
+}
+
+/// A layout entry's stable surface IDs: one number or a list.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Deserialize)]
+#[serde(from = "OneOrMany")]
+pub struct SurfaceIds(pub Vec<u32>);
+
+/// How the configuration writes [`SurfaceIds`].
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum OneOrMany {
+    One(u32),
+    Many(Vec<u32>),
+}
+
+impl From<OneOrMany> for SurfaceIds {
+    fn from(v: OneOrMany) -> Self {
+        match v {
+            OneOrMany::One(id) => SurfaceIds(vec![id]),
+            OneOrMany::Many(ids) => SurfaceIds(ids),
+        }
+    }
+}
+
+impl SurfaceIds {
+    /// The stable ID of the client's `n`th window surface (0: its first), if the entry gives one.
+    pub fn nth(&self, n: usize) -> Option<u64> {
+        self.0.get(n).map(|&id| u64::from(id))
+    }
 }
 
 /// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
-/// and optionally `width`, `height`, `priority`, `deadline`, `projection`; `[[quota]]` tables
+/// and optionally `width`, `height`, `priority`, `deadline`, `projection`, `id`; `[[quota]]` tables
 /// with `client` and limits.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -120,6 +153,9 @@ impl LayoutEntry {
         if let Some(p) = &self.projection {
             p.validate().map_err(|source| LayoutError::Projection { client: self.client.clone(), source })?;
         }
+        for &id in &self.id.0 {
+            strata_protocol::surface_id::check(i64::from(id)).map_err(|e| bad(e.to_string()))?;
+        }
         Ok(())
     }
 }
@@ -151,6 +187,7 @@ impl FromStr for LayoutEntry {
             priority: None,
             deadline: false,
             projection: None,
+            id: SurfaceIds::default(),
         };
         e.validate()?;
         Ok(e)
@@ -166,6 +203,17 @@ impl Config {
             toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p, message: e.to_string() })?;
         for e in &config.layout {
             e.validate()?;
+        }
+        let mut seen = std::collections::HashMap::new();
+        for e in &config.layout {
+            for &id in &e.id.0 {
+                if let Some(first) = seen.insert(id, e.client.as_str()) {
+                    return Err(LayoutError::Invalid {
+                        client: e.client.clone(),
+                        why: format!("surface id {id} is also given to {first:?}"),
+                    });
+                }
+            }
         }
         if let Some(q) = config.quota.iter().find(|q| q.client.is_empty()) {
             return Err(LayoutError::Invalid {
@@ -225,6 +273,31 @@ mod tests {
             .expect("write");
         let e = Config::load(&bad).expect_err("unknown class").to_string();
         assert!(e.contains("urgent") && e.contains("high") && e.contains("normal") && e.contains("low"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn stable_surface_ids_parse_and_clashes_are_refused() {
+        let dir = std::env::temp_dir().join(format!("strata-layout-ids-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let file = dir.join("ids.toml");
+        let entry =
+            |client: &str, id: &str| format!("[[layout]]\nclient = \"{client}\"\nx = 0\ny = 0\nz = 0.5\nid = {id}\n\n");
+        std::fs::write(&file, entry("ic", "1000") + &entry("hu", "[2000, 2001]")).expect("write");
+        let c = Config::load(&file).expect("loads");
+        let ic = find(&c.layout, "ic").map(|e| (e.id.nth(0), e.id.nth(1)));
+        assert_eq!(ic, Some((Some(1000), None)));
+        let hu = find(&c.layout, "hu").map(|e| (e.id.nth(0), e.id.nth(1)));
+        assert_eq!(hu, Some((Some(2000), Some(2001))));
+        for (body, says) in [
+            (entry("ic", "1000") + &entry("hu", "[2000, 1000]"), "surface id 1000 is also given to \"ic\""),
+            (entry("ic", "0"), "outside 1..="),
+            (entry("ic", "[1, 2147483648]"), "outside 1..="),
+        ] {
+            std::fs::write(&file, body).expect("write");
+            let e = Config::load(&file).expect_err(says).to_string();
+            assert!(e.contains(says), "{e}");
+        }
         let _ = std::fs::remove_dir_all(&dir);
     }
 

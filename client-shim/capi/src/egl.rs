@@ -220,9 +220,9 @@ crate::entry_points! {
             EGL_VENDOR => c"Strata",
             EGL_VERSION => c"1.4 Strata",
             EGL_CLIENT_APIS => c"OpenGL_ES",
-            // The daemon answers both (`EGL_STRATA_surface_projection`: surface attributes the
+            // The daemon answers them (`EGL_STRATA_surface_id` and `EGL_STRATA_surface_projection`: surface attributes the
             // library passes through, see docs/projection.md).
-            EGL_EXTENSIONS => c"EGL_IMG_context_priority EGL_STRATA_surface_projection",
+            EGL_EXTENSIONS => c"EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();
@@ -356,7 +356,7 @@ crate::entry_points! {
     }
 
     /// Width, height, config id, render buffer and swap behaviour of a surface, and (the daemon
-    /// answers) its `EGL_STRATA_surface_projection` attributes.
+    /// answers) its `EGL_STRATA_surface_id` and `EGL_STRATA_surface_projection` attributes.
     fn eglQuerySurface(dpy: EGLDisplay, surface: EGLSurface, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
         let r = (|| {
             if value.is_null() {

@@ -97,7 +97,29 @@ fn window_size(p: &mut Process, d: usize, win: u64) -> Option<(i32, i32)> {
 
 /// `eglCreateWindowSurface`: a daemon surface sized like the X window (or as `STRATA_WINDOW`
 /// says when there is no X window), placed by `STRATA_WINDOW`. Returns the application's handle.
+/// Window surfaces this process has created: which of `STRATA_SURFACE_ID`'s IDs the next one
+/// takes.
+static WINDOWS_MADE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// `attribs` with the stable ID `STRATA_SURFACE_ID` gives this process's next window surface
+/// (`"1000"`, or `"1000,1001"` for its first, second…): it wins over the application's own
+/// `EGL_SURFACE_ID_STRATA`. A malformed value is `EGL_BAD_ATTRIBUTE`, and says why.
+fn with_env_id(attribs: Vec<EGLint>) -> Result<Vec<EGLint>, EGLint> {
+    use strata_protocol::surface_id;
+    let Ok(list) = std::env::var(surface_id::ENV) else { return Ok(attribs) };
+    let n = WINDOWS_MADE.load(std::sync::atomic::Ordering::Relaxed);
+    let Some(text) = list.split(',').nth(n) else { return Ok(attribs) };
+    match surface_id::parse(text) {
+        Ok(id) => Ok(surface_id::with_id(&attribs, id)),
+        Err(e) => {
+            state::log_once(&format!("{}={list:?}: {e}", surface_id::ENV));
+            Err(EGL_BAD_ATTRIBUTE)
+        }
+    }
+}
+
 pub(crate) fn create_window(dpy: EGLDisplay, config: u32, win: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    let attribs = with_env_id(attribs)?;
     let mut p = crate::state::process();
     let d = initialized(&mut p, dpy)?;
     let place = placement();
@@ -109,6 +131,7 @@ pub(crate) fn create_window(dpy: EGLDisplay, config: u32, win: u64, attribs: Vec
     let s = daemon(&mut p, |c, dd| {
         c.eglCreateWindowSurface(dd, config, win, place.x, place.y, place.z, w, h, Slice::new(&attribs))
     })?;
+    WINDOWS_MADE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     // Only a surface sized from its X window follows that window.
     let window = from_x.map(|size| WindowInfo { native: win, size });
     Ok(p.add_surface(d, s, window))

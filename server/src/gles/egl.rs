@@ -6,6 +6,7 @@
 
 use strata_protocol::control::Priority;
 use strata_protocol::projection::Projection;
+use strata_protocol::surface_id;
 use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
@@ -273,7 +274,19 @@ impl GlesExecutor {
         }
         self.check_display(display)?;
         let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
-        let declared = self.declared_projection("eglCreateWindowSurface", &attribs.to_vec())?;
+        let attribs = attribs.to_vec();
+        let declared = self.declared_projection("eglCreateWindowSurface", &attribs)?;
+        // The layout's stable ID for this client's next window wins over the one it asks for.
+        let from_layout = self.surface_ids.nth(self.windows_made);
+        let asked = match from_layout {
+            Some(id) => Some(id),
+            None => surface_id::from_egl_attribs(&attribs)
+                .map_err(|e| {
+                    tracing::warn!("eglCreateWindowSurface: EGL_BAD_ATTRIBUTE: {e}");
+                    EGL_BAD_ATTRIBUTE
+                })?
+                .map(u64::from),
+        };
         if !z.is_finite() || width <= 0 || height <= 0 {
             return Err(EGL_BAD_NATIVE_WINDOW);
         }
@@ -286,7 +299,20 @@ impl GlesExecutor {
         }
         let (id, views) = self.make_surface(c, width, height, true, projection)?;
         if let Some((scene, client, name)) = &self.scene {
-            scene.add(*client, id, name, [x, y, width, height], z);
+            match scene.add(*client, id, name, [x, y, width, height], z, asked) {
+                Ok(scene_id) => {
+                    self.windows_made += 1;
+                    if let Some(s) = self.surfaces.get_mut(&id) {
+                        s.scene_id = Some(scene_id);
+                    }
+                }
+                Err(taken) => {
+                    // The second surface to claim an ID is refused; the first keeps it.
+                    tracing::warn!("eglCreateWindowSurface: EGL_BAD_MATCH: {taken}");
+                    self.surfaces.remove(&id);
+                    return Err(EGL_BAD_MATCH);
+                }
+            }
             self.register_buffers(id, views);
             // The compositor reads the depth as stored: reversed where the daemon reverses it
             // (`--reversed-z`); `eglQuerySurface` keeps answering what was declared.
@@ -405,6 +431,10 @@ impl GlesExecutor {
             EGL_CONFIG_ID => Ok(s.config.id as i32),
             EGL_RENDER_BUFFER => Ok(EGL_BACK_BUFFER),
             EGL_SWAP_BEHAVIOR => Ok(EGL_BUFFER_DESTROYED),
+            // `EGL_STRATA_surface_id`: the window surface's ID in the scene.
+            surface_id::EGL_SURFACE_ID_STRATA if s.window => {
+                s.scene_id.and_then(|id| i32::try_from(id).ok()).ok_or(EGL_BAD_ATTRIBUTE)
+            }
             // `EGL_STRATA_surface_projection`: the projection in effect.
             a => Projection::egl_query(s.projection.as_ref(), a).ok_or(EGL_BAD_ATTRIBUTE),
         }

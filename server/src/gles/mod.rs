@@ -68,6 +68,11 @@ pub struct GlesExecutor {
     /// Invalid `EGL_STRATA_surface_projection` declarations this client made (only the first
     /// is logged at warn).
     bad_projections: u32,
+    /// The stable IDs the daemon's configuration gives this client's window surfaces, in the
+    /// order it creates them.
+    surface_ids: crate::layout::SurfaceIds,
+    /// Window surfaces this client has created: which of `surface_ids` the next one takes.
+    windows_made: usize,
     uid: u64,
     /// Where window surfaces are shown: the scene, this client's id and name.
     scene: Option<(Arc<crate::scene::Scene>, u64, String)>,
@@ -121,6 +126,8 @@ impl GlesExecutor {
             projection: None,
             depth: DepthOptions::default(),
             bad_projections: 0,
+            surface_ids: crate::layout::SurfaceIds::default(),
+            windows_made: 0,
         }
     }
 
@@ -154,6 +161,13 @@ impl GlesExecutor {
     /// declare (`None`: theirs apply).
     pub fn with_projection(mut self, projection: Option<strata_protocol::projection::Projection>) -> Self {
         self.projection = projection;
+        self
+    }
+
+    /// Gives this client's window surfaces, in the order it creates them, the stable `ids`
+    /// (those beyond the list get the ID they ask for, or a runtime one).
+    pub fn with_surface_ids(mut self, ids: crate::layout::SurfaceIds) -> Self {
+        self.surface_ids = ids;
         self
     }
 

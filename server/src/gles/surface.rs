@@ -133,6 +133,8 @@ pub struct Surface {
     pub(super) reversed_stages: HashMap<(u64, bool), (wgpu::ShaderModule, Option<wgpu::ShaderModule>)>,
     /// A pbuffer's memory, held against the client's quota (a window's buffers hold theirs).
     _reserved: Option<crate::quota::Reservation>,
+    /// A window surface's ID in the scene (`ctl`'s, and `EGL_SURFACE_ID_STRATA`'s answer).
+    pub scene_id: Option<u64>,
 }
 
 /// Bytes of the images of one `w`×`h` buffer with depth/stencil `format`: colour and
@@ -315,6 +317,7 @@ impl GlesExecutor {
             reversed,
             reversed_stages: HashMap::new(),
             _reserved: reserved,
+            scene_id: None,
         };
         self.surfaces.insert(id, s);
         Ok((id, views))

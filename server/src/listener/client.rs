@@ -56,6 +56,8 @@ struct ExecutorPlan {
     fixed: bool,
     deadline: bool,
     projection: Option<strata_protocol::projection::Projection>,
+    /// The stable IDs the daemon's entry gives the client's window surfaces.
+    surface_ids: crate::layout::SurfaceIds,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -104,7 +106,7 @@ pub(super) async fn run_client(
         Some(gpu) => {
             let entry = crate::layout::find(&opts.layout, &hello.name);
             // A placement the client states wins over the daemon's layout; the class,
-            // deadline and projection always come from the daemon's entry.
+            // deadline, projection and surface IDs always come from the daemon's entry.
             let layout = if hello.placement.is_some() { None } else { entry };
             if let Some(l) = layout {
                 info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
@@ -128,6 +130,7 @@ pub(super) async fn run_client(
                 fixed: fixed.is_some(),
                 deadline,
                 projection,
+                surface_ids: entry.map(|e| e.id.clone()).unwrap_or_default(),
             })
         }
         None => None,
@@ -204,6 +207,7 @@ pub(super) async fn run_client(
                         .with_account(account.clone())
                         .with_priority(class, p.fixed, p.deadline)
                         .with_projection(p.projection)
+                        .with_surface_ids(p.surface_ids)
                         .with_depth(depth)
                         .with_frame_transfer(frame_transfer);
                     (Box::new(executor), slot)

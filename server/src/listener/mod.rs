@@ -285,6 +285,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
     }
     let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
+    scene.reserve_ids(opts.layout.iter().flat_map(|e| e.id.0.iter().map(|&id| u64::from(id))));
     if let Some(gpu) = &gpu {
         scene.set_compositor(gpu.clone());
     }

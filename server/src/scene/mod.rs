@@ -19,9 +19,11 @@ use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 use tracing::warn;
 
 mod frames;
+mod ids;
 mod mailbox;
 mod region;
 
+pub use ids::IdTaken;
 pub use mailbox::{Buffers, Use, Views};
 pub use region::Region;
 
@@ -35,9 +37,11 @@ const MAX_SWAP_WAIT: Duration = Duration::from_secs(2);
 /// A window surface's front images and placement.
 #[derive(Clone)]
 pub struct SceneSurface {
-    /// Surface id, unique for the daemon's lifetime; also the stacking order (later on top
-    /// when depths tie).
+    /// Surface ID: stable where the layout or the client fixed one, else a runtime ID; no
+    /// two live surfaces share one.
     pub id: u64,
+    /// Stacking position: creation order (later on top when depths tie).
+    pub order: u64,
     /// Owning client's number.
     pub client_id: u64,
     /// Owning client's name.
@@ -122,7 +126,7 @@ pub struct Shown(Vec<((u64, u32), Instant)>);
 
 struct State {
     surfaces: BTreeMap<(u64, u32), SceneSurface>,
-    next_id: u64,
+    ids: ids::Ids,
     damage: u64,
     /// What changed since the last composite, but for high-priority surfaces' new frames.
     region: Region,
@@ -193,7 +197,7 @@ impl Scene {
         Scene {
             state: Mutex::new(State {
                 surfaces: BTreeMap::new(),
-                next_id: 0,
+                ids: ids::Ids::default(),
                 damage: 0,
                 region: Region::Full,
                 region_high: Region::None,
@@ -263,16 +267,35 @@ impl Scene {
         self.changed.notify_all();
     }
 
-    /// Registers a new window surface (visible once it has swapped); returns its id.
-    pub fn add(&self, client: u64, surface: u32, name: &str, rect: [i32; 4], z: f32) -> u64 {
-        let Some(mut g) = self.lock() else { return 0 };
-        g.next_id += 1;
-        let id = g.next_id;
+    /// Keeps the stable IDs the layout assigns out of the runtime IDs.
+    pub fn reserve_ids(&self, ids: impl IntoIterator<Item = u64>) {
+        if let Some(mut g) = self.lock() {
+            g.ids.reserve(ids);
+        }
+    }
+
+    /// Registers a new window surface (visible once it has swapped) with the stable ID `asked`
+    /// or a runtime one; returns its ID, or which client holds the one asked for.
+    pub fn add(
+        &self,
+        client: u64,
+        surface: u32,
+        name: &str,
+        rect: [i32; 4],
+        z: f32,
+        asked: Option<u64>,
+    ) -> Result<u64, IdTaken> {
+        let Some(mut g) = self.lock() else { return Ok(0) };
+        let g = &mut *g;
+        let surfaces = &g.surfaces;
+        let holder = |id| surfaces.values().find(|s| s.id == id).map(|s| s.client.clone());
+        let (id, order) = g.ids.assign(asked, holder)?;
         let (priority, deadline) = g.policies.get(&client).copied().unwrap_or_default();
         g.surfaces.insert(
             (client, surface),
             SceneSurface {
                 id,
+                order,
                 client_id: client,
                 client: name.to_string(),
                 rect,
@@ -295,7 +318,7 @@ impl Scene {
                 projection: None,
             },
         );
-        id
+        Ok(id)
     }
 
     /// Sets client `client`'s scheduling class and whether its surfaces have deadlines, for
@@ -446,9 +469,14 @@ impl Scene {
 
     /// Every surface's row, in stacking order.
     pub fn rows(&self) -> Vec<SurfaceRow> {
-        let mut rows: Vec<SurfaceRow> =
-            self.lock().map(|g| g.surfaces.values().map(SceneSurface::row).collect()).unwrap_or_default();
-        rows.sort_by_key(|r| r.id);
+        let mut surfaces: Vec<&SceneSurface> = Vec::new();
+        let g = self.lock();
+        if let Some(g) = &g {
+            surfaces.extend(g.surfaces.values());
+        }
+        surfaces.sort_by_key(|s| s.order);
+        let mut rows: Vec<SurfaceRow> = surfaces.into_iter().map(SceneSurface::row).collect();
+        drop(g);
         if let Ok(m) = self.streams.lock() {
             for r in &mut rows {
                 r.stream_bytes = m.get(&r.client_id).map_or(0, |c| c.load(Ordering::Relaxed));
@@ -491,7 +519,7 @@ impl Scene {
             s.buffers.read_latest();
         }
         let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
-        v.sort_by_key(|s| s.id);
+        v.sort_by_key(|s| s.order);
         let (damage, lighting) = (g.damage, g.lighting);
         drop(g);
         self.changed.notify_all();
