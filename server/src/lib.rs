@@ -17,4 +17,5 @@ pub mod root;
 pub mod scene;
 pub mod schedule;
 pub mod stats;
+pub mod systemd;
 pub mod window;

@@ -153,6 +153,9 @@ pub enum ServerError {
     /// No GPU device could be opened.
     #[error(transparent)]
     Gpu(#[from] crate::gpu::GpuError),
+    /// The socket the service manager passed cannot be served on.
+    #[error(transparent)]
+    Activation(#[from] crate::systemd::ActivationError),
     /// The compositor or an output cannot run as configured.
     #[error(transparent)]
     Root(#[from] crate::root::RootError),
@@ -298,12 +301,20 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
         None => None,
     };
-    let listener = claim_socket(&opts.socket)?;
+    // Socket activation: the service manager's socket, else the one at `--socket`.
+    let (listener, activated) = match crate::systemd::activated_socket()? {
+        Some(l) => (UnixListener::from_std(l).map_err(io_err("serving on the activated socket"))?, true),
+        None => (claim_socket(&opts.socket)?, false),
+    };
+    let watchdog = crate::systemd::watchdog_period();
     let compositor_thread = match &root {
-        Some(r) => Some(r.spawn(opts.refresh_hz).map_err(io_err("starting the compositor thread"))?),
+        Some(r) => Some(r.spawn(opts.refresh_hz, watchdog).map_err(io_err("starting the compositor thread"))?),
         None => None,
     };
-    info!(socket = %opts.socket.display(), "stratad serving");
+    let at = listener.local_addr().ok().and_then(|a| a.as_pathname().map(Path::to_path_buf));
+    let at = at.unwrap_or_else(|| opts.socket.clone());
+    info!(socket = %at.display(), activated, watchdog_ms = watchdog.map(|w| w.as_millis() as u64), "stratad serving");
+    crate::systemd::ready(&format!("serving on {}", at.display()));
     let (stop_tx, stop_rx) = watch::channel(false);
     let shared = Arc::new(Shared {
         gpu,
@@ -333,6 +344,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
     }
     info!("shutting down: closing {} connection(s)", tasks.len());
+    crate::systemd::stopping();
     let _ = stop_tx.send(true);
     if let Some(r) = &shared.root {
         r.stop();
@@ -341,7 +353,10 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     if let Some(t) = compositor_thread {
         let _ = tokio::task::spawn_blocking(move || t.join()).await;
     }
-    let _ = std::fs::remove_file(&shared.opts.socket);
+    // An activated socket is the service manager's: it stays for the next start.
+    if !activated {
+        let _ = std::fs::remove_file(&shared.opts.socket);
+    }
     info!("stratad stopped");
     Ok(())
 }

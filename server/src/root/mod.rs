@@ -428,8 +428,13 @@ impl Root {
     }
 
     /// Runs the compositor loop on a new thread until [`Root::stop`]: composite when damaged,
-    /// at most `refresh_hz` times a second.
-    pub fn spawn(self: &Arc<Self>, refresh_hz: f64) -> std::io::Result<std::thread::JoinHandle<()>> {
+    /// at most `refresh_hz` times a second; with `watchdog`, it also pings the service
+    /// manager's watchdog that often.
+    pub fn spawn(
+        self: &Arc<Self>,
+        refresh_hz: f64,
+        watchdog: Option<Duration>,
+    ) -> std::io::Result<std::thread::JoinHandle<()>> {
         let root = self.clone();
         let period = Duration::from_secs_f64(1.0 / refresh_hz.clamp(1.0, 1000.0));
         self.scene.set_root(true);
@@ -440,9 +445,22 @@ impl Root {
             info!(refresh_hz, nice, "compositor running");
             let mut next = Instant::now();
             let mut seen = None;
+            let mut pinged = Instant::now();
+            if watchdog.is_some() {
+                crate::systemd::watchdog_ping();
+            }
             loop {
-                if root.scene.wait_for_work(seen.unwrap_or(u64::MAX)) == Work::Stop {
-                    break;
+                // The service manager's watchdog hears from this loop only: a compositor
+                // stuck in a composite stops the pings.
+                if watchdog.is_some_and(|w| pinged.elapsed() >= w) {
+                    crate::systemd::watchdog_ping();
+                    pinged = Instant::now();
+                }
+                let quiet = watchdog.map(|w| w.saturating_sub(pinged.elapsed()));
+                match root.scene.wait_for_work(seen.unwrap_or(u64::MAX), quiet) {
+                    Work::Stop => break,
+                    Work::Quiet => continue,
+                    Work::Refresh => {}
                 }
                 let now = Instant::now();
                 if next > now {

@@ -187,6 +187,8 @@ pub enum Acquired {
 pub enum Work {
     /// Something changed since the given damage count, or a swap waits for a refresh.
     Refresh,
+    /// Nothing changed within the time asked for.
+    Quiet,
     /// The daemon is stopping.
     Stop,
 }
@@ -596,8 +598,9 @@ impl Scene {
 
     /// For the compositor thread: waits until the damage count differs from `seen` or a swap
     /// waits for a refresh, or until the root is stopped.
-    pub fn wait_for_work(&self, seen: u64) -> Work {
+    pub fn wait_for_work(&self, seen: u64, quiet: Option<Duration>) -> Work {
         let Some(mut g) = self.lock() else { return Work::Stop };
+        let until = quiet.map(|q| Instant::now() + q);
         loop {
             if !g.root {
                 return Work::Stop;
@@ -607,9 +610,18 @@ impl Scene {
             if g.damage != seen || g.pacing_waiters > 0 || watched {
                 return Work::Refresh;
             }
-            g = match self.changed.wait(g) {
-                Ok(g) => g,
-                Err(_) => return Work::Stop,
+            g = match until {
+                None => match self.changed.wait(g) {
+                    Ok(g) => g,
+                    Err(_) => return Work::Stop,
+                },
+                Some(until) => {
+                    let Some(left) = until.checked_duration_since(Instant::now()) else { return Work::Quiet };
+                    match self.changed.wait_timeout(g, left) {
+                        Ok((g, _)) => g,
+                        Err(_) => return Work::Stop,
+                    }
+                }
             };
         }
     }
