@@ -37,7 +37,29 @@ impl std::str::FromStr for Priority {
     }
 }
 
+/// `EGL_CONTEXT_PRIORITY_LEVEL_IMG` (`EGL_IMG_context_priority`): the context attribute with
+/// which a client asks for a class.
+pub const EGL_CONTEXT_PRIORITY_LEVEL_IMG: i32 = 0x3100;
+/// The environment variable with which `stratad run --priority` asks for a class for every
+/// context of an application that asks for none itself.
+pub const PRIORITY_ENV: &str = "STRATA_PRIORITY";
+
 impl Priority {
+    /// The `EGL_CONTEXT_PRIORITY_LEVEL_IMG` value of the class (`EGL_CONTEXT_PRIORITY_HIGH_IMG`,
+    /// `_MEDIUM_IMG` or `_LOW_IMG`).
+    pub fn egl_level(self) -> i32 {
+        match self {
+            Priority::High => 0x3101,
+            Priority::Normal => 0x3102,
+            Priority::Low => 0x3103,
+        }
+    }
+
+    /// The class an `EGL_CONTEXT_PRIORITY_LEVEL_IMG` value asks for.
+    pub fn from_egl_level(level: i32) -> Option<Priority> {
+        [Priority::High, Priority::Normal, Priority::Low].into_iter().find(|p| p.egl_level() == level)
+    }
+
     /// The class's name as the configuration and `ctl` spell it.
     pub fn name(self) -> &'static str {
         match self {

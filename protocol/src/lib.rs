@@ -13,6 +13,7 @@ pub mod ring;
 pub mod segment;
 pub mod surface_id;
 pub mod tally;
+pub mod window;
 pub mod wire;
 
 pub use command_set::Attribute;

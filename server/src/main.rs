@@ -18,6 +18,7 @@ use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
 mod ctl;
+mod launch;
 #[cfg(test)]
 mod readme_commands;
 
@@ -140,6 +141,9 @@ enum Cmd {
         #[arg(long, hide = true)]
         allow_fault_injection: bool,
     },
+    /// Run an unmodified GLES 2.0 application on the drop-in libraries:
+    /// `stratad run [--window X,Y,Z[,WxH]] [--name NAME] [--priority CLASS] -- APP ARGS...`
+    Run(launch::RunArgs),
     /// Administer a running daemon.
     Ctl {
         /// Socket path [default: as for serve]; before or after the command.
@@ -352,6 +356,7 @@ fn main() -> Result<()> {
             };
             run_daemon(opts)
         }
+        Cmd::Run(args) => launch::run(args),
         Cmd::Ctl { socket, json, what } => ctl::run(&socket.unwrap_or_else(default_socket_path), json, what),
         Cmd::DemoClient { socket, role, frames, declare } => {
             if role.starts_with("plane-") {

@@ -66,6 +66,26 @@ pub(crate) fn make_current(dpy: EGLDisplay, draw: u32, read: u32, ctx: u32) -> R
 }
 
 /// `eglCreateContext`: returns the application's handle.
+/// `attribs` with the class `STRATA_PRIORITY` (`high`, `normal` or `low`, what
+/// `stratad run --priority` sets) asks for, unless the application asks for one itself. A
+/// malformed value is `EGL_BAD_ATTRIBUTE`, and says why.
+fn with_env_priority(mut attribs: Vec<EGLint>) -> Result<Vec<EGLint>, EGLint> {
+    use strata_protocol::control::{Priority, EGL_CONTEXT_PRIORITY_LEVEL_IMG, PRIORITY_ENV};
+    let Ok(name) = std::env::var(PRIORITY_ENV) else { return Ok(attribs) };
+    let class: Priority = name.parse().map_err(|e| {
+        state::log_once(&format!("{PRIORITY_ENV}: {e}"));
+        EGL_BAD_ATTRIBUTE
+    })?;
+    let pairs = attribs.chunks_exact(2).take_while(|p| p[0] != EGL_NONE);
+    if pairs.clone().any(|p| p[0] == EGL_CONTEXT_PRIORITY_LEVEL_IMG) {
+        return Ok(attribs);
+    }
+    let end = pairs.count() * 2;
+    attribs.truncate(end);
+    attribs.extend([EGL_CONTEXT_PRIORITY_LEVEL_IMG, class.egl_level(), EGL_NONE]);
+    Ok(attribs)
+}
+
 pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
     if state::api() != EGL_OPENGL_ES_API {
         return Err(EGL_BAD_MATCH);
@@ -76,6 +96,7 @@ pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: 
         0 => 0,
         s => p.daemon_context(s).ok_or(EGL_BAD_CONTEXT)?,
     };
+    let attribs = with_env_priority(attribs)?;
     let ctx = daemon(&mut p, |c, dd| c.eglCreateContext(dd, config, share, Slice::new(&attribs)))?;
     Ok(p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl: GlState::default() }))
 }

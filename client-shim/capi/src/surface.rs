@@ -19,18 +19,7 @@ use crate::state::{self, Current, Process, WindowInfo};
 use crate::types::*;
 use crate::x11;
 
-/// Where a window surface goes: `STRATA_WINDOW="x,y,z"` or `"x,y,z,WxH"`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct WindowPlacement {
-    /// Left edge in the output space.
-    pub x: i32,
-    /// Top edge in the output space.
-    pub y: i32,
-    /// Depth layer.
-    pub z: f32,
-    /// Size, for windows the shim cannot measure.
-    pub size: Option<(i32, i32)>,
-}
+pub(crate) use strata_protocol::window::WindowPlacement;
 
 /// A native window id as the protocol carries it (`c_ulong` is 32 bits on some targets).
 #[allow(clippy::useless_conversion)]
@@ -38,37 +27,10 @@ pub(crate) fn window_id(w: EGLNativeWindowType) -> u64 {
     u64::from(w)
 }
 
-fn parse_placement(s: &str) -> Option<WindowPlacement> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let (x, y, z) = match parts.as_slice() {
-        [x, y, z] | [x, y, z, _] => (x.parse().ok()?, y.parse().ok()?, z.parse::<f32>().ok()?),
-        _ => return None,
-    };
-    if !z.is_finite() {
-        return None;
-    }
-    let size = match parts.get(3) {
-        Some(wh) => {
-            let (w, h) = wh.split_once(['x', 'X'])?;
-            let (w, h): (i32, i32) = (w.trim().parse().ok()?, h.trim().parse().ok()?);
-            if w <= 0 || h <= 0 {
-                return None;
-            }
-            Some((w, h))
-        }
-        None => None,
-    };
-    Some(WindowPlacement { x, y, z, size })
-}
-
 /// The placement `STRATA_WINDOW` states, if it is set and valid.
 pub(crate) fn explicit_placement() -> Option<WindowPlacement> {
-    let s = std::env::var("STRATA_WINDOW").ok()?;
-    let p = parse_placement(&s);
-    if p.is_none() {
-        state::log_once(&format!("ignoring STRATA_WINDOW={s:?}: expected \"x,y,z\" or \"x,y,z,WxH\""));
-    }
-    p
+    let s = std::env::var(strata_protocol::window::ENV).ok()?;
+    s.parse().map_err(|e| state::log_once(&format!("ignoring {e}"))).ok()
 }
 
 /// Where a window surface goes: `STRATA_WINDOW`, else the origin at z 0 (the daemon's layout
@@ -186,23 +148,5 @@ pub(crate) fn follow_window(p: &mut Process, s: u32) {
 pub(crate) fn follow_current_window(p: &mut Process) {
     if let Some(cur) = state::current() {
         follow_window(p, cur.draw);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn placement_parses_position_depth_and_size() {
-        assert_eq!(parse_placement("10,20,0.5"), Some(WindowPlacement { x: 10, y: 20, z: 0.5, size: None }));
-        assert_eq!(
-            parse_placement("0, 0, 1, 320x240"),
-            Some(WindowPlacement { x: 0, y: 0, z: 1.0, size: Some((320, 240)) })
-        );
-        assert_eq!(parse_placement("1,2"), None);
-        assert_eq!(parse_placement("1,2,nan"), None);
-        assert_eq!(parse_placement("1,2,3,0x5"), None);
-        assert_eq!(parse_placement("1,2,3,4"), None);
     }
 }

@@ -340,7 +340,9 @@ impl GlesExecutor {
             match *pair {
                 [EGL_NONE, ..] => break,
                 [EGL_CONTEXT_CLIENT_VERSION, v] => version = v,
-                [EGL_CONTEXT_PRIORITY_LEVEL_IMG, v] => asked = Some(priority_of(v).ok_or(EGL_BAD_ATTRIBUTE)?),
+                [EGL_CONTEXT_PRIORITY_LEVEL_IMG, v] => {
+                    asked = Some(Priority::from_egl_level(v).ok_or(EGL_BAD_ATTRIBUTE)?)
+                }
                 [_, _] => return Err(EGL_BAD_ATTRIBUTE),
                 _ => return Err(EGL_BAD_ATTRIBUTE),
             }
@@ -371,11 +373,7 @@ impl GlesExecutor {
             return Err(EGL_BAD_CONTEXT);
         }
         match attribute {
-            EGL_CONTEXT_PRIORITY_LEVEL_IMG => Ok(match self.r.lane.class() {
-                Priority::High => EGL_CONTEXT_PRIORITY_HIGH_IMG,
-                Priority::Normal => EGL_CONTEXT_PRIORITY_MEDIUM_IMG,
-                Priority::Low => EGL_CONTEXT_PRIORITY_LOW_IMG,
-            }),
+            EGL_CONTEXT_PRIORITY_LEVEL_IMG => Ok(self.r.lane.class().egl_level()),
             _ => Err(EGL_BAD_ATTRIBUTE),
         }
     }
@@ -461,16 +459,6 @@ impl GlesExecutor {
     pub(super) fn eglSwapBuffers(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {
         self.check_display(display)?;
         self.swap(surface)
-    }
-}
-
-/// The class an `EGL_CONTEXT_PRIORITY_LEVEL_IMG` value asks for.
-fn priority_of(level: i32) -> Option<Priority> {
-    match level {
-        EGL_CONTEXT_PRIORITY_HIGH_IMG => Some(Priority::High),
-        EGL_CONTEXT_PRIORITY_MEDIUM_IMG => Some(Priority::Normal),
-        EGL_CONTEXT_PRIORITY_LOW_IMG => Some(Priority::Low),
-        _ => None,
     }
 }
 
