@@ -85,7 +85,7 @@ fn run_into(
 ) -> Vec<u8> {
     let up: Vec<Uploaded> = layers.iter().map(|l| upload(gpu, l)).collect();
     let gl: Vec<Layer<'_>> = layers.iter().zip(&up).map(|(l, u)| u.layer(l)).collect();
-    comp.composite(&gl, light, out, BACKGROUND, region);
+    comp.composite(&gl, light, out, BACKGROUND, region).expect("composite");
     gpu.read_rgba8(out, [0, 0, OUT_W, OUT_H]).expect("readback")
 }
 

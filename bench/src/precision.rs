@@ -445,10 +445,11 @@ fn measure(
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let out = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     let mut comp = Compositor::new(gpu.clone(), s.max_textures)?.with_intermediate(s.intermediate);
-    let ms = crate::composite::median_ms(frames, || {
-        comp.composite(&layers, &light, &out, BACKGROUND, None);
+    let ms = crate::composite::try_median_ms(frames, || {
+        comp.composite(&layers, &light, &out, BACKGROUND, None)?;
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-    });
+        Ok::<_, strata_server::compositor::CompositorError>(())
+    })?;
     let (passes, chained) = (comp.last_passes, comp.last_stats.chained);
     let got = gpu.read_rgba8(&out, [0, 0, w, h]).context("reading the composite back")?;
     drop(layers);

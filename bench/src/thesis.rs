@@ -440,7 +440,7 @@ fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
     let out = crate::composite::texture(&gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
     let mut written = Vec::new();
     for (figure, light) in [("5-6", far_light()), ("5-7", near_light())] {
-        comp.composite(&gl, &light, &out, [0.0, 0.0, 0.0, 1.0], None);
+        comp.composite(&gl, &light, &out, [0.0, 0.0, 0.0, 1.0], None).context("compositing the figure")?;
         let rgba = gpu.read_rgba8(&out, [0, 0, w, h]).context("reading the figure back")?;
         let img = image::RgbaImage::from_raw(w, h, rgba).context("figure image of the wrong size")?;
         let path = dir.join(format!("figure-{figure}.png"));

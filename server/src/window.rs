@@ -128,7 +128,7 @@ impl WindowOutput {
         surface.configure(&gpu.device, &config);
         let (layout, pipeline) = gpu.pipeline(
             "window blit",
-            BLIT,
+            wgpu::ShaderSource::Wgsl(BLIT.into()),
             &[crate::gpu::texture_entry(0, crate::gpu::UNFILTERED)],
             &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
             None,

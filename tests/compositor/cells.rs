@@ -143,7 +143,7 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
             opaque: false,
         });
     }
-    comp.composite(&gl, &off, &out, BACKGROUND, None);
+    comp.composite(&gl, &off, &out, BACKGROUND, None).expect("composite");
     let img = gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback");
     check("surfaces covering nothing", &img, &want, 0);
     assert_eq!(comp.last_stats.selects, 0, "only surface 0 covers any pixel");
@@ -158,13 +158,13 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
         opaque: false,
     }];
     for region in [[10, 10, 0, 20], [10, 10, 20, 0], [OUT_W, 0, 5, 5], [0, OUT_H, 5, 5], [u32::MAX; 4]] {
-        comp.composite(&other, &off, &out, BACKGROUND, Some(region));
+        comp.composite(&other, &off, &out, BACKGROUND, Some(region)).expect("composite");
         assert_eq!((comp.last_passes, comp.last_stats.draws), (0, 0), "region {region:?} drew");
         let again = gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback");
         assert!(again == img, "region {region:?} changed the output");
     }
     // A region clipped by the output's edge redraws only its part inside.
-    comp.composite(&gl, &off, &out, BACKGROUND, Some([OUT_W - 3, OUT_H - 2, u32::MAX, u32::MAX]));
+    comp.composite(&gl, &off, &out, BACKGROUND, Some([OUT_W - 3, OUT_H - 2, u32::MAX, u32::MAX])).expect("composite");
     assert!(comp.last_stats.draws > 0);
     check("edge region", &gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback"), &want, 0);
 }
@@ -212,7 +212,7 @@ fn a_16384_square_output_composites_in_bounded_tiles() {
         }
     };
     let mut up: Vec<Uploaded> = layers.iter().map(|l| upload(&gpu, l)).collect();
-    comp.composite(&layers_of(&layers, &up), &off, &out, BACKGROUND, None);
+    comp.composite(&layers_of(&layers, &up), &off, &out, BACKGROUND, None).expect("composite");
     // One chained cell, cut into four tiles: each takes an intermediate pass and a final one.
     let st = comp.last_stats;
     assert!(st.chained == 1 && st.render_passes > 4 * 2, "the chained cell spans four tiles: {st:?}");
@@ -220,11 +220,12 @@ fn a_16384_square_output_composites_in_bounded_tiles() {
     // New content in the far corner, redrawn alone.
     layers[3] = surface(30, [s - 40, s - 30, 40, 30], 0.5, 255, true);
     up[3] = upload(&gpu, &layers[3]);
-    comp.composite(&layers_of(&layers, &up), &off, &out, BACKGROUND, Some([side - 40, side - 30, 40, 30]));
+    comp.composite(&layers_of(&layers, &up), &off, &out, BACKGROUND, Some([side - 40, side - 30, 40, 30]))
+        .expect("composite");
     compare(&layers, "partial");
     // Lit (lit in the shader: the output is too large for light maps): no panic, and the
     // background stays the background.
-    comp.composite(&layers_of(&layers, &up), &Lighting::default(), &out, BACKGROUND, None);
+    comp.composite(&layers_of(&layers, &up), &Lighting::default(), &out, BACKGROUND, None).expect("composite");
     let bg = gpu.read_rgba8(&out, [8000, 8000, 8, 8]).expect("readback");
     assert!(bg.chunks(4).all(|p| p == [51, 102, 153, 255]), "background");
 }

@@ -50,7 +50,7 @@ fn run(gpu: &Arc<Gpu>, comp: &mut Compositor, layers: &[RefLayer], opaque: &[boo
         .map(|(i, (l, u))| Layer { opaque: opaque.get(i).copied().unwrap_or(false), ..u.layer(l) })
         .collect();
     let out = output(gpu);
-    comp.composite(&gl, light, &out, BACKGROUND, None);
+    comp.composite(&gl, light, &out, BACKGROUND, None).expect("composite");
     gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback")
 }
 
@@ -194,7 +194,7 @@ fn a_surface_without_alpha_is_opaque() {
                 .collect();
             let mut comp = Compositor::new(gpu.clone(), None).expect("compositor");
             let unlit = Lighting { enabled: false, ..Lighting::default() };
-            comp.composite(&layers, &unlit, &out, BACKGROUND, None);
+            comp.composite(&layers, &unlit, &out, BACKGROUND, None).expect("composite");
             let opaque: Vec<bool> = surfaces.iter().map(|s| s.opaque).collect();
             (gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback"), opaque, comp.last_stats.culled)
         })

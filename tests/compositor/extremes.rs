@@ -317,7 +317,7 @@ fn nan_and_infinite_depth_texels_read_as_the_far_plane_and_clamped() {
                 // A's depth: the image as the device wrote it.
                 gl[usize::from(!a_first)].depth = Some(&view);
                 let out = output(&gpu);
-                comp.composite(&gl, &light, &out, BACKGROUND, None);
+                comp.composite(&gl, &light, &out, BACKGROUND, None).expect("composite");
                 let got = gpu.read_rgba8(&out, [0, 0, OUT_W, OUT_H]).expect("readback");
                 let want = reference::composite(&layers, OUT_W, OUT_H, BACKGROUND, &light);
                 check(&format!("{name}, A first {a_first}, lit {}", light.enabled), &got, &want, tol);

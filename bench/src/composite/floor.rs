@@ -55,7 +55,7 @@ impl Floor {
         let target = wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL };
         let (layout, pipeline) = gpu.pipeline(
             "composite floor",
-            &wgsl(k),
+            wgpu::ShaderSource::Wgsl(wgsl(k).into()),
             &entries,
             &[Some(target)],
             None,

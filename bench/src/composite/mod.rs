@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use strata_server::compositor::{Compositor, Layer, Lighting, NormalSource};
+use strata_server::compositor::{Compositor, CompositorError, Layer, Lighting, NormalSource};
 use strata_server::gpu::Gpu;
 
 use crate::plot::{line_plot, Series};
@@ -120,6 +120,17 @@ pub(crate) fn median_ms(frames: u32, mut f: impl FnMut()) -> f64 {
     times[times.len() / 2]
 }
 
+/// [`median_ms`] of a call that can fail: the first error instead, if any call failed.
+pub(crate) fn try_median_ms<E>(frames: u32, mut f: impl FnMut() -> Result<(), E>) -> Result<f64, E> {
+    let mut failed = None;
+    let ms = median_ms(frames, || {
+        if let Err(e) = f() {
+            failed.get_or_insert(e);
+        }
+    });
+    failed.map_or(Ok(ms), Err)
+}
+
 /// Milliseconds per composite of `surfaces`.
 fn time_composite(
     gpu: &Gpu,
@@ -128,7 +139,7 @@ fn time_composite(
     out: &wgpu::Texture,
     light: &Lighting,
     frames: u32,
-) -> f64 {
+) -> Result<f64, CompositorError> {
     let (w, h) = (out.width() as i32, out.height() as i32);
     let layers: Vec<Layer<'_>> = surfaces
         .iter()
@@ -142,9 +153,10 @@ fn time_composite(
             opaque: false,
         })
         .collect();
-    median_ms(frames, || {
-        comp.composite(&layers, light, out, [0.0, 0.0, 0.0, 1.0], None);
+    try_median_ms(frames, || {
+        comp.composite(&layers, light, out, [0.0, 0.0, 0.0, 1.0], None)?;
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        Ok(())
     })
 }
 
@@ -252,7 +264,7 @@ pub fn run(args: &Args) -> Result<()> {
         let mut comp = Compositor::new(gpu.clone(), Some(m))?;
         let pb = bar(ks.clone().count() as u64, if m == device_limit { "device limit" } else { "--max-textures" });
         for k in ks.clone() {
-            let ms = time_composite(&gpu, &mut comp, &surfaces[..k], &out, &light, args.frames);
+            let ms = time_composite(&gpu, &mut comp, &surfaces[..k], &out, &light, args.frames)?;
             points.push(Point {
                 max_textures: m,
                 k,

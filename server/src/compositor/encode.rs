@@ -3,6 +3,7 @@
 
 use std::ops::Range;
 
+use super::inputs::{PassInputs, Texture};
 use super::plan::{chunks, GroupPlan, Rect};
 use super::resources::{block_size, Resources, PARAMS_SIZE};
 use super::shader::{Geom, PassKind};
@@ -16,7 +17,7 @@ pub const CHAIN_TILE: i32 = 2048;
 pub struct DrawOp {
     /// The shape.
     pub kind: Option<PassKind>,
-    /// The images it binds.
+    /// The images it binds, in the order of its `PassInputs::textures`.
     pub views: Vec<wgpu::TextureView>,
     /// Offset of its uniform block.
     pub block: u32,
@@ -174,26 +175,29 @@ impl<'a> Builder<'a> {
         at as u32
     }
 
-    /// The images a draw of `kind` over `members` binds (then the intermediate, if it reads one).
+    /// The images a draw of `kind` over `members` binds, walking its inputs: the members'
+    /// colour and depth (the placeholder where a surface has none), the intermediate it
+    /// `reads` (colour, geometry), the light `map`. An image the draw has no source for is
+    /// left out, which `Resources::bind_group` reports.
     fn views(
         &self,
         res: &Resources,
         kind: &PassKind,
         members: &[u32],
         reads: Option<&[wgpu::TextureView; 2]>,
+        map: Option<&wgpu::TextureView>,
     ) -> Vec<wgpu::TextureView> {
-        let mut v = Vec::with_capacity(2 * members.len() + 2);
-        for &m in members {
-            let l = &self.layers[m as usize];
-            v.push(l.color.clone());
-            if kind.depth() {
-                v.push(l.depth.unwrap_or(&res.dummy_depth).clone());
-            }
-        }
-        if let Some(inter) = reads {
-            v.extend(inter.iter().cloned());
-        }
-        v
+        let layer = |i: usize| members.get(i).map(|&m| &self.layers[m as usize]);
+        PassInputs::of(Some(kind))
+            .textures()
+            .filter_map(|t| match t {
+                Texture::Color(i) => layer(i).map(|l| l.color.clone()),
+                Texture::Depth(i) => layer(i).map(|l| l.depth.unwrap_or(&res.dummy_depth).clone()),
+                Texture::IntermediateColor => reads.map(|r| r[0].clone()),
+                Texture::IntermediateGeometry => reads.map(|r| r[1].clone()),
+                Texture::LightMap => map.cloned(),
+            })
+            .collect()
     }
 
     /// A pass shape with this composite's lighting.
@@ -244,7 +248,7 @@ impl<'a> Builder<'a> {
         };
         let instances = self.rects(rects, [0, 0], self.size);
         let block = self.block([0, 0], [0, 0], &[layer]);
-        let views = self.views(res, &kind, &[layer], None);
+        let views = self.views(res, &kind, &[layer], None, None);
         self.output_draw(DrawOp { kind: Some(kind), views, block, instances });
     }
 
@@ -261,14 +265,14 @@ impl<'a> Builder<'a> {
                 let mut kind = self.kind(members.len(), false, true, *base);
                 let instances = self.rects(rects, [0, 0], self.size);
                 let block = self.block([0, 0], [0, 0], members);
-                let mut views = self.views(res, &kind, members, None);
-                if kind.lit && !kind.from_depth && members.len() == 1 {
+                let map = if kind.lit && !kind.from_depth && members.len() == 1 {
                     let bits = unit_normal(self.layers[members[0] as usize].normal).map(f32::to_bits);
-                    if let Some((_, map)) = self.maps.iter().find(|(n, _)| *n == bits) {
-                        kind.map = true;
-                        views.push(map.clone());
-                    }
-                }
+                    self.maps.iter().find(|(n, _)| *n == bits).map(|(_, map)| map)
+                } else {
+                    None
+                };
+                kind.map = map.is_some();
+                let views = self.views(res, &kind, members, None, map);
                 self.output_draw(DrawOp { kind: Some(kind), views, block, instances });
             } else {
                 self.selects += rects.len();
@@ -317,10 +321,11 @@ impl<'a> Builder<'a> {
                         continue;
                     }
                     let chunk = &members[stages[c][s].clone()];
-                    let kind = self.kind(chunk.len(), s > 0, false, false);
+                    let reads = (s > 0).then_some(&targets[(s + 1) % 2]);
+                    let kind = self.kind(chunk.len(), reads.is_some(), false, false);
                     let instances = self.rects(&mine, origin, isize);
                     let block = self.block(origin, origin, chunk);
-                    let views = self.views(res, &kind, chunk, (s > 0).then_some(&targets[(s + 1) % 2]));
+                    let views = self.views(res, &kind, chunk, reads, None);
                     draws.push(DrawOp { kind: Some(kind), views, block, instances });
                 }
                 self.passes.push(PassOp { target: Some(targets[s % 2].to_vec()), draws });
@@ -335,7 +340,7 @@ impl<'a> Builder<'a> {
                 let kind = self.kind(chunk.len(), true, true, *base);
                 let instances = self.rects(&mine, [0, 0], self.size);
                 let block = self.block([0, 0], origin, chunk);
-                let views = self.views(res, &kind, chunk, Some(&targets[(last + 1) % 2]));
+                let views = self.views(res, &kind, chunk, Some(&targets[(last + 1) % 2]), None);
                 self.output_draw(DrawOp { kind: Some(kind), views, block, instances });
             }
         }

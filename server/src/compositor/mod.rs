@@ -34,6 +34,7 @@
 
 mod encode;
 pub mod figures;
+mod inputs;
 mod plan;
 pub mod reference;
 mod resources;
@@ -112,7 +113,7 @@ impl Intermediate {
     }
 }
 
-/// A compositor configuration the device cannot honour.
+/// A compositor configuration the device cannot honour, or a pass it cannot build.
 #[derive(Debug, thiserror::Error)]
 pub enum CompositorError {
     /// Fewer than 4 textures per pass cannot chain (intermediate + one new surface).
@@ -125,6 +126,24 @@ pub enum CompositorError {
         requested: u32,
         /// The device's limit.
         device: u32,
+    },
+    /// A pass shape's shader could not be composed from `shaders/composite.wgsl`.
+    #[error("the compositor's shader for {kind} does not compose: {message}")]
+    Shader {
+        /// The pass shape (or the module) it failed for.
+        kind: String,
+        /// naga_oil's report, and the generated source.
+        message: String,
+    },
+    /// A draw's images are not the ones its pass binds.
+    #[error("a compositor draw of {kind} has {views} images where its pass binds {images}")]
+    Views {
+        /// The pass shape.
+        kind: String,
+        /// Images the draw has.
+        views: usize,
+        /// Images its pass binds.
+        images: usize,
     },
 }
 
@@ -180,7 +199,7 @@ impl Compositor {
         }
         Ok(Compositor {
             timing: timing::Timing::new(&gpu),
-            res: Resources::new(gpu.clone()),
+            res: Resources::new(gpu.clone())?,
             gpu,
             per_pass: (m / 2) as usize,
             max_textures: m,
@@ -249,7 +268,8 @@ impl Compositor {
     /// over `background` (straight alpha). With `region` (x, y, width, height in output
     /// pixels) only that part is redrawn and the rest of `output` is kept; the result is the
     /// same as a whole composite wherever the layers outside the region are unchanged. A
-    /// region that misses the output, or has no area, draws nothing.
+    /// region that misses the output, or has no area, draws nothing. An error (nothing
+    /// submitted) where a pass's shader cannot be composed.
     pub fn composite(
         &mut self,
         layers: &[Layer<'_>],
@@ -257,7 +277,7 @@ impl Compositor {
         output: &wgpu::Texture,
         background: [f32; 4],
         region: Option<[u32; 4]>,
-    ) {
+    ) -> Result<(), CompositorError> {
         self.last_passes = 0;
         self.last_stats = Stats::default();
         let (w, h) = (output.width(), output.height());
@@ -265,7 +285,7 @@ impl Compositor {
         let (x0, y0) = (r[0].min(w), r[1].min(h));
         let (x1, y1) = (x0.saturating_add(r[2]).min(w), y0.saturating_add(r[3]).min(h));
         if x1 <= x0 || y1 <= y0 || w > i32::MAX as u32 || h > i32::MAX as u32 {
-            return;
+            return Ok(());
         }
         let region = [x0 as i32, y0 as i32, x1 as i32, y1 as i32];
         let rects: Vec<Option<plan::Rect>> =
@@ -310,8 +330,9 @@ impl Compositor {
             render_passes: b.passes.len(),
             culled,
         };
-        self.encode(b.passes, output, region);
+        let encoded = self.encode(b.passes, output, region);
         self.res.finish();
+        encoded
     }
 
     /// With lighting from per-surface normals, the light maps of the first `MAX_LIGHT_MAPS`
@@ -341,8 +362,13 @@ impl Compositor {
         self.res.keep_light_maps(&keep);
     }
 
-    /// Records and submits the passes.
-    fn encode(&mut self, passes: Vec<encode::PassOp>, output: &wgpu::Texture, region: plan::Rect) {
+    /// Records and submits the passes (nothing where one cannot be built).
+    fn encode(
+        &mut self,
+        passes: Vec<encode::PassOp>,
+        output: &wgpu::Texture,
+        region: plan::Rect,
+    ) -> Result<(), CompositorError> {
         let out_view = output.create_view(&Default::default());
         let d = self.gpu.device.clone();
         let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("composite") });
@@ -377,11 +403,11 @@ impl Compositor {
             let mut current: Option<Option<shader::PassKind>> = None;
             for draw in pass.draws {
                 if current != Some(draw.kind) {
-                    let (_, pipeline) = self.res.pipeline(draw.kind);
+                    let (_, pipeline) = self.res.pipeline(draw.kind)?;
                     rp.set_pipeline(&pipeline);
                     current = Some(draw.kind);
                 }
-                let group = self.res.bind_group(draw.kind, draw.views);
+                let group = self.res.bind_group(draw.kind, draw.views)?;
                 if draw.kind.is_some() {
                     rp.set_bind_group(0, &group, &[draw.block]);
                 } else {
@@ -394,5 +420,6 @@ impl Compositor {
             t.resolve(&mut enc);
         }
         self.last_submission = Some(self.gpu.queue.submit([enc.finish()]));
+        Ok(())
     }
 }

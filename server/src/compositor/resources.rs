@@ -6,8 +6,10 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::shader::{shader, Geom, PassKind, FILL};
-use crate::gpu::{texture_entry, Gpu, UNFILTERED};
+use super::inputs::{PassInputs, Uniform};
+use super::shader::{Composer, Geom, PassKind, FILL};
+use super::CompositorError;
+use crate::gpu::Gpu;
 
 /// The output's format.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -75,6 +77,8 @@ impl Growing {
 /// The compositor's persistent GPU resources.
 pub struct Resources {
     gpu: Arc<Gpu>,
+    /// Composes each pass shape's shader on a pipeline miss.
+    composer: Composer,
     pipelines: HashMap<PassKind, Pipeline>,
     fill: Option<Pipeline>,
     groups: HashMap<(Option<PassKind>, Vec<wgpu::TextureView>), (wgpu::BindGroup, u64)>,
@@ -96,46 +100,30 @@ pub struct Resources {
     intermediate_format: wgpu::TextureFormat,
 }
 
-fn layout_entry(binding: u32, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: dynamic,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 /// Bytes of a draw block with `n` surfaces.
 pub fn block_size(n: usize) -> u64 {
     16 + SURF_SIZE * n as u64
 }
 
 impl Resources {
-    /// Empty caches and small buffers.
-    pub fn new(gpu: Arc<Gpu>) -> Resources {
+    /// Empty caches and small buffers (an error where `shaders/composite.wgsl` is no module).
+    pub fn new(gpu: Arc<Gpu>) -> Result<Resources, CompositorError> {
         let d = &gpu.device;
-        let dummy_depth = d
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some("no depth"),
-                size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Depth32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
+        let dummy_depth = gpu
+            .texture_2d(
+                "no depth",
+                wgpu::TextureFormat::Depth32Float,
+                (1, 1),
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+            )
             .create_view(&Default::default());
         let uniforms =
             Growing::new(d, "compositor uniforms", wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST, 4096);
         let instances =
             Growing::new(d, "compositor cells", wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST, 4096);
         let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment.max(16));
-        Resources {
+        Ok(Resources {
+            composer: Composer::new()?,
             pipelines: HashMap::new(),
             fill: None,
             groups: HashMap::new(),
@@ -148,51 +136,44 @@ impl Resources {
             align,
             intermediate_format: COLOR_FORMAT,
             gpu,
-        }
+        })
     }
 
-    /// A pipeline drawing the compositor's cells (one instanced rectangle each).
+    /// A pipeline drawing the compositor's cells (one instanced rectangle each), bound as
+    /// `inputs` describes.
     fn build(
         &self,
         label: &str,
-        wgsl: &str,
-        entries: &[wgpu::BindGroupLayoutEntry],
+        source: wgpu::ShaderSource<'_>,
+        inputs: &PassInputs,
         targets: &[Option<wgpu::ColorTargetState>],
     ) -> Pipeline {
-        self.gpu.pipeline(label, wgsl, entries, targets, None, crate::gpu::VertexInput::InstanceRect)
+        self.gpu.pipeline(label, source, &inputs.layout(), targets, None, crate::gpu::VertexInput::InstanceRect)
     }
 
-    /// The pipeline of pass shape `k` (`None`: the background fill), built on first use.
-    pub fn pipeline(&mut self, k: Option<PassKind>) -> Pipeline {
+    /// The pipeline of pass shape `k` (`None`: the background fill), built on first use; an
+    /// error where its shader cannot be composed.
+    pub fn pipeline(&mut self, k: Option<PassKind>) -> Result<Pipeline, CompositorError> {
         let Some(k) = k else {
-            if self.fill.is_none() {
-                let target = [Some(COLOR_FORMAT.into())];
-                self.fill = Some(self.build("compositor fill", FILL, &[layout_entry(0, false)], &target));
+            if let Some(p) = &self.fill {
+                return Ok(p.clone());
             }
-            return self.fill.clone().unwrap_or_else(|| unreachable!("built above"));
+            let target = [Some(COLOR_FORMAT.into())];
+            let p =
+                self.build("compositor fill", wgpu::ShaderSource::Wgsl(FILL.into()), &PassInputs::of(None), &target);
+            self.fill = Some(p.clone());
+            return Ok(p);
         };
         if let Some(p) = self.pipelines.get(&k) {
-            return p.clone();
+            return Ok(p.clone());
         }
-        let mut entries = vec![layout_entry(0, false), layout_entry(1, true)];
+        let source = wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(self.composer.compose(&k)?));
+        let inputs = PassInputs::of(Some(&k));
         if k.factor {
             let target = [Some(wgpu::TextureFormat::R32Float.into())];
-            let p = self.build("compositor light map", &shader(&k), &entries, &target);
+            let p = self.build("compositor light map", source, &inputs, &target);
             self.pipelines.insert(k, p.clone());
-            return p;
-        }
-        for i in 0..k.surfaces {
-            entries.push(texture_entry(PassKind::color_binding(i), UNFILTERED));
-            if k.depth() {
-                entries.push(texture_entry(PassKind::depth_binding(i), wgpu::TextureSampleType::Depth));
-            }
-        }
-        if k.intermediate {
-            entries.push(texture_entry(PassKind::color_binding(k.surfaces), UNFILTERED));
-            entries.push(texture_entry(PassKind::depth_binding(k.surfaces), UNFILTERED));
-        }
-        if k.map {
-            entries.push(texture_entry(PassKind::color_binding(k.surfaces), UNFILTERED));
+            return Ok(p);
         }
         let over = wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::One,
@@ -205,62 +186,44 @@ impl Resources {
             let blend = (!k.base && !k.copy).then_some(wgpu::BlendState { color: over, alpha: over });
             vec![Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL })]
         };
-        let p = self.build("compositor", &shader(&k), &entries, &targets);
+        let p = self.build("compositor", source, &inputs, &targets);
         self.pipelines.insert(k, p.clone());
-        p
+        Ok(p)
     }
 
-    /// The bind group of a draw of shape `k` (`None`: the fill) over `views` (in binding
-    /// order after the two uniform blocks), cached while it keeps being used.
-    pub fn bind_group(&mut self, k: Option<PassKind>, views: Vec<wgpu::TextureView>) -> wgpu::BindGroup {
+    /// The bind group of a draw of shape `k` (`None`: the fill) over `views` (its images in the
+    /// order of `PassInputs::textures`), cached while it keeps being used.
+    pub fn bind_group(
+        &mut self,
+        k: Option<PassKind>,
+        views: Vec<wgpu::TextureView>,
+    ) -> Result<wgpu::BindGroup, CompositorError> {
         let generation = self.generation;
         let key = (k, views);
         if let Some((g, used)) = self.groups.get_mut(&key) {
             *used = generation;
-            return g.clone();
+            return Ok(g.clone());
         }
-        let (bgl, _) = self.pipeline(k);
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer: &self.uniforms.buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(PARAMS_SIZE),
-            }),
-        }];
-        if let Some(k) = k {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &self.uniforms.buffer,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(block_size(k.surfaces)),
-                }),
-            });
-            let mut bindings = Vec::new();
-            for i in 0..k.surfaces {
-                bindings.push(PassKind::color_binding(i));
-                if k.depth() {
-                    bindings.push(PassKind::depth_binding(i));
-                }
-            }
-            if k.intermediate {
-                bindings.extend([PassKind::color_binding(k.surfaces), PassKind::depth_binding(k.surfaces)]);
-            }
-            if k.map {
-                bindings.push(PassKind::color_binding(k.surfaces));
-            }
-            for (binding, view) in bindings.into_iter().zip(&key.1) {
-                entries.push(wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) });
-            }
-        }
+        let (bgl, _) = self.pipeline(k)?;
+        let inputs = PassInputs::of(k.as_ref());
+        let buffer = &self.uniforms.buffer;
+        let block = block_size(k.map_or(0, |k| k.surfaces));
+        let uniform = |u: Uniform| {
+            let size = if u == Uniform::Params { PARAMS_SIZE } else { block };
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding { buffer, offset: 0, size: wgpu::BufferSize::new(size) })
+        };
+        let entries = inputs.entries(uniform, &key.1).ok_or_else(|| CompositorError::Views {
+            kind: format!("{k:?}"),
+            views: key.1.len(),
+            images: inputs.textures().count(),
+        })?;
         let g = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("compositor"),
             layout: &bgl,
             entries: &entries,
         });
         self.groups.insert(key, (g.clone(), generation));
-        g
+        Ok(g)
     }
 
     /// Writes this composite's uniforms and cells, growing the buffers (and dropping the bind
@@ -296,18 +259,10 @@ impl Resources {
         if !fits {
             let old = self.intermediates.as_ref().map_or((0, 0), |i| i.size);
             let size = (size.0.max(old.0), size.1.max(old.1));
-            let d = &self.gpu.device;
+            let gpu = &self.gpu;
             let make = |format, label| {
-                let t = d.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                });
+                let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+                let t = gpu.texture_2d(label, format, size, usage);
                 let v = t.create_view(&Default::default());
                 (t, v)
             };
@@ -335,16 +290,8 @@ impl Resources {
         let key = n.map(f32::to_bits);
         let fits = self.maps.get(&key).is_some_and(|m| m.texture.width() == size.0 && m.texture.height() == size.1);
         if !fits {
-            let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("compositor light map"),
-                size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::R32Float,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            });
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+            let texture = self.gpu.texture_2d("compositor light map", wgpu::TextureFormat::R32Float, size, usage);
             let view = texture.create_view(&Default::default());
             // Bind groups naming a replaced map are never looked up again and age out.
             self.maps.insert(key, LightMap { texture, view, stamp: [u32::MAX; 16] });

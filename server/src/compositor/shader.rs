@@ -1,7 +1,26 @@
-//! Pass shapes and their WGSL: the template `shaders/composite.wgsl` specialised per shape.
+//! Pass shapes and their shaders, composed with naga_oil: the module `shaders/composite.wgsl`
+//! holds everything a pass does as WGSL functions, specialised by shader defs (one per
+//! property of the shape, `PassKind::shader_defs`); Rust writes only what WGSL cannot loop
+//! over, from the pass's description of its inputs (`inputs::PassInputs`): the binding
+//! declarations and a `fs` of one call per surface, each passing that surface's textures
+//! (`entry_points`). `Composer::compose` turns the two into one validated `naga::Module`.
 
-/// The pass shader's template.
-const TEMPLATE: &str = include_str!("../../../shaders/composite.wgsl");
+use std::collections::HashMap;
+use std::fmt::Write;
+
+use naga_oil::compose::{ComposableModuleDescriptor, NagaModuleDescriptor, ShaderDefValue};
+
+use super::inputs::{PassInputs, Texture, Uniform};
+use super::CompositorError;
+
+/// The pass's functions: a naga_oil module.
+const MODULE: &str = include_str!("../../../shaders/composite.wgsl");
+
+/// Where `MODULE` comes from, for error messages.
+const MODULE_FILE: &str = "shaders/composite.wgsl";
+
+/// `MODULE`'s import path (its `#define_import_path`).
+const MODULE_PATH: &str = "strata::composite";
 
 /// The background fill of uncovered cells.
 pub const FILL: &str = include_str!("../../../shaders/fill.wgsl");
@@ -83,136 +102,106 @@ impl PassKind {
         }
     }
 
-    /// Binding of surface `i`'s colour image.
-    pub fn color_binding(i: usize) -> u32 {
-        2 + 2 * i as u32
-    }
-
-    /// Binding of surface `i`'s depth image.
-    pub fn depth_binding(i: usize) -> u32 {
-        3 + 2 * i as u32
-    }
-
-    /// Whether the pass has the template property `name` (`surface`: inside `//#each`).
-    fn has(&self, name: &str, surface: Option<usize>) -> bool {
-        match name {
-            "select" => self.select(),
-            "intermediate" => self.intermediate,
-            "last" => self.last,
-            "lit" => self.lit,
-            "from_depth" => self.from_depth,
-            "depth" => self.depth(),
-            "base" => self.base,
-            "copy" => self.copy,
-            "map" => self.map,
-            "factor" => self.factor,
-            "first" => surface == Some(0) && !self.intermediate,
-            other => unreachable!("shaders/composite.wgsl names an unknown property {other:?}"),
-        }
+    /// The shader defs that specialise `shaders/composite.wgsl` to this shape: each property
+    /// the shape has (a def that is absent is off), and `SURFACES`, the number of surfaces.
+    pub fn shader_defs(&self) -> HashMap<String, ShaderDefValue> {
+        let flags = [
+            ("SELECT", self.select()),
+            ("INTERMEDIATE", self.intermediate),
+            ("LAST", self.last),
+            ("LIT", self.lit),
+            ("FROM_DEPTH", self.from_depth),
+            ("DEPTH", self.depth()),
+            ("BASE", self.base),
+            ("COPY", self.copy),
+            ("MAP", self.map),
+            ("FACTOR", self.factor),
+        ];
+        flags
+            .into_iter()
+            .filter(|&(_, on)| on)
+            .map(|(name, _)| (name.to_string(), ShaderDefValue::Bool(true)))
+            .chain([("SURFACES".to_string(), ShaderDefValue::UInt(self.surfaces as u32))])
+            .collect()
     }
 }
 
-/// Renders template lines from `*pos` up to the matching `//#end` (or the end) into `out`,
-/// keeping them when `keep`; `surface` is the surface of an enclosing `//#each surface`.
-fn render(lines: &[&str], pos: &mut usize, keep: bool, surface: Option<usize>, k: &PassKind, out: &mut String) {
-    while let Some(line) = lines.get(*pos) {
-        *pos += 1;
-        let directive = line.trim();
-        if directive == "//#end" {
-            return;
-        }
-        if let Some(cond) = directive.strip_prefix("//#if ") {
-            let on = match cond.strip_prefix('!') {
-                Some(name) => !k.has(name, surface),
-                None => k.has(cond, surface),
-            };
-            render(lines, pos, keep && on, surface, k, out);
-        } else if directive == "//#each surface" {
-            let body = *pos;
-            render(lines, pos, false, surface, k, out);
-            if keep {
-                for i in 0..k.surfaces {
-                    let mut p = body;
-                    render(lines, &mut p, true, Some(i), k, out);
-                }
-            }
-        } else if keep && !directive.starts_with("//") {
-            // Comment lines document the template; the specialised shader leaves them out.
-            let mut l = line
-                .replace("{{N}}", &k.surfaces.to_string())
-                .replace("{{icolor_binding}}", &PassKind::color_binding(k.surfaces).to_string())
-                .replace("{{igeom_binding}}", &PassKind::depth_binding(k.surfaces).to_string());
-            if let Some(i) = surface {
-                l = l
-                    .replace("{{i}}", &i.to_string())
-                    .replace("{{color_binding}}", &PassKind::color_binding(i).to_string())
-                    .replace("{{depth_binding}}", &PassKind::depth_binding(i).to_string());
-            }
-            out.push_str(&l);
-            out.push('\n');
-        }
+/// The WGSL of pass shape `k`'s entry points over `inputs` (its description): the module
+/// imported as `c`, every binding declared, and a `fs` that starts from the intermediate or the
+/// first surface, takes each further surface if nearer (one call each, passing the surface's
+/// textures), and finishes; the light-map pass only computes the factor.
+pub fn entry_points(k: &PassKind, inputs: &PassInputs) -> String {
+    let (p, d) = (Uniform::Params.name(), Uniform::Draw.name());
+    let mut s = format!("#import {MODULE_PATH} as c\n\n");
+    s += &inputs.declarations();
+    s +=
+        "\n@vertex fn vs(@builtin(vertex_index) v: u32, @location(0) r: vec4<f32>) -> @builtin(position) vec4<f32> {\n";
+    s += "    return c::corner(v, r);\n}\n\n";
+    s += "@fragment fn fs(@builtin(position) pos: vec4<f32>) -> c::Out {\n";
+    let _ = writeln!(s, "    let px = c::pixel(pos, {d}.origin);");
+    if k.factor {
+        let _ = writeln!(s, "    return c::light_map({p}, {d}.surf[0], px);\n}}");
+        return s;
     }
+    // Surface i's arguments: the lighting, its `Surf`, the pixel and its textures (colour,
+    // then depth where the pass binds it).
+    let surface = |i: usize| {
+        let textures = inputs.arguments(&[Texture::Color(i), Texture::Depth(i)]);
+        format!("{p}, {d}.surf[{i}], px{textures}")
+    };
+    let further = if k.intermediate {
+        let textures = inputs.arguments(&[Texture::IntermediateColor, Texture::IntermediateGeometry]);
+        let _ = writeln!(s, "    var b = c::intermediate({d}.origin, px{textures});");
+        0
+    } else {
+        let _ = writeln!(s, "    var b = c::first({});", surface(0));
+        1
+    };
+    for i in further..k.surfaces {
+        let _ = writeln!(s, "    b = c::nearer(b, {});", surface(i));
+    }
+    let _ = writeln!(s, "    return c::finish(b, {p}, px{});\n}}", inputs.arguments(&[Texture::LightMap]));
+    s
 }
 
-/// WGSL for one pass shape: the template specialised.
-pub fn shader(k: &PassKind) -> String {
-    let lines: Vec<&str> = TEMPLATE.lines().collect();
-    let mut out = String::with_capacity(TEMPLATE.len() * 2);
-    render(&lines, &mut 0, true, None, k, &mut out);
-    out
+/// Composes pass shaders: `shaders/composite.wgsl` added once, each shape's shader made from it
+/// (naga_oil keeps the module built for each set of defs).
+pub struct Composer(naga_oil::compose::Composer);
+
+impl Composer {
+    /// A composer holding `shaders/composite.wgsl`.
+    pub fn new() -> Result<Composer, CompositorError> {
+        let mut composer = naga_oil::compose::Composer::default();
+        let added = composer.add_composable_module(ComposableModuleDescriptor {
+            source: MODULE,
+            file_path: MODULE_FILE,
+            ..Default::default()
+        });
+        if let Err(e) = added {
+            let message = e.emit_to_string(&composer);
+            return Err(CompositorError::Shader { kind: MODULE_FILE.into(), message });
+        }
+        Ok(Composer(composer))
+    }
+
+    /// The validated shader of pass shape `k` (entry points `vs` and `fs`), with the bindings
+    /// of `PassInputs::of(Some(k))`.
+    pub fn compose(&mut self, k: &PassKind) -> Result<naga::Module, CompositorError> {
+        let source = entry_points(k, &PassInputs::of(Some(k)));
+        self.0
+            .make_naga_module(NagaModuleDescriptor {
+                source: &source,
+                file_path: "compositor pass",
+                shader_defs: k.shader_defs(),
+                ..Default::default()
+            })
+            .map_err(|e| CompositorError::Shader {
+                kind: format!("{k:?}"),
+                message: format!("{}\n{source}", e.emit_to_string(&self.0)),
+            })
+    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn validate(src: &str) {
-        let module = naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}\n{src}", e.emit_to_string(src)));
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
-            .validate(&module)
-            .unwrap_or_else(|e| panic!("{e:?}\n{src}"));
-    }
-
-    #[test]
-    fn every_pass_shape_specialises_to_valid_wgsl() {
-        validate(FILL);
-        let src = shader(&PassKind::light_map());
-        validate(&src);
-        assert!(src.contains("fn factor(") && !src.contains("textureLoad"), "{src}");
-        for surfaces in 1..=4 {
-            for bits in 0..128u32 {
-                let k = PassKind {
-                    surfaces,
-                    intermediate: bits & 1 != 0,
-                    last: bits & 2 != 0,
-                    lit: bits & 4 != 0,
-                    from_depth: bits & 8 != 0,
-                    base: bits & 16 != 0,
-                    copy: bits & 32 != 0,
-                    map: bits & 64 != 0,
-                    factor: false,
-                };
-                // Passes that are never built: a non-last pass selects, the 2D copy is one
-                // unlit surface on the background, a light map serves one lit surface with a
-                // per-surface normal.
-                if (!k.last && !k.select())
-                    || (k.copy && (k.select() || k.lit || !k.base))
-                    || (k.map && (k.select() || !k.lit || k.from_depth || !k.last))
-                {
-                    continue;
-                }
-                let src = shader(&k);
-                assert!(!src.contains("{{") && !src.contains("//#"), "unfilled template:\n{src}");
-                validate(&src);
-                assert_eq!(src.matches("var color").count(), surfaces);
-                assert_eq!(src.matches("var depth").count(), if k.depth() { surfaces } else { 0 });
-                assert_eq!(src.contains("var igeom"), k.intermediate);
-                assert_eq!(src.contains("fn eye("), k.select(), "eye depth where the select runs");
-                assert_eq!(src.contains("var lmap"), k.map);
-                assert_eq!(src.contains("light(best_c"), k.last && k.lit && !k.copy);
-                assert_eq!(src.matches("fn dn").count(), if k.from_depth { surfaces } else { 0 });
-                assert_eq!(src.contains("P.background.rgb"), k.last && k.base && !k.copy);
-            }
-        }
-    }
-}
+#[path = "shader_tests.rs"]
+mod tests;

@@ -94,7 +94,7 @@ impl Gpu {
             .get_or_init(|| {
                 self.pipeline(
                     "depth read",
-                    include_str!("../../../shaders/depth_read.wgsl"),
+                    wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/depth_read.wgsl").into()),
                     &[texture_entry(0, wgpu::TextureSampleType::Depth)],
                     &[Some(wgpu::ColorTargetState {
                         format: wgpu::TextureFormat::R32Float,
@@ -251,24 +251,21 @@ impl Gpu {
         self.device.create_texture(&descriptor_2d(label, format, (width, height), usage))
     }
 
-    /// A pipeline with the `vs` and `fs` entry points of `wgsl`, one bind group of `entries`,
+    /// A pipeline with the `vs` and `fs` entry points of `source`, one bind group of `entries`,
     /// `vertex` input (none: one full-screen triangle from the vertex index), into `targets`
     /// (and a depth attachment if `depth`): the one pipeline builder behind full-screen passes
     /// and the compositor's cells.
     pub fn pipeline(
         &self,
         label: &str,
-        wgsl: &str,
+        source: wgpu::ShaderSource<'_>,
         entries: &[wgpu::BindGroupLayoutEntry],
         targets: &[Option<wgpu::ColorTargetState>],
         depth: Option<wgpu::DepthStencilState>,
         vertex: VertexInput,
     ) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
         let d = &self.device;
-        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(wgsl.into()),
-        });
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some(label), source });
         let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries });
         let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(label),
@@ -343,7 +340,7 @@ impl Gpu {
                 .or_insert_with(|| {
                     self.pipeline(
                         "depth upload",
-                        include_str!("../../../shaders/depth_upload.wgsl"),
+                        wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/depth_upload.wgsl").into()),
                         &[texture_entry(0, UNFILTERED)],
                         &[],
                         Some(wgpu::DepthStencilState {

@@ -174,7 +174,10 @@ impl Root {
             };
             let started = Instant::now();
             let layers: Vec<Layer<'_>> = job.layers.iter().map(KeptLayer::layer).collect();
-            compositor.composite(&layers, &b.light, out.staging(&self.gpu), BACKGROUND, Some(band));
+            if let Err(e) = compositor.composite(&layers, &b.light, out.staging(&self.gpu), BACKGROUND, Some(band)) {
+                // The band keeps what the staging image held.
+                tracing::error!(output = %out.spec.name, "{e}");
+            }
             let passes = compositor.last_passes as u64;
             job.rows_done += band[3];
             let output = job.output;

@@ -321,7 +321,11 @@ impl Root {
                     jobs.push(Job { output: index, region: r, rows_done: 0, layers });
                     continue;
                 }
-                compositor.composite(&layers, light, &out.texture, BACKGROUND, local);
+                if let Err(e) = compositor.composite(&layers, light, &out.texture, BACKGROUND, local) {
+                    // The output keeps its last image.
+                    tracing::error!(output = %out.spec.name, "{e}");
+                    continue;
+                }
                 pixels += area;
                 out.composites += 1;
                 composited.push(index);
