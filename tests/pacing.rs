@@ -193,6 +193,9 @@ fn stalled_client_stays_visible_and_a_departed_one_goes() {
                 swap(&mut gl, cur);
                 f += 1;
             }
+            // Its last swap is published once its work completes: glFinish waits for that,
+            // so that the screenshot below cannot race the frame-waiter under load.
+            gl.glFinish().expect("io");
             // Hand the connection back: the surface lives as long as its client.
             (gl, f - 1)
         })
