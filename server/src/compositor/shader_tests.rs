@@ -142,11 +142,19 @@ fn the_fill_binds_what_its_description_says() {
     assert_bindings_match(&module, &PassInputs::of(None), 0, "fill");
 }
 
+/// The most textures a pass may sample: the device's limit where one opens (lavapipe offers
+/// 37), and never less than wgpu's default (16).
+fn device_limit() -> u32 {
+    let default = wgpu::Limits::default().max_sampled_textures_per_shader_stage;
+    let device = crate::gpu::Gpu::open().map(|g| g.limits.max_sampled_textures_per_shader_stage);
+    device.map_or(default, |d| d.max(default))
+}
+
 #[test]
 fn every_chained_pass_has_a_width_that_shapes_builds() {
     // Every pass of every group chained under every texture limit has one of the widths
     // `shapes` builds: at most p surfaces, at most p − 1 beside an intermediate.
-    let limit = wgpu::Limits::default().max_sampled_textures_per_shader_stage;
+    let limit = device_limit();
     for m in 4..=limit {
         let p = (m / 2) as usize;
         for k in 1..=4 * p {
@@ -160,7 +168,7 @@ fn every_chained_pass_has_a_width_that_shapes_builds() {
 #[test]
 fn every_pass_shape_composes_to_a_valid_module_bound_as_described() {
     let mut composer = Composer::new().unwrap_or_else(|e| panic!("{e}"));
-    let limit = wgpu::Limits::default().max_sampled_textures_per_shader_stage;
+    let limit = device_limit();
     let mut seen = std::collections::HashSet::new();
     for m in 4..=limit {
         for k in shapes(m) {
