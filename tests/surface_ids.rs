@@ -29,6 +29,12 @@ const EGL_BAD_ATTRIBUTE: i32 = 0x3004;
 const WINDOWS: &str = "SURFACE_IDS_WINDOWS";
 /// Set in a client process's environment: the ID its application asks for itself.
 const ASKS: &str = "SURFACE_IDS_ASKS";
+/// Set in a client process's environment: draw one frame into its first surface (the bottom
+/// half red, the top half green, in GL's coordinates) and swap it.
+const DRAWS: &str = "SURFACE_IDS_DRAWS";
+const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
+const GL_SCISSOR_TEST: u32 = 0x0C11;
+const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
 
 /// A running client process and what each of its `eglCreateWindowSurface` calls got: the ID,
 /// or the EGL error.
@@ -51,6 +57,19 @@ impl Client {
         env: Option<&str>,
         asks: Option<i32>,
     ) -> Client {
+        Self::start_with(socket, shim, name, windows, env, asks, false)
+    }
+
+    /// As [`Client::start`]; with `draws`, it swaps one frame into its first surface.
+    fn start_with(
+        socket: &std::path::Path,
+        shim: &std::path::Path,
+        name: &str,
+        windows: usize,
+        env: Option<&str>,
+        asks: Option<i32>,
+        draws: bool,
+    ) -> Client {
         let mut cmd = Command::new(std::env::current_exe().expect("test binary"));
         cmd.args(["--exact", "client_process", "--nocapture", "--test-threads", "1"])
             .env("STRATA_SOCKET", socket)
@@ -67,6 +86,9 @@ impl Client {
         }
         if let Some(id) = asks {
             cmd.env(ASKS, id.to_string());
+        }
+        if draws {
+            cmd.env(DRAWS, "1");
         }
         let mut child = cmd.spawn().expect("client process");
         let stdin = child.stdin.take();
@@ -129,21 +151,44 @@ fn client_process() {
         let want = [EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_NONE];
         let (mut config, mut n) = (std::ptr::null_mut(), 0);
         assert_eq!((egl.choose_config)(dpy, want.as_ptr(), &mut config, 1, &mut n), 1, "eglChooseConfig");
+        let mut first = None;
         for _ in 0..windows {
             let s = create_window(dpy, config, 0, attribs.as_ptr());
             if s.is_null() {
                 writeln!(out, "surface error {:#x}", (egl.get_error)()).expect("stdout");
                 continue;
             }
+            first = first.or(Some(s));
             let mut id = 0;
             assert_eq!((egl.query_surface)(dpy, s, EGL_SURFACE_ID_STRATA, &mut id), 1, "eglQuerySurface");
             writeln!(out, "surface id {id}").expect("stdout");
+        }
+        if let (Some(s), true) = (first, std::env::var_os(DRAWS).is_some()) {
+            let ctx = (egl.create_context)(
+                dpy,
+                config,
+                std::ptr::null_mut(),
+                [EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE].as_ptr(),
+            );
+            assert_eq!((egl.make_current)(dpy, s, s, ctx), 1, "eglMakeCurrent");
+            let enable: unsafe extern "C" fn(u32) = *lib.get(b"glEnable").expect("glEnable");
+            let scissor: unsafe extern "C" fn(i32, i32, i32, i32) = *lib.get(b"glScissor").expect("glScissor");
+            enable(GL_SCISSOR_TEST);
+            for (y, color) in [(0, [1.0, 0.0, 0.0]), (8, [0.0, 1.0, 0.0])] {
+                scissor(0, y, 16, 8);
+                (egl.clear_color)(color[0], color[1], color[2], 1.0);
+                (egl.clear)(GL_COLOR_BUFFER_BIT);
+            }
+            assert_eq!((egl.swap_buffers)(dpy, s), 1, "eglSwapBuffers");
+            (egl.finish)();
         }
         writeln!(out, "ready").expect("stdout");
         out.flush().expect("stdout");
     }
     // Keep the surfaces until the test closes stdin.
     let _ = std::io::stdin().lines().count();
+    // Applications never unload libEGL: the library's threads outlive an unload.
+    std::mem::forget(lib);
 }
 
 fn ctl(socket: &std::path::Path, args: &[&str]) -> String {
@@ -203,6 +248,26 @@ fn surfaces_keep_the_ids_the_layout_the_environment_or_the_application_give() {
     ctl(&socket, &["move", "1000", "8", "4", "0.25"]);
     let moved = rows(&socket).into_iter().find(|r| r.id == 1000).expect("ic's surface");
     assert_eq!((moved.rect[0], moved.rect[1], moved.z), (8, 4, 0.25));
+
+    // A surface's newest frame, as its client drew it (top row first in the PNG); a surface
+    // that never swapped, and an unknown one, are clear errors.
+    let painter = Client::start_with(&socket, &shim, "painter", 1, Some("5000"), None, true);
+    assert_eq!(painter.got, vec![Ok(5000)]);
+    let png = dir.0.join("surface.png");
+    ctl(&socket, &["screenshot", "--surface", "5000", png.to_str().expect("utf-8")]);
+    let img = image::open(&png).expect("png").to_rgba8();
+    assert_eq!(img.dimensions(), (16, 16));
+    assert_eq!((img.get_pixel(8, 2).0, img.get_pixel(8, 13).0), ([0, 255, 0, 255], [255, 0, 0, 255]), "green on top");
+    for (id, says) in [("1000", "surface 1000 has not swapped a frame yet"), ("777", "no surface 777")] {
+        let out = Command::new(support::stratad())
+            .args(["ctl", "screenshot", "--surface", id, png.to_str().expect("utf-8"), "--socket"])
+            .arg(&socket)
+            .output()
+            .expect("ctl");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(says), "{id}: {err}");
+    }
+    painter.stop();
 
     // The instrument cluster restarts: its surface gets its ID back; the claim that failed
     // succeeds once the holder is gone.

@@ -229,6 +229,12 @@ pub enum ControlRequest {
         /// The client's number, as `Stats` shows it.
         client: u64,
     },
+    /// A window surface's newest complete frame, as its client drew it (answered with
+    /// `ControlReply::Image`, top row first).
+    SurfaceScreenshot {
+        /// Surface ID, as `List` shows it.
+        surface: u64,
+    },
 }
 
 /// One thread of a device's driver.

@@ -15,12 +15,15 @@ use crate::{save_png, Normals};
 pub enum CtlCmd {
     /// List every output and window surface.
     List,
-    /// Save an output's current image as a PNG.
+    /// Save an output's current image as a PNG (`screenshot OUTPUT FILE.png`), or one window
+    /// surface's newest complete frame (`screenshot --surface ID FILE.png`).
     Screenshot {
-        /// Output name (as `list` shows it).
-        output: String,
-        /// The PNG to write.
-        file: PathBuf,
+        /// Output name (as `list` shows it), then the PNG; only the PNG with `--surface`.
+        #[arg(num_args = 1..=2, required = true, value_names = ["OUTPUT", "FILE.png"])]
+        targets: Vec<String>,
+        /// A window surface's ID (as `list` shows it) instead of an output.
+        #[arg(long)]
+        surface: Option<u64>,
     },
     /// Move a window surface in the output space.
     Move {
@@ -104,7 +107,12 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
         CtlCmd::List => ControlRequest::List,
         CtlCmd::Stats => ControlRequest::Stats,
         CtlCmd::LoseDevice { client } => ControlRequest::LoseDevice { client: *client },
-        CtlCmd::Screenshot { output, .. } => ControlRequest::Screenshot { output: output.clone() },
+        CtlCmd::Screenshot { targets, surface } => match (surface, targets.as_slice()) {
+            (Some(surface), [_file]) => ControlRequest::SurfaceScreenshot { surface: *surface },
+            (None, [output, _file]) => ControlRequest::Screenshot { output: output.clone() },
+            (Some(_), _) => bail!("screenshot --surface ID takes one file: screenshot --surface ID FILE.png"),
+            (None, _) => bail!("screenshot takes an output and a file: screenshot OUTPUT FILE.png"),
+        },
         CtlCmd::Move { surface, x, y, z } => ControlRequest::Move { surface: *surface, x: *x, y: *y, z: *z },
         CtlCmd::Normal { surface, normal } => ControlRequest::Normal { surface: *surface, normal: *normal },
         CtlCmd::Light { what } => ControlRequest::Light(match what {
@@ -205,7 +213,8 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             }
             Ok(())
         }
-        (ControlReply::Image { width, height, rgba }, CtlCmd::Screenshot { file, .. }) => {
+        (ControlReply::Image { width, height, rgba }, CtlCmd::Screenshot { targets, .. }) => {
+            let file = PathBuf::from(targets.last().map_or("", String::as_str));
             save_png(&file, width, height, rgba.0)?;
             if json {
                 println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));

@@ -9,7 +9,7 @@ use super::Cli;
 /// A sample value for a placeholder the README writes in capitals.
 fn fill(word: &str) -> &str {
     match word {
-        "SURFACE" => "7",
+        "SURFACE" | "ID" => "7",
         "X" | "Y" => "10",
         "Z" | "A" => "0.5",
         "S" => "16",

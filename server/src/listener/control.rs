@@ -45,6 +45,15 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
                 Err(e) => ControlReply::Error(e),
             }
         }
+        ControlRequest::SurfaceScreenshot { surface } => {
+            let Some(root) = &shared.root else {
+                return ControlReply::Error("this daemon runs without a GPU, so it has no surfaces".into());
+            };
+            match root.surface_screenshot(surface) {
+                Ok((width, height, rgba)) => ControlReply::Image { width, height, rgba: strata_protocol::Bytes(rgba) },
+                Err(e) => ControlReply::Error(e),
+            }
+        }
         ControlRequest::Move { surface, x, y, z } => {
             if !z.is_finite() {
                 return ControlReply::Error(format!("z {z} is not a finite number"));

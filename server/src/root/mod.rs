@@ -431,6 +431,30 @@ impl Root {
         Ok((w, h, rgba))
     }
 
+    /// Window surface `id`'s newest complete frame as RGBA8 rows, top row first (the order of a
+    /// PNG), as its client drew it: width, height and pixels.
+    pub fn surface_screenshot(&self, id: u64) -> Result<(u32, u32, Vec<u8>), String> {
+        // No composite runs while the frame is read: both mark it read the same way.
+        let _composites = self.inner.lock().map_err(|_| "the compositor is unavailable")?;
+        let read = self.scene.read_frame(id, |view| {
+            let t = view.texture();
+            let (w, h) = (t.width(), t.height());
+            self.gpu.read_rgba8(t, [0, 0, w, h]).map(|rows| (w, h, rows))
+        });
+        let (w, h, rows) = match read {
+            Some(Some(image)) => image,
+            Some(None) => return Err(format!("reading surface {id}'s frame back failed")),
+            None if self.scene.rows().iter().any(|r| r.id == id) => {
+                return Err(format!("surface {id} has not swapped a frame yet"))
+            }
+            None => return Err(format!("no surface {id}; `stratad ctl list` shows them")),
+        };
+        // Surface images are in GL row order: bottom row first.
+        let row = w as usize * 4;
+        let flipped: Vec<u8> = rows.chunks_exact(row).rev().flatten().copied().collect();
+        Ok((w, h, flipped))
+    }
+
     /// Runs the compositor loop on a new thread until [`Root::stop`]: composite when damaged,
     /// at most `refresh_hz` times a second; with `watchdog`, it also pings the service
     /// manager's watchdog that often.

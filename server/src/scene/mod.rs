@@ -420,6 +420,29 @@ impl Scene {
         new
     }
 
+    /// Runs `f` on window surface `id`'s newest complete frame (its colour view), which stays
+    /// read meanwhile so that its client does not draw into it; `None` if there is no such
+    /// surface or it has not swapped yet. The caller makes sure no composite is in flight
+    /// (the compositor holds the same reading mark until its composite completes).
+    pub fn read_frame<R>(&self, id: u64, f: impl FnOnce(&wgpu::TextureView) -> R) -> Option<R> {
+        let (key, view) = {
+            let mut g = self.lock()?;
+            let (key, s) = g.surfaces.iter_mut().find(|(_, s)| s.id == id)?;
+            let view = s.color.clone()?;
+            s.buffers.read_latest();
+            (*key, view)
+        };
+        let r = f(&view);
+        if let Some(mut g) = self.lock() {
+            if let Some(s) = g.surfaces.get_mut(&key) {
+                s.buffers.done_reading();
+            }
+        }
+        // The buffer may be drawn into again.
+        self.changed.notify_all();
+        Some(r)
+    }
+
     /// Every surface's row, in stacking order.
     pub fn rows(&self) -> Vec<SurfaceRow> {
         let mut surfaces: Vec<&SceneSurface> = Vec::new();
