@@ -48,20 +48,9 @@ struct Client {
 
 impl Client {
     /// Starts a client named `name` on `socket` creating `windows` window surfaces, with
-    /// `STRATA_SURFACE_ID` set to `env` and its application asking for `asks`.
+    /// `STRATA_SURFACE_ID` set to `env` and its application asking for `asks`; with `draws`, it
+    /// swaps one frame into its first surface.
     fn start(
-        socket: &std::path::Path,
-        shim: &std::path::Path,
-        name: &str,
-        windows: usize,
-        env: Option<&str>,
-        asks: Option<i32>,
-    ) -> Client {
-        Self::start_with(socket, shim, name, windows, env, asks, false)
-    }
-
-    /// As [`Client::start`]; with `draws`, it swaps one frame into its first surface.
-    fn start_with(
         socket: &std::path::Path,
         shim: &std::path::Path,
         name: &str,
@@ -215,25 +204,25 @@ fn surfaces_keep_the_ids_the_layout_the_environment_or_the_application_give() {
 
     // The layout wins over the environment; a list is taken in creation order, and a surface
     // beyond it gets a runtime ID, which is never one the layout gives.
-    let ic = Client::start(&socket, &shim, "ic", 1, Some("5"), None);
+    let ic = Client::start(&socket, &shim, "ic", 1, Some("5"), None, false);
     assert_eq!(ic.got, vec![Ok(1000)]);
-    let hu = Client::start(&socket, &shim, "hu", 3, None, None);
+    let hu = Client::start(&socket, &shim, "hu", 3, None, None, false);
     assert_eq!(hu.got[..2], [Ok(2000), Ok(2001)]);
     let runtime = hu.got[2].expect("a runtime id");
     assert!(![1000, 2000, 2001].contains(&runtime), "runtime id {runtime}");
 
     // The environment, then the application's own attribute; a second live claim is refused.
-    let app = Client::start(&socket, &shim, "app", 1, Some("3000"), Some(3500));
+    let app = Client::start(&socket, &shim, "app", 1, Some("3000"), Some(3500), false);
     assert_eq!(app.got, vec![Ok(3000)], "STRATA_SURFACE_ID wins over the application's attribute");
-    let own = Client::start(&socket, &shim, "own", 1, None, Some(4000));
+    let own = Client::start(&socket, &shim, "own", 1, None, Some(4000), false);
     assert_eq!(own.got, vec![Ok(4000)]);
     // A refused claim does not use the ID up: the same window asks for it again.
-    let twin = Client::start(&socket, &shim, "twin", 2, Some("3000,4001"), None);
+    let twin = Client::start(&socket, &shim, "twin", 2, Some("3000,4001"), None, false);
     assert_eq!(twin.got, vec![Err(EGL_BAD_MATCH), Err(EGL_BAD_MATCH)], "3000 is app's");
     daemon.wait_log("surface id 3000 is already held by a surface of client \"app\"");
-    let bad = Client::start(&socket, &shim, "bad", 1, Some("cluster"), None);
+    let bad = Client::start(&socket, &shim, "bad", 1, Some("cluster"), None, false);
     assert_eq!(bad.got, vec![Err(EGL_BAD_ATTRIBUTE)]);
-    let zero = Client::start(&socket, &shim, "zero", 1, None, Some(0));
+    let zero = Client::start(&socket, &shim, "zero", 1, None, Some(0), false);
     assert_eq!(zero.got, vec![Err(EGL_BAD_ATTRIBUTE)]);
     daemon.wait_log("surface id 0 is outside 1..=");
 
@@ -251,7 +240,7 @@ fn surfaces_keep_the_ids_the_layout_the_environment_or_the_application_give() {
 
     // A surface's newest frame, as its client drew it (top row first in the PNG); a surface
     // that never swapped, and an unknown one, are clear errors.
-    let painter = Client::start_with(&socket, &shim, "painter", 1, Some("5000"), None, true);
+    let painter = Client::start(&socket, &shim, "painter", 1, Some("5000"), None, true);
     assert_eq!(painter.got, vec![Ok(5000)]);
     let png = dir.0.join("surface.png");
     ctl(&socket, &["screenshot", "--surface", "5000", png.to_str().expect("utf-8")]);
@@ -273,9 +262,9 @@ fn surfaces_keep_the_ids_the_layout_the_environment_or_the_application_give() {
     // succeeds once the holder is gone.
     ic.stop();
     app.stop();
-    let ic = Client::start(&socket, &shim, "ic", 1, None, None);
+    let ic = Client::start(&socket, &shim, "ic", 1, None, None, false);
     assert_eq!(ic.got, vec![Ok(1000)]);
-    let twin2 = Client::start(&socket, &shim, "twin2", 1, Some("3000"), None);
+    let twin2 = Client::start(&socket, &shim, "twin2", 1, Some("3000"), None, false);
     assert_eq!(twin2.got, vec![Ok(3000)]);
     for c in [ic, hu, own, twin, bad, zero, twin2] {
         c.stop();
