@@ -54,7 +54,7 @@ const FLOAT_SENTINEL: u32 = 0x7FC0_5EED;
 const BOOL_SENTINEL: u8 = 0xA5;
 
 macro_rules! call {
-    ($self:ident, $name:literal, fn($($t:ty),*) -> $r:ty, $($a:expr),*) => {{
+    ($self:ident, $name:expr, fn($($t:ty),*) -> $r:ty, $($a:expr),*) => {{
         let f = $self.sym($name)?;
         // SAFETY: the symbol is the GLES2 entry point of that name, with that C signature.
         let f: unsafe extern "C" fn($($t),*) -> $r = unsafe { std::mem::transmute::<Ptr, _>(f) };
@@ -68,6 +68,7 @@ mod ext;
 mod egl;
 mod framebuffers;
 mod programs;
+mod scalars;
 mod state;
 mod textures;
 mod vertices;

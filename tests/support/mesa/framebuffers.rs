@@ -7,16 +7,6 @@ use strata_protocol::wire::*;
 use super::*;
 
 impl Arms<'_> {
-    pub(super) fn glBindFramebuffer(&mut self, target: &GLenum, framebuffer: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glBindFramebuffer", fn(u32, u32) -> (), *target, *framebuffer);
-        Ok(())
-    }
-
-    pub(super) fn glBindRenderbuffer(&mut self, target: &GLenum, renderbuffer: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glBindRenderbuffer", fn(u32, u32) -> (), *target, *renderbuffer);
-        Ok(())
-    }
-
     pub(super) fn glDeleteFramebuffers(&mut self, names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
         let v = names.to_vec();
         call!(self, "glDeleteFramebuffers", fn(i32, *const u32) -> (), v.len() as i32, v.as_ptr());
@@ -29,46 +19,6 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glFramebufferRenderbuffer(
-        &mut self,
-        target: &GLenum,
-        attachment: &GLenum,
-        renderbuffertarget: &GLenum,
-        renderbuffer: &GLuint,
-    ) -> Result<(), ClientError> {
-        call!(
-            self,
-            "glFramebufferRenderbuffer",
-            fn(u32, u32, u32, u32) -> (),
-            *target,
-            *attachment,
-            *renderbuffertarget,
-            *renderbuffer
-        );
-        Ok(())
-    }
-
-    pub(super) fn glFramebufferTexture2D(
-        &mut self,
-        target: &GLenum,
-        attachment: &GLenum,
-        textarget: &GLenum,
-        texture: &GLuint,
-        level: &GLint,
-    ) -> Result<(), ClientError> {
-        call!(
-            self,
-            "glFramebufferTexture2D",
-            fn(u32, u32, u32, u32, i32) -> (),
-            *target,
-            *attachment,
-            *textarget,
-            *texture,
-            *level
-        );
-        Ok(())
-    }
-
     // Names are the client's own: binding an unused name creates the object in ES 2.0.
     pub(super) fn glGenFramebuffers(&mut self, _names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
         Ok(())
@@ -76,17 +26,6 @@ impl Arms<'_> {
 
     // Names are the client's own: binding an unused name creates the object in ES 2.0.
     pub(super) fn glGenRenderbuffers(&mut self, _names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
-        Ok(())
-    }
-
-    pub(super) fn glRenderbufferStorage(
-        &mut self,
-        target: &GLenum,
-        internalformat: &GLenum,
-        width: &GLsizei,
-        height: &GLsizei,
-    ) -> Result<(), ClientError> {
-        call!(self, "glRenderbufferStorage", fn(u32, u32, i32, i32) -> (), *target, *internalformat, *width, *height);
         Ok(())
     }
 

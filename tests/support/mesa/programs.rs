@@ -93,11 +93,6 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glReleaseShaderCompiler(&mut self) -> Result<(), ClientError> {
-        call!(self, "glReleaseShaderCompiler", fn() -> (),);
-        Ok(())
-    }
-
     pub(super) fn glShaderBinary(
         &mut self,
         shaders: &Slice<'_, GLuint>,
@@ -127,92 +122,32 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glUniform1f(&mut self, location: &GLint, x: &GLfloat) -> Result<(), ClientError> {
-        call!(self, "glUniform1f", fn(i32, f32) -> (), *location, *x);
-        Ok(())
-    }
-
     pub(super) fn glUniform1fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform1fv", f32, location, values, 1)
-    }
-
-    pub(super) fn glUniform1i(&mut self, location: &GLint, x: &GLint) -> Result<(), ClientError> {
-        call!(self, "glUniform1i", fn(i32, i32) -> (), *location, *x);
-        Ok(())
     }
 
     pub(super) fn glUniform1iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform1iv", i32, location, values, 1)
     }
 
-    pub(super) fn glUniform2f(&mut self, location: &GLint, x: &GLfloat, y: &GLfloat) -> Result<(), ClientError> {
-        call!(self, "glUniform2f", fn(i32, f32, f32) -> (), *location, *x, *y);
-        Ok(())
-    }
-
     pub(super) fn glUniform2fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform2fv", f32, location, values, 2)
-    }
-
-    pub(super) fn glUniform2i(&mut self, location: &GLint, x: &GLint, y: &GLint) -> Result<(), ClientError> {
-        call!(self, "glUniform2i", fn(i32, i32, i32) -> (), *location, *x, *y);
-        Ok(())
     }
 
     pub(super) fn glUniform2iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform2iv", i32, location, values, 2)
     }
 
-    pub(super) fn glUniform3f(
-        &mut self,
-        location: &GLint,
-        x: &GLfloat,
-        y: &GLfloat,
-        z: &GLfloat,
-    ) -> Result<(), ClientError> {
-        call!(self, "glUniform3f", fn(i32, f32, f32, f32) -> (), *location, *x, *y, *z);
-        Ok(())
-    }
-
     pub(super) fn glUniform3fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform3fv", f32, location, values, 3)
-    }
-
-    pub(super) fn glUniform3i(&mut self, location: &GLint, x: &GLint, y: &GLint, z: &GLint) -> Result<(), ClientError> {
-        call!(self, "glUniform3i", fn(i32, i32, i32, i32) -> (), *location, *x, *y, *z);
-        Ok(())
     }
 
     pub(super) fn glUniform3iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform3iv", i32, location, values, 3)
     }
 
-    pub(super) fn glUniform4f(
-        &mut self,
-        location: &GLint,
-        x: &GLfloat,
-        y: &GLfloat,
-        z: &GLfloat,
-        w: &GLfloat,
-    ) -> Result<(), ClientError> {
-        call!(self, "glUniform4f", fn(i32, f32, f32, f32, f32) -> (), *location, *x, *y, *z, *w);
-        Ok(())
-    }
-
     pub(super) fn glUniform4fv(&mut self, location: &GLint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         uniform_array!(self, "glUniform4fv", f32, location, values, 4)
-    }
-
-    pub(super) fn glUniform4i(
-        &mut self,
-        location: &GLint,
-        x: &GLint,
-        y: &GLint,
-        z: &GLint,
-        w: &GLint,
-    ) -> Result<(), ClientError> {
-        call!(self, "glUniform4i", fn(i32, i32, i32, i32, i32) -> (), *location, *x, *y, *z, *w);
-        Ok(())
     }
 
     pub(super) fn glUniform4iv(&mut self, location: &GLint, values: &Slice<'_, GLint>) -> Result<(), ClientError> {
@@ -263,26 +198,7 @@ impl Arms<'_> {
         program: &GLuint,
         index: &GLuint,
     ) -> Result<Option<ActiveVariable>, ClientError> {
-        let p = self.shader(*program);
-        let (mut len, mut size, mut ty) = (0i32, 0i32, 0u32);
-        let mut buf = [0u8; 256];
-        call!(
-            self,
-            "glGetActiveAttrib",
-            fn(u32, u32, i32, *mut i32, *mut i32, *mut u32, *mut u8) -> (),
-            p,
-            *index,
-            256,
-            &mut len,
-            &mut size,
-            &mut ty,
-            buf.as_mut_ptr()
-        );
-        Ok((len > 0).then(|| ActiveVariable {
-            size,
-            ty,
-            name: String::from_utf8_lossy(&buf[..len as usize]).into_owned(),
-        }))
+        self.active_variable("glGetActiveAttrib", *program, *index)
     }
 
     pub(super) fn glGetActiveUniform(
@@ -290,15 +206,25 @@ impl Arms<'_> {
         program: &GLuint,
         index: &GLuint,
     ) -> Result<Option<ActiveVariable>, ClientError> {
-        let p = self.shader(*program);
+        self.active_variable("glGetActiveUniform", *program, *index)
+    }
+
+    /// `glGetActiveAttrib` or `glGetActiveUniform` (`entry`, same C signature).
+    fn active_variable(
+        &mut self,
+        entry: &'static str,
+        program: GLuint,
+        index: GLuint,
+    ) -> Result<Option<ActiveVariable>, ClientError> {
+        let p = self.shader(program);
         let (mut len, mut size, mut ty) = (0i32, 0i32, 0u32);
         let mut buf = [0u8; 256];
         call!(
             self,
-            "glGetActiveUniform",
+            entry,
             fn(u32, u32, i32, *mut i32, *mut i32, *mut u32, *mut u8) -> (),
             p,
-            *index,
+            index,
             256,
             &mut len,
             &mut size,

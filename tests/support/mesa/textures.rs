@@ -6,16 +6,6 @@ use strata_protocol::wire::*;
 use super::*;
 
 impl Arms<'_> {
-    pub(super) fn glActiveTexture(&mut self, texture: &GLenum) -> Result<(), ClientError> {
-        call!(self, "glActiveTexture", fn(u32) -> (), *texture);
-        Ok(())
-    }
-
-    pub(super) fn glBindTexture(&mut self, target: &GLenum, texture: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glBindTexture", fn(u32, u32) -> (), *target, *texture);
-        Ok(())
-    }
-
     pub(super) fn glCompressedTexImage2D(
         &mut self,
         target: &GLenum,
@@ -70,78 +60,14 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glCopyTexImage2D(
-        &mut self,
-        target: &GLenum,
-        level: &GLint,
-        internalformat: &GLenum,
-        x: &GLint,
-        y: &GLint,
-        width: &GLsizei,
-        height: &GLsizei,
-        border: &GLint,
-    ) -> Result<(), ClientError> {
-        call!(
-            self,
-            "glCopyTexImage2D",
-            fn(u32, i32, u32, i32, i32, i32, i32, i32) -> (),
-            *target,
-            *level,
-            *internalformat,
-            *x,
-            *y,
-            *width,
-            *height,
-            *border
-        );
-        Ok(())
-    }
-
-    pub(super) fn glCopyTexSubImage2D(
-        &mut self,
-        target: &GLenum,
-        level: &GLint,
-        xoffset: &GLint,
-        yoffset: &GLint,
-        x: &GLint,
-        y: &GLint,
-        width: &GLsizei,
-        height: &GLsizei,
-    ) -> Result<(), ClientError> {
-        call!(
-            self,
-            "glCopyTexSubImage2D",
-            fn(u32, i32, i32, i32, i32, i32, i32, i32) -> (),
-            *target,
-            *level,
-            *xoffset,
-            *yoffset,
-            *x,
-            *y,
-            *width,
-            *height
-        );
-        Ok(())
-    }
-
     pub(super) fn glDeleteTextures(&mut self, names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
         let v = names.to_vec();
         call!(self, "glDeleteTextures", fn(i32, *const u32) -> (), v.len() as i32, v.as_ptr());
         Ok(())
     }
 
-    pub(super) fn glGenerateMipmap(&mut self, target: &GLenum) -> Result<(), ClientError> {
-        call!(self, "glGenerateMipmap", fn(u32) -> (), *target);
-        Ok(())
-    }
-
     // Names are the client's own: binding an unused name creates the object in ES 2.0.
     pub(super) fn glGenTextures(&mut self, _names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
-        Ok(())
-    }
-
-    pub(super) fn glPixelStorei(&mut self, pname: &GLenum, param: &GLint) -> Result<(), ClientError> {
-        call!(self, "glPixelStorei", fn(u32, i32) -> (), *pname, *param);
         Ok(())
     }
 
@@ -175,16 +101,6 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glTexParameterf(
-        &mut self,
-        target: &GLenum,
-        pname: &GLenum,
-        param: &GLfloat,
-    ) -> Result<(), ClientError> {
-        call!(self, "glTexParameterf", fn(u32, u32, f32) -> (), *target, *pname, *param);
-        Ok(())
-    }
-
     pub(super) fn glTexParameterfv(
         &mut self,
         target: &GLenum,
@@ -196,16 +112,6 @@ impl Arms<'_> {
             return Err(unsupported("glTexParameterfv without a value"));
         }
         call!(self, "glTexParameterfv", fn(u32, u32, *const f32) -> (), *target, *pname, v.as_ptr());
-        Ok(())
-    }
-
-    pub(super) fn glTexParameteri(
-        &mut self,
-        target: &GLenum,
-        pname: &GLenum,
-        param: &GLint,
-    ) -> Result<(), ClientError> {
-        call!(self, "glTexParameteri", fn(u32, u32, i32) -> (), *target, *pname, *param);
         Ok(())
     }
 

@@ -6,11 +6,6 @@ use strata_protocol::wire::*;
 use super::*;
 
 impl Arms<'_> {
-    pub(super) fn glBindBuffer(&mut self, target: &GLenum, buffer: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glBindBuffer", fn(u32, u32) -> (), *target, *buffer);
-        Ok(())
-    }
-
     pub(super) fn glBufferData(
         &mut self,
         target: &GLenum,
@@ -47,16 +42,6 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glDisableVertexAttribArray(&mut self, index: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glDisableVertexAttribArray", fn(u32) -> (), *index);
-        Ok(())
-    }
-
-    pub(super) fn glDrawArrays(&mut self, mode: &GLenum, first: &GLint, count: &GLsizei) -> Result<(), ClientError> {
-        call!(self, "glDrawArrays", fn(u32, i32, i32) -> (), *mode, *first, *count);
-        Ok(())
-    }
-
     pub(super) fn glDrawElements(
         &mut self,
         mode: &GLenum,
@@ -68,18 +53,8 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glEnableVertexAttribArray(&mut self, index: &GLuint) -> Result<(), ClientError> {
-        call!(self, "glEnableVertexAttribArray", fn(u32) -> (), *index);
-        Ok(())
-    }
-
     // Names are the client's own: binding an unused name creates the object in ES 2.0.
     pub(super) fn glGenBuffers(&mut self, _names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
-        Ok(())
-    }
-
-    pub(super) fn glVertexAttrib1f(&mut self, index: &GLuint, x: &GLfloat) -> Result<(), ClientError> {
-        call!(self, "glVertexAttrib1f", fn(u32, f32) -> (), *index, *x);
         Ok(())
     }
 
@@ -92,11 +67,6 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glVertexAttrib2f(&mut self, index: &GLuint, x: &GLfloat, y: &GLfloat) -> Result<(), ClientError> {
-        call!(self, "glVertexAttrib2f", fn(u32, f32, f32) -> (), *index, *x, *y);
-        Ok(())
-    }
-
     pub(super) fn glVertexAttrib2fv(&mut self, index: &GLuint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         let v = values.to_vec();
         if v.len() < 2 {
@@ -106,35 +76,12 @@ impl Arms<'_> {
         Ok(())
     }
 
-    pub(super) fn glVertexAttrib3f(
-        &mut self,
-        index: &GLuint,
-        x: &GLfloat,
-        y: &GLfloat,
-        z: &GLfloat,
-    ) -> Result<(), ClientError> {
-        call!(self, "glVertexAttrib3f", fn(u32, f32, f32, f32) -> (), *index, *x, *y, *z);
-        Ok(())
-    }
-
     pub(super) fn glVertexAttrib3fv(&mut self, index: &GLuint, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
         let v = values.to_vec();
         if v.len() < 3 {
             return Err(unsupported("glVertexAttrib3fv with fewer than 3 values"));
         }
         call!(self, "glVertexAttrib3fv", fn(u32, *const f32) -> (), *index, v.as_ptr());
-        Ok(())
-    }
-
-    pub(super) fn glVertexAttrib4f(
-        &mut self,
-        index: &GLuint,
-        x: &GLfloat,
-        y: &GLfloat,
-        z: &GLfloat,
-        w: &GLfloat,
-    ) -> Result<(), ClientError> {
-        call!(self, "glVertexAttrib4f", fn(u32, f32, f32, f32, f32) -> (), *index, *x, *y, *z, *w);
         Ok(())
     }
 
