@@ -16,7 +16,7 @@
 //   LIT           uniform Phong lighting; FROM_DEPTH: normals reconstructed from depth;
 //   DEPTH         the surfaces' depth images are bound;
 //   BASE          the cell's farthest group: laid on the background in the shader, no blending;
-//   COPY          the 2D compositor: the texel as it is;
+//   COPY          the 2D compositor: the texel as it is (no opacity);
 //   MAP           the lighting factor is read from a light map (one surface, per-surface normal);
 //   FACTOR        the pass that draws a light map;
 // and SURFACES is the number of surfaces (the length of a draw's array of `Surf`).
@@ -34,10 +34,12 @@ struct Params {
     // Premultiplied.
     background: vec4<f32>,
 };
-// rect: x, y (output pixels, from the top), width, height; normal: xyz unit (or zero), w > 0.5
-// when the surface has a depth image; proj: its declared projection (kind: 0 orthographic,
-// 1 perspective; near; far; reversed: 0 or 1), [0, 0, 1, 0] when undeclared.
-struct Surf { rect: vec4<i32>, normal: vec4<f32>, proj: vec4<f32>, };
+// rect: x, y (output pixels, from the top), width, height: where the surface shows; src: the
+// part of its image shown there, x, y (from the image's top), width, height; normal: xyz unit
+// (or zero), w > 0.5 when the surface has a depth image; proj: its declared projection (kind:
+// 0 orthographic, 1 perspective; near; far; reversed: 0 or 1), [0, 0, 1, 0] when undeclared;
+// img: the image's width and height, the opacity, unused.
+struct Surf { rect: vec4<i32>, src: vec4<i32>, normal: vec4<f32>, proj: vec4<f32>, img: vec4<f32>, };
 // A draw's uniform block. origin.xy: the render target's origin in output pixels; origin.zw:
 // the intermediate's.
 struct Draw { origin: vec4<i32>, surf: array<Surf, #{SURFACES}>, };
@@ -64,11 +66,51 @@ fn pixel(pos: vec4<f32>, origin: vec4<i32>) -> vec2<i32> {
     return vec2<i32>(floor(pos.xy)) + origin.xy;
 }
 
-// Where output pixel `px` lies in surface `s`'s images, which are in GL row order: bottom row
-// first.
+// `a / b` rounded down (b > 0); WGSL's `/` rounds towards zero.
+fn fdiv(a: i32, b: i32) -> i32 {
+    let q = a / b;
+    return select(q, q - 1, a % b != 0 && a < 0);
+}
+
+// The image row of row `y` counted from the image's top: the images are in GL row order,
+// bottom row first.
+fn row(s: Surf, y: i32) -> i32 {
+    return i32(s.img.y) - 1 - y;
+}
+
+// Where output pixel `px` lies in surface `s`'s images: the source texel whose area holds the
+// pixel's centre, the rectangle mapped onto the source region. In integers, so that it is
+// exact: x = src.x + floor((2 (px - rect.x) + 1) src.w / (2 rect.w)); with equal sizes, the
+// pixel's own texel.
 fn at(s: Surf, px: vec2<i32>) -> vec2<i32> {
-    let r = s.rect;
-    return vec2<i32>(px.x - r.x, r.y + r.w - 1 - px.y);
+    let l = px - s.rect.xy;
+    let t = s.src.xy + vec2<i32>(fdiv((2 * l.x + 1) * s.src.z, 2 * s.rect.z), fdiv((2 * l.y + 1) * s.src.w, 2 * s.rect.w));
+    return vec2<i32>(t.x, row(s, t.y));
+}
+
+// Surface `s`'s colour at output pixel `px`: its texel where the source region has the
+// rectangle's size; scaled, the bilinear blend of the four source texels around the pixel's
+// centre (texel centres at half-integers, clamped to the source region), as a filtering
+// sampler would give it. The weights come from integers too: u = src.x + ((2 l + 1) src.w -
+// rect.w) / (2 rect.w) in texel-centre units.
+fn colour(s: Surf, px: vec2<i32>, color: texture_2d<f32>) -> vec4<f32> {
+    if (all(s.src.zw == s.rect.zw)) {
+        return textureLoad(color, at(s, px), 0);
+    }
+    let l = px - s.rect.xy;
+    let n = (2 * l + vec2<i32>(1)) * s.src.zw - s.rect.zw;
+    let d = 2 * s.rect.zw;
+    let t0 = vec2<i32>(fdiv(n.x, d.x), fdiv(n.y, d.y));
+    let f = vec2<f32>(n - t0 * d) / vec2<f32>(d);
+    let lo = s.src.xy;
+    let hi = s.src.xy + s.src.zw - vec2<i32>(1);
+    let a = clamp(s.src.xy + t0, lo, hi);
+    let b = clamp(s.src.xy + t0 + vec2<i32>(1), lo, hi);
+    let c00 = textureLoad(color, vec2<i32>(a.x, row(s, a.y)), 0);
+    let c10 = textureLoad(color, vec2<i32>(b.x, row(s, a.y)), 0);
+    let c01 = textureLoad(color, vec2<i32>(a.x, row(s, b.y)), 0);
+    let c11 = textureLoad(color, vec2<i32>(b.x, row(s, b.y)), 0);
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
 #ifdef DEPTH
@@ -154,11 +196,12 @@ fn light_map(prm: Params, s: Surf, px: vec2<i32>) -> Out {
     return Out(vec4<f32>(factor(prm, s.normal.xyz, vec2<f32>(px) + 0.5), 0.0, 0.0, 0.0));
 }
 #else
-// Surface `s` taken as the candidate at `sp` (in its images) with eye depth `d`: its colour and
-// its normal (from its depth, or its own).
+// Surface `s` taken as the candidate at output pixel `px` (`sp` in its images) with eye depth
+// `d`: its colour, its alpha times its opacity, and its normal (from its depth, or its own).
 fn take(
     prm: Params,
     s: Surf,
+    px: vec2<i32>,
     sp: vec2<i32>,
     d: f32,
     color: texture_2d<f32>,
@@ -168,10 +211,13 @@ fn take(
 ) -> Best {
     var b: Best;
     b.d = d;
-    b.c = textureLoad(color, sp, 0);
+    b.c = colour(s, px, color);
+#ifndef COPY
+    b.c.a = b.c.a * s.img.z;
+#endif
 #ifdef FROM_DEPTH
     b.n = vec3<f32>(0.0, 0.0, 1.0);
-    if (s.normal.w > 0.5) { b.n = dn(depth, s.proj, prm.light_color.w, sp, s.rect.zw); }
+    if (s.normal.w > 0.5) { b.n = dn(depth, s.proj, prm.light_color.w, sp, vec2<i32>(s.img.xy)); }
 #else
     b.n = s.normal.xyz;
 #endif
@@ -191,11 +237,11 @@ fn first(
 ) -> Best {
     let sp = at(s, px);
 #ifdef SELECT
-    return take(prm, s, sp, eye_at(s, sp, depth), color, depth);
+    return take(prm, s, px, sp, eye_at(s, sp, depth), color, depth);
 #else ifdef DEPTH
-    return take(prm, s, sp, 0.0, color, depth);
+    return take(prm, s, px, sp, 0.0, color, depth);
 #else
-    return take(prm, s, sp, 0.0, color);
+    return take(prm, s, px, sp, 0.0, color);
 #endif
 }
 #endif
@@ -223,7 +269,7 @@ fn nearer(
 ) -> Best {
     let sp = at(s, px);
     let d = eye_at(s, sp, depth);
-    if (d <= b.d) { return take(prm, s, sp, d, color, depth); }
+    if (d <= b.d) { return take(prm, s, px, sp, d, color, depth); }
     return b;
 }
 #endif

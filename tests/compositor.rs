@@ -18,6 +18,8 @@ mod extremes;
 mod figures;
 #[path = "compositor/projection.rs"]
 mod projection;
+#[path = "compositor/regions.rs"]
+mod regions;
 
 const OUT_W: u32 = 96;
 const OUT_H: u32 = 64;
@@ -56,7 +58,7 @@ fn surface(i: usize, rect: [i32; 4], z: f32, alpha: u8, depth: bool) -> RefLayer
         }
     }
     let normal = [(i as f32 * 0.3).sin() * 0.5, (i as f32 * 0.7).cos() * 0.5, 1.0];
-    RefLayer { rect, z, color, depth: depth.then_some(d), normal, projection: None }
+    RefLayer { rect, z, color, depth: depth.then_some(d), normal, projection: None, props: Default::default() }
 }
 
 /// A `w`×`h` 2D image of one level.

@@ -77,7 +77,7 @@ fn rgb(img: &image::RgbaImage, x: u32, y: u32) -> [u8; 3] {
 
 fn list(socket: &Path) -> (Vec<strata_protocol::control::OutputRow>, Vec<strata_protocol::control::SurfaceRow>) {
     match control(socket, ControlRequest::List) {
-        ControlReply::List { outputs, surfaces } => (outputs, surfaces),
+        ControlReply::List { outputs, surfaces, .. } => (outputs, surfaces),
         other => panic!("list: {other:?}"),
     }
 }
@@ -312,6 +312,7 @@ fn ctl_moves_lights_and_screenshots_and_recomposites_only_on_change() {
             depth: None,
             normal,
             projection: None,
+            props: Default::default(),
         };
         let want = reference::composite(&[layer], 128, 64, [0.0, 0.0, 0.0, 1.0], &Lighting::default());
         let p = ((30 * 128 + 120) * 4) as usize;

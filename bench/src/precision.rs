@@ -307,6 +307,7 @@ impl Images {
                 depth: Some(self.reference[i].0.clone()),
                 normal: NORMALS[i],
                 projection: Some(self.reference[i].1),
+                props: Default::default(),
             })
             .collect()
     }
@@ -440,6 +441,7 @@ fn measure(
                 Projection::RAW
             },
             opaque: false,
+            props: Default::default(),
         })
         .collect();
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;

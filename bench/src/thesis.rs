@@ -154,7 +154,7 @@ fn compositor_busy(socket: &std::path::Path) -> Result<u64> {
 fn list(socket: &std::path::Path) -> Result<(Vec<OutputRow>, Vec<SurfaceRow>)> {
     let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
     match c.request(&ControlRequest::List)? {
-        ControlReply::List { outputs, surfaces } => Ok((outputs, surfaces)),
+        ControlReply::List { outputs, surfaces, .. } => Ok((outputs, surfaces)),
         other => bail!("unexpected control reply {other:?}"),
     }
 }

@@ -235,6 +235,12 @@ pub enum ControlRequest {
         /// Surface ID, as `List` shows it.
         surface: u64,
     },
+    /// Applies property changes in one step: all of them show in the same composite, or, if
+    /// any fails, none applies (answered with `List`).
+    Apply {
+        /// The changes, in order.
+        changes: Vec<crate::properties::Change>,
+    },
 }
 
 /// One thread of a device's driver.
@@ -360,6 +366,14 @@ pub struct SurfaceRow {
     /// attributes'); `None`: undeclared, compared by raw depth.
     #[serde(default)]
     pub projection: Option<crate::projection::Projection>,
+    /// Its image's width and height (`rect` differs where a destination region scales it).
+    pub image: [i32; 2],
+    /// Its visibility, opacity and regions (its layers' are in `ControlReply::List::layers`).
+    pub props: crate::properties::SurfaceProps,
+    /// Whether it shows, its layers' visibility taken in.
+    pub shown_visible: bool,
+    /// Its opacity times its layers'.
+    pub shown_opacity: f32,
 }
 
 /// One output of `stratad ctl list`.
@@ -401,6 +415,8 @@ pub enum ControlReply {
         outputs: Vec<OutputRow>,
         /// Window surfaces.
         surfaces: Vec<SurfaceRow>,
+        /// Layers, by name.
+        layers: Vec<crate::properties::LayerRow>,
     },
     /// A composited image: RGBA8, top row first.
     Image {

@@ -9,6 +9,7 @@ pub mod control;
 pub mod futex;
 pub mod handshake;
 pub mod projection;
+pub mod properties;
 pub mod ring;
 pub mod segment;
 pub mod surface_id;

@@ -10,7 +10,9 @@ use super::Cli;
 fn fill(word: &str) -> &str {
     match word {
         "SURFACE" | "ID" => "7",
-        "X" | "Y" => "10",
+        "X" | "Y" | "W" | "H" => "10",
+        "NAME" => "ic",
+        "FILE.json" => "/tmp/strata-test.json",
         "Z" | "A" => "0.5",
         "S" => "16",
         "PATH" => "/tmp/strata-test.sock",

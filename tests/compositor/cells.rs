@@ -141,6 +141,7 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
             normal: [0.0, 0.0, 1.0],
             projection: Projection::RAW,
             opaque: false,
+            props: Default::default(),
         });
     }
     comp.composite(&gl, &off, &out, BACKGROUND, None).expect("composite");
@@ -156,6 +157,7 @@ fn surfaces_covering_nothing_and_regions_without_area_are_harmless() {
         normal: [0.0; 3],
         projection: Projection::RAW,
         opaque: false,
+        props: Default::default(),
     }];
     for region in [[10, 10, 0, 20], [10, 10, 20, 0], [OUT_W, 0, 5, 5], [0, OUT_H, 5, 5], [u32::MAX; 4]] {
         comp.composite(&other, &off, &out, BACKGROUND, Some(region)).expect("composite");

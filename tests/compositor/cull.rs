@@ -190,6 +190,7 @@ fn a_surface_without_alpha_is_opaque() {
                     normal: s.normal,
                     projection: strata_protocol::projection::Projection::RAW,
                     opaque: s.opaque,
+                    props: Default::default(),
                 })
                 .collect();
             let mut comp = Compositor::new(gpu.clone(), None).expect("compositor");

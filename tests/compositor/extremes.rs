@@ -22,7 +22,7 @@ fn ortho(near: f32, far: f32) -> Option<Projection> {
 /// or none, and `projection`.
 fn solid(rect: [i32; 4], z: f32, rgba: [u8; 4], depth: Option<Vec<f32>>, projection: Option<Projection>) -> RefLayer {
     let n = (rect[2] * rect[3]) as usize;
-    RefLayer { rect, z, color: rgba.repeat(n), depth, normal: [0.0, 0.0, 1.0], projection }
+    RefLayer { rect, z, color: rgba.repeat(n), depth, normal: [0.0, 0.0, 1.0], projection, props: Default::default() }
 }
 
 /// A `w`×`h` depth image (rows bottom first) whose texel at (x, y) is `f(x, y)`.

@@ -4,6 +4,7 @@
 
 pub mod egl;
 pub mod gl;
+pub mod windows;
 
 use std::io::Write;
 use std::os::unix::net::UnixStream;

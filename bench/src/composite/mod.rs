@@ -151,6 +151,7 @@ fn time_composite(
             normal: [0.0, 0.0, 1.0],
             projection: strata_protocol::projection::Projection::RAW,
             opaque: false,
+            props: Default::default(),
         })
         .collect();
     try_median_ms(frames, || {

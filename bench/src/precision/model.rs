@@ -89,6 +89,7 @@ fn measure(
             normal: NORMALS[i],
             projection: Projection::shader_params(Some(&projection(i, false))),
             opaque: false,
+            props: Default::default(),
         })
         .collect();
     let cull = match case {
@@ -101,6 +102,7 @@ fn measure(
                 normal: [0.0, 0.0, 1.0],
                 projection: Projection::RAW,
                 opaque: true,
+                props: Default::default(),
             });
             cull
         }
@@ -128,6 +130,7 @@ fn measure(
                 depth: None,
                 normal: [0.0, 0.0, 1.0],
                 projection: None,
+                props: Default::default(),
             });
             "model: opaque cover".to_string()
         }

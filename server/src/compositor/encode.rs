@@ -71,11 +71,13 @@ pub fn unit_normal(n: [f32; 3]) -> [f32; 3] {
     }
 }
 
-/// A surface's entry in a uniform block (`Surf`, `SURF_SIZE` bytes): rectangle, unit normal
-/// (or zero) and has-depth flag, projection.
+/// A surface's entry in a uniform block (`Surf`, `SURF_SIZE` bytes): rectangle, source region,
+/// unit normal (or zero) and has-depth flag, projection, image size and opacity.
 fn surf_bytes(l: &Layer<'_>, out: &mut Vec<u8>) {
     let unit = unit_normal(l.normal);
+    let source = l.props.source_for(l.rect);
     out.extend_from_slice(bytemuck::cast_slice(&l.rect));
+    out.extend_from_slice(bytemuck::cast_slice(&source.region));
     out.extend_from_slice(bytemuck::cast_slice(&[
         unit[0],
         unit[1],
@@ -83,6 +85,12 @@ fn surf_bytes(l: &Layer<'_>, out: &mut Vec<u8>) {
         if l.depth.is_some() { 1.0 } else { 0.0 },
     ]));
     out.extend_from_slice(bytemuck::cast_slice(&l.projection));
+    out.extend_from_slice(bytemuck::cast_slice(&[
+        source.image[0] as f32,
+        source.image[1] as f32,
+        l.props.opacity.clamp(0.0, 1.0),
+        0.0,
+    ]));
 }
 
 impl<'a> Builder<'a> {
@@ -153,10 +161,11 @@ impl<'a> Builder<'a> {
     pub fn light_map(&mut self, n: [f32; 3], view: wgpu::TextureView) {
         let at = self.uniforms.len().next_multiple_of(self.align as usize);
         self.uniforms.resize(at, 0);
-        // The origins and one `Surf`: no rectangle, the normal, no projection.
-        self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0i32; 8]));
+        // The origins and one `Surf`: no rectangle or source, the normal, no projection, no
+        // image.
+        self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0i32; 12]));
         self.uniforms.extend_from_slice(bytemuck::cast_slice(&[n[0], n[1], n[2], 0.0]));
-        self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0.0f32; 4]));
+        self.uniforms.extend_from_slice(bytemuck::cast_slice(&[0.0f32; 8]));
         debug_assert_eq!((self.uniforms.len() - at) as u64, block_size(1));
         let instances = self.rects(&[[0, 0, self.size.0 as i32, self.size.1 as i32]], [0, 0], self.size);
         let draw = DrawOp { kind: Some(PassKind::light_map()), views: Vec::new(), block: at as u32, instances };

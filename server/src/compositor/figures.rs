@@ -34,7 +34,15 @@ pub fn two_triangles(width: u32, height: u32) -> Vec<RefLayer> {
                 }
             }
         }
-        RefLayer { rect: [0, 0, w, h], z: 0.5, color: rgba, depth: Some(depth), normal, projection: None }
+        RefLayer {
+            rect: [0, 0, w, h],
+            z: 0.5,
+            color: rgba,
+            depth: Some(depth),
+            normal,
+            projection: None,
+            props: Default::default(),
+        }
     };
     vec![triangle(true, [240, 140, 40], [-0.6, 0.0, 1.0]), triangle(false, [60, 120, 240], [0.6, 0.0, 1.0])]
 }

@@ -29,8 +29,15 @@
 //! (normals from depth come from the selected surface's own depth), so the image is the same,
 //! bit for bit, as without culling.
 //!
+//! Regions and opacity (`Layer::props`): a surface shows a source region of its image over its
+//! rectangle. Where the two have the same size each pixel fetches its own texel exactly; where
+//! they differ the colour is filtered bilinearly (texel centres at half-integers, clamped to the
+//! region) and the depth select uses the nearest texel, both located in integer arithmetic so
+//! that the f64 reference finds the same texels. Opacity multiplies the selected colour's
+//! alpha; a surface with opacity below 1 is never treated as opaque by culling.
+//!
 //! `Mode::TwoD` is the 2D baseline: painter's order by z only, no depth, no lighting, each
-//! visible part of a surface copied as it is.
+//! visible part of a surface copied as it is (opacity does not apply).
 
 mod encode;
 pub mod figures;
@@ -55,9 +62,44 @@ const MAX_LIGHT_MAPS: usize = 4;
 /// Largest output (pixels) with light maps: 4 bytes a pixel per map.
 const LIGHT_MAP_MAX_PIXELS: u64 = 8 << 20;
 
+/// The part of a surface's image that is shown, stretched over its rectangle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Source {
+    /// The image's width and height.
+    pub image: [i32; 2],
+    /// The part shown: x, y (from the image's top), width, height, within the image.
+    pub region: [i32; 4],
+}
+
+/// How a surface is shown beyond its placement: which part of its image, and how opaquely.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Props {
+    /// The part of the image shown over the rectangle (scaled, and filtered bilinearly, where
+    /// its size differs from the rectangle's; fetched exactly where it is the same); `None`: the
+    /// whole image, whose size is the rectangle's.
+    pub source: Option<Source>,
+    /// Multiplies the selected premultiplied colour (its alpha): 0 shows nothing of it, 1 shows
+    /// it as drawn. The surface still takes part in its group's depth select.
+    pub opacity: f32,
+}
+
+impl Default for Props {
+    fn default() -> Self {
+        Props { source: None, opacity: 1.0 }
+    }
+}
+
+impl Props {
+    /// The source in effect for rectangle `rect`: the image's size and the region shown.
+    pub fn source_for(&self, rect: [i32; 4]) -> Source {
+        self.source.unwrap_or(Source { image: [rect[2], rect[3]], region: [0, 0, rect[2], rect[3]] })
+    }
+}
+
 /// One surface to composite.
 pub struct Layer<'a> {
-    /// x, y (from the output's top), width, height in output pixels (the image's size).
+    /// x, y (from the output's top), width, height in output pixels: where the surface shows
+    /// (its image's size unless `props.source` scales it).
     pub rect: [i32; 4],
     /// Depth layer: larger is farther; equal values form one group.
     pub z: f32,
@@ -73,8 +115,11 @@ pub struct Layer<'a> {
     /// undeclared, which compares its raw depth.
     pub projection: [f32; 4],
     /// Its colour has alpha 1 everywhere (a surface whose config has no alpha, whose alpha
-    /// reads as 1): nothing beneath it can show, so culling may leave out what it covers.
+    /// reads as 1): nothing beneath it can show, so culling may leave out what it covers
+    /// (only where `props.opacity` is 1 too).
     pub opaque: bool,
+    /// Which part of its image shows, and its opacity.
+    pub props: Props,
 }
 
 /// How surfaces are combined.
@@ -298,7 +343,7 @@ impl Compositor {
         match self.mode {
             Mode::ThreeD => {
                 self.light_maps(&mut b, layers, light, (w, h));
-                let opaque: Vec<bool> = layers.iter().map(|l| l.opaque).collect();
+                let opaque: Vec<bool> = layers.iter().map(|l| l.opaque && l.props.opacity >= 1.0).collect();
                 let plan = plan::plan_3d(&cells, &z, self.cull.then_some(&opaque[..]));
                 culled = plan.culled;
                 b.fill(&plan.fill);

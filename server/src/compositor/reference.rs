@@ -3,13 +3,14 @@
 
 use strata_protocol::projection::Projection;
 
-use super::{Lighting, NormalSource};
+use super::{Lighting, NormalSource, Props};
 use crate::gpu::Gpu;
 
 /// One surface as the reference sees it: CPU copies of its images.
 #[derive(Debug, Clone)]
 pub struct RefLayer {
-    /// x, y (from the output's top), width, height in output pixels.
+    /// x, y (from the output's top), width, height in output pixels: where it shows (its
+    /// image's size unless `props.source` scales it).
     pub rect: [i32; 4],
     /// Depth layer: larger is farther; equal values form one group.
     pub z: f32,
@@ -22,6 +23,45 @@ pub struct RefLayer {
     pub normal: [f32; 3],
     /// The declared projection by which its depth is compared (`None`: raw depth).
     pub projection: Option<Projection>,
+    /// Which part of its image shows over `rect`, and its opacity.
+    pub props: Props,
+}
+
+impl RefLayer {
+    /// Its image's width and height.
+    fn image(&self) -> [i32; 2] {
+        self.props.source_for(self.rect).image
+    }
+
+    /// Its colour texel (x, y counted from the bottom), straight alpha in [0, 1].
+    fn texel(&self, x: i32, y: i32) -> [f64; 4] {
+        let at = ((y * self.image()[0] + x) * 4) as usize;
+        std::array::from_fn(|i| f64::from(self.color[at + i]) / 255.0)
+    }
+}
+
+/// `a / b` rounded down (b > 0).
+fn fdiv(a: i64, b: i64) -> i64 {
+    a.div_euclid(b)
+}
+
+/// The source texel (x, y from the image's top) whose area holds the centre of pixel `l` of
+/// the rectangle (`l`: from the rectangle's corner; `n`: the rectangle's and `src`'s extent
+/// along one axis; `o`: the source region's start).
+fn nearest(l: i64, o: i32, src: i32, n: i32) -> i32 {
+    (i64::from(o) + fdiv((2 * l + 1) * i64::from(src), 2 * i64::from(n))) as i32
+}
+
+/// The two source texels around the centre of pixel `l` along one axis (clamped to the
+/// source region) and the weight of the second: centres at half-integers, as a bilinear
+/// sampler takes them.
+fn around(l: i64, o: i32, src: i32, n: i32) -> (i32, i32, f64) {
+    let num = (2 * l + 1) * i64::from(src) - i64::from(n);
+    let d = 2 * i64::from(n);
+    let t0 = fdiv(num, d);
+    let f = (num - t0 * d) as f64 / d as f64;
+    let clamp = |t: i64| (i64::from(o) + t).clamp(i64::from(o), i64::from(o) + i64::from(src) - 1) as i32;
+    (clamp(t0), clamp(t0 + 1), f)
 }
 
 /// `v` scaled to unit length, or zero for a zero or non-finite length (`encode::unit_normal`).
@@ -41,7 +81,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// as the shader reads a texel: NaN as the far plane's window depth (1, or 0 when reversed),
 /// then clamped to [0, 1].
 fn depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
-    let w = l.rect[2];
+    let w = l.image()[0];
     match &l.depth {
         Some(d) => {
             let v = f64::from(d[(sy * w + sx) as usize]);
@@ -74,7 +114,7 @@ fn eye_depth_at(l: &RefLayer, sx: i32, sy: i32) -> f64 {
 
 /// The normal reconstructed from depth: central differences, one-sided at the edges.
 fn depth_normal(l: &RefLayer, sx: i32, sy: i32, scale: f64) -> [f64; 3] {
-    let (w, h) = (l.rect[2], l.rect[3]);
+    let [w, h] = l.image();
     let d = |x: i32, y: i32| depth_at(l, x.clamp(0, w - 1), y.clamp(0, h - 1));
     let (x0, x1) = ((sx - 1).max(0), (sx + 1).min(w - 1));
     let (y0, y1) = ((sy - 1).max(0), (sy + 1).min(h - 1));
@@ -96,24 +136,39 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
             let mut acc = [bg[0] * bg[3], bg[1] * bg[3], bg[2] * bg[3], bg[3]];
             for &z in &zs {
                 // Within the group: nearest eye depth wins; on a tie the later surface wins.
-                let mut best: Option<(f64, &RefLayer, i32, i32)> = None;
+                let mut best: Option<(f64, &RefLayer, [i64; 2], i32, i32)> = None;
                 for l in layers.iter().filter(|l| l.z == z) {
                     // In 64 bits: a rectangle may lie anywhere in the i32 plane.
                     let (lx, ly) = (i64::from(px) - i64::from(l.rect[0]), i64::from(py) - i64::from(l.rect[1]));
                     if lx < 0 || ly < 0 || lx >= i64::from(l.rect[2]) || ly >= i64::from(l.rect[3]) {
                         continue;
                     }
-                    // Inside the rectangle, so both fit in an i32.
-                    let (lx, ly) = (lx as i32, ly as i32);
-                    let sy = l.rect[3] - 1 - ly;
-                    let d = eye_depth_at(l, lx, sy);
+                    let src = l.props.source_for(l.rect);
+                    let r = src.region;
+                    let sx = nearest(lx, r[0], r[2], l.rect[2]);
+                    let sy = src.image[1] - 1 - nearest(ly, r[1], r[3], l.rect[3]);
+                    let d = eye_depth_at(l, sx, sy);
                     if best.is_none_or(|b| d <= b.0) {
-                        best = Some((d, l, lx, sy));
+                        best = Some((d, l, [lx, ly], sx, sy));
                     }
                 }
-                let Some((_, l, sx, sy)) = best else { continue };
-                let at = ((sy * l.rect[2] + sx) * 4) as usize;
-                let c: Vec<f64> = l.color[at..at + 4].iter().map(|&v| f64::from(v) / 255.0).collect();
+                let Some((_, l, [lx, ly], sx, sy)) = best else { continue };
+                let src = l.props.source_for(l.rect);
+                let r = src.region;
+                let c = if r[2] == l.rect[2] && r[3] == l.rect[3] {
+                    l.texel(sx, sy)
+                } else {
+                    // Bilinear, rows counted from the image's top, then flipped.
+                    let (x0, x1, fx) = around(lx, r[0], r[2], l.rect[2]);
+                    let (y0, y1, fy) = around(ly, r[1], r[3], l.rect[3]);
+                    let flip = |y: i32| src.image[1] - 1 - y;
+                    let mix = |a: [f64; 4], b: [f64; 4], t: f64| {
+                        std::array::from_fn::<f64, 4, _>(|i| a[i] + (b[i] - a[i]) * t)
+                    };
+                    let top = mix(l.texel(x0, flip(y0)), l.texel(x1, flip(y0)), fx);
+                    let bottom = mix(l.texel(x0, flip(y1)), l.texel(x1, flip(y1)), fx);
+                    mix(top, bottom, fy)
+                };
                 let mut rgb = [c[0], c[1], c[2]];
                 if light.enabled {
                     let n = match light.normals {
@@ -142,7 +197,7 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
                         *ch = (*ch * f * f64::from(light.color[i])).clamp(0.0, 1.0);
                     }
                 }
-                let a = c[3];
+                let a = c[3] * f64::from(l.props.opacity.clamp(0.0, 1.0));
                 for i in 0..3 {
                     acc[i] = rgb[i] * a + acc[i] * (1.0 - a);
                 }
@@ -176,6 +231,7 @@ impl Uploaded {
             normal: l.normal,
             projection: Projection::shader_params(l.projection.as_ref()),
             opaque: false,
+            props: l.props,
         }
     }
 }
@@ -183,7 +239,8 @@ impl Uploaded {
 /// Uploads a reference layer's colour and depth images, so that the GPU compositor can draw
 /// what the reference draws.
 pub fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
-    let size = wgpu::Extent3d { width: l.rect[2] as u32, height: l.rect[3] as u32, depth_or_array_layers: 1 };
+    let [w, h] = l.image();
+    let size = wgpu::Extent3d { width: w as u32, height: h as u32, depth_or_array_layers: 1 };
     let mk = |format, usage| gpu.texture_2d("reference layer", format, (size.width, size.height), usage);
     let c = mk(wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
     gpu.queue.write_texture(

@@ -17,9 +17,9 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Bytes of the lighting parameters at the start of the uniform buffer (`Params`).
 pub const PARAMS_SIZE: u64 = 80;
 
-/// Bytes of one surface's entry in a draw's block (`Surf`: rect, normal, proj; three
+/// Bytes of one surface's entry in a draw's block (`Surf`: rect, src, normal, proj, img; five
 /// 16-byte vectors, so the uniform array's stride is a multiple of 16 as std140 requires).
-pub const SURF_SIZE: u64 = 48;
+pub const SURF_SIZE: u64 = 80;
 
 /// Bind groups unused for this many composites are dropped (a surface alternates between two
 /// front images, so each of its bind groups is typically used every other composite).

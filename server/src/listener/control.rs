@@ -23,11 +23,24 @@ pub(super) async fn serve_control(stream: &mut UnixStream, shared: &Arc<Shared>)
     }
 }
 
+/// Every output, surface and layer.
+fn list(shared: &Shared) -> ControlReply {
+    ControlReply::List {
+        outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
+        surfaces: shared.scene.rows(),
+        layers: shared.scene.layers(),
+    }
+}
+
 fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
     match req {
-        ControlRequest::List => ControlReply::List {
-            outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
-            surfaces: shared.scene.rows(),
+        ControlRequest::List => list(shared),
+        ControlRequest::Apply { changes } => match shared.scene.apply(&changes) {
+            Ok(()) => {
+                info!(changes = changes.len(), "properties changed");
+                list(shared)
+            }
+            Err(e) => ControlReply::Error(e.to_string()),
         },
         ControlRequest::Stats => ControlReply::Stats(crate::stats::collect(
             shared.gpu.as_deref(),

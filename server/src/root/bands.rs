@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use strata_protocol::control::Lighting;
 
 use super::{Inner, Root, BACKGROUND};
-use crate::compositor::Layer;
+use crate::compositor::{Layer, Props};
 use crate::scene::{Region, Shown};
 
 /// When the compositor draws a change band by band (`--band-above-ms`, `--band-ms`).
@@ -49,6 +49,7 @@ pub struct KeptLayer {
     normal: [f32; 3],
     projection: [f32; 4],
     opaque: bool,
+    props: Props,
 }
 
 impl KeptLayer {
@@ -62,6 +63,7 @@ impl KeptLayer {
             normal: l.normal,
             projection: l.projection,
             opaque: l.opaque,
+            props: l.props,
         }
     }
 
@@ -75,6 +77,7 @@ impl KeptLayer {
             normal: self.normal,
             projection: self.projection,
             opaque: self.opaque,
+            props: self.props,
         }
     }
 }

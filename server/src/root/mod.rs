@@ -293,6 +293,7 @@ impl Root {
                 let layers: Vec<Layer<'_>> = surfaces
                     .iter()
                     .filter_map(|s| {
+                        let props = s.compositor_props(s.props.opacity)?;
                         Some(Layer {
                             // Placements far outside the i32 range of this output's pixels
                             // cover none of them; saturating keeps them outside.
@@ -303,6 +304,7 @@ impl Root {
                             normal: s.normal,
                             projection: Projection::shader_params(s.projection.as_ref()),
                             opaque: s.opaque,
+                            props,
                         })
                     })
                     .collect();

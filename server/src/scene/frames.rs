@@ -40,8 +40,12 @@ impl Scene {
         s.presented = Some((Instant::now(), refreshes));
         let old = s.rect;
         if let Some((w, h)) = s.resized.take() {
-            s.rect[2] = w;
-            s.rect[3] = h;
+            s.image = [w, h];
+            // A destination region keeps its size: the new image is scaled to it.
+            if s.props.destination.is_none() {
+                s.rect[2] = w;
+                s.rect[3] = h;
+            }
         }
         let r = Region::None.with(old).with(s.rect);
         let high = s.priority == Priority::High;

@@ -22,11 +22,13 @@ mod frames;
 mod ids;
 mod mailbox;
 mod pacing;
+mod properties;
 mod region;
 
 pub use ids::IdTaken;
 pub use mailbox::{Buffers, Use, Views};
 pub use pacing::Work;
+pub use properties::{LayerState, Layers};
 pub use region::Region;
 
 /// Swap-to-shown latencies kept per surface for `ctl list`.
@@ -48,8 +50,13 @@ pub struct SceneSurface {
     pub client_id: u64,
     /// Owning client's name.
     pub client: String,
-    /// x, y (from the output space's top), width, height in pixels.
+    /// x, y (from the output space's top), width, height in pixels: where it shows (its
+    /// destination region where one is set, else its placement at its image's size).
     pub rect: [i32; 4],
+    /// Its image's width and height (the newest frame's).
+    pub image: [i32; 2],
+    /// Its visibility, opacity and regions.
+    pub props: strata_protocol::properties::SurfaceProps,
     /// Depth layer: larger is farther.
     pub z: f32,
     /// The newest complete frame's colour (RGBA8, GL row order), as the compositor's device
@@ -89,9 +96,14 @@ pub struct SceneSurface {
 }
 
 impl SceneSurface {
-    /// The row `stratad ctl list` shows.
-    pub fn row(&self) -> SurfaceRow {
+    /// The row `stratad ctl list` shows (`layers`: the scene's).
+    pub fn row(&self, layers: &Layers) -> SurfaceRow {
+        let (shown_visible, shown_opacity) = self.shown_in(layers);
         SurfaceRow {
+            image: self.image,
+            props: self.props,
+            shown_visible,
+            shown_opacity,
             id: self.id,
             client_id: self.client_id,
             client: self.client.clone(),
@@ -140,6 +152,8 @@ struct State {
     /// Swaps waiting for a refresh to pass.
     pacing_waiters: usize,
     lighting: Lighting,
+    /// Named groups of surfaces.
+    layers: Layers,
     /// Each connected client's class and whether its surfaces have deadlines.
     policies: HashMap<u64, (Priority, bool)>,
 }
@@ -198,6 +212,7 @@ impl Scene {
                 root: false,
                 pacing_waiters: 0,
                 lighting,
+                layers: Layers::new(),
                 policies: HashMap::new(),
             }),
             changed: Condvar::new(),
@@ -292,6 +307,8 @@ impl Scene {
                 client_id: client,
                 client: name.to_string(),
                 rect,
+                image: [rect[2], rect[3]],
+                props: Default::default(),
                 z,
                 color: None,
                 depth: None,
@@ -382,12 +399,17 @@ impl Scene {
     /// Moves surface `id`; returns its new row, or `None` if there is no such surface.
     pub fn move_surface(&self, id: u64, x: i32, y: i32, z: f32) -> Option<SurfaceRow> {
         let mut g = self.lock()?;
-        let s = g.surfaces.values_mut().find(|s| s.id == id)?;
+        let st = &mut *g;
+        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
         let old = s.rect;
         s.rect[0] = x;
         s.rect[1] = y;
+        if let Some(d) = &mut s.props.destination {
+            d[0] = x;
+            d[1] = y;
+        }
         s.z = z;
-        let row = s.row();
+        let row = s.row(&st.layers);
         let region = Region::None.with(old).with(row.rect);
         self.damaged(g, region);
         Some(row)
@@ -396,9 +418,10 @@ impl Scene {
     /// Sets surface `id`'s normal; returns its new row, or `None` if there is no such surface.
     pub fn set_normal(&self, id: u64, normal: [f32; 3]) -> Option<SurfaceRow> {
         let mut g = self.lock()?;
-        let s = g.surfaces.values_mut().find(|s| s.id == id)?;
+        let st = &mut *g;
+        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
         s.normal = normal;
-        let row = s.row();
+        let row = s.row(&st.layers);
         // Only lit pixels change, and only with per-surface normals; redraw the surface.
         self.damaged(g, Region::None.with(row.rect));
         Some(row)
@@ -451,7 +474,8 @@ impl Scene {
             surfaces.extend(g.surfaces.values());
         }
         surfaces.sort_by_key(|s| s.order);
-        let mut rows: Vec<SurfaceRow> = surfaces.into_iter().map(SceneSurface::row).collect();
+        let layers = g.as_ref().map(|g| g.layers.clone()).unwrap_or_default();
+        let mut rows: Vec<SurfaceRow> = surfaces.into_iter().map(|s| s.row(&layers)).collect();
         drop(g);
         if let Ok(m) = self.streams.lock() {
             for r in &mut rows {
@@ -466,8 +490,9 @@ impl Scene {
         self.lock().map(|g| g.damage).unwrap_or(0)
     }
 
-    /// Runs `f` on the surfaces (in stacking order), the lighting and the region changed since
-    /// the last composite (`part` of it). The newest frame of each surface is marked as read
+    /// Runs `f` on the surfaces shown (in stacking order; their layers' opacity multiplied
+    /// into `props.opacity`), the lighting and the region changed since the last composite
+    /// (`part` of it). The newest frame of each surface is marked as read
     /// until [`Scene::shown`], so no client draws into it meanwhile; `f` runs without the
     /// lock. Returns `f`'s result, the damage count it reflects, and the new frames it took
     /// (for [`Scene::shown`]).
@@ -494,7 +519,16 @@ impl Scene {
             s.shown = s.frames;
             s.buffers.read_latest();
         }
-        let mut v: Vec<SceneSurface> = g.surfaces.values().cloned().collect();
+        let mut v: Vec<SceneSurface> = g
+            .surfaces
+            .values()
+            .filter_map(|s| {
+                let (visible, opacity) = s.shown_in(&g.layers);
+                let mut s = s.clone();
+                s.props.opacity = opacity;
+                visible.then_some(s)
+            })
+            .collect();
         v.sort_by_key(|s| s.order);
         let (damage, lighting) = (g.damage, g.lighting);
         drop(g);

@@ -9,7 +9,11 @@ use strata_client::ControlConnection;
 use strata_protocol::control::LightChange;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 
+use strata_protocol::properties::{Batch, Change};
+
 use crate::{save_png, Normals};
+
+mod print;
 
 #[derive(Subcommand)]
 pub enum CtlCmd {
@@ -47,6 +51,27 @@ pub enum CtlCmd {
         #[arg(value_parser = vec3, allow_hyphen_values = true)]
         normal: [f32; 3],
     },
+    /// Set a window surface's visibility, opacity, source region (the part of its image
+    /// shown) or destination region (where it shows, scaled to fit).
+    Surface {
+        /// Surface ID (as `list` shows it).
+        surface: u64,
+        #[command(subcommand)]
+        what: SurfaceCmd,
+    },
+    /// Layers, named groups of surfaces: `layer create NAME`, `layer destroy NAME`,
+    /// `layer NAME add|remove SURFACE`, `layer NAME visibility on|off`, `layer NAME opacity A`.
+    Layer {
+        /// The words of the command, as above.
+        #[arg(num_args = 2..=3, required = true, value_names = ["NAME|create|destroy", "..."])]
+        words: Vec<String>,
+    },
+    /// Apply a batch of changes from a JSON file (`{"changes": [...]}`, see docs/control.md) in
+    /// one composite: all of it shows at once, or none of it applies.
+    Apply {
+        /// The batch.
+        file: PathBuf,
+    },
     /// The daemon's memory, every client's GPU memory and objects against its quota, and the
     /// objects alive on the device.
     Stats,
@@ -62,6 +87,89 @@ pub enum CtlCmd {
         /// Client number (as `stats` shows it).
         client: u64,
     },
+}
+
+/// `on` or `off`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum OnOff {
+    /// Shown.
+    On,
+    /// Hidden.
+    Off,
+}
+
+#[derive(Subcommand)]
+pub enum SurfaceCmd {
+    /// Show or hide it (hidden, it takes no part in the depth select).
+    Visibility {
+        /// on or off.
+        #[arg(value_enum)]
+        state: OnOff,
+    },
+    /// Multiply its premultiplied colour by A in [0, 1].
+    Opacity {
+        /// The opacity.
+        #[arg(allow_negative_numbers = true)]
+        opacity: f32,
+    },
+    /// Show only part of its image: X Y (from the image's top) W H.
+    SourceRegion {
+        /// x, y, width, height.
+        #[arg(num_args = 4, allow_negative_numbers = true, value_names = ["X", "Y", "W", "H"])]
+        region: Vec<i32>,
+    },
+    /// Show it at X Y in the output space, scaled to W×H.
+    DestinationRegion {
+        /// x, y, width, height.
+        #[arg(num_args = 4, allow_negative_numbers = true, value_names = ["X", "Y", "W", "H"])]
+        region: Vec<i32>,
+    },
+}
+
+/// The change `ctl surface ID …` asks for.
+fn surface_change(surface: u64, what: &SurfaceCmd) -> Result<Change> {
+    let rect = |v: &[i32]| <[i32; 4]>::try_from(v).map_err(|_| anyhow::anyhow!("a region is four numbers: X Y W H"));
+    Ok(match what {
+        SurfaceCmd::Visibility { state } => Change::Visibility { surface, visible: matches!(state, OnOff::On) },
+        SurfaceCmd::Opacity { opacity } => Change::Opacity { surface, opacity: *opacity },
+        SurfaceCmd::SourceRegion { region } => Change::SourceRegion { surface, region: rect(region)? },
+        SurfaceCmd::DestinationRegion { region } => Change::DestinationRegion { surface, region: rect(region)? },
+    })
+}
+
+/// The change `ctl layer …` asks for.
+fn layer_change(words: &[String]) -> Result<Change> {
+    let w: Vec<&str> = words.iter().map(String::as_str).collect();
+    let on = |v: &str| match v {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => bail!("visibility is on or off, not {v:?}"),
+    };
+    let id = |v: &str| v.parse::<u64>().with_context(|| format!("surface ID {v:?}"));
+    let layer = |n: &str| n.to_string();
+    Ok(match w.as_slice() {
+        ["create", name] => Change::LayerCreate { layer: layer(name) },
+        ["destroy", name] => Change::LayerDestroy { layer: layer(name) },
+        [name, "add", s] => Change::LayerAdd { layer: layer(name), surface: id(s)? },
+        [name, "remove", s] => Change::LayerRemove { layer: layer(name), surface: id(s)? },
+        [name, "visibility", v] => Change::LayerVisibility { layer: layer(name), visible: on(v)? },
+        [name, "opacity", a] => {
+            Change::LayerOpacity { layer: layer(name), opacity: a.parse().with_context(|| format!("opacity {a:?}"))? }
+        }
+        _ => bail!(
+            "`layer {}` is not a layer command: layer create NAME, layer destroy NAME, layer NAME add|remove SURFACE, layer NAME visibility on|off, layer NAME opacity A",
+            w.join(" ")
+        ),
+    })
+}
+
+/// The batch in `file`; nothing is sent if it does not parse.
+fn read_batch(file: &std::path::Path) -> Result<Vec<Change>> {
+    let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
+    let batch: Batch = serde_json::from_str(&text).with_context(|| {
+        format!("{} is not a batch of changes (see docs/control.md); nothing applied", file.display())
+    })?;
+    Ok(batch.changes)
 }
 
 #[derive(Subcommand)]
@@ -103,8 +211,15 @@ pub fn vec3(s: &str) -> Result<[f32; 3], String> {
 
 pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
+    let mut changes = Vec::new();
     let request = match &what {
         CtlCmd::List => ControlRequest::List,
+        CtlCmd::Surface { surface, what } => ControlRequest::Apply { changes: vec![surface_change(*surface, what)?] },
+        CtlCmd::Layer { words } => ControlRequest::Apply { changes: vec![layer_change(words)?] },
+        CtlCmd::Apply { file } => {
+            changes = read_batch(file)?;
+            ControlRequest::Apply { changes: changes.clone() }
+        }
         CtlCmd::Stats => ControlRequest::Stats,
         CtlCmd::LoseDevice { client } => ControlRequest::LoseDevice { client: *client },
         CtlCmd::Screenshot { targets, surface } => match (surface, targets.as_slice()) {
@@ -132,84 +247,18 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     };
     match (c.request(&request)?, what) {
         (ControlReply::Error(e), _) => bail!("{e}"),
-        (ControlReply::List { outputs, surfaces }, _) => {
+        (ControlReply::List { outputs, surfaces, layers }, what) => {
+            let applied = match what {
+                CtlCmd::Surface { .. } | CtlCmd::Layer { .. } => Some(1),
+                CtlCmd::Apply { .. } => Some(changes.len()),
+                _ => None,
+            };
             if json {
-                println!("{}", serde_json::json!({"outputs": outputs, "surfaces": surfaces}));
-                return Ok(());
-            }
-            println!(
-                "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {:>9} {:>8} {:>9}  last redrawn",
-                "output",
-                "kind",
-                "x",
-                "y",
-                "w",
-                "h",
-                "composites",
-                "banded",
-                "passes",
-                "device ms",
-                "queue ms",
-                "encode ms"
-            );
-            for o in outputs {
-                let r = o.region;
-                let each = |us: u64| us as f64 / 1000.0 / o.composites.max(1) as f64;
-                let (ms, queue, encode) = (each(o.composite_us), each(o.queue_us), each(o.encode_us));
-                println!(
-                    "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2}  {}x{}+{}+{}",
-                    o.name,
-                    o.kind,
-                    o.rect[0],
-                    o.rect[1],
-                    o.rect[2],
-                    o.rect[3],
-                    o.composites,
-                    o.banded,
-                    o.passes,
-                    r[2],
-                    r[3],
-                    r[0],
-                    r[1]
-                );
-            }
-            println!();
-            println!(
-                "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}  projection",
-                "id",
-                "client",
-                "x",
-                "y",
-                "w",
-                "h",
-                "z",
-                "frames",
-                "shown",
-                "interval",
-                "stream bytes",
-                "priority",
-                "missed",
-                "shown in (p99)"
-            );
-            for r in surfaces {
-                println!(
-                    "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16}  {}",
-                    r.id,
-                    format!("{} ({})", r.client, r.client_id),
-                    r.rect[0],
-                    r.rect[1],
-                    r.rect[2],
-                    r.rect[3],
-                    r.z,
-                    r.frames,
-                    r.shown,
-                    r.interval,
-                    r.stream_bytes,
-                    r.priority.name(),
-                    if r.deadline { r.deadline_misses.to_string() } else { "-".into() },
-                    format!("{:.1} ms", r.shown_latency_us[1] as f64 / 1000.0),
-                    r.projection.map_or_else(|| "-".to_string(), |p| p.to_string())
-                );
+                println!("{}", serde_json::json!({"outputs": outputs, "surfaces": surfaces, "layers": layers}));
+            } else if let Some(n) = applied {
+                println!("applied {n} change{}", if n == 1 { "" } else { "s" });
+            } else {
+                print::list(&outputs, &surfaces, &layers);
             }
             Ok(())
         }
@@ -228,7 +277,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 println!("{}", serde_json::json!(s));
                 return Ok(());
             }
-            print_stats(&s);
+            print::stats(&s);
             Ok(())
         }
         (ControlReply::Moved(r), _) => {
@@ -257,87 +306,5 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             Ok(())
         }
         (other, _) => bail!("unexpected reply {other:?}"),
-    }
-}
-
-fn mib(bytes: u64) -> String {
-    format!("{:.1} MiB", bytes as f64 / (1 << 20) as f64)
-}
-
-/// One device as `ctl stats` prints it: busy time, its driver threads' nice values, the global
-/// priority granted, whether it is the client's own and whether it was lost.
-fn device_line(d: &strata_protocol::control::DeviceStats) -> String {
-    let mut nice: Vec<i32> = d.threads.iter().map(|t| t.nice).collect();
-    nice.sort_unstable();
-    nice.dedup();
-    format!(
-        "busy {:.1} ms, {} threads at nice {:?}, global priority {}{}{}",
-        d.busy_us as f64 / 1000.0,
-        d.threads.len(),
-        nice,
-        d.global_priority.as_deref().unwrap_or("not offered"),
-        if d.own { "" } else { ", shared" },
-        if d.lost { ", LOST" } else { "" }
-    )
-}
-
-fn print_stats(s: &strata_protocol::control::DaemonStats) {
-    println!("daemon: rss {} (peak {}), {} sessions started", mib(s.rss_bytes), mib(s.peak_rss_bytes), s.sessions);
-    println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
-    let kinds: Vec<&String> = s.objects.keys().collect();
-    print!(
-        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
-        "id", "client", "priority", "missed", "gpu memory", "limit", "refused"
-    );
-    for k in &kinds {
-        print!(" {:>13}", k);
-    }
-    println!();
-    for c in &s.clients {
-        print!(
-            "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
-            c.id,
-            c.name,
-            c.priority.name(),
-            c.deadline_misses,
-            mib(c.gpu_bytes),
-            mib(c.gpu_bytes_limit),
-            c.refusals
-        );
-        for k in &kinds {
-            print!(" {:>13}", c.objects.get(*k).copied().unwrap_or(0));
-        }
-        println!();
-    }
-    print!(
-        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
-        "",
-        "total",
-        "",
-        "",
-        mib(s.gpu_bytes),
-        mib(s.gpu_bytes_limit),
-        ""
-    );
-    for k in &kinds {
-        print!(" {:>13}", s.objects[*k]);
-    }
-    println!();
-    println!("where frames waited (ms): swap, device; each device: busy ms, threads at nice, global priority");
-    for c in &s.clients {
-        let w = &c.waits;
-        let ms = |us: u64| us as f64 / 1000.0;
-        print!("{:>4} {:<20} {:>10.1} {:>10.1}", c.id, c.name, ms(w.swap_us), ms(w.gpu_us));
-        match &c.device {
-            Some(d) => println!("  {}", device_line(d)),
-            None => println!(),
-        }
-    }
-    if let Some(d) = &s.compositor_device {
-        println!("{:>4} {:<20} {:>10} {:>10}  {}", "", "(compositor)", "", "", device_line(d));
-    }
-    if !s.device_objects.is_empty() {
-        let live: Vec<String> = s.device_objects.iter().map(|(k, v)| format!("{k} {v}")).collect();
-        println!("device objects: {}", live.join(", "));
     }
 }

@@ -1,0 +1,204 @@
+//! Surfaces' and layers' compositing properties: visibility, opacity, source and destination
+//! regions, and layers (named groups of surfaces with a visibility and an opacity of their
+//! own). A batch of changes is checked whole and applied under the scene's lock with one
+//! damage, so that a composite, which takes the scene under the same lock, shows all of it or
+//! none of it.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use strata_protocol::properties::{Change, ChangeError, LayerRow, Rect};
+
+use super::{Region, Scene, SceneSurface, State};
+use crate::compositor::{Props, Source};
+
+/// A layer's own state.
+#[derive(Debug, Clone)]
+pub struct LayerState {
+    /// Whether its members may show.
+    pub visible: bool,
+    /// Multiplies its members' opacity.
+    pub opacity: f32,
+    /// Its members' surface IDs (live or not).
+    pub surfaces: BTreeSet<u64>,
+}
+
+impl Default for LayerState {
+    fn default() -> Self {
+        LayerState { visible: true, opacity: 1.0, surfaces: BTreeSet::new() }
+    }
+}
+
+/// The layers, by name.
+pub type Layers = BTreeMap<String, LayerState>;
+
+/// `a ∩ b`, or `None` where they do not overlap.
+fn intersect(a: Rect, b: Rect) -> Option<Rect> {
+    let (a, b) = (a.map(i64::from), b.map(i64::from));
+    let x0 = a[0].max(b[0]);
+    let y0 = a[1].max(b[1]);
+    let x1 = (a[0] + a[2]).min(b[0] + b[2]);
+    let y1 = (a[1] + a[3]).min(b[1] + b[3]);
+    // Within both, so each fits in an i32.
+    (x1 > x0 && y1 > y0).then(|| [x0 as i32, y0 as i32, (x1 - x0) as i32, (y1 - y0) as i32])
+}
+
+impl SceneSurface {
+    /// Whether it shows and its opacity, its layers taken in: visible only if it and every
+    /// layer holding it are; the opacity is the product of its own and theirs.
+    pub fn shown_in(&self, layers: &Layers) -> (bool, f32) {
+        layers
+            .values()
+            .filter(|l| l.surfaces.contains(&self.id))
+            .fold((self.props.visible, self.props.opacity), |(v, a), l| (v && l.visible, a * l.opacity))
+    }
+
+    /// The source region in effect: the one set, clipped to the image, else the whole image;
+    /// `None` where nothing of the image is left.
+    pub fn source_region(&self) -> Option<Rect> {
+        let whole = [0, 0, self.image[0], self.image[1]];
+        intersect(self.props.source.unwrap_or(whole), whole)
+    }
+
+    /// How the compositor shows it, with opacity `opacity`: `None` where nothing of it can
+    /// show (an empty rectangle or source region).
+    pub fn compositor_props(&self, opacity: f32) -> Option<Props> {
+        if self.rect[2] <= 0 || self.rect[3] <= 0 {
+            return None;
+        }
+        let region = self.source_region()?;
+        let exact = self.props.source.is_none() && self.props.destination.is_none();
+        let source = (!exact).then_some(Source { image: self.image, region });
+        Some(Props { source, opacity })
+    }
+}
+
+/// Finds live surface `id`.
+fn surface(st: &mut State, id: u64) -> Result<&mut SceneSurface, ChangeError> {
+    st.surfaces.values_mut().find(|s| s.id == id).ok_or(ChangeError::NoSurface(id))
+}
+
+/// The rectangles of layer `name`'s live members.
+fn member_rects(st: &State, name: &str) -> Region {
+    let Some(l) = st.layers.get(name) else { return Region::None };
+    st.surfaces.values().filter(|s| l.surfaces.contains(&s.id)).fold(Region::None, |r, s| r.with(s.rect))
+}
+
+/// Applies one checked change to `st`, adding what it changes on the output to `damage`.
+fn apply_one(st: &mut State, c: &Change, damage: &mut Region) -> Result<(), ChangeError> {
+    let layer = |st: &mut State, name: &str| -> Result<(), ChangeError> {
+        st.layers.contains_key(name).then_some(()).ok_or_else(|| ChangeError::NoLayer(name.to_string()))
+    };
+    match c {
+        Change::Visibility { surface: id, visible } => {
+            let s = surface(st, *id)?;
+            s.props.visible = *visible;
+            *damage = damage.with(s.rect);
+        }
+        Change::Opacity { surface: id, opacity } => {
+            let s = surface(st, *id)?;
+            s.props.opacity = *opacity;
+            *damage = damage.with(s.rect);
+        }
+        Change::SourceRegion { surface: id, region } => {
+            let s = surface(st, *id)?;
+            s.props.source = Some(*region);
+            *damage = damage.with(s.rect);
+        }
+        Change::DestinationRegion { surface: id, region } => {
+            let s = surface(st, *id)?;
+            *damage = damage.with(s.rect).with(*region);
+            s.props.destination = Some(*region);
+            s.rect = *region;
+        }
+        Change::LayerCreate { layer: name } => {
+            if st.layers.contains_key(name) {
+                return Err(ChangeError::LayerExists(name.clone()));
+            }
+            st.layers.insert(name.clone(), LayerState::default());
+        }
+        Change::LayerDestroy { layer: name } => {
+            layer(st, name)?;
+            *damage = damage.union(member_rects(st, name));
+            st.layers.remove(name);
+        }
+        Change::LayerAdd { layer: name, surface: id } => {
+            layer(st, name)?;
+            let r = surface(st, *id)?.rect;
+            *damage = damage.with(r);
+            st.layers.entry(name.clone()).or_default().surfaces.insert(*id);
+        }
+        Change::LayerRemove { layer: name, surface: id } => {
+            layer(st, name)?;
+            if let Ok(s) = surface(st, *id) {
+                *damage = damage.with(s.rect);
+            }
+            if !st.layers.entry(name.clone()).or_default().surfaces.remove(id) {
+                return Err(ChangeError::NotMember { layer: name.clone(), surface: *id });
+            }
+        }
+        Change::LayerVisibility { layer: name, visible } => {
+            layer(st, name)?;
+            *damage = damage.union(member_rects(st, name));
+            st.layers.entry(name.clone()).or_default().visible = *visible;
+        }
+        Change::LayerOpacity { layer: name, opacity } => {
+            layer(st, name)?;
+            *damage = damage.union(member_rects(st, name));
+            st.layers.entry(name.clone()).or_default().opacity = *opacity;
+        }
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Applies `changes` in order, in one step: every composite shows all of them or none. If
+    /// any fails (a bad value, an unknown surface or layer), the scene is left as it was and
+    /// the error names the change (a batch of one answers with its own error).
+    pub fn apply(&self, changes: &[Change]) -> Result<(), ChangeError> {
+        let wrap = |index: usize, e: ChangeError| {
+            if changes.len() == 1 {
+                e
+            } else {
+                ChangeError::InBatch { index, error: Box::new(e) }
+            }
+        };
+        for (i, c) in changes.iter().enumerate() {
+            c.validate().map_err(|e| wrap(i, e))?;
+        }
+        let Some(mut g) = self.lock() else { return Err(ChangeError::Unavailable) };
+        // What a change can alter, kept to put back if a later one fails.
+        let kept: Vec<_> = g.surfaces.iter().map(|(k, s)| (*k, s.rect, s.props)).collect();
+        let layers = g.layers.clone();
+        let mut damage = Region::None;
+        for (i, c) in changes.iter().enumerate() {
+            if let Err(e) = apply_one(&mut g, c, &mut damage) {
+                for (k, rect, props) in kept {
+                    if let Some(s) = g.surfaces.get_mut(&k) {
+                        s.rect = rect;
+                        s.props = props;
+                    }
+                }
+                g.layers = layers;
+                return Err(wrap(i, e));
+            }
+        }
+        if damage != Region::None {
+            self.damaged(g, damage);
+        }
+        Ok(())
+    }
+
+    /// Every layer, by name.
+    pub fn layers(&self) -> Vec<LayerRow> {
+        let Some(g) = self.lock() else { return Vec::new() };
+        g.layers
+            .iter()
+            .map(|(name, l)| LayerRow {
+                name: name.clone(),
+                visible: l.visible,
+                opacity: l.opacity,
+                surfaces: l.surfaces.iter().copied().collect(),
+            })
+            .collect()
+    }
+}
