@@ -3,6 +3,7 @@
 
 mod clients;
 mod composite;
+mod control;
 mod execute;
 mod glmark2;
 mod interference;
@@ -92,6 +93,11 @@ enum Cmd {
     /// Precision knobs, one row per setting: composite ms beside depth, selection and colour
     /// error against the f64 reference compositor, measured in the same run.
     Precision(precision::Args),
+    /// The control surface under a full scene: how many refreshes a batch takes to show, and
+    /// how long `ctl list --json` takes to answer, with 64 surfaces from real clients.
+    Control(control::Args),
+    #[command(hide = true)]
+    ControlClient(control::ClientArgs),
 }
 
 fn main() -> Result<()> {
@@ -133,5 +139,7 @@ fn main() -> Result<()> {
         Cmd::Interference(args) => interference::run(&args),
         Cmd::InterferenceClient(args) => interference_client::run(&args),
         Cmd::Precision(args) => precision::run(&args),
+        Cmd::Control(args) => control::run(&args),
+        Cmd::ControlClient(args) => control::client(&args),
     }
 }

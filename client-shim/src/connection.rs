@@ -185,41 +185,6 @@ impl Connection {
     }
 }
 
-/// An administrative connection (`stratad ctl`).
-pub struct ControlConnection {
-    stream: UnixStream,
-}
-
-impl ControlConnection {
-    /// Connects for control requests.
-    pub fn connect(socket: &std::path::Path) -> Result<ControlConnection, ClientError> {
-        use std::io::Write;
-        let mut stream = UnixStream::connect(socket)
-            .map_err(|source| ClientError::Connect { socket: socket.to_path_buf(), source })?;
-        let hello = Hello {
-            name: "stratad-ctl".into(),
-            role: "control".into(),
-            placement: None,
-            tally: false,
-            purpose: Purpose::Control,
-        };
-        let mut opening = handshake::preamble(PROTOCOL_VERSION).to_vec();
-        opening.extend_from_slice(&handshake::frame(&hello)?);
-        stream.write_all(&opening).map_err(HandshakeError::Io)?;
-        match handshake::read_message(&mut stream, "control welcome")? {
-            ServerMessage::ControlReady => Ok(ControlConnection { stream }),
-            ServerMessage::Refused { reason } => Err(HandshakeError::Refused(reason).into()),
-            other => Err(ClientError::Unexpected(format!("{other:?}"))),
-        }
-    }
-
-    /// Sends one request and waits for its reply.
-    pub fn request(&mut self, req: &handshake::ControlRequest) -> Result<handshake::ControlReply, ClientError> {
-        handshake::write_message(&mut self.stream, req)?;
-        Ok(handshake::read_message_limited(&mut self.stream, "control reply", handshake::MAX_CONTROL_REPLY)?)
-    }
-}
-
 impl Calls for Connection {
     type Error = ClientError;
 

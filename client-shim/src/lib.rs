@@ -3,9 +3,11 @@
 #![warn(missing_docs)]
 
 pub mod connection;
+pub mod control;
 pub mod setup;
 pub mod vertex_wire;
 pub mod workload;
 
-pub use connection::{ClientError, ConnectOptions, Connection, ControlConnection};
+pub use connection::{ClientError, ConnectOptions, Connection};
+pub use control::ControlConnection;
 pub use strata_protocol::Calls;

@@ -76,15 +76,26 @@ impl std::fmt::Debug for Bytes {
     }
 }
 
+/// In a human-readable format (the JSON control protocol) the bytes are one base64 string;
+/// in the binary codec, raw.
 impl Serialize for Bytes {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_bytes(&self.0)
+        if s.is_human_readable() {
+            s.serialize_str(&data_encoding::BASE64.encode(&self.0))
+        } else {
+            s.serialize_bytes(&self.0)
+        }
     }
 }
 
 impl<'de> Deserialize<'de> for Bytes {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        Blob::deserialize(d).map(|b| Bytes(b.0.into_owned()))
+        if d.is_human_readable() {
+            let text = String::deserialize(d)?;
+            data_encoding::BASE64.decode(text.as_bytes()).map(Bytes).map_err(serde::de::Error::custom)
+        } else {
+            Blob::deserialize(d).map(|b| Bytes(b.0.into_owned()))
+        }
     }
 }
 

@@ -144,6 +144,21 @@ pub struct LightChange {
     pub normals: Option<NormalSource>,
 }
 
+/// The change that sets every parameter to `l`'s.
+impl From<Lighting> for LightChange {
+    fn from(l: Lighting) -> Self {
+        LightChange {
+            enabled: Some(l.enabled),
+            ambient: Some(l.ambient),
+            shininess: Some(l.shininess),
+            position: Some(l.position),
+            view: Some(l.view),
+            color: Some(l.color),
+            normals: Some(l.normals),
+        }
+    }
+}
+
 impl LightChange {
     /// Checks that every given value is finite and in range (ambient and colour in [0, 1],
     /// shininess positive).
@@ -191,8 +206,10 @@ impl LightChange {
     }
 }
 
-/// What `stratad ctl` asks.
+/// What a control client (`stratad ctl`, or a controller through `strata_client::control`)
+/// asks; in JSON, as docs/control.md shows.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ControlRequest {
     /// Every output and window surface.
     List,
@@ -241,6 +258,15 @@ pub enum ControlRequest {
         /// The changes, in order.
         changes: Vec<crate::properties::Change>,
     },
+    /// Why a surface does not show, or that it does (answered with `Analysis`).
+    Analyze {
+        /// Surface ID.
+        surface: u64,
+    },
+    /// The whole scene in the form `--config` reads (answered with `Scene`).
+    Export,
+    /// Turns the connection into a stream of `ControlReply::Event`s until it closes.
+    Watch,
 }
 
 /// One thread of a device's driver.
@@ -366,6 +392,8 @@ pub struct SurfaceRow {
     /// attributes'); `None`: undeclared, compared by raw depth.
     #[serde(default)]
     pub projection: Option<crate::projection::Projection>,
+    /// Whether its ID is stable (the layout's, `STRATA_SURFACE_ID` or the application's).
+    pub stable: bool,
     /// Its image's width and height (`rect` differs where a destination region scales it).
     pub image: [i32; 2],
     /// Its visibility, opacity and regions (its layers' are in `ControlReply::List::layers`).
@@ -404,10 +432,14 @@ pub struct OutputRow {
     /// CPU time the compositor thread spent planning, encoding and submitting composites,
     /// microseconds.
     pub encode_us: u64,
+    /// The scene's damage count (`ControlReply::List::damage`) that the newest completed
+    /// composite shows: every change counted up to it is on the output.
+    pub shown_damage: u64,
 }
 
 /// The daemon's answer to a `ControlRequest`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ControlReply {
     /// Every output, and every window surface in stacking order.
     List {
@@ -417,6 +449,9 @@ pub enum ControlReply {
         surfaces: Vec<SurfaceRow>,
         /// Layers, by name.
         layers: Vec<crate::properties::LayerRow>,
+        /// The scene's damage count now: it moves with every change that needs a composite
+        /// (an output shows the change once its `shown_damage` reaches it).
+        damage: u64,
     },
     /// A composited image: RGBA8, top row first.
     Image {
@@ -433,6 +468,13 @@ pub enum ControlReply {
     Light(Lighting),
     /// The daemon's and its clients' resources.
     Stats(DaemonStats),
+    /// Why a surface does or does not show.
+    Analysis(crate::events::Analysis),
+    /// The whole scene, in the form the daemon's `--config` reads (docs/control.md): outputs,
+    /// layout, surfaces with their properties, layers, lighting and quotas.
+    Scene(serde_json::Value),
+    /// One event of a watched daemon.
+    Event(crate::events::Event),
     /// The request failed.
     Error(String),
 }

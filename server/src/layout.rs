@@ -10,11 +10,11 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use strata_protocol::projection::{Projection, ProjectionError};
 
 /// One layout entry.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LayoutEntry {
     /// The client name it applies to.
@@ -49,7 +49,7 @@ pub struct LayoutEntry {
 }
 
 /// A layout entry's stable surface IDs: one number or a list.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(from = "OneOrMany")]
 pub struct SurfaceIds(pub Vec<u32>);
 
@@ -77,12 +77,17 @@ impl SurfaceIds {
     }
 }
 
-/// The daemon's configuration file (TOML): `[[layout]]` tables with `client`, `x`, `y`, `z`
-/// and optionally `width`, `height`, `priority`, `deadline`, `projection`, `id`; `[[quota]]` tables
-/// with `client` and limits.
-#[derive(Debug, Clone, Default, Deserialize)]
+/// The daemon's configuration file, TOML (or JSON, as `stratad ctl export` writes it, when its
+/// name ends in `.json`): `[[layout]]` tables with `client`, `x`, `y`, `z` and optionally
+/// `width`, `height`, `priority`, `deadline`, `projection`, `id`; `[[quota]]` tables with
+/// `client` and limits; `output` strings in `--output` form; `[[surface]]` tables with a
+/// stable `id` and properties; `[[layer]]` tables; and a `[lighting]` table.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
+    /// Outputs in `--output` form (`headless:NAME=WxH+X+Y`), used when no `--output` is given.
+    #[serde(default)]
+    pub output: Vec<String>,
     /// Layout entries, first match wins.
     #[serde(default)]
     pub layout: Vec<LayoutEntry>,
@@ -90,6 +95,92 @@ pub struct Config {
     /// the prefix), first match wins.
     #[serde(default)]
     pub quota: Vec<crate::quota::QuotaEntry>,
+    /// Placement and properties of surfaces by stable ID, given to such a surface when it
+    /// appears.
+    #[serde(default)]
+    pub surface: Vec<SurfaceEntry>,
+    /// Layers, created at start.
+    #[serde(default)]
+    pub layer: Vec<LayerEntry>,
+    /// The lighting at start (wins over `--lighting` and `--normals`).
+    #[serde(default)]
+    pub lighting: Option<strata_protocol::control::Lighting>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn one() -> f32 {
+    1.0
+}
+
+/// A surface's placement and properties in the configuration (`[[surface]]`), by stable ID.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceEntry {
+    /// Its stable ID.
+    pub id: u64,
+    /// Left edge and top edge in the output space, and depth layer (each where given).
+    #[serde(default)]
+    pub x: Option<i32>,
+    /// Top edge.
+    #[serde(default)]
+    pub y: Option<i32>,
+    /// Depth layer.
+    #[serde(default)]
+    pub z: Option<f32>,
+    /// Shown (default true).
+    #[serde(default = "yes")]
+    pub visible: bool,
+    /// Opacity in [0, 1] (default 1).
+    #[serde(default = "one")]
+    pub opacity: f32,
+    /// The part of its image shown: x, y (from the image's top), width, height.
+    #[serde(default)]
+    pub source: Option<[i32; 4]>,
+    /// Where it shows, scaled: x, y, width, height.
+    #[serde(default)]
+    pub destination: Option<[i32; 4]>,
+    /// Its normal for per-surface lighting.
+    #[serde(default)]
+    pub normal: Option<[f32; 3]>,
+}
+
+/// A layer in the configuration (`[[layer]]`).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayerEntry {
+    /// Its name.
+    pub name: String,
+    /// Whether its members may show (default true).
+    #[serde(default = "yes")]
+    pub visible: bool,
+    /// Multiplies its members' opacity (default 1).
+    #[serde(default = "one")]
+    pub opacity: f32,
+    /// Its members' stable surface IDs.
+    #[serde(default)]
+    pub surfaces: Vec<u64>,
+}
+
+impl SurfaceEntry {
+    /// The property changes it makes to its surface.
+    pub fn changes(&self) -> Vec<strata_protocol::properties::Change> {
+        use strata_protocol::properties::Change;
+        let surface = self.id;
+        let mut v = vec![
+            Change::Visibility { surface, visible: self.visible },
+            Change::Opacity { surface, opacity: self.opacity },
+        ];
+        if let Some(region) = self.source {
+            v.push(Change::SourceRegion { surface, region });
+        }
+        if let Some(region) = self.destination {
+            v.push(Change::DestinationRegion { surface, region });
+        }
+        v
+    }
 }
 
 /// A layout or configuration that cannot be used.
@@ -199,10 +290,36 @@ impl Config {
     pub fn load(path: &Path) -> Result<Config, LayoutError> {
         let p = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|source| LayoutError::Read { path: p.clone(), source })?;
-        let config: Config =
-            toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p, message: e.to_string() })?;
+        let json = path.extension().is_some_and(|e| e == "json");
+        let config: Config = if json {
+            serde_json::from_str(&text).map_err(|e| LayoutError::Parse { path: p.clone(), message: e.to_string() })?
+        } else {
+            toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p.clone(), message: e.to_string() })?
+        };
         for e in &config.layout {
             e.validate()?;
+        }
+        let invalid = |what: String, why: String| LayoutError::Invalid { client: what, why };
+        for s in &config.surface {
+            for c in s.changes() {
+                c.validate().map_err(|e| invalid(format!("surface {}", s.id), e.to_string()))?;
+            }
+            if s.z.is_some_and(|z| !z.is_finite()) {
+                return Err(invalid(format!("surface {}", s.id), "z is not finite".into()));
+            }
+        }
+        for l in &config.layer {
+            strata_protocol::properties::check_layer_name(&l.name)
+                .map_err(|e| invalid(l.name.clone(), e.to_string()))?;
+            if !(0.0..=1.0).contains(&l.opacity) {
+                return Err(invalid(l.name.clone(), format!("opacity {} is outside [0, 1]", l.opacity)));
+            }
+        }
+        if let Some(l) = &config.lighting {
+            strata_protocol::control::LightChange::from(*l).validate().map_err(|e| invalid("lighting".into(), e))?;
+        }
+        for o in &config.output {
+            o.parse::<crate::root::OutputSpec>().map_err(|e| invalid("output".into(), e.to_string()))?;
         }
         let mut seen = std::collections::HashMap::new();
         for e in &config.layout {

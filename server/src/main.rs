@@ -302,14 +302,22 @@ fn main() -> Result<()> {
             band_above_ms,
             band_ms,
         } => {
-            let mut quotas = Vec::new();
+            let mut c = Config::default();
             if let Some(path) = config {
-                let c = Config::load(&path)?;
+                c = Config::load(&path)?;
                 layouts.extend(c.layout);
-                quotas = c.quota;
             }
-            let lighting =
-                Lighting { enabled: matches!(lighting, Switch::On), normals: normals.into(), ..Lighting::default() };
+            let quotas = c.quota;
+            let mut outputs = outputs;
+            if outputs.is_empty() {
+                // Checked when the configuration was read.
+                outputs = c.output.iter().filter_map(|o| o.parse().ok()).collect();
+            }
+            let lighting = c.lighting.unwrap_or(Lighting {
+                enabled: matches!(lighting, Switch::On),
+                normals: normals.into(),
+                ..Lighting::default()
+            });
             if !(refresh_hz.is_finite() && (1.0..=1000.0).contains(&refresh_hz)) {
                 bail!("--refresh-hz {refresh_hz} must lie in 1..=1000");
             }
@@ -342,6 +350,8 @@ fn main() -> Result<()> {
                 refresh_hz,
                 frames_in_flight,
                 layout: layouts,
+                surfaces: c.surface,
+                layers: c.layer,
                 limits: quota.limits(),
                 quotas,
                 total_gpu_bytes: quota.total(),

@@ -356,6 +356,13 @@ impl std::str::FromStr for ByteSize {
     }
 }
 
+/// Written as a plain number of bytes, which reads back as the same size.
+impl serde::Serialize for ByteSize {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_u64(self.0)
+    }
+}
+
 impl<'de> Deserialize<'de> for ByteSize {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         #[derive(Deserialize)]
@@ -373,7 +380,7 @@ impl<'de> Deserialize<'de> for ByteSize {
 
 /// A client's quota in the configuration file (`[[quota]]`): every field given replaces the
 /// daemon's `--quota-*` value for that client.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct QuotaEntry {
     /// The client name it applies to.

@@ -4,6 +4,7 @@
 
 pub mod egl;
 pub mod gl;
+pub mod scene;
 pub mod windows;
 
 use std::io::Write;

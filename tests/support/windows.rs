@@ -125,6 +125,11 @@ impl Client {
         Client { child, stdin, out, got }
     }
 
+    /// Its process ID.
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// Closes its stdin and waits for it to leave.
     pub fn stop(mut self) {
         drop(self.stdin.take());

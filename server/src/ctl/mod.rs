@@ -72,6 +72,21 @@ pub enum CtlCmd {
         /// The batch.
         file: PathBuf,
     },
+    /// Why a surface does not show: no frame yet, visibility off (its own or a layer's),
+    /// opacity 0, no area, off every output, or covered by nearer opaque surfaces.
+    Analyze {
+        /// Surface ID (as `list` shows it).
+        surface: u64,
+    },
+    /// Write the whole scene (outputs, layout, surfaces with their properties, layers,
+    /// lighting, quotas) as JSON that `stratad serve --config FILE.json` reads back.
+    Export {
+        /// The file to write.
+        file: PathBuf,
+    },
+    /// Stream events, one line each, until interrupted: clients and surfaces coming and going
+    /// (with name and pid), property changes, and each surface's frame statistics once a second.
+    Watch,
     /// The daemon's memory, every client's GPU memory and objects against its quota, and the
     /// objects alive on the device.
     Stats,
@@ -211,8 +226,14 @@ pub fn vec3(s: &str) -> Result<[f32; 3], String> {
 
 pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     let mut c = ControlConnection::connect(socket).with_context(|| format!("connecting to {}", socket.display()))?;
+    if let CtlCmd::Watch = what {
+        return watch(c, json);
+    }
     let mut changes = Vec::new();
     let request = match &what {
+        CtlCmd::Analyze { surface } => ControlRequest::Analyze { surface: *surface },
+        CtlCmd::Export { .. } => ControlRequest::Export,
+        CtlCmd::Watch => ControlRequest::Watch,
         CtlCmd::List => ControlRequest::List,
         CtlCmd::Surface { surface, what } => ControlRequest::Apply { changes: vec![surface_change(*surface, what)?] },
         CtlCmd::Layer { words } => ControlRequest::Apply { changes: vec![layer_change(words)?] },
@@ -247,7 +268,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
     };
     match (c.request(&request)?, what) {
         (ControlReply::Error(e), _) => bail!("{e}"),
-        (ControlReply::List { outputs, surfaces, layers }, what) => {
+        (ControlReply::List { outputs, surfaces, layers, .. }, what) => {
             let applied = match what {
                 CtlCmd::Surface { .. } | CtlCmd::Layer { .. } => Some(1),
                 CtlCmd::Apply { .. } => Some(changes.len()),
@@ -269,6 +290,29 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 println!("{}", serde_json::json!({"file": file, "width": width, "height": height}));
             } else {
                 println!("wrote {} ({width}x{height})", file.display());
+            }
+            Ok(())
+        }
+        (ControlReply::Analysis(a), _) => {
+            if json {
+                println!("{}", serde_json::json!(a));
+            } else if a.visible {
+                println!("surface {} shows", a.surface);
+            } else {
+                println!("surface {} does not show:", a.surface);
+                for r in &a.reasons {
+                    println!("  {r}");
+                }
+            }
+            Ok(())
+        }
+        (ControlReply::Scene(scene), CtlCmd::Export { file }) => {
+            let text = serde_json::to_string_pretty(&scene)?;
+            std::fs::write(&file, text + "\n").with_context(|| format!("writing {}", file.display()))?;
+            if json {
+                println!("{}", serde_json::json!({ "file": file }));
+            } else {
+                println!("wrote {}", file.display());
             }
             Ok(())
         }
@@ -307,4 +351,20 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
         }
         (other, _) => bail!("unexpected reply {other:?}"),
     }
+}
+
+/// Prints every event until the daemon closes the stream (or the process is interrupted).
+fn watch(c: ControlConnection, json: bool) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    for e in c.watch()? {
+        let e = e?;
+        if json {
+            writeln!(out, "{}", serde_json::json!(e))?;
+        } else {
+            writeln!(out, "{}", print::event(&e))?;
+        }
+        out.flush()?;
+    }
+    Ok(())
 }

@@ -1,6 +1,7 @@
 //! How `stratad ctl` prints its answers for people (`--json` prints them as they are).
 
 use strata_protocol::control::{OutputRow, SurfaceRow};
+use strata_protocol::events::Event;
 use strata_protocol::properties::LayerRow;
 
 /// A surface's regions where set, and its own visibility and opacity where its layers change
@@ -184,5 +185,26 @@ pub fn stats(s: &strata_protocol::control::DaemonStats) {
     if !s.device_objects.is_empty() {
         let live: Vec<String> = s.device_objects.iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("device objects: {}", live.join(", "));
+    }
+}
+
+/// One event as a line for people.
+pub fn event(e: &Event) -> String {
+    match e {
+        Event::ClientConnected { client, name, pid } => format!("client {client} {name:?} (pid {pid}) connected"),
+        Event::ClientGone { client, name, pid, reason } => {
+            format!("client {client} {name:?} (pid {pid}) gone: {reason}")
+        }
+        Event::SurfaceCreated { surface, client, name, pid } => {
+            format!("surface {surface} created by client {client} {name:?} (pid {pid})")
+        }
+        Event::SurfaceDestroyed { surface, client, name, pid } => {
+            format!("surface {surface} of client {client} {name:?} (pid {pid}) destroyed")
+        }
+        Event::Changed(c) => format!("changed: {}", serde_json::json!(c)),
+        Event::Frames { surface, frames, shown, deadline_misses, fps } => {
+            format!("surface {surface}: {frames} frames, {shown} shown, {deadline_misses} missed, {fps:.1} fps")
+        }
+        Event::Dropped { missed } => format!("dropped by the daemon: {missed} events behind"),
     }
 }

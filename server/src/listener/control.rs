@@ -1,26 +1,103 @@
-//! The control connection: `stratad ctl`'s requests, answered from the daemon's state.
+//! The control connection: JSON lines (`strata_protocol::json_control`, docs/control.md),
+//! each request answered from the daemon's state; `watch` turns it into an event stream.
 
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
-use strata_protocol::handshake::{self, ControlReply, ControlRequest, HandshakeError, ServerMessage};
-use tokio::io::AsyncWriteExt;
+use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_protocol::json_control::{self, Greeting, Opening, CONTROL_VERSION, MAX_REQUEST_LINE};
+use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWriteExt, BufReader};
+use tokio::net::unix::{OwnedReadHalf, OwnedWriteHalf};
 use tokio::net::UnixStream;
-use tracing::{info, warn};
+use tracing::{debug, info, warn};
 
-use super::{recv, send, Shared};
+use super::{timed, Shared};
 
-/// Answers `stratad ctl` requests until the connection closes.
-pub(super) async fn serve_control(stream: &mut UnixStream, shared: &Arc<Shared>) -> Result<(), HandshakeError> {
-    send(stream, &ServerMessage::ControlReady).await?;
-    loop {
-        let req: ControlRequest = recv(stream, "control request").await?;
-        let shared2 = shared.clone();
-        let reply = tokio::task::spawn_blocking(move || control(&shared2, req))
-            .await
-            .unwrap_or_else(|e| ControlReply::Error(format!("control request failed: {e}")));
-        stream.write_all(&handshake::frame_limited(&reply, handshake::MAX_CONTROL_REPLY)?).await?;
+/// Reads one line into `buf` (after what it holds): its length, 0 at the end of the stream;
+/// an error for a line longer than `limit`.
+async fn read_line(rd: &mut BufReader<OwnedReadHalf>, buf: &mut Vec<u8>, limit: usize) -> std::io::Result<usize> {
+    let n = (&mut *rd).take(limit as u64 + 1).read_until(b'\n', buf).await?;
+    if buf.len() > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("a control line longer than {limit} bytes"),
+        ));
     }
+    Ok(n)
+}
+
+/// Writes `v` as one line.
+async fn write_line<T: serde::Serialize>(wr: &mut OwnedWriteHalf, v: &T) -> std::io::Result<()> {
+    let line = json_control::line(v).map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))?;
+    wr.write_all(&line).await
+}
+
+/// Serves a control client whose first byte, `{`, has been read: its opening, then requests
+/// until it closes.
+pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64) {
+    let pid = stream.peer_cred().ok().and_then(|c| c.pid()).unwrap_or(0);
+    let (rd, mut wr) = stream.into_split();
+    let mut rd = BufReader::new(rd);
+    let mut buf = b"{".to_vec();
+    let opened = timed(async { Ok(read_line(&mut rd, &mut buf, MAX_REQUEST_LINE).await?) }).await;
+    let refuse = |reason: String| Greeting::Refused { reason };
+    let name = match opened.map(|_| json_control::parse::<Opening>(&buf, "opening")) {
+        Ok(Ok(Opening::Hello { version, name })) if version == CONTROL_VERSION => name,
+        Ok(Ok(Opening::Hello { version, name })) => {
+            let why = format!("control protocol version {version}; this daemon speaks {CONTROL_VERSION}");
+            warn!(control = id, name, "refused: {why}");
+            let _ = write_line(&mut wr, &refuse(why)).await;
+            return;
+        }
+        Ok(Err(e)) => {
+            warn!(control = id, "refused: {e}");
+            let _ = write_line(&mut wr, &refuse(e.to_string())).await;
+            return;
+        }
+        Err(e) => {
+            debug!(control = id, "control connection ended before its opening: {e}");
+            return;
+        }
+    };
+    debug!(control = id, name, pid, "control client");
+    if write_line(&mut wr, &Greeting::Ready { version: CONTROL_VERSION }).await.is_err() {
+        return;
+    }
+    loop {
+        buf.clear();
+        match read_line(&mut rd, &mut buf, MAX_REQUEST_LINE).await {
+            Ok(0) => return,
+            Ok(_) => {}
+            Err(e) => {
+                let _ = write_line(&mut wr, &ControlReply::Error(e.to_string())).await;
+                return;
+            }
+        }
+        if buf.iter().all(u8::is_ascii_whitespace) {
+            continue;
+        }
+        let reply = match json_control::parse::<ControlRequest>(&buf, "control request") {
+            Err(e) => ControlReply::Error(e.to_string()),
+            Ok(ControlRequest::Watch) => {
+                super::watcher::watch(rd, wr, shared, id).await;
+                return;
+            }
+            Ok(req) => {
+                let shared2 = shared.clone();
+                tokio::task::spawn_blocking(move || control(&shared2, req))
+                    .await
+                    .unwrap_or_else(|e| ControlReply::Error(format!("control request failed: {e}")))
+            }
+        };
+        if write_line(&mut wr, &reply).await.is_err() {
+            return;
+        }
+    }
+}
+
+/// Every output's rectangle in the output space.
+fn outputs(shared: &Shared) -> Vec<[i32; 4]> {
+    shared.root.as_ref().map(|r| r.rows().into_iter().map(|o| o.rect).collect()).unwrap_or_default()
 }
 
 /// Every output, surface and layer.
@@ -29,6 +106,7 @@ fn list(shared: &Shared) -> ControlReply {
         outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
         surfaces: shared.scene.rows(),
         layers: shared.scene.layers(),
+        damage: shared.scene.damage(),
     }
 }
 
@@ -119,6 +197,12 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
                 }
             }
         }
+        ControlRequest::Analyze { surface } => match shared.scene.analyze(surface, &outputs(shared)) {
+            Some(a) => ControlReply::Analysis(a),
+            None => ControlReply::Error(format!("no surface {surface}; `stratad ctl list` shows them")),
+        },
+        ControlRequest::Export => ControlReply::Scene(super::export::export(shared)),
+        ControlRequest::Watch => ControlReply::Error("watch is answered by the connection itself".into()),
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);

@@ -20,6 +20,8 @@ use crate::session::SessionEnd;
 
 mod client;
 mod control;
+mod export;
+mod watcher;
 
 /// How long a client may take over each handshake step.
 const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
@@ -58,6 +60,10 @@ pub struct ServeOptions {
     pub frames_in_flight: u32,
     /// Where clients' window surfaces go unless they say (first match by client name wins).
     pub layout: Vec<crate::layout::LayoutEntry>,
+    /// Placement and properties of surfaces by stable ID (the configuration's `[[surface]]`).
+    pub surfaces: Vec<crate::layout::SurfaceEntry>,
+    /// Layers created at start (the configuration's `[[layer]]`).
+    pub layers: Vec<crate::layout::LayerEntry>,
     /// Each client's limits, unless a quota entry names it.
     pub limits: crate::quota::Limits,
     /// Per-client limits by client name (first match wins).
@@ -126,6 +132,8 @@ impl Default for ServeOptions {
             refresh_hz: 60.0,
             frames_in_flight: 2,
             layout: Vec::new(),
+            surfaces: Vec::new(),
+            layers: Vec::new(),
             limits: crate::quota::Limits::default(),
             quotas: Vec::new(),
             total_gpu_bytes: crate::quota::default_total(),
@@ -289,6 +297,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     }
     let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
     scene.reserve_ids(opts.layout.iter().flat_map(|e| e.id.0.iter().map(|&id| u64::from(id))));
+    scene.configure(&opts.surfaces, &opts.layers);
     if let Some(gpu) = &gpu {
         scene.set_compositor(gpu.clone());
     }
@@ -383,10 +392,11 @@ async fn timed<T>(f: impl std::future::Future<Output = Result<T, HandshakeError>
     })
 }
 
-/// Reads the preamble and hello; refusals are sent to the client before the error returns.
-async fn greet(stream: &mut UnixStream) -> Result<Hello, HandshakeError> {
-    let mut pre = [0u8; 8];
-    timed(async { Ok(stream.read_exact(&mut pre).await?) }).await?;
+/// Reads the rest of the preamble (its first byte is `first`) and the hello; refusals are sent
+/// to the client before the error returns.
+async fn greet(stream: &mut UnixStream, first: u8) -> Result<Hello, HandshakeError> {
+    let mut pre = [first, 0, 0, 0, 0, 0, 0, 0];
+    timed(async { Ok(stream.read_exact(&mut pre[1..]).await?) }).await?;
     if let Err(e) = handshake::check_preamble(pre) {
         let _ = send(stream, &ServerMessage::Refused { reason: e.to_string() }).await;
         return Err(e);
@@ -396,7 +406,18 @@ async fn greet(stream: &mut UnixStream) -> Result<Hello, HandshakeError> {
 
 async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
     let id = shared.next_id.fetch_add(1, Ordering::Relaxed);
-    let hello = match greet(&mut stream).await {
+    let mut first = [0u8; 1];
+    if let Err(e) = timed(async { Ok(stream.read_exact(&mut first).await?) }).await {
+        debug!(client = id, "connection closed before it said anything: {e}");
+        return;
+    }
+    // A control client speaks JSON lines, whose first byte no preamble starts with.
+    if first[0] == b'{' {
+        control::serve_json(stream, &shared, id).await;
+        return;
+    }
+    let pid = stream.peer_cred().ok().and_then(|c| c.pid()).map_or(0, |p| p.unsigned_abs());
+    let hello = match greet(&mut stream, first[0]).await {
         Ok(h) => h,
         Err(HandshakeError::Io(e)) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
             debug!(client = id, "connection closed before the handshake finished");
@@ -408,18 +429,25 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
         }
     };
     if hello.purpose == Purpose::Control {
-        if let Err(e) = control::serve_control(&mut stream, &shared).await {
-            debug!(client = id, "control connection ended: {e}");
-        }
+        let reason = "control connections speak JSON lines (docs/control.md)".to_string();
+        let _ = send(&mut stream, &ServerMessage::Refused { reason }).await;
         return;
     }
     let span = tracing::info_span!("client", id, name = %hello.name, role = %hello.role);
-    match client::run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
-        Ok(end) => match end {
-            SessionEnd::Violation(_) | SessionEnd::Failed(_) => span.in_scope(|| warn!("disconnected: {end}")),
-            _ => span.in_scope(|| info!("{end}")),
-        },
-        Err(e) => span.in_scope(|| warn!("session setup failed: {e}")),
-    }
+    shared.scene.client_connected(id, &hello.name, pid);
+    let reason = match client::run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
+        Ok(end) => {
+            match end {
+                SessionEnd::Violation(_) | SessionEnd::Failed(_) => span.in_scope(|| warn!("disconnected: {end}")),
+                _ => span.in_scope(|| info!("{end}")),
+            }
+            end.to_string()
+        }
+        Err(e) => {
+            span.in_scope(|| warn!("session setup failed: {e}"));
+            format!("session setup failed: {e}")
+        }
+    };
+    shared.scene.client_gone(id, &hello.name, reason);
     shared.clients.lock().map(|mut c| c.remove(&id)).ok();
 }

@@ -413,6 +413,7 @@ impl Root {
                 composite_us: o.device.as_micros() as u64,
                 queue_us: o.queue.as_micros() as u64,
                 encode_us: o.encode.as_micros() as u64,
+                shown_damage: inner.composited.unwrap_or(0),
             })
             .collect()
     }

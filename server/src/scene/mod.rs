@@ -18,6 +18,8 @@ use std::time::{Duration, Instant};
 use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 use tracing::warn;
 
+mod analyze;
+mod events;
 mod frames;
 mod ids;
 mod mailbox;
@@ -93,6 +95,8 @@ pub struct SceneSurface {
     /// Its declared projection (the layout's, else its EGL surface attributes'), by which the
     /// compositor compares its depth with other surfaces'; `None`: raw depth.
     pub projection: Option<strata_protocol::projection::Projection>,
+    /// Its ID is a stable one (the layout's, the environment's or the application's).
+    pub stable: bool,
 }
 
 impl SceneSurface {
@@ -100,6 +104,7 @@ impl SceneSurface {
     pub fn row(&self, layers: &Layers) -> SurfaceRow {
         let (shown_visible, shown_opacity) = self.shown_in(layers);
         SurfaceRow {
+            stable: self.stable,
             image: self.image,
             props: self.props,
             shown_visible,
@@ -156,6 +161,10 @@ struct State {
     layers: Layers,
     /// Each connected client's class and whether its surfaces have deadlines.
     policies: HashMap<u64, (Priority, bool)>,
+    /// Each connected client's process ID (0: unknown).
+    pids: HashMap<u64, u32>,
+    /// The configuration's surface entries, by stable ID.
+    presets: HashMap<u64, crate::layout::SurfaceEntry>,
 }
 
 /// Every window surface of every client, and the lighting.
@@ -167,6 +176,8 @@ pub struct Scene {
     streams: Mutex<HashMap<u64, Arc<AtomicU64>>>,
     /// The compositor's device, which reads the surfaces' buffers.
     compositor: std::sync::OnceLock<Arc<crate::gpu::Gpu>>,
+    /// Events for `ctl watch`.
+    events: tokio::sync::broadcast::Sender<strata_protocol::events::Event>,
 }
 
 impl Default for Scene {
@@ -214,11 +225,14 @@ impl Scene {
                 lighting,
                 layers: Layers::new(),
                 policies: HashMap::new(),
+                pids: HashMap::new(),
+                presets: HashMap::new(),
             }),
             changed: Condvar::new(),
             frames_in_flight: u64::from(frames_in_flight.max(1)),
             streams: Mutex::new(HashMap::new()),
             compositor: std::sync::OnceLock::new(),
+            events: tokio::sync::broadcast::channel(events::EVENT_BACKLOG).0,
         }
     }
 
@@ -293,12 +307,13 @@ impl Scene {
         z: f32,
         asked: Option<u64>,
     ) -> Result<u64, IdTaken> {
-        let Some(mut g) = self.lock() else { return Ok(0) };
-        let g = &mut *g;
+        let Some(mut guard) = self.lock() else { return Ok(0) };
+        let g = &mut *guard;
         let surfaces = &g.surfaces;
         let holder = |id| surfaces.values().find(|s| s.id == id).map(|s| s.client.clone());
         let (id, order) = g.ids.assign(asked, holder)?;
         let (priority, deadline) = g.policies.get(&client).copied().unwrap_or_default();
+        let pid = g.pids.get(&client).copied().unwrap_or(0);
         g.surfaces.insert(
             (client, surface),
             SceneSurface {
@@ -326,8 +341,12 @@ impl Scene {
                 latencies: std::collections::VecDeque::new(),
                 priority,
                 projection: None,
+                stable: asked == Some(id),
             },
         );
+        properties::preset(g, id);
+        drop(guard);
+        self.emit(strata_protocol::events::Event::SurfaceCreated { surface: id, client, name: name.to_string(), pid });
         Ok(id)
     }
 
@@ -384,15 +403,25 @@ impl Scene {
             g.policies.remove(&client);
         }
         let mut gone = Region::None;
+        let mut destroyed = Vec::new();
         g.surfaces.retain(|k, s| {
             let keep = k.0 != client || surface.is_some_and(|id| id != k.1);
-            if !keep && s.color.is_some() {
-                gone = gone.with(s.rect);
+            if !keep {
+                destroyed.push((s.id, s.client.clone()));
+                if s.color.is_some() {
+                    gone = gone.with(s.rect);
+                }
             }
             keep
         });
+        let pid = g.pids.get(&client).copied().unwrap_or(0);
         if gone != Region::None {
             self.damaged(g, gone);
+        } else {
+            drop(g);
+        }
+        for (id, name) in destroyed {
+            self.emit(strata_protocol::events::Event::SurfaceDestroyed { surface: id, client, name, pid });
         }
     }
 

@@ -150,7 +150,35 @@ fn apply_one(st: &mut State, c: &Change, damage: &mut Region) -> Result<(), Chan
     Ok(())
 }
 
+/// Gives surface `id`, just added, what the configuration's `[[surface]]` entry for it says.
+pub(super) fn preset(st: &mut State, id: u64) {
+    let Some(e) = st.presets.get(&id).cloned() else { return };
+    let mut damage = Region::None;
+    if let Ok(s) = surface(st, id) {
+        s.rect[0] = e.x.unwrap_or(s.rect[0]);
+        s.rect[1] = e.y.unwrap_or(s.rect[1]);
+        s.z = e.z.unwrap_or(s.z);
+        s.normal = e.normal.unwrap_or(s.normal);
+    }
+    for c in e.changes() {
+        // Checked when the configuration was read; a surface has no frame to damage yet.
+        let _ = apply_one(st, &c, &mut damage);
+    }
+}
+
 impl Scene {
+    /// Takes the configuration's surface entries (applied to each such surface when it
+    /// appears) and creates its layers.
+    pub fn configure(&self, surfaces: &[crate::layout::SurfaceEntry], layers: &[crate::layout::LayerEntry]) {
+        let Some(mut g) = self.lock() else { return };
+        g.presets = surfaces.iter().map(|e| (e.id, e.clone())).collect();
+        for l in layers {
+            let state =
+                LayerState { visible: l.visible, opacity: l.opacity, surfaces: l.surfaces.iter().copied().collect() };
+            g.layers.insert(l.name.clone(), state);
+        }
+    }
+
     /// Applies `changes` in order, in one step: every composite shows all of them or none. If
     /// any fails (a bad value, an unknown surface or layer), the scene is left as it was and
     /// the error names the change (a batch of one answers with its own error).
@@ -184,6 +212,11 @@ impl Scene {
         }
         if damage != Region::None {
             self.damaged(g, damage);
+        } else {
+            drop(g);
+        }
+        for c in changes {
+            self.emit(strata_protocol::events::Event::Changed(c.clone()));
         }
         Ok(())
     }

@@ -1,0 +1,52 @@
+//! `stratad ctl export`: the whole scene in the daemon's configuration format (JSON), which
+//! `--config FILE.json` reads back: outputs, the layout and quotas it was started with, every
+//! stable-ID surface's placement and properties, the layers and the lighting. Surfaces with
+//! runtime IDs are left out: their IDs do not survive a restart.
+
+use crate::layout::{Config, LayerEntry, SurfaceEntry};
+
+use super::Shared;
+
+/// The scene as a configuration.
+pub(super) fn export(shared: &Shared) -> serde_json::Value {
+    let output = match &shared.root {
+        Some(root) => root
+            .rows()
+            .into_iter()
+            .map(|o| format!("{}:{}={}x{}+{}+{}", o.kind, o.name, o.rect[2], o.rect[3], o.rect[0], o.rect[1]))
+            .collect(),
+        None => Vec::new(),
+    };
+    let surface = shared
+        .scene
+        .rows()
+        .into_iter()
+        .filter(|r| r.stable)
+        .map(|r| SurfaceEntry {
+            id: r.id,
+            x: Some(r.rect[0]),
+            y: Some(r.rect[1]),
+            z: Some(r.z),
+            visible: r.props.visible,
+            opacity: r.props.opacity,
+            source: r.props.source,
+            destination: r.props.destination,
+            normal: Some(r.normal),
+        })
+        .collect();
+    let layer = shared
+        .scene
+        .layers()
+        .into_iter()
+        .map(|l| LayerEntry { name: l.name, visible: l.visible, opacity: l.opacity, surfaces: l.surfaces })
+        .collect();
+    let config = Config {
+        output,
+        layout: shared.opts.layout.clone(),
+        quota: shared.opts.quotas.clone(),
+        surface,
+        layer,
+        lighting: Some(shared.scene.lighting()),
+    };
+    serde_json::to_value(config).unwrap_or_else(|e| serde_json::json!({ "error": e.to_string() }))
+}

@@ -1,0 +1,42 @@
+//! The scene's events for `stratad ctl watch`: clients and surfaces coming and going, and
+//! property changes, sent on a broadcast channel that never blocks the sender (a watcher that
+//! falls behind is told so and dropped by its own task).
+
+use strata_protocol::events::Event;
+use tokio::sync::broadcast;
+
+use super::Scene;
+
+/// Events kept for watchers that have not read them yet.
+pub const EVENT_BACKLOG: usize = 1024;
+
+impl Scene {
+    /// A new receiver of every event from now on.
+    pub fn subscribe(&self) -> broadcast::Receiver<Event> {
+        self.events.subscribe()
+    }
+
+    /// Sends `e` to every watcher (none: dropped).
+    pub fn emit(&self, e: Event) {
+        let _ = self.events.send(e);
+    }
+
+    /// Client `client` connected, from process `pid` (0: unknown).
+    pub fn client_connected(&self, client: u64, name: &str, pid: u32) {
+        if let Some(mut g) = self.lock() {
+            g.pids.insert(client, pid);
+        }
+        self.emit(Event::ClientConnected { client, name: name.to_string(), pid });
+    }
+
+    /// Client `client`'s session ended, for `reason`.
+    pub fn client_gone(&self, client: u64, name: &str, reason: String) {
+        let pid = self.lock().and_then(|mut g| g.pids.remove(&client)).unwrap_or(0);
+        self.emit(Event::ClientGone { client, name: name.to_string(), pid, reason });
+    }
+
+    /// Client `client`'s process ID, 0 where unknown.
+    pub fn pid(&self, client: u64) -> u32 {
+        self.lock().and_then(|g| g.pids.get(&client).copied()).unwrap_or(0)
+    }
+}
