@@ -19,7 +19,7 @@ use support::TempDir;
 /// own PID (`sh` sets it, then `exec`s the daemon in its place).
 fn activated(fd: i32, notify: &std::path::Path, log: &std::path::Path, extra_env: &[(&str, &str)]) -> Command {
     let mut cmd = Command::new("sh");
-    cmd.args(["-c", "LISTEN_PID=$$ LISTEN_FDS=1 exec \"$0\" serve --output t=64x64 --socket /nonexistent/strata.sock"])
+    cmd.args(["-c", "LISTEN_PID=$$ LISTEN_FDS=1 exec \"$0\" serve --output t=64x64 --socket /nonexistent/strata.sock --allow-fault-injection"])
         .arg(support::stratad())
         .env("NOTIFY_SOCKET", notify)
         .env_remove("LISTEN_PID")
@@ -86,6 +86,21 @@ fn socket_activation_readiness_watchdog_and_stopping() {
     let pings = notifications(&notify, Duration::from_secs(2), "");
     let count = pings.iter().filter(|m| m.contains("WATCHDOG=1")).count();
     assert!(count >= 3, "{count} watchdog pings in 2 s: {pings:?}");
+
+    // A wedged compositor stops the pings, so systemd (WatchdogSec=) would restart the
+    // daemon; its control socket still answers meanwhile.
+    let out = Command::new(support::stratad())
+        .args(["ctl", "wedge-compositor", "--socket"])
+        .arg(&path)
+        .output()
+        .expect("ctl");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let _in_flight = notifications(&notify, Duration::from_millis(300), "");
+    let after = notifications(&notify, Duration::from_millis(1500), "");
+    let late = after.iter().filter(|m| m.contains("WATCHDOG=1")).count();
+    assert_eq!(late, 0, "watchdog pings from a wedged compositor: {after:?}");
+    let out = Command::new(support::stratad()).args(["ctl", "list", "--socket"]).arg(&path).output().expect("ctl");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 
     // SIGTERM: STOPPING=1, a clean exit, and the socket stays for the next start.
     // SAFETY: plain kill(2) on our own child.

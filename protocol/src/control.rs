@@ -267,6 +267,10 @@ pub enum ControlRequest {
     Export,
     /// Turns the connection into a stream of `ControlReply::Event`s until it closes.
     Watch,
+    /// Stops the compositor thread as a composite that never returns would, so that the
+    /// service manager's watchdog hears nothing more (only when the daemon was started with
+    /// `--allow-fault-injection`; for tests; answered with `List`).
+    WedgeCompositor,
 }
 
 /// One thread of a device's driver.

@@ -102,6 +102,10 @@ pub enum CtlCmd {
         /// Client number (as `stats` shows it).
         client: u64,
     },
+    /// Stop the compositor thread as a composite that never returns would (only on a daemon
+    /// started with `--allow-fault-injection`; for tests of the watchdog).
+    #[command(hide = true)]
+    WedgeCompositor,
 }
 
 /// `on` or `off`.
@@ -178,6 +182,28 @@ fn layer_change(words: &[String]) -> Result<Change> {
     })
 }
 
+/// Refuses, before sending, what JSON cannot carry (numbers that are not finite) with the
+/// daemon's own words, and changes the daemon would refuse.
+fn check(request: &ControlRequest) -> Result<()> {
+    match request {
+        ControlRequest::Move { z, .. } if !z.is_finite() => bail!("z {z} is not a finite number"),
+        ControlRequest::Normal { normal, .. } if !normal.iter().all(|v| v.is_finite()) => {
+            bail!("normal {normal:?} must be finite and not zero")
+        }
+        ControlRequest::Light(change) => change.validate().map_err(|e| anyhow::anyhow!("{e}")),
+        ControlRequest::Apply { changes } => {
+            for (index, c) in changes.iter().enumerate() {
+                c.validate().map_err(|e| match changes.len() {
+                    1 => anyhow::anyhow!("{e}"),
+                    _ => anyhow::anyhow!("change {index} of the batch: {e}; nothing of the batch applied"),
+                })?;
+            }
+            Ok(())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// The batch in `file`; nothing is sent if it does not parse.
 fn read_batch(file: &std::path::Path) -> Result<Vec<Change>> {
     let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
@@ -234,6 +260,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
         CtlCmd::Analyze { surface } => ControlRequest::Analyze { surface: *surface },
         CtlCmd::Export { .. } => ControlRequest::Export,
         CtlCmd::Watch => ControlRequest::Watch,
+        CtlCmd::WedgeCompositor => ControlRequest::WedgeCompositor,
         CtlCmd::List => ControlRequest::List,
         CtlCmd::Surface { surface, what } => ControlRequest::Apply { changes: vec![surface_change(*surface, what)?] },
         CtlCmd::Layer { words } => ControlRequest::Apply { changes: vec![layer_change(words)?] },
@@ -266,6 +293,7 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
             },
         }),
     };
+    check(&request)?;
     match (c.request(&request)?, what) {
         (ControlReply::Error(e), _) => bail!("{e}"),
         (ControlReply::List { outputs, surfaces, layers, .. }, what) => {

@@ -203,6 +203,17 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
         },
         ControlRequest::Export => ControlReply::Scene(super::export::export(shared)),
         ControlRequest::Watch => ControlReply::Error("watch is answered by the connection itself".into()),
+        ControlRequest::WedgeCompositor => match (&shared.root, shared.opts.fault_injection) {
+            (_, false) => ControlReply::Error(
+                "wedging the compositor is a fault injection for tests: start the daemon with --allow-fault-injection"
+                    .into(),
+            ),
+            (None, true) => ControlReply::Error("this daemon runs without a GPU, so it has no compositor".into()),
+            (Some(root), true) => {
+                root.wedge();
+                list(shared)
+            }
+        },
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);

@@ -157,6 +157,8 @@ pub struct Root {
     inner: Mutex<Inner>,
     /// When changes are drawn band by band.
     bands: BandOptions,
+    /// Fault injection: the compositor thread is stuck, as in a composite that never returns.
+    wedged: std::sync::atomic::AtomicBool,
 }
 
 /// Why the root surface could not start.
@@ -227,7 +229,7 @@ impl Root {
             });
         }
         let inner = Inner { compositor, outputs: made, composited: None, bands: None, cost: Cost::default() };
-        Ok(Root { gpu, scene, inner: Mutex::new(inner), bands: BandOptions::default() })
+        Ok(Root { gpu, scene, inner: Mutex::new(inner), bands: BandOptions::default(), wedged: Default::default() })
     }
 
     /// Draws changes band by band as `bands` says.
@@ -481,6 +483,9 @@ impl Root {
                 crate::systemd::watchdog_ping();
             }
             loop {
+                while root.wedged.load(std::sync::atomic::Ordering::Relaxed) && root.scene.root_running() {
+                    std::thread::sleep(Duration::from_millis(20));
+                }
                 // The service manager's watchdog hears from this loop only: a compositor
                 // stuck in a composite stops the pings.
                 if watchdog.is_some_and(|w| pinged.elapsed() >= w) {
@@ -521,5 +526,13 @@ impl Root {
     /// Stops the compositor loop and releases every waiting swap.
     pub fn stop(&self) {
         self.scene.set_root(false);
+    }
+
+    /// Fault injection (`ctl wedge-compositor`, for tests): the compositor thread stops
+    /// compositing and pinging the watchdog, as if a composite never returned, until the daemon
+    /// stops.
+    pub fn wedge(&self) {
+        warn!("the compositor is wedged (fault injection)");
+        self.wedged.store(true, std::sync::atomic::Ordering::Relaxed);
     }
 }

@@ -56,6 +56,11 @@ impl Scene {
         }
     }
 
+    /// Whether a compositor thread runs (until `Root::stop`).
+    pub fn root_running(&self) -> bool {
+        self.lock().is_some_and(|g| g.root)
+    }
+
     /// Marks that a compositor thread consumes frames (or, with `false`, that none does any
     /// more, which releases every waiting swap).
     pub fn set_root(&self, running: bool) {
