@@ -5,6 +5,7 @@
 use strata_protocol::events::{Analysis, Reason};
 use strata_protocol::properties::Rect;
 
+use super::region::intersect;
 use super::{Scene, SceneSurface};
 
 /// `a` less `b`: up to four rectangles.
@@ -27,16 +28,6 @@ fn subtract(a: Rect, b: Rect) -> Vec<Rect> {
     push(a[0], iy0, b[0].max(a[0]), iy1);
     push(bx1.min(ax1), iy0, ax1, iy1);
     out
-}
-
-/// `a ∩ b`, or `None`.
-fn intersect(a: Rect, b: Rect) -> Option<Rect> {
-    let (a, b) = (a.map(i64::from), b.map(i64::from));
-    let x0 = a[0].max(b[0]);
-    let y0 = a[1].max(b[1]);
-    let x1 = (a[0] + a[2]).min(b[0] + b[2]);
-    let y1 = (a[1] + a[3]).min(b[1] + b[3]);
-    (x1 > x0 && y1 > y0).then(|| [x0 as i32, y0 as i32, (x1 - x0) as i32, (y1 - y0) as i32])
 }
 
 impl Scene {

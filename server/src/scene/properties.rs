@@ -8,6 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use strata_protocol::properties::{Change, ChangeError, LayerRow, Rect};
 
+use super::region::intersect;
 use super::{Region, Scene, SceneSurface, State};
 use crate::compositor::{Props, Source};
 
@@ -30,17 +31,6 @@ impl Default for LayerState {
 
 /// The layers, by name.
 pub type Layers = BTreeMap<String, LayerState>;
-
-/// `a ∩ b`, or `None` where they do not overlap.
-fn intersect(a: Rect, b: Rect) -> Option<Rect> {
-    let (a, b) = (a.map(i64::from), b.map(i64::from));
-    let x0 = a[0].max(b[0]);
-    let y0 = a[1].max(b[1]);
-    let x1 = (a[0] + a[2]).min(b[0] + b[2]);
-    let y1 = (a[1] + a[3]).min(b[1] + b[3]);
-    // Within both, so each fits in an i32.
-    (x1 > x0 && y1 > y0).then(|| [x0 as i32, y0 as i32, (x1 - x0) as i32, (y1 - y0) as i32])
-}
 
 impl SceneSurface {
     /// Whether it shows and its opacity, its layers taken in: visible only if it and every

@@ -36,3 +36,15 @@ impl Region {
         }
     }
 }
+
+/// `a ∩ b` (x, y, width, height), or `None` where they do not overlap; in 64 bits, so that
+/// rectangles anywhere in the `i32` plane cannot overflow.
+pub fn intersect(a: [i32; 4], b: [i32; 4]) -> Option<[i32; 4]> {
+    let (a, b) = (a.map(i64::from), b.map(i64::from));
+    let x0 = a[0].max(b[0]);
+    let y0 = a[1].max(b[1]);
+    let x1 = (a[0] + a[2]).min(b[0] + b[2]);
+    let y1 = (a[1] + a[3]).min(b[1] + b[3]);
+    // Within both, so each fits in an i32.
+    (x1 > x0 && y1 > y0).then(|| [x0 as i32, y0 as i32, (x1 - x0) as i32, (y1 - y0) as i32])
+}
