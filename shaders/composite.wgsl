@@ -19,6 +19,8 @@
 //   COPY          the 2D compositor: the texel as it is (no opacity);
 //   MAP           the lighting factor is read from a light map (one surface, per-surface normal);
 //   FACTOR        the pass that draws a light map;
+//   SCALED        some surface's source region is scaled to its rectangle (integer location
+//                 and bilinear filtering; shapes without it fetch each pixel's own texel);
 // and SURFACES is the number of surfaces (the length of a draw's array of `Surf`).
 
 #define_import_path strata::composite
@@ -84,33 +86,41 @@ fn row(s: Surf, y: i32) -> i32 {
 // pixel's own texel.
 fn at(s: Surf, px: vec2<i32>) -> vec2<i32> {
     let l = px - s.rect.xy;
-    let t = s.src.xy + vec2<i32>(fdiv((2 * l.x + 1) * s.src.z, 2 * s.rect.z), fdiv((2 * l.y + 1) * s.src.w, 2 * s.rect.w));
+    var t = s.src.xy + l;
+#ifdef SCALED
+    // At scale 1 the formula gives `l` itself; only shapes with a scaled surface carry it.
+    if (any(s.src.zw != s.rect.zw)) {
+        t = s.src.xy + vec2<i32>(fdiv((2 * l.x + 1) * s.src.z, 2 * s.rect.z), fdiv((2 * l.y + 1) * s.src.w, 2 * s.rect.w));
+    }
+#endif
     return vec2<i32>(t.x, row(s, t.y));
 }
 
-// Surface `s`'s colour at output pixel `px`: its texel where the source region has the
-// rectangle's size; scaled, the bilinear blend of the four source texels around the pixel's
-// centre (texel centres at half-integers, clamped to the source region), as a filtering
-// sampler would give it. The weights come from integers too: u = src.x + ((2 l + 1) src.w -
-// rect.w) / (2 rect.w) in texel-centre units.
-fn colour(s: Surf, px: vec2<i32>, color: texture_2d<f32>) -> vec4<f32> {
-    if (all(s.src.zw == s.rect.zw)) {
-        return textureLoad(color, at(s, px), 0);
+// Surface `s`'s colour at output pixel `px` (`sp` in its images, `at(s, px)`): its texel
+// where the source region has the rectangle's size; scaled (SCALED shapes only), the bilinear
+// blend of the four source texels around the pixel's centre (texel centres at half-integers,
+// clamped to the source region), as a filtering sampler would give it. The weights come from
+// integers too: u = src.x + ((2 l + 1) src.w - rect.w) / (2 rect.w) in texel-centre units.
+fn colour(s: Surf, px: vec2<i32>, sp: vec2<i32>, color: texture_2d<f32>) -> vec4<f32> {
+#ifdef SCALED
+    if (any(s.src.zw != s.rect.zw)) {
+        let l = px - s.rect.xy;
+        let n = (2 * l + vec2<i32>(1)) * s.src.zw - s.rect.zw;
+        let d = 2 * s.rect.zw;
+        let t0 = vec2<i32>(fdiv(n.x, d.x), fdiv(n.y, d.y));
+        let f = vec2<f32>(n - t0 * d) / vec2<f32>(d);
+        let lo = s.src.xy;
+        let hi = s.src.xy + s.src.zw - vec2<i32>(1);
+        let a = clamp(s.src.xy + t0, lo, hi);
+        let b = clamp(s.src.xy + t0 + vec2<i32>(1), lo, hi);
+        let c00 = textureLoad(color, vec2<i32>(a.x, row(s, a.y)), 0);
+        let c10 = textureLoad(color, vec2<i32>(b.x, row(s, a.y)), 0);
+        let c01 = textureLoad(color, vec2<i32>(a.x, row(s, b.y)), 0);
+        let c11 = textureLoad(color, vec2<i32>(b.x, row(s, b.y)), 0);
+        return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
     }
-    let l = px - s.rect.xy;
-    let n = (2 * l + vec2<i32>(1)) * s.src.zw - s.rect.zw;
-    let d = 2 * s.rect.zw;
-    let t0 = vec2<i32>(fdiv(n.x, d.x), fdiv(n.y, d.y));
-    let f = vec2<f32>(n - t0 * d) / vec2<f32>(d);
-    let lo = s.src.xy;
-    let hi = s.src.xy + s.src.zw - vec2<i32>(1);
-    let a = clamp(s.src.xy + t0, lo, hi);
-    let b = clamp(s.src.xy + t0 + vec2<i32>(1), lo, hi);
-    let c00 = textureLoad(color, vec2<i32>(a.x, row(s, a.y)), 0);
-    let c10 = textureLoad(color, vec2<i32>(b.x, row(s, a.y)), 0);
-    let c01 = textureLoad(color, vec2<i32>(a.x, row(s, b.y)), 0);
-    let c11 = textureLoad(color, vec2<i32>(b.x, row(s, b.y)), 0);
-    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+#endif
+    return textureLoad(color, sp, 0);
 }
 
 #ifdef DEPTH
@@ -211,7 +221,7 @@ fn take(
 ) -> Best {
     var b: Best;
     b.d = d;
-    b.c = colour(s, px, color);
+    b.c = colour(s, px, sp, color);
 #ifndef COPY
     b.c.a = b.c.a * s.img.z;
 #endif

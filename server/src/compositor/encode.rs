@@ -209,11 +209,12 @@ impl<'a> Builder<'a> {
             .collect()
     }
 
-    /// A pass shape with this composite's lighting.
-    fn kind(&self, surfaces: usize, intermediate: bool, last: bool, base: bool) -> PassKind {
+    /// A pass shape with this composite's lighting, drawing surfaces `members`.
+    fn kind(&self, members: &[u32], intermediate: bool, last: bool, base: bool) -> PassKind {
         let lit = self.light.enabled;
         PassKind {
-            surfaces,
+            surfaces: members.len(),
+            scaled: self.scaled(members),
             intermediate,
             last,
             lit,
@@ -223,6 +224,11 @@ impl<'a> Builder<'a> {
             map: false,
             factor: false,
         }
+    }
+
+    /// Whether some of `members` has its source scaled to its rectangle.
+    fn scaled(&self, members: &[u32]) -> bool {
+        members.iter().any(|&m| self.layers.get(m as usize).is_some_and(|l| l.props.scaled(l.rect)))
     }
 
     /// Appends a draw to the current output pass (opening one if the last pass is not).
@@ -254,6 +260,7 @@ impl<'a> Builder<'a> {
             copy: true,
             map: false,
             factor: false,
+            scaled: self.scaled(&[layer]),
         };
         let instances = self.rects(rects, [0, 0], self.size);
         let block = self.block([0, 0], [0, 0], &[layer]);
@@ -271,7 +278,7 @@ impl<'a> Builder<'a> {
                 if members.len() > 1 {
                     self.selects += rects.len();
                 }
-                let mut kind = self.kind(members.len(), false, true, *base);
+                let mut kind = self.kind(members, false, true, *base);
                 let instances = self.rects(rects, [0, 0], self.size);
                 let block = self.block([0, 0], [0, 0], members);
                 let map = if kind.lit && !kind.from_depth && members.len() == 1 {
@@ -331,7 +338,7 @@ impl<'a> Builder<'a> {
                     }
                     let chunk = &members[stages[c][s].clone()];
                     let reads = (s > 0).then_some(&targets[(s + 1) % 2]);
-                    let kind = self.kind(chunk.len(), reads.is_some(), false, false);
+                    let kind = self.kind(chunk, reads.is_some(), false, false);
                     let instances = self.rects(&mine, origin, isize);
                     let block = self.block(origin, origin, chunk);
                     let views = self.views(res, &kind, chunk, reads, None);
@@ -346,7 +353,7 @@ impl<'a> Builder<'a> {
                 }
                 let last = stages[c].len() - 1;
                 let chunk = &members[stages[c][last].clone()];
-                let kind = self.kind(chunk.len(), true, true, *base);
+                let kind = self.kind(chunk, true, true, *base);
                 let instances = self.rects(&mine, [0, 0], self.size);
                 let block = self.block([0, 0], origin, chunk);
                 let views = self.views(res, &kind, chunk, Some(&targets[(last + 1) % 2]), None);

@@ -90,6 +90,11 @@ impl Default for Props {
 }
 
 impl Props {
+    /// Whether the source is scaled to rectangle `rect` (sizes differ).
+    pub fn scaled(&self, rect: [i32; 4]) -> bool {
+        self.source.is_some_and(|s| s.region[2] != rect[2] || s.region[3] != rect[3])
+    }
+
     /// The source in effect for rectangle `rect`: the image's size and the region shown.
     pub fn source_for(&self, rect: [i32; 4]) -> Source {
         self.source.unwrap_or(Source { image: [rect[2], rect[3]], region: [0, 0, rect[2], rect[3]] })

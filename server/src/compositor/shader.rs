@@ -65,6 +65,9 @@ pub struct PassKind {
     pub map: bool,
     /// The pass drawing a light map (one R32F target; no images bound).
     pub factor: bool,
+    /// Some surface's source region is scaled to its rectangle: those surfaces are located by
+    /// integer division and filtered (shapes without it carry none of that code).
+    pub scaled: bool,
 }
 
 impl PassKind {
@@ -90,6 +93,7 @@ impl PassKind {
             copy: false,
             map: false,
             factor: true,
+            scaled: false,
         }
     }
 
@@ -116,6 +120,7 @@ impl PassKind {
             ("COPY", self.copy),
             ("MAP", self.map),
             ("FACTOR", self.factor),
+            ("SCALED", self.scaled),
         ];
         flags
             .into_iter()

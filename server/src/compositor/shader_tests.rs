@@ -107,7 +107,7 @@ fn shapes(max_textures: u32) -> Vec<PassKind> {
     let p = (max_textures / 2) as usize;
     let mut out = vec![PassKind::light_map()];
     for surfaces in 1..=p {
-        for bits in 0..128u32 {
+        for bits in 0..256u32 {
             let k = PassKind {
                 surfaces,
                 intermediate: bits & 1 != 0,
@@ -118,6 +118,7 @@ fn shapes(max_textures: u32) -> Vec<PassKind> {
                 copy: bits & 32 != 0,
                 map: bits & 64 != 0,
                 factor: false,
+                scaled: bits & 128 != 0,
             };
             // Passes that are never built: a non-last pass selects, the 2D copy is one unlit
             // surface on the background, a light map serves one lit surface with a
