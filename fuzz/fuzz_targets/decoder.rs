@@ -1,13 +1,15 @@
 //! Every decoder that reads bytes a client sent: the command decoder (ring messages), the
-//! control socket's preamble, frame length, hello, `Mapped` and `stratad ctl` requests, and
-//! (for the client side) the reply decoder. A command that decodes must encode back to bytes
-//! that decode to the same command.
+//! socket's preamble, frame length, hello and `Mapped`, the control protocol's JSON lines (the
+//! opening and requests, with the checks every request's values get), and (for the client side)
+//! the reply decoder. A command that decodes must encode back to bytes that decode to the same
+//! command.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use strata_protocol::codec::{decode_command, decode_owned, decode_reply, encode_to_vec, encoded_len};
 use strata_protocol::control::ControlRequest;
 use strata_protocol::handshake::{check_preamble, frame_len, ClientMessage, Hello};
+use strata_protocol::json_control::{parse, Opening};
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(cmd) = decode_command(data) {
@@ -26,6 +28,17 @@ fuzz_target!(|data: &[u8]| {
     }
     let _ = decode_owned::<Hello>(data, "hello");
     let _ = decode_owned::<ClientMessage>(data, "mapped");
-    let _ = decode_owned::<ControlRequest>(data, "control request");
+    let _ = parse::<Opening>(data, "opening");
+    match parse::<ControlRequest>(data, "control request") {
+        Ok(ControlRequest::Apply { changes }) => {
+            for c in &changes {
+                let _ = c.validate();
+            }
+        }
+        Ok(ControlRequest::Light(change)) => {
+            let _ = change.validate();
+        }
+        _ => {}
+    }
     let _ = decode_reply(data);
 });
