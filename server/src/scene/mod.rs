@@ -425,37 +425,6 @@ impl Scene {
         }
     }
 
-    /// Moves surface `id`; returns its new row, or `None` if there is no such surface.
-    pub fn move_surface(&self, id: u64, x: i32, y: i32, z: f32) -> Option<SurfaceRow> {
-        let mut g = self.lock()?;
-        let st = &mut *g;
-        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
-        let old = s.rect;
-        s.rect[0] = x;
-        s.rect[1] = y;
-        if let Some(d) = &mut s.props.destination {
-            d[0] = x;
-            d[1] = y;
-        }
-        s.z = z;
-        let row = s.row(&st.layers);
-        let region = Region::None.with(old).with(row.rect);
-        self.damaged(g, region);
-        Some(row)
-    }
-
-    /// Sets surface `id`'s normal; returns its new row, or `None` if there is no such surface.
-    pub fn set_normal(&self, id: u64, normal: [f32; 3]) -> Option<SurfaceRow> {
-        let mut g = self.lock()?;
-        let st = &mut *g;
-        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
-        s.normal = normal;
-        let row = s.row(&st.layers);
-        // Only lit pixels change, and only with per-surface normals; redraw the surface.
-        self.damaged(g, Region::None.with(row.rect));
-        Some(row)
-    }
-
     /// The lighting in force.
     pub fn lighting(&self) -> Lighting {
         self.lock().map(|g| g.lighting).unwrap_or_default()

@@ -1,11 +1,12 @@
-//! Surfaces' and layers' compositing properties: visibility, opacity, source and destination
-//! regions, and layers (named groups of surfaces with a visibility and an opacity of their
+//! Surfaces' placement and compositing properties: position, depth layer and normal,
+//! visibility, opacity, source and destination regions, and layers (named groups of surfaces with a visibility and an opacity of their
 //! own). A batch of changes is checked whole and applied under the scene's lock with one
 //! damage, so that a composite, which takes the scene under the same lock, shows all of it or
 //! none of it.
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use strata_protocol::control::SurfaceRow;
 use strata_protocol::properties::{Change, ChangeError, LayerRow, Rect};
 
 use super::region::intersect;
@@ -209,6 +210,37 @@ impl Scene {
             self.emit(strata_protocol::events::Event::Changed(c.clone()));
         }
         Ok(())
+    }
+
+    /// Moves surface `id`; returns its new row, or `None` if there is no such surface.
+    pub fn move_surface(&self, id: u64, x: i32, y: i32, z: f32) -> Option<SurfaceRow> {
+        let mut g = self.lock()?;
+        let st = &mut *g;
+        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
+        let old = s.rect;
+        s.rect[0] = x;
+        s.rect[1] = y;
+        if let Some(d) = &mut s.props.destination {
+            d[0] = x;
+            d[1] = y;
+        }
+        s.z = z;
+        let row = s.row(&st.layers);
+        let region = Region::None.with(old).with(row.rect);
+        self.damaged(g, region);
+        Some(row)
+    }
+
+    /// Sets surface `id`'s normal; returns its new row, or `None` if there is no such surface.
+    pub fn set_normal(&self, id: u64, normal: [f32; 3]) -> Option<SurfaceRow> {
+        let mut g = self.lock()?;
+        let st = &mut *g;
+        let s = st.surfaces.values_mut().find(|s| s.id == id)?;
+        s.normal = normal;
+        let row = s.row(&st.layers);
+        // Only lit pixels change, and only with per-surface normals; redraw the surface.
+        self.damaged(g, Region::None.with(row.rect));
+        Some(row)
     }
 
     /// Every layer, by name.
