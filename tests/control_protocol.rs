@@ -269,14 +269,10 @@ fn an_export_is_a_configuration_that_restores_the_scene() {
     let daemon = Daemon::start("control-export", &["--config", file.to_str().expect("utf-8")]);
     let socket = daemon.socket.clone();
     let shim = scene.shim.clone();
-    let paint = [
-        ("a", "100", [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]),
-        ("b", "200", [[0.0, 0.0, 1.0], [0.0, 1.0, 1.0]]),
-        ("c", "300", [[1.0, 0.0, 1.0], [1.0, 1.0, 1.0]]),
-    ];
-    let clients: Vec<Client> = paint
+    // Placed elsewhere by the clients themselves: the export's surface entries win.
+    let clients: Vec<Client> = support::scene::PAINT
         .iter()
-        .map(|(name, id, colors)| Client::start_painting(&socket, &shim, name, id, "0,0,0.9,16x16", *colors))
+        .map(|(name, id, _, colors)| Client::start_painting(&socket, &shim, name, id, "0,0,0.9,16x16", *colors))
         .collect();
     let (rows, layers) = list(&socket);
     let key = |r: &strata_protocol::control::SurfaceRow| (r.id, r.rect, r.z, r.props, r.shown_visible, r.shown_opacity);

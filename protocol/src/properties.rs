@@ -233,6 +233,27 @@ impl Change {
     }
 }
 
+impl ChangeError {
+    /// `self`, from change `index` of a batch of `len`: named by its position unless the batch
+    /// is that one change.
+    pub fn at(self, index: usize, len: usize) -> ChangeError {
+        if len == 1 {
+            self
+        } else {
+            ChangeError::InBatch { index, error: Box::new(self) }
+        }
+    }
+}
+
+/// Checks every change of a batch without the scene (values and names); the error names the
+/// change that fails.
+pub fn validate_batch(changes: &[Change]) -> Result<(), ChangeError> {
+    for (i, c) in changes.iter().enumerate() {
+        c.validate().map_err(|e| e.at(i, changes.len()))?;
+    }
+    Ok(())
+}
+
 /// A batch as `stratad ctl apply FILE.json` reads it: `{"changes": [...]}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

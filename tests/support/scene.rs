@@ -46,6 +46,14 @@ pub fn png(path: &Path) -> (u32, u32, Vec<u8>) {
     (img.width(), img.height(), img.into_raw())
 }
 
+/// The scene's clients: name, surface ID, `STRATA_WINDOW`, and the colours of its frame's
+/// bottom and top halves.
+pub const PAINT: [(&str, &str, &str, [[f32; 3]; 2]); 3] = [
+    ("a", "100", "4,4,0.5,16x16", [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]),
+    ("b", "200", "12,10,0.5,16x16", [[0.0, 0.0, 1.0], [0.0, 1.0, 1.0]]),
+    ("c", "300", "16,14,0.25,16x16", [[1.0, 0.0, 1.0], [1.0, 1.0, 1.0]]),
+];
+
 /// The daemon, its clients and each surface's frame (RGBA, bottom row first, as the reference
 /// takes it), by surface ID.
 pub struct Scene {
@@ -67,12 +75,7 @@ impl Scene {
         let daemon = Daemon::start("layer-control", &["--output", &output]);
         let socket = daemon.socket.clone();
         let shim = super::shim_dir(&dir);
-        let paint = [
-            ("a", "100", "4,4,0.5,16x16", [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]),
-            ("b", "200", "12,10,0.5,16x16", [[0.0, 0.0, 1.0], [0.0, 1.0, 1.0]]),
-            ("c", "300", "16,14,0.25,16x16", [[1.0, 0.0, 1.0], [1.0, 1.0, 1.0]]),
-        ];
-        let clients: Vec<Client> = paint
+        let clients: Vec<Client> = PAINT
             .iter()
             .map(|(name, id, window, colors)| Client::start_painting(&socket, &shim, name, id, window, *colors))
             .collect();

@@ -192,13 +192,7 @@ fn check(request: &ControlRequest) -> Result<()> {
         }
         ControlRequest::Light(change) => change.validate().map_err(|e| anyhow::anyhow!("{e}")),
         ControlRequest::Apply { changes } => {
-            for (index, c) in changes.iter().enumerate() {
-                c.validate().map_err(|e| match changes.len() {
-                    1 => anyhow::anyhow!("{e}"),
-                    _ => anyhow::anyhow!("change {index} of the batch: {e}; nothing of the batch applied"),
-                })?;
-            }
-            Ok(())
+            strata_protocol::properties::validate_batch(changes).map_err(|e| anyhow::anyhow!("{e}"))
         }
         _ => Ok(()),
     }

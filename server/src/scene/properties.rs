@@ -174,16 +174,7 @@ impl Scene {
     /// any fails (a bad value, an unknown surface or layer), the scene is left as it was and
     /// the error names the change (a batch of one answers with its own error).
     pub fn apply(&self, changes: &[Change]) -> Result<(), ChangeError> {
-        let wrap = |index: usize, e: ChangeError| {
-            if changes.len() == 1 {
-                e
-            } else {
-                ChangeError::InBatch { index, error: Box::new(e) }
-            }
-        };
-        for (i, c) in changes.iter().enumerate() {
-            c.validate().map_err(|e| wrap(i, e))?;
-        }
+        strata_protocol::properties::validate_batch(changes)?;
         let Some(mut g) = self.lock() else { return Err(ChangeError::Unavailable) };
         // What a change can alter, kept to put back if a later one fails.
         let kept: Vec<_> = g.surfaces.iter().map(|(k, s)| (*k, s.rect, s.props)).collect();
@@ -198,7 +189,7 @@ impl Scene {
                     }
                 }
                 g.layers = layers;
-                return Err(wrap(i, e));
+                return Err(e.at(i, changes.len()));
             }
         }
         if damage != Region::None {
