@@ -41,7 +41,7 @@ fn draw(gl: &mut Connection, cur: Current, f: u32) {
 }
 
 fn output(socket: &Path) -> OutputRow {
-    match ControlConnection::connect(socket).expect("control").request(&ControlRequest::List).expect("list") {
+    match ControlConnection::connect_beside(socket).expect("control").request(&ControlRequest::List).expect("list") {
         ControlReply::List { mut outputs, .. } => outputs.remove(0),
         other => panic!("list: {other:?}"),
     }
@@ -118,7 +118,7 @@ fn a_low_priority_change_is_drawn_in_bands_between_refreshes() {
     }
     std::thread::sleep(Duration::from_millis(300));
     let composites = output(&socket).composites;
-    let img = match ControlConnection::connect(&socket)
+    let img = match ControlConnection::connect_beside(&socket)
         .expect("control")
         .request(&ControlRequest::Screenshot { output: "b".into() })
         .expect("screenshot")

@@ -11,6 +11,7 @@ use std::os::unix::net::UnixStream;
 use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
+use strata_protocol::handshake::control_socket_for;
 
 use support::scene::{ctl, list, try_ctl, Scene};
 use support::windows::{self, Client};
@@ -34,7 +35,7 @@ fn exchange(reader: &mut BufReader<UnixStream>, writer: &mut UnixStream, line: &
 fn the_json_lines_are_as_documented_and_bad_ones_get_clear_errors() {
     let daemon = Daemon::start("control-json", &["--output", "t=32x32"]);
     let connect = || {
-        let w = UnixStream::connect(&daemon.socket).expect("connect");
+        let w = UnixStream::connect(control_socket_for(&daemon.socket)).expect("connect");
         (BufReader::new(w.try_clone().expect("clone")), w)
     };
     let (mut r, mut w) = connect();
@@ -159,7 +160,7 @@ fn a_watcher_that_never_reads_is_dropped_and_the_daemon_carries_on() {
     let scene = Scene::start();
     let socket = scene.socket();
     let (mut reading, rx) = watcher(&socket);
-    let mut stuck = UnixStream::connect(&socket).expect("connect");
+    let mut stuck = UnixStream::connect(control_socket_for(&socket)).expect("connect");
     stuck.write_all(b"{\"hello\":{\"version\":1,\"name\":\"stuck\"}}\n\"watch\"\n").expect("write");
     // Batches of 500 changes, toggling a surface: far more than a socket buffer holds.
     let changes: Vec<String> =

@@ -9,12 +9,12 @@
 //! texture or renderbuffer is incomplete, sampling a guessed texture or reading a guessed
 //! framebuffer never yields A's colour), and A's EGL handles must be invalid for B or name B's
 //! own objects. B then deletes and destroys everything it guessed, and A's objects must be
-//! intact. A's segment is created owner-only and cannot be opened by name once A has mapped it.
+//! intact. A's segment reaches A only as a descriptor: it never has a name, cannot be resized,
+//! and the daemon holds no descriptor of it once A has mapped it (docs/security.md).
 
 mod support;
 
 use std::io::Write;
-use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::os::unix::net::UnixStream;
 use std::time::Duration;
 
@@ -312,54 +312,51 @@ fn probe_gl(b: &mut Connection) -> R {
     Ok(())
 }
 
-/// The segment name the daemon's log gives for client `name` ("client connected").
-fn logged_segment(daemon: &Daemon, name: &str) -> Option<String> {
-    let log = daemon.log_text();
-    let line = log.lines().find(|l| l.contains(&format!("name={name} ")) && l.contains("client connected"))?;
-    let start = line.find("segment=\"")? + "segment=\"".len();
-    Some(line[start..].split('"').next()?.to_string())
+/// The daemon's descriptors of segments: memory files, or names in `/dev/shm`.
+fn daemon_segments(daemon: &Daemon) -> Vec<String> {
+    let dir = format!("/proc/{}/fd", daemon.child.id());
+    std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{dir}: {e}"))
+        .filter_map(|e| std::fs::read_link(e.ok()?.path()).ok())
+        .map(|l| l.to_string_lossy().into_owned())
+        .filter(|l| l.starts_with("/memfd:strata") || l.starts_with("/dev/shm/strata"))
+        .collect()
 }
 
-/// Opening `name` with `shm_open` and with `Segment::open` (shared_memory's open) must fail.
-fn assert_unopenable(name: &str, what: &str) {
-    let c = std::ffi::CString::new(name).expect("a C name");
-    // SAFETY: shm_open with a NUL-terminated name; a returned descriptor is closed at once.
-    let fd = unsafe { libc::shm_open(c.as_ptr(), libc::O_RDONLY, 0) };
-    let err = std::io::Error::last_os_error();
-    if fd >= 0 {
-        // SAFETY: our own descriptor.
-        unsafe { libc::close(fd) };
-    }
-    assert!(fd < 0, "{what}: shm_open({name}) succeeded after the handshake");
-    assert_eq!(err.raw_os_error(), Some(libc::ENOENT), "{what}: shm_open({name}) failed, but not for lack of the name");
-    assert!(Segment::open(name, 8 << 20, 1 << 20).is_err(), "{what}: Segment::open({name}) succeeded");
-    assert!(!std::path::Path::new("/dev/shm").join(name.trim_start_matches('/')).exists(), "{what}: {name} listed");
-}
-
-/// A handshake by hand: the segment is owner-only while it has a name, and the name is gone
-/// once the client has said it mapped it.
+/// A handshake by hand: the segment arrives as one descriptor attached to the welcome, an
+/// anonymous memory file sealed against resizing, which the daemon stops holding once the
+/// client says it mapped it.
 fn check_raw_segment(daemon: &Daemon) {
+    use std::os::fd::AsRawFd;
     let mut stream = UnixStream::connect(&daemon.socket).expect("connect");
     stream.set_read_timeout(Some(Duration::from_secs(10))).expect("timeout");
     stream.write_all(&handshake::preamble(PROTOCOL_VERSION)).expect("preamble");
     let hello =
         Hello { name: "iso-raw".into(), role: "raw".into(), placement: None, tally: false, purpose: Purpose::Render };
     handshake::write_message(&mut stream, &hello).expect("hello");
-    let ServerMessage::Welcome { segment, cmd_capacity, reply_capacity, .. } =
-        handshake::read_message(&mut stream, "welcome").expect("welcome")
+    let (ServerMessage::Welcome { cmd_capacity, reply_capacity, .. }, fds) =
+        handshake::read_message_with_fds(&stream, "welcome").expect("welcome")
     else {
         panic!("refused");
     };
-    let path = std::path::Path::new("/dev/shm").join(segment.trim_start_matches('/'));
-    let meta = std::fs::metadata(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert_eq!(meta.permissions().mode() & 0o777, 0o600, "{} is not owner-only", path.display());
-    // SAFETY: getuid cannot fail.
-    assert_eq!(meta.uid(), unsafe { libc::getuid() }, "{} belongs to someone else", path.display());
-    let mapped = Segment::open(&segment, cmd_capacity, reply_capacity).expect("the client maps its segment");
+    assert_eq!(fds.len(), 1, "the welcome carries exactly the segment");
+    let fd = fds.into_iter().next().expect("fd");
+    let link = std::fs::read_link(format!("/proc/self/fd/{}", fd.as_raw_fd())).expect("the descriptor's link");
+    let link = link.to_string_lossy();
+    assert!(link.starts_with("/memfd:strata-segment"), "the segment is {link}, not an anonymous memory file");
+    // SAFETY: ftruncate on our own descriptor; the seal must refuse it.
+    let shrunk = unsafe { libc::ftruncate(fd.as_raw_fd(), 4096) };
+    let err = std::io::Error::last_os_error();
+    assert!(shrunk < 0 && err.raw_os_error() == Some(libc::EPERM), "the client could shrink its segment: {err}");
+    let mapped = Segment::open(fd, cmd_capacity, reply_capacity).expect("the client maps its segment");
+    assert!(!daemon_segments(daemon).is_empty(), "the daemon holds the segment until the client has mapped it");
     handshake::write_message(&mut stream, &ClientMessage::Mapped).expect("mapped");
-    // The daemon logs the connection after it unlinked the name.
-    daemon.wait_log(&segment);
-    assert_unopenable(&segment, "a raw client's segment");
+    daemon.wait_log("name=iso-raw");
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
+    while !daemon_segments(daemon).is_empty() && std::time::Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert_eq!(daemon_segments(daemon), Vec::<String>::new(), "the daemon still holds descriptors of segments");
     mapped.command_ring().expect("the client's own mapping stays valid");
 }
 
@@ -379,17 +376,7 @@ fn a_client_cannot_reach_another_clients_objects_segment_or_surfaces() {
     egl(a.eglMakeCurrent(d, window, window, a_objects.context), "A's window and context after B");
     egl(a.eglSwapBuffers(d, window), "A swaps its window after B");
 
-    let a_segment = logged_segment(&daemon, "iso-a").expect("the daemon logs A's segment");
-    let b_segment = logged_segment(&daemon, "iso-b").expect("the daemon logs B's segment");
-    assert_ne!(a_segment, b_segment, "two clients share a segment");
-    assert_unopenable(&a_segment, "A's segment");
+    // A and B mapped theirs: the daemon holds no descriptor of either, and no name.
+    assert_eq!(daemon_segments(&daemon), Vec::<String>::new(), "the daemon holds descriptors of segments");
     check_raw_segment(&daemon);
-    // No segment of this daemon is left with a name.
-    let prefix = format!("strata-{}-", daemon.child.id());
-    let named: Vec<String> = std::fs::read_dir("/dev/shm")
-        .expect("/dev/shm")
-        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
-        .filter(|n| n.starts_with(&prefix))
-        .collect();
-    assert!(named.is_empty(), "segments still named: {named:?}");
 }

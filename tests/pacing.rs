@@ -60,7 +60,7 @@ fn two_half_frame(gl: &mut Connection, cur: Current, size: i32, f: u32) {
 }
 
 fn control(socket: &Path, req: ControlRequest) -> ControlReply {
-    ControlConnection::connect(socket).expect("control").request(&req).expect("control request")
+    ControlConnection::connect_beside(socket).expect("control").request(&req).expect("control request")
 }
 
 fn screenshot(socket: &Path, output: &str) -> image::RgbaImage {

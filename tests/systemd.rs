@@ -1,7 +1,8 @@
 //! stratad under systemd, with this test playing the service manager's part: it binds the
-//! listening socket and passes it as descriptor 3 (`LISTEN_FDS=1`, `LISTEN_PID` the daemon's),
-//! and listens on `NOTIFY_SOCKET`. The daemon serves clients on that socket (its `--socket`
-//! points nowhere usable), says `READY=1` once it can, pings `WATCHDOG=1` at half of
+//! client and control sockets and passes them as descriptors 3 and 4 (`LISTEN_FDS=2`,
+//! `LISTEN_FDNAMES=stratad.socket:control`, `LISTEN_PID` the daemon's), as the units in
+//! packaging/systemd do, and listens on `NOTIFY_SOCKET`. The daemon serves clients and `ctl` on
+//! those sockets (its `--socket` points nowhere usable), says `READY=1` once it can, pings `WATCHDOG=1` at half of
 //! `WATCHDOG_USEC`, says `STOPPING=1` on SIGTERM, and leaves the socket in place for the next
 //! start. A descriptor that is not a listening Unix socket is refused with a clear error.
 
@@ -15,13 +16,26 @@ use std::time::{Duration, Instant};
 
 use support::TempDir;
 
-/// `stratad serve` started as systemd starts it: `fd` as descriptor 3 and `LISTEN_PID` its
-/// own PID (`sh` sets it, then `exec`s the daemon in its place).
-fn activated(fd: i32, notify: &std::path::Path, log: &std::path::Path, extra_env: &[(&str, &str)]) -> Command {
+/// `stratad serve` started as systemd starts it: `fds` as descriptors 3, 4, … named `names`
+/// (`LISTEN_FDNAMES`), and `LISTEN_PID` its own PID (`sh` sets it, then `exec`s the daemon in
+/// its place).
+fn activated(
+    fds: &[i32],
+    names: &str,
+    notify: &std::path::Path,
+    log: &std::path::Path,
+    extra_env: &[(&str, &str)],
+) -> Command {
     let mut cmd = Command::new("sh");
-    cmd.args(["-c", "LISTEN_PID=$$ LISTEN_FDS=1 exec \"$0\" serve --output t=64x64 --socket /nonexistent/strata.sock --allow-fault-injection"])
+    let script = format!(
+        "LISTEN_PID=$$ LISTEN_FDS={} exec \"$0\" serve --output t=64x64 --socket /nonexistent/strata.sock \
+         --allow-fault-injection",
+        fds.len()
+    );
+    cmd.args(["-c", &script])
         .arg(support::stratad())
         .env("NOTIFY_SOCKET", notify)
+        .env("LISTEN_FDNAMES", names)
         .env_remove("LISTEN_PID")
         .env_remove("LISTEN_FDS")
         .stdout(Stdio::null())
@@ -29,12 +43,24 @@ fn activated(fd: i32, notify: &std::path::Path, log: &std::path::Path, extra_env
     for (k, v) in extra_env {
         cmd.env(k, v);
     }
-    // SAFETY: only async-signal-safe calls (dup2, fcntl) between fork and exec.
+    let fds = fds.to_vec();
+    // SAFETY: only async-signal-safe calls (dup, dup2, fcntl) between fork and exec. Each
+    // descriptor is first copied above the target range, so that none is overwritten before
+    // it is moved.
     unsafe {
         cmd.pre_exec(move || {
-            let r = if fd == 3 { libc::fcntl(3, libc::F_SETFD, 0) } else { libc::dup2(fd, 3) };
-            if r < 0 {
-                return Err(std::io::Error::last_os_error());
+            let mut high = Vec::with_capacity(fds.len());
+            for &fd in &fds {
+                let h = libc::fcntl(fd, libc::F_DUPFD, 100);
+                if h < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                high.push(h);
+            }
+            for (i, h) in high.into_iter().enumerate() {
+                if libc::dup2(h, 3 + i as i32) < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
             }
             Ok(())
         });
@@ -65,12 +91,15 @@ fn socket_activation_readiness_watchdog_and_stopping() {
     let dir = TempDir::new("systemd");
     let path = dir.0.join("strata.sock");
     let listener = UnixListener::bind(&path).expect("bind");
+    // Where `ctl --socket PATH` looks: beside the client socket.
+    let control = UnixListener::bind(dir.0.join("strata-control.sock")).expect("bind the control socket");
     let notify_path = dir.0.join("notify");
     let notify = UnixDatagram::bind(&notify_path).expect("notify socket");
 
     let log = dir.0.join("stratad.log");
-    let daemon =
-        activated(listener.as_raw_fd(), &notify_path, &log, &[("WATCHDOG_USEC", "400000")]).spawn().expect("stratad");
+    let fds = [listener.as_raw_fd(), control.as_raw_fd()];
+    let names = "stratad.socket:control";
+    let daemon = activated(&fds, names, &notify_path, &log, &[("WATCHDOG_USEC", "400000")]).spawn().expect("stratad");
     let mut daemon = Killed(daemon);
     let pid = daemon.0.id();
     let ready = notifications(&notify, Duration::from_secs(90), "READY=1");
@@ -111,15 +140,28 @@ fn socket_activation_readiness_watchdog_and_stopping() {
     let text = std::fs::read_to_string(&log).unwrap_or_default();
     assert!(status.success(), "stratad: {status}\n{text}");
     assert!(path.exists(), "the activated socket was removed");
+    assert!(dir.0.join("strata-control.sock").exists(), "the activated control socket was removed");
     drop(listener);
+    drop(control);
 
     // Descriptor 3 that is not a listening Unix socket: a clear error, no start.
     let file = std::fs::File::create(dir.0.join("not-a-socket")).expect("file");
     let bad_log = dir.0.join("bad.log");
-    let status = activated(file.as_raw_fd(), &notify_path, &bad_log, &[]).status().expect("stratad");
+    let status =
+        activated(&[file.as_raw_fd()], "stratad.socket", &notify_path, &bad_log, &[]).status().expect("stratad");
     let err = std::fs::read_to_string(&bad_log).unwrap_or_default();
     assert!(!status.success(), "stratad served on a regular file");
     assert!(err.contains("not a listening Unix stream socket"), "{err}");
+
+    // Two client sockets (no control socket named): a clear error, no start.
+    let a = UnixListener::bind(dir.0.join("a.sock")).expect("bind");
+    let b = UnixListener::bind(dir.0.join("b.sock")).expect("bind");
+    let two_log = dir.0.join("two.log");
+    let fds = [a.as_raw_fd(), b.as_raw_fd()];
+    let status = activated(&fds, "stratad.socket:other.socket", &notify_path, &two_log, &[]).status().expect("stratad");
+    let err = std::fs::read_to_string(&two_log).unwrap_or_default();
+    assert!(!status.success(), "stratad served on two client sockets");
+    assert!(err.contains("one client socket and one control socket"), "{err}");
 }
 
 /// A daemon killed if the test ends before it stops.

@@ -118,7 +118,7 @@ fn bad_clients_are_disconnected_and_others_unaffected() {
     let mut raw = RawClient::connect(&daemon.socket, "socket-garbage");
     raw.stream.write_all(&garbage).expect("write");
     assert!(raw.wait_disconnected(), "socket garbage: daemon did not disconnect");
-    daemon.wait_log("unexpected bytes on the control socket");
+    daemon.wait_log("unexpected bytes on the client socket");
     stream_and_verify("socket garbage");
 
     expect_verified(good, 400_000);

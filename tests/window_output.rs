@@ -111,7 +111,7 @@ fn window_output_shows_the_composited_image() {
         gl.glFinish().expect("io");
         clients.push(gl);
     }
-    let mut ctl = ControlConnection::connect(&daemon.socket).expect("control");
+    let mut ctl = ControlConnection::connect_beside(&daemon.socket).expect("control");
     match ctl.request(&ControlRequest::List).expect("list") {
         ControlReply::List { outputs, .. } => assert_eq!(outputs[0].kind, "window"),
         other => panic!("{other:?}"),

@@ -32,7 +32,7 @@ pub struct Args {
 
 /// The daemon's resident memory (bytes), its threads, and its connected clients' devices.
 fn sample(socket: &std::path::Path, pid: u32) -> Result<(u64, usize, usize)> {
-    let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
+    let mut c = ControlConnection::connect_beside(socket).context("connecting to the daemon's control socket")?;
     let s = match c.request(&ControlRequest::Stats)? {
         ControlReply::Stats(s) => s,
         other => bail!("unexpected control reply {other:?}"),

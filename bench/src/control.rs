@@ -201,7 +201,8 @@ pub fn run(args: &Args) -> Result<()> {
         clients.push(child);
         first += count;
     }
-    let mut c = ControlConnection::connect_as(&daemon.socket, "strata-bench")?;
+    let mut c =
+        ControlConnection::connect_as(&strata_protocol::handshake::control_socket_for(&daemon.socket), "strata-bench")?;
     match c.request(&ControlRequest::List)? {
         ControlReply::List { surfaces, .. } if surfaces.len() == args.surfaces as usize => {}
         other => bail!("expected {} surfaces, got {other:?}", args.surfaces),

@@ -470,7 +470,8 @@ pub fn run(args: &Args) -> Result<()> {
         vec!["--output".as_ref(), OUTPUT.as_ref(), "--config".as_ref(), config_path.as_os_str()];
     daemon_args.extend(args.daemon_args.iter().map(std::ffi::OsStr::new));
     let daemon = Stratad::start(&stratad, daemon_args, socket, args.out.join("stratad.log"), true)?;
-    let control = ControlConnection::connect(&daemon.socket).context("connecting to stratad's control socket")?;
+    let control =
+        ControlConnection::connect_beside(&daemon.socket).context("connecting to stratad's control socket")?;
     let mut bench = Bench { args, exe, daemon, control, glmark2 };
 
     let pb = if args.json { ProgressBar::hidden() } else { ProgressBar::new(1 + loads.len() as u64) };

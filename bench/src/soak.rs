@@ -135,7 +135,7 @@ fn soak(args: &Args, exe: &Path, socket: &Path, daemon: &mut Child, log: &Path) 
         }
         std::thread::sleep(Duration::from_millis(20));
     }
-    let mut control = ControlConnection::connect(socket)?;
+    let mut control = ControlConnection::connect_beside(socket)?;
     let mut by = BystanderClient::start(socket)?;
     let refs = by.references()?;
     let stop = Arc::new(AtomicBool::new(false));
@@ -354,7 +354,7 @@ impl BystanderClient {
             ConnectOptions { socket: socket.into(), name: "bystander".into(), role: "ic".into(), ..Default::default() };
         let mut gl = Connection::connect(&opts)?;
         let cur = egl_context(&mut gl, 24, 0, SurfaceKind::Window { rect: [0, 0, SIDE as i32, SIDE as i32], z: 0.1 })?;
-        Ok(BystanderClient { gl, control: ControlConnection::connect(socket)?, cur, frame: 0 })
+        Ok(BystanderClient { gl, control: ControlConnection::connect_beside(socket)?, cur, frame: 0 })
     }
 
     /// Draws and swaps the next frame: a background and a bar that moves with the frame.

@@ -141,7 +141,7 @@ struct Row {
 /// The compositor's busy time so far: its device's, plus its thread's planning and encoding
 /// (microseconds).
 fn compositor_busy(socket: &std::path::Path) -> Result<u64> {
-    let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
+    let mut c = ControlConnection::connect_beside(socket).context("connecting to the daemon's control socket")?;
     let device = match c.request(&ControlRequest::Stats)? {
         ControlReply::Stats(s) => s.compositor_device.map_or(0, |d| d.busy_us),
         other => bail!("unexpected control reply {other:?}"),
@@ -152,7 +152,7 @@ fn compositor_busy(socket: &std::path::Path) -> Result<u64> {
 
 /// `ctl list`: the daemon's outputs and surfaces.
 fn list(socket: &std::path::Path) -> Result<(Vec<OutputRow>, Vec<SurfaceRow>)> {
-    let mut c = ControlConnection::connect(socket).context("connecting to the daemon's control socket")?;
+    let mut c = ControlConnection::connect_beside(socket).context("connecting to the daemon's control socket")?;
     match c.request(&ControlRequest::List)? {
         ControlReply::List { outputs, surfaces, .. } => Ok((outputs, surfaces)),
         other => bail!("unexpected control reply {other:?}"),

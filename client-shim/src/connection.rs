@@ -127,23 +127,27 @@ impl Connection {
         // The daemon may refuse after the preamble and close before the hello arrives; its
         // reason is then waiting to be read, and it explains more than a broken pipe.
         let sent = stream.write_all(&opening);
-        let reply = handshake::read_message(&mut stream, "welcome");
+        let reply = handshake::read_message_with_fds(&stream, "welcome");
         if let Err(e) = sent {
             return match reply {
-                Ok(ServerMessage::Refused { reason }) => Err(HandshakeError::Refused(reason).into()),
+                Ok((ServerMessage::Refused { reason }, _)) => Err(HandshakeError::Refused(reason).into()),
                 _ => Err(HandshakeError::Io(e).into()),
             };
         }
-        let (client_id, name, cmd_capacity, reply_capacity, vertex_wire) = match reply? {
-            ServerMessage::Welcome { client_id, segment, cmd_capacity, reply_capacity, vertex_wire } => {
-                (client_id, segment, cmd_capacity, reply_capacity, vertex_wire)
+        let (reply, fds) = reply?;
+        let (client_id, cmd_capacity, reply_capacity, vertex_wire) = match reply {
+            ServerMessage::Welcome { client_id, cmd_capacity, reply_capacity, vertex_wire } => {
+                (client_id, cmd_capacity, reply_capacity, vertex_wire)
             }
             ServerMessage::Refused { reason } => return Err(HandshakeError::Refused(reason).into()),
             ServerMessage::ControlReady => {
                 return Err(ClientError::Unexpected("control welcome on a render connection".into()))
             }
         };
-        let segment = Segment::open(&name, cmd_capacity, reply_capacity)?;
+        let Ok::<[_; 1], _>([fd]) = fds.try_into() else {
+            return Err(ClientError::Unexpected("the welcome did not carry exactly one segment descriptor".into()));
+        };
+        let segment = Segment::open(fd, cmd_capacity, reply_capacity)?;
         handshake::write_message(&mut stream, &ClientMessage::Mapped)?;
         stream.set_read_timeout(None).map_err(HandshakeError::Io)?;
         Ok(Connection {

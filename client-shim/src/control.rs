@@ -1,12 +1,12 @@
 //! The daemon's control protocol for Rust programs (an HMI controller, `stratad ctl`): JSON
-//! lines on the daemon's socket, as docs/control.md specifies. Every request gets one reply;
+//! lines on the daemon's control socket, as docs/control.md specifies. Every request gets one reply;
 //! [`ControlConnection::watch`] turns the connection into a stream of events.
 //!
 //! ```no_run
 //! use strata_client::control::{ControlConnection, ControlReply, ControlRequest};
 //! use strata_protocol::properties::Change;
 //!
-//! let mut c = ControlConnection::connect(std::path::Path::new("/run/strata/stratad.sock"))?;
+//! let mut c = ControlConnection::connect(std::path::Path::new("/run/strata/strata-control.sock"))?;
 //! let hide = Change::Visibility { surface: 2000, visible: false };
 //! match c.request(&ControlRequest::Apply { changes: vec![hide] })? {
 //!     ControlReply::Error(e) => eprintln!("refused: {e}"),
@@ -55,12 +55,18 @@ pub struct ControlConnection {
 }
 
 impl ControlConnection {
-    /// Connects to the daemon at `socket` as `stratad-ctl`.
+    /// Connects to the daemon's control socket `socket` as `stratad-ctl`.
     pub fn connect(socket: &Path) -> Result<ControlConnection, ControlError> {
         ControlConnection::connect_as(socket, "stratad-ctl")
     }
 
-    /// Connects to the daemon at `socket`, named `name` in its log.
+    /// Connects to the control socket of the daemon whose client socket is `client_socket`,
+    /// where it is by default (beside it, `NAME-control.sock`).
+    pub fn connect_beside(client_socket: &Path) -> Result<ControlConnection, ControlError> {
+        ControlConnection::connect(&strata_protocol::handshake::control_socket_for(client_socket))
+    }
+
+    /// Connects to the daemon's control socket `socket`, named `name` in its log.
     pub fn connect_as(socket: &Path, name: &str) -> Result<ControlConnection, ControlError> {
         let writer = UnixStream::connect(socket)
             .map_err(|source| ControlError::Connect { socket: socket.to_path_buf(), source })?;

@@ -325,6 +325,9 @@ pub struct ClientStats {
     pub waits: Waits,
     /// Deadline misses of its surfaces (see `SurfaceRow::deadline_misses`).
     pub deadline_misses: u64,
+    /// Its credentials.
+    #[serde(default)]
+    pub peer: Peer,
     /// The device it renders on, once its session has opened it.
     pub device: Option<DeviceStats>,
 }
@@ -406,6 +409,24 @@ pub struct SurfaceRow {
     pub shown_visible: bool,
     /// Its opacity times its layers'.
     pub shown_opacity: f32,
+    /// Its client's credentials.
+    #[serde(default)]
+    pub peer: Peer,
+}
+
+/// Who a client is, as the kernel told the daemon when it connected (`SO_PEERCRED`): never
+/// what the client says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct Peer {
+    /// Process ID of the process that connected (it may have exited since).
+    pub pid: u32,
+    /// Its user ID.
+    pub uid: u32,
+    /// Its primary group ID.
+    pub gid: u32,
+    /// Whether it claims the name of a configuration entry whose credentials it lacks; such a
+    /// client is treated as unnamed (no entry's placement, class, deadline, projection or quota).
+    pub unverified: bool,
 }
 
 /// One output of `stratad ctl list`.

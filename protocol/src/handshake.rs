@@ -3,7 +3,8 @@
 //!
 //! Wire: the client first sends 8 raw bytes, `b"STRT"` then its protocol version as `u32` LE,
 //! so that any version can be refused by name. After that both sides exchange messages framed
-//! as `[len: u32 LE][codec bytes]`, each at most [`MAX_CONTROL_MESSAGE`] bytes.
+//! as `[len: u32 LE][codec bytes]`, each at most [`MAX_CONTROL_MESSAGE`] bytes. The welcome
+//! carries the client's segment as a descriptor attached to its first byte (`SCM_RIGHTS`).
 
 use std::io::{Read, Write};
 use std::path::PathBuf;
@@ -64,12 +65,10 @@ pub struct Hello {
 /// The daemon's messages on the control socket.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum ServerMessage {
-    /// Accepted: map this segment, then answer `Mapped`.
+    /// Accepted: map the segment that came with this message, then answer `Mapped`.
     Welcome {
         /// The daemon's number for this client.
         client_id: u64,
-        /// Shared-memory name of the segment.
-        segment: String,
         /// Command ring capacity in bytes.
         cmd_capacity: u32,
         /// Reply ring capacity in bytes.
@@ -262,6 +261,56 @@ pub fn read_message_limited<T: DeserializeOwned>(
     Ok(codec::decode_trusted(&body, what)?)
 }
 
+/// Reads one framed message from a blocking Unix stream, with the descriptors attached to its
+/// bytes (the welcome's segment).
+pub fn read_message_with_fds<T: DeserializeOwned>(
+    stream: &std::os::unix::net::UnixStream,
+    what: &'static str,
+) -> Result<(T, Vec<std::os::fd::OwnedFd>), HandshakeError> {
+    use std::os::fd::AsFd;
+    let mut prefix = [0u8; 4];
+    let mut fds = Vec::new();
+    let mut have = 0;
+    while have < prefix.len() {
+        let got = match crate::fd_passing::recv(stream.as_fd(), &mut prefix[have..]) {
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            r => r?,
+        };
+        if got.bytes == 0 {
+            return Err(HandshakeError::Io(std::io::ErrorKind::UnexpectedEof.into()));
+        }
+        have += got.bytes;
+        fds.extend(got.fds);
+    }
+    let len = u32::from_le_bytes(prefix) as usize;
+    if len > MAX_CONTROL_MESSAGE {
+        return Err(HandshakeError::TooLarge(len));
+    }
+    let mut body = vec![0u8; len];
+    (&mut &*stream).read_exact(&mut body)?;
+    Ok((codec::decode_trusted(&body, what)?, fds))
+}
+
+/// The control socket that belongs to client socket `client` when none is named: beside it,
+/// `NAME-control.EXT` (`strata.sock` → `strata-control.sock`).
+pub fn control_socket_for(client: &std::path::Path) -> PathBuf {
+    let stem = client.file_stem().map_or_else(|| "strata".into(), |s| s.to_string_lossy().into_owned());
+    let name = match client.extension() {
+        Some(ext) => format!("{stem}-control.{}", ext.to_string_lossy()),
+        None => format!("{stem}-control"),
+    };
+    client.with_file_name(name)
+}
+
+/// The control socket when none is given: `$STRATA_CONTROL_SOCKET`, else the one beside
+/// [`default_socket_path`].
+pub fn default_control_socket_path() -> PathBuf {
+    match std::env::var_os("STRATA_CONTROL_SOCKET").filter(|p| !p.is_empty()) {
+        Some(p) => PathBuf::from(p),
+        None => control_socket_for(&default_socket_path()),
+    }
+}
+
 /// The socket path when none is given: `$STRATA_SOCKET`, else `$XDG_RUNTIME_DIR/strata.sock`,
 /// else `/tmp/strata-$UID.sock`.
 pub fn default_socket_path() -> PathBuf {
@@ -323,7 +372,6 @@ mod tests {
         for wire in VertexWire::ALL {
             let sent = ServerMessage::Welcome {
                 client_id: 7,
-                segment: "/strata-x".into(),
                 cmd_capacity: 1 << 20,
                 reply_capacity: 1 << 16,
                 vertex_wire: wire,
@@ -337,6 +385,14 @@ mod tests {
         assert_eq!(VertexWire::Half.gl_type(), 0x8D61);
         assert_eq!(VertexWire::Fixed.gl_type(), 0x140C);
         assert!("double".parse::<VertexWire>().is_err());
+    }
+
+    #[test]
+    fn the_control_socket_sits_beside_the_client_socket() {
+        let at = |p: &str| control_socket_for(std::path::Path::new(p));
+        assert_eq!(at("/run/user/1000/strata.sock"), PathBuf::from("/run/user/1000/strata-control.sock"));
+        assert_eq!(at("/tmp/strata-0.sock"), PathBuf::from("/tmp/strata-0-control.sock"));
+        assert_eq!(at("/tmp/s"), PathBuf::from("/tmp/s-control"));
     }
 
     #[test]

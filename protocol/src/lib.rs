@@ -7,6 +7,7 @@ mod command_set;
 pub mod commands;
 pub mod control;
 pub mod events;
+pub mod fd_passing;
 pub mod futex;
 pub mod handshake;
 pub mod json_control;

@@ -1,13 +1,16 @@
 //! The per-client shared-memory segment: a header, then the command ring (client → daemon)
 //! and the reply ring (daemon → client).
 //!
-//! The daemon creates it with a random name and owner-only permissions, sends the name over
-//! the control socket, and unlinks it as soon as the client reports it mapped, so that no third
-//! process can open it afterwards.
+//! The daemon creates it as an anonymous memory file (`memfd_create`) and hands the client its
+//! descriptor over the socket (`SCM_RIGHTS`, [`crate::fd_passing`]). It never has a name, so
+//! no other process, of any uid, can open it; and its size is sealed, so the client cannot
+//! shrink it under the daemon's mapping.
 
+use std::os::fd::{AsFd, BorrowedFd, OwnedFd};
 use std::sync::Arc;
 
-use shared_memory::{Shmem, ShmemConf};
+use rustix::fs::{MemfdFlags, SealFlags};
+use rustix::mm::{MapFlags, ProtFlags};
 
 use crate::ring::{Backing, RingError, RingRegion, CONTROL_BYTES, MAX_CAPACITY, MIN_CAPACITY};
 
@@ -19,50 +22,64 @@ const DATA: usize = 4096;
 /// Why a segment could not be made or opened.
 #[derive(Debug, thiserror::Error)]
 pub enum SegmentError {
-    /// Creating or opening the shared memory failed.
-    #[error("shared memory {name}: {source}")]
-    Shmem {
-        /// Segment name.
-        name: String,
-        /// The underlying error.
-        source: shared_memory::ShmemError,
-    },
-    /// The mapping does not have the advertised layout.
-    #[error("segment {name} is not a Strata segment of the advertised size: {reason}")]
-    Layout {
-        /// Segment name.
-        name: String,
-        /// What did not match.
-        reason: String,
-    },
-    /// Unlinking failed.
-    #[error("unlinking {name}: {source}")]
-    Unlink {
-        /// Segment name.
-        name: String,
+    /// Creating, sizing, sealing or mapping the memory failed.
+    #[error("shared memory segment: {what}: {source}")]
+    Memory {
+        /// The step that failed.
+        what: &'static str,
         /// The OS error.
         source: std::io::Error,
     },
+    /// The mapping does not have the advertised layout.
+    #[error("the segment is not a Strata segment of the advertised size: {0}")]
+    Layout(String),
     /// A ring could not be laid out.
     #[error(transparent)]
     Ring(#[from] RingError),
 }
 
-struct Mapping(Shmem);
+fn os(what: &'static str) -> impl FnOnce(rustix::io::Errno) -> SegmentError {
+    move |e| SegmentError::Memory { what, source: e.into() }
+}
+
+/// A shared mapping of a memory file, unmapped when the last ring drops it.
+struct Mapping {
+    base: *mut u8,
+    len: usize,
+}
 // SAFETY: a mapping is plain shared memory; the rings coordinate all access through atomics,
-// and `Shmem`'s drop only unmaps and closes, which is valid from any thread.
+// and unmapping is valid from any thread.
 unsafe impl Send for Mapping {}
 // SAFETY: as above; `&Mapping` exposes nothing but the base pointer.
 unsafe impl Sync for Mapping {}
 impl Backing for Mapping {}
 
+impl Mapping {
+    /// Maps `len` bytes of `fd`, shared and writable.
+    fn new(fd: BorrowedFd<'_>, len: usize) -> Result<Mapping, SegmentError> {
+        // SAFETY: a fresh shared mapping chosen by the kernel; nothing aliases it in this process.
+        let base = unsafe {
+            rustix::mm::mmap(std::ptr::null_mut(), len, ProtFlags::READ | ProtFlags::WRITE, MapFlags::SHARED, fd, 0)
+        }
+        .map_err(os("mapping"))?;
+        Ok(Mapping { base: base.cast(), len })
+    }
+}
+
+impl Drop for Mapping {
+    fn drop(&mut self) {
+        // SAFETY: our own mapping of `len` bytes; every ring that pointed into it is gone.
+        let _ = unsafe { rustix::mm::munmap(self.base.cast(), self.len) };
+    }
+}
+
 /// One client's mapped segment.
 pub struct Segment {
-    name: String,
     map: Arc<Mapping>,
+    /// The memory file, until the daemon has handed it over ([`Segment::close_fd`]).
+    fd: Option<OwnedFd>,
     cmd_capacity: u32,
     reply_capacity: u32,
-    linked: bool,
 }
 
 /// Bytes a segment with these ring capacities occupies.
@@ -87,36 +104,36 @@ unsafe fn populate(base: *mut u8, len: usize) {
     }
 }
 
-fn check_capacity(name: &str, cap: u32) -> Result<(), SegmentError> {
+fn check_capacity(cap: u32) -> Result<(), SegmentError> {
     if cap.is_power_of_two() && (MIN_CAPACITY..=MAX_CAPACITY).contains(&cap) {
         Ok(())
     } else {
-        Err(SegmentError::Layout {
-            name: name.into(),
-            reason: format!("ring capacity {cap} is not a power of two in {MIN_CAPACITY}..={MAX_CAPACITY}"),
-        })
+        Err(SegmentError::Layout(format!(
+            "ring capacity {cap} is not a power of two in {MIN_CAPACITY}..={MAX_CAPACITY}"
+        )))
     }
 }
 
 impl Segment {
-    /// Creates a fresh segment with a random name (daemon side).
+    /// Creates a fresh segment (daemon side): an anonymous memory file of the segment's size,
+    /// sealed against resizing, mapped and laid out.
     pub fn create(cmd_capacity: u32, reply_capacity: u32) -> Result<Segment, SegmentError> {
-        let name = format!("/strata-{}-{:016x}", std::process::id(), rand::random::<u64>());
-        check_capacity(&name, cmd_capacity)?;
-        check_capacity(&name, reply_capacity)?;
-        let mut shmem = ShmemConf::new()
-            .size(segment_size(cmd_capacity, reply_capacity))
-            .os_id(&name)
-            .create()
-            .map_err(|source| SegmentError::Shmem { name: name.clone(), source })?;
-        // Unlinking is ours (see `unlink`), never the mapping's drop.
-        shmem.set_owner(false);
-        let seg = Segment { name, map: Arc::new(Mapping(shmem)), cmd_capacity, reply_capacity, linked: true };
+        check_capacity(cmd_capacity)?;
+        check_capacity(reply_capacity)?;
+        let len = segment_size(cmd_capacity, reply_capacity);
+        let fd = rustix::fs::memfd_create("strata-segment", MemfdFlags::CLOEXEC | MemfdFlags::ALLOW_SEALING)
+            .map_err(os("creating the memory file"))?;
+        rustix::fs::ftruncate(&fd, len as u64).map_err(os("sizing the memory file"))?;
+        // The client maps it too: neither side may shrink (SIGBUS in the other) or grow it.
+        rustix::fs::fcntl_add_seals(&fd, SealFlags::SHRINK | SealFlags::GROW | SealFlags::SEAL)
+            .map_err(os("sealing the memory file"))?;
+        let map = Mapping::new(fd.as_fd(), len)?;
+        let seg = Segment { map: Arc::new(map), fd: Some(fd), cmd_capacity, reply_capacity };
         // SAFETY: the header lies at the start of a fresh, page-aligned mapping of DATA+ bytes,
         // and `segment_size` bytes are mapped.
         unsafe {
             let p = seg.base();
-            populate(p, segment_size(cmd_capacity, reply_capacity));
+            populate(p, len);
             p.cast::<u64>().write_volatile(MAGIC);
             p.add(8).cast::<u32>().write_volatile(cmd_capacity);
             p.add(12).cast::<u32>().write_volatile(reply_capacity);
@@ -126,21 +143,22 @@ impl Segment {
         Ok(seg)
     }
 
-    /// Opens a segment the daemon announced (client side) and checks its layout.
-    pub fn open(name: &str, cmd_capacity: u32, reply_capacity: u32) -> Result<Segment, SegmentError> {
-        check_capacity(name, cmd_capacity)?;
-        check_capacity(name, reply_capacity)?;
-        let shmem =
-            ShmemConf::new().os_id(name).open().map_err(|source| SegmentError::Shmem { name: name.into(), source })?;
+    /// Maps the segment the daemon handed over as `fd` (client side) and checks its size, its
+    /// seals and its header.
+    pub fn open(fd: OwnedFd, cmd_capacity: u32, reply_capacity: u32) -> Result<Segment, SegmentError> {
+        check_capacity(cmd_capacity)?;
+        check_capacity(reply_capacity)?;
         let need = segment_size(cmd_capacity, reply_capacity);
-        if shmem.len() < need {
-            return Err(SegmentError::Layout {
-                name: name.into(),
-                reason: format!("{} bytes mapped, {need} needed", shmem.len()),
-            });
+        let size = rustix::fs::fstat(&fd).map_err(os("reading the memory file's size"))?.st_size;
+        if u64::try_from(size).ok() != Some(need as u64) {
+            return Err(SegmentError::Layout(format!("{size} bytes, {need} needed")));
         }
-        let seg =
-            Segment { name: name.into(), map: Arc::new(Mapping(shmem)), cmd_capacity, reply_capacity, linked: false };
+        let seals = rustix::fs::fcntl_get_seals(&fd).map_err(os("reading the memory file's seals"))?;
+        if !seals.contains(SealFlags::SHRINK) {
+            return Err(SegmentError::Layout("the memory file may shrink (no F_SEAL_SHRINK)".into()));
+        }
+        let map = Mapping::new(fd.as_fd(), need)?;
+        let seg = Segment { map: Arc::new(map), fd: None, cmd_capacity, reply_capacity };
         // SAFETY: the mapping has at least DATA bytes.
         let (magic, c, r) = unsafe {
             let p = seg.base();
@@ -151,38 +169,24 @@ impl Segment {
             )
         };
         if magic != MAGIC || c != cmd_capacity || r != reply_capacity {
-            return Err(SegmentError::Layout {
-                name: name.into(),
-                reason: format!("header says magic {magic:#x}, rings {c}/{r}"),
-            });
+            return Err(SegmentError::Layout(format!("header says magic {magic:#x}, rings {c}/{r}")));
         }
         Ok(seg)
     }
 
+    /// The memory file to hand to the client, until [`Segment::close_fd`].
+    pub fn fd(&self) -> Option<BorrowedFd<'_>> {
+        self.fd.as_ref().map(AsFd::as_fd)
+    }
+
+    /// Closes the daemon's descriptor of the memory file once the client has mapped it; the
+    /// mapping stays.
+    pub fn close_fd(&mut self) {
+        self.fd = None;
+    }
+
     fn base(&self) -> *mut u8 {
-        self.map.0.as_ptr()
-    }
-
-    /// The segment's name in the shared-memory namespace.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// Removes the name so no other process can open the segment; the mapping stays valid.
-    pub fn unlink(&mut self) -> Result<(), SegmentError> {
-        if !self.linked {
-            return Ok(());
-        }
-        let cname = std::ffi::CString::new(self.name.as_str()).map_err(|e| SegmentError::Unlink {
-            name: self.name.clone(),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, e),
-        })?;
-        // SAFETY: a valid NUL-terminated name.
-        if unsafe { libc::shm_unlink(cname.as_ptr()) } != 0 {
-            return Err(SegmentError::Unlink { name: self.name.clone(), source: std::io::Error::last_os_error() });
-        }
-        self.linked = false;
-        Ok(())
+        self.map.base
     }
 
     /// The client → daemon command ring.
@@ -205,15 +209,5 @@ impl Segment {
                 self.map.clone(),
             )
         }?)
-    }
-}
-
-impl Drop for Segment {
-    fn drop(&mut self) {
-        if self.linked {
-            if let Err(e) = self.unlink() {
-                tracing::warn!("{e}");
-            }
-        }
     }
 }

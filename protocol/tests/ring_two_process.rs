@@ -1,4 +1,4 @@
-//! Two processes share one segment: the child writes messages of random sizes (some larger
+//! Two processes share one segment (the child inherits its memory file as descriptor 3): the child writes messages of random sizes (some larger
 //! than the ring, so chunked) across many wrap-arounds; the parent checks that every message
 //! arrives once, in order, with a matching CRC-32.
 
@@ -22,8 +22,12 @@ fn message(seq: u64, rng: &mut rand::rngs::StdRng) -> Vec<u8> {
     m
 }
 
-fn child(name: &str) -> ExitCode {
-    let seg = Segment::open(name, RING, 4096).expect("open segment");
+fn child() -> ExitCode {
+    use std::os::fd::FromRawFd;
+    // SAFETY: the parent placed the segment's memory file at descriptor 3, which nothing else
+    // in this process owns.
+    let fd = unsafe { std::os::fd::OwnedFd::from_raw_fd(3) };
+    let seg = Segment::open(fd, RING, 4096).expect("open segment");
     let mut w = Writer::new(seg.command_ring().expect("ring"), 8192);
     let mut rng = rand::rngs::StdRng::seed_from_u64(99);
     for seq in 0..MESSAGES {
@@ -39,9 +43,27 @@ fn child(name: &str) -> ExitCode {
 }
 
 fn parent() -> ExitCode {
+    use std::os::fd::AsRawFd;
+    use std::os::unix::process::CommandExt;
     let mut seg = Segment::create(RING, 4096).expect("create segment");
     let exe = std::env::current_exe().expect("current exe");
-    let mut proc = Command::new(exe).arg("--child").arg(seg.name()).spawn().expect("spawn writer");
+    let fd = seg.fd().expect("the memory file").as_raw_fd();
+    let mut cmd = Command::new(exe);
+    cmd.arg("--child");
+    // SAFETY: only dup2 and fcntl (async-signal-safe) between fork and exec; descriptor 3 is
+    // left open across exec (dup2 onto itself would keep its close-on-exec flag).
+    unsafe {
+        cmd.pre_exec(move || {
+            let r = if fd == 3 { libc::fcntl(3, libc::F_SETFD, 0) } else { libc::dup2(fd, 3) };
+            if r < 0 {
+                Err(std::io::Error::last_os_error())
+            } else {
+                Ok(())
+            }
+        });
+    }
+    let mut proc = cmd.spawn().expect("spawn writer");
+    seg.close_fd();
     let mut r = Reader::new(seg.command_ring().expect("ring"), 1 << 24);
     let mut expect_rng = rand::rngs::StdRng::seed_from_u64(99);
     let mut next = 0u64;
@@ -64,7 +86,6 @@ fn parent() -> ExitCode {
             return ExitCode::FAILURE;
         }
     }
-    seg.unlink().expect("unlink");
     let status = proc.wait().expect("wait writer");
     if !status.success() {
         eprintln!("ring_two_process: writer exited with {status}");
@@ -78,7 +99,7 @@ fn parent() -> ExitCode {
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
     match args.iter().position(|a| a == "--child") {
-        Some(i) => child(&args[i + 1]),
+        Some(_) => child(),
         None => parent(),
     }
 }

@@ -46,6 +46,33 @@ pub struct LayoutEntry {
     /// or `id = [1000, 1001]`); surfaces beyond the list get runtime IDs.
     #[serde(default)]
     pub id: SurfaceIds,
+    /// The user ID a client must connect as to get this entry (see [`crate::identity`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uid: Option<u32>,
+    /// The user a client must connect as (resolved into `uid` when the configuration is read).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub user: Option<String>,
+    /// The primary group ID a client must connect with.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gid: Option<u32>,
+    /// The primary group a client must connect with (resolved into `gid`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
+    /// Whose placement wins: `"fixed"` (this entry's, whatever the client states) or
+    /// `"client"` (a placement the client states, `STRATA_WINDOW`); by default fixed when the
+    /// entry requires credentials, else client.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub placement: Option<PlacementPolicy>,
+}
+
+/// Whose placement wins for a layout entry's client.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlacementPolicy {
+    /// The entry's rectangle and z, whatever the client states.
+    Fixed,
+    /// A placement the client states wins over the entry's.
+    Client,
 }
 
 /// A layout entry's stable surface IDs: one number or a list.
@@ -218,12 +245,36 @@ pub enum LayoutError {
         /// What is wrong with it.
         source: ProjectionError,
     },
+    /// An entry names a user or group this machine does not have.
+    #[error("{section} entry for {client:?}: {source}")]
+    Identity {
+        /// `[[layout]]` or `[[quota]]`.
+        section: &'static str,
+        /// The entry's client.
+        client: String,
+        /// What is wrong.
+        source: crate::identity::IdentityError,
+    },
     /// A `--layout` argument does not parse.
     #[error("--layout {0:?} is not CLIENT=X,Y,Z[,WxH]")]
     Syntax(String),
 }
 
 impl LayoutEntry {
+    /// The credentials a client needs to get this entry.
+    pub fn requirement(&self) -> crate::identity::Requirement {
+        crate::identity::Requirement { uid: self.uid, gid: self.gid }
+    }
+
+    /// Whether the entry's placement wins over one the client states.
+    pub fn fixed_placement(&self) -> bool {
+        self.placement.unwrap_or(if self.requirement().any() {
+            PlacementPolicy::Fixed
+        } else {
+            PlacementPolicy::Client
+        }) == PlacementPolicy::Fixed
+    }
+
     /// Checks the values: a finite z, sizes within 1..=8192 when given, a usable projection.
     pub fn validate(&self) -> Result<(), LayoutError> {
         let bad = |why: String| LayoutError::Invalid { client: self.client.clone(), why };
@@ -279,6 +330,11 @@ impl FromStr for LayoutEntry {
             deadline: false,
             projection: None,
             id: SurfaceIds::default(),
+            uid: None,
+            user: None,
+            gid: None,
+            group: None,
+            placement: None,
         };
         e.validate()?;
         Ok(e)
@@ -296,6 +352,15 @@ impl Config {
         } else {
             toml::from_str(&text).map_err(|e| LayoutError::Parse { path: p.clone(), message: e.to_string() })?
         };
+        let mut config = config;
+        for e in &mut config.layout {
+            crate::identity::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
+                .map_err(|source| LayoutError::Identity { section: "[[layout]]", client: e.client.clone(), source })?;
+        }
+        for e in &mut config.quota {
+            crate::identity::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
+                .map_err(|source| LayoutError::Identity { section: "[[quota]]", client: e.client.clone(), source })?;
+        }
         for e in &config.layout {
             e.validate()?;
         }

@@ -11,6 +11,7 @@ pub mod compositor;
 pub mod demo;
 pub mod gles;
 pub mod gpu;
+pub mod identity;
 pub mod layout;
 pub mod quota;
 pub mod root;

@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
-use strata_protocol::handshake::default_socket_path;
+use strata_protocol::handshake::{control_socket_for, default_control_socket_path, default_socket_path};
 use strata_protocol::handshake::{ControlReply, ControlRequest, VertexWire};
 use strata_server::compositor::{Intermediate, Lighting, Mode, NormalSource};
 use strata_server::gles::{DepthFormat, DepthOptions, TransferMode};
@@ -30,13 +30,28 @@ struct Cli {
     command: Cmd,
 }
 
+// Parsed once at start: the size of the `serve` variant's options costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Cmd {
     /// Serve clients on a Unix socket until SIGINT or SIGTERM.
     Serve {
-        /// Socket path [default: $XDG_RUNTIME_DIR/strata.sock, else /tmp/strata-$UID.sock].
+        /// The client socket, where render clients connect [default: $XDG_RUNTIME_DIR/strata.sock,
+        /// else /tmp/strata-$UID.sock].
         #[arg(long, env = "STRATA_SOCKET")]
         socket: Option<PathBuf>,
+        /// The control socket, where `stratad ctl` and controllers connect [default: beside the
+        /// client socket, NAME-control.sock].
+        #[arg(long, env = "STRATA_CONTROL_SOCKET")]
+        control_socket: Option<PathBuf>,
+        /// Open the client socket to this group (name or number; mode 0660), so that clients
+        /// running as other users can connect [default: the daemon's user only, 0600].
+        #[arg(long)]
+        client_group: Option<String>,
+        /// Open the control socket to this group (name or number; mode 0660) [default: the
+        /// daemon's user only, 0600].
+        #[arg(long)]
+        control_group: Option<String>,
         /// Command ring bytes per client (power of two).
         #[arg(long, default_value_t = 8 << 20)]
         cmd_ring: u32,
@@ -146,9 +161,13 @@ enum Cmd {
     Run(launch::RunArgs),
     /// Administer a running daemon.
     Ctl {
-        /// Socket path [default: as for serve]; before or after the command.
+        /// The daemon's client socket, beside which its control socket is found [default: as
+        /// for serve]; before or after the command.
         #[arg(long, env = "STRATA_SOCKET", global = true)]
         socket: Option<PathBuf>,
+        /// The daemon's control socket [default: beside --socket, NAME-control.sock].
+        #[arg(long, env = "STRATA_CONTROL_SOCKET", global = true)]
+        control_socket: Option<PathBuf>,
         /// Answer in JSON; before or after the command.
         #[arg(long, global = true)]
         json: bool,
@@ -274,6 +293,9 @@ fn main() -> Result<()> {
     match Cli::parse().command {
         Cmd::Serve {
             socket,
+            control_socket,
+            client_group,
+            control_group,
             cmd_ring,
             reply_ring,
             executor,
@@ -334,8 +356,16 @@ fn main() -> Result<()> {
                     bail!("{}", strata_server::compositor::CompositorError::TooFewTextures(m));
                 }
             }
+            let group = |g: Option<String>, what: &str| -> Result<Option<u32>> {
+                g.map(|g| g.parse().or_else(|_| strata_server::identity::group_id(&g)))
+                    .transpose()
+                    .with_context(|| format!("--{what}"))
+            };
             let opts = ServeOptions {
                 socket: socket.unwrap_or_else(default_socket_path),
+                control_socket,
+                client_group: group(client_group, "client-group")?,
+                control_group: group(control_group, "control-group")?,
                 cmd_ring,
                 reply_ring,
                 executor,
@@ -367,7 +397,13 @@ fn main() -> Result<()> {
             run_daemon(opts)
         }
         Cmd::Run(args) => launch::run(args),
-        Cmd::Ctl { socket, json, what } => ctl::run(&socket.unwrap_or_else(default_socket_path), json, what),
+        Cmd::Ctl { socket, control_socket, json, what } => {
+            let control = control_socket.unwrap_or_else(|| match socket {
+                Some(s) => control_socket_for(&s),
+                None => default_control_socket_path(),
+            });
+            ctl::run(&control, json, what)
+        }
         Cmd::DemoClient { socket, role, frames, declare } => {
             if role.starts_with("plane-") {
                 strata_server::demo::planes::run_client(&socket, &role, frames, declare)?;
@@ -531,7 +567,7 @@ fn demo(
                 bail!("a demo client failed before rendering its frames");
             }
         }
-        let mut c = ControlConnection::connect(&socket)?;
+        let mut c = ControlConnection::connect(&control_socket_for(&socket))?;
         let reply = c.request(&ControlRequest::Screenshot { output: "demo".into() })?;
         for mut child in clients {
             drop(child.stdin.take());

@@ -410,9 +410,26 @@ pub struct QuotaEntry {
     /// The largest single command.
     #[serde(alias = "command-bytes")]
     pub command_bytes: Option<ByteSize>,
+    /// The user ID a client must connect as to get this entry (see [`crate::identity`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uid: Option<u32>,
+    /// The user a client must connect as (resolved into `uid` when the configuration is read).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub user: Option<String>,
+    /// The primary group ID a client must connect with.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gid: Option<u32>,
+    /// The primary group a client must connect with (resolved into `gid`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
 }
 
 impl QuotaEntry {
+    /// The credentials a client needs to get this entry.
+    pub fn requirement(&self) -> crate::identity::Requirement {
+        crate::identity::Requirement { uid: self.uid, gid: self.gid }
+    }
+
     /// `base` with this entry's values in place.
     pub fn apply(&self, mut base: Limits) -> Limits {
         if let Some(b) = self.gpu_bytes {

@@ -104,6 +104,7 @@ pub fn collect(
                 priority: c.lane.as_ref().map(|l| l.class()).unwrap_or_default(),
                 waits: c.lane.as_ref().map(|l| l.waits()).unwrap_or_default(),
                 deadline_misses: surfaces.iter().filter(|r| r.client_id == id).map(|r| r.deadline_misses).sum(),
+                peer: scene.peer(id),
                 device: c.device.get().map(|d| device_stats(d, gpu.is_none_or(|g| !std::ptr::eq(g, &**d)))),
             }
         })

@@ -1,5 +1,5 @@
-//! systemd integration through `sd-notify`: the listening socket handed over by socket
-//! activation (`LISTEN_FDS`), readiness (`READY=1` once clients can connect and the compositor
+//! systemd integration through `sd-notify`: the listening sockets handed over by socket
+//! activation (`LISTEN_FDS`, `LISTEN_FDNAMES`), readiness (`READY=1` once clients can connect and the compositor
 //! runs; a `Type=notify` unit waits for it), `STOPPING=1` on the way out, and the watchdog:
 //! with `WatchdogSec=` set, the compositor thread sends `WATCHDOG=1` at half the interval, so
 //! that a wedged compositor stops the pings and systemd restarts the daemon. Without systemd
@@ -17,29 +17,54 @@ pub enum ActivationError {
     /// `LISTEN_FDS` is malformed.
     #[error("LISTEN_FDS: {0}")]
     Environment(std::io::Error),
-    /// More than one socket was passed.
-    #[error("socket activation passed {0} sockets; stratad serves on exactly one (ListenStream= once)")]
-    Count(usize),
+    /// More sockets were passed than the daemon serves.
+    #[error(
+        "socket activation passed {0}; stratad serves one client socket and one control socket \
+         (FileDescriptorName=control)"
+    )]
+    Count(String),
     /// The descriptor is not a listening Unix stream socket.
-    #[error("socket activation passed descriptor 3, which is not a listening Unix stream socket ({0})")]
-    NotUnixStream(String),
+    #[error("socket activation passed descriptor {fd}, which is not a listening Unix stream socket ({why})")]
+    NotUnixStream {
+        /// The descriptor.
+        fd: i32,
+        /// What it is instead.
+        why: String,
+    },
 }
 
-/// The listening socket socket activation passed, if the service manager started the daemon
+/// The sockets socket activation passed: the client socket, and the control socket (the one
+/// named `control` by `FileDescriptorName=`).
+#[derive(Debug, Default)]
+pub struct Activated {
+    /// The client socket.
+    pub client: Option<std::os::unix::net::UnixListener>,
+    /// The control socket.
+    pub control: Option<std::os::unix::net::UnixListener>,
+}
+
+/// The listening sockets socket activation passed, if the service manager started the daemon
 /// that way.
-pub fn activated_socket() -> Result<Option<std::os::unix::net::UnixListener>, ActivationError> {
-    let fds: Vec<i32> = sd_notify::listen_fds().map_err(ActivationError::Environment)?.collect();
-    let fd = match fds.as_slice() {
-        [] => return Ok(None),
-        [fd] => *fd,
-        more => return Err(ActivationError::Count(more.len())),
-    };
-    // SAFETY: the service manager hands this descriptor to the process, which owns it from
-    // here on; nothing else in the daemon uses it.
-    let listener = unsafe { std::os::unix::net::UnixListener::from_raw_fd(fd) };
-    check_listening_unix_stream(&listener).map_err(ActivationError::NotUnixStream)?;
-    listener.set_nonblocking(true).map_err(|e| ActivationError::NotUnixStream(e.to_string()))?;
-    Ok(Some(listener))
+pub fn activated_sockets() -> Result<Activated, ActivationError> {
+    let fds: Vec<(i32, String)> = sd_notify::listen_fds_with_names().map_err(ActivationError::Environment)?.collect();
+    let mut got = Activated::default();
+    for (fd, name) in &fds {
+        // SAFETY: the service manager hands this descriptor to the process, which owns it from
+        // here on; nothing else in the daemon uses it.
+        let listener = unsafe { std::os::unix::net::UnixListener::from_raw_fd(*fd) };
+        let bad = |why: String| ActivationError::NotUnixStream { fd: *fd, why };
+        check_listening_unix_stream(&listener).map_err(bad)?;
+        listener.set_nonblocking(true).map_err(|e| bad(e.to_string()))?;
+        let slot = if name == "control" { &mut got.control } else { &mut got.client };
+        if slot.replace(listener).is_some() {
+            let names: Vec<&str> = fds.iter().map(|(_, n)| n.as_str()).collect();
+            return Err(ActivationError::Count(format!("{} sockets named {names:?}", fds.len())));
+        }
+    }
+    if got.control.is_some() && got.client.is_none() {
+        return Err(ActivationError::Count("only the control socket".into()));
+    }
+    Ok(got)
 }
 
 /// Whether `listener` is a listening Unix stream socket.

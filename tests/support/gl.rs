@@ -34,5 +34,5 @@ pub fn clear(gl: &mut Connection, c: [u8; 3]) {
 
 /// The daemon's answer to one control request.
 pub fn control(socket: &Path, req: ControlRequest) -> ControlReply {
-    ControlConnection::connect(socket).expect("control").request(&req).expect("control request")
+    ControlConnection::connect_beside(socket).expect("control").request(&req).expect("control request")
 }

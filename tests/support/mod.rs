@@ -188,12 +188,13 @@ impl RawClient {
         let hello =
             Hello { name: name.into(), role: "raw".into(), placement: None, tally: false, purpose: Purpose::Render };
         handshake::write_message(&mut stream, &hello).expect("hello");
-        let ServerMessage::Welcome { segment, cmd_capacity, reply_capacity, .. } =
-            handshake::read_message(&mut stream, "welcome").expect("welcome")
+        let (ServerMessage::Welcome { cmd_capacity, reply_capacity, .. }, fds) =
+            handshake::read_message_with_fds(&stream, "welcome").expect("welcome")
         else {
             panic!("refused");
         };
-        let segment = Segment::open(&segment, cmd_capacity, reply_capacity).expect("open segment");
+        let fd = fds.into_iter().next().expect("the welcome carries the segment");
+        let segment = Segment::open(fd, cmd_capacity, reply_capacity).expect("open segment");
         handshake::write_message(&mut stream, &ClientMessage::Mapped).expect("mapped");
         let writer = Writer::new(segment.command_ring().expect("ring"), 1 << 16);
         RawClient { stream, writer, segment }
@@ -217,7 +218,7 @@ pub mod mesa;
 
 /// A running daemon's `stratad ctl stats`.
 pub fn stats(socket: &Path) -> strata_protocol::control::DaemonStats {
-    let mut c = strata_client::ControlConnection::connect(socket).expect("control");
+    let mut c = strata_client::ControlConnection::connect_beside(socket).expect("control");
     match c.request(&handshake::ControlRequest::Stats).expect("stats") {
         handshake::ControlReply::Stats(s) => s,
         other => panic!("stats: {other:?}"),

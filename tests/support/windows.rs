@@ -28,6 +28,16 @@ const GL_COLOR_BUFFER_BIT: u32 = 0x4000;
 const GL_SCISSOR_TEST: u32 = 0x0C11;
 const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
 
+/// How a client process is started.
+struct Spawn<'a> {
+    windows: usize,
+    env: Option<&'a str>,
+    asks: Option<i32>,
+    draws: Option<&'a str>,
+    window: &'a str,
+    user: Option<(u32, u32)>,
+}
+
 /// A running client process and what each of its `eglCreateWindowSurface` calls got: the ID,
 /// or the EGL error.
 pub struct Client {
@@ -50,9 +60,24 @@ impl Client {
         window: &str,
         colors: [[f32; 3]; 2],
     ) -> Client {
+        Client::start_painting_as(socket, shim, name, Some(env), window, colors, None)
+    }
+
+    /// As [`Client::start_painting`], with or without a surface ID, and running as user and
+    /// group `user` where given (the test must be root to start it so).
+    pub fn start_painting_as(
+        socket: &std::path::Path,
+        shim: &std::path::Path,
+        name: &str,
+        env: Option<&str>,
+        window: &str,
+        colors: [[f32; 3]; 2],
+        user: Option<(u32, u32)>,
+    ) -> Client {
         let c = colors.map(|c| format!("{},{},{}", c[0], c[1], c[2]));
         let draws = format!("{}/{}", c[0], c[1]);
-        Client::spawn(socket, shim, name, 1, Some(env), None, Some(&draws), window)
+        let spawn = Spawn { windows: 1, env, asks: None, draws: Some(&draws), window, user };
+        Client::spawn(socket, shim, name, spawn)
     }
 
     /// Starts a client named `name` on `socket` creating `windows` window surfaces, with
@@ -67,21 +92,17 @@ impl Client {
         asks: Option<i32>,
         draws: bool,
     ) -> Client {
-        Client::spawn(socket, shim, name, windows, env, asks, draws.then_some("1"), "0,0,0.5,16x16")
+        let spawn = Spawn { windows, env, asks, draws: draws.then_some("1"), window: "0,0,0.5,16x16", user: None };
+        Client::spawn(socket, shim, name, spawn)
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn spawn(
-        socket: &std::path::Path,
-        shim: &std::path::Path,
-        name: &str,
-        windows: usize,
-        env: Option<&str>,
-        asks: Option<i32>,
-        draws: Option<&str>,
-        window: &str,
-    ) -> Client {
+    fn spawn(socket: &std::path::Path, shim: &std::path::Path, name: &str, how: Spawn<'_>) -> Client {
+        let Spawn { windows, env, asks, draws, window, user } = how;
         let mut cmd = Command::new(std::env::current_exe().expect("test binary"));
+        if let Some((uid, gid)) = user {
+            use std::os::unix::process::CommandExt;
+            cmd.uid(uid).gid(gid);
+        }
         cmd.args(["--exact", "client_process", "--nocapture", "--test-threads", "1"])
             .env("STRATA_SOCKET", socket)
             .env("STRATA_NAME", name)

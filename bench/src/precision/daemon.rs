@@ -151,7 +151,7 @@ fn measure(stratad: &Path, s: &DaemonSetting, w: u32, h: u32) -> Result<(f64, Ve
 
 /// The output's image once it shows both surfaces.
 fn screenshot(socket: &Path, w: u32, h: u32) -> Result<Vec<u8>> {
-    let mut ctl = ControlConnection::connect(socket)?;
+    let mut ctl = ControlConnection::connect_beside(socket)?;
     let deadline = Instant::now() + Duration::from_secs(20);
     loop {
         match ctl.request(&ControlRequest::Screenshot { output: OUTPUT.into() })? {

@@ -20,6 +20,11 @@ fn regions(r: &SurfaceRow) -> String {
     s
 }
 
+/// A client's credentials: uid and pid, and whether it claims a name it may not use.
+fn credentials(p: &strata_protocol::control::Peer) -> String {
+    format!("uid {} pid {}{}", p.uid, p.pid, if p.unverified { " unverified" } else { "" })
+}
+
 /// Every output, surface and layer, as tables.
 pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow]) {
     println!(
@@ -49,9 +54,10 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
     }
     println!();
     println!(
-        "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7}  projection",
+        "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7}  projection",
         "id",
         "client",
+        "credentials",
         "x",
         "y",
         "w",
@@ -69,9 +75,10 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
     );
     for r in surfaces {
         println!(
-            "{:>4} {:<20} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7.3}  {}{}",
+            "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7.3}  {}{}",
             r.id,
             format!("{} ({})", r.client, r.client_id),
+            credentials(&r.peer),
             r.rect[0],
             r.rect[1],
             r.rect[2],

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use strata_protocol::codec::MAX_MESSAGE_LEN;
 use strata_protocol::control::Priority;
-use strata_protocol::handshake::{ClientMessage, HandshakeError, Hello, ServerMessage};
+use strata_protocol::handshake::{self, ClientMessage, HandshakeError, Hello, ServerMessage};
 use strata_protocol::ring::{Reader, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
 use tokio::io::AsyncReadExt;
@@ -14,7 +14,7 @@ use tokio::net::UnixStream;
 use tokio::sync::oneshot;
 use tracing::{info, warn};
 
-use super::{recv, send, timed, ClientInfo, DeviceMode, Shared};
+use super::{recv, timed, ClientInfo, DeviceMode, Shared};
 use crate::executor::Drain;
 use crate::gles::GlesExecutor;
 use crate::gpu::Gpu;
@@ -70,27 +70,35 @@ pub(super) enum SetupError {
     Thread(std::io::Error),
 }
 
+/// Sends the welcome with the segment's memory file attached.
+async fn welcome(stream: &mut UnixStream, msg: &ServerMessage, segment: &Segment) -> Result<(), HandshakeError> {
+    let fd = segment.fd().ok_or_else(|| std::io::Error::other("the segment's memory file is already closed"))?;
+    super::doors::write_with_fd(stream, &handshake::frame(msg)?, fd).await?;
+    Ok(())
+}
+
 pub(super) async fn run_client(
     stream: &mut UnixStream,
     shared: &Shared,
     id: u64,
     hello: &Hello,
+    identity: crate::identity::Identity<'_>,
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
-    let limits = crate::quota::limits_for(opts.limits, &opts.quotas, &hello.name);
+    let limits = identity.quota.map_or(opts.limits, |q| q.apply(opts.limits));
     let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
     let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
-    let welcome = ServerMessage::Welcome {
+    let msg = ServerMessage::Welcome {
         client_id: id,
-        segment: segment.name().to_string(),
         cmd_capacity: opts.cmd_ring,
         reply_capacity: opts.reply_ring,
         vertex_wire: opts.vertex_wire,
     };
-    timed(send(stream, &welcome)).await?;
+    timed(welcome(stream, &msg, &segment)).await?;
     let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
     let ClientMessage::Mapped = mapped;
-    segment.unlink()?;
+    // The client has its own descriptor and mapping now; the daemon keeps only its mapping.
+    segment.close_fd();
     let cmd_ring = segment.command_ring()?;
     let reply_ring = segment.reply_ring()?;
     let waker = cmd_ring.clone();
@@ -104,14 +112,18 @@ pub(super) async fn run_client(
     // What the session thread builds its executor from.
     let plan = match &shared.gpu {
         Some(gpu) => {
-            let entry = crate::layout::find(&opts.layout, &hello.name);
-            // A placement the client states wins over the daemon's layout; the class,
-            // deadline, projection and surface IDs always come from the daemon's entry.
-            let layout = if hello.placement.is_some() { None } else { entry };
+            let entry = identity.layout;
+            // A placement the client states wins over the daemon's layout, unless the entry
+            // fixes it; the class, deadline, projection and surface IDs always come from the
+            // daemon's entry.
+            let client_wins = hello.placement.is_some() && !entry.is_some_and(|e| e.fixed_placement());
+            let layout = if client_wins { None } else { entry };
             if let Some(l) = layout {
                 info!(x = l.x, y = l.y, z = l.z, "window surfaces placed by the daemon's layout");
             }
-            let fixed = entry.and_then(|e| e.priority);
+            // A client that claimed an entry's name without its credentials keeps the default
+            // class: its context cannot ask for another.
+            let fixed = entry.and_then(|e| e.priority).or(identity.refused.map(|_| opts.default_class));
             let class = fixed.unwrap_or(opts.default_class);
             let deadline = entry.is_some_and(|e| e.deadline);
             shared.scene.set_policy(id, class, deadline);
@@ -145,7 +157,7 @@ pub(super) async fn run_client(
     };
     shared.clients.lock().map(|mut c| c.insert(id, info)).ok();
     shared.sessions.fetch_add(1, Ordering::Relaxed);
-    info!(segment = segment.name(), "client connected");
+    info!("client connected");
     let (done_tx, mut done_rx) = oneshot::channel();
     let span = tracing::Span::current();
     let (scene, counter, name, tally) =
@@ -243,7 +255,7 @@ pub(super) async fn run_client(
             read = stream.read(&mut buf), if socket_open => {
                 socket_open = false;
                 if let Ok(n @ 1..) = read {
-                    forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the control socket")));
+                    forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the client socket")));
                 }
                 closed.store(true, Ordering::Release);
                 waker.wake_reader();

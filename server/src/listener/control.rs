@@ -32,6 +32,15 @@ async fn write_line<T: serde::Serialize>(wr: &mut OwnedWriteHalf, v: &T) -> std:
     wr.write_all(&line).await
 }
 
+/// Answers a control client that came to the wrong socket with a refusal naming `reason`,
+/// after reading its opening line (so that the refusal is not lost to a reset).
+pub(super) async fn refuse(stream: UnixStream, reason: String) {
+    let (rd, mut wr) = stream.into_split();
+    let mut buf = Vec::new();
+    let _ = timed(async { Ok(read_line(&mut BufReader::new(rd), &mut buf, MAX_REQUEST_LINE).await?) }).await;
+    let _ = write_line(&mut wr, &Greeting::Refused { reason }).await;
+}
+
 /// Serves a control client whose first byte, `{`, has been read: its opening, then requests
 /// until it closes.
 pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64) {

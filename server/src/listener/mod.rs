@@ -1,17 +1,17 @@
-//! The daemon's front door: claims the Unix socket, performs each client's handshake, creates
-//! its segment, starts its session thread, and shuts everything down on request.
+//! The daemon's front doors: claims the client and control sockets, performs each client's
+//! handshake, learns who it is from the kernel, creates its segment, starts its session
+//! thread, and shuts everything down on request.
 
 use std::collections::HashMap;
-use std::os::unix::fs::{FileTypeExt, PermissionsExt};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use strata_protocol::control::Priority;
 use strata_protocol::handshake::{self, HandshakeError, Hello, Purpose, ServerMessage};
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
-use tokio::net::{UnixListener, UnixStream};
+use tokio::io::AsyncWriteExt;
+use tokio::net::UnixStream;
 use tokio::sync::watch;
 use tracing::{debug, info, warn, Instrument};
 
@@ -20,6 +20,7 @@ use crate::session::SessionEnd;
 
 mod client;
 mod control;
+mod doors;
 mod export;
 mod watcher;
 
@@ -29,8 +30,14 @@ const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
 /// Daemon settings.
 #[derive(Debug, Clone)]
 pub struct ServeOptions {
-    /// Socket path to listen on.
+    /// The client socket: where render clients connect.
     pub socket: PathBuf,
+    /// The control socket (`None`: beside the client socket, `NAME-control.sock`).
+    pub control_socket: Option<PathBuf>,
+    /// The group the client socket is opened to (mode 0660; `None`: 0600, the daemon's user).
+    pub client_group: Option<u32>,
+    /// The group the control socket is opened to (mode 0660; `None`: 0600).
+    pub control_group: Option<u32>,
     /// Command ring capacity per client, bytes (power of two).
     pub cmd_ring: u32,
     /// Reply ring capacity per client, bytes (power of two).
@@ -118,6 +125,9 @@ impl Default for ServeOptions {
     fn default() -> Self {
         ServeOptions {
             socket: handshake::default_socket_path(),
+            control_socket: None,
+            client_group: None,
+            control_group: None,
             cmd_ring: 8 << 20,
             reply_ring: 1 << 20,
             executor: ExecutorKind::Gles,
@@ -188,24 +198,6 @@ fn io_err(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> ServerEr
     move |source| ServerError::Io { context, source }
 }
 
-/// Claims `path`: refuses a live socket, replaces a stale one.
-fn claim_socket(path: &Path) -> Result<UnixListener, ServerError> {
-    if let Ok(meta) = std::fs::symlink_metadata(path) {
-        if !meta.file_type().is_socket() {
-            return Err(ServerError::NotASocket(path.into()));
-        }
-        if std::os::unix::net::UnixStream::connect(path).is_ok() {
-            return Err(ServerError::AlreadyServing(path.into()));
-        }
-        info!(socket = %path.display(), "replacing stale socket");
-        std::fs::remove_file(path).map_err(io_err(format!("removing stale socket {}", path.display())))?;
-    }
-    let listener = UnixListener::bind(path).map_err(io_err(format!("binding {}", path.display())))?;
-    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
-        .map_err(io_err(format!("restricting {}", path.display())))?;
-    Ok(listener)
-}
-
 /// What the daemon knows about a connected client.
 #[derive(Debug, Clone)]
 pub struct ClientInfo {
@@ -233,6 +225,10 @@ struct Shared {
     /// Clients' devices open now (for `--max-client-devices`).
     client_devices: Arc<std::sync::atomic::AtomicUsize>,
     shutdown: watch::Receiver<bool>,
+    /// Where the client socket is (for refusals that point there).
+    client_path: PathBuf,
+    /// Where the control socket is.
+    control_path: PathBuf,
 }
 
 /// Opens the compositor's device from a thread at the high class's nice value, so that the
@@ -310,19 +306,18 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
         None => None,
     };
-    // Socket activation: the service manager's socket, else the one at `--socket`.
-    let (listener, activated) = match crate::systemd::activated_socket()? {
-        Some(l) => (UnixListener::from_std(l).map_err(io_err("serving on the activated socket"))?, true),
-        None => (claim_socket(&opts.socket)?, false),
-    };
+    // Socket activation: the service manager's sockets, else those at `--socket` and
+    // `--control-socket`.
+    let doors = doors::open(&opts)?;
     let watchdog = crate::systemd::watchdog_period();
     let compositor_thread = match &root {
         Some(r) => Some(r.spawn(opts.refresh_hz, watchdog).map_err(io_err("starting the compositor thread"))?),
         None => None,
     };
-    let at = listener.local_addr().ok().and_then(|a| a.as_pathname().map(Path::to_path_buf));
-    let at = at.unwrap_or_else(|| opts.socket.clone());
-    info!(socket = %at.display(), activated, watchdog_ms = watchdog.map(|w| w.as_millis() as u64), "stratad serving");
+    let (at, control_at) = (doors.client_path.clone(), doors.control_path.clone());
+    let activated = doors.activated.0;
+    let watchdog_ms = watchdog.map(|w| w.as_millis() as u64);
+    info!(socket = %at.display(), control = %control_at.display(), activated, watchdog_ms, "stratad serving");
     crate::systemd::ready(&format!("serving on {}", at.display()));
     let (stop_tx, stop_rx) = watch::channel(false);
     let shared = Arc::new(Shared {
@@ -335,6 +330,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         sessions: AtomicU64::new(0),
         client_devices: Arc::default(),
         shutdown: stop_rx,
+        client_path: at,
+        control_path: control_at,
         opts,
     });
     let mut tasks = tokio::task::JoinSet::new();
@@ -342,12 +339,19 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     loop {
         tokio::select! {
             _ = &mut shutdown => break,
-            accepted = listener.accept() => match accepted {
+            accepted = doors.client.accept() => match accepted {
                 Ok((stream, _)) => {
                     let shared = shared.clone();
-                    tasks.spawn(async move { handle_connection(stream, shared).await });
+                    tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Client).await });
                 }
                 Err(e) => warn!("accept failed: {e}"),
+            },
+            accepted = doors.control.accept() => match accepted {
+                Ok((stream, _)) => {
+                    let shared = shared.clone();
+                    tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Control).await });
+                }
+                Err(e) => warn!("accept on the control socket failed: {e}"),
             },
             Some(_) = tasks.join_next(), if !tasks.is_empty() => {}
         }
@@ -363,9 +367,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         let _ = tokio::task::spawn_blocking(move || t.join()).await;
     }
     // An activated socket is the service manager's: it stays for the next start.
-    if !activated {
-        let _ = std::fs::remove_file(&shared.opts.socket);
-    }
+    doors::close(&doors);
     info!("stratad stopped");
     Ok(())
 }
@@ -380,9 +382,9 @@ async fn recv<T: serde::de::DeserializeOwned>(
     what: &'static str,
 ) -> Result<T, HandshakeError> {
     let mut prefix = [0u8; 4];
-    stream.read_exact(&mut prefix).await?;
+    doors::read_plain(stream, &mut prefix).await?;
     let mut body = vec![0u8; handshake::frame_len(prefix)?];
-    stream.read_exact(&mut body).await?;
+    doors::read_plain(stream, &mut body).await?;
     Ok(strata_protocol::codec::decode_owned(&body, what)?)
 }
 
@@ -396,46 +398,118 @@ async fn timed<T>(f: impl std::future::Future<Output = Result<T, HandshakeError>
 /// to the client before the error returns.
 async fn greet(stream: &mut UnixStream, first: u8) -> Result<Hello, HandshakeError> {
     let mut pre = [first, 0, 0, 0, 0, 0, 0, 0];
-    timed(async { Ok(stream.read_exact(&mut pre[1..]).await?) }).await?;
-    if let Err(e) = handshake::check_preamble(pre) {
-        let _ = send(stream, &ServerMessage::Refused { reason: e.to_string() }).await;
-        return Err(e);
+    let read = timed(async { Ok(doors::read_plain(stream, &mut pre[1..]).await?) }).await;
+    let checked = read.and_then(|()| handshake::check_preamble(pre));
+    let hello = match checked {
+        Ok(()) => timed(recv::<Hello>(stream, "hello")).await,
+        Err(e) => Err(e),
+    };
+    if let Err(e) = &hello {
+        if !matches!(e, HandshakeError::Io(io) if io.kind() != std::io::ErrorKind::InvalidData) {
+            let _ = send(stream, &ServerMessage::Refused { reason: e.to_string() }).await;
+        }
     }
-    timed(recv::<Hello>(stream, "hello")).await
+    hello
 }
 
-async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>) {
-    let id = shared.next_id.fetch_add(1, Ordering::Relaxed);
+/// Reads a connection's first byte (refusing descriptors sent with it).
+async fn first_byte(stream: &UnixStream) -> Result<u8, HandshakeError> {
     let mut first = [0u8; 1];
-    if let Err(e) = timed(async { Ok(stream.read_exact(&mut first).await?) }).await {
-        debug!(client = id, "connection closed before it said anything: {e}");
-        return;
+    timed(async { Ok(doors::read_plain(stream, &mut first).await?) }).await?;
+    Ok(first[0])
+}
+
+/// The kernel's credentials of the process that connected.
+fn peer_of(stream: &UnixStream) -> std::io::Result<strata_protocol::control::Peer> {
+    let c = stream.peer_cred()?;
+    Ok(strata_protocol::control::Peer {
+        pid: c.pid().map_or(0, |p| p.unsigned_abs()),
+        uid: c.uid(),
+        gid: c.gid(),
+        unverified: false,
+    })
+}
+
+async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: doors::Door) {
+    let id = shared.next_id.fetch_add(1, Ordering::Relaxed);
+    let mut peer = match peer_of(&stream) {
+        Ok(p) => p,
+        Err(e) => {
+            warn!(client = id, "refused: the kernel gave no credentials for the connection: {e}");
+            return;
+        }
+    };
+    let first = match first_byte(&stream).await {
+        Ok(b) => b,
+        Err(HandshakeError::Io(e)) if e.kind() == std::io::ErrorKind::InvalidData => {
+            warn!(client = id, pid = peer.pid, uid = peer.uid, "refused: {e}");
+            let _ = send(&mut stream, &ServerMessage::Refused { reason: e.to_string() }).await;
+            return;
+        }
+        Err(e) => {
+            debug!(client = id, "connection closed before it said anything: {e}");
+            return;
+        }
+    };
+    // A control client speaks JSON lines, whose first byte no preamble starts with; each kind
+    // of client has a socket of its own.
+    match (door, first == b'{') {
+        (doors::Door::Control, true) => return control::serve_json(stream, &shared, id).await,
+        (doors::Door::Client, true) => {
+            let reason = format!(
+                "control requests are refused on the client socket; stratad ctl and controllers use the control \
+                 socket {}",
+                shared.control_path.display()
+            );
+            warn!(client = id, pid = peer.pid, uid = peer.uid, "refused a control request on the client socket");
+            return control::refuse(stream, reason).await;
+        }
+        (doors::Door::Control, false) => {
+            let reason = format!(
+                "this is the control socket, which speaks JSON lines (docs/control.md); render clients connect to \
+                 the client socket {}",
+                shared.client_path.display()
+            );
+            debug!(client = id, "refused a render handshake on the control socket");
+            let _ = send(&mut stream, &ServerMessage::Refused { reason }).await;
+            return;
+        }
+        (doors::Door::Client, false) => {}
     }
-    // A control client speaks JSON lines, whose first byte no preamble starts with.
-    if first[0] == b'{' {
-        control::serve_json(stream, &shared, id).await;
-        return;
-    }
-    let pid = stream.peer_cred().ok().and_then(|c| c.pid()).map_or(0, |p| p.unsigned_abs());
-    let hello = match greet(&mut stream, first[0]).await {
+    let hello = match greet(&mut stream, first).await {
         Ok(h) => h,
         Err(HandshakeError::Io(e)) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
             debug!(client = id, "connection closed before the handshake finished");
             return;
         }
         Err(e) => {
-            warn!(client = id, "handshake refused: {e}");
+            warn!(client = id, pid = peer.pid, uid = peer.uid, "handshake refused: {e}");
             return;
         }
     };
     if hello.purpose == Purpose::Control {
-        let reason = "control connections speak JSON lines (docs/control.md)".to_string();
+        let reason = "control connections speak JSON lines on the control socket (docs/control.md)".to_string();
         let _ = send(&mut stream, &ServerMessage::Refused { reason }).await;
         return;
     }
-    let span = tracing::info_span!("client", id, name = %hello.name, role = %hello.role);
-    shared.scene.client_connected(id, &hello.name, pid);
-    let reason = match client::run_client(&mut stream, &shared, id, &hello).instrument(span.clone()).await {
+    let identity = crate::identity::identify(&shared.opts.layout, &shared.opts.quotas, &hello.name, &peer);
+    if let Some((section, req)) = identity.refused {
+        peer.unverified = true;
+        warn!(
+            client = id,
+            name = %hello.name,
+            pid = peer.pid,
+            uid = peer.uid,
+            gid = peer.gid,
+            "claims the name of a {section} entry that requires {req}: treated as unnamed (no entry's placement, \
+             class, deadline, projection, surface IDs or quota)"
+        );
+    }
+    let span =
+        tracing::info_span!("client", id, uid = peer.uid, pid = peer.pid, name = %hello.name, role = %hello.role);
+    shared.scene.client_connected(id, &hello.name, peer);
+    let run = client::run_client(&mut stream, &shared, id, &hello, identity);
+    let reason = match run.instrument(span.clone()).await {
         Ok(end) => {
             match end {
                 SessionEnd::Violation(_) | SessionEnd::Failed(_) => span.in_scope(|| warn!("disconnected: {end}")),

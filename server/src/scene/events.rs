@@ -21,22 +21,22 @@ impl Scene {
         let _ = self.events.send(e);
     }
 
-    /// Client `client` connected, from process `pid` (0: unknown).
-    pub fn client_connected(&self, client: u64, name: &str, pid: u32) {
+    /// Client `client` connected, with the kernel's credentials `peer`.
+    pub fn client_connected(&self, client: u64, name: &str, peer: strata_protocol::control::Peer) {
         if let Some(mut g) = self.lock() {
-            g.pids.insert(client, pid);
+            g.peers.insert(client, peer);
         }
-        self.emit(Event::ClientConnected { client, name: name.to_string(), pid });
+        self.emit(Event::ClientConnected { client, name: name.to_string(), pid: peer.pid });
     }
 
     /// Client `client`'s session ended, for `reason`.
     pub fn client_gone(&self, client: u64, name: &str, reason: String) {
-        let pid = self.lock().and_then(|mut g| g.pids.remove(&client)).unwrap_or(0);
+        let pid = self.lock().and_then(|mut g| g.peers.remove(&client)).map_or(0, |p| p.pid);
         self.emit(Event::ClientGone { client, name: name.to_string(), pid, reason });
     }
 
-    /// Client `client`'s process ID, 0 where unknown.
-    pub fn pid(&self, client: u64) -> u32 {
-        self.lock().and_then(|g| g.pids.get(&client).copied()).unwrap_or(0)
+    /// Client `client`'s credentials (all 0 where unknown).
+    pub fn peer(&self, client: u64) -> strata_protocol::control::Peer {
+        self.lock().and_then(|g| g.peers.get(&client).copied()).unwrap_or_default()
     }
 }

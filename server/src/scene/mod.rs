@@ -124,6 +124,8 @@ impl SceneSurface {
             deadline_misses: self.deadline_misses,
             shown_latency_us: self.latency_summary(),
             projection: self.projection,
+            // Filled in by `Scene::list`, which knows the clients.
+            peer: Default::default(),
         }
     }
 
@@ -162,7 +164,7 @@ struct State {
     /// Each connected client's class and whether its surfaces have deadlines.
     policies: HashMap<u64, (Priority, bool)>,
     /// Each connected client's process ID (0: unknown).
-    pids: HashMap<u64, u32>,
+    peers: HashMap<u64, strata_protocol::control::Peer>,
     /// The configuration's surface entries, by stable ID.
     presets: HashMap<u64, crate::layout::SurfaceEntry>,
 }
@@ -225,7 +227,7 @@ impl Scene {
                 lighting,
                 layers: Layers::new(),
                 policies: HashMap::new(),
-                pids: HashMap::new(),
+                peers: HashMap::new(),
                 presets: HashMap::new(),
             }),
             changed: Condvar::new(),
@@ -313,7 +315,7 @@ impl Scene {
         let holder = |id| surfaces.values().find(|s| s.id == id).map(|s| s.client.clone());
         let (id, order) = g.ids.assign(asked, holder)?;
         let (priority, deadline) = g.policies.get(&client).copied().unwrap_or_default();
-        let pid = g.pids.get(&client).copied().unwrap_or(0);
+        let pid = g.peers.get(&client).map_or(0, |p| p.pid);
         g.surfaces.insert(
             (client, surface),
             SceneSurface {
@@ -414,7 +416,7 @@ impl Scene {
             }
             keep
         });
-        let pid = g.pids.get(&client).copied().unwrap_or(0);
+        let pid = g.peers.get(&client).map_or(0, |p| p.pid);
         if gone != Region::None {
             self.damaged(g, gone);
         } else {
@@ -474,6 +476,11 @@ impl Scene {
         surfaces.sort_by_key(|s| s.order);
         let layers = g.as_ref().map(|g| g.layers.clone()).unwrap_or_default();
         let mut rows: Vec<SurfaceRow> = surfaces.into_iter().map(|s| s.row(&layers)).collect();
+        if let Some(g) = &g {
+            for r in &mut rows {
+                r.peer = g.peers.get(&r.client_id).copied().unwrap_or_default();
+            }
+        }
         drop(g);
         if let Ok(m) = self.streams.lock() {
             for r in &mut rows {

@@ -1,0 +1,136 @@
+//! The daemon's two sockets: the client socket, where render clients connect (`--socket`,
+//! 0600, or 0660 with `--client-group`), and the control socket, where `stratad ctl` and HMI
+//! controllers connect (`--control-socket`, beside the client socket by default, 0600, or 0660
+//! with `--control-group`). Also the reads and the write that carry descriptors: reads that
+//! refuse any a client sends, and the welcome that hands a client its segment.
+
+use std::os::fd::{AsFd, BorrowedFd};
+use std::os::unix::fs::{FileTypeExt, PermissionsExt};
+use std::path::{Path, PathBuf};
+
+use strata_protocol::fd_passing;
+use tokio::io::{AsyncWriteExt, Interest};
+use tokio::net::{UnixListener, UnixStream};
+use tracing::info;
+
+use super::{io_err, ServeOptions, ServerError};
+
+/// Which socket a connection came through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Door {
+    /// The client socket: rendering only.
+    Client,
+    /// The control socket: control only.
+    Control,
+}
+
+/// The two listening sockets and where they are.
+pub(super) struct Doors {
+    pub client: UnixListener,
+    pub control: UnixListener,
+    pub client_path: PathBuf,
+    pub control_path: PathBuf,
+    /// Which of them the service manager passed (and keeps for the next start).
+    pub activated: (bool, bool),
+}
+
+/// Claims `path`: refuses a live socket, replaces a stale one; then gives it `mode`, and group
+/// `group` where one is named.
+fn claim_socket(path: &Path, group: Option<u32>) -> Result<UnixListener, ServerError> {
+    if let Ok(meta) = std::fs::symlink_metadata(path) {
+        if !meta.file_type().is_socket() {
+            return Err(ServerError::NotASocket(path.into()));
+        }
+        if std::os::unix::net::UnixStream::connect(path).is_ok() {
+            return Err(ServerError::AlreadyServing(path.into()));
+        }
+        info!(socket = %path.display(), "replacing stale socket");
+        std::fs::remove_file(path).map_err(io_err(format!("removing stale socket {}", path.display())))?;
+    }
+    let listener = UnixListener::bind(path).map_err(io_err(format!("binding {}", path.display())))?;
+    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
+        .map_err(io_err(format!("restricting {}", path.display())))?;
+    if let Some(gid) = group {
+        std::os::unix::fs::chown(path, None, Some(gid))
+            .map_err(io_err(format!("giving {} to group {gid}", path.display())))?;
+        std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o660))
+            .map_err(io_err(format!("opening {} to group {gid}", path.display())))?;
+    }
+    Ok(listener)
+}
+
+/// Where a listener listens (`fallback` if it has no path).
+fn path_of(l: &UnixListener, fallback: &Path) -> PathBuf {
+    l.local_addr().ok().and_then(|a| a.as_pathname().map(Path::to_path_buf)).unwrap_or_else(|| fallback.into())
+}
+
+/// The sockets the service manager passed, else those at `--socket` and `--control-socket`.
+pub(super) fn open(opts: &ServeOptions) -> Result<Doors, ServerError> {
+    let passed = crate::systemd::activated_sockets()?;
+    let from_std = |l: std::os::unix::net::UnixListener| {
+        UnixListener::from_std(l).map_err(io_err("serving on an activated socket"))
+    };
+    let activated = (passed.client.is_some(), passed.control.is_some());
+    let client = match passed.client {
+        Some(l) => from_std(l)?,
+        None => claim_socket(&opts.socket, opts.client_group)?,
+    };
+    let client_path = path_of(&client, &opts.socket);
+    let wanted =
+        opts.control_socket.clone().unwrap_or_else(|| strata_protocol::handshake::control_socket_for(&client_path));
+    let control = match passed.control {
+        Some(l) => from_std(l)?,
+        None => claim_socket(&wanted, opts.control_group)?,
+    };
+    let control_path = path_of(&control, &wanted);
+    Ok(Doors { client, control, client_path, control_path, activated })
+}
+
+/// Removes the sockets the daemon bound itself (the service manager's stay for the next start).
+pub(super) fn close(doors: &Doors) {
+    if !doors.activated.0 {
+        let _ = std::fs::remove_file(&doors.client_path);
+    }
+    if !doors.activated.1 {
+        let _ = std::fs::remove_file(&doors.control_path);
+    }
+}
+
+/// What a client is told when it sends descriptors or other ancillary data.
+pub(super) const ANCILLARY: &str =
+    "the client sent file descriptors or other ancillary data, which stratad never accepts from a client";
+
+/// Fills `buf` from the socket; an `InvalidData` error (saying [`ANCILLARY`]) if descriptors
+/// or other ancillary data come with the bytes (the descriptors are closed at once).
+pub(super) async fn read_plain(stream: &UnixStream, buf: &mut [u8]) -> std::io::Result<()> {
+    let mut have = 0;
+    while have < buf.len() {
+        stream.readable().await?;
+        let got = match stream.try_io(Interest::READABLE, || fd_passing::recv(stream.as_fd(), &mut buf[have..])) {
+            Ok(got) => got,
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => continue,
+            Err(e) => return Err(e),
+        };
+        if got.has_ancillary() {
+            return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, ANCILLARY));
+        }
+        if got.bytes == 0 {
+            return Err(std::io::ErrorKind::UnexpectedEof.into());
+        }
+        have += got.bytes;
+    }
+    Ok(())
+}
+
+/// Writes `bytes` with `fd` attached to the first of them.
+pub(super) async fn write_with_fd(stream: &mut UnixStream, bytes: &[u8], fd: BorrowedFd<'_>) -> std::io::Result<()> {
+    let sent = loop {
+        stream.writable().await?;
+        match stream.try_io(Interest::WRITABLE, || fd_passing::send_with_fd(stream.as_fd(), bytes, fd)) {
+            Ok(n) => break n,
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => continue,
+            Err(e) => return Err(e),
+        }
+    };
+    stream.write_all(&bytes[sent..]).await
+}
