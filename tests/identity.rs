@@ -3,7 +3,9 @@
 //! that claims the instrument cluster's name under the wrong uid gets neither its class nor its
 //! placement; no process of another uid opens a segment while clients come and go; and bad
 //! input at the doors (a control request on the client socket, a render client on the control
-//! socket, descriptors sent to the daemon, unknown users and groups) is refused clearly.
+//! socket, descriptors sent to the daemon, unknown users and groups) is refused clearly; and a
+//! connection passed on by a process that has exited is served under that process's
+//! credentials.
 //!
 //! Starting processes as other users needs root; those tests say so and skip without it.
 
@@ -312,5 +314,94 @@ fn bad_input_at_the_doors_is_refused_and_other_clients_carry_on() {
         assert!(!out.status.success() && err.contains(says), "{args:?}: {err}");
     }
     support::expect_verified(bystander, 200_000);
+    daemon.stop();
+}
+
+/// The process a test starts to connect and hand its connection on: it connects, starts
+/// `handoff_child` with the connection as descriptor 3, says its pid, and exits at once.
+#[test]
+fn handoff_process() {
+    use std::os::fd::AsRawFd;
+    let Ok(socket) = std::env::var("STRATA_HANDOFF_SOCKET") else { return };
+    let stream = std::os::unix::net::UnixStream::connect(&socket).expect("connect");
+    let fd = stream.as_raw_fd();
+    let mut cmd = Command::new(std::env::current_exe().expect("test binary"));
+    cmd.args(["--exact", "handoff_child", "--nocapture", "--test-threads", "1"])
+        .env_remove("STRATA_HANDOFF_SOCKET")
+        .env("STRATA_HANDOFF_PARENT", std::process::id().to_string());
+    // SAFETY: only dup2 and fcntl (async-signal-safe) between fork and exec; descriptor 3 is
+    // left open across exec.
+    unsafe {
+        cmd.pre_exec(move || {
+            let r = if fd == 3 { libc::fcntl(3, libc::F_SETFD, 0) } else { libc::dup2(fd, 3) };
+            if r < 0 {
+                Err(std::io::Error::last_os_error())
+            } else {
+                Ok(())
+            }
+        });
+    }
+    cmd.spawn().expect("the child that takes the connection over");
+    println!("handoff: pid {}", std::process::id());
+}
+
+/// The child that takes over a connection whose connecting process has exited: once it has,
+/// it performs the handshake over descriptor 3, streams verified commands, says so, and keeps
+/// the connection until its stdin closes.
+#[test]
+fn handoff_child() {
+    use std::io::BufRead;
+    use std::os::fd::FromRawFd;
+    let Ok(parent) = std::env::var("STRATA_HANDOFF_PARENT") else { return };
+    let gone = Instant::now() + Duration::from_secs(10);
+    while Path::new(&format!("/proc/{parent}")).exists() {
+        assert!(Instant::now() < gone, "the connecting process never exited");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    // SAFETY: the parent placed the connected socket at descriptor 3, owned by nothing else here.
+    let stream = unsafe { std::os::unix::net::UnixStream::from_raw_fd(3) };
+    let opts = strata_client::ConnectOptions { name: "handed-on".into(), tally: true, ..Default::default() };
+    let mut conn = strata_client::Connection::connect_over(stream, &opts).expect("handshake over the passed socket");
+    let mut load = strata_client::workload::Workload::new(5, 4096);
+    for _ in 0..20_000 {
+        strata_client::Calls::send(&mut conn, &load.next_command()).expect("send");
+    }
+    let tally = conn.verify().expect("verify");
+    assert!(tally.matches, "{tally:?}");
+    println!("handoff: verified {}", tally.commands);
+    let _ = std::io::stdin().lock().lines().count();
+}
+
+#[test]
+fn a_client_whose_connecting_process_has_exited_is_served_under_its_credentials() {
+    use std::io::BufRead;
+    let daemon = Daemon::start("identity-exited", &["--output", "t=32x32"]);
+    let mut handoff = Command::new(std::env::current_exe().expect("test binary"))
+        .args(["--exact", "handoff_process", "--nocapture", "--test-threads", "1"])
+        .env("STRATA_HANDOFF_SOCKET", &daemon.socket)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("handoff");
+    let stdin = handoff.stdin.take();
+    let mut lines = std::io::BufReader::new(handoff.stdout.take().expect("stdout")).lines();
+    assert!(handoff.wait().expect("handoff").success());
+    let mut said = |what: &str| loop {
+        let line = lines.next().unwrap_or_else(|| panic!("no {what:?} line")).expect("read");
+        if let Some((_, rest)) = line.split_once(what) {
+            return rest.trim().to_string();
+        }
+    };
+    let pid: u32 = said("handoff: pid").parse().expect("pid");
+    assert_eq!(said("handoff: verified"), "20000");
+    // The daemon serves it under the credentials of the process that connected, gone by now.
+    assert!(!Path::new(&format!("/proc/{pid}")).exists());
+    let stats = support::stats(&daemon.socket);
+    let c = stats.clients.iter().find(|c| c.name == "handed-on").expect("the client is listed");
+    // SAFETY: getuid cannot fail.
+    assert_eq!((c.peer.pid, c.peer.uid), (pid, unsafe { libc::getuid() }));
+    drop(stdin);
+    let after = support::sample_client(&daemon.socket, "after", 20_000, 0, 9);
+    support::expect_verified(after, 20_000);
     daemon.stop();
 }

@@ -111,8 +111,15 @@ fn socket_alive(fd: i32) -> bool {
 impl Connection {
     /// Connects, performs the handshake and maps the segment.
     pub fn connect(opts: &ConnectOptions) -> Result<Connection, ClientError> {
-        let mut stream = UnixStream::connect(&opts.socket)
+        let stream = UnixStream::connect(&opts.socket)
             .map_err(|source| ClientError::Connect { socket: opts.socket.clone(), source })?;
+        Connection::connect_over(stream, opts)
+    }
+
+    /// Performs the handshake over `stream`, already connected to the daemon's client socket
+    /// (by a launcher or a parent process that passed it on; `opts.socket` is not used). The
+    /// daemon knows the client by the credentials of the process that connected it.
+    pub fn connect_over(mut stream: UnixStream, opts: &ConnectOptions) -> Result<Connection, ClientError> {
         stream.set_read_timeout(Some(Duration::from_secs(10))).map_err(HandshakeError::Io)?;
         use std::io::Write;
         let hello = Hello {
