@@ -97,9 +97,13 @@ fn root() -> bool {
     root
 }
 
-/// A daemon whose client socket is open to `nogroup` and whose configuration gives the name
-/// `instrument-cluster` to user `daemon` alone: high class, a deadline, a fixed place.
-fn vm_daemon(dir: &TempDir) -> Daemon {
+/// A directory other users can reach, holding the drop-in libraries and a daemon whose client
+/// socket is open to `nogroup` and whose configuration gives the name `instrument-cluster` to
+/// user `daemon` alone: high class, a deadline, a fixed place.
+fn vm_daemon(tag: &str) -> (TempDir, Daemon, std::path::PathBuf) {
+    let dir = TempDir::new(tag);
+    std::fs::set_permissions(&dir.0, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    let shim = support::shim_dir(&dir);
     let config = dir.0.join("strata.toml");
     std::fs::write(
         &config,
@@ -110,7 +114,8 @@ fn vm_daemon(dir: &TempDir) -> Daemon {
     .expect("config");
     let config = config.to_str().expect("utf-8");
     let args = ["--output", "t=64x48", "--lighting", "off", "--client-group", "nogroup", "--config", config];
-    Daemon::start("identity", &args)
+    let daemon = Daemon::start("identity", &args);
+    (dir, daemon, shim)
 }
 
 /// `stratad ctl ARGS --socket SOCKET` run as `user`: its exit status and stderr.
@@ -145,8 +150,7 @@ fn a_client_of_another_uid_renders_but_cannot_control_the_daemon() {
     if !root() {
         return;
     }
-    let dir = TempDir::new("identity-uid");
-    let daemon = vm_daemon(&dir);
+    let (dir, daemon, shim) = vm_daemon("identity-uid");
     let socket = daemon.socket.clone();
     let control = strata_protocol::handshake::control_socket_for(&socket);
     // The client socket is open to the group, the control socket to the operator alone.
@@ -154,8 +158,6 @@ fn a_client_of_another_uid_renders_but_cannot_control_the_daemon() {
     assert_eq!((c.mode() & 0o777, c.gid()), (0o660, NOBODY.1), "client socket");
     assert_eq!((k.mode() & 0o777, k.uid()), (0o600, 0), "control socket");
 
-    let shim = support::shim_dir(&dir);
-    std::fs::set_permissions(&dir.0, std::fs::Permissions::from_mode(0o755)).expect("chmod");
     let hu = Client::start_painting_as(&socket, &shim, "hu", None, "32,16,0.5,16x16", [RED, GREEN], Some(NOBODY));
     // Its frame shows: green on top, red below (GL's bottom half), where it asked.
     let shot = dir.0.join("shot.png");
@@ -202,11 +204,8 @@ fn a_client_claiming_the_clusters_name_under_the_wrong_uid_gets_neither_its_clas
     if !root() {
         return;
     }
-    let dir = TempDir::new("identity-name");
-    let daemon = vm_daemon(&dir);
+    let (_dir, daemon, shim) = vm_daemon("identity-name");
     let socket = daemon.socket.clone();
-    let shim = support::shim_dir(&dir);
-    std::fs::set_permissions(&dir.0, std::fs::Permissions::from_mode(0o755)).expect("chmod");
     let name = "instrument-cluster";
     // Both state a placement of their own; the entry's is fixed for the genuine one.
     let ic = Client::start_painting_as(&socket, &shim, name, None, "40,30,0.5,16x16", [RED, GREEN], Some(IC_USER));
@@ -229,10 +228,8 @@ fn no_process_of_another_uid_opens_a_segment_while_clients_come_and_go() {
     if !root() {
         return;
     }
-    let dir = TempDir::new("identity-segments");
-    let daemon = vm_daemon(&dir);
+    let (_dir, daemon, _) = vm_daemon("identity-segments");
     let socket = daemon.socket.clone();
-    std::fs::set_permissions(&dir.0, std::fs::Permissions::from_mode(0o755)).expect("chmod");
     let probe = |user: (u32, u32), seconds: &str| {
         Command::new(std::env::current_exe().expect("test binary"))
             .args(["--exact", "probe_process", "--nocapture", "--test-threads", "1"])

@@ -46,6 +46,8 @@ pub struct LayoutEntry {
     /// or `id = [1000, 1001]`); surfaces beyond the list get runtime IDs.
     #[serde(default)]
     pub id: SurfaceIds,
+    // The same four fields stand on [[quota]] entries: serde cannot flatten a shared struct into
+    // one that denies unknown fields.
     /// The user ID a client must connect as to get this entry (see [`crate::identity`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uid: Option<u32>,

@@ -410,6 +410,8 @@ pub struct QuotaEntry {
     /// The largest single command.
     #[serde(alias = "command-bytes")]
     pub command_bytes: Option<ByteSize>,
+    // The same four fields stand on [[layout]] entries: serde cannot flatten a shared struct into
+    // one that denies unknown fields.
     /// The user ID a client must connect as to get this entry (see [`crate::identity`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uid: Option<u32>,
