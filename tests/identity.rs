@@ -338,6 +338,8 @@ fn handoff_process() {
             }
         });
     }
+    // This process exits at once without waiting: that is the point, and init reaps the child.
+    #[allow(clippy::zombie_processes)]
     cmd.spawn().expect("the child that takes the connection over");
     println!("handoff: pid {}", std::process::id());
 }
