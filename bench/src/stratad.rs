@@ -73,6 +73,7 @@ impl Drop for Stratad {
     fn drop(&mut self) {
         stop(&mut self.child, Duration::from_secs(10));
         let _ = std::fs::remove_file(&self.socket);
+        let _ = std::fs::remove_file(strata_protocol::handshake::control_socket_for(&self.socket));
         if self.remove_log {
             let _ = std::fs::remove_file(&self.log);
         }

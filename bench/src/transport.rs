@@ -37,7 +37,7 @@ pub fn daemon(mut opts: strata_server::ServeOptions, outputs: Vec<strata_server:
     Ok(())
 }
 
-/// A benchmark daemon process and its socket; killed on drop.
+/// A benchmark daemon process and its client socket; killed on drop, its sockets removed.
 pub struct DaemonProc(Child, pub PathBuf);
 
 impl Drop for DaemonProc {
@@ -45,6 +45,7 @@ impl Drop for DaemonProc {
         let _ = self.0.kill();
         let _ = self.0.wait();
         let _ = std::fs::remove_file(&self.1);
+        let _ = std::fs::remove_file(strata_protocol::handshake::control_socket_for(&self.1));
     }
 }
 
