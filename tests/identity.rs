@@ -326,18 +326,7 @@ fn handoff_process() {
     cmd.args(["--exact", "handoff_child", "--nocapture", "--test-threads", "1"])
         .env_remove("STRATA_HANDOFF_SOCKET")
         .env("STRATA_HANDOFF_PARENT", std::process::id().to_string());
-    // SAFETY: only dup2 and fcntl (async-signal-safe) between fork and exec; descriptor 3 is
-    // left open across exec.
-    unsafe {
-        cmd.pre_exec(move || {
-            let r = if fd == 3 { libc::fcntl(3, libc::F_SETFD, 0) } else { libc::dup2(fd, 3) };
-            if r < 0 {
-                Err(std::io::Error::last_os_error())
-            } else {
-                Ok(())
-            }
-        });
-    }
+    support::pass_fds(&mut cmd, vec![fd]);
     // This process exits at once without waiting: that is the point, and init reaps the child.
     #[allow(clippy::zombie_processes)]
     cmd.spawn().expect("the child that takes the connection over");

@@ -10,7 +10,6 @@ mod support;
 
 use std::os::fd::AsRawFd;
 use std::os::unix::net::{UnixDatagram, UnixListener};
-use std::os::unix::process::CommandExt;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -43,28 +42,7 @@ fn activated(
     for (k, v) in extra_env {
         cmd.env(k, v);
     }
-    let fds = fds.to_vec();
-    // SAFETY: only async-signal-safe calls (dup, dup2, fcntl) between fork and exec. Each
-    // descriptor is first copied above the target range, so that none is overwritten before
-    // it is moved.
-    unsafe {
-        cmd.pre_exec(move || {
-            let mut high = Vec::with_capacity(fds.len());
-            for &fd in &fds {
-                let h = libc::fcntl(fd, libc::F_DUPFD, 100);
-                if h < 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-                high.push(h);
-            }
-            for (i, h) in high.into_iter().enumerate() {
-                if libc::dup2(h, 3 + i as i32) < 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-            }
-            Ok(())
-        });
-    }
+    support::pass_fds(&mut cmd, fds.to_vec());
     cmd
 }
 

@@ -127,6 +127,13 @@ pub struct Identity<'a> {
     pub refused: Option<(&'static str, Requirement)>,
 }
 
+impl Identity<'_> {
+    /// The client's limits: its quota entry's over `base`.
+    pub fn limits(&self, base: crate::quota::Limits) -> crate::quota::Limits {
+        self.quota.map_or(base, |q| q.apply(base))
+    }
+}
+
 /// The entries client `name`, connected with `peer`'s credentials, gets: the first layout and
 /// the first quota entry naming it, unless either requires credentials that `peer` lacks, in
 /// which case it gets neither (it is treated as unnamed).

@@ -460,11 +460,6 @@ impl QuotaEntry {
     }
 }
 
-/// The limits for client `name`: its `[[quota]]` entry (the first that names it) over `base`.
-pub fn limits_for(base: Limits, entries: &[QuotaEntry], name: &str) -> Limits {
-    entries.iter().find(|e| e.client == name).map_or(base, |e| e.apply(base))
-}
-
 /// The `--quota-*` options of `stratad serve`: each client's limits, and the total.
 #[derive(Debug, Clone, clap::Args)]
 pub struct QuotaArgs {
@@ -587,6 +582,9 @@ mod tests {
             QuotaEntry { client: "hu".into(), textures: Some(10), ..Default::default() },
         ];
         let base = Limits::default();
+        let peer = strata_protocol::control::Peer::default();
+        let limits_for =
+            |base, entries: &[QuotaEntry], name| crate::identity::identify(&[], entries, name, &peer).limits(base);
         let ic = limits_for(base, &entries, "ic");
         assert_eq!((ic.gpu_bytes, ic.count(Kind::Texture)), (4 << 30, base.count(Kind::Texture)));
         let hu = limits_for(base, &entries, "hu");

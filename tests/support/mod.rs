@@ -17,6 +17,33 @@ use strata_protocol::handshake::{self, ClientMessage, Hello, Purpose, ServerMess
 use strata_protocol::ring::Writer;
 use strata_protocol::segment::Segment;
 
+/// Makes `fds` descriptors 3, 4, … of the process `cmd` starts, open across its exec (as a
+/// service manager passes sockets, or a parent its connection). Each is first copied above
+/// that range, so that none is overwritten before it is moved.
+pub fn pass_fds(cmd: &mut Command, fds: Vec<i32>) {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: only async-signal-safe calls (fcntl, dup2) between fork and exec, on
+    // descriptors the caller keeps open until the process has started.
+    unsafe {
+        cmd.pre_exec(move || {
+            let mut high = Vec::with_capacity(fds.len());
+            for &fd in &fds {
+                let h = libc::fcntl(fd, libc::F_DUPFD, 100);
+                if h < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                high.push(h);
+            }
+            for (i, h) in high.into_iter().enumerate() {
+                if libc::dup2(h, 3 + i as i32) < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+            }
+            Ok(())
+        });
+    }
+}
+
 /// The daemon binary under test.
 pub fn stratad() -> &'static str {
     env!("CARGO_BIN_EXE_stratad")

@@ -85,7 +85,7 @@ pub(super) async fn run_client(
     identity: crate::identity::Identity<'_>,
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
-    let limits = identity.quota.map_or(opts.limits, |q| q.apply(opts.limits));
+    let limits = identity.limits(opts.limits);
     let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
     let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
     let msg = ServerMessage::Welcome {

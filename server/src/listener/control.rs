@@ -4,6 +4,7 @@
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
+use strata_protocol::control::Peer;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_protocol::json_control::{self, Greeting, Opening, CONTROL_VERSION, MAX_REQUEST_LINE};
 use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWriteExt, BufReader};
@@ -43,8 +44,7 @@ pub(super) async fn refuse(stream: UnixStream, reason: String) {
 
 /// Serves a control client whose first byte, `{`, has been read: its opening, then requests
 /// until it closes.
-pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64) {
-    let pid = stream.peer_cred().ok().and_then(|c| c.pid()).unwrap_or(0);
+pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64, peer: Peer) {
     let (rd, mut wr) = stream.into_split();
     let mut rd = BufReader::new(rd);
     let mut buf = b"{".to_vec();
@@ -68,7 +68,7 @@ pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64
             return;
         }
     };
-    debug!(control = id, name, pid, "control client");
+    debug!(control = id, name, pid = peer.pid, uid = peer.uid, "control client");
     if write_line(&mut wr, &Greeting::Ready { version: CONTROL_VERSION }).await.is_err() {
         return;
     }

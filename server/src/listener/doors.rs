@@ -34,7 +34,7 @@ pub(super) struct Doors {
     pub activated: (bool, bool),
 }
 
-/// Claims `path`: refuses a live socket, replaces a stale one; then gives it `mode`, and group
+/// Claims `path`: refuses a live socket, replaces a stale one; then makes it 0600, or 0660 to
 /// `group` where one is named.
 fn claim_socket(path: &Path, group: Option<u32>) -> Result<UnixListener, ServerError> {
     if let Ok(meta) = std::fs::symlink_metadata(path) {

@@ -454,7 +454,7 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: do
     // A control client speaks JSON lines, whose first byte no preamble starts with; each kind
     // of client has a socket of its own.
     match (door, first == b'{') {
-        (doors::Door::Control, true) => return control::serve_json(stream, &shared, id).await,
+        (doors::Door::Control, true) => return control::serve_json(stream, &shared, id, peer).await,
         (doors::Door::Client, true) => {
             let reason = format!(
                 "control requests are refused on the client socket; stratad ctl and controllers use the control \
