@@ -202,17 +202,30 @@ fn two_hundred_sessions_leak_no_descriptor_and_no_memory() {
             }
         });
     };
-    run(0, 20);
-    let fds_before = settled(&daemon, 0);
-    let rss_before = stats(&socket).rss_bytes;
-    run(20, 220);
+    // The daemon's heaps settle at a level that wanders by several MiB from one batch of
+    // clients to the next (which threads freed what, where). The baseline is the highest level
+    // over a warm-up of three batches, so that a leak shows as growth beyond that wander.
+    let mut rss_before = 0;
+    let mut fds_before = 0;
+    for (from, to) in [(0, 20), (20, 40), (40, 60)] {
+        run(from, to);
+        fds_before = settled(&daemon, 0);
+        rss_before = rss_before.max(stats(&socket).rss_bytes);
+    }
+    run(60, 260);
     let fds_after = settled(&daemon, 0);
     let s = stats(&socket);
-    assert_eq!(fds_after, fds_before, "descriptors after 20 and after 220 sessions");
-    assert!(s.sessions >= 220, "{} sessions", s.sessions);
+    assert_eq!(fds_after, fds_before, "descriptors after 60 and after 260 sessions");
+    assert!(s.sessions >= 260, "{} sessions", s.sessions);
     assert_eq!(s.gpu_bytes, 0, "memory still accounted to departed clients");
-    // Within 10 % of what it was after the first 20 (each session opened an instance and a
-    // device of its own, and shared its window's images with the compositor).
-    let grown = s.rss_bytes as f64 / rss_before as f64;
-    assert!(grown < 1.10, "resident memory grew {grown:.3}× over 200 sessions ({rss_before} → {})", s.rss_bytes);
+    // Each session opened an instance and a device of its own, mapped a segment, and shared
+    // its window's images with the compositor: keeping any of these would cost far more than
+    // the 80 KiB a session that this allows.
+    let grown = s.rss_bytes.saturating_sub(rss_before);
+    assert!(
+        grown < 200 * (80 << 10),
+        "resident memory grew {} KiB over 200 sessions ({rss_before} → {})",
+        grown >> 10,
+        s.rss_bytes
+    );
 }
