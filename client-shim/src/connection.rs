@@ -13,6 +13,7 @@ use strata_protocol::codec::{self, CodecError, MAX_MESSAGE_LEN};
 use strata_protocol::handshake::{
     self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, VertexWire, PROTOCOL_VERSION,
 };
+use strata_protocol::input::InputEvent;
 use strata_protocol::ring::{Reader, RingError, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
 use strata_protocol::tally::Tally;
@@ -98,14 +99,17 @@ pub struct Connection {
     client_id: u64,
     vertex_wire: VertexWire,
     _segment: Segment,
+    /// Bytes of input events read from the socket but not yet whole.
+    input: Vec<u8>,
 }
 
-/// Whether the daemon's end of the control socket is still open.
+/// Whether the daemon's end of the client socket is still open (input events it sent and
+/// nobody read yet do not make a closed socket look open).
 fn socket_alive(fd: i32) -> bool {
-    let mut b = 0u8;
-    // SAFETY: peeks at most one byte into a local; the fd is owned by the connection.
-    let n = unsafe { libc::recv(fd, (&mut b as *mut u8).cast(), 1, libc::MSG_PEEK | libc::MSG_DONTWAIT) };
-    n > 0 || (n < 0 && std::io::Error::last_os_error().kind() == std::io::ErrorKind::WouldBlock)
+    let mut p = libc::pollfd { fd, events: libc::POLLRDHUP, revents: 0 };
+    // SAFETY: polls one descriptor the connection owns, without waiting.
+    let n = unsafe { libc::poll(&mut p, 1, 0) };
+    n == 0 || (n > 0 && p.revents & (libc::POLLRDHUP | libc::POLLHUP | libc::POLLERR) == 0)
 }
 
 impl Connection {
@@ -147,8 +151,8 @@ impl Connection {
                 (client_id, cmd_capacity, reply_capacity, vertex_wire)
             }
             ServerMessage::Refused { reason } => return Err(HandshakeError::Refused(reason).into()),
-            ServerMessage::ControlReady => {
-                return Err(ClientError::Unexpected("control welcome on a render connection".into()))
+            ServerMessage::ControlReady | ServerMessage::Input(_) => {
+                return Err(ClientError::Unexpected("a message other than the welcome on a render connection".into()))
             }
         };
         let Ok::<[_; 1], _>([fd]) = fds.try_into() else {
@@ -165,6 +169,7 @@ impl Connection {
             client_id,
             vertex_wire,
             _segment: segment,
+            input: Vec::new(),
         })
     }
 
@@ -193,6 +198,61 @@ impl Connection {
     /// Messages sent so far, if tallying.
     pub fn sent(&self) -> Option<u64> {
         self.tally.as_ref().map(Tally::commands)
+    }
+
+    /// The next input event the daemon sent for this client's surfaces, waiting at most
+    /// `timeout` for one (`None`: none came). Events must be read: the daemon disconnects a
+    /// client that lets 1,024 of them pile up beyond what its socket holds.
+    pub fn next_input(&mut self, timeout: Duration) -> Result<Option<InputEvent>, ClientError> {
+        let deadline = std::time::Instant::now() + timeout;
+        loop {
+            if let Some(e) = self.take_input()? {
+                return Ok(Some(e));
+            }
+            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            let mut p = libc::pollfd { fd: self.stream.as_raw_fd(), events: libc::POLLIN, revents: 0 };
+            let ms = i32::try_from(left.as_millis()).unwrap_or(i32::MAX);
+            // SAFETY: polls one descriptor the connection owns.
+            let n = unsafe { libc::poll(&mut p, 1, ms) };
+            if n == 0 {
+                return Ok(None);
+            }
+            if n < 0 {
+                let e = std::io::Error::last_os_error();
+                if e.kind() == std::io::ErrorKind::Interrupted {
+                    continue;
+                }
+                return Err(HandshakeError::Io(e).into());
+            }
+            let mut buf = [0u8; 4096];
+            // SAFETY: reads into a local buffer of its length, without waiting.
+            let got = unsafe { libc::recv(p.fd, buf.as_mut_ptr().cast(), buf.len(), libc::MSG_DONTWAIT) };
+            match got {
+                0 => return Err(HandshakeError::Io(std::io::ErrorKind::UnexpectedEof.into()).into()),
+                n if n > 0 => self.input.extend_from_slice(&buf[..n as usize]),
+                _ => {
+                    let e = std::io::Error::last_os_error();
+                    if !matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::Interrupted) {
+                        return Err(HandshakeError::Io(e).into());
+                    }
+                }
+            }
+        }
+    }
+
+    /// A whole event from what was read, if there is one.
+    fn take_input(&mut self) -> Result<Option<InputEvent>, ClientError> {
+        let Some(prefix) = self.input.first_chunk::<4>() else { return Ok(None) };
+        let len = handshake::frame_len(*prefix)?;
+        if self.input.len() < 4 + len {
+            return Ok(None);
+        }
+        let msg: ServerMessage = codec::decode_trusted(&self.input[4..4 + len], "input event")?;
+        self.input.drain(..4 + len);
+        match msg {
+            ServerMessage::Input(e) => Ok(Some(e)),
+            other => Err(ClientError::Unexpected(format!("{other:?} after the welcome"))),
+        }
     }
 }
 

@@ -271,6 +271,9 @@ pub enum ControlRequest {
     /// service manager's watchdog hears nothing more (only when the daemon was started with
     /// `--allow-fault-injection`; for tests; answered with `List`).
     WedgeCompositor,
+    /// Input on an output: a tap, a press, move or release, a key, text, or a focus change
+    /// (answered with `Input`).
+    Input(crate::input::InputRequest),
 }
 
 /// One thread of a device's driver.
@@ -460,6 +463,9 @@ pub struct OutputRow {
     /// The scene's damage count (`ControlReply::List::damage`) that the newest completed
     /// composite shows: every change counted up to it is on the output.
     pub shown_damage: u64,
+    /// The surface that has its keyboard focus.
+    #[serde(default)]
+    pub focus: Option<u64>,
 }
 
 /// The daemon's answer to a `ControlRequest`.
@@ -500,6 +506,8 @@ pub enum ControlReply {
     Scene(serde_json::Value),
     /// One event of a watched daemon.
     Event(crate::events::Event),
+    /// Where an input request's events went.
+    Input(crate::input::InputOutcome),
     /// The request failed.
     Error(String),
 }

@@ -83,6 +83,8 @@ pub enum ServerMessage {
     },
     /// A control connection is accepted; send `ControlRequest`s.
     ControlReady,
+    /// An input event for one of the client's surfaces (after the welcome, unasked).
+    Input(crate::input::InputEvent),
 }
 
 /// The number format of `GL_FLOAT` client-side vertex arrays on the wire (`stratad serve

@@ -10,6 +10,7 @@ pub mod events;
 pub mod fd_passing;
 pub mod futex;
 pub mod handshake;
+pub mod input;
 pub mod json_control;
 pub mod projection;
 pub mod properties;

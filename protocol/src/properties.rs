@@ -20,11 +20,19 @@ pub struct SurfaceProps {
     /// Where it shows, in the output space, its source scaled to fit; `None`: at its placement,
     /// at its image's size.
     pub destination: Option<Rect>,
+    /// Whether it accepts input; a surface that does not is passed over when input is routed,
+    /// as if it were not there.
+    #[serde(default = "accepts_input")]
+    pub input: bool,
+}
+
+fn accepts_input() -> bool {
+    true
 }
 
 impl Default for SurfaceProps {
     fn default() -> Self {
-        SurfaceProps { visible: true, opacity: 1.0, source: None, destination: None }
+        SurfaceProps { visible: true, opacity: 1.0, source: None, destination: None, input: true }
     }
 }
 
@@ -75,6 +83,13 @@ pub enum Change {
         surface: u64,
         /// x, y, width, height.
         region: Rect,
+    },
+    /// Sets whether a surface accepts input (`ctl surface ID input on|off`).
+    InputAcceptance {
+        /// Surface ID.
+        surface: u64,
+        /// Accepts input.
+        accepts: bool,
     },
     /// Creates an empty, visible, opaque layer.
     LayerCreate {
@@ -213,6 +228,7 @@ impl Change {
             | Change::Opacity { surface, .. }
             | Change::SourceRegion { surface, .. }
             | Change::DestinationRegion { surface, .. }
+            | Change::InputAcceptance { surface, .. }
             | Change::LayerAdd { surface, .. }
             | Change::LayerRemove { surface, .. } => Some(*surface),
             _ => None,

@@ -174,6 +174,9 @@ pub struct SurfaceEntry {
     /// Its normal for per-surface lighting.
     #[serde(default)]
     pub normal: Option<[f32; 3]>,
+    /// Whether it accepts input (default true).
+    #[serde(default = "yes")]
+    pub input: bool,
 }
 
 /// A layer in the configuration (`[[layer]]`).
@@ -201,6 +204,7 @@ impl SurfaceEntry {
         let mut v = vec![
             Change::Visibility { surface, visible: self.visible },
             Change::Opacity { surface, opacity: self.opacity },
+            Change::InputAcceptance { surface, accepts: self.input },
         ];
         if let Some(region) = self.source {
             v.push(Change::SourceRegion { surface, region });

@@ -12,6 +12,7 @@ pub mod demo;
 pub mod gles;
 pub mod gpu;
 pub mod identity;
+pub mod input;
 pub mod layout;
 pub mod quota;
 pub mod root;

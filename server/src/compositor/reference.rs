@@ -123,6 +123,46 @@ fn depth_normal(l: &RefLayer, sx: i32, sy: i32, scale: f64) -> [f64; 3] {
     normalize([-dzdx * scale, -dzdy * scale, 1.0])
 }
 
+/// The surface group `z` selects at output pixel (px, py): its eye depth, the surface, the
+/// pixel within its rectangle and the texel (x, y from the bottom) the select read; `None`
+/// where no member's rectangle holds the pixel. The nearest eye depth wins; on a tie the later
+/// surface (in stacking order) wins.
+fn select(layers: &[RefLayer], z: f32, px: i32, py: i32) -> Option<(f64, &RefLayer, [i64; 2], i32, i32)> {
+    let mut best: Option<(f64, &RefLayer, [i64; 2], i32, i32)> = None;
+    for l in layers.iter().filter(|l| l.z == z) {
+        // In 64 bits: a rectangle may lie anywhere in the i32 plane.
+        let (lx, ly) = (i64::from(px) - i64::from(l.rect[0]), i64::from(py) - i64::from(l.rect[1]));
+        if lx < 0 || ly < 0 || lx >= i64::from(l.rect[2]) || ly >= i64::from(l.rect[3]) {
+            continue;
+        }
+        let src = l.props.source_for(l.rect);
+        let r = src.region;
+        let sx = nearest(lx, r[0], r[2], l.rect[2]);
+        let sy = src.image[1] - 1 - nearest(ly, r[1], r[3], l.rect[3]);
+        let d = eye_depth_at(l, sx, sy);
+        if best.is_none_or(|b| d <= b.0) {
+            best = Some((d, l, [lx, ly], sx, sy));
+        }
+    }
+    best
+}
+
+/// Which of `layers` (in stacking order) output pixel (px, py) shows, for input: groups are
+/// taken near to far, and the first whose selected surface is not transparent there (the
+/// selected texel's alpha times the surface's opacity above 0) has it; `None` where none is.
+pub fn pick(layers: &[RefLayer], px: i32, py: i32) -> Option<usize> {
+    let mut zs: Vec<f32> = layers.iter().map(|l| l.z).collect();
+    zs.sort_by(f32::total_cmp);
+    zs.dedup();
+    for z in zs {
+        let Some((_, l, _, sx, sy)) = select(layers, z, px, py) else { continue };
+        if l.texel(sx, sy)[3] * f64::from(l.props.opacity.clamp(0.0, 1.0)) > 0.0 {
+            return layers.iter().position(|m| std::ptr::eq(m, l));
+        }
+    }
+    None
+}
+
 /// Composites `layers` (in stacking order) into a `width`×`height` RGBA8 image, top row first.
 pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32; 4], light: &Lighting) -> Vec<u8> {
     let mut zs: Vec<f32> = layers.iter().map(|l| l.z).collect();
@@ -135,23 +175,7 @@ pub fn composite(layers: &[RefLayer], width: u32, height: u32, background: [f32;
             // Premultiplied accumulation.
             let mut acc = [bg[0] * bg[3], bg[1] * bg[3], bg[2] * bg[3], bg[3]];
             for &z in &zs {
-                // Within the group: nearest eye depth wins; on a tie the later surface wins.
-                let mut best: Option<(f64, &RefLayer, [i64; 2], i32, i32)> = None;
-                for l in layers.iter().filter(|l| l.z == z) {
-                    // In 64 bits: a rectangle may lie anywhere in the i32 plane.
-                    let (lx, ly) = (i64::from(px) - i64::from(l.rect[0]), i64::from(py) - i64::from(l.rect[1]));
-                    if lx < 0 || ly < 0 || lx >= i64::from(l.rect[2]) || ly >= i64::from(l.rect[3]) {
-                        continue;
-                    }
-                    let src = l.props.source_for(l.rect);
-                    let r = src.region;
-                    let sx = nearest(lx, r[0], r[2], l.rect[2]);
-                    let sy = src.image[1] - 1 - nearest(ly, r[1], r[3], l.rect[3]);
-                    let d = eye_depth_at(l, sx, sy);
-                    if best.is_none_or(|b| d <= b.0) {
-                        best = Some((d, l, [lx, ly], sx, sy));
-                    }
-                }
+                let best = select(layers, z, px, py);
                 let Some((_, l, [lx, ly], sx, sy)) = best else { continue };
                 let src = l.props.source_for(l.rect);
                 let r = src.region;

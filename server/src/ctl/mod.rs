@@ -8,6 +8,7 @@ use clap::Subcommand;
 use strata_client::ControlConnection;
 use strata_protocol::control::LightChange;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_protocol::input::{Action, Device, InputRequest};
 
 use strata_protocol::properties::{Batch, Change};
 
@@ -90,6 +91,17 @@ pub enum CtlCmd {
     /// The daemon's memory, every client's GPU memory and objects against its quota, and the
     /// objects alive on the device.
     Stats,
+    /// Input on an output, delivered to the surface shown at the point (per fragment, by
+    /// depth) or to the output's focused surface: `input tap X Y`, `input press|move X Y
+    /// [--touch ID | --button N]`, `input release [--touch ID | --button N]`, `input key NAME`,
+    /// `input text STRING`, `input focus SURFACE`.
+    Input {
+        /// The output (as `list` shows it; default: the first).
+        #[arg(long, default_value = "")]
+        output: String,
+        #[command(subcommand)]
+        what: InputCmd,
+    },
     /// Show or change the uniform lighting.
     Light {
         #[command(subcommand)]
@@ -137,6 +149,12 @@ pub enum SurfaceCmd {
         #[arg(num_args = 4, allow_negative_numbers = true, value_names = ["X", "Y", "W", "H"])]
         region: Vec<i32>,
     },
+    /// Whether it accepts input (off: input passes over it to what lies behind).
+    Input {
+        /// on or off.
+        #[arg(value_enum)]
+        state: OnOff,
+    },
     /// Show it at X Y in the output space, scaled to W×H.
     DestinationRegion {
         /// x, y, width, height.
@@ -145,11 +163,107 @@ pub enum SurfaceCmd {
     },
 }
 
+/// Which point `ctl input press|move|release` acts on.
+#[derive(clap::Args, Clone, Copy)]
+pub struct PointArgs {
+    /// A touch point's ID (a touchscreen).
+    #[arg(long, conflicts_with = "button")]
+    touch: Option<u32>,
+    /// A pointer button: 1 left (the default), 2 middle, 3 right.
+    #[arg(long)]
+    button: Option<u32>,
+}
+
+impl PointArgs {
+    fn point(self) -> (Device, u32) {
+        match (self.touch, self.button) {
+            (Some(id), _) => (Device::Touch, id),
+            (None, b) => (Device::Pointer, b.unwrap_or(1)),
+        }
+    }
+}
+
+#[derive(Subcommand)]
+pub enum InputCmd {
+    /// A touch down and up at X Y (output pixels from the top-left corner).
+    Tap {
+        /// x.
+        x: f32,
+        /// y.
+        y: f32,
+    },
+    /// A button press or touch down at X Y.
+    Press {
+        /// x.
+        x: f32,
+        /// y.
+        y: f32,
+        #[command(flatten)]
+        point: PointArgs,
+    },
+    /// A move of a pressed button or touch point to X Y.
+    Move {
+        /// x.
+        #[arg(allow_negative_numbers = true)]
+        x: f32,
+        /// y.
+        #[arg(allow_negative_numbers = true)]
+        y: f32,
+        #[command(flatten)]
+        point: PointArgs,
+    },
+    /// A button release or touch up.
+    Release {
+        #[command(flatten)]
+        point: PointArgs,
+    },
+    /// A key pressed and released (X keysym name: Return, BackSpace, Left, F1, a, …).
+    Key {
+        /// The key's name.
+        name: String,
+    },
+    /// Text typed into the focused surface.
+    Text {
+        /// The text.
+        text: String,
+    },
+    /// Give the output's keyboard focus to a surface.
+    Focus {
+        /// Surface ID (as `list` shows it).
+        surface: u64,
+    },
+}
+
+impl InputCmd {
+    /// The action it asks for.
+    fn action(&self) -> Action {
+        match self {
+            InputCmd::Tap { x, y } => Action::Tap { x: *x, y: *y },
+            InputCmd::Press { x, y, point } => {
+                let (device, id) = point.point();
+                Action::Press { device, id, x: *x, y: *y }
+            }
+            InputCmd::Move { x, y, point } => {
+                let (device, id) = point.point();
+                Action::Move { device, id, x: *x, y: *y }
+            }
+            InputCmd::Release { point } => {
+                let (device, id) = point.point();
+                Action::Release { device, id }
+            }
+            InputCmd::Key { name } => Action::Key { name: name.clone() },
+            InputCmd::Text { text } => Action::Text { text: text.clone() },
+            InputCmd::Focus { surface } => Action::Focus { surface: *surface },
+        }
+    }
+}
+
 /// The change `ctl surface ID …` asks for.
 fn surface_change(surface: u64, what: &SurfaceCmd) -> Result<Change> {
     let rect = |v: &[i32]| <[i32; 4]>::try_from(v).map_err(|_| anyhow::anyhow!("a region is four numbers: X Y W H"));
     Ok(match what {
         SurfaceCmd::Visibility { state } => Change::Visibility { surface, visible: matches!(state, OnOff::On) },
+        SurfaceCmd::Input { state } => Change::InputAcceptance { surface, accepts: matches!(state, OnOff::On) },
         SurfaceCmd::Opacity { opacity } => Change::Opacity { surface, opacity: *opacity },
         SurfaceCmd::SourceRegion { region } => Change::SourceRegion { surface, region: rect(region)? },
         SurfaceCmd::DestinationRegion { region } => Change::DestinationRegion { surface, region: rect(region)? },
@@ -191,6 +305,7 @@ fn check(request: &ControlRequest) -> Result<()> {
             bail!("normal {normal:?} must be finite and not zero")
         }
         ControlRequest::Light(change) => change.validate().map_err(|e| anyhow::anyhow!("{e}")),
+        ControlRequest::Input(req) => req.action.validate().map_err(|e| anyhow::anyhow!("{e}")),
         ControlRequest::Apply { changes } => {
             strata_protocol::properties::validate_batch(changes).map_err(|e| anyhow::anyhow!("{e}"))
         }
@@ -264,6 +379,9 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
         }
         CtlCmd::Stats => ControlRequest::Stats,
         CtlCmd::LoseDevice { client } => ControlRequest::LoseDevice { client: *client },
+        CtlCmd::Input { output, what } => {
+            ControlRequest::Input(InputRequest { output: output.clone(), action: what.action() })
+        }
         CtlCmd::Screenshot { targets, surface } => match (surface, targets.as_slice()) {
             (Some(surface), [_file]) => ControlRequest::SurfaceScreenshot { surface: *surface },
             (None, [output, _file]) => ControlRequest::Screenshot { output: output.clone() },
@@ -351,6 +469,18 @@ pub fn run(socket: &std::path::Path, json: bool, what: CtlCmd) -> Result<()> {
                 println!("{}", serde_json::json!(r));
             } else {
                 println!("surface {} now at x {} y {} z {}, normal {:?}", r.id, r.rect[0], r.rect[1], r.z, r.normal);
+            }
+            Ok(())
+        }
+        (ControlReply::Input(o), _) => {
+            if json {
+                println!("{}", serde_json::json!(o));
+            } else {
+                match (o.surface, &o.dropped) {
+                    (Some(s), _) => println!("to surface {s}"),
+                    (None, Some(why)) => println!("dropped: {why}"),
+                    (None, None) => println!("dropped"),
+                }
             }
             Ok(())
         }

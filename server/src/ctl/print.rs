@@ -28,15 +28,27 @@ fn credentials(p: &strata_protocol::control::Peer) -> String {
 /// Every output, surface and layer, as tables.
 pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow]) {
     println!(
-        "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {:>9} {:>8} {:>9}  last redrawn",
-        "output", "kind", "x", "y", "w", "h", "composites", "banded", "passes", "device ms", "queue ms", "encode ms"
+        "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {:>9} {:>8} {:>9} {:>6}  last redrawn",
+        "output",
+        "kind",
+        "x",
+        "y",
+        "w",
+        "h",
+        "composites",
+        "banded",
+        "passes",
+        "device ms",
+        "queue ms",
+        "encode ms",
+        "focus"
     );
     for o in outputs {
         let r = o.region;
         let each = |us: u64| us as f64 / 1000.0 / o.composites.max(1) as f64;
         let (ms, queue, encode) = (each(o.composite_us), each(o.queue_us), each(o.encode_us));
         println!(
-            "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2}  {}x{}+{}+{}",
+            "{:<16} {:<9} {:>6} {:>6} {:>6} {:>6} {:>10} {:>6} {:>6} {ms:>9.2} {queue:>8.2} {encode:>9.2} {:>6}  {}x{}+{}+{}",
             o.name,
             o.kind,
             o.rect[0],
@@ -46,6 +58,7 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
             o.composites,
             o.banded,
             o.passes,
+            o.focus.map_or_else(|| "-".to_string(), |s| s.to_string()),
             r[2],
             r[3],
             r[0],
@@ -54,7 +67,7 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
     }
     println!();
     println!(
-        "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7}  projection",
+        "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7} {:>5}  projection",
         "id",
         "client",
         "credentials",
@@ -71,11 +84,12 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
         "missed",
         "shown in (p99)",
         "vis",
-        "opacity"
+        "opacity",
+        "input"
     );
     for r in surfaces {
         println!(
-            "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7.3}  {}{}",
+            "{:>4} {:<20} {:<24} {:>6} {:>6} {:>6} {:>6} {:>8.3} {:>8} {:>8} {:>8} {:>12} {:>8} {:>8} {:>16} {:>4} {:>7.3} {:>5}  {}{}",
             r.id,
             format!("{} ({})", r.client, r.client_id),
             credentials(&r.peer),
@@ -93,6 +107,7 @@ pub fn list(outputs: &[OutputRow], surfaces: &[SurfaceRow], layers: &[LayerRow])
             format!("{:.1} ms", r.shown_latency_us[1] as f64 / 1000.0),
             if r.shown_visible { "on" } else { "off" },
             r.shown_opacity,
+            if r.props.input { "on" } else { "off" },
             r.projection.map_or_else(|| "-".to_string(), |p| p.to_string()),
             regions(r)
         );

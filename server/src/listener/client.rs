@@ -9,7 +9,7 @@ use strata_protocol::control::Priority;
 use strata_protocol::handshake::{self, ClientMessage, HandshakeError, Hello, ServerMessage};
 use strata_protocol::ring::{Reader, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
-use tokio::io::AsyncReadExt;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::UnixStream;
 use tokio::sync::oneshot;
 use tracing::{info, warn};
@@ -148,7 +148,9 @@ pub(super) async fn run_client(
         None => None,
     };
     let lane = plan.as_ref().map(|p| p.lane.clone());
+    let events = Arc::new(crate::input::EventQueue::default());
     let info = ClientInfo {
+        events: events.clone(),
         name: hello.name.clone(),
         role: hello.role.clone(),
         account: account.clone(),
@@ -244,6 +246,20 @@ pub(super) async fn run_client(
     let mut buf = [0u8; 64];
     let mut socket_open = true;
     let mut forced: Option<SessionEnd> = None;
+    let (mut rd, mut wr) = stream.split();
+    // Input events go out on the socket as they are queued; the daemon never waits for them.
+    let writer = async {
+        loop {
+            let Ok(e) = events.next().await else { return };
+            let Ok(frame) = handshake::frame(&ServerMessage::Input(e)) else { continue };
+            if wr.write_all(&frame).await.is_err() {
+                // The client closed: the reading side ends the session.
+                return;
+            }
+        }
+    };
+    tokio::pin!(writer);
+    let mut writing = true;
     loop {
         tokio::select! {
             done = &mut done_rx => {
@@ -252,7 +268,17 @@ pub(super) async fn run_client(
                 shared.scene.forget_stream(id);
                 return Ok(forced.unwrap_or(end));
             }
-            read = stream.read(&mut buf), if socket_open => {
+            () = &mut writer, if writing => writing = false,
+            () = events.overflowed(), if forced.is_none() => {
+                forced = Some(SessionEnd::Failed(format!(
+                    "it read none of its last {} input events",
+                    crate::input::MAX_QUEUED
+                )));
+                closed.store(true, Ordering::Release);
+                waker.wake_reader();
+                waker.wake_writer();
+            }
+            read = rd.read(&mut buf), if socket_open => {
                 socket_open = false;
                 if let Ok(n @ 1..) = read {
                     forced = Some(SessionEnd::Violation(format!("{n} unexpected bytes on the client socket")));

@@ -109,10 +109,41 @@ fn outputs(shared: &Shared) -> Vec<[i32; 4]> {
     shared.root.as_ref().map(|r| r.rows().into_iter().map(|o| o.rect).collect()).unwrap_or_default()
 }
 
+/// Every output, with its keyboard focus.
+fn output_rows(shared: &Shared) -> Vec<strata_protocol::control::OutputRow> {
+    let focus = shared.input.focus();
+    let mut rows = shared.root.as_ref().map(|r| r.rows()).unwrap_or_default();
+    for o in &mut rows {
+        o.focus = focus.get(&o.name).copied();
+    }
+    rows
+}
+
+/// Routes an input request (`ctl input`).
+fn input(shared: &Shared, req: &strata_protocol::input::InputRequest) -> ControlReply {
+    let Some(root) = &shared.root else {
+        return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
+    };
+    let deliver = |client: u64, e| {
+        let queue = shared.clients.lock().ok().and_then(|c| c.get(&client).map(|c| c.events.clone()));
+        // A full queue disconnects its client (its connection sees the overflow); the event
+        // counts as delivered to it, never to another.
+        queue.is_some_and(|q| {
+            let _ = q.push(e);
+            true
+        })
+    };
+    let cx = crate::input::Context { root, scene: &shared.scene, deliver: &deliver };
+    match shared.input.handle(&cx, req) {
+        Ok(outcome) => ControlReply::Input(outcome),
+        Err(e) => ControlReply::Error(e),
+    }
+}
+
 /// Every output, surface and layer.
 fn list(shared: &Shared) -> ControlReply {
     ControlReply::List {
-        outputs: shared.root.as_ref().map(|r| r.rows()).unwrap_or_default(),
+        outputs: output_rows(shared),
         surfaces: shared.scene.rows(),
         layers: shared.scene.layers(),
         damage: shared.scene.damage(),
@@ -223,6 +254,7 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
                 list(shared)
             }
         },
+        ControlRequest::Input(req) => input(shared, &req),
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);

@@ -32,6 +32,7 @@ pub(super) fn export(shared: &Shared) -> serde_json::Value {
             source: r.props.source,
             destination: r.props.destination,
             normal: Some(r.normal),
+            input: r.props.input,
         })
         .collect();
     let layer = shared

@@ -211,6 +211,8 @@ pub struct ClientInfo {
     pub lane: Option<Arc<crate::schedule::Lane>>,
     /// The device it renders on, once its session has opened it.
     pub device: Arc<std::sync::OnceLock<Arc<Gpu>>>,
+    /// Input events on their way to its socket.
+    pub events: Arc<crate::input::EventQueue>,
 }
 
 struct Shared {
@@ -221,6 +223,8 @@ struct Shared {
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
     pool: Arc<crate::quota::Pool>,
+    /// Grabs and keyboard focus.
+    input: crate::input::Router,
     sessions: AtomicU64,
     /// Clients' devices open now (for `--max-client-devices`).
     client_devices: Arc<std::sync::atomic::AtomicUsize>,
@@ -327,6 +331,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         pool: crate::quota::Pool::new(opts.total_gpu_bytes),
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
+        input: Default::default(),
         sessions: AtomicU64::new(0),
         client_devices: Arc::default(),
         shutdown: stop_rx,

@@ -19,6 +19,9 @@ pub use bands::BandOptions;
 use bands::{Banded, Cost, Job, KeptLayer};
 
 mod bands;
+mod pick;
+
+pub use pick::Target;
 
 /// Default output: the width and height of a typical automotive centre display.
 pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
@@ -159,6 +162,8 @@ pub struct Root {
     bands: BandOptions,
     /// Fault injection: the compositor thread is stuck, as in a composite that never returns.
     wedged: std::sync::atomic::AtomicBool,
+    /// Input routing's reads of the surfaces under a point (made when first needed).
+    picker: Mutex<Option<pick::Picker>>,
 }
 
 /// Why the root surface could not start.
@@ -229,7 +234,14 @@ impl Root {
             });
         }
         let inner = Inner { compositor, outputs: made, composited: None, bands: None, cost: Cost::default() };
-        Ok(Root { gpu, scene, inner: Mutex::new(inner), bands: BandOptions::default(), wedged: Default::default() })
+        Ok(Root {
+            gpu,
+            scene,
+            inner: Mutex::new(inner),
+            bands: BandOptions::default(),
+            wedged: Default::default(),
+            picker: Mutex::new(None),
+        })
     }
 
     /// Draws changes band by band as `bands` says.
@@ -416,6 +428,8 @@ impl Root {
                 queue_us: o.queue.as_micros() as u64,
                 encode_us: o.encode.as_micros() as u64,
                 shown_damage: inner.composited.unwrap_or(0),
+                // Filled in by the listener, which routes input.
+                focus: None,
             })
             .collect()
     }

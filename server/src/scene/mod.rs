@@ -22,12 +22,14 @@ mod analyze;
 mod events;
 mod frames;
 mod ids;
+mod input;
 mod mailbox;
 mod pacing;
 mod properties;
 mod region;
 
 pub use ids::IdTaken;
+pub use input::Candidate;
 pub use mailbox::{Buffers, Use, Views};
 pub use pacing::Work;
 pub use properties::{LayerState, Layers};

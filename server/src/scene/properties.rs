@@ -90,6 +90,10 @@ fn apply_one(st: &mut State, c: &Change, damage: &mut Region) -> Result<(), Chan
             s.props.opacity = *opacity;
             *damage = damage.with(s.rect);
         }
+        Change::InputAcceptance { surface: id, accepts } => {
+            // Nothing changes on the output.
+            surface(st, *id)?.props.input = *accepts;
+        }
         Change::SourceRegion { surface: id, region } => {
             let s = surface(st, *id)?;
             s.props.source = Some(*region);
