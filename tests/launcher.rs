@@ -119,3 +119,22 @@ fn run_starts_an_unmodified_application_on_the_drop_in_libraries() {
     let out = run(&gl, &daemon.socket, &x.display, &[]).output().expect("stratad run");
     assert!(!out.status.success(), "stratad run without an application succeeded");
 }
+
+#[test]
+fn run_asks_qt_for_the_core_input_events_the_library_sends() {
+    let tmp = TempDir::new("launcher-qt");
+    let gl = support::shim_dir(&tmp);
+    let env = |preset: Option<&str>| {
+        let mut cmd = Command::new(support::stratad());
+        cmd.args(["run", "--", "/bin/sh", "-c", "printf %s \"$QT_XCB_NO_XI2\""]).env("STRATA_GL_DIR", &gl);
+        match preset {
+            Some(v) => cmd.env("QT_XCB_NO_XI2", v),
+            None => cmd.env_remove("QT_XCB_NO_XI2"),
+        };
+        let out = cmd.output().expect("stratad run");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    assert_eq!(env(None), "1");
+    assert_eq!(env(Some("0")), "0", "a value the user set is kept");
+}

@@ -6,6 +6,7 @@ mod composite;
 mod control;
 mod execute;
 mod glmark2;
+mod input;
 mod interference;
 mod interference_client;
 mod mesh;
@@ -98,6 +99,10 @@ enum Cmd {
     Control(control::Args),
     #[command(hide = true)]
     ControlClient(control::ClientArgs),
+    /// Input routing under load: a tap's time from arrival to the client's queue with 8
+    /// clients drawing (against none drawing), and the refreshes until the client's reaction
+    /// shows on the output.
+    Input(input::Args),
 }
 
 fn main() -> Result<()> {
@@ -141,5 +146,6 @@ fn main() -> Result<()> {
         Cmd::Precision(args) => precision::run(&args),
         Cmd::Control(args) => control::run(&args),
         Cmd::ControlClient(args) => control::client(&args),
+        Cmd::Input(args) => input::run(&args),
     }
 }

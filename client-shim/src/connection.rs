@@ -14,6 +14,8 @@ use strata_protocol::handshake::{
     self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, VertexWire, PROTOCOL_VERSION,
 };
 use strata_protocol::input::InputEvent;
+
+use crate::input::InputReader;
 use strata_protocol::ring::{Reader, RingError, Writer};
 use strata_protocol::segment::{Segment, SegmentError};
 use strata_protocol::tally::Tally;
@@ -99,8 +101,8 @@ pub struct Connection {
     client_id: u64,
     vertex_wire: VertexWire,
     _segment: Segment,
-    /// Bytes of input events read from the socket but not yet whole.
-    input: Vec<u8>,
+    /// Reads the input events the daemon sends on the socket.
+    input: Option<InputReader>,
 }
 
 /// Whether the daemon's end of the client socket is still open (input events it sent and
@@ -161,7 +163,9 @@ impl Connection {
         let segment = Segment::open(fd, cmd_capacity, reply_capacity)?;
         handshake::write_message(&mut stream, &ClientMessage::Mapped)?;
         stream.set_read_timeout(None).map_err(HandshakeError::Io)?;
+        let input = Some(InputReader::new(&stream)?);
         Ok(Connection {
+            input,
             commands: Writer::new(segment.command_ring()?, opts.batch_bytes),
             replies: Reader::new(segment.reply_ring()?, MAX_MESSAGE_LEN),
             stream,
@@ -169,7 +173,6 @@ impl Connection {
             client_id,
             vertex_wire,
             _segment: segment,
-            input: Vec::new(),
         })
     }
 
@@ -202,57 +205,19 @@ impl Connection {
 
     /// The next input event the daemon sent for this client's surfaces, waiting at most
     /// `timeout` for one (`None`: none came). Events must be read: the daemon disconnects a
-    /// client that lets 1,024 of them pile up beyond what its socket holds.
+    /// client that lets 1,024 of them pile up beyond what its socket holds. An error once the
+    /// reader was handed off ([`Connection::take_input_reader`]).
     pub fn next_input(&mut self, timeout: Duration) -> Result<Option<InputEvent>, ClientError> {
-        let deadline = std::time::Instant::now() + timeout;
-        loop {
-            if let Some(e) = self.take_input()? {
-                return Ok(Some(e));
-            }
-            let left = deadline.saturating_duration_since(std::time::Instant::now());
-            let mut p = libc::pollfd { fd: self.stream.as_raw_fd(), events: libc::POLLIN, revents: 0 };
-            let ms = i32::try_from(left.as_millis()).unwrap_or(i32::MAX);
-            // SAFETY: polls one descriptor the connection owns.
-            let n = unsafe { libc::poll(&mut p, 1, ms) };
-            if n == 0 {
-                return Ok(None);
-            }
-            if n < 0 {
-                let e = std::io::Error::last_os_error();
-                if e.kind() == std::io::ErrorKind::Interrupted {
-                    continue;
-                }
-                return Err(HandshakeError::Io(e).into());
-            }
-            let mut buf = [0u8; 4096];
-            // SAFETY: reads into a local buffer of its length, without waiting.
-            let got = unsafe { libc::recv(p.fd, buf.as_mut_ptr().cast(), buf.len(), libc::MSG_DONTWAIT) };
-            match got {
-                0 => return Err(HandshakeError::Io(std::io::ErrorKind::UnexpectedEof.into()).into()),
-                n if n > 0 => self.input.extend_from_slice(&buf[..n as usize]),
-                _ => {
-                    let e = std::io::Error::last_os_error();
-                    if !matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::Interrupted) {
-                        return Err(HandshakeError::Io(e).into());
-                    }
-                }
-            }
+        match &mut self.input {
+            Some(r) => r.next(timeout),
+            None => Err(ClientError::Unexpected("this connection's input reader was handed off".into())),
         }
     }
 
-    /// A whole event from what was read, if there is one.
-    fn take_input(&mut self) -> Result<Option<InputEvent>, ClientError> {
-        let Some(prefix) = self.input.first_chunk::<4>() else { return Ok(None) };
-        let len = handshake::frame_len(*prefix)?;
-        if self.input.len() < 4 + len {
-            return Ok(None);
-        }
-        let msg: ServerMessage = codec::decode_trusted(&self.input[4..4 + len], "input event")?;
-        self.input.drain(..4 + len);
-        match msg {
-            ServerMessage::Input(e) => Ok(Some(e)),
-            other => Err(ClientError::Unexpected(format!("{other:?} after the welcome"))),
-        }
+    /// Hands off the reading of input events, for a thread of their own (`None` if already
+    /// handed off).
+    pub fn take_input_reader(&mut self) -> Option<InputReader> {
+        self.input.take()
     }
 }
 

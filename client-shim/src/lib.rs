@@ -4,6 +4,7 @@
 
 pub mod connection;
 pub mod control;
+pub mod input;
 pub mod setup;
 pub mod vertex_wire;
 pub mod workload;

@@ -100,6 +100,10 @@ pub struct InputOutcome {
     pub surface: Option<u64>,
     /// Why they were dropped, when they were.
     pub dropped: Option<String>,
+    /// Microseconds from the request's arrival on the control connection to its first event
+    /// in the client's queue (when one was queued).
+    #[serde(default)]
+    pub queued_us: Option<u64>,
 }
 
 /// One event the daemon delivers to a client, on its client socket.

@@ -96,6 +96,11 @@ pub fn run(args: RunArgs) -> Result<()> {
     if let Some(s) = args.socket {
         cmd.env("STRATA_SOCKET", s);
     }
+    // The drop-in library delivers input as core X11 events; Qt 5 reads only XInput 2 events
+    // where the server has them, unless told to use core events.
+    if std::env::var_os("QT_XCB_NO_XI2").is_none() {
+        cmd.env("QT_XCB_NO_XI2", "1");
+    }
     let err = cmd.exec();
     Err(err).with_context(|| format!("starting {}", Path::new(program).display()))
 }

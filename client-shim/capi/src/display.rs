@@ -108,6 +108,11 @@ fn connect(p: &mut Process) -> Result<(), EGLint> {
         EGL_NOT_INITIALIZED
     })?;
     let reconnect = p.lost;
+    // Input events for the application's windows are read, and sent on as X11 events, by a
+    // thread of their own.
+    if let Some(reader) = conn.take_input_reader() {
+        crate::input::start(reader);
+    }
     let (contexts, surfaces) = p.install_connection(conn, dd);
     if reconnect {
         tracing::warn!(

@@ -16,6 +16,7 @@ pub mod egl;
 pub mod gl;
 mod glvnd;
 pub mod glx;
+mod input;
 mod state;
 mod surface;
 mod types;

@@ -94,6 +94,14 @@ pub(crate) fn create_window(dpy: EGLDisplay, config: u32, win: u64, attribs: Vec
         c.eglCreateWindowSurface(dd, config, win, place.x, place.y, place.z, w, h, Slice::new(&attribs))
     })?;
     WINDOWS_MADE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    if from_x.is_some() {
+        // Input for the surface goes to its X window.
+        let id = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, s, strata_protocol::surface_id::EGL_SURFACE_ID_STRATA));
+        match id.ok().and_then(|id| u64::try_from(id).ok()) {
+            Some(id) => crate::input::remember(id, win),
+            None => tracing::debug!("strata-egl: no surface ID for window {win:#x}; it gets no input"),
+        }
+    }
     // Only a surface sized from its X window follows that window.
     let window = from_x.map(|size| WindowInfo { native: win, size });
     Ok(p.add_surface(d, s, window))

@@ -56,11 +56,11 @@ pub struct Context<'a> {
 }
 
 fn dropped(why: String) -> InputOutcome {
-    InputOutcome { surface: None, dropped: Some(why) }
+    InputOutcome { surface: None, dropped: Some(why), queued_us: None }
 }
 
 fn to(surface: u64) -> InputOutcome {
-    InputOutcome { surface: Some(surface), dropped: None }
+    InputOutcome { surface: Some(surface), dropped: None, queued_us: None }
 }
 
 impl Router {
@@ -163,6 +163,8 @@ impl Router {
         let Some(t) = cx.root.pick(p)? else {
             return Ok(dropped(format!("no surface that accepts input is shown at ({}, {})", p[0], p[1])));
         };
+        // The surface pressed on takes the focus first, so that the press finds it focused.
+        self.set_focus(cx, output, t.surface);
         let [x, y] = t.local;
         if !(cx.deliver)(t.client, InputEvent::Point { surface: t.surface, device, id, phase: Phase::Down, x, y }) {
             return Ok(dropped(format!("surface {}'s client is gone", t.surface)));
@@ -170,7 +172,6 @@ impl Router {
         if let Ok(mut s) = self.state.lock() {
             s.grabs.insert((output.to_string(), device, id), Grab { surface: t.surface, at: p });
         }
-        self.set_focus(cx, output, t.surface);
         Ok(to(t.surface))
     }
 

@@ -3,9 +3,11 @@
 
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
+use std::time::Instant;
 
 use strata_protocol::control::Peer;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_protocol::input::InputOutcome;
 use strata_protocol::json_control::{self, Greeting, Opening, CONTROL_VERSION, MAX_REQUEST_LINE};
 use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWriteExt, BufReader};
 use tokio::net::unix::{OwnedReadHalf, OwnedWriteHalf};
@@ -93,7 +95,8 @@ pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64
             }
             Ok(req) => {
                 let shared2 = shared.clone();
-                tokio::task::spawn_blocking(move || control(&shared2, req))
+                let arrived = Instant::now();
+                tokio::task::spawn_blocking(move || control(&shared2, req, arrived))
                     .await
                     .unwrap_or_else(|e| ControlReply::Error(format!("control request failed: {e}")))
             }
@@ -119,23 +122,27 @@ fn output_rows(shared: &Shared) -> Vec<strata_protocol::control::OutputRow> {
     rows
 }
 
-/// Routes an input request (`ctl input`).
-fn input(shared: &Shared, req: &strata_protocol::input::InputRequest) -> ControlReply {
+/// Routes an input request (`ctl input`) that arrived at `arrived`.
+fn input(shared: &Shared, req: &strata_protocol::input::InputRequest, arrived: Instant) -> ControlReply {
     let Some(root) = &shared.root else {
         return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
     };
+    let queued = std::cell::Cell::new(None);
     let deliver = |client: u64, e| {
         let queue = shared.clients.lock().ok().and_then(|c| c.get(&client).map(|c| c.events.clone()));
         // A full queue disconnects its client (its connection sees the overflow); the event
         // counts as delivered to it, never to another.
         queue.is_some_and(|q| {
             let _ = q.push(e);
+            if queued.get().is_none() {
+                queued.set(Some(arrived.elapsed().as_micros() as u64));
+            }
             true
         })
     };
     let cx = crate::input::Context { root, scene: &shared.scene, deliver: &deliver };
     match shared.input.handle(&cx, req) {
-        Ok(outcome) => ControlReply::Input(outcome),
+        Ok(outcome) => ControlReply::Input(InputOutcome { queued_us: queued.get(), ..outcome }),
         Err(e) => ControlReply::Error(e),
     }
 }
@@ -150,7 +157,8 @@ fn list(shared: &Shared) -> ControlReply {
     }
 }
 
-fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
+/// Answers one request, which arrived at `arrived`.
+fn control(shared: &Shared, req: ControlRequest, arrived: Instant) -> ControlReply {
     match req {
         ControlRequest::List => list(shared),
         ControlRequest::Apply { changes } => match shared.scene.apply(&changes) {
@@ -254,7 +262,7 @@ fn control(shared: &Shared, req: ControlRequest) -> ControlReply {
                 list(shared)
             }
         },
-        ControlRequest::Input(req) => input(shared, &req),
+        ControlRequest::Input(req) => input(shared, &req, arrived),
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);
