@@ -9,23 +9,20 @@ use std::time::{Duration, Instant};
 use strata_client::setup::{egl_context, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
+use strata_protocol::input::{InputEvent, Phase};
 use support::{Daemon, Xvfb};
 use x11_dl::xlib;
 
 const W: u32 = 320;
 const H: u32 = 200;
 
-/// The RGB pixels of the top-level window named `name` on `display`, read from the X server.
-fn x_window_pixels(display: &str, name: &str) -> Result<Vec<[u8; 3]>, String> {
-    let x = xlib::Xlib::open().map_err(|e| format!("libX11: {e}"))?;
-    let disp_name = CString::new(display).map_err(|e| e.to_string())?;
-    // SAFETY: plain Xlib calls on a display this function opens and closes; every pointer
-    // Xlib returns is checked before use and freed with the matching Xlib call.
+/// The top-level window named `name`.
+///
+/// # Safety
+/// `dpy` is an open display of `x`.
+unsafe fn find_window(x: &xlib::Xlib, dpy: *mut xlib::Display, name: &str) -> Option<xlib::Window> {
+    // SAFETY: Xlib queries on an open display; what Xlib returns is checked and freed.
     unsafe {
-        let dpy = (x.XOpenDisplay)(disp_name.as_ptr());
-        if dpy.is_null() {
-            return Err(format!("cannot open display {display}"));
-        }
         let root = (x.XDefaultRootWindow)(dpy);
         let (mut r, mut p, mut kids, mut n) = (0, 0, std::ptr::null_mut(), 0u32);
         (x.XQueryTree)(dpy, root, &mut r, &mut p, &mut kids, &mut n);
@@ -43,7 +40,51 @@ fn x_window_pixels(display: &str, name: &str) -> Result<Vec<[u8; 3]>, String> {
         if !kids.is_null() {
             (x.XFree)(kids.cast());
         }
-        let Some(win) = found else {
+        found
+    }
+}
+
+/// Clicks button 1 at (`at`) in the window named `name` through the X server's XTEST extension,
+/// as a user's pointer would.
+fn click_in_window(display: &str, name: &str, at: (i32, i32)) -> Result<(), String> {
+    let x = xlib::Xlib::open().map_err(|e| format!("libX11: {e}"))?;
+    let xt = x11_dl::xtest::Xf86vmode::open().map_err(|e| format!("libXtst: {e}"))?;
+    let disp_name = CString::new(display).map_err(|e| e.to_string())?;
+    // SAFETY: Xlib and XTEST calls on a display this function opens and closes.
+    unsafe {
+        let dpy = (x.XOpenDisplay)(disp_name.as_ptr());
+        if dpy.is_null() {
+            return Err(format!("cannot open display {display}"));
+        }
+        let Some(win) = find_window(&x, dpy, name) else {
+            (x.XCloseDisplay)(dpy);
+            return Err(format!("no window named {name}"));
+        };
+        let (mut rx, mut ry, mut child) = (0, 0, 0);
+        (x.XTranslateCoordinates)(dpy, win, (x.XDefaultRootWindow)(dpy), at.0, at.1, &mut rx, &mut ry, &mut child);
+        (xt.XTestFakeMotionEvent)(dpy, -1, rx, ry, 0);
+        (x.XSync)(dpy, 0);
+        std::thread::sleep(Duration::from_millis(100));
+        (xt.XTestFakeButtonEvent)(dpy, 1, 1, 0);
+        (xt.XTestFakeButtonEvent)(dpy, 1, 0, 0);
+        (x.XSync)(dpy, 0);
+        (x.XCloseDisplay)(dpy);
+    }
+    Ok(())
+}
+
+/// The RGB pixels of the top-level window named `name` on `display`, read from the X server.
+fn x_window_pixels(display: &str, name: &str) -> Result<Vec<[u8; 3]>, String> {
+    let x = xlib::Xlib::open().map_err(|e| format!("libX11: {e}"))?;
+    let disp_name = CString::new(display).map_err(|e| e.to_string())?;
+    // SAFETY: plain Xlib calls on a display this function opens and closes; every pointer
+    // Xlib returns is checked before use and freed with the matching Xlib call.
+    unsafe {
+        let dpy = (x.XOpenDisplay)(disp_name.as_ptr());
+        if dpy.is_null() {
+            return Err(format!("cannot open display {display}"));
+        }
+        let Some(win) = find_window(&x, dpy, name) else {
             (x.XCloseDisplay)(dpy);
             return Err(format!("no window named {name}"));
         };
@@ -115,6 +156,26 @@ fn window_output_shows_the_composited_image() {
     match ctl.request(&ControlRequest::List).expect("list") {
         ControlReply::List { outputs, .. } => assert_eq!(outputs[0].kind, "window"),
         other => panic!("{other:?}"),
+    }
+    // A click in the window reaches the client whose surface is shown there, at the point in
+    // its own pixels: (60, 50) lies on w0 alone, 20 and 20 pixels into it.
+    let got = (|| {
+        click_in_window(&xvfb.display, "win", (60, 50))?;
+        let deadline = Instant::now() + Duration::from_secs(10);
+        let mut seen = Vec::new();
+        while Instant::now() < deadline {
+            match clients[0].next_input(Duration::from_millis(100)) {
+                Ok(Some(e @ InputEvent::Point { phase: Phase::Down, .. })) => return Ok(e),
+                Ok(Some(e)) => seen.push(e),
+                Ok(None) => {}
+                Err(e) => return Err(e.to_string()),
+            }
+        }
+        Err(format!("no press reached the client; it got {seen:?}"))
+    })();
+    match got {
+        Ok(e) => assert!(matches!(e, InputEvent::Point { x: 20.0, y: 20.0, .. }), "{e:?}"),
+        Err(e) => panic!("{e}"),
     }
     let deadline = Instant::now() + Duration::from_secs(10);
     loop {

@@ -12,6 +12,8 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::platform::x11::EventLoopBuilderExtX11;
 use winit::window::{Window, WindowId};
 
+use strata_protocol::input::InputRequest;
+
 use crate::gpu::Gpu;
 
 /// Why a window output could not be opened.
@@ -35,6 +37,9 @@ struct App {
     size: (u32, u32),
     tx: mpsc::Sender<Result<Arc<Window>, String>>,
     window: Option<Arc<Window>>,
+    /// Where the window's pointer, touch and key events go, as actions on its output.
+    input: Option<mpsc::Sender<InputRequest>>,
+    pointer: crate::input::window::PointerState,
 }
 
 impl ApplicationHandler for App {
@@ -60,6 +65,11 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, _: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        if let Some(tx) = &self.input {
+            for action in self.pointer.actions(&event) {
+                let _ = tx.send(InputRequest { output: self.title.clone(), action });
+            }
+        }
         if let WindowEvent::CloseRequested = event {
             // The output keeps compositing; only the daemon decides when it ends.
             info!(window = %self.title, "close requested; the output stays (stop stratad to close it)");
@@ -80,8 +90,15 @@ pub struct WindowOutput {
 const BLIT: &str = include_str!("../../shaders/blit.wgsl");
 
 impl WindowOutput {
-    /// Opens a `width`×`height` window titled `title` on the display in `$DISPLAY`.
-    pub fn open(gpu: &Gpu, title: &str, width: u32, height: u32) -> Result<WindowOutput, WindowError> {
+    /// Opens a `width`×`height` window titled `title` (the output's name) on the display in
+    /// `$DISPLAY`; its pointer, touch and key events go to `input` as actions on that output.
+    pub fn open(
+        gpu: &Gpu,
+        title: &str,
+        width: u32,
+        height: u32,
+        input: Option<mpsc::Sender<InputRequest>>,
+    ) -> Result<WindowOutput, WindowError> {
         if !display_available() {
             return Err(WindowError::NoDisplay("DISPLAY is not set".into()));
         }
@@ -97,7 +114,14 @@ impl WindowOutput {
                         return;
                     }
                 };
-                let mut app = App { title: app_title, size: (width, height), tx, window: None };
+                let mut app = App {
+                    title: app_title,
+                    size: (width, height),
+                    tx,
+                    window: None,
+                    input,
+                    pointer: Default::default(),
+                };
                 if let Err(e) = event_loop.run_app(&mut app) {
                     warn!("the output window's event loop ended: {e}");
                 }

@@ -7,6 +7,7 @@
 //! cannot be delivered is dropped and counted, never sent to another surface.
 
 pub mod queue;
+pub mod window;
 
 use std::collections::HashMap;
 use std::sync::Mutex;

@@ -147,6 +147,25 @@ fn input(shared: &Shared, req: &strata_protocol::input::InputRequest, arrived: I
     }
 }
 
+/// Routes the output windows' own input, as `ctl input` is routed, on a thread of its own
+/// until the daemon is gone.
+pub(super) fn route_window_input(
+    shared: std::sync::Weak<Shared>,
+    events: std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>,
+) {
+    let spawned = std::thread::Builder::new().name("window input".into()).spawn(move || {
+        while let Ok(req) = events.recv() {
+            let Some(shared) = shared.upgrade() else { return };
+            if let ControlReply::Error(e) = input(&shared, &req, Instant::now()) {
+                debug!(output = req.output, "window input: {e}");
+            }
+        }
+    });
+    if let Err(e) = spawned {
+        warn!("the output windows' input is not routed: {e}");
+    }
+}
+
 /// Every output, surface and layer.
 fn list(shared: &Shared) -> ControlReply {
     ControlReply::List {

@@ -71,18 +71,25 @@ pub(super) fn open(opts: &ServeOptions) -> Result<Doors, ServerError> {
         UnixListener::from_std(l).map_err(io_err("serving on an activated socket"))
     };
     let activated = (passed.client.is_some(), passed.control.is_some());
-    let client = match passed.client {
-        Some(l) => from_std(l)?,
-        None => claim_socket(&opts.socket, opts.client_group)?,
-    };
-    let client_path = path_of(&client, &opts.socket);
+    let passed_client = passed.client.map(from_std).transpose()?;
+    let client_path = passed_client.as_ref().map_or_else(|| opts.socket.clone(), |l| path_of(l, &opts.socket));
     let wanted =
         opts.control_socket.clone().unwrap_or_else(|| strata_protocol::handshake::control_socket_for(&client_path));
+    // The control socket is claimed first: whoever finds the client socket listening finds
+    // the control socket too.
     let control = match passed.control {
         Some(l) => from_std(l)?,
         None => claim_socket(&wanted, opts.control_group)?,
     };
     let control_path = path_of(&control, &wanted);
+    let client = match passed_client {
+        Some(l) => l,
+        None => claim_socket(&opts.socket, opts.client_group).inspect_err(|_| {
+            if !activated.1 {
+                let _ = std::fs::remove_file(&control_path);
+            }
+        })?,
+    };
     Ok(Doors { client, control, client_path, control_path, activated })
 }
 

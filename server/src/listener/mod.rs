@@ -339,6 +339,9 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         control_path: control_at,
         opts,
     });
+    if let Some(events) = shared.root.as_ref().and_then(|r| r.take_window_input()) {
+        control::route_window_input(Arc::downgrade(&shared), events);
+    }
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
     loop {

@@ -164,6 +164,8 @@ pub struct Root {
     wedged: std::sync::atomic::AtomicBool,
     /// Input routing's reads of the surfaces under a point (made when first needed).
     picker: Mutex<Option<pick::Picker>>,
+    /// The output windows' input, until the daemon takes it to route it.
+    window_input: Mutex<Option<std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>>>,
 }
 
 /// Why the root surface could not start.
@@ -201,14 +203,26 @@ impl Root {
             .with_intermediate(intermediate)
             .with_culling(cull);
         let mut made = Vec::new();
+        // The output windows' own input, routed as `ctl input` is.
+        let input = std::sync::mpsc::channel();
         for spec in outputs {
             let window = match spec.kind {
                 OutputKind::Headless => None,
-                OutputKind::Window => {
-                    Some(crate::window::WindowOutput::open(&gpu, &spec.name, spec.width, spec.height)?)
-                }
+                OutputKind::Window => Some(crate::window::WindowOutput::open(
+                    &gpu,
+                    &spec.name,
+                    spec.width,
+                    spec.height,
+                    Some(input.0.clone()),
+                )?),
                 OutputKind::Auto if crate::window::display_available() => {
-                    match crate::window::WindowOutput::open(&gpu, &spec.name, spec.width, spec.height) {
+                    match crate::window::WindowOutput::open(
+                        &gpu,
+                        &spec.name,
+                        spec.width,
+                        spec.height,
+                        Some(input.0.clone()),
+                    ) {
                         Ok(w) => Some(w),
                         Err(e) => {
                             warn!(output = %spec.name, "{e}; the output is headless");
@@ -241,6 +255,7 @@ impl Root {
             bands: BandOptions::default(),
             wedged: Default::default(),
             picker: Mutex::new(None),
+            window_input: Mutex::new(Some(input.1)),
         })
     }
 
@@ -535,6 +550,11 @@ impl Root {
             }
             info!("compositor stopped");
         })
+    }
+
+    /// The output windows' pointer, touch and key input as actions on their outputs (once).
+    pub fn take_window_input(&self) -> Option<std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>> {
+        self.window_input.lock().ok()?.take()
     }
 
     /// Stops the compositor loop and releases every waiting swap.
