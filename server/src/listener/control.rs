@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use strata_protocol::control::Peer;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
-use strata_protocol::input::InputOutcome;
 use strata_protocol::json_control::{self, Greeting, Opening, CONTROL_VERSION, MAX_REQUEST_LINE};
 use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWriteExt, BufReader};
 use tokio::net::unix::{OwnedReadHalf, OwnedWriteHalf};
@@ -93,6 +92,7 @@ pub(super) async fn serve_json(stream: UnixStream, shared: &Arc<Shared>, id: u64
                 super::watcher::watch(rd, wr, shared, id).await;
                 return;
             }
+            Ok(ControlRequest::Input(req)) => super::input::ask(shared, req).await,
             Ok(req) => {
                 let shared2 = shared.clone();
                 let arrived = Instant::now();
@@ -120,50 +120,6 @@ fn output_rows(shared: &Shared) -> Vec<strata_protocol::control::OutputRow> {
         o.focus = focus.get(&o.name).copied();
     }
     rows
-}
-
-/// Routes an input request (`ctl input`) that arrived at `arrived`.
-fn input(shared: &Shared, req: &strata_protocol::input::InputRequest, arrived: Instant) -> ControlReply {
-    let Some(root) = &shared.root else {
-        return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
-    };
-    let queued = std::cell::Cell::new(None);
-    let deliver = |client: u64, e| {
-        let queue = shared.clients.lock().ok().and_then(|c| c.get(&client).map(|c| c.events.clone()));
-        // A full queue disconnects its client (its connection sees the overflow); the event
-        // counts as delivered to it, never to another.
-        queue.is_some_and(|q| {
-            let _ = q.push(e);
-            if queued.get().is_none() {
-                queued.set(Some(arrived.elapsed().as_micros() as u64));
-            }
-            true
-        })
-    };
-    let cx = crate::input::Context { root, scene: &shared.scene, deliver: &deliver };
-    match shared.input.handle(&cx, req) {
-        Ok(outcome) => ControlReply::Input(InputOutcome { queued_us: queued.get(), ..outcome }),
-        Err(e) => ControlReply::Error(e),
-    }
-}
-
-/// Routes the output windows' own input, as `ctl input` is routed, on a thread of its own
-/// until the daemon is gone.
-pub(super) fn route_window_input(
-    shared: std::sync::Weak<Shared>,
-    events: std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>,
-) {
-    let spawned = std::thread::Builder::new().name("window input".into()).spawn(move || {
-        while let Ok(req) = events.recv() {
-            let Some(shared) = shared.upgrade() else { return };
-            if let ControlReply::Error(e) = input(&shared, &req, Instant::now()) {
-                debug!(output = req.output, "window input: {e}");
-            }
-        }
-    });
-    if let Err(e) = spawned {
-        warn!("the output windows' input is not routed: {e}");
-    }
 }
 
 /// Every output, surface and layer.
@@ -281,7 +237,7 @@ fn control(shared: &Shared, req: ControlRequest, arrived: Instant) -> ControlRep
                 list(shared)
             }
         },
-        ControlRequest::Input(req) => input(shared, &req, arrived),
+        ControlRequest::Input(req) => super::input::route(shared, &req, arrived),
         ControlRequest::Light(change) => match change.validate() {
             Ok(()) => {
                 let light = shared.scene.change_lighting(&change);

@@ -22,6 +22,7 @@ mod client;
 mod control;
 mod doors;
 mod export;
+mod input;
 mod watcher;
 
 /// How long a client may take over each handshake step.
@@ -225,6 +226,8 @@ struct Shared {
     pool: Arc<crate::quota::Pool>,
     /// Grabs and keyboard focus.
     input: crate::input::Router,
+    /// The input routing thread's queue.
+    router: Mutex<Option<std::sync::mpsc::Sender<input::Routed>>>,
     sessions: AtomicU64,
     /// Clients' devices open now (for `--max-client-devices`).
     client_devices: Arc<std::sync::atomic::AtomicUsize>,
@@ -324,6 +327,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     info!(socket = %at.display(), control = %control_at.display(), activated, watchdog_ms, "stratad serving");
     crate::systemd::ready(&format!("serving on {}", at.display()));
     let (stop_tx, stop_rx) = watch::channel(false);
+    let (to_router, routed) = std::sync::mpsc::channel();
     let shared = Arc::new(Shared {
         gpu,
         scene,
@@ -332,6 +336,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
         input: Default::default(),
+        router: Mutex::new(Some(to_router)),
         sessions: AtomicU64::new(0),
         client_devices: Arc::default(),
         shutdown: stop_rx,
@@ -339,9 +344,8 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         control_path: control_at,
         opts,
     });
-    if let Some(events) = shared.root.as_ref().and_then(|r| r.take_window_input()) {
-        control::route_window_input(Arc::downgrade(&shared), events);
-    }
+    let window_input = shared.root.as_ref().and_then(|r| r.take_window_input());
+    input::start(Arc::downgrade(&shared), routed, window_input);
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
     loop {

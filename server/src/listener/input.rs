@@ -1,0 +1,93 @@
+//! Input routing's thread: `ctl input` requests and the output windows' own input are routed
+//! one after another on a thread at the high class's CPU priority, so that a busy machine
+//! delays a tap as little as it delays the compositor.
+
+use std::sync::mpsc;
+use std::sync::{Arc, Weak};
+use std::time::Instant;
+
+use strata_protocol::handshake::ControlReply;
+use strata_protocol::input::{InputOutcome, InputRequest};
+use tokio::sync::oneshot;
+use tracing::{debug, warn};
+
+use super::Shared;
+
+/// One request for the routing thread: what, when it arrived, and where the answer goes.
+pub(super) type Routed = (InputRequest, Instant, Option<oneshot::Sender<ControlReply>>);
+
+/// Routes an input request that arrived at `arrived`: where its events went, or why none did.
+pub(super) fn route(shared: &Shared, req: &InputRequest, arrived: Instant) -> ControlReply {
+    let Some(root) = &shared.root else {
+        return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
+    };
+    let queued = std::cell::Cell::new(None);
+    let deliver = |client: u64, e| {
+        let queue = shared.clients.lock().ok().and_then(|c| c.get(&client).map(|c| c.events.clone()));
+        // A full queue disconnects its client (its connection sees the overflow); the event
+        // counts as delivered to it, never to another.
+        queue.is_some_and(|q| {
+            let _ = q.push(e);
+            if queued.get().is_none() {
+                queued.set(Some(arrived.elapsed().as_micros() as u64));
+            }
+            true
+        })
+    };
+    let cx = crate::input::Context { root, scene: &shared.scene, deliver: &deliver };
+    match shared.input.handle(&cx, req) {
+        Ok(outcome) => ControlReply::Input(InputOutcome { queued_us: queued.get(), ..outcome }),
+        Err(e) => ControlReply::Error(e),
+    }
+}
+
+/// Hands a control connection's input request to the routing thread and waits for its answer.
+pub(super) async fn ask(shared: &Arc<Shared>, req: InputRequest) -> ControlReply {
+    let (tx, rx) = oneshot::channel();
+    let sent = shared.router.lock().ok().and_then(|r| r.as_ref().map(|r| r.send((req, Instant::now(), Some(tx)))));
+    if !matches!(sent, Some(Ok(()))) {
+        return ControlReply::Error("input routing is unavailable".into());
+    }
+    rx.await.unwrap_or_else(|_| ControlReply::Error("input routing is unavailable".into()))
+}
+
+/// Starts the routing thread for `requests`, and a thread that passes the output windows'
+/// `window` input on to it; both end with the daemon.
+pub(super) fn start(
+    shared: Weak<Shared>,
+    requests: mpsc::Receiver<Routed>,
+    window: Option<mpsc::Receiver<InputRequest>>,
+) {
+    let to_router = shared.upgrade().and_then(|s| s.router.lock().ok().and_then(|r| r.clone()));
+    let routing = std::thread::Builder::new().name("input".into()).spawn(move || {
+        crate::gpu::set_thread_class(strata_protocol::control::Priority::High);
+        while let Ok((req, arrived, reply)) = requests.recv() {
+            let Some(shared) = shared.upgrade() else { return };
+            let answer = route(&shared, &req, arrived);
+            match reply {
+                Some(tx) => {
+                    let _ = tx.send(answer);
+                }
+                None => {
+                    if let ControlReply::Error(e) = answer {
+                        debug!(output = req.output, "window input: {e}");
+                    }
+                }
+            }
+        }
+    });
+    if let Err(e) = routing {
+        warn!("input is not routed: {e}");
+    }
+    let (Some(window), Some(to_router)) = (window, to_router) else { return };
+    let passing = std::thread::Builder::new().name("window input".into()).spawn(move || {
+        while let Ok(req) = window.recv() {
+            if to_router.send((req, Instant::now(), None)).is_err() {
+                return;
+            }
+        }
+    });
+    if let Err(e) = passing {
+        warn!("the output windows' input is not routed: {e}");
+    }
+}
