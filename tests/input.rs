@@ -15,6 +15,7 @@ use std::time::Duration;
 
 use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
+use strata_protocol::events::Event;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_protocol::input::{Action, Device, InputEvent, InputOutcome, InputRequest, Phase};
 use strata_protocol::{Blob, Slice, Text};
@@ -374,6 +375,28 @@ fn keys_and_text_go_to_the_focused_surface_only() {
     let clients: Vec<Client> = [IC, HU].iter().map(|s| Client::start(&socket, *s, true)).collect();
     let ids = b.ids();
     let (ic, hu) = (ids["ic"], ids["hu"]);
+    // `ctl watch` reports focus changes.
+    let watcher = ControlConnection::connect_beside(&socket).expect("control");
+    let (focus_tx, focus_changes) = channel();
+    std::thread::spawn(move || {
+        for e in watcher.watch().expect("watch").map_while(Result::ok) {
+            let seen = match e {
+                Event::Focus { output, surface } => (output, surface),
+                Event::Changed(_) => ("changed".to_string(), None),
+                _ => continue,
+            };
+            if focus_tx.send(seen).is_err() {
+                return;
+            }
+        }
+    });
+    // Once the watcher sees a change, it is watching.
+    let marker = strata_protocol::properties::Change::InputAcceptance { surface: ic, accepts: true };
+    while {
+        b.change(marker.clone());
+        focus_changes.recv_timeout(Duration::from_millis(200)).is_err()
+    } {}
+    while focus_changes.recv_timeout(Duration::from_millis(100)).is_ok() {}
     assert!(b.input(Action::Key { name: "Return".into() }).expect("key").dropped.is_some(), "no focus yet");
     // A tap on ic focuses it.
     assert_eq!(b.tap(30.0, 50.0), Some(ic));
@@ -397,6 +420,9 @@ fn keys_and_text_go_to_the_focused_surface_only() {
         ControlReply::List { outputs, .. } => assert_eq!(outputs[0].focus, Some(hu)),
         other => panic!("{other:?}"),
     }
+    let watched: Vec<(String, Option<u64>)> =
+        (0..2).map(|_| focus_changes.recv_timeout(Duration::from_secs(5)).expect("a focus event")).collect();
+    assert_eq!(watched, vec![("main".to_string(), Some(ic)), ("main".to_string(), Some(hu))]);
 }
 
 #[test]

@@ -112,7 +112,7 @@ pub fn client(args: &ClientArgs) -> Result<()> {
 }
 
 /// p50, p99 and max of `v`, in the unit of its values.
-fn summary(mut v: Vec<f64>) -> [f64; 3] {
+pub(crate) fn summary(mut v: Vec<f64>) -> [f64; 3] {
     v.sort_by(f64::total_cmp);
     let at = |q: f64| v.get(((v.len().max(1) - 1) as f64 * q).round() as usize).copied().unwrap_or(0.0);
     [at(0.5), at(0.99), at(1.0)]

@@ -21,6 +21,7 @@ use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_protocol::input::{Action, InputEvent, InputRequest, Phase};
 
+use crate::control::summary;
 use crate::stratad::Stratad;
 
 /// `strata-bench input` options.
@@ -106,13 +107,6 @@ fn client(socket: PathBuf, i: u32, shared: Arc<Shared>, ready: std::sync::mpsc::
     if let Err(e) = run() {
         let _ = ready.send(Err(e));
     }
-}
-
-/// p50, p99 and max of `v`.
-fn summary(mut v: Vec<f64>) -> [f64; 3] {
-    v.sort_by(f64::total_cmp);
-    let at = |q: f64| v.get(((v.len().max(1) - 1) as f64 * q).round() as usize).copied().unwrap_or(0.0);
-    [at(0.5), at(0.99), at(1.0)]
 }
 
 /// Taps tile `i`'s centre; the daemon's `queued_us`.

@@ -63,6 +63,13 @@ pub enum Event {
         /// Frames swapped per second.
         fps: f64,
     },
+    /// An output's keyboard focus moved (a press on a surface, or `ctl input focus`).
+    Focus {
+        /// The output.
+        output: String,
+        /// The surface that has it now (`None`: none, its surface having gone).
+        surface: Option<u64>,
+    },
     /// The watcher fell behind by this many events and is dropped (the last line it gets).
     Dropped {
         /// Events it did not read in time.

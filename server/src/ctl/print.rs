@@ -227,6 +227,8 @@ pub fn event(e: &Event) -> String {
         Event::Frames { surface, frames, shown, deadline_misses, fps } => {
             format!("surface {surface}: {frames} frames, {shown} shown, {deadline_misses} missed, {fps:.1} fps")
         }
+        Event::Focus { output, surface: Some(s) } => format!("output {output:?}: keyboard focus on surface {s}"),
+        Event::Focus { output, surface: None } => format!("output {output:?}: no keyboard focus"),
         Event::Dropped { missed } => format!("dropped by the daemon: {missed} events behind"),
     }
 }

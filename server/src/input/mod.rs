@@ -12,6 +12,7 @@ pub mod window;
 use std::collections::HashMap;
 use std::sync::Mutex;
 
+use strata_protocol::events::Event;
 use strata_protocol::input::{self, Action, Device, InputEvent, InputOutcome, InputRequest, Phase};
 use tracing::debug;
 
@@ -226,6 +227,7 @@ impl Router {
             if let Ok(mut s) = self.state.lock() {
                 s.focus.remove(output);
             }
+            cx.scene.emit(Event::Focus { output: output.to_string(), surface: None });
             return dropped(format!(
                 "surface {surface}, which had output {output:?}'s focus, is gone or takes no input"
             ));
@@ -244,6 +246,7 @@ impl Router {
         if old == Some(surface) {
             return;
         }
+        cx.scene.emit(Event::Focus { output: output.to_string(), surface: Some(surface) });
         if let Some((client, _)) = old.and_then(|o| cx.scene.surface_point(o, [0.0, 0.0])) {
             (cx.deliver)(client, InputEvent::Focus { surface: old.unwrap_or_default(), focused: false });
         }
