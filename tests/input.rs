@@ -446,6 +446,8 @@ fn bad_input_is_dropped_or_refused_and_reaches_no_other_surface() {
     assert!(dropped(b.input(Action::Move { device: Device::Pointer, id: 1, x: 5.0, y: 5.0 }).expect("move")));
     assert!(dropped(b.input(Action::Release { device: Device::Touch, id: 3 }).expect("release")));
     assert!(ic.drain(Duration::from_millis(300)).is_empty(), "ic got events it must not");
+    // Each dropped action is counted (the refused ones are not: they were never carried out).
+    assert_eq!(support::stats(&socket).input_dropped, 5, "dropped actions counted");
 
     // 10,000 motion events of one grab: merged where the client is behind, the press and
     // release never lost, the last position delivered.

@@ -360,6 +360,10 @@ pub struct DaemonStats {
     pub device_objects: BTreeMap<String, u64>,
     /// The compositor's device.
     pub compositor_device: Option<DeviceStats>,
+    /// `ctl input` actions (and output windows' input) whose events went nowhere: no surface
+    /// there, outside the output, nothing focused, a point not pressed, a grab's surface gone.
+    #[serde(default)]
+    pub input_dropped: u64,
 }
 
 /// One row of `stratad ctl list`: a window surface.

@@ -359,6 +359,7 @@ mod tests {
             objects: Default::default(),
             device_objects: Default::default(),
             compositor_device: Some(device),
+            input_dropped: 0,
         };
         for msg in [reply, ControlReply::Stats(stats)] {
             let framed = frame(&msg).expect("encode");

@@ -120,5 +120,7 @@ pub fn collect(
         objects,
         device_objects: gpu.map(device_objects).unwrap_or_default(),
         compositor_device: gpu.map(|g| device_stats(g, false)),
+        // Filled in by the listener, which routes input.
+        input_dropped: 0,
     }
 }

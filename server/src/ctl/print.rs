@@ -150,7 +150,13 @@ fn device_line(d: &strata_protocol::control::DeviceStats) -> String {
 }
 
 pub fn stats(s: &strata_protocol::control::DaemonStats) {
-    println!("daemon: rss {} (peak {}), {} sessions started", mib(s.rss_bytes), mib(s.peak_rss_bytes), s.sessions);
+    println!(
+        "daemon: rss {} (peak {}), {} sessions started, {} input actions dropped",
+        mib(s.rss_bytes),
+        mib(s.peak_rss_bytes),
+        s.sessions,
+        s.input_dropped
+    );
     println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
     let kinds: Vec<&String> = s.objects.keys().collect();
     print!(

@@ -112,6 +112,14 @@ fn outputs(shared: &Shared) -> Vec<[i32; 4]> {
     shared.root.as_ref().map(|r| r.rows().into_iter().map(|o| o.rect).collect()).unwrap_or_default()
 }
 
+/// The daemon's and its clients' resources, and the input it dropped.
+fn stats(shared: &Shared) -> strata_protocol::control::DaemonStats {
+    let clients = shared.clients.lock().map(|c| c.clone()).unwrap_or_default();
+    let sessions = shared.sessions.load(Ordering::Relaxed);
+    let s = crate::stats::collect(shared.gpu.as_deref(), &shared.pool, sessions, &clients, &shared.scene);
+    strata_protocol::control::DaemonStats { input_dropped: shared.input.dropped(), ..s }
+}
+
 /// Every output, with its keyboard focus.
 fn output_rows(shared: &Shared) -> Vec<strata_protocol::control::OutputRow> {
     let focus = shared.input.focus();
@@ -143,13 +151,7 @@ fn control(shared: &Shared, req: ControlRequest, arrived: Instant) -> ControlRep
             }
             Err(e) => ControlReply::Error(e.to_string()),
         },
-        ControlRequest::Stats => ControlReply::Stats(crate::stats::collect(
-            shared.gpu.as_deref(),
-            &shared.pool,
-            shared.sessions.load(Ordering::Relaxed),
-            &shared.clients.lock().map(|c| c.clone()).unwrap_or_default(),
-            &shared.scene,
-        )),
+        ControlRequest::Stats => ControlReply::Stats(stats(shared)),
         ControlRequest::Screenshot { output } => {
             let Some(root) = &shared.root else {
                 return ControlReply::Error("this daemon runs without a GPU, so it has no outputs".into());
@@ -207,13 +209,7 @@ fn control(shared: &Shared, req: ControlRequest, arrived: Instant) -> ControlRep
                 Some(gpu) => {
                     warn!(client, "destroying the client's device (fault injection)");
                     gpu.device.destroy();
-                    ControlReply::Stats(crate::stats::collect(
-                        shared.gpu.as_deref(),
-                        &shared.pool,
-                        shared.sessions.load(Ordering::Relaxed),
-                        &shared.clients.lock().map(|c| c.clone()).unwrap_or_default(),
-                        &shared.scene,
-                    ))
+                    ControlReply::Stats(stats(shared))
                 }
                 None => {
                     ControlReply::Error(format!("no client {client} with a device; `stratad ctl stats` shows them"))
