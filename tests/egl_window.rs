@@ -98,14 +98,7 @@ fn daemon_surfaces(socket: &std::path::Path, client: &str) -> usize {
 
 #[test]
 fn window_surfaces_follow_their_x_window() {
-    let x = match Xvfb::start(320, 240) {
-        Ok(x) => x,
-        Err(e) => {
-            assert!(!support::oracles_required(), "STRATA_REQUIRE_ORACLES is set: {e}");
-            eprintln!("skipping: {e}");
-            return;
-        }
-    };
+    let Some(x) = Xvfb::start_or_skip(320, 240) else { return };
     let daemon = Daemon::start("egl-window", &["--output", "headless:w=64x64"]);
     // SAFETY: set before this test binary's only test starts any thread that reads the
     // environment; the library reads it at eglInitialize.

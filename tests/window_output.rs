@@ -44,88 +44,87 @@ unsafe fn find_window(x: &xlib::Xlib, dpy: *mut xlib::Display, name: &str) -> Op
     }
 }
 
-/// Clicks button 1 at (`at`) in the window named `name` through the X server's XTEST extension,
-/// as a user's pointer would.
-fn click_in_window(display: &str, name: &str, at: (i32, i32)) -> Result<(), String> {
+/// Runs `f` on the top-level window named `name` of `display`, through a display connection
+/// opened for it and closed after.
+fn with_window<R>(
+    display: &str,
+    name: &str,
+    f: impl FnOnce(&xlib::Xlib, *mut xlib::Display, xlib::Window) -> Result<R, String>,
+) -> Result<R, String> {
     let x = xlib::Xlib::open().map_err(|e| format!("libX11: {e}"))?;
-    let xt = x11_dl::xtest::Xf86vmode::open().map_err(|e| format!("libXtst: {e}"))?;
     let disp_name = CString::new(display).map_err(|e| e.to_string())?;
-    // SAFETY: Xlib and XTEST calls on a display this function opens and closes.
+    // SAFETY: a display this function opens, used by `f` while open, and closed once.
     unsafe {
         let dpy = (x.XOpenDisplay)(disp_name.as_ptr());
         if dpy.is_null() {
             return Err(format!("cannot open display {display}"));
         }
-        let Some(win) = find_window(&x, dpy, name) else {
-            (x.XCloseDisplay)(dpy);
-            return Err(format!("no window named {name}"));
+        let r = match find_window(&x, dpy, name) {
+            Some(win) => f(&x, dpy, win),
+            None => Err(format!("no window named {name}")),
         };
-        let (mut rx, mut ry, mut child) = (0, 0, 0);
-        (x.XTranslateCoordinates)(dpy, win, (x.XDefaultRootWindow)(dpy), at.0, at.1, &mut rx, &mut ry, &mut child);
-        (xt.XTestFakeMotionEvent)(dpy, -1, rx, ry, 0);
-        (x.XSync)(dpy, 0);
-        std::thread::sleep(Duration::from_millis(100));
-        (xt.XTestFakeButtonEvent)(dpy, 1, 1, 0);
-        (xt.XTestFakeButtonEvent)(dpy, 1, 0, 0);
-        (x.XSync)(dpy, 0);
         (x.XCloseDisplay)(dpy);
+        r
     }
-    Ok(())
+}
+
+/// Clicks button 1 at (`at`) in the window named `name` through the X server's XTEST extension,
+/// as a user's pointer would.
+fn click_in_window(display: &str, name: &str, at: (i32, i32)) -> Result<(), String> {
+    let xt = x11_dl::xtest::Xf86vmode::open().map_err(|e| format!("libXtst: {e}"))?;
+    with_window(display, name, |x, dpy, win| {
+        // SAFETY: Xlib and XTEST calls on the open display `with_window` gives.
+        unsafe {
+            let (mut rx, mut ry, mut child) = (0, 0, 0);
+            (x.XTranslateCoordinates)(dpy, win, (x.XDefaultRootWindow)(dpy), at.0, at.1, &mut rx, &mut ry, &mut child);
+            (xt.XTestFakeMotionEvent)(dpy, -1, rx, ry, 0);
+            (x.XSync)(dpy, 0);
+            std::thread::sleep(Duration::from_millis(100));
+            (xt.XTestFakeButtonEvent)(dpy, 1, 1, 0);
+            (xt.XTestFakeButtonEvent)(dpy, 1, 0, 0);
+            (x.XSync)(dpy, 0);
+        }
+        Ok(())
+    })
 }
 
 /// The RGB pixels of the top-level window named `name` on `display`, read from the X server.
 fn x_window_pixels(display: &str, name: &str) -> Result<Vec<[u8; 3]>, String> {
-    let x = xlib::Xlib::open().map_err(|e| format!("libX11: {e}"))?;
-    let disp_name = CString::new(display).map_err(|e| e.to_string())?;
-    // SAFETY: plain Xlib calls on a display this function opens and closes; every pointer
-    // Xlib returns is checked before use and freed with the matching Xlib call.
-    unsafe {
-        let dpy = (x.XOpenDisplay)(disp_name.as_ptr());
-        if dpy.is_null() {
-            return Err(format!("cannot open display {display}"));
-        }
-        let Some(win) = find_window(&x, dpy, name) else {
-            (x.XCloseDisplay)(dpy);
-            return Err(format!("no window named {name}"));
-        };
-        let img = (x.XGetImage)(dpy, win, 0, 0, W, H, !0, xlib::ZPixmap);
-        if img.is_null() {
-            (x.XCloseDisplay)(dpy);
-            return Err("XGetImage failed".into());
-        }
-        let im = &*img;
-        let mut out = Vec::with_capacity((W * H) as usize);
-        let ok = im.bits_per_pixel == 32 && im.red_mask == 0xff0000 && im.green_mask == 0xff00 && im.blue_mask == 0xff;
-        if ok {
-            for y in 0..H as usize {
-                let row = im.data.cast::<u8>().add(y * im.bytes_per_line as usize);
-                for xx in 0..W as usize {
-                    let px = std::slice::from_raw_parts(row.add(xx * 4), 4);
-                    out.push([px[2], px[1], px[0]]);
+    with_window(display, name, |x, dpy, win| {
+        // SAFETY: Xlib calls on the open display `with_window` gives; the image Xlib returns is
+        // checked before use and freed with the matching Xlib call.
+        unsafe {
+            let img = (x.XGetImage)(dpy, win, 0, 0, W, H, !0, xlib::ZPixmap);
+            if img.is_null() {
+                return Err("XGetImage failed".into());
+            }
+            let im = &*img;
+            let mut out = Vec::with_capacity((W * H) as usize);
+            let ok =
+                im.bits_per_pixel == 32 && im.red_mask == 0xff0000 && im.green_mask == 0xff00 && im.blue_mask == 0xff;
+            if ok {
+                for y in 0..H as usize {
+                    let row = im.data.cast::<u8>().add(y * im.bytes_per_line as usize);
+                    for xx in 0..W as usize {
+                        let px = std::slice::from_raw_parts(row.add(xx * 4), 4);
+                        out.push([px[2], px[1], px[0]]);
+                    }
                 }
             }
+            let fmt = (im.bits_per_pixel, im.red_mask);
+            (x.XDestroyImage)(img);
+            if ok {
+                Ok(out)
+            } else {
+                Err(format!("unexpected X image format {fmt:?}"))
+            }
         }
-        let fmt = (im.bits_per_pixel, im.red_mask);
-        (x.XDestroyImage)(img);
-        (x.XCloseDisplay)(dpy);
-        if ok {
-            Ok(out)
-        } else {
-            Err(format!("unexpected X image format {fmt:?}"))
-        }
-    }
+    })
 }
 
 #[test]
 fn window_output_shows_the_composited_image() {
-    let xvfb = match Xvfb::start(640, 480) {
-        Ok(x) => x,
-        Err(e) if !support::oracles_required() => {
-            eprintln!("skipping: {e}");
-            return;
-        }
-        Err(e) => panic!("{e}, and STRATA_REQUIRE_ORACLES is set"),
-    };
+    let Some(xvfb) = Xvfb::start_or_skip(640, 480) else { return };
     let daemon = Daemon::start_with_env(
         "window",
         &["--output", &format!("window:win={W}x{H}")],

@@ -141,14 +141,7 @@ fn expect(rx: &Receiver<String>, want: &str) -> Vec<String> {
 
 #[test]
 fn an_unmodified_xlib_program_gets_input_at_its_own_coordinates() {
-    let x = match Xvfb::start(320, 240) {
-        Ok(x) => x,
-        Err(e) => {
-            assert!(!support::oracles_required(), "STRATA_REQUIRE_ORACLES is set: {e}");
-            eprintln!("skipping: {e}");
-            return;
-        }
-    };
+    let Some(x) = Xvfb::start_or_skip(320, 240) else { return };
     let daemon = Daemon::start("x11-input", &["--lighting", "off", "--output", "headless:main=320x240"]);
     let tmp = TempDir::new("x11-input");
     let mut child = Command::new(std::env::current_exe().expect("test binary"))

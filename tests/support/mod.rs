@@ -341,6 +341,21 @@ impl Xvfb {
     }
 }
 
+impl Xvfb {
+    /// Starts Xvfb as [`Xvfb::start`] does; where it cannot, `None` after saying why (the test
+    /// skips), or a panic when `STRATA_REQUIRE_ORACLES` is set.
+    pub fn start_or_skip(width: u32, height: u32) -> Option<Xvfb> {
+        match Xvfb::start(width, height) {
+            Ok(x) => Some(x),
+            Err(e) => {
+                assert!(!oracles_required(), "STRATA_REQUIRE_ORACLES is set: {e}");
+                eprintln!("skipping: {e}");
+                None
+            }
+        }
+    }
+}
+
 impl Drop for Xvfb {
     fn drop(&mut self) {
         let _ = self.child.kill();

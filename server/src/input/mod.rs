@@ -81,8 +81,7 @@ impl Router {
     /// or why they were dropped.
     pub fn handle(&self, cx: &Context<'_>, req: &InputRequest) -> Result<InputOutcome, String> {
         req.action.validate()?;
-        let rect = cx.root.output_rect(&req.output)?;
-        let output = cx.root.rows().into_iter().find(|o| o.rect == rect).map(|o| o.name).unwrap_or_default();
+        let (output, rect) = cx.root.output(&req.output)?;
         let global = |x: f32, y: f32| -> Result<[f32; 2], String> {
             if x < 0.0 || y < 0.0 || x >= rect[2] as f32 || y >= rect[3] as f32 {
                 return Err(format!("({x}, {y}) lies outside output {output:?} ({}x{})", rect[2], rect[3]));
@@ -247,8 +246,8 @@ impl Router {
             return;
         }
         cx.scene.emit(Event::Focus { output: output.to_string(), surface: Some(surface) });
-        if let Some((client, _)) = old.and_then(|o| cx.scene.surface_point(o, [0.0, 0.0])) {
-            (cx.deliver)(client, InputEvent::Focus { surface: old.unwrap_or_default(), focused: false });
+        if let Some((old, (client, _))) = old.and_then(|o| Some((o, cx.scene.surface_point(o, [0.0, 0.0])?))) {
+            (cx.deliver)(client, InputEvent::Focus { surface: old, focused: false });
         }
         if let Some(client) = cx.scene.input_client(surface) {
             (cx.deliver)(client, InputEvent::Focus { surface, focused: true });

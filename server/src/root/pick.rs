@@ -217,11 +217,12 @@ pub fn winner(cands: &[Candidate], readings: &[[f32; 2]]) -> Option<usize> {
 }
 
 impl Root {
-    /// The output named `name` (empty: the first): its rectangle in the output space.
-    pub fn output_rect(&self, name: &str) -> Result<[i32; 4], String> {
+    /// The output named `name` (empty: the first): its name and its rectangle in the output
+    /// space.
+    pub fn output(&self, name: &str) -> Result<(String, [i32; 4]), String> {
         let rows = self.rows();
         let row = if name.is_empty() { rows.first() } else { rows.iter().find(|o| o.name == name) };
-        row.map(|o| o.rect).ok_or_else(|| {
+        row.map(|o| (o.name.clone(), o.rect)).ok_or_else(|| {
             let names: Vec<&str> = rows.iter().map(|o| o.name.as_str()).collect();
             format!("no output named {name:?}; outputs: {}", names.join(", "))
         })
