@@ -121,6 +121,9 @@ enum Cmd {
         /// The class of clients the configuration does not name.
         #[command(flatten)]
         schedule: strata_server::schedule::ScheduleArgs,
+        /// Real input devices (libinput), off by default.
+        #[command(flatten)]
+        input: strata_server::input::libinput::InputArgs,
         /// Which device each client renders on: per-client (a device and instance of its
         /// own, at its class's priority; frames reach the compositor's device through shared
         /// memory) or shared (the compositor's, one queue for all).
@@ -315,6 +318,7 @@ fn main() -> Result<()> {
             mut layouts,
             quota,
             schedule,
+            input,
             devices,
             frame_transfer,
             no_global_priority,
@@ -393,6 +397,7 @@ fn main() -> Result<()> {
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
                 max_client_devices: (max_client_devices > 0).then_some(max_client_devices),
                 bands,
+                input,
             };
             run_daemon(opts)
         }

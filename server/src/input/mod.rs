@@ -6,6 +6,7 @@
 //! Events are queued per client (`queue`) and written to its socket by its connection; what
 //! cannot be delivered is dropped and counted, never sent to another surface.
 
+pub mod libinput;
 pub mod queue;
 pub mod window;
 

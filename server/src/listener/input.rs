@@ -12,6 +12,7 @@ use tokio::sync::oneshot;
 use tracing::{debug, warn};
 
 use super::Shared;
+use crate::input::libinput::{self, LibinputError, Source};
 
 /// One request for the routing thread: what, when it arrived, and where the answer goes.
 pub(super) type Routed = (InputRequest, Instant, Option<oneshot::Sender<ControlReply>>);
@@ -90,4 +91,29 @@ pub(super) fn start(
     if let Err(e) = passing {
         warn!("the output windows' input is not routed: {e}");
     }
+}
+
+/// Starts reading real input devices where `--input libinput` asks, their actions routed as
+/// the output windows' are; an error where they cannot be read.
+pub(super) fn start_devices(shared: &Arc<Shared>) -> Result<(), LibinputError> {
+    let args = &shared.opts.input;
+    if args.input == Source::None {
+        return Ok(());
+    }
+    let Some(root) = shared.root.clone() else {
+        return Err(LibinputError::Output("this daemon runs without a GPU, so it has no outputs".into()));
+    };
+    let (output, _) = root.output(&args.input_output).map_err(LibinputError::Output)?;
+    let to_router = shared.router.lock().ok().and_then(|r| r.clone());
+    let Some(to_router) = to_router else {
+        return Err(LibinputError::Thread("input routing is unavailable".into()));
+    };
+    let name = output.clone();
+    let size = move || {
+        let (_, r) = root.output(&name).ok()?;
+        Some((r[2].max(0) as u32, r[3].max(0) as u32))
+    };
+    let send =
+        move |action| to_router.send((InputRequest { output: output.clone(), action }, Instant::now(), None)).is_ok();
+    libinput::start(args, size, send)
 }

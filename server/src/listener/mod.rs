@@ -96,6 +96,8 @@ pub struct ServeOptions {
     pub max_client_devices: Option<usize>,
     /// When the compositor draws a lower-priority change band by band between refreshes.
     pub bands: crate::root::BandOptions,
+    /// Real input devices (`--input libinput`).
+    pub input: crate::input::libinput::InputArgs,
 }
 
 /// Which device each client renders on.
@@ -156,6 +158,7 @@ impl Default for ServeOptions {
             client_rasterizer_threads: Some(1),
             bands: crate::root::BandOptions::default(),
             max_client_devices: None,
+            input: crate::input::libinput::InputArgs::default(),
         }
     }
 }
@@ -184,6 +187,9 @@ pub enum ServerError {
     /// Ring sizes are unusable.
     #[error("ring capacity {0} must be a power of two between 4 KiB and 1 GiB")]
     BadRing(u32),
+    /// Input devices cannot be read as configured.
+    #[error(transparent)]
+    Input(#[from] crate::input::libinput::LibinputError),
     /// Socket I/O failed.
     #[error("{context}: {source}")]
     Io {
@@ -324,8 +330,6 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     let (at, control_at) = (doors.client_path.clone(), doors.control_path.clone());
     let activated = doors.activated.0;
     let watchdog_ms = watchdog.map(|w| w.as_millis() as u64);
-    info!(socket = %at.display(), control = %control_at.display(), activated, watchdog_ms, "stratad serving");
-    crate::systemd::ready(&format!("serving on {}", at.display()));
     let (stop_tx, stop_rx) = watch::channel(false);
     let (to_router, routed) = std::sync::mpsc::channel();
     let shared = Arc::new(Shared {
@@ -346,6 +350,16 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     });
     let window_input = shared.root.as_ref().and_then(|r| r.take_window_input());
     input::start(Arc::downgrade(&shared), routed, window_input);
+    if let Err(e) = input::start_devices(&shared) {
+        if let Some(r) = &shared.root {
+            r.stop();
+        }
+        doors::close(&doors);
+        return Err(e.into());
+    }
+    let (at, control_at) = (&shared.client_path, &shared.control_path);
+    info!(socket = %at.display(), control = %control_at.display(), activated, watchdog_ms, "stratad serving");
+    crate::systemd::ready(&format!("serving on {}", at.display()));
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
     loop {
