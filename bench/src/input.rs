@@ -109,17 +109,37 @@ fn client(socket: PathBuf, i: u32, shared: Arc<Shared>, ready: std::sync::mpsc::
     }
 }
 
-/// Taps tile `i`'s centre; the daemon's `queued_us`.
-fn tap(c: &mut ControlConnection, i: u32) -> Result<f64> {
+/// One tap's figures from the daemon: microseconds to the client's queue, and of those the
+/// wait on the compositor's device (when the pick read texels).
+#[derive(Clone, Copy)]
+struct Timed {
+    queued_us: f64,
+    device_us: Option<f64>,
+}
+
+/// Taps tile `i`'s centre; the daemon's `queued_us` and `device_us`.
+fn tap(c: &mut ControlConnection, i: u32) -> Result<Timed> {
     let at = (i as i32 * TILE + TILE / 2) as f32;
     let req = InputRequest { output: String::new(), action: Action::Tap { x: at, y: (TILE / 2) as f32 } };
     match c.request(&ControlRequest::Input(req))? {
         ControlReply::Input(o) => match (o.surface, o.queued_us) {
-            (Some(_), Some(us)) => Ok(us as f64),
+            (Some(_), Some(us)) => Ok(Timed { queued_us: us as f64, device_us: o.device_us.map(|d| d as f64) }),
             _ => bail!("a tap on tile {i} went nowhere: {o:?}"),
         },
         other => bail!("unexpected reply {other:?}"),
     }
+}
+
+/// p50, p99 and max of the taps' latency, of their device waits (taps that read texels), and
+/// of the latency less the device wait.
+fn figures(taps: &[Timed]) -> serde_json::Value {
+    let device: Vec<f64> = taps.iter().filter_map(|t| t.device_us).collect();
+    serde_json::json!({
+        "queued_us": summary(taps.iter().map(|t| t.queued_us).collect()),
+        "device_us": summary(device.clone()),
+        "device_reads": device.len(),
+        "without_device_us": summary(taps.iter().map(|t| t.queued_us - t.device_us.unwrap_or(0.0)).collect()),
+    })
 }
 
 /// Client 0's surface row: frames swapped and the newest a completed composite took.
@@ -186,7 +206,7 @@ pub fn run(args: &Args) -> Result<()> {
     let bar =
         if args.json { ProgressBar::hidden() } else { ProgressBar::new(u64::from(args.taps * 2 + args.reactions)) };
     bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")?);
-    let phase = |label: &str, c: &mut ControlConnection| -> Result<Vec<f64>> {
+    let phase = |label: &str, c: &mut ControlConnection| -> Result<Vec<Timed>> {
         bar.set_message(label.to_string());
         (0..args.taps)
             .map(|k| {
@@ -214,8 +234,10 @@ pub fn run(args: &Args) -> Result<()> {
     drop(daemon);
     let _ = std::fs::remove_dir_all(&dir);
 
-    let us = |v: Vec<f64>| summary(v);
-    let (idle_us, loaded_us) = (us(idle), us(loaded));
+    let (idle_fig, loaded_fig) = (figures(&idle), figures(&loaded));
+    let us = |v: &[Timed]| summary(v.iter().map(|t| t.queued_us).collect());
+    let (idle_us, loaded_us) = (us(&idle), us(&loaded));
+    let part = |f: &serde_json::Value, k: &str, i: usize| f[k][i].as_f64().unwrap_or(f64::NAN);
     let period = 1000.0 / args.refresh_hz;
     let react_ms = summary(reactions.clone());
     let react_refreshes = summary(reactions.iter().map(|t| t / period).collect());
@@ -226,6 +248,8 @@ pub fn run(args: &Args) -> Result<()> {
         "taps": args.taps,
         "queued_us_idle": idle_us,
         "queued_us_drawing": loaded_us,
+        "idle": idle_fig,
+        "drawing": loaded_fig,
         "drawing_over_idle_p99": loaded_us[1] / idle_us[1].max(1e-9),
         "reaction_ms": react_ms,
         "reaction_refreshes": react_refreshes,
@@ -243,6 +267,17 @@ pub fn run(args: &Args) -> Result<()> {
             idle_us[1],
             idle_us[2],
             loaded_us[1] / idle_us[1].max(1e-9)
+        );
+        println!(
+            "  of which the wait on the compositor's device for the texels ({} of {} taps read any): {:.0} / {:.0} / {:.0} µs; the rest {:.0} / {:.0} / {:.0} µs",
+            loaded_fig["device_reads"],
+            args.taps,
+            part(&loaded_fig, "device_us", 0),
+            part(&loaded_fig, "device_us", 1),
+            part(&loaded_fig, "device_us", 2),
+            part(&loaded_fig, "without_device_us", 0),
+            part(&loaded_fig, "without_device_us", 1),
+            part(&loaded_fig, "without_device_us", 2),
         );
         println!(
             "tap to the reaction on the output: {:.2} / {:.2} / {:.2} refreshes ({:.1} / {:.1} / {:.1} ms)",

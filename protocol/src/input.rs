@@ -104,6 +104,10 @@ pub struct InputOutcome {
     /// in the client's queue (when one was queued).
     #[serde(default)]
     pub queued_us: Option<u64>,
+    /// Of those, the microseconds a press waited on the compositor's device for the texels
+    /// under the point (when it read any: readings are kept until the scene changes).
+    #[serde(default)]
+    pub device_us: Option<u64>,
 }
 
 /// One event the daemon delivers to a client, on its client socket.

@@ -59,11 +59,11 @@ pub struct Context<'a> {
 }
 
 fn dropped(why: String) -> InputOutcome {
-    InputOutcome { surface: None, dropped: Some(why), queued_us: None }
+    InputOutcome { surface: None, dropped: Some(why), queued_us: None, device_us: None }
 }
 
 fn to(surface: u64) -> InputOutcome {
-    InputOutcome { surface: Some(surface), dropped: None, queued_us: None }
+    InputOutcome { surface: Some(surface), dropped: None, queued_us: None, device_us: None }
 }
 
 impl Router {
@@ -166,15 +166,20 @@ impl Router {
             return Ok(dropped(format!("no surface that accepts input is shown at ({}, {})", p[0], p[1])));
         };
         // The surface pressed on takes the focus first, so that the press finds it focused.
-        self.set_focus(cx, output, t.surface);
+        let lost = self.take_focus(cx, output, t.surface, Some(t.client));
         let [x, y] = t.local;
-        if !(cx.deliver)(t.client, InputEvent::Point { surface: t.surface, device, id, phase: Phase::Down, x, y }) {
+        let down =
+            (cx.deliver)(t.client, InputEvent::Point { surface: t.surface, device, id, phase: Phase::Down, x, y });
+        if let Some(lost) = lost {
+            self.tell_lost(cx, lost);
+        }
+        if !down {
             return Ok(dropped(format!("surface {}'s client is gone", t.surface)));
         }
         if let Ok(mut s) = self.state.lock() {
             s.grabs.insert((output.to_string(), device, id), Grab { surface: t.surface, at: p });
         }
-        Ok(to(t.surface))
+        Ok(InputOutcome { device_us: t.device_us, ..to(t.surface) })
     }
 
     /// A held point moves to `p`: its grab's surface gets it.
@@ -242,16 +247,31 @@ impl Router {
     /// Gives the output's focus to `surface`, telling the surface that loses it and the one
     /// that gets it.
     fn set_focus(&self, cx: &Context<'_>, output: &str, surface: u64) {
-        let Some(old) = self.state.lock().ok().map(|mut s| s.focus.insert(output.to_string(), surface)) else { return };
+        if let Some(lost) = self.take_focus(cx, output, surface, cx.scene.input_client(surface)) {
+            self.tell_lost(cx, lost);
+        }
+    }
+
+    /// Gives the output's focus to `surface`, and tells it (through `client`, its client);
+    /// the surface that lost the focus, which [`Router::tell_lost`] tells. A press tells the
+    /// surface pressed on first, without looking anything up in the scene, so that its focus
+    /// and its press are queued before another client's news.
+    fn take_focus(&self, cx: &Context<'_>, output: &str, surface: u64, client: Option<u64>) -> Option<u64> {
+        let old = self.state.lock().ok().map(|mut s| s.focus.insert(output.to_string(), surface))?;
         if old == Some(surface) {
-            return;
+            return None;
+        }
+        if let Some(client) = client {
+            (cx.deliver)(client, InputEvent::Focus { surface, focused: true });
         }
         cx.scene.emit(Event::Focus { output: output.to_string(), surface: Some(surface) });
-        if let Some((old, (client, _))) = old.and_then(|o| Some((o, cx.scene.surface_point(o, [0.0, 0.0])?))) {
-            (cx.deliver)(client, InputEvent::Focus { surface: old, focused: false });
-        }
-        if let Some(client) = cx.scene.input_client(surface) {
-            (cx.deliver)(client, InputEvent::Focus { surface, focused: true });
+        old
+    }
+
+    /// Tells surface `lost` it lost its output's focus, if it is still there.
+    fn tell_lost(&self, cx: &Context<'_>, lost: u64) {
+        if let Some((client, _)) = cx.scene.surface_point(lost, [0.0, 0.0]) {
+            (cx.deliver)(client, InputEvent::Focus { surface: lost, focused: false });
         }
     }
 }

@@ -164,6 +164,9 @@ pub struct Root {
     wedged: std::sync::atomic::AtomicBool,
     /// Input routing's reads of the surfaces under a point (made when first needed).
     picker: Mutex<Option<pick::Picker>>,
+    /// Each output's name and rectangle in the output space, fixed at start; read without the
+    /// compositor's lock, so that input routing never waits for a composite.
+    places: Vec<(String, [i32; 4])>,
     /// The output windows' input, until the daemon takes it to route it.
     window_input: Mutex<Option<std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>>>,
 }
@@ -248,9 +251,11 @@ impl Root {
             });
         }
         let inner = Inner { compositor, outputs: made, composited: None, bands: None, cost: Cost::default() };
+        let places = outputs.iter().map(|o| (o.name.clone(), [o.x, o.y, o.width as i32, o.height as i32])).collect();
         Ok(Root {
             gpu,
             scene,
+            places,
             inner: Mutex::new(inner),
             bands: BandOptions::default(),
             wedged: Default::default(),

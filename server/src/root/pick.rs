@@ -25,6 +25,8 @@ pub struct Target {
     pub client: u64,
     /// The point in its image's pixels, from the top-left corner.
     pub local: [f32; 2],
+    /// Microseconds the pick waited on the device for texels (`None`: all were kept).
+    pub device_us: Option<u64>,
 }
 
 /// The pick pipeline and the readings of the current scene.
@@ -94,13 +96,15 @@ impl Picker {
     }
 
     /// Window depth and alpha of each candidate's texel, read from the device where this
-    /// scene (`damage`) has not read them yet; `None` where the read fails.
-    fn read(&mut self, gpu: &Gpu, damage: u64, cands: &[Candidate]) -> Option<Vec<[f32; 2]>> {
+    /// scene (`damage`) has not read them yet, with the microseconds from submitting the read
+    /// to its results mapped (`None`: nothing was read); `None` where the read fails.
+    fn read(&mut self, gpu: &Gpu, damage: u64, cands: &[Candidate]) -> Option<(Vec<[f32; 2]>, Option<u64>)> {
         if damage != self.damage {
             self.readings.clear();
             self.damage = damage;
         }
         let missing: Vec<&Candidate> = cands.iter().filter(|c| !self.readings.contains_key(&(c.id, c.texel))).collect();
+        let mut waited = None;
         if !missing.is_empty() {
             let d = &gpu.device;
             // Each candidate's result at its own storage-aligned offset.
@@ -156,6 +160,7 @@ impl Picker {
                 }
             }
             enc.copy_buffer_to_buffer(&results, 0, &readback, 0, size);
+            let submitted = std::time::Instant::now();
             let index = gpu.queue.submit([enc.finish()]);
             let slice = readback.slice(..);
             let (tx, rx) = std::sync::mpsc::channel();
@@ -168,6 +173,7 @@ impl Picker {
             };
             let _ = d.poll(wait);
             rx.recv_timeout(std::time::Duration::from_secs(5)).ok()?.ok()?;
+            waited = Some(submitted.elapsed().as_micros() as u64);
             let data = slice.get_mapped_range().ok()?;
             let values: &[f32] = bytemuck::cast_slice(&data);
             let at = |i: usize| (stride as usize / 4) * i;
@@ -176,7 +182,8 @@ impl Picker {
             }
             self.reads += missing.len() as u64;
         }
-        cands.iter().map(|c| self.readings.get(&(c.id, c.texel)).copied()).collect()
+        let readings = cands.iter().map(|c| self.readings.get(&(c.id, c.texel)).copied()).collect::<Option<_>>()?;
+        Some((readings, waited))
     }
 }
 
@@ -220,18 +227,18 @@ impl Root {
     /// The output named `name` (empty: the first): its name and its rectangle in the output
     /// space.
     pub fn output(&self, name: &str) -> Result<(String, [i32; 4]), String> {
-        let rows = self.rows();
-        let row = if name.is_empty() { rows.first() } else { rows.iter().find(|o| o.name == name) };
-        row.map(|o| (o.name.clone(), o.rect)).ok_or_else(|| {
-            let names: Vec<&str> = rows.iter().map(|o| o.name.as_str()).collect();
+        let places = &self.places;
+        let place = if name.is_empty() { places.first() } else { places.iter().find(|(n, _)| n == name) };
+        place.cloned().ok_or_else(|| {
+            let names: Vec<&str> = places.iter().map(|(n, _)| n.as_str()).collect();
             format!("no output named {name:?}; outputs: {}", names.join(", "))
         })
     }
 
     /// The surface shown at point `p` (output space) that accepts input, if any.
     pub fn pick(&self, p: [f32; 2]) -> Result<Option<Target>, String> {
-        // No composite runs meanwhile: both mark the frames they read the same way.
-        let _composites = self.inner.lock().map_err(|_| "the compositor is unavailable")?;
+        // The frames stay marked as picked until the read completes, so that no client draws
+        // into them; a composite may read them meanwhile.
         let (damage, cands) = self.scene.input_candidates(p);
         if cands.is_empty() {
             return Ok(None);
@@ -240,11 +247,12 @@ impl Root {
         let picker = picker.get_or_insert_with(|| Picker::new(&self.gpu));
         let readings = picker.read(&self.gpu, damage, &cands);
         self.scene.end_input_read(&cands);
-        let readings = readings.ok_or("reading the surfaces' texels under the point failed")?;
+        let (readings, device_us) = readings.ok_or("reading the surfaces' texels under the point failed")?;
         Ok(winner(&cands, &readings).map(|i| Target {
             surface: cands[i].id,
             client: cands[i].client,
             local: cands[i].local,
+            device_us,
         }))
     }
 

@@ -69,7 +69,7 @@ impl SceneSurface {
 impl Scene {
     /// The surfaces that may be shown at point `p` of the output space and accept input, in
     /// stacking order: visible (with their layers), opacity above 0, with a frame, their
-    /// rectangle holding the point. Their frames are marked as read until
+    /// rectangle holding the point. Their frames are marked as picked until
     /// [`Scene::end_input_read`], so that no client draws into them meanwhile. With them, the
     /// damage count of the scene they belong to.
     pub fn input_candidates(&self, p: [f32; 2]) -> (u64, Vec<Candidate>) {
@@ -85,7 +85,7 @@ impl Scene {
             let (Some(color), Some(texel), Some(local)) = (s.color.clone(), s.texel_at(px), s.local_point(p)) else {
                 continue;
             };
-            s.buffers.read_latest();
+            s.buffers.pick_latest();
             out.push(Candidate {
                 id: s.id,
                 client: s.client_id,
@@ -108,7 +108,7 @@ impl Scene {
     pub fn end_input_read(&self, candidates: &[Candidate]) {
         if let Some(mut g) = self.lock() {
             for s in g.surfaces.values_mut().filter(|s| candidates.iter().any(|c| c.id == s.id)) {
-                s.buffers.done_reading();
+                s.buffers.done_picking();
             }
         }
         self.changed.notify_all();

@@ -8,8 +8,9 @@
 //! - `Free`: none of these.
 //!
 //! Besides, the buffer the composite in flight reads is marked as read until that composite
-//! completes on the compositor's device. A client takes a new back buffer only among the free
-//! buffers that no composite reads; a frame that completes replaces the latest at once, so a
+//! completes on the compositor's device, and so is the buffer an input pick reads texels of
+//! (a mark of its own, so that a pick never waits for a composite). A client takes a new back
+//! buffer only among the free buffers that nothing reads; a frame that completes replaces the latest at once, so a
 //! frame the compositor never took is dropped, never queued (mailbox).
 
 /// What a buffer is used for now.
@@ -37,6 +38,8 @@ pub struct Buffers {
     reading: Option<usize>,
     /// The buffer a composite drawn band by band over several refreshes reads.
     held: Option<usize>,
+    /// The buffer an input pick reads texels of.
+    picking: Option<usize>,
 }
 
 impl Buffers {
@@ -70,7 +73,7 @@ impl Buffers {
     /// A free buffer no composite reads, now the back buffer.
     pub fn take_free(&mut self) -> Option<usize> {
         let i = (0..self.uses.len())
-            .find(|&i| self.uses[i] == Use::Free && self.reading != Some(i) && self.held != Some(i))?;
+            .find(|&i| self.uses[i] == Use::Free && ![self.reading, self.held, self.picking].contains(&Some(i)))?;
         self.uses[i] = Use::Back;
         Some(i)
     }
@@ -110,6 +113,16 @@ impl Buffers {
     /// The composite that read has completed.
     pub fn done_reading(&mut self) {
         self.reading = None;
+    }
+
+    /// An input pick reads texels of the newest frame until [`Buffers::done_picking`].
+    pub fn pick_latest(&mut self) {
+        self.picking = self.latest();
+    }
+
+    /// The pick's read has completed.
+    pub fn done_picking(&mut self) {
+        self.picking = None;
     }
 
     /// The buffer the composite in flight reads.
@@ -170,6 +183,29 @@ mod tests {
         assert_eq!(b.uses(), [Use::Back, Use::Free, Use::Latest]);
         // Completing a buffer that is not pending changes nothing.
         assert!(b.complete(1).is_none());
+    }
+
+    #[test]
+    fn a_buffer_an_input_pick_reads_is_never_handed_out_whatever_composites_do() {
+        let v = views();
+        if v.is_empty() {
+            return;
+        }
+        let mut b = Buffers::default();
+        b.add(v[0].clone(), true);
+        b.add(v[1].clone(), false);
+        b.submit(0);
+        assert!(b.complete(0).is_some());
+        // A pick and a composite read buffer 0 at once; the composite completes first.
+        b.pick_latest();
+        b.read_latest();
+        b.done_reading();
+        assert_eq!(b.take_free(), Some(1));
+        b.submit(1);
+        assert!(b.complete(1).is_some());
+        assert_eq!(b.take_free(), None, "buffer 0 is picked, 1 newest");
+        b.done_picking();
+        assert_eq!(b.take_free(), Some(0));
     }
 
     #[test]
