@@ -478,6 +478,12 @@ fn bad_input_is_dropped_or_refused_and_reaches_no_other_surface() {
     // A surface destroyed during a grab: the grab ends cleanly.
     assert_eq!(b.input(press.clone()).expect("press").surface, Some(hu_id));
     drop(hu);
+    // Its session ends a moment after the client hangs up (longer on a busy machine).
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
+    while b.ids().contains_key("hu") {
+        assert!(std::time::Instant::now() < deadline, "hu's surface outlived its client by 10 s");
+        std::thread::sleep(Duration::from_millis(20));
+    }
     let gone = b.input(Action::Move { device: Device::Touch, id: 4, x: 150.0, y: 60.0 }).expect("move");
     assert!(gone.dropped.as_deref().is_some_and(|d| d.contains("is gone; the grab ended")), "{gone:?}");
     assert!(dropped(b.input(Action::Release { device: Device::Touch, id: 4 }).expect("release")));
