@@ -236,11 +236,11 @@ fn actions(t: &mut Translator, event: Event, size: (u32, u32)) -> Vec<Action> {
 }
 
 /// Opens the devices `args` names (or its seat's) and reads them on a thread of its own until
-/// `send` refuses an action. `size` gives the output's size in pixels (`None`: the output is
-/// gone). Returns once the devices are open, or why they did not open.
+/// `send` refuses an action; `size` is the output's size in pixels. Returns once the devices
+/// are open, or why they did not open.
 pub fn start(
     args: &InputArgs,
-    size: impl Fn() -> Option<(u32, u32)> + Send + 'static,
+    size: (u32, u32),
     send: impl Fn(Action) -> bool + Send + 'static,
 ) -> Result<(), LibinputError> {
     let args = args.clone();
@@ -274,7 +274,6 @@ pub fn start(
                     warn!("input devices: {e}");
                     return;
                 }
-                let Some(size) = size() else { return };
                 let mut added = 0;
                 for event in &mut li {
                     added += usize::from(matches!(event, Event::Device(DeviceEvent::Added(_))));

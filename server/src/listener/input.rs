@@ -103,16 +103,13 @@ pub(super) fn start_devices(shared: &Arc<Shared>) -> Result<(), LibinputError> {
     let Some(root) = shared.root.clone() else {
         return Err(LibinputError::Output("this daemon runs without a GPU, so it has no outputs".into()));
     };
-    let (output, _) = root.output(&args.input_output).map_err(LibinputError::Output)?;
+    // Outputs are fixed at start, so the devices' output keeps its size.
+    let (output, r) = root.output(&args.input_output).map_err(LibinputError::Output)?;
     let to_router = shared.router.lock().ok().and_then(|r| r.clone());
     let Some(to_router) = to_router else {
         return Err(LibinputError::Thread("input routing is unavailable".into()));
     };
-    let name = output.clone();
-    let size = move || {
-        let (_, r) = root.output(&name).ok()?;
-        Some((r[2].max(0) as u32, r[3].max(0) as u32))
-    };
+    let size = (r[2].max(0) as u32, r[3].max(0) as u32);
     let send =
         move |action| to_router.send((InputRequest { output: output.clone(), action }, Instant::now(), None)).is_ok();
     libinput::start(args, size, send)
