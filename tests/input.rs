@@ -200,8 +200,15 @@ struct Bench {
 
 impl Bench {
     fn start(tag: &str) -> Bench {
+        Bench::start_with(tag, &[])
+    }
+
+    /// A daemon given `extra` options besides the output.
+    fn start_with(tag: &str, extra: &[&str]) -> Bench {
         let size = format!("headless:main={}x{}", OUT.0, OUT.1);
-        let daemon = Daemon::start(tag, &["--lighting", "off", "--output", &size]);
+        let mut args = vec!["--lighting", "off", "--output", &size];
+        args.extend_from_slice(extra);
+        let daemon = Daemon::start(tag, &args);
         let control = ControlConnection::connect_beside(&daemon.socket).expect("control");
         Bench { daemon, control }
     }
@@ -256,6 +263,21 @@ fn settled(layers: &[RefLayer], x: i32, y: i32, r: i32) -> bool {
     (-r..=r).all(|dy| (-r..=r).all(|dx| reference::pick(layers, x + dx, y + dy) == at))
 }
 
+/// Taps either side of the line where the two tilted planes (`specs` 0 and 1) cross, a few
+/// pixels away, on several rows: the nearer plane's client (`id`) must get each.
+fn taps_either_side_of_the_crossing(b: &mut Bench, layers: &[RefLayer], id: impl Fn(usize) -> u64) {
+    let mut crossings = 0;
+    for y in [25, 40, 60, 95, 105] {
+        let row: Vec<Option<usize>> = (0..OUT.0).map(|x| reference::pick(layers, x, y)).collect();
+        let Some(x) = (1..OUT.0 as usize).find(|&x| row[x - 1] == Some(0) && row[x] == Some(1)) else { continue };
+        let x = x as i32;
+        crossings += 1;
+        assert_eq!(b.tap((x - 3) as f32 + 0.5, y as f32 + 0.5), Some(id(0)), "3 px left of the line at row {y} ({x})");
+        assert_eq!(b.tap((x + 2) as f32 + 0.5, y as f32 + 0.5), Some(id(1)), "3 px right of the line at row {y} ({x})");
+    }
+    assert!(crossings >= 3, "the planes cross on only {crossings} of the rows tried");
+}
+
 #[test]
 fn taps_reach_the_surface_whose_fragment_is_shown_there() {
     let mut b = Bench::start("input-pick");
@@ -265,19 +287,7 @@ fn taps_reach_the_surface_whose_fragment_is_shown_there() {
     let ids = b.ids();
     let id = |i: usize| ids[specs[i].name];
     let layers: Vec<RefLayer> = specs.iter().map(Spec::reference).collect();
-
-    // Either side of the line where the two tilted planes cross, a few pixels away, on
-    // several rows: the nearer plane's client gets the tap.
-    let mut crossings = 0;
-    for y in [25, 40, 60, 95, 105] {
-        let row: Vec<Option<usize>> = (0..OUT.0).map(|x| reference::pick(&layers, x, y)).collect();
-        let Some(x) = (1..OUT.0 as usize).find(|&x| row[x - 1] == Some(0) && row[x] == Some(1)) else { continue };
-        let x = x as i32;
-        crossings += 1;
-        assert_eq!(b.tap((x - 3) as f32 + 0.5, y as f32 + 0.5), Some(id(0)), "3 px left of the line at row {y} ({x})");
-        assert_eq!(b.tap((x + 2) as f32 + 0.5, y as f32 + 0.5), Some(id(1)), "3 px right of the line at row {y} ({x})");
-    }
-    assert!(crossings >= 3, "the planes cross on only {crossings} of the rows tried");
+    taps_either_side_of_the_crossing(&mut b, &layers, id);
 
     // A grid over the whole output, each tap where the reference's answer is settled.
     let mut checked = [0usize; 4];
@@ -292,6 +302,9 @@ fn taps_reach_the_surface_whose_fragment_is_shown_there() {
         }
     }
     assert!(checked.iter().all(|&n| n >= 5), "taps per outcome (ic, hu, front, none): {checked:?}");
+    // Input routing read those texels on its own device, never waiting for the compositor's.
+    let [own, compositor] = support::stats(&socket).pick_reads;
+    assert!(own > 0 && compositor == 0, "texels read on input's device {own}, on the compositor's {compositor}");
 
     // The nearer group's transparent half lets taps through to the group behind.
     let (fx, fy) = (FRONT.rect[0] + 45, FRONT.rect[1] + 30);
@@ -333,6 +346,19 @@ fn taps_reach_the_surface_whose_fragment_is_shown_there() {
         }
     };
     assert!(matches!(down, InputEvent::Point { x: 21.0, y: 41.0, .. }), "{down:?}");
+}
+
+#[test]
+fn picks_on_the_compositors_device_reach_the_same_surfaces() {
+    let mut b = Bench::start_with("input-pick-compositor", &["--input-pick", "compositor"]);
+    let socket = b.socket();
+    let specs = [IC, HU];
+    let _clients: Vec<Client> = specs.iter().map(|s| Client::start(&socket, *s, true)).collect();
+    let ids = b.ids();
+    let layers: Vec<RefLayer> = specs.iter().map(Spec::reference).collect();
+    taps_either_side_of_the_crossing(&mut b, &layers, |i| ids[specs[i].name]);
+    let [own, compositor] = support::stats(&socket).pick_reads;
+    assert!(own == 0 && compositor > 0, "texels read on input's device {own}, on the compositor's {compositor}");
 }
 
 #[test]

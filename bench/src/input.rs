@@ -48,6 +48,12 @@ pub struct Args {
     /// Write the JSON result here too.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// The daemon's `--input-pick`: `own` (input routing's own device) or `compositor`.
+    #[arg(long, default_value = "own")]
+    pick: String,
+    /// The daemon's `--input-realtime` (0: input routing at the high class's nice value).
+    #[arg(long, default_value_t = 10)]
+    realtime: u8,
 }
 
 /// Tile side in output pixels.
@@ -110,17 +116,20 @@ fn client(socket: PathBuf, i: u32, shared: Arc<Shared>, ready: std::sync::mpsc::
 }
 
 /// One tap's figures from the daemon: microseconds to the client's queue, and of those the
-/// wait on the compositor's device (when the pick read texels).
+/// wait on the device it read on (when the pick read texels).
 #[derive(Clone, Copy)]
 struct Timed {
     queued_us: f64,
     device_us: Option<f64>,
 }
 
-/// Taps tile `i`'s centre; the daemon's `queued_us` and `device_us`.
-fn tap(c: &mut ControlConnection, i: u32) -> Result<Timed> {
-    let at = (i as i32 * TILE + TILE / 2) as f32;
-    let req = InputRequest { output: String::new(), action: Action::Tap { x: at, y: (TILE / 2) as f32 } };
+/// Tap `k` on tile `i`, each at a point of its own within the tile (so that each reads its
+/// texels afresh, unless an earlier tap of the same scene read the same); the daemon's
+/// `queued_us` and `device_us`.
+fn tap(c: &mut ControlConnection, i: u32, k: u32) -> Result<Timed> {
+    let (dx, dy) = ((k * 7) % 64, (k * 13 / 64) % 64);
+    let x = (i as i32 * TILE + 16 + dx as i32) as f32 + 0.5;
+    let req = InputRequest { output: String::new(), action: Action::Tap { x, y: 16.5 + dy as f32 } };
     match c.request(&ControlRequest::Input(req))? {
         ControlReply::Input(o) => match (o.surface, o.queued_us) {
             (Some(_), Some(us)) => Ok(Timed { queued_us: us as f64, device_us: o.device_us.map(|d| d as f64) }),
@@ -156,7 +165,7 @@ fn shown(c: &mut ControlConnection) -> Result<u64> {
 fn reaction(c: &mut ControlConnection, shared: &Shared) -> Result<f64> {
     let before = shared.reacted_at.load(Ordering::SeqCst);
     let t0 = Instant::now();
-    tap(c, 0)?;
+    tap(c, 0, 0)?;
     let limit = Duration::from_secs(5);
     let frame = loop {
         let f = shared.reacted_at.load(Ordering::SeqCst);
@@ -188,7 +197,19 @@ pub fn run(args: &Args) -> Result<()> {
     let n = args.clients.max(1);
     let output = format!("headless:main={}x{}", n as i32 * TILE, TILE);
     let hz = args.refresh_hz.to_string();
-    let daemon_args = ["--output", output.as_str(), "--refresh-hz", hz.as_str(), "--lighting", "off"];
+    let realtime = args.realtime.to_string();
+    let daemon_args = [
+        "--output",
+        output.as_str(),
+        "--refresh-hz",
+        hz.as_str(),
+        "--lighting",
+        "off",
+        "--input-pick",
+        args.pick.as_str(),
+        "--input-realtime",
+        realtime.as_str(),
+    ];
     let mut daemon = Stratad::start(&stratad, daemon_args, dir.join("stratad.sock"), dir.join("stratad.log"), false)?;
     let shared = Arc::new(Shared::default());
     let (ready_tx, ready) = std::sync::mpsc::channel();
@@ -211,7 +232,7 @@ pub fn run(args: &Args) -> Result<()> {
         (0..args.taps)
             .map(|k| {
                 bar.inc(1);
-                tap(c, k % n)
+                tap(c, k % n, k)
             })
             .collect()
     };
@@ -245,6 +266,8 @@ pub fn run(args: &Args) -> Result<()> {
     let result = serde_json::json!({
         "clients": n,
         "refresh_hz": args.refresh_hz,
+        "pick": args.pick,
+        "realtime": args.realtime,
         "taps": args.taps,
         "queued_us_idle": idle_us,
         "queued_us_drawing": loaded_us,
@@ -256,7 +279,10 @@ pub fn run(args: &Args) -> Result<()> {
         "loadavg": load.split_whitespace().take(3).collect::<Vec<_>>(),
     });
     if !args.json {
-        println!("{n} clients, refresh {} Hz (p50 / p99 / max)", args.refresh_hz);
+        println!(
+            "{n} clients, refresh {} Hz, --input-pick {}, --input-realtime {} (p50 / p99 / max)",
+            args.refresh_hz, args.pick, args.realtime
+        );
         println!(
             "tap to the client's queue, {n} clients drawing: {:.0} / {:.0} / {:.0} µs; target p99 <= 1000",
             loaded_us[0], loaded_us[1], loaded_us[2]
@@ -269,7 +295,7 @@ pub fn run(args: &Args) -> Result<()> {
             loaded_us[1] / idle_us[1].max(1e-9)
         );
         println!(
-            "  of which the wait on the compositor's device for the texels ({} of {} taps read any): {:.0} / {:.0} / {:.0} µs; the rest {:.0} / {:.0} / {:.0} µs",
+            "  of which the wait on the pick's device for the texels ({} of {} taps read any): {:.0} / {:.0} / {:.0} µs; the rest {:.0} / {:.0} / {:.0} µs",
             loaded_fig["device_reads"],
             args.taps,
             part(&loaded_fig, "device_us", 0),

@@ -364,6 +364,10 @@ pub struct DaemonStats {
     /// there, outside the output, nothing focused, a point not pressed, a grab's surface gone.
     #[serde(default)]
     pub input_dropped: u64,
+    /// Texels input routing has read to pick surfaces: on its own device, and on the
+    /// compositor's.
+    #[serde(default)]
+    pub pick_reads: [u64; 2],
 }
 
 /// One row of `stratad ctl list`: a window surface.

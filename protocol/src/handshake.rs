@@ -360,6 +360,7 @@ mod tests {
             device_objects: Default::default(),
             compositor_device: Some(device),
             input_dropped: 0,
+            pick_reads: [0; 2],
         };
         for msg in [reply, ControlReply::Stats(stats)] {
             let framed = frame(&msg).expect("encode");

@@ -104,8 +104,8 @@ pub struct InputOutcome {
     /// in the client's queue (when one was queued).
     #[serde(default)]
     pub queued_us: Option<u64>,
-    /// Of those, the microseconds a press waited on the compositor's device for the texels
-    /// under the point (when it read any: readings are kept until the scene changes).
+    /// Of those, the microseconds a press waited on the device it read the texels under the
+    /// point on (when it read any: readings are kept until the scene changes).
     #[serde(default)]
     pub device_us: Option<u64>,
 }

@@ -122,5 +122,6 @@ pub fn collect(
         compositor_device: gpu.map(|g| device_stats(g, false)),
         // Filled in by the listener, which routes input.
         input_dropped: 0,
+        pick_reads: [0; 2],
     }
 }

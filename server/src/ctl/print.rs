@@ -157,6 +157,10 @@ pub fn stats(s: &strata_protocol::control::DaemonStats) {
         s.sessions,
         s.input_dropped
     );
+    println!(
+        "input picks: {} texels read on input routing's device, {} on the compositor's",
+        s.pick_reads[0], s.pick_reads[1]
+    );
     println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
     let kinds: Vec<&String> = s.objects.keys().collect();
     print!(

@@ -20,7 +20,7 @@ use tracing::{info, warn};
 
 use super::render::{Target, COLOR_FORMAT};
 use crate::gpu::Gpu;
-use crate::scene::Views;
+use crate::scene::{Images, Views};
 
 /// The longest the frame waiter waits for one frame's work (a wedged device must not wedge it).
 const FRAME_WAIT_LIMIT: Duration = Duration::from_secs(5);
@@ -158,7 +158,7 @@ impl CopyPath {
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let depth_tex =
             depth.map(|_| comp.texture_2d("frame depth copy", wgpu::TextureFormat::Depth32Float, size, usage));
-        let views = (color.create_view(&Default::default()), depth_tex.as_ref().map(depth_view));
+        let views = Views::shown(color.create_view(&Default::default()), depth_tex.as_ref().map(depth_view));
         let path = CopyPath { readback, depth_float, color, depth: depth_tex, size, mapped: Arc::default() };
         (path, views)
     }
@@ -231,24 +231,47 @@ impl CopyPath {
 }
 
 /// The buffer's images on the client's device, made exportable when frames are shared: the
-/// colour and depth textures, and the compositor's views of the same memory.
+/// colour and depth textures, and the compositor's views of the same memory. Where `pick`
+/// (input routing's device) imports it too, its views of it; a pick device that cannot only
+/// leaves picks to the compositor's device.
 pub(super) fn shared_images(
     client: &Gpu,
     comp: &Gpu,
+    pick: Option<&Gpu>,
     size: (u32, u32),
     depth: Option<wgpu::TextureFormat>,
 ) -> Result<((wgpu::Texture, Option<wgpu::Texture>), Views), crate::gpu::ShareError> {
     let (color, memory) = client.create_exported("surface colour", COLOR_FORMAT, size)?;
+    let mut for_pick = pick.and_then(|p| Some((p, vec![(COLOR_FORMAT, memory.try_clone().ok()?)])));
     let color_in = comp.import("surface colour (imported)", COLOR_FORMAT, size, memory)?;
     let (depth, depth_in) = match depth {
         Some(f) => {
             let (d, memory) = client.create_exported("surface depth", f, size)?;
+            match (memory.try_clone(), for_pick.as_mut()) {
+                (Ok(m), Some((_, v))) => v.push((f, m)),
+                _ => for_pick = None,
+            }
             (Some(d), Some(comp.import("surface depth (imported)", f, size, memory)?))
         }
         None => (None, None),
     };
-    let views = (color_in.create_view(&Default::default()), depth_in.as_ref().map(depth_view));
-    Ok(((color, depth), views))
+    let pick = for_pick.and_then(|(gpu, memories)| {
+        let mut textures = Vec::new();
+        for (f, m) in memories {
+            match gpu.import("surface (imported for input)", f, size, m) {
+                Ok(t) => textures.push(t),
+                Err(e) => {
+                    warn!("input routing's device could not import a window surface's images ({e}); its picks wait for the compositor's device");
+                    return None;
+                }
+            }
+        }
+        let mut t = textures.iter();
+        let color = t.next()?.create_view(&Default::default());
+        Some(Images { color, depth: t.next().map(depth_view) })
+    });
+    let shown = Images { color: color_in.create_view(&Default::default()), depth: depth_in.as_ref().map(depth_view) };
+    Ok(((color, depth), Views { shown, pick }))
 }
 
 type Job = (wgpu::SubmissionIndex, std::time::Instant, Box<dyn FnOnce() + Send>);

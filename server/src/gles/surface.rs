@@ -228,7 +228,8 @@ impl GlesExecutor {
         let reserved = self.account.reserve(surface_bytes(depth_format, w, h) + extra).map_err(|_| EGL_BAD_ALLOC)?;
         let comp = self.scene.as_ref().and_then(|(scene, _, _)| scene.compositor());
         if let (Transfer::Export, Some(comp)) = (*transfer, &comp) {
-            match frames::shared_images(&self.gpu, comp, (w, h), depth_format) {
+            let pick = self.scene.as_ref().and_then(|(scene, _, _)| scene.pick_device());
+            match frames::shared_images(&self.gpu, comp, pick.as_deref(), (w, h), depth_format) {
                 Ok((images, views)) => {
                     let (target, _) = self.make_target(config, w, h, reversed, Some(images));
                     return Ok((Buffer { target, copy: None, _reserved: reserved }, views));
@@ -249,7 +250,7 @@ impl GlesExecutor {
             }
             _ => {
                 let color = target.color.as_ref().map(|(_, v)| v.clone()).ok_or(EGL_BAD_ALLOC)?;
-                Ok((Buffer { target, copy: None, _reserved: reserved }, (color, depth_view)))
+                Ok((Buffer { target, copy: None, _reserved: reserved }, Views::shown(color, depth_view)))
             }
         }
     }

@@ -9,8 +9,9 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 pub use open::{
-    keep_freed_memory, nice_for, set_thread_class, set_thread_idle, set_thread_nice, set_thread_slice,
-    settle_environment, slice_for, DeviceOptions, HIGH_SLICE, MMAP_THRESHOLD, RASTERIZER_THREADS, TRIM_THRESHOLD,
+    keep_freed_memory, nice_for, set_thread_class, set_thread_idle, set_thread_nice, set_thread_realtime,
+    set_thread_slice, settle_environment, slice_for, DeviceOptions, HIGH_SLICE, MMAP_THRESHOLD, RASTERIZER_THREADS,
+    TRIM_THRESHOLD,
 };
 pub use share::{shared_usage, DeviceIdentity, Exported, ShareError};
 

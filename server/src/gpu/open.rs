@@ -157,6 +157,27 @@ pub fn set_thread_class(class: Priority) -> i32 {
     nice
 }
 
+/// Puts the calling thread in the real-time class (`SCHED_FIFO`) at `priority` (1–99), so
+/// that it runs as soon as it wakes, ahead of every ordinary thread (threads it creates
+/// inherit it). Needs `CAP_SYS_NICE` or an `RLIMIT_RTPRIO` of at least `priority`; the error
+/// says why it was refused, and the thread then stays where it is.
+pub fn set_thread_realtime(priority: i32) -> std::io::Result<()> {
+    #[cfg(target_os = "linux")]
+    // SAFETY: sched_setscheduler on the calling thread with a valid sched_param.
+    unsafe {
+        let param = libc::sched_param { sched_priority: priority };
+        if libc::sched_setscheduler(0, libc::SCHED_FIFO, &param) != 0 {
+            return Err(std::io::Error::last_os_error());
+        }
+        Ok(())
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = priority;
+        Err(std::io::Error::from(std::io::ErrorKind::Unsupported))
+    }
+}
+
 /// The variable llvmpipe (lavapipe's rasterizer) reads its thread count from when an instance
 /// enumerates its devices.
 pub const RASTERIZER_THREADS: &str = "LP_NUM_THREADS";

@@ -56,6 +56,14 @@ pub struct Exported {
     pub memory_type: u32,
 }
 
+impl Exported {
+    /// Another reference to the same memory (a duplicate descriptor), for a second device to
+    /// import.
+    pub fn try_clone(&self) -> std::io::Result<Exported> {
+        Ok(Exported { fd: self.fd.try_clone()?, size: self.size, memory_type: self.memory_type })
+    }
+}
+
 /// What identifies a physical device and its driver across instances.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceIdentity {

@@ -29,6 +29,17 @@ pub enum Source {
     Libinput,
 }
 
+/// Which device input routing reads the texels under a point on (`--input-pick`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum PickDevice {
+    /// A device of its own that imports every shared frame too, so that a pick never waits
+    /// behind the compositor's work.
+    #[default]
+    Own,
+    /// The compositor's device: no extra device, but a pick waits for a composite in flight.
+    Compositor,
+}
+
 /// The `--input*` options of `stratad serve`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct InputArgs {
@@ -47,6 +58,13 @@ pub struct InputArgs {
     /// The keyboard layout keys are read with (an XKB layout name).
     #[arg(long, default_value = "us")]
     pub input_layout: String,
+    /// The device picks read texels on: `own` (imports every shared frame) or `compositor`.
+    #[arg(long, value_enum, default_value_t = PickDevice::Own)]
+    pub input_pick: PickDevice,
+    /// Real-time priority (SCHED_FIFO, 1–99) of input routing and its pick device's threads,
+    /// where the daemon may (CAP_SYS_NICE, or LimitRTPRIO=); 0: the high class's nice value.
+    #[arg(long, value_name = "PRIO", default_value_t = 10, value_parser = clap::value_parser!(u8).range(0..=99))]
+    pub input_realtime: u8,
 }
 
 impl Default for InputArgs {
@@ -57,6 +75,8 @@ impl Default for InputArgs {
             input_devices: Vec::new(),
             input_output: String::new(),
             input_layout: "us".into(),
+            input_pick: PickDevice::Own,
+            input_realtime: 10,
         }
     }
 }

@@ -117,7 +117,8 @@ fn stats(shared: &Shared) -> strata_protocol::control::DaemonStats {
     let clients = shared.clients.lock().map(|c| c.clone()).unwrap_or_default();
     let sessions = shared.sessions.load(Ordering::Relaxed);
     let s = crate::stats::collect(shared.gpu.as_deref(), &shared.pool, sessions, &clients, &shared.scene);
-    strata_protocol::control::DaemonStats { input_dropped: shared.input.dropped(), ..s }
+    let pick_reads = shared.root.as_ref().map_or([0; 2], |r| r.pick_reads());
+    strata_protocol::control::DaemonStats { input_dropped: shared.input.dropped(), pick_reads, ..s }
 }
 
 /// Every output, with its keyboard focus.

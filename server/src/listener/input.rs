@@ -9,7 +9,7 @@ use std::time::Instant;
 use strata_protocol::handshake::ControlReply;
 use strata_protocol::input::{InputOutcome, InputRequest};
 use tokio::sync::oneshot;
-use tracing::{debug, warn};
+use tracing::{debug, info, warn};
 
 use super::Shared;
 use crate::input::libinput::{self, LibinputError, Source};
@@ -52,6 +52,57 @@ pub(super) async fn ask(shared: &Arc<Shared>, req: InputRequest) -> ControlReply
     rx.await.unwrap_or_else(|_| ControlReply::Error("input routing is unavailable".into()))
 }
 
+/// Puts the calling thread at input routing's priority: real-time at `realtime` where it may
+/// (1–99), else the high class's nice value. Returns why real-time was refused, if it was.
+fn set_input_priority(realtime: u8) -> Option<String> {
+    use strata_protocol::control::Priority;
+    if realtime > 0 {
+        match crate::gpu::set_thread_realtime(i32::from(realtime)) {
+            Ok(()) => return None,
+            Err(e) => {
+                crate::gpu::set_thread_class(Priority::High);
+                return Some(e.to_string());
+            }
+        }
+    }
+    crate::gpu::set_thread_class(Priority::High);
+    None
+}
+
+/// Opens input routing's pick device where `--input-pick own` asks and clients render on
+/// devices of their own (with `--devices shared` the compositor's device holds every frame):
+/// from a thread at input routing's priority, which the driver's threads inherit, with no
+/// rasterizer threads of its own (a pick is one texel a surface). `None` where it is not
+/// wanted or does not open (picks then read on the compositor's device).
+pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<crate::gpu::Gpu>> {
+    use crate::input::libinput::PickDevice;
+    if opts.input.input_pick != PickDevice::Own || opts.devices != super::DeviceMode::PerClient {
+        return None;
+    }
+    let realtime = opts.input.input_realtime;
+    let dev = crate::gpu::DeviceOptions {
+        priority: strata_protocol::control::Priority::High,
+        global_priority: opts.global_priority,
+        label: "input",
+        rasterizer_threads: Some(0),
+    };
+    let opened = std::thread::Builder::new().name("open-input".into()).spawn(move || {
+        set_input_priority(realtime);
+        crate::gpu::Gpu::open_with(dev)
+    });
+    match opened.map(|t| t.join()) {
+        Ok(Ok(Ok(gpu))) => Some(gpu),
+        Ok(Ok(Err(e))) => {
+            warn!("input routing's device did not open ({e}); picks read on the compositor's device");
+            None
+        }
+        _ => {
+            warn!("input routing's device did not open; picks read on the compositor's device");
+            None
+        }
+    }
+}
+
 /// Starts the routing thread for `requests`, and a thread that passes the output windows'
 /// `window` input on to it; both end with the daemon.
 pub(super) fn start(
@@ -60,8 +111,16 @@ pub(super) fn start(
     window: Option<mpsc::Receiver<InputRequest>>,
 ) {
     let to_router = shared.upgrade().and_then(|s| s.router.lock().ok().and_then(|r| r.clone()));
+    let realtime = shared.upgrade().map_or(0, |s| s.opts.input.input_realtime);
     let routing = std::thread::Builder::new().name("input".into()).spawn(move || {
-        crate::gpu::set_thread_class(strata_protocol::control::Priority::High);
+        match set_input_priority(realtime) {
+            Some(why) => info!(
+                realtime,
+                "input routing runs at the high class's priority: real-time priority was refused ({why})"
+            ),
+            None if realtime > 0 => debug!(realtime, "input routing runs at real-time priority"),
+            None => {}
+        }
         while let Ok((req, arrived, reply)) = requests.recv() {
             let Some(shared) = shared.upgrade() else { return };
             let answer = route(&shared, &req, arrived);

@@ -309,6 +309,9 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     scene.configure(&opts.surfaces, &opts.layers);
     if let Some(gpu) = &gpu {
         scene.set_compositor(gpu.clone());
+        if let Some(pick) = input::open_pick_device(&opts) {
+            scene.set_pick_device(pick);
+        }
     }
     let root = match &gpu {
         Some(gpu) => {

@@ -12,7 +12,7 @@ use strata_protocol::projection::Projection;
 
 use super::Root;
 use crate::gpu::Gpu;
-use crate::scene::Candidate;
+use crate::scene::{Candidate, Images};
 
 const SHADER: &str = include_str!("../../../shaders/pick.wgsl");
 
@@ -29,22 +29,31 @@ pub struct Target {
     pub device_us: Option<u64>,
 }
 
-/// The pick pipeline and the readings of the current scene.
-pub struct Picker {
+/// The pick pipeline of one device.
+struct DevicePicker {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     /// Bound where a surface has no depth image.
     no_depth: wgpu::TextureView,
+}
+
+/// The pick pipelines and the readings of the current scene.
+pub struct Picker {
+    /// On the compositor's device, for frames only it reads (copied frames, `--devices
+    /// shared`, or a pick device that could not import them).
+    compositor: Option<DevicePicker>,
+    /// On the pick device, which imports every shared frame.
+    own: Option<DevicePicker>,
     /// The damage count the readings belong to.
     damage: u64,
     /// Window depth and alpha by surface and texel.
     readings: HashMap<(u64, [u32; 2]), [f32; 2]>,
-    /// Texels read from the device so far.
-    pub reads: u64,
+    /// Texels read so far: on the pick device, and on the compositor's.
+    pub reads: [u64; 2],
 }
 
-impl Picker {
-    fn new(gpu: &Gpu) -> Picker {
+impl DevicePicker {
+    fn new(gpu: &Gpu) -> DevicePicker {
         let d = &gpu.device;
         let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
             binding,
@@ -92,95 +101,128 @@ impl Picker {
                 wgpu::TextureUsages::TEXTURE_BINDING,
             )
             .create_view(&Default::default());
-        Picker { pipeline, layout, no_depth, damage: u64::MAX, readings: HashMap::new(), reads: 0 }
+        DevicePicker { pipeline, layout, no_depth }
     }
 
-    /// Window depth and alpha of each candidate's texel, read from the device where this
-    /// scene (`damage`) has not read them yet, with the microseconds from submitting the read
-    /// to its results mapped (`None`: nothing was read); `None` where the read fails.
-    fn read(&mut self, gpu: &Gpu, damage: u64, cands: &[Candidate]) -> Option<(Vec<[f32; 2]>, Option<u64>)> {
+    /// Window depth and alpha of each texel (`texel`, whether the image has depth, its
+    /// images on this device), read in one submission, with the microseconds from submitting
+    /// the read to its results mapped; `None` where the read fails.
+    fn read(&self, gpu: &Gpu, texels: &[([u32; 2], &Images)]) -> Option<(Vec<[f32; 2]>, u64)> {
+        let d = &gpu.device;
+        // Each texel's result at its own storage-aligned offset.
+        let stride = u64::from(gpu.limits.min_storage_buffer_offset_alignment.max(8));
+        let size = stride * texels.len() as u64;
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+        let results =
+            d.create_buffer(&wgpu::BufferDescriptor { label: Some("pick"), size, usage, mapped_at_creation: false });
+        let readback = d.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pick readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pick") });
+        let mut groups = Vec::new();
+        for (i, (texel, images)) in texels.iter().enumerate() {
+            let params: [u32; 4] = [texel[0], texel[1], u32::from(images.depth.is_some()), 0];
+            let uniform = d.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("pick params"),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            gpu.queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&params));
+            let out =
+                wgpu::BufferBinding { buffer: &results, offset: stride * i as u64, size: wgpu::BufferSize::new(8) };
+            let depth = images.depth.as_ref().unwrap_or(&self.no_depth);
+            groups.push(d.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("pick"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&images.color) },
+                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(depth) },
+                    wgpu::BindGroupEntry { binding: 2, resource: uniform.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Buffer(out) },
+                ],
+            }));
+        }
+        {
+            let mut pass =
+                enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("pick"), timestamp_writes: None });
+            pass.set_pipeline(&self.pipeline);
+            for g in &groups {
+                pass.set_bind_group(0, g, &[]);
+                pass.dispatch_workgroups(1, 1, 1);
+            }
+        }
+        enc.copy_buffer_to_buffer(&results, 0, &readback, 0, size);
+        let submitted = std::time::Instant::now();
+        let index = gpu.queue.submit([enc.finish()]);
+        let slice = readback.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        let wait =
+            wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(std::time::Duration::from_secs(5)) };
+        let _ = d.poll(wait);
+        rx.recv_timeout(std::time::Duration::from_secs(5)).ok()?.ok()?;
+        let waited = submitted.elapsed().as_micros() as u64;
+        let data = slice.get_mapped_range().ok()?;
+        let values: &[f32] = bytemuck::cast_slice(&data);
+        let at = |i: usize| (stride as usize / 4) * i;
+        Some(((0..texels.len()).map(|i| [values[at(i)], values[at(i) + 1]]).collect(), waited))
+    }
+}
+
+impl Picker {
+    fn new() -> Picker {
+        Picker { compositor: None, own: None, damage: u64::MAX, readings: HashMap::new(), reads: [0; 2] }
+    }
+
+    /// Window depth and alpha of each candidate's texel, read where this scene (`damage`)
+    /// has not read them yet: on the pick device (`own`) for the frames it imported, else on
+    /// the compositor's device (`comp`). With the microseconds the reads waited for their
+    /// devices (`None`: nothing was read); `None` where a read fails.
+    fn read<'a>(
+        &mut self,
+        comp: &Gpu,
+        own: Option<&Gpu>,
+        damage: u64,
+        cands: &'a [Candidate],
+    ) -> Option<(Vec<[f32; 2]>, Option<u64>)> {
         if damage != self.damage {
             self.readings.clear();
             self.damage = damage;
         }
-        let missing: Vec<&Candidate> = cands.iter().filter(|c| !self.readings.contains_key(&(c.id, c.texel))).collect();
+        let missing: Vec<&'a Candidate> =
+            cands.iter().filter(|c| !self.readings.contains_key(&(c.id, c.texel))).collect();
         let mut waited = None;
-        if !missing.is_empty() {
-            let d = &gpu.device;
-            // Each candidate's result at its own storage-aligned offset.
-            let stride = u64::from(gpu.limits.min_storage_buffer_offset_alignment.max(8));
-            let size = stride * missing.len() as u64;
-            let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
-            let results = d.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("pick"),
-                size,
-                usage,
-                mapped_at_creation: false,
-            });
-            let readback = d.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("pick readback"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pick") });
-            let mut groups = Vec::new();
-            for (i, c) in missing.iter().enumerate() {
-                let params: [u32; 4] = [c.texel[0], c.texel[1], u32::from(c.depth.is_some()), 0];
-                let uniform = d.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("pick params"),
-                    size: 16,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                gpu.queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&params));
-                let out =
-                    wgpu::BufferBinding { buffer: &results, offset: stride * i as u64, size: wgpu::BufferSize::new(8) };
-                groups.push(d.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("pick"),
-                    layout: &self.layout,
-                    entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&c.color) },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(c.depth.as_ref().unwrap_or(&self.no_depth)),
-                        },
-                        wgpu::BindGroupEntry { binding: 2, resource: uniform.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Buffer(out) },
-                    ],
-                }));
+        // The pick device's images where it has them, else the compositor's.
+        let images = |c: &'a Candidate| match (own, &c.pick) {
+            (Some(_), Some(images)) => (true, images),
+            _ => (false, &c.shown),
+        };
+        for (on_own, gpu) in [(true, own), (false, Some(comp))] {
+            let Some(gpu) = gpu else { continue };
+            let texels: Vec<(&Candidate, &Images)> = missing
+                .iter()
+                .filter_map(|c| {
+                    let (o, i) = images(c);
+                    (o == on_own).then_some((*c, i))
+                })
+                .collect();
+            if texels.is_empty() {
+                continue;
             }
-            {
-                let mut pass = enc
-                    .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("pick"), timestamp_writes: None });
-                pass.set_pipeline(&self.pipeline);
-                for g in &groups {
-                    pass.set_bind_group(0, g, &[]);
-                    pass.dispatch_workgroups(1, 1, 1);
-                }
+            let picker = if on_own { &mut self.own } else { &mut self.compositor };
+            let at: Vec<([u32; 2], &Images)> = texels.iter().map(|(c, i)| (c.texel, *i)).collect();
+            let (values, us) = picker.get_or_insert_with(|| DevicePicker::new(gpu)).read(gpu, &at)?;
+            waited = Some(waited.unwrap_or(0) + us);
+            for ((c, _), v) in texels.iter().zip(values) {
+                self.readings.insert((c.id, c.texel), v);
             }
-            enc.copy_buffer_to_buffer(&results, 0, &readback, 0, size);
-            let submitted = std::time::Instant::now();
-            let index = gpu.queue.submit([enc.finish()]);
-            let slice = readback.slice(..);
-            let (tx, rx) = std::sync::mpsc::channel();
-            slice.map_async(wgpu::MapMode::Read, move |r| {
-                let _ = tx.send(r);
-            });
-            let wait = wgpu::PollType::Wait {
-                submission_index: Some(index),
-                timeout: Some(std::time::Duration::from_secs(5)),
-            };
-            let _ = d.poll(wait);
-            rx.recv_timeout(std::time::Duration::from_secs(5)).ok()?.ok()?;
-            waited = Some(submitted.elapsed().as_micros() as u64);
-            let data = slice.get_mapped_range().ok()?;
-            let values: &[f32] = bytemuck::cast_slice(&data);
-            let at = |i: usize| (stride as usize / 4) * i;
-            for (i, c) in missing.iter().enumerate() {
-                self.readings.insert((c.id, c.texel), [values[at(i)], values[at(i) + 1]]);
-            }
-            self.reads += missing.len() as u64;
+            self.reads[usize::from(!on_own)] += at.len() as u64;
         }
         let readings = cands.iter().map(|c| self.readings.get(&(c.id, c.texel)).copied()).collect::<Option<_>>()?;
         Some((readings, waited))
@@ -209,7 +251,7 @@ pub fn winner(cands: &[Candidate], readings: &[[f32; 2]]) -> Option<usize> {
         let mut best: Option<(f64, usize)> = None;
         // Candidates come in stacking order: a later one wins a tie.
         for (i, c) in cands.iter().enumerate().filter(|(_, c)| c.z == z) {
-            let d = eye_depth(readings[i][0], c.depth.is_some(), c.projection.as_ref());
+            let d = eye_depth(readings[i][0], c.shown.depth.is_some(), c.projection.as_ref());
             if best.is_none_or(|b| d <= b.0) {
                 best = Some((d, i));
             }
@@ -244,8 +286,9 @@ impl Root {
             return Ok(None);
         }
         let mut picker = self.picker.lock().map_err(|_| "input routing is unavailable")?;
-        let picker = picker.get_or_insert_with(|| Picker::new(&self.gpu));
-        let readings = picker.read(&self.gpu, damage, &cands);
+        let picker = picker.get_or_insert_with(Picker::new);
+        let own = self.scene.pick_device();
+        let readings = picker.read(&self.gpu, own.as_deref(), damage, &cands);
         self.scene.end_input_read(&cands);
         let (readings, device_us) = readings.ok_or("reading the surfaces' texels under the point failed")?;
         Ok(winner(&cands, &readings).map(|i| Target {
@@ -256,8 +299,8 @@ impl Root {
         }))
     }
 
-    /// Texels input routing has read from the device so far.
-    pub fn pick_reads(&self) -> u64 {
-        self.picker.lock().ok().and_then(|p| p.as_ref().map(|p| p.reads)).unwrap_or(0)
+    /// Texels input routing has read so far: on the pick device, and on the compositor's.
+    pub fn pick_reads(&self) -> [u64; 2] {
+        self.picker.lock().ok().and_then(|p| p.as_ref().map(|p| p.reads)).unwrap_or([0; 2])
     }
 }

@@ -32,9 +32,10 @@ impl Scene {
         let Some(mut g) = self.lock() else { return };
         let refreshes = g.refreshes;
         let Some(s) = g.surfaces.get_mut(&(client, surface)) else { return };
-        let Some((color, depth)) = s.buffers.complete(buffer) else { return };
-        s.color = Some(color);
-        s.depth = depth;
+        let Some(views) = s.buffers.complete(buffer) else { return };
+        s.color = Some(views.shown.color);
+        s.depth = views.shown.depth;
+        s.pick = views.pick;
         s.opaque = opaque;
         s.frames += 1;
         s.presented = Some((Instant::now(), refreshes));

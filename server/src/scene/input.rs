@@ -2,6 +2,8 @@
 //! input, with a frame, their rectangle holding it), the texel of each that shows there, and
 //! where a point lies in a surface's own pixels.
 
+use std::sync::Arc;
+
 use strata_protocol::projection::Projection;
 
 use super::{Scene, SceneSurface};
@@ -21,10 +23,10 @@ pub struct Candidate {
     pub texel: [u32; 2],
     /// The point in the surface's image pixels (from its top-left corner).
     pub local: [f32; 2],
-    /// Its newest frame's colour.
-    pub color: wgpu::TextureView,
-    /// Its depth, if it has one.
-    pub depth: Option<wgpu::TextureView>,
+    /// Its newest frame's colour and depth on the compositor's device.
+    pub shown: super::Images,
+    /// The same frame on the pick device, where it imported it.
+    pub pick: Option<super::Images>,
     /// Its colour's alpha reads as 1.
     pub opaque: bool,
     /// Its opacity, its layers' taken in.
@@ -67,6 +69,17 @@ impl SceneSurface {
 }
 
 impl Scene {
+    /// Names input routing's pick device (once): clients' shared buffers are imported on it
+    /// too, so that a pick never waits behind the compositor's work.
+    pub fn set_pick_device(&self, gpu: Arc<crate::gpu::Gpu>) {
+        let _ = self.pick_device.set(gpu);
+    }
+
+    /// Input routing's pick device, if one was named.
+    pub fn pick_device(&self) -> Option<Arc<crate::gpu::Gpu>> {
+        self.pick_device.get().cloned()
+    }
+
     /// The surfaces that may be shown at point `p` of the output space and accept input, in
     /// stacking order: visible (with their layers), opacity above 0, with a frame, their
     /// rectangle holding the point. Their frames are marked as picked until
@@ -93,8 +106,8 @@ impl Scene {
                 z: s.z,
                 texel,
                 local,
-                color,
-                depth: s.depth.clone(),
+                shown: super::Images { color, depth: s.depth.clone() },
+                pick: s.pick.clone(),
                 opaque: s.opaque,
                 opacity,
                 projection: s.projection,

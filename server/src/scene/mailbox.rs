@@ -26,8 +26,32 @@ pub enum Use {
     Latest,
 }
 
-/// The compositor's views of one buffer: colour, and depth (depth aspect only) if it has one.
-pub type Views = (wgpu::TextureView, Option<wgpu::TextureView>);
+/// One buffer's images as one device reads them: colour, and depth (depth aspect only) if it
+/// has one.
+#[derive(Clone)]
+pub struct Images {
+    /// The colour (RGBA8, GL row order).
+    pub color: wgpu::TextureView,
+    /// The depth, if the buffer has one.
+    pub depth: Option<wgpu::TextureView>,
+}
+
+/// One buffer as the daemon reads it: the compositor's views, and input routing's where its
+/// pick device imported the same memory (`root::pick`).
+#[derive(Clone)]
+pub struct Views {
+    /// The compositor's device's views.
+    pub shown: Images,
+    /// The pick device's views (`None`: picks read the buffer on the compositor's device).
+    pub pick: Option<Images>,
+}
+
+impl Views {
+    /// Views on the compositor's device only.
+    pub fn shown(color: wgpu::TextureView, depth: Option<wgpu::TextureView>) -> Views {
+        Views { shown: Images { color, depth }, pick: None }
+    }
+}
 
 /// A window surface's buffers.
 #[derive(Clone, Default)]
@@ -149,7 +173,7 @@ mod tests {
     fn views() -> Vec<Views> {
         let Ok(gpu) = crate::gpu::Gpu::open() else { return Vec::new() };
         let tex = gpu.texture_2d("test", wgpu::TextureFormat::Rgba8Unorm, (1, 1), wgpu::TextureUsages::TEXTURE_BINDING);
-        (0..4).map(|_| (tex.create_view(&Default::default()), None)).collect()
+        (0..4).map(|_| Views::shown(tex.create_view(&Default::default()), None)).collect()
     }
 
     /// `n` buffers (at most 4), the first the back buffer, each at its index; `None` without

@@ -30,7 +30,7 @@ mod region;
 
 pub use ids::IdTaken;
 pub use input::Candidate;
-pub use mailbox::{Buffers, Use, Views};
+pub use mailbox::{Buffers, Images, Use, Views};
 pub use pacing::Work;
 pub use properties::{LayerState, Layers};
 pub use region::Region;
@@ -68,6 +68,8 @@ pub struct SceneSurface {
     pub color: Option<wgpu::TextureView>,
     /// Its depth (depth aspect only), if the surface has depth.
     pub depth: Option<wgpu::TextureView>,
+    /// The same frame on input routing's pick device, where it imported the buffer.
+    pub pick: Option<Images>,
     /// The surface's buffers and what each is used for.
     pub buffers: Buffers,
     /// Its config has no alpha: its colour's alpha reads as 1 everywhere.
@@ -180,6 +182,8 @@ pub struct Scene {
     streams: Mutex<HashMap<u64, Arc<AtomicU64>>>,
     /// The compositor's device, which reads the surfaces' buffers.
     compositor: std::sync::OnceLock<Arc<crate::gpu::Gpu>>,
+    /// Input routing's pick device, which imports the surfaces' buffers too (`scene::input`).
+    pick_device: std::sync::OnceLock<Arc<crate::gpu::Gpu>>,
     /// Events for `ctl watch`.
     events: tokio::sync::broadcast::Sender<strata_protocol::events::Event>,
 }
@@ -236,6 +240,7 @@ impl Scene {
             frames_in_flight: u64::from(frames_in_flight.max(1)),
             streams: Mutex::new(HashMap::new()),
             compositor: std::sync::OnceLock::new(),
+            pick_device: std::sync::OnceLock::new(),
             events: tokio::sync::broadcast::channel(events::EVENT_BACKLOG).0,
         }
     }
@@ -331,6 +336,7 @@ impl Scene {
                 z,
                 color: None,
                 depth: None,
+                pick: None,
                 buffers: Buffers::default(),
                 opaque: false,
                 frames: 0,
