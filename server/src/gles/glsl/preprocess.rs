@@ -154,13 +154,51 @@ fn unterminated(text: &str) -> Option<String> {
     }
 }
 
+/// The preprocessor's state at the start of a `stage` shader: `GL_ES`, and in fragment shaders
+/// `GL_FRAGMENT_PRECISION_HIGH`, defined as Mesa defines them.
+fn initial_state(stage: Stage) -> Result<ProcessorState, String> {
+    let gl_es = "1".parse::<DefineObject>().map_err(|e| format!("internal: {e:?}"))?;
+    let mut state =
+        ProcessorState::builder().registry(&REGISTRY).definition(Define::object("GL_ES".into(), gl_es.clone(), true));
+    if stage == Stage::Fragment {
+        // Fragment shaders get real f32 precision, so highp is supported (as on Mesa).
+        state = state.definition(Define::object("GL_FRAGMENT_PRECISION_HIGH".into(), gl_es, true));
+    }
+    Ok(state.finish())
+}
+
+/// The 0-based lines of `text` whose `#extension` directive lies in a section conditional
+/// compilation skips: the preprocessor evaluates each `#if` with its macros as defined at that
+/// point, and a skipped section's directives are ignored (GLSL ES 1.00 §3.4, as in C).
+fn skipped_extension_lines(stage: Stage, text: &str) -> Result<std::collections::HashSet<usize>, String> {
+    use glsl_lang_pp::processor::event::{DirectiveKind, ErrorKind, Event, ProcessingErrorKind};
+    let mut skipped = std::collections::HashSet::new();
+    let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
+    let events = pp.parse_source(text, std::path::Path::new(".")).process(initial_state(stage)?);
+    for event in events.flatten() {
+        match event {
+            Event::Directive { directive, masked: true } if matches!(directive.kind(), DirectiveKind::Extension(_)) => {
+                skipped.insert(line_col(text, directive.text_range().start().offset.into()).0 - 1);
+            }
+            // A malformed `#extension` in a skipped section is ignored too.
+            Event::Error { error, masked: true }
+                if matches!(error.inner(), ErrorKind::Processing(ProcessingErrorKind::DirectiveExtension(_))) =>
+            {
+                skipped.insert(error.line() as usize);
+            }
+            _ => {}
+        }
+    }
+    Ok(skipped)
+}
+
 /// Preprocesses and parses `source`; the error is the info log.
 pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
-    // `#version 100` is the only version ES 2.0 has. `#extension` directives are handled here
-    // (their lines blanked, keeping line numbers) against the extensions Strata offers.
+    // `#version 100` is the only version ES 2.0 has. `#extension` directives outside skipped
+    // sections are handled here (their lines then blanked, keeping line numbers) against the
+    // extensions Strata offers.
     let mut text = String::with_capacity(source.len());
-    let mut derivatives = false;
-    let mut warnings = Vec::new();
+    let mut extensions = Vec::new();
     for (i, line) in source.lines().enumerate() {
         let directive = line.trim_start().strip_prefix('#').map(str::trim_start);
         if let Some(v) = directive.and_then(|d| d.strip_prefix("version")) {
@@ -173,27 +211,36 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
                 ));
             }
             text.push_str("#version 100\n");
-        } else if let Some(rest) = directive.and_then(|d| d.strip_prefix("extension")) {
-            extension_directive(stage, i + 1, rest, &mut derivatives, &mut warnings)?;
-            text.push('\n');
-        } else {
-            text.push_str(line);
-            text.push('\n');
+            continue;
         }
+        if let Some(rest) = directive.and_then(|d| d.strip_prefix("extension")) {
+            extensions.push((i, rest, text.len()));
+        }
+        text.push_str(line);
+        text.push('\n');
     }
     if let Some(e) = unterminated(&text) {
         return Err(e);
     }
     // Ends a `\` continuation on the last line before the input does (see `unterminated`).
     text.push('\n');
-    let gl_es = "1".parse::<DefineObject>().map_err(|e| format!("internal: {e:?}"))?;
-    let mut state =
-        ProcessorState::builder().registry(&REGISTRY).definition(Define::object("GL_ES".into(), gl_es.clone(), true));
-    if stage == Stage::Fragment {
-        // Fragment shaders get real f32 precision, so highp is supported (as on Mesa).
-        state = state.definition(Define::object("GL_FRAGMENT_PRECISION_HIGH".into(), gl_es, true));
+    let (mut derivatives, mut warnings) = (false, Vec::new());
+    if !extensions.is_empty() {
+        let skipped = skipped_extension_lines(stage, &text)?;
+        for &(i, rest, _) in &extensions {
+            if !skipped.contains(&i) {
+                extension_directive(stage, i + 1, rest, &mut derivatives, &mut warnings)?;
+            }
+        }
+        // The parse sees blank lines in their place: spaces keep every offset.
+        let mut bytes = text.into_bytes();
+        for &(_, _, start) in &extensions {
+            let end = bytes[start..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |n| start + n);
+            bytes[start..end].fill(b' ');
+        }
+        text = String::from_utf8(bytes).map_err(|e| format!("internal: {e}"))?;
     }
-    let state = state.finish();
+    let state = initial_state(stage)?;
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
     match parsed {

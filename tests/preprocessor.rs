@@ -1,0 +1,116 @@
+//! Conditional compilation in GLSL ES 1.00 shaders, against Mesa: macros in `#if` expand where
+//! the `#if` stands (a macro may name one defined only later in the text), and the directives
+//! of a skipped section are ignored, `#extension` included (GLSL ES 1.00 §3.4, as in C99's
+//! preprocessing). Shader generators that build every variant from one source depend on both.
+//! For each shader, Mesa's compile status is the oracle and Strata's front end must agree.
+
+mod support;
+
+use strata_client::{Calls, ClientError};
+use strata_protocol::Text;
+use strata_server::gles::glsl;
+use support::mesa::MesaGl;
+
+/// A fragment shader body that needs nothing from any extension.
+const BODY: &str = "precision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+
+/// Shaders (name, fragment source) whose preprocessing decides whether they compile.
+fn cases() -> Vec<(&'static str, String)> {
+    let derivatives =
+        "precision mediump float;\nvarying vec2 v;\nvoid main() { gl_FragColor = vec4(dFdx(v), 0.0, 1.0); }\n";
+    vec![
+        (
+            // A compositor's shader generator: the variant macro is defined before the names it
+            // expands to, and the external-image section is skipped for the solid variant.
+            "variant macro defined before its value",
+            format!(
+                "#define VARIANT VARIANT_SOLID\n#define VARIANT_SOLID 7\n#define VARIANT_EXTERNAL 8\n\
+                 #if VARIANT == VARIANT_EXTERNAL\n#extension GL_FOO_external_image : require\n#endif\n{BODY}"
+            ),
+        ),
+        (
+            "the same variant selected: the extension is required",
+            format!(
+                "#define VARIANT VARIANT_EXTERNAL\n#define VARIANT_SOLID 7\n#define VARIANT_EXTERNAL 8\n\
+                 #if VARIANT == VARIANT_EXTERNAL\n#extension GL_FOO_external_image : require\n#endif\n{BODY}"
+            ),
+        ),
+        ("#if 0 around an unknown required extension", format!("#if 0\n#extension GL_FOO_bar : require\n#endif\n{BODY}")),
+        ("#if 1 around an unknown required extension", format!("#if 1\n#extension GL_FOO_bar : require\n#endif\n{BODY}")),
+        (
+            "#ifdef of an undefined macro, #else taken",
+            format!("#ifdef NOT_DEFINED\n#extension GL_FOO_bar : require\n#else\n#define X 1\n#endif\n{BODY}"),
+        ),
+        (
+            "#ifndef of a defined macro",
+            format!("#define SEEN\n#ifndef SEEN\n#extension GL_FOO_bar : require\n#endif\n{BODY}"),
+        ),
+        (
+            "#elif chain: the taken branch enables derivatives",
+            format!(
+                "#define A B\n#define B 2\n#if A == 1\n#extension GL_FOO_bar : require\n#elif A == 2\n\
+                 #extension GL_OES_standard_derivatives : enable\n#else\n#extension GL_FOO_baz : require\n#endif\n{derivatives}"
+            ),
+        ),
+        (
+            "derivatives enabled only in a skipped section",
+            format!("#if 0\n#extension GL_OES_standard_derivatives : enable\n#endif\n{derivatives}"),
+        ),
+        (
+            "a function-like macro in #if",
+            format!("#define PLUS1(x) ((x) + 1)\n#if PLUS1(1) != 2\n#extension GL_FOO_bar : require\n#endif\n{BODY}"),
+        ),
+        (
+            "defined() with && and !",
+            format!("#if defined(GL_ES) && !defined(NOPE)\n#else\n#extension GL_FOO_bar : require\n#endif\n{BODY}"),
+        ),
+        (
+            "malformed directives in a skipped section",
+            format!("#if 0\n#extension garbage\n#frobnicate now\n#line x y\n#error not reached\n#endif\n{BODY}"),
+        ),
+        (
+            "a nested skipped #if with a bad expression",
+            format!("#if 0\n#if 1 +\n#extension GL_FOO_bar : require\n#endif\n#endif\n{BODY}"),
+        ),
+        (
+            "#undef makes a later section skipped",
+            format!("#define ON 1\n#undef ON\n#if defined(ON)\n#extension GL_FOO_bar : require\n#endif\n{BODY}"),
+        ),
+        ("an #error in a taken section", format!("#if 1\n#error taken\n#endif\n{BODY}")),
+    ]
+}
+
+/// Whether Mesa compiles `source` as a fragment shader, with its info log.
+fn mesa_compiles(gl: &mut MesaGl, name: u32, source: &str) -> Result<(bool, String), ClientError> {
+    gl.glCreateShader(0x8B30, name)?;
+    gl.glShaderSource(name, Text::borrowed(source))?;
+    gl.glCompileShader(name)?;
+    Ok((gl.glGetShaderiv(name, 0x8B81)? != 0, gl.glGetShaderInfoLog(name)?))
+}
+
+#[test]
+fn conditional_sections_and_their_directives_match_mesa() {
+    let mut mesa = match MesaGl::open(16, 16) {
+        Ok(m) => m,
+        Err(e) if support::oracles_required() => panic!("Mesa GLES2 unavailable: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPED: Mesa GLES2 unavailable ({e})");
+            return;
+        }
+    };
+    let mut outcomes = [0usize; 2];
+    let mut disagreements = Vec::new();
+    for (i, (name, source)) in cases().into_iter().enumerate() {
+        let (native, log) = mesa_compiles(&mut mesa, 100 + i as u32, &source).expect("Mesa");
+        let ours = glsl::compile(glsl::Stage::Fragment, &source);
+        eprintln!("{name}: Mesa {native}, Strata {}", ours.is_ok());
+        outcomes[usize::from(native)] += 1;
+        if ours.is_ok() != native {
+            let said = ours.err().unwrap_or_default();
+            disagreements.push(format!("{name}: Mesa compiles: {native} ({log:?}); Strata: {said:?}"));
+        }
+    }
+    assert!(disagreements.is_empty(), "Strata's preprocessing differs from Mesa's:\n{}", disagreements.join("\n"));
+    // The cases must exercise both outcomes, or they would not tell anything apart.
+    assert!(outcomes.iter().all(|&n| n >= 3), "cases Mesa refuses and compiles: {outcomes:?}");
+}
