@@ -18,6 +18,7 @@ const BODY: &str = "precision mediump float;\nvoid main() { gl_FragColor = vec4(
 fn cases() -> Vec<(&'static str, String)> {
     let derivatives =
         "precision mediump float;\nvarying vec2 v;\nvoid main() { gl_FragColor = vec4(dFdx(v), 0.0, 1.0); }\n";
+    let frag_depth = "precision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); gl_FragDepthEXT = 0.25; }\n";
     vec![
         (
             // A compositor's shader generator: the variant macro is defined before the names it
@@ -77,6 +78,16 @@ fn cases() -> Vec<(&'static str, String)> {
             format!("#define ON 1\n#undef ON\n#if defined(ON)\n#extension GL_FOO_bar : require\n#endif\n{BODY}"),
         ),
         ("an #error in a taken section", format!("#if 1\n#error taken\n#endif\n{BODY}")),
+        ("GL_EXT_frag_depth enabled", format!("#extension GL_EXT_frag_depth : enable\n{frag_depth}")),
+        (
+            "GL_EXT_frag_depth enabled only in a skipped section",
+            format!("#ifndef GL_ES\n#extension GL_EXT_frag_depth : enable\n#endif\n{frag_depth}"),
+        ),
+        ("GL_EXT_frag_depth never enabled", frag_depth.to_string()),
+        (
+            "GL_EXT_frag_depth's macro",
+            format!("#ifndef GL_EXT_frag_depth\n#error no macro\n#endif\n{BODY}"),
+        ),
     ]
 }
 

@@ -2,7 +2,8 @@
 //!
 //! - with `--reversed-z`, programs using depth tests under several compare functions, a depth
 //!   clear other than 1, `glDepthRangef`, polygon offset and `gl_FragCoord.z`, drawn through a
-//!   standard perspective projection into a window surface that declares it, give Mesa's
+//!   standard perspective projection into a window surface that declares it, and a shader
+//!   writing `gl_FragDepthEXT`, give Mesa's
 //!   image: the application cannot tell that its depth is stored reversed;
 //! - two surfaces under different declared perspective projections whose planes meet along a
 //!   line, composited: with `--depth-format 32float --reversed-z` the compositor picks the
@@ -141,6 +142,28 @@ fn frag_coord_depth(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
     draw_positions(gl, n, &eye_quad(-0.5, -0.5, 0.5, 0.5, [1.0, 1.0, 1.0, 1.0]), TRIANGLES)
 }
 
+/// A fragment shader writing `gl_FragDepthEXT` (`GL_EXT_frag_depth`): a red quad, near in eye
+/// space, whose written depth runs from 0 to 1 across x, then green and blue quads at eye
+/// distances 1 and 3 under LESS and GREATER: each shows only where the written depth is
+/// beyond, or short of, its own.
+fn frag_depth_written(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glClear(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT)?;
+    let fs = "#extension GL_EXT_frag_depth : enable
+        precision highp float;
+        void main() { gl_FragColor = vec4(1.0, 0.0, 0.0, 1.0); gl_FragDepthEXT = gl_FragCoord.x / 64.0; }";
+    let p = program(gl, n, VS_EYE, fs, &["eye"])?;
+    let loc = gl.glGetUniformLocation(p, strata_protocol::Text::borrowed("proj"))?;
+    gl.glUniformMatrix4fv(loc, false, Slice::new(&perspective(f64::from(NEAR), f64::from(FAR))))?;
+    draw_positions(gl, n, &eye_quad(-1.0, -1.0, 1.0, 1.0, [0.6; 4]), TRIANGLES)?;
+    let p = eye_program(gl, n, NEAR, FAR)?;
+    color(gl, p, [0.0, 1.0, 0.0, 1.0])?;
+    draw_positions(gl, n, &eye_quad(-1.0, -1.0, 1.0, 0.0, [1.0; 4]), TRIANGLES)?;
+    gl.glDepthFunc(GREATER)?;
+    color(gl, p, [0.0, 0.0, 1.0, 1.0])?;
+    draw_positions(gl, n, &eye_quad(-1.0, 0.0, 1.0, 1.0, [3.0; 4]), TRIANGLES)
+}
+
 /// A connection to `daemon` whose current surface is a W×H window surface with depth `depth`
 /// declaring `projection`, at `rect`'s place.
 fn window(daemon: &Daemon, name: &str, depth: i32, rect: [i32; 4], projection: Option<Projection>) -> Connection {
@@ -183,11 +206,12 @@ fn reversed_depth_is_invisible_to_the_application() {
         return;
     }
     let daemon = Daemon::start("reversed-z-oracle", &["--depth-format", "32float", "--reversed-z"]);
-    let cases: [(&str, Program); 4] = [
+    let cases: [(&str, Program); 5] = [
         ("compare_funcs", compare_funcs),
         ("clear_and_range", clear_and_range),
         ("equal_and_offset", equal_and_offset),
         ("frag_coord_depth", frag_coord_depth),
+        ("frag_depth_written", frag_depth_written),
     ];
     let mut failures = Vec::new();
     for (name, run) in cases {

@@ -223,6 +223,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 mod cases;
 mod compressed;
 mod derivatives;
+mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
 mod objects;
@@ -238,6 +239,7 @@ pub fn all() -> Vec<Case> {
     all.extend(compressed::all());
     all.extend(points::all());
     all.extend(framebuffer_ext::all());
+    all.extend(frag_depth::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

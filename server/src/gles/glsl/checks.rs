@@ -1,5 +1,6 @@
 //! GLSL ES 1.00 rules checked on the parsed shader before it is lifted and rewritten:
-//! derivative functions (`GL_OES_standard_derivatives`), redeclarations (§4.2.7), struct
+//! derivative functions (`GL_OES_standard_derivatives`), `gl_FragDepthEXT`
+//! (`GL_EXT_frag_depth`), redeclarations (§4.2.7), struct
 //! members (§4.1.8) and constant global initialisers (§4.3). Errors name the line, Mesa-style.
 
 use std::collections::{HashMap, HashSet};
@@ -34,13 +35,19 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     let mut calls = Calls::default();
     parsed.tu.visit(&mut calls);
     for (name, span) in &calls.found {
-        if DERIVATIVES.contains(&name.as_str()) && (stage == Stage::Vertex || !parsed.derivatives) {
+        if DERIVATIVES.contains(&name.as_str()) && (stage == Stage::Vertex || !parsed.enabled.derivatives) {
             let why = if stage == Stage::Vertex {
                 "is only available in fragment shaders"
             } else {
                 "requires `#extension GL_OES_standard_derivatives : enable'"
             };
             return Err(at(*span, &format!("`{name}' {why}")));
+        }
+    }
+    // `GL_EXT_frag_depth`'s output exists only in fragment shaders that enable it.
+    if let Some(span) = calls.frag_depth {
+        if stage == Stage::Vertex || !parsed.enabled.frag_depth {
+            return Err(at(span, &format!("`{FRAG_DEPTH}' undeclared")));
         }
     }
     globals(&parsed.tu, &at)?;
@@ -60,17 +67,25 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     Ok(Facts { uniform_precisions, used: calls.variables, invariants })
 }
 
-/// Every function called by name, with where.
+/// `GL_EXT_frag_depth`'s fragment depth output.
+pub(super) const FRAG_DEPTH: &str = "gl_FragDepthEXT";
+
+/// Every function called by name, with where; every variable named; the first use of
+/// [`FRAG_DEPTH`].
 #[derive(Default)]
 struct Calls {
     found: Vec<(String, Option<ast::NodeSpan>)>,
     variables: HashSet<String>,
+    frag_depth: Option<Option<ast::NodeSpan>>,
 }
 
 impl Visitor for Calls {
     fn visit_expr(&mut self, e: &ast::Expr) -> Visit {
         if let ExprData::Variable(id) = &e.content {
             self.variables.insert(id.0.to_string());
+            if id.0 == FRAG_DEPTH && self.frag_depth.is_none() {
+                self.frag_depth = Some(e.span);
+            }
         }
         if let ExprData::FunCall(f, _) = &e.content {
             if let FunIdentifierData::Expr(callee) = &f.content {

@@ -56,6 +56,22 @@ fn extension_directives_follow_section_3_4() {
 }
 
 #[test]
+fn frag_depth_needs_the_extension_and_a_fragment_shader() {
+    let fs = "#extension GL_EXT_frag_depth : enable\nprecision mediump float;\nvarying float d;\nvoid main() {\n  gl_FragColor = vec4(1.0);\n  gl_FragDepthEXT = d * 0.5;\n}";
+    let f = compile(Stage::Fragment, fs).expect("fragment depth");
+    assert!(f.frag_depth);
+    let v = compile(Stage::Vertex, "attribute float p; varying float d; void main() { d = p; gl_Position = vec4(p); }")
+        .expect("vs");
+    link(&v, &f, &HashMap::new(), 16).expect("frag depth links");
+    assert_eq!(
+        frag_err("precision mediump float;\nvoid main() {\n  gl_FragDepthEXT = 0.5;\n}"),
+        "0:3(3): error: `gl_FragDepthEXT' undeclared"
+    );
+    assert!(vert_err("#extension GL_EXT_frag_depth : enable\nvoid main() {\n  gl_FragDepthEXT = 0.5;\n}")
+        .contains("`gl_FragDepthEXT' undeclared"));
+}
+
+#[test]
 fn version_macro_is_100() {
     compile(
         Stage::Fragment,

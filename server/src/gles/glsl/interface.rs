@@ -64,6 +64,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         varyings: vec![],
         uniforms: vec![],
         point_coord: false,
+        frag_depth: false,
         has_main: false,
         log: parsed.warnings.join("\n"),
         facts,
@@ -216,10 +217,12 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         error: None,
         stage,
         point_coord: false,
+        frag_depth: false,
     };
     shader.body.visit_mut(&mut rewrite);
     super::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
+    shader.frag_depth = rewrite.frag_depth;
     if let Some(e) = rewrite.error {
         return Err(e);
     }

@@ -50,8 +50,8 @@ pub struct Linked {
     pub points_source: String,
     /// The vertex stage as GLSL, for its reversed-Z variants ([`Linked::reversed_vertex`]).
     pub vertex_source: String,
-    /// The fragment stage's reversed-Z variant as GLSL, when it reads `gl_FragCoord`
-    /// ([`Linked::reversed_fragment`]).
+    /// The fragment stage's reversed-Z variant as GLSL, when it reads `gl_FragCoord` or
+    /// writes `gl_FragDepthEXT` ([`Linked::reversed_fragment`]).
     pub reversed_fragment_source: Option<String>,
     /// The vertex input location of the points stage's `strata_point` parameter:
     /// (1 / viewport width, 1 / viewport height, 0, 0), constant over the draw.
@@ -71,6 +71,13 @@ const MAX_SAMPLERS: usize = 32;
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1].
 const CONVENTIONS: &str =
     "    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
+
+/// The generated fragment `main`'s last step where the shader writes `gl_FragDepthEXT`
+/// (`GL_EXT_frag_depth`): the value, clamped to [0, 1] as GL stores it, is the fragment's depth.
+const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDepth, 0.0, 1.0);\n";
+
+/// [`FRAG_DEPTH_OUT`] for a reversed-Z framebuffer, which stores 1 − GL's window depth.
+const FRAG_DEPTH_OUT_REVERSED: &str = "    gl_FragDepth = 1.0 - clamp(strata_FragDepth, 0.0, 1.0);\n";
 
 /// The clip z step of [`CONVENTIONS`], which the reversed-Z variant replaces.
 const FORWARD_Z: &str = "    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
@@ -108,7 +115,8 @@ impl Linked {
     }
 
     /// The fragment stage for a reversed-Z framebuffer when it reads `gl_FragCoord` (whose z
-    /// is then 1 − the stored depth, as GL defines it), else `None`: the program's own serves.
+    /// is then 1 − the stored depth, as GL defines it) or writes `gl_FragDepthEXT` (stored as
+    /// 1 − it), else `None`: the program's own serves.
     pub fn reversed_fragment(&self) -> Option<Result<naga::Module, String>> {
         let source = self.reversed_fragment_source.as_ref()?;
         let none = Body { text: String::new(), lines: Vec::new() };
@@ -122,15 +130,17 @@ impl Linked {
 }
 
 /// The fragment stage `fsrc` (whose shader's own code starts at line `body_line`) for a
-/// reversed-Z framebuffer, if it reads `gl_FragCoord`: the shader reads a copy whose z is
-/// 1 − the stored depth, GL's window depth.
+/// reversed-Z framebuffer, if it reads `gl_FragCoord` or writes `gl_FragDepthEXT`: the shader
+/// reads a copy of `gl_FragCoord` whose z is 1 − the stored depth, GL's window depth, and the
+/// depth it writes is stored as 1 − it.
 fn reversed_fragment_source(fsrc: &str, body_line: usize) -> Option<String> {
-    if !fsrc.contains("gl_FragCoord") {
+    let writes_depth = fsrc.contains(FRAG_DEPTH_OUT);
+    if !fsrc.contains("gl_FragCoord") && !writes_depth {
         return None;
     }
     let at = fsrc.match_indices('\n').nth(body_line.checked_sub(1)?)?.0 + 1;
-    let body = fsrc[at..].replace("gl_FragCoord", "strata_FragCoord");
-    let call = "    strata_main();\n}";
+    let body = fsrc[at..].replace("gl_FragCoord", "strata_FragCoord").replace(FRAG_DEPTH_OUT, FRAG_DEPTH_OUT_REVERSED);
+    let call = "    strata_main();\n";
     let main = body.rfind(call)?;
     Some(format!(
         "{}vec4 strata_FragCoord;\n{}    strata_FragCoord = vec4(gl_FragCoord.xy, 1.0 - gl_FragCoord.z, \
@@ -468,10 +478,16 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         let _ = writeln!(fsrc, "layout(location = {next}) in vec2 strata_PointCoord;");
     }
     fsrc.push_str("layout(location = 0) out vec4 strata_FragColor;\n");
+    let depth_out = if fs.frag_depth {
+        fsrc.push_str("float strata_FragDepth;\n");
+        FRAG_DEPTH_OUT
+    } else {
+        ""
+    };
     let fs_body = transpile(fs)?;
     let fs_first_line = fsrc.matches('\n').count();
     fsrc.push_str(&fs_body.text);
-    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n}}\n"));
+    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n{depth_out}}}\n"));
     Ok(Generated {
         vsrc,
         fsrc,

@@ -15,12 +15,24 @@ use super::Stage;
 
 /// The shading-language extensions Strata offers; each is defined as a macro (value 1).
 pub(super) const OES_STANDARD_DERIVATIVES: &str = "GL_OES_standard_derivatives";
+/// `gl_FragDepthEXT` in fragment shaders.
+pub(super) const EXT_FRAG_DEPTH: &str = "GL_EXT_frag_depth";
+
+/// Which of the offered extensions a shader's directives leave enabled.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Enabled {
+    /// `GL_OES_standard_derivatives`.
+    pub(super) derivatives: bool,
+    /// `GL_EXT_frag_depth`.
+    pub(super) frag_depth: bool,
+}
 
 /// The preprocessor's extension registry: only what Strata offers, so that only those
 /// extension macros are defined.
 static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     let mut r = Registry::new();
     r.add(ExtensionSpec::new(ExtNameAtom::from(OES_STANDARD_DERIVATIVES), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_FRAG_DEPTH), vec![]));
     r
 });
 
@@ -30,8 +42,8 @@ pub(super) struct Parsed {
     pub(super) tu: ast::TranslationUnit,
     /// The text the parser saw (same lines as the source), for mapping spans to lines.
     pub(super) text: String,
-    /// Whether `GL_OES_standard_derivatives` is enabled at the end of the shader.
-    pub(super) derivatives: bool,
+    /// The offered extensions enabled at the end of the shader.
+    pub(super) enabled: Enabled,
     /// Warnings for the info log.
     pub(super) warnings: Vec<String>,
 }
@@ -61,7 +73,7 @@ fn extension_directive(
     stage: Stage,
     line: usize,
     rest: &str,
-    derivatives: &mut bool,
+    enabled: &mut Enabled,
     warnings: &mut Vec<String>,
 ) -> Result<(), String> {
     let (name, behavior) = match rest.split_once(':') {
@@ -76,14 +88,18 @@ fn extension_directive(
         return match behavior {
             "warn" => Ok(()),
             "disable" => {
-                *derivatives = false;
+                *enabled = Enabled::default();
                 Ok(())
             }
             _ => Err(error_at(line, 1, &format!("cannot {behavior} all extensions"))),
         };
     }
     if name == OES_STANDARD_DERIVATIVES {
-        *derivatives = behavior != "disable";
+        enabled.derivatives = behavior != "disable";
+        return Ok(());
+    }
+    if name == EXT_FRAG_DEPTH {
+        enabled.frag_depth = behavior != "disable";
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));
@@ -224,12 +240,12 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     }
     // Ends a `\` continuation on the last line before the input does (see `unterminated`).
     text.push('\n');
-    let (mut derivatives, mut warnings) = (false, Vec::new());
+    let (mut enabled, mut warnings) = (Enabled::default(), Vec::new());
     if !extensions.is_empty() {
         let skipped = skipped_extension_lines(stage, &text)?;
         for &(i, rest, _) in &extensions {
             if !skipped.contains(&i) {
-                extension_directive(stage, i + 1, rest, &mut derivatives, &mut warnings)?;
+                extension_directive(stage, i + 1, rest, &mut enabled, &mut warnings)?;
             }
         }
         // The parse sees blank lines in their place: spaces keep every offset.
@@ -244,7 +260,7 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
     match parsed {
-        Ok((tu, _, _)) => Ok(Parsed { tu, text, derivatives, warnings }),
+        Ok((tu, _, _)) => Ok(Parsed { tu, text, enabled, warnings }),
         // Mesa's form, `0:LINE(COL): error: …`, from the parser's 0-based position.
         Err(e) => Err(error_at(e.line() as usize + 1, e.col() as usize + 1, &e.inner().to_string())),
     }

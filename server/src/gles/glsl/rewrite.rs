@@ -29,6 +29,8 @@ pub(super) struct Rewrite {
     pub(super) stage: Stage,
     /// Whether the (fragment) shader reads `gl_PointCoord`.
     pub(super) point_coord: bool,
+    /// Whether the (fragment) shader writes `gl_FragDepthEXT`.
+    pub(super) frag_depth: bool,
 }
 
 /// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
@@ -246,6 +248,10 @@ impl VisitorMut for Rewrite {
                 } else if name == "gl_PointCoord" && self.stage == Stage::Fragment {
                     self.point_coord = true;
                     Some(var("strata_PointCoord"))
+                } else if name == super::checks::FRAG_DEPTH && self.stage == Stage::Fragment {
+                    // Clamped and written out by the generated `main` (`link`).
+                    self.frag_depth = true;
+                    Some(var("strata_FragDepth"))
                 } else if let Some(ty) = self.samplers.get(name) {
                     let t = if *ty == Ty::Sampler2D { T::Sampler2D } else { T::SamplerCube };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
