@@ -1,4 +1,5 @@
-//! Every `glGet` pname of ES 2.0's state tables (6.2–6.20 of the ES 2.0.25 specification),
+//! Every `glGet` pname of ES 2.0's state tables (6.2–6.20 of the ES 2.0.25 specification, and
+//! the state of the extensions Strata offers),
 //! queried through `glGetIntegerv`, `glGetFloatv` and `glGetBooleanv` on Strata and on Mesa:
 //! none may raise an error, each must return as many values as the table says, and where the
 //! value is not implementation-dependent Strata's must equal Mesa's, in a fresh context, after
@@ -42,6 +43,8 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     (0x0B46, "FRONT_FACE", 1, State),
     (0x8038, "POLYGON_OFFSET_FACTOR", 1, State),
     (0x2A00, "POLYGON_OFFSET_UNITS", 1, State),
+    // GL_EXT_polygon_offset_clamp.
+    (0x8E1B, "POLYGON_OFFSET_CLAMP_EXT", 1, State),
     (0x8037, "POLYGON_OFFSET_FILL", 1, State),
     // 6.6 multisampling.
     (0x809E, "SAMPLE_ALPHA_TO_COVERAGE", 1, State),
@@ -169,7 +172,7 @@ fn set_state(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
     gl.glEnable(0x0B44)?;
     gl.glCullFace(0x0408)?;
     gl.glFrontFace(0x0900)?;
-    gl.glPolygonOffset(-1.5, 2.5)?;
+    gl.glPolygonOffsetClampEXT(-1.5, 2.5, 0.125)?;
     gl.glEnable(0x8037)?;
     gl.glEnable(0x809E)?;
     gl.glEnable(0x80A0)?;

@@ -164,6 +164,25 @@ fn frag_depth_written(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
     draw_positions(gl, n, &eye_quad(-1.0, 0.0, 1.0, 1.0, [3.0; 4]), TRIANGLES)
 }
 
+/// `GL_EXT_polygon_offset_clamp`: a red quad receding from 2 to 10 across x, then green bands
+/// 3 % farther pulled forward by a slope-scaled offset under clamps 0 (unbounded), −0.0005
+/// (short of the gap) and −0.01.
+fn offset_clamp(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glClear(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT)?;
+    let p = eye_program(gl, n, NEAR, FAR)?;
+    color(gl, p, [1.0, 0.0, 0.0, 1.0])?;
+    draw_positions(gl, n, &eye_quad(-0.9, -0.9, 0.9, 0.9, [2.0, 10.0, 10.0, 2.0]), TRIANGLES)?;
+    gl.glEnable(0x8037)?; // GL_POLYGON_OFFSET_FILL
+    color(gl, p, [0.0, 1.0, 0.0, 1.0])?;
+    for (band, clamp) in [0.0f32, -0.0005, -0.01].into_iter().enumerate() {
+        gl.glPolygonOffsetClampEXT(-40.0, -4.0, clamp)?;
+        let y0 = -0.9 + 0.6 * band as f32;
+        draw_positions(gl, n, &eye_quad(-0.9, y0, 0.9, y0 + 0.6, [2.06, 10.3, 10.3, 2.06]), TRIANGLES)?;
+    }
+    gl.glDisable(0x8037)
+}
+
 /// A connection to `daemon` whose current surface is a W×H window surface with depth `depth`
 /// declaring `projection`, at `rect`'s place.
 fn window(daemon: &Daemon, name: &str, depth: i32, rect: [i32; 4], projection: Option<Projection>) -> Connection {
@@ -206,12 +225,13 @@ fn reversed_depth_is_invisible_to_the_application() {
         return;
     }
     let daemon = Daemon::start("reversed-z-oracle", &["--depth-format", "32float", "--reversed-z"]);
-    let cases: [(&str, Program); 5] = [
+    let cases: [(&str, Program); 6] = [
         ("compare_funcs", compare_funcs),
         ("clear_and_range", clear_and_range),
         ("equal_and_offset", equal_and_offset),
         ("frag_coord_depth", frag_coord_depth),
         ("frag_depth_written", frag_depth_written),
+        ("offset_clamp", offset_clamp),
     ];
     let mut failures = Vec::new();
     for (name, run) in cases {

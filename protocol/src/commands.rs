@@ -245,6 +245,9 @@ command_set! {
         /// `GL_FLOAT` is accepted too), tightly packed, which the next draw reads in place of the
         /// pointer's type and stride. Queries still answer what the application set.
         strataVertexAttribDataPacked [Context] => VertexAttribDataPacked { index: GLuint, attrib_type: GLenum, data: Blob<'a> };
+        /// `GL_EXT_polygon_offset_clamp`: polygon offset whose size `clamp` bounds (a positive
+        /// clamp is the largest offset, a negative one the smallest; 0 bounds nothing).
+        glPolygonOffsetClampEXT [Context] => PolygonOffsetClampEXT { factor: GLfloat, units: GLfloat, clamp: GLfloat };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

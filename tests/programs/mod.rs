@@ -227,6 +227,7 @@ mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
 mod objects;
+mod offset_clamp;
 mod points;
 mod samplers;
 mod textures;
@@ -240,6 +241,7 @@ pub fn all() -> Vec<Case> {
     all.extend(points::all());
     all.extend(framebuffer_ext::all());
     all.extend(frag_depth::all());
+    all.extend(offset_clamp::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

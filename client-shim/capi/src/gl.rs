@@ -249,6 +249,7 @@ pub mod simple {
         fn glLineWidth(width: GLfloat);
         fn glLinkProgram(program: GLuint);
         fn glPolygonOffset(factor: GLfloat, units: GLfloat);
+        fn glPolygonOffsetClampEXT(factor: GLfloat, units: GLfloat, clamp: GLfloat);
         fn glReleaseShaderCompiler();
         fn glRenderbufferStorage(target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei);
         fn glSampleCoverage(value: GLfloat, invert: GLboolean);

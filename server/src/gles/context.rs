@@ -112,8 +112,8 @@ pub struct Raster {
     pub front_face: u32,
     /// `GL_POLYGON_OFFSET_FILL`.
     pub polygon_offset_fill: bool,
-    /// `GL_POLYGON_OFFSET_FACTOR` and `_UNITS`.
-    pub polygon_offset: [f32; 2],
+    /// `GL_POLYGON_OFFSET_FACTOR`, `_UNITS` and `_CLAMP_EXT`.
+    pub polygon_offset: [f32; 3],
     /// `GL_LINE_WIDTH`.
     pub line_width: f32,
     /// `GL_SAMPLE_COVERAGE`.
@@ -135,7 +135,7 @@ impl Default for Raster {
             cull_face: BACK,
             front_face: CCW,
             polygon_offset_fill: false,
-            polygon_offset: [0.0; 2],
+            polygon_offset: [0.0; 3],
             line_width: 1.0,
             sample_coverage: false,
             alpha_to_coverage: false,

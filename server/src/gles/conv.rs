@@ -291,9 +291,10 @@ impl Mirror {
         [1.0 - b, 1.0 - a]
     }
 
-    /// Polygon offset (factor bits, units) as stored: both negated.
-    pub fn bias((factor, units): (u32, i32)) -> (u32, i32) {
-        ((-f32::from_bits(factor)).to_bits(), units.saturating_neg())
+    /// Polygon offset (factor bits, units, clamp bits) as stored: all three negated (a
+    /// clamp bounds the offset's size on the side the offset moves to).
+    pub fn bias((factor, units, clamp): (u32, i32, u32)) -> (u32, i32, u32) {
+        ((-f32::from_bits(factor)).to_bits(), units.saturating_neg(), (-f32::from_bits(clamp)).to_bits())
     }
 }
 

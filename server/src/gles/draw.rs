@@ -276,7 +276,8 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
     });
     let bias = (raster.polygon_offset_fill && triangles && target.depth.is_some()).then(|| {
         // GL's units are in minimum resolvable depth steps, as Vulkan's constant factor is.
-        (raster.polygon_offset[0].to_bits(), raster.polygon_offset[1] as i32)
+        let [factor, units, clamp] = raster.polygon_offset;
+        (factor.to_bits(), units as i32, clamp.to_bits())
     });
     RasterState {
         topology,

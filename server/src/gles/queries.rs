@@ -14,7 +14,7 @@ use crate::gpu::Gpu;
 const EXTENSIONS_STRING: &str = "GL_OES_element_index_uint GL_OES_vertex_half_float GL_OES_texture_npot \
 GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_texture GL_OES_vertex_array_object \
 GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
-GL_OES_standard_derivatives GL_EXT_frag_depth";
+GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -109,6 +109,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         FRONT_FACE => u(raster.front_face),
         POLYGON_OFFSET_FACTOR => f(raster.polygon_offset[0]),
         POLYGON_OFFSET_UNITS => f(raster.polygon_offset[1]),
+        POLYGON_OFFSET_CLAMP_EXT => f(raster.polygon_offset[2]),
         SAMPLE_COVERAGE_VALUE => f(raster.coverage.0),
         SAMPLE_COVERAGE_INVERT => b(raster.coverage.1),
         BLEND_EQUATION_RGB => u(blend.eq[0]),

@@ -237,7 +237,18 @@ impl GlesExecutor {
     }
 
     pub(super) fn glPolygonOffset(&mut self, ctx: &mut Context, factor: f32, units: f32) -> GlResult {
-        ctx.raster.polygon_offset = [factor, units];
+        ctx.raster.polygon_offset = [factor, units, 0.0];
+        Ok(())
+    }
+
+    pub(super) fn glPolygonOffsetClampEXT(
+        &mut self,
+        ctx: &mut Context,
+        factor: f32,
+        units: f32,
+        clamp: f32,
+    ) -> GlResult {
+        ctx.raster.polygon_offset = [factor, units, clamp];
         Ok(())
     }
 

@@ -83,8 +83,8 @@ pub struct RasterState {
     pub depth: Option<(wgpu::CompareFunction, bool)>,
     /// Stencil state if the test is on.
     pub stencil: Option<wgpu::StencilState>,
-    /// Polygon offset (factor bits, units).
-    pub bias: Option<(u32, i32)>,
+    /// Polygon offset (factor bits, units, clamp bits).
+    pub bias: Option<(u32, i32, u32)>,
     /// Blend state if blending is on.
     pub blend: Option<wgpu::BlendState>,
     /// Colour write mask.

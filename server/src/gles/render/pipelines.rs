@@ -151,9 +151,11 @@ impl Renderer {
                 Default::default()
             },
             bias: match r.bias {
-                Some((factor, units)) => {
-                    wgpu::DepthBiasState { constant: units, slope_scale: f32::from_bits(factor), clamp: 0.0 }
-                }
+                Some((factor, units, clamp)) => wgpu::DepthBiasState {
+                    constant: units,
+                    slope_scale: f32::from_bits(factor),
+                    clamp: f32::from_bits(clamp),
+                },
                 None => Default::default(),
             },
         });
