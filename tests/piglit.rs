@@ -1,13 +1,17 @@
 //! piglit, the OpenGL conformance suite, as the oracle for Strata's GLES 2.0 and GLSL ES 1.00:
-//! piglit's GLES 2.0 selection runs natively on Mesa (llvmpipe) and through `stratad` with the
-//! drop-in libEGL/libGLESv2, each under its own Xvfb, and every test that passes natively must
-//! pass through Strata, unless `tests/piglit/exceptions.txt` excuses it (it needs an ES 3.x or
-//! desktop GL context, or an extension Strata does not offer). Entries that pass through Strata
-//! again are stale and fail the test too, so the file stays honest.
+//! piglit's GLES 2.0 selection (read from piglit's own metadata, `piglit/selection.rs`) runs
+//! natively on Mesa (llvmpipe) held to ES 2.0 (`MESA_GLES_VERSION_OVERRIDE=2.0`: Mesa then
+//! creates only ES 2.0 contexts, with only the extensions an ES 2.0 context has) and through
+//! `stratad` with the drop-in libEGL/libGLESv2, each under its own Xvfb. Every test that passes
+//! natively must pass through Strata, unless `tests/piglit/exceptions.txt` excuses it.
+//! Entries that pass through Strata again are stale and fail the test too, so the file stays
+//! honest.
 //!
 //! Results stay under `target/piglit/{native,strata}` (piglit's `results.json`, the daemon's
 //! log) and the verdict is written to `target/strata-tests/piglit.txt`.
 
+#[path = "piglit/selection.rs"]
+mod selection;
 mod support;
 #[path = "piglit/verdict.rs"]
 mod verdict;
@@ -22,18 +26,19 @@ use verdict::{Run, Verdict};
 
 /// Where Debian's piglit keeps its test profiles.
 const TESTS: &str = "/usr/lib/x86_64-linux-gnu/piglit/tests";
+/// Where it keeps its test programs.
+const BIN: &str = "/usr/lib/x86_64-linux-gnu/piglit/bin";
 /// The profiles the selection is drawn from.
 const PROFILES: &[&str] = &["opengl.xml.gz", "shader.xml.gz", "glslparser.xml.gz"];
-/// `-t` filters: GLES 2.0, GLSL ES 1.00 and the ES extensions.
-const INCLUDE: &[&str] = &["glsl-es-1.00", "opengl es 2.0", "_gles2", "gles2$", "oes_", "ext_frag_depth"];
-/// `-x` filter: everything ES 3.
-const EXCLUDE: &str = "gles3|gles-3|es 3|glsl-es-3";
+/// What the native side's version string must start with: Mesa held to ES 2.0.
+const NATIVE_VERSION: &str = "OpenGL ES 2.0";
 /// piglit kills a test that runs longer than this and records `timeout`.
 const PER_TEST_TIMEOUT_S: u32 = 60;
 /// A whole run that takes longer than this is killed and fails the test.
 const RUN_DEADLINE: Duration = Duration::from_secs(900);
-/// Mesa passes about 300 tests of the selection; far fewer means the oracle itself is broken.
-const NATIVE_PASS_FLOOR: usize = 250;
+/// Mesa held to ES 2.0 passes about 190 tests of the selection; far fewer means the oracle
+/// itself is broken.
+const NATIVE_PASS_FLOOR: usize = 160;
 
 /// Whether piglit, wflinfo and Xvfb are installed; if not, the test skips with the reason,
 /// unless `STRATA_REQUIRE_ORACLES=1` (CI), where it fails.
@@ -70,18 +75,26 @@ impl Side {
         for var in ["LD_LIBRARY_PATH", "LD_PRELOAD", "STRATA_SOCKET", "STRATA_WINDOW", "STRATA_CHECK_ERRORS"] {
             cmd.env_remove(var);
         }
+        // No Mesa override of the caller's may reach either side (`MESA_GL_VERSION_OVERRIDE`,
+        // `MESA_EXTENSION_OVERRIDE`, …): each side sets what it needs below.
+        for (var, _) in std::env::vars_os() {
+            if var.to_string_lossy().starts_with("MESA_") {
+                cmd.env_remove(var);
+            }
+        }
         cmd.env("DISPLAY", &self.display).env("PIGLIT_PLATFORM", "x11_egl").env("PIGLIT_COMPRESSION", "none");
         cmd.envs(self.env.iter().map(|(k, v)| (k, v.as_os_str())));
         cmd
     }
 
-    /// The renderer wflinfo reports for an ES 2 context on this side.
-    fn renderer(&self) -> String {
+    /// The renderer and version string wflinfo reports for an ES 2 context on this side.
+    fn renderer(&self) -> (String, String) {
         let out = self.command("wflinfo").args(["-p", "x11_egl", "-a", "gles2"]).output().expect("run wflinfo");
         let text = String::from_utf8_lossy(&out.stdout);
         let line = |key: &str| text.lines().find_map(|l| l.strip_prefix(key)).unwrap_or("?").trim().to_string();
         let renderer = line("OpenGL renderer string:");
-        eprintln!("{}: wflinfo: {renderer}, {}", self.name, line("OpenGL version string:"));
+        let version = line("OpenGL version string:");
+        eprintln!("{}: wflinfo: {renderer}, {version}", self.name);
         assert!(
             out.status.success(),
             "{}: wflinfo failed: {}{}",
@@ -89,21 +102,17 @@ impl Side {
             text,
             String::from_utf8_lossy(&out.stderr)
         );
-        renderer
+        (renderer, version)
     }
 
-    /// Runs the selection into `results` and reads it back, with the wall time.
-    fn run_piglit(&self, results: &Path) -> (Run, Duration) {
+    /// Runs the tests of `profile` into `results` and reads them back, with the wall time.
+    fn run_piglit(&self, profile: &Path, results: &Path) -> (Run, Duration) {
         let _ = std::fs::remove_dir_all(results);
         std::fs::create_dir_all(results).expect("results dir");
         let log = results.with_extension("log");
         let mut cmd = self.command("piglit");
         cmd.args(["run", "-o", "-l", "dummy", "-p", "x11_egl", "--timeout", &PER_TEST_TIMEOUT_S.to_string()]);
-        for t in INCLUDE {
-            cmd.args(["-t", t]);
-        }
-        cmd.args(["-x", EXCLUDE]);
-        cmd.args(PROFILES.iter().map(|p| Path::new(TESTS).join(p))).arg(results);
+        cmd.arg(profile).arg(results);
         let file = std::fs::File::create(&log).expect("piglit log");
         cmd.stdin(Stdio::null()).stdout(file.try_clone().expect("log")).stderr(file);
         // Its own process group, so that a deadline takes piglit's tests down with it.
@@ -137,7 +146,10 @@ fn summary(native: (&Run, Duration), strata: (&Run, Duration), v: &Verdict, reru
         s.push_str(&l);
         s.push('\n');
     };
-    line(format!("piglit selection: -t {} -x '{EXCLUDE}' {}", INCLUDE.join(" -t "), PROFILES.join(" ")));
+    line(format!(
+        "piglit selection: the tests of {} on GLES 2.0 and GLSL ES 1.00, by piglit's metadata (tests/piglit/selection.rs); native side held to {NATIVE_VERSION}",
+        PROFILES.join(" ")
+    ));
     line(format!("native (Mesa):   {} in {:.1}s", verdict::counts_line(native.0), native.1.as_secs_f64()));
     line(format!("through stratad: {} in {:.1}s", verdict::counts_line(strata.0), strata.1.as_secs_f64()));
     let native_passes = native.0.values().filter(|o| o.result == "pass").count();
@@ -186,20 +198,31 @@ fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
 
     // The oracle: Mesa's own libraries (LIBGL_ALWAYS_SOFTWARE keeps it on llvmpipe where a GPU
     // exists), nothing of Strata's on the library path.
+    let selected = selection::select(Path::new(TESTS), Path::new(BIN), PROFILES).expect("piglit's profiles");
+    let list = out_dir.join("gles2.xml.gz");
+    selection::write_profile(&list, &selected).expect("write the selection's profile");
+    eprintln!("selection: {} tests of piglit's GLES 2.0 build and GLSL ES 1.00 ({})", selected.len(), list.display());
     let x_native = Xvfb::start(1024, 768).expect("Xvfb");
-    let native =
-        Side { name: "native", display: x_native.display.clone(), env: vec![("LIBGL_ALWAYS_SOFTWARE", "1".into())] };
-    let renderer = native.renderer();
+    let native = Side {
+        name: "native",
+        display: x_native.display.clone(),
+        env: vec![("LIBGL_ALWAYS_SOFTWARE", "1".into()), ("MESA_GLES_VERSION_OVERRIDE", "2.0".into())],
+    };
+    let (renderer, version) = native.renderer();
     assert!(
         renderer.contains("llvmpipe") && !renderer.contains("Strata"),
         "the native run must use Mesa's llvmpipe, but wflinfo reports {renderer:?}"
     );
-    let (native_run, native_time) = native.run_piglit(&out_dir.join("native"));
+    assert!(
+        version.starts_with(NATIVE_VERSION),
+        "the native side must be held to ES 2.0, but wflinfo reports {version:?}"
+    );
+    let (native_run, native_time) = native.run_piglit(&list, &out_dir.join("native"));
     eprintln!("native (Mesa):   {} in {:.1}s", verdict::counts_line(&native_run), native_time.as_secs_f64());
     let native_passes = native_run.values().filter(|o| o.result == "pass").count();
     assert!(
         native_passes >= NATIVE_PASS_FLOOR,
-        "Mesa passes only {native_passes} tests (expected about 300): the oracle is broken; see {}",
+        "Mesa passes only {native_passes} tests (expected about 190): the oracle is broken; see {}",
         out_dir.join("native.log").display()
     );
 
@@ -220,9 +243,9 @@ fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
             ("STRATA_SOCKET", daemon.socket.clone()),
         ],
     };
-    let renderer = strata.renderer();
+    let (renderer, _) = strata.renderer();
     assert!(renderer.starts_with("Strata"), "the run through stratad reaches {renderer:?} instead");
-    let (strata_run, strata_time) = strata.run_piglit(&out_dir.join("strata"));
+    let (strata_run, strata_time) = strata.run_piglit(&list, &out_dir.join("strata"));
     eprintln!("through stratad: {} in {:.1}s", verdict::counts_line(&strata_run), strata_time.as_secs_f64());
     let _ = std::fs::write(out_dir.join("stratad.log"), daemon.log_text());
     assert_eq!(
@@ -250,4 +273,35 @@ fn exceptions_file_is_well_formed() {
     let text = std::fs::read_to_string(exceptions_path()).expect("read tests/piglit/exceptions.txt");
     let list = verdict::parse_exceptions(&text).unwrap_or_else(|e| panic!("tests/piglit/exceptions.txt: {e}"));
     assert!(!list.is_empty());
+}
+
+/// The selection holds piglit's GLES 2 tests and no other: known members of each kind are in,
+/// the GLES 3, GLES 1 and desktop builds' tests are out.
+#[test]
+fn the_selection_is_piglits_gles2_build_and_glsl_es_1_00() {
+    if !oracles_present() {
+        return;
+    }
+    let selected = selection::select(Path::new(TESTS), Path::new(BIN), PROFILES).expect("piglit's profiles");
+    let names: std::collections::HashSet<&str> = selected.iter().map(|t| t.name.as_str()).collect();
+    for inside in [
+        // C tests of the GLES 2 build, with and without the suffix.
+        "spec@!opengl es 2.0@invalid-es3-queries_gles2",
+        "spec@glsl-es-1.00@linker@glsl-fface-invariant",
+        "spec@oes_texture_float@oes_texture_float",
+        // shader_runner and glslparsertest with API gles2 and GLSL ES 1.00.
+        "spec@oes_standard_derivatives@compiler@fwidth-vec4.frag",
+    ] {
+        assert!(names.contains(inside), "{inside} is missing from the selection");
+    }
+    for outside in [
+        // GLES 3 build, GLES 1 build, desktop GL, GLSL ES 3.00.
+        "spec@oes_texture_view@formats",
+        "spec@oes_compressed_etc1_rgb8_texture@basic",
+        "shaders@glsl-bindattriblocation",
+        "spec@oes_standard_derivatives@preprocessor@enabled-es.comp",
+    ] {
+        assert!(!names.contains(outside), "{outside} is in the selection");
+    }
+    assert!(selected.iter().all(|t| t.xml.starts_with("<Test ") && t.xml.ends_with("</Test>")));
 }
