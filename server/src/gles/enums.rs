@@ -415,6 +415,25 @@ pub const EGL_WINDOW_BIT: i32 = 0x0004;
 pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
 pub const EGL_DONT_CARE: i32 = -1;
 pub const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
+/// `EGL_KHR_create_context`: the minor version, the flags and their bits, the profile (desktop
+/// OpenGL's) and the reset notification strategy.
+pub const EGL_CONTEXT_MINOR_VERSION_KHR: i32 = 0x30FB;
+/// The context's flags.
+pub const EGL_CONTEXT_FLAGS_KHR: i32 = 0x30FC;
+/// A debug context.
+pub const EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR: i32 = 0x1;
+/// Forward-compatible (desktop OpenGL only).
+pub const EGL_CONTEXT_OPENGL_FORWARD_COMPATIBLE_BIT_KHR: i32 = 0x2;
+/// Robust buffer access.
+pub const EGL_CONTEXT_OPENGL_ROBUST_ACCESS_BIT_KHR: i32 = 0x4;
+/// The profile (desktop OpenGL only).
+pub const EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR: i32 = 0x30FD;
+/// The reset notification strategy, and its two values.
+pub const EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR: i32 = 0x31BD;
+/// No reset notification.
+pub const EGL_NO_RESET_NOTIFICATION_KHR: i32 = 0x31BE;
+/// The context is lost on a reset.
+pub const EGL_LOSE_CONTEXT_ON_RESET_KHR: i32 = 0x31BF;
 /// `EGL_IMG_context_priority`: the attribute and its three levels.
 pub const EGL_CONTEXT_PRIORITY_LEVEL_IMG: i32 = 0x3100;
 /// High priority.
