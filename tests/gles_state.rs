@@ -45,6 +45,8 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     (0x2A00, "POLYGON_OFFSET_UNITS", 1, State),
     // GL_EXT_polygon_offset_clamp.
     (0x8E1B, "POLYGON_OFFSET_CLAMP_EXT", 1, State),
+    // GL_KHR_parallel_shader_compile.
+    (0x91B0, "MAX_SHADER_COMPILER_THREADS_KHR", 1, State),
     (0x8037, "POLYGON_OFFSET_FILL", 1, State),
     // 6.6 multisampling.
     (0x809E, "SAMPLE_ALPHA_TO_COVERAGE", 1, State),
@@ -173,6 +175,7 @@ fn set_state(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
     gl.glCullFace(0x0408)?;
     gl.glFrontFace(0x0900)?;
     gl.glPolygonOffsetClampEXT(-1.5, 2.5, 0.125)?;
+    gl.glMaxShaderCompilerThreadsKHR(3)?;
     gl.glEnable(0x8037)?;
     gl.glEnable(0x809E)?;
     gl.glEnable(0x80A0)?;

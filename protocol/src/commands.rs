@@ -248,6 +248,9 @@ command_set! {
         /// `GL_EXT_polygon_offset_clamp`: polygon offset whose size `clamp` bounds (a positive
         /// clamp is the largest offset, a negative one the smallest; 0 bounds nothing).
         glPolygonOffsetClampEXT [Context] => PolygonOffsetClampEXT { factor: GLfloat, units: GLfloat, clamp: GLfloat };
+        /// `GL_KHR_parallel_shader_compile`: the compiler threads the application would like
+        /// (a hint; `0xFFFFFFFF`: the implementation's choice).
+        glMaxShaderCompilerThreadsKHR [Context] => MaxShaderCompilerThreadsKHR { count: GLuint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -228,6 +228,7 @@ mod framebuffer_ext;
 pub mod harness;
 mod objects;
 mod offset_clamp;
+mod parallel_compile;
 mod points;
 mod samplers;
 mod textures;
@@ -242,6 +243,7 @@ pub fn all() -> Vec<Case> {
     all.extend(framebuffer_ext::all());
     all.extend(frag_depth::all());
     all.extend(offset_clamp::all());
+    all.extend(parallel_compile::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

@@ -250,6 +250,7 @@ pub mod simple {
         fn glLinkProgram(program: GLuint);
         fn glPolygonOffset(factor: GLfloat, units: GLfloat);
         fn glPolygonOffsetClampEXT(factor: GLfloat, units: GLfloat, clamp: GLfloat);
+        fn glMaxShaderCompilerThreadsKHR(count: GLuint);
         fn glReleaseShaderCompiler();
         fn glRenderbufferStorage(target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei);
         fn glSampleCoverage(value: GLfloat, invert: GLboolean);

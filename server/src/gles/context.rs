@@ -296,6 +296,8 @@ pub struct Context {
     pub pixel_store: PixelStore,
     /// `GL_GENERATE_MIPMAP_HINT`.
     pub mipmap_hint: u32,
+    /// `GL_MAX_SHADER_COMPILER_THREADS_KHR` (`GL_KHR_parallel_shader_compile`).
+    pub compiler_threads: u32,
     /// Debug output (`GL_KHR_debug`).
     pub debug: DebugState,
     /// The GL call being executed, which debug messages about its errors name.
@@ -319,6 +321,7 @@ impl Context {
             blend: Blend::default(),
             pixel_store: PixelStore::default(),
             mipmap_hint: DONT_CARE,
+            compiler_threads: u32::MAX,
             debug: DebugState::default(),
             call: "",
             derivative_hint: DONT_CARE,

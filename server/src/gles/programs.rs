@@ -299,6 +299,8 @@ impl GlesExecutor {
                 let linked = p.linked.as_ref();
                 match pname {
                     LINK_STATUS => Ok(i32::from(p.link_ok)),
+                    // Linking completes within glLinkProgram.
+                    COMPLETION_STATUS_KHR => Ok(1),
                     DELETE_STATUS => Ok(i32::from(p.delete_pending)),
                     VALIDATE_STATUS => Ok(i32::from(p.validated)),
                     INFO_LOG_LENGTH => Ok(if p.log.is_empty() { 0 } else { p.log.len() as i32 + 1 }),

@@ -14,7 +14,7 @@ use crate::gpu::Gpu;
 const EXTENSIONS_STRING: &str = "GL_OES_element_index_uint GL_OES_vertex_half_float GL_OES_texture_npot \
 GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_texture GL_OES_vertex_array_object \
 GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
-GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp";
+GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -147,6 +147,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         UNPACK_SKIP_ROWS => i(ctx.pixel_store.unpack_skip_rows),
         UNPACK_SKIP_PIXELS => i(ctx.pixel_store.unpack_skip_pixels),
         GENERATE_MIPMAP_HINT => u(ctx.mipmap_hint),
+        // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
+        MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
         FRAGMENT_SHADER_DERIVATIVE_HINT_OES => u(ctx.derivative_hint),
         MAX_TEXTURE_SIZE | MAX_CUBE_MAP_TEXTURE_SIZE | MAX_RENDERBUFFER_SIZE => {
             i(MAX_TEXTURE.min(gpu.limits.max_texture_dimension_2d) as i32)

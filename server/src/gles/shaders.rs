@@ -134,6 +134,8 @@ impl GlesExecutor {
             Some(s) => match pname {
                 SHADER_TYPE => Ok(if s.stage == Stage::Vertex { VERTEX_SHADER as i32 } else { FRAGMENT_SHADER as i32 }),
                 COMPILE_STATUS => Ok(i32::from(s.compiled_ok)),
+                // Compiling completes within glCompileShader.
+                COMPLETION_STATUS_KHR => Ok(1),
                 DELETE_STATUS => Ok(i32::from(s.delete_pending)),
                 INFO_LOG_LENGTH => Ok(if s.log.is_empty() { 0 } else { s.log.len() as i32 + 1 }),
                 SHADER_SOURCE_LENGTH => Ok(if s.source.is_empty() { 0 } else { s.source.len() as i32 + 1 }),

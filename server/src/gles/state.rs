@@ -241,6 +241,12 @@ impl GlesExecutor {
         Ok(())
     }
 
+    pub(super) fn glMaxShaderCompilerThreadsKHR(&mut self, ctx: &mut Context, count: u32) -> GlResult {
+        // A hint: compiles and links complete within their calls whatever the count.
+        ctx.compiler_threads = count;
+        Ok(())
+    }
+
     pub(super) fn glPolygonOffsetClampEXT(
         &mut self,
         ctx: &mut Context,
