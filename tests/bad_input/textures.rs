@@ -75,8 +75,11 @@ pub fn misuse(gl: Gl<'_>, check: &mut dyn FnMut(&str, u32, u32)) -> Result<(), C
     expect(gl, check, "valid depth-stencil texture", 0)?;
     gl.glTexImage2D(TEXTURE_2D, 0, f as i32, 4, 4, 0, f, UNSIGNED_INT, None)?;
     expect(gl, check, "DEPTH_STENCIL_OES with UNSIGNED_INT", INVALID_ENUM)?;
+    // GL_OES_required_internalformat: a sized format takes the format and type it fits.
     gl.glTexImage2D(TEXTURE_2D, 0, DEPTH24_STENCIL8_OES as i32, 4, 4, 0, f, ty, None)?;
-    expect(gl, check, "sized internal format in ES 2.0", INVALID_OPERATION)?;
+    expect(gl, check, "sized depth-stencil internal format", 0)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, 0x8058, 4, 4, 0, f, ty, None)?;
+    expect(gl, check, "a sized internal format the format does not fit", INVALID_OPERATION)?;
     gl.glTexImage2D(TEXTURE_2D, 1, f as i32, 2, 2, 0, f, ty, None)?;
     expect(gl, check, "depth-stencil level 1", INVALID_OPERATION)?;
     gl.glBindTexture(TEXTURE_CUBE_MAP, cube)?;

@@ -30,6 +30,9 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_vertex_half_float",
     "GL_EXT_frag_depth",
     "GL_EXT_polygon_offset_clamp",
+    "GL_KHR_parallel_shader_compile",
+    "GL_OES_required_internalformat",
+    "EGL_KHR_create_context",
 ];
 
 /// The reasons a test may be excused, as the part of a reason before its first colon.

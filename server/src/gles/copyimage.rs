@@ -6,7 +6,7 @@ use super::conv::ImageTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{Compressed, Storage};
+use super::formats::{sized_color_base, Compressed, Storage};
 use super::render::Target;
 use super::teximage::{image_texture, validate_size, MAX_LEVEL};
 use super::GlesExecutor;
@@ -73,6 +73,26 @@ impl GlesExecutor {
         if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
             return Err(GlError::InvalidValue);
         }
+        // A sized colour format (GL_OES_required_internalformat) copies as its unsized one where
+        // its components are as wide as the framebuffer's (always 8 bits here); depth formats,
+        // narrower ones and the sized formats of extensions not offered are
+        // GL_INVALID_OPERATION, as Mesa answers.
+        if let Some(f) = internal {
+            let narrow = matches!(f, LUMINANCE4_ALPHA4_OES | RGB565 | RGB5_A1 | RGBA4 | RGB10_A2_EXT);
+            let depth = matches!(
+                f,
+                DEPTH_COMPONENT
+                    | DEPTH_STENCIL_OES
+                    | DEPTH_COMPONENT16
+                    | DEPTH_COMPONENT24_OES
+                    | DEPTH_COMPONENT32_OES
+                    | DEPTH24_STENCIL8_OES
+            );
+            if narrow || depth {
+                return Err(GlError::InvalidOperation);
+            }
+        }
+        let internal = internal.map(|f| sized_color_base(f).unwrap_or(f));
         if let Some(f) = internal {
             if !matches!(f, RGBA | RGB | LUMINANCE | LUMINANCE_ALPHA | ALPHA) {
                 return Err(GlError::InvalidEnum);

@@ -206,6 +206,14 @@ pub const DEPTH24_STENCIL8_OES: u32 = 0x88F0;
 pub const DEPTH_COMPONENT24_OES: u32 = 0x81A6;
 pub const RGBA8_OES: u32 = 0x8058;
 pub const RGB8_OES: u32 = 0x8051;
+/// `GL_OES_required_internalformat`'s sized luminance and alpha formats.
+pub const ALPHA8_OES: u32 = 0x803C;
+pub const LUMINANCE8_OES: u32 = 0x8040;
+pub const LUMINANCE4_ALPHA4_OES: u32 = 0x8043;
+pub const LUMINANCE8_ALPHA8_OES: u32 = 0x8045;
+/// Sized formats of extensions Strata does not offer, which Mesa knows.
+pub const DEPTH_COMPONENT32_OES: u32 = 0x81A7;
+pub const RGB10_A2_EXT: u32 = 0x8059;
 pub const COLOR_ATTACHMENT0: u32 = 0x8CE0;
 pub const DEPTH_ATTACHMENT: u32 = 0x8D00;
 pub const STENCIL_ATTACHMENT: u32 = 0x8D20;
@@ -221,6 +229,9 @@ pub const FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE: u32 = 0x8CD3;
 pub const RENDERBUFFER_WIDTH: u32 = 0x8D42;
 pub const RENDERBUFFER_HEIGHT: u32 = 0x8D43;
 pub const RENDERBUFFER_INTERNAL_FORMAT: u32 = 0x8D44;
+/// `GL_RENDERBUFFER_RED_SIZE`; green, blue, alpha, depth and stencil follow it.
+pub const RENDERBUFFER_RED_SIZE: u32 = 0x8D50;
+pub const RENDERBUFFER_STENCIL_SIZE: u32 = 0x8D55;
 pub const NONE: u32 = 0;
 
 // Strings and limits.

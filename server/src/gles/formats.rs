@@ -209,9 +209,46 @@ pub fn upload_storage(format: u32, ty: u32) -> GlResult<Storage> {
         (_, HALF_FLOAT_OES) if plain => Storage::Half,
         (DEPTH_COMPONENT, UNSIGNED_SHORT | UNSIGNED_INT) => Storage::Depth,
         (DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES) => Storage::DepthStencil,
-        (DEPTH_COMPONENT | DEPTH_STENCIL_OES, _) => return Err(GlError::InvalidEnum),
+        // As Mesa answers on an ES 2.0 context: DEPTH_STENCIL_OES with a basic type is an
+        // unknown combination, any other known type a mismatch.
+        (DEPTH_STENCIL_OES, UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT | FLOAT) => return Err(GlError::InvalidEnum),
         _ if known_format(format) && known_type(ty) => return Err(GlError::InvalidOperation),
         _ => return Err(GlError::InvalidEnum),
+    })
+}
+
+/// `GL_OES_required_internalformat`: whether an upload in `format` and `ty` may fill sized
+/// internal format `internal`, which then stores as that unsized format would (Mesa's table on
+/// an ES 2.0 context: each sized format takes its own format with unsigned bytes, and the packed
+/// or wider type its bits name); `None` where `internal` is no sized format.
+pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
+    Some(match internal {
+        ALPHA8_OES => format == ALPHA && ty == UNSIGNED_BYTE,
+        LUMINANCE8_OES => format == LUMINANCE && ty == UNSIGNED_BYTE,
+        LUMINANCE4_ALPHA4_OES | LUMINANCE8_ALPHA8_OES => format == LUMINANCE_ALPHA && ty == UNSIGNED_BYTE,
+        RGB8_OES => format == RGB && ty == UNSIGNED_BYTE,
+        RGB565 => format == RGB && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_5_6_5),
+        // GL_EXT_texture_format_BGRA8888's uploads fit RGBA8 too.
+        RGBA8_OES => matches!(format, RGBA | BGRA_EXT) && ty == UNSIGNED_BYTE,
+        RGB5_A1 => format == RGBA && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_5_5_5_1),
+        RGBA4 => format == RGBA && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_4_4_4_4),
+        DEPTH_COMPONENT16 => format == DEPTH_COMPONENT && matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT),
+        DEPTH_COMPONENT24_OES => format == DEPTH_COMPONENT && ty == UNSIGNED_INT,
+        DEPTH24_STENCIL8_OES => format == DEPTH_STENCIL_OES && ty == UNSIGNED_INT_24_8_OES,
+        _ => return None,
+    })
+}
+
+/// The unsized colour format a sized colour internal format stores as
+/// (`GL_OES_required_internalformat`), for `glCopyTexImage2D`; `None` for any other format.
+pub fn sized_color_base(internal: u32) -> Option<u32> {
+    Some(match internal {
+        ALPHA8_OES => ALPHA,
+        LUMINANCE8_OES => LUMINANCE,
+        LUMINANCE4_ALPHA4_OES | LUMINANCE8_ALPHA8_OES => LUMINANCE_ALPHA,
+        RGB8_OES | RGB565 => RGB,
+        RGBA8_OES | RGB5_A1 | RGBA4 => RGBA,
+        _ => return None,
     })
 }
 
@@ -239,7 +276,8 @@ mod tests {
         assert_eq!(upload_storage(BGRA_EXT, FLOAT), Err(GlError::InvalidOperation));
         assert_eq!(upload_storage(RGB, UNSIGNED_SHORT_4_4_4_4), Err(GlError::InvalidOperation));
         assert_eq!(upload_storage(DEPTH_STENCIL_OES, UNSIGNED_INT), Err(GlError::InvalidEnum));
-        assert_eq!(upload_storage(DEPTH_COMPONENT, FLOAT), Err(GlError::InvalidEnum));
+        assert_eq!(upload_storage(DEPTH_COMPONENT, FLOAT), Err(GlError::InvalidOperation));
+        assert_eq!(upload_storage(DEPTH_STENCIL_OES, UNSIGNED_SHORT_5_6_5), Err(GlError::InvalidOperation));
         assert_eq!(upload_storage(RGBA, UNSIGNED_INT_24_8_OES), Err(GlError::InvalidOperation));
         assert_eq!(upload_storage(RGBA, 0x1234), Err(GlError::InvalidEnum));
         assert_eq!(upload_storage(0x1234, UNSIGNED_BYTE), Err(GlError::InvalidEnum));

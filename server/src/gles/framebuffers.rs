@@ -284,6 +284,9 @@ impl GlesExecutor {
             (RENDERBUFFER, RENDERBUFFER_INTERNAL_FORMAT, Some(rb)) => {
                 Ok(if rb.format == 0 { RGBA4 as i32 } else { rb.format as i32 })
             }
+            (RENDERBUFFER, RENDERBUFFER_RED_SIZE..=RENDERBUFFER_STENCIL_SIZE, Some(rb)) => {
+                Ok(renderbuffer_bits(rb.format)[(pname - RENDERBUFFER_RED_SIZE) as usize])
+            }
             (RENDERBUFFER, _, None) => Err(GlError::InvalidOperation),
             _ => Err(GlError::InvalidEnum),
         };
@@ -437,5 +440,20 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         Ok(())
+    }
+}
+
+/// Red, green, blue, alpha, depth and stencil bits a renderbuffer of `format` stores: colour is
+/// stored as RGBA8 whatever the format (a format without alpha has none), depth and stencil as
+/// their formats name (none before storage is given).
+fn renderbuffer_bits(format: u32) -> [i32; 6] {
+    match format {
+        RGBA4 | RGB5_A1 | RGBA8_OES => [8, 8, 8, 8, 0, 0],
+        RGB565 | RGB8_OES => [8, 8, 8, 0, 0, 0],
+        DEPTH_COMPONENT16 => [0, 0, 0, 0, 16, 0],
+        DEPTH_COMPONENT24_OES => [0, 0, 0, 0, 24, 0],
+        DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],
+        STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
+        _ => [0; 6],
     }
 }

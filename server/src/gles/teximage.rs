@@ -10,7 +10,7 @@ use super::conv::ImageTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{internal_accepts, upload_storage, Compressed, Storage};
+use super::formats::{internal_accepts, sized_fits, upload_storage, Compressed, Storage};
 use super::images::{Region, TextureImage};
 use super::textures::Texture;
 use super::unpack::{depth_stencil_values, to_storage, Unpack};
@@ -131,7 +131,12 @@ impl GlesExecutor {
     ) -> GlResult {
         let image = ImageTarget::from_gl(target)?;
         let storage = upload_storage(format, pixel_type)?;
-        let internal = internalformat as u32;
+        // A sized internal format (GL_OES_required_internalformat) stores as its unsized one.
+        let internal = match sized_fits(internalformat as u32, format, pixel_type) {
+            Some(true) => format,
+            Some(false) => return Err(GlError::InvalidOperation),
+            None => internalformat as u32,
+        };
         if storage.is_depth() {
             // Depth formats are 2D-only and have no mipmaps (OES_depth_texture).
             if internal != format || image.cube || level != 0 {
