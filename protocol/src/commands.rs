@@ -251,6 +251,11 @@ command_set! {
         /// `GL_KHR_parallel_shader_compile`: the compiler threads the application would like
         /// (a hint; `0xFFFFFFFF`: the implementation's choice).
         glMaxShaderCompilerThreadsKHR [Context] => MaxShaderCompilerThreadsKHR { count: GLuint };
+        /// `GL_OES_draw_elements_base_vertex`: `glDrawElements` with `base_vertex` added to
+        /// every index.
+        glDrawElementsBaseVertexOES [Context] => DrawElementsBaseVertexOES { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64, base_vertex: GLint };
+        /// `glDrawElementsBaseVertexOES` with a client-side index array.
+        strataDrawElementsBaseVertexData [Context] => DrawElementsBaseVertexData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a>, base_vertex: GLint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

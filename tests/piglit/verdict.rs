@@ -32,6 +32,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_polygon_offset_clamp",
     "GL_KHR_parallel_shader_compile",
     "GL_OES_required_internalformat",
+    "GL_OES_draw_elements_base_vertex",
     "EGL_KHR_create_context",
 ];
 

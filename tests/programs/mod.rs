@@ -220,6 +220,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
     gl.glDrawArrays(TRIANGLES, 0, 6)
 }
 
+mod base_vertex;
 mod cases;
 mod compressed;
 mod derivatives;
@@ -244,6 +245,7 @@ pub fn all() -> Vec<Case> {
     all.extend(frag_depth::all());
     all.extend(offset_clamp::all());
     all.extend(parallel_compile::all());
+    all.extend(base_vertex::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

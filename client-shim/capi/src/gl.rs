@@ -502,6 +502,7 @@ pub(crate) const MODULE_NAMES: &[&[&str]] = &[
     get_strings::NAMES,
     active::NAMES,
     hand::NAMES,
+    base_vertex::NAMES,
     crate::vao::NAMES,
     crate::debug::NAMES,
     crate::discard::NAMES,
@@ -520,6 +521,7 @@ pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
         .or_else(|| get_strings::lookup(name))
         .or_else(|| active::lookup(name))
         .or_else(|| hand::lookup(name))
+        .or_else(|| base_vertex::lookup(name))
         .or_else(|| crate::vao::lookup(name))
         .or_else(|| crate::debug::lookup(name))
         .or_else(|| crate::discard::lookup(name))
@@ -544,6 +546,9 @@ fn tex_image_bytes<'a>(
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
 pub mod hand;
+
+/// `GL_OES_draw_elements_base_vertex`'s draw.
+pub mod base_vertex;
 
 #[cfg(test)]
 mod tests {

@@ -197,8 +197,12 @@ mod tests {
     fn extension_entry_points_are_exported_and_resolvable_both_ways() {
         let exported = exported_names();
         // The entry points of the extensions the daemon advertises.
-        const EXTENSION_ENTRY_POINTS: &[&str] =
-            &["glDiscardFramebufferEXT", "glPolygonOffsetClampEXT", "glMaxShaderCompilerThreadsKHR"];
+        const EXTENSION_ENTRY_POINTS: &[&str] = &[
+            "glDiscardFramebufferEXT",
+            "glPolygonOffsetClampEXT",
+            "glMaxShaderCompilerThreadsKHR",
+            "glDrawElementsBaseVertexOES",
+        ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");
             let egl = proc_address(n.as_bytes()).expect("eglGetProcAddress resolves it");

@@ -29,7 +29,7 @@ const MAX_CONVERTED: usize = 256 << 20;
 
 /// Where a draw's indices come from.
 #[derive(Clone, Copy)]
-enum Indices<'a> {
+pub(super) enum Indices<'a> {
     /// The bound element array buffer, at a byte offset.
     Buffer(u64),
     /// A client-side index array sent with the draw.
@@ -45,7 +45,7 @@ struct IndexPlan {
 
 /// Reads a draw's `count` indices, checked against their source: the values, and the byte
 /// offset and GPU buffer of an element array buffer (`None` for client indices).
-fn index_values<'c>(
+pub(super) fn index_values<'c>(
     ctx: &'c Context,
     ty: IndexType,
     indices: Indices<'c>,
@@ -390,7 +390,7 @@ fn plan_draw<'c>(
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// Validates a draw, plans it and records it into the target's pass.
-    fn draw(
+    pub(super) fn draw(
         &mut self,
         ctx: &mut Context,
         mode: u32,

@@ -157,6 +157,32 @@ impl Arms<'_> {
         Ok(())
     }
 
+    pub(super) fn glDrawElementsBaseVertexOES(
+        &mut self,
+        mode: &GLenum,
+        count: &GLsizei,
+        index_type: &GLenum,
+        offset: &u64,
+        base_vertex: &GLint,
+    ) -> Result<(), ClientError> {
+        let (m, c, t, o, b) = (*mode, *count, *index_type, *offset as usize, *base_vertex);
+        call!(self, "glDrawElementsBaseVertexOES", fn(u32, i32, u32, usize, i32) -> (), m, c, t, o, b);
+        Ok(())
+    }
+
+    pub(super) fn strataDrawElementsBaseVertexData(
+        &mut self,
+        mode: &GLenum,
+        count: &GLsizei,
+        index_type: &GLenum,
+        indices: &Blob<'_>,
+        base_vertex: &GLint,
+    ) -> Result<(), ClientError> {
+        let (m, c, t, p, b) = (*mode, *count, *index_type, indices.as_bytes().as_ptr(), *base_vertex);
+        call!(self, "glDrawElementsBaseVertexOES", fn(u32, i32, u32, *const u8, i32) -> (), m, c, t, p, b);
+        Ok(())
+    }
+
     pub(super) fn strataVertexAttribDataPacked(
         &mut self,
         index: &GLuint,
