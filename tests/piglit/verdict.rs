@@ -33,6 +33,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_KHR_parallel_shader_compile",
     "GL_OES_required_internalformat",
     "GL_OES_draw_elements_base_vertex",
+    "GL_EXT_read_format_bgra",
     "EGL_KHR_create_context",
 ];
 

@@ -119,6 +119,9 @@ pub const UNPACK_ROW_LENGTH: u32 = 0x0CF2;
 pub const UNPACK_SKIP_ROWS: u32 = 0x0CF3;
 pub const UNPACK_SKIP_PIXELS: u32 = 0x0CF4;
 pub const BGRA_EXT: u32 = 0x80E1;
+/// `GL_EXT_read_format_bgra`'s reversed 16-bit packings.
+pub const UNSIGNED_SHORT_4_4_4_4_REV_EXT: u32 = 0x8365;
+pub const UNSIGNED_SHORT_1_5_5_5_REV_EXT: u32 = 0x8366;
 pub const DEPTH_STENCIL_OES: u32 = 0x84F9;
 pub const UNSIGNED_INT_24_8_OES: u32 = 0x84FA;
 pub const COMPRESSED_RGB_S3TC_DXT1_EXT: u32 = 0x83F0;

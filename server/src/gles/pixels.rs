@@ -1,5 +1,6 @@
 //! Pixel transfer to the client: `glReadPixels` honouring `PACK_ALIGNMENT` (uploads are in
-//! `unpack`).
+//! `unpack`), as RGBA bytes, or with `GL_EXT_read_format_bgra` as BGRA bytes and the two
+//! reversed 16-bit BGRA packings.
 
 use super::context::Context;
 use strata_protocol::Bytes;
@@ -22,6 +23,74 @@ fn packed_size(width: usize, height: usize, bpp: usize, alignment: usize) -> usi
     row * (height - 1) + width * bpp
 }
 
+/// How `glReadPixels` writes each pixel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum ReadFormat {
+    /// `GL_RGBA`, `GL_UNSIGNED_BYTE`.
+    Rgba8,
+    /// `GL_BGRA_EXT`, `GL_UNSIGNED_BYTE`.
+    Bgra8,
+    /// `GL_BGRA_EXT`, `GL_UNSIGNED_SHORT_4_4_4_4_REV_EXT`: blue in the low four bits.
+    Bgra4444Rev,
+    /// `GL_BGRA_EXT`, `GL_UNSIGNED_SHORT_1_5_5_5_REV_EXT`: blue in the low five bits, alpha
+    /// in the top bit.
+    Bgra1555Rev,
+}
+
+impl ReadFormat {
+    /// The pair's way of writing, or the error `glReadPixels` raises for it.
+    fn from_gl(format: u32, ty: u32) -> Result<ReadFormat, GlError> {
+        match (format, ty) {
+            (RGBA, UNSIGNED_BYTE) => Ok(ReadFormat::Rgba8),
+            (BGRA_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Bgra8),
+            (BGRA_EXT, UNSIGNED_SHORT_4_4_4_4_REV_EXT) => Ok(ReadFormat::Bgra4444Rev),
+            (BGRA_EXT, UNSIGNED_SHORT_1_5_5_5_REV_EXT) => Ok(ReadFormat::Bgra1555Rev),
+            _ => {
+                let format_known = matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT);
+                let type_known = type_size(ty).is_some()
+                    || matches!(
+                        ty,
+                        UNSIGNED_SHORT_5_6_5
+                            | UNSIGNED_SHORT_4_4_4_4
+                            | UNSIGNED_SHORT_5_5_5_1
+                            | UNSIGNED_SHORT_4_4_4_4_REV_EXT
+                            | UNSIGNED_SHORT_1_5_5_5_REV_EXT
+                    );
+                Err(if format_known && type_known { GlError::InvalidOperation } else { GlError::InvalidEnum })
+            }
+        }
+    }
+
+    /// Bytes a pixel takes.
+    fn bytes(self) -> usize {
+        match self {
+            ReadFormat::Rgba8 | ReadFormat::Bgra8 => 4,
+            ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev => 2,
+        }
+    }
+
+    /// Writes RGBA8 pixel `p` into `out` (`self.bytes()` long), converting an 8-bit component
+    /// to `bits` with GL's rounding.
+    fn write(self, p: &[u8], out: &mut [u8]) {
+        let to = |c: u8, bits: u32| -> u16 {
+            let max = (1u32 << bits) - 1;
+            ((u32::from(c) * max + 127) / 255) as u16
+        };
+        match self {
+            ReadFormat::Rgba8 => out.copy_from_slice(p),
+            ReadFormat::Bgra8 => out.copy_from_slice(&[p[2], p[1], p[0], p[3]]),
+            ReadFormat::Bgra4444Rev => {
+                let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
+                out.copy_from_slice(&v.to_ne_bytes());
+            }
+            ReadFormat::Bgra1555Rev => {
+                let v = to(p[2], 5) | to(p[1], 5) << 5 | to(p[0], 5) << 10 | to(p[3], 1) << 15;
+                out.copy_from_slice(&v.to_ne_bytes());
+            }
+        }
+    }
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
@@ -39,12 +108,14 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidValue);
             return Bytes(Vec::new());
         }
-        if !(format == RGBA && pixel_type == UNSIGNED_BYTE) {
-            let known =
-                matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA) && type_size(pixel_type).is_some();
-            ctx.record(if known { GlError::InvalidOperation } else { GlError::InvalidEnum });
-            return Bytes(Vec::new());
-        }
+        let how = match ReadFormat::from_gl(format, pixel_type) {
+            Ok(how) => how,
+            Err(e) => {
+                ctx.record(e);
+                return Bytes(Vec::new());
+            }
+        };
+        let bpp = how.bytes();
         let Ok(target) = self.draw_target(ctx) else {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
@@ -53,12 +124,12 @@ impl GlesExecutor {
         let (w, h) = (width as usize, height as usize);
         // The reply holds the whole rectangle: one beyond what a reply can carry cannot be
         // returned (GL's only error for a request too large to serve is OUT_OF_MEMORY).
-        let row = (w * 4).div_ceil(align) * align;
+        let row = (w * bpp).div_ceil(align) * align;
         if row.checked_mul(h).is_none_or(|n| n > MAX_READ_BYTES) {
             ctx.record(GlError::OutOfMemory);
             return Bytes(Vec::new());
         }
-        let mut out = vec![0u8; packed_size(w, h, 4, align)];
+        let mut out = vec![0u8; packed_size(w, h, bpp, align)];
         // Only the part inside the framebuffer is defined; the rest stays zero. In i64: x and
         // y are the client's, and x + width may pass i32::MAX.
         let (x, y) = (i64::from(x), i64::from(y));
@@ -71,8 +142,11 @@ impl GlesExecutor {
             if let Some(px) = self.r.read_rgba(&target, rect) {
                 let cw = rect[2] as usize * 4;
                 for r in 0..rect[3] as usize {
-                    let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * 4;
-                    out[dst..dst + cw].copy_from_slice(&px[r * cw..(r + 1) * cw]);
+                    let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                    let src = &px[r * cw..(r + 1) * cw];
+                    for (i, p) in src.chunks_exact(4).enumerate() {
+                        how.write(p, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
+                    }
                 }
             }
         }

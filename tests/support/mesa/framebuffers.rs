@@ -79,7 +79,25 @@ impl Arms<'_> {
         format: &GLenum,
         pixel_type: &GLenum,
     ) -> Result<Bytes, ClientError> {
-        let mut out = vec![0u8; (*width as usize) * (*height as usize) * 4 + 16];
+        // The packed rectangle's size: the format's bytes per pixel, rows padded to Mesa's
+        // pack alignment, the last row unpadded.
+        let (w, h) = ((*width).max(0) as usize, (*height).max(0) as usize);
+        let components = match *format {
+            0x1908 | 0x80E1 => 4,
+            0x1907 => 3,
+            0x190A => 2,
+            _ => 1,
+        };
+        let bpp = match *pixel_type {
+            0x1401 => components,
+            0x8363 | 0x8033 | 0x8034 | 0x8365 | 0x8366 => 2,
+            _ => components * 4,
+        };
+        let mut align = 4i32;
+        call!(self, "glGetIntegerv", fn(u32, *mut i32) -> (), 0x0D05, &mut align);
+        let align = align.max(1) as usize;
+        let size = if w == 0 || h == 0 { 0 } else { (w * bpp).div_ceil(align) * align * (h - 1) + w * bpp };
+        let mut out = vec![0u8; size + 16];
         call!(
             self,
             "glReadPixels",
@@ -92,7 +110,7 @@ impl Arms<'_> {
             *pixel_type,
             out.as_mut_ptr()
         );
-        out.truncate((*width as usize) * (*height as usize) * 4);
+        out.truncate(size);
         Ok(Bytes(out))
     }
 }
