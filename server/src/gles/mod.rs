@@ -16,6 +16,7 @@ mod base_vertex;
 mod buffers;
 mod compressed;
 mod context;
+mod context_attribs;
 mod conv;
 mod copyimage;
 mod debug;

@@ -1,0 +1,85 @@
+//! `eglCreateContext`'s attribute list: EGL 1.4's client version, `EGL_KHR_create_context`'s
+//! minor version, flags and reset strategy, and `EGL_IMG_context_priority`, validated as Mesa
+//! validates them.
+
+use strata_protocol::control::Priority;
+use strata_protocol::EglResult;
+
+use super::enums::*;
+
+/// What an `eglCreateContext` attribute list asks for.
+#[derive(Debug, Default, PartialEq)]
+pub(super) struct ContextAttribs {
+    /// A debug context (`EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR`).
+    pub(super) debug: bool,
+    /// `EGL_CONTEXT_PRIORITY_LEVEL_IMG`'s class.
+    pub(super) priority: Option<Priority>,
+}
+
+/// Validates an OpenGL ES context's attribute list as EGL 1.4 with `EGL_KHR_create_context`
+/// and `EGL_IMG_context_priority` define it, and as Mesa answers it: version 2.0 only (ES 1 and
+/// ES 3 have no config here: `EGL_BAD_CONFIG`; another version or a minor version of 2 above 0:
+/// `EGL_BAD_MATCH`); the debug flag; either reset notification strategy; the profile mask and
+/// the forward-compatible flag (desktop OpenGL's), robust access, and unknown attributes, values
+/// or flag bits: `EGL_BAD_ATTRIBUTE`.
+pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
+    let (mut major, mut minor, mut out) = (1, 0, ContextAttribs::default());
+    for pair in list.chunks(2) {
+        match *pair {
+            [EGL_NONE, ..] => break,
+            [EGL_CONTEXT_CLIENT_VERSION, v] => major = v,
+            [EGL_CONTEXT_MINOR_VERSION_KHR, v] => minor = v,
+            [EGL_CONTEXT_FLAGS_KHR, v] => {
+                if v & !EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR != 0 {
+                    // Forward-compatible is desktop OpenGL's; robust access needs
+                    // EGL_EXT_create_context_robustness; other bits are undefined.
+                    return Err(EGL_BAD_ATTRIBUTE);
+                }
+                out.debug = v & EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR != 0;
+            }
+            [EGL_CONTEXT_PRIORITY_LEVEL_IMG, v] => {
+                out.priority = Some(Priority::from_egl_level(v).ok_or(EGL_BAD_ATTRIBUTE)?)
+            }
+            // Taken (as Mesa takes it) though nothing here resets: no robustness is offered.
+            [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR] =>
+                {}
+            [EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, _] => return Err(EGL_BAD_ATTRIBUTE),
+            _ => return Err(EGL_BAD_ATTRIBUTE),
+        }
+    }
+    match (major, minor) {
+        (2, 0) => Ok(out),
+        (1 | 3, _) => Err(EGL_BAD_CONFIG),
+        _ => Err(EGL_BAD_MATCH),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn create_context_attributes_are_validated_as_mesa_validates_them() {
+        let debug = EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR;
+        assert_eq!(parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE]), Ok(ContextAttribs::default()));
+        let asked = parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, debug, EGL_NONE]);
+        assert_eq!(asked, Ok(ContextAttribs { debug: true, priority: None }));
+        for (list, err) in [
+            (&[EGL_NONE][..], EGL_BAD_CONFIG),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE], EGL_BAD_CONFIG),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE], EGL_BAD_MATCH),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 4, EGL_NONE], EGL_BAD_MATCH),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, 0x2, EGL_NONE], EGL_BAD_ATTRIBUTE),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, 0x4, EGL_NONE], EGL_BAD_ATTRIBUTE),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, 0x8, EGL_NONE], EGL_BAD_ATTRIBUTE),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, 1, EGL_NONE], EGL_BAD_ATTRIBUTE),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 2, 0x1234, 0, EGL_NONE], EGL_BAD_ATTRIBUTE),
+            (
+                &[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, 5, EGL_NONE],
+                EGL_BAD_ATTRIBUTE,
+            ),
+        ] {
+            assert_eq!(parse(list), Err(err), "{list:x?}");
+        }
+    }
+}
