@@ -547,7 +547,7 @@ fn tex_image_bytes<'a>(
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
 pub mod hand;
 
-/// `GL_OES_draw_elements_base_vertex`'s draw.
+/// Element draws: `glDrawElements` and its base-vertex form.
 pub mod base_vertex;
 
 #[cfg(test)]

@@ -398,36 +398,7 @@ crate::entry_points! {
 
     /// Indices from the bound element buffer, or a client-side index array sent along.
     fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void) {
-        with_gl("glDrawElements", (), |gl| {
-            let Some(size) = type_size(ty).filter(|_| count > 0) else {
-                // The daemon validates and records the error.
-                return gl.conn.glDrawElements(mode, count, ty, indices as usize as u64);
-            };
-            let len = size * count as usize;
-            if gl.st.element_buffer != 0 {
-                if uses_client_arrays(gl.st) {
-                    let offset = indices as usize;
-                    let n = gl
-                        .st
-                        .buffers
-                        .get(&gl.st.element_buffer)
-                        .and_then(|b| b.get(offset..offset.checked_add(len)?))
-                        .map_or(0, |d| vertex_count(d, ty));
-                    send_client_arrays(gl, n)?;
-                }
-                return gl.conn.glDrawElements(mode, count, ty, indices as usize as u64);
-            }
-            if indices.is_null() {
-                gl.st.err(GL_INVALID_OPERATION);
-                return Ok(());
-            }
-            // SAFETY: a client-side index array holds `count` indices.
-            let data = unsafe { bytes(indices, len) };
-            if uses_client_arrays(gl.st) {
-                send_client_arrays(gl, vertex_count(data, ty))?;
-            }
-            gl.conn.strataDrawElementsData(mode, count, ty, Blob::borrowed(data))
-        })
+        with_gl("glDrawElements", (), |gl| super::base_vertex::draw_elements(gl, mode, count, ty, indices, None))
     }
 
     /// Tracks the unpack state (upload sizes depend on it).
