@@ -63,14 +63,7 @@ fn sized_upload_samples_as_unsized(gl: Gl<'_>, n: &mut Names) -> Result<(), Clie
 
 #[test]
 fn sized_internal_formats_are_taken_as_mesa_takes_them() {
-    let mut mesa = match MesaGl::open(W, H) {
-        Ok(m) => m,
-        Err(e) if !support::oracles_required() => {
-            eprintln!("SKIPPED: Mesa GLES2 unavailable ({e})");
-            return;
-        }
-        Err(e) => panic!("Mesa GLES2 unavailable ({e}) and oracles are required"),
-    };
+    let Some(mut mesa) = MesaGl::open_or_skip(W, H) else { return };
     let want = errors(&mut mesa, &mut Names::default()).expect("Mesa");
     let daemon = Daemon::start("sized-formats", &[]);
     let mut strata = strata_context(&daemon.socket, "sized-formats").expect("context");
@@ -94,14 +87,8 @@ fn sized_internal_formats_are_taken_as_mesa_takes_them() {
 #[test]
 fn a_sized_upload_samples_as_the_unsized_one() {
     let case = Case { name: "sized_upload", run: sized_upload_samples_as_unsized, tol: DEFAULT, expects_error: false };
-    let expected = match MesaGl::open(W, H) {
-        Ok(mut m) => programs::harness::render(&mut m, &case).expect("Mesa"),
-        Err(e) if !support::oracles_required() => {
-            eprintln!("SKIPPED: Mesa GLES2 unavailable ({e})");
-            return;
-        }
-        Err(e) => panic!("Mesa GLES2 unavailable ({e}) and oracles are required"),
-    };
+    let Some(mut mesa) = MesaGl::open_or_skip(W, H) else { return };
+    let expected = programs::harness::render(&mut mesa, &case).expect("Mesa");
     let daemon = Daemon::start("sized-upload", &[]);
     let mut strata = strata_context(&daemon.socket, "sized-upload").expect("context");
     let actual = programs::harness::render(&mut strata, &case).expect("Strata");

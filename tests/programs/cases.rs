@@ -186,34 +186,15 @@ fn precision_high_branch(gl: Gl<'_>, n: &mut Names) -> R {
     draw_positions(gl, n, &quad(-0.5, -0.5, 0.5, 0.5, 0.0), TRIANGLES)
 }
 
-const FS_DEPTH: &str = "precision highp float; uniform sampler2D s; varying vec2 t;
-    void main() { float d = texture2D(s, t).r; gl_FragColor = vec4(d, fract(d * 16.0), 0.0, 1.0); }";
-
 fn depth_texture_render_and_sample(gl: Gl<'_>, n: &mut Names) -> R {
     // A shadow-map pass: depth only into a DEPTH_COMPONENT texture, then sample it.
-    let (fb, tex) = (n.next(), n.next());
-    gl.glBindTexture(TEXTURE_2D, tex)?;
-    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, 32, 32, 0, 0x1902, UNSIGNED_INT, None)?;
-    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
-    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
-    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
-    gl.glFramebufferTexture2D(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_2D, tex, 0)?;
-    if gl.glCheckFramebufferStatus(FRAMEBUFFER)? != 0x8CD5 {
-        return Err(ClientError::Unsupported("depth-only framebuffer incomplete".into()));
-    }
-    gl.glViewport(0, 0, 32, 32)?;
-    gl.glEnable(DEPTH_TEST)?;
+    let tex = depth_texture_target(gl, n, 32)?;
     gl.glClear(DEPTH_BUFFER_BIT)?;
     let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
     color(gl, p, [1.0; 4])?;
     draw_positions(gl, n, &[-1.0, -1.0, -0.8, 1.0, -1.0, 0.0, -1.0, 1.0, 0.9], TRIANGLES)?;
     draw_positions(gl, n, &quad(0.0, 0.0, 0.8, 0.8, -0.5), TRIANGLES)?;
-    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
-    gl.glDisable(DEPTH_TEST)?;
-    gl.glViewport(0, 0, W, H)?;
-    program(gl, n, VS_TEX, FS_DEPTH, &["pos", "uv"])?;
-    gl.glBindTexture(TEXTURE_2D, tex)?;
-    textured_quad(gl, n, 0.0, 1.0)
+    show_depth_texture(gl, n, tex)
 }
 
 fn depth_texture_upload(gl: Gl<'_>, n: &mut Names) -> R {

@@ -21,15 +21,7 @@ void main() {
 fn derivatives(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glHint(DERIVATIVE_HINT, NICEST)?;
     program(gl, n, VS_COLOR, FS_DERIVATIVES, &["pos", "col"])?;
-    let corner = |x: f32, y: f32| [x, y, 0.0, (x + 1.0) / 2.0, y + 1.0, 0.0, 1.0];
-    let v: Vec<f32> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-        .iter()
-        .flat_map(|&(x, y)| corner(x, y))
-        .collect();
-    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
-    attrib(gl, 0, 3, FLOAT, false, 28, 0)?;
-    attrib(gl, 1, 4, FLOAT, false, 28, 12)?;
-    gl.glDrawArrays(TRIANGLES, 0, 6)
+    vertex_quad(gl, n, [-1.0, -1.0, 1.0, 1.0], |x, y| [x, y, 0.0, (x + 1.0) / 2.0, y + 1.0, 0.0, 1.0])
 }
 
 /// The programs of this file.

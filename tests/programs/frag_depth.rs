@@ -14,49 +14,21 @@ void main() {
     gl_FragDepthEXT = v.x;
 }";
 
-/// Shows a sampled depth: d in red, fract(16·d) in green (as cases.rs' FS_DEPTH).
-const FS_SHOW_DEPTH: &str = "precision highp float; uniform sampler2D s; varying vec2 t;
-    void main() { float d = texture2D(s, t).r; gl_FragColor = vec4(d, fract(d * 16.0), 0.0, 1.0); }";
-
 /// A full-screen quad at clip z `z` whose colour attribute's x runs −0.25..1.25 left to right
 /// and whose y runs 0..1 bottom to top.
 fn gradient_quad(gl: Gl<'_>, n: &mut Names, z: f32) -> R {
-    let corner = |x: f32, y: f32| [x, y, z, 0.5 + 0.75 * x, (y + 1.0) / 2.0, 0.0, 1.0];
-    let v: Vec<f32> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-        .iter()
-        .flat_map(|&(x, y)| corner(x, y))
-        .collect();
-    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
-    attrib(gl, 0, 3, FLOAT, false, 28, 0)?;
-    attrib(gl, 1, 4, FLOAT, false, 28, 12)?;
-    gl.glDrawArrays(TRIANGLES, 0, 6)
+    vertex_quad(gl, n, [-1.0, -1.0, 1.0, 1.0], |x, y| [x, y, z, 0.5 + 0.75 * x, (y + 1.0) / 2.0, 0.0, 1.0])
 }
 
 /// Depth written by the shader into a depth texture (every fragment passes), then shown.
 fn frag_depth_into_texture(gl: Gl<'_>, n: &mut Names) -> R {
-    let (fb, tex) = (n.next(), n.next());
-    gl.glBindTexture(TEXTURE_2D, tex)?;
-    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, 32, 32, 0, 0x1902, UNSIGNED_INT, None)?;
-    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
-    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
-    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
-    gl.glFramebufferTexture2D(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_2D, tex, 0)?;
-    if gl.glCheckFramebufferStatus(FRAMEBUFFER)? != 0x8CD5 {
-        return Err(ClientError::Unsupported("depth-only framebuffer incomplete".into()));
-    }
-    gl.glViewport(0, 0, 32, 32)?;
-    gl.glEnable(DEPTH_TEST)?;
+    let tex = depth_texture_target(gl, n, 32)?;
     gl.glDepthFunc(0x0207)?; // GL_ALWAYS
     gl.glClear(DEPTH_BUFFER_BIT)?;
     program(gl, n, VS_COLOR, FS_WRITE_DEPTH, &["pos", "col"])?;
     // The geometry's own depth (0.9) is replaced by the shader's.
     gradient_quad(gl, n, 0.9)?;
-    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
-    gl.glDisable(DEPTH_TEST)?;
-    gl.glViewport(0, 0, W, H)?;
-    program(gl, n, VS_TEX, FS_SHOW_DEPTH, &["pos", "uv"])?;
-    gl.glBindTexture(TEXTURE_2D, tex)?;
-    textured_quad(gl, n, 0.0, 1.0)
+    show_depth_texture(gl, n, tex)
 }
 
 /// The window's own depth buffer: a red quad at depth 0 whose shader writes the gradient, then

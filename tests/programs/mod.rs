@@ -208,6 +208,51 @@ pub const VS_TEX: &str =
 pub const FS_TEX: &str =
     "precision mediump float; uniform sampler2D s; varying vec2 t; void main() { gl_FragColor = texture2D(s, t); }";
 
+/// Draws the quad from corner (`x0`, `y0`) to (`x1`, `y1`) in clip space as two triangles, each
+/// vertex's position (xyz) and colour (rgba) given by `vertex(x, y)`, with the bound program's
+/// attribute 0 the position and 1 the colour.
+pub fn vertex_quad(gl: Gl<'_>, n: &mut Names, [x0, y0, x1, y1]: [f32; 4], vertex: impl Fn(f32, f32) -> [f32; 7]) -> R {
+    let v: Vec<f32> =
+        [(x0, y0), (x1, y0), (x1, y1), (x0, y0), (x1, y1), (x0, y1)].iter().flat_map(|&(x, y)| vertex(x, y)).collect();
+    buffer(gl, n, ARRAY_BUFFER, &f32s(&v))?;
+    attrib(gl, 0, 3, FLOAT, false, 28, 0)?;
+    attrib(gl, 1, 4, FLOAT, false, 28, 12)?;
+    gl.glDrawArrays(TRIANGLES, 0, 6)
+}
+
+/// Shows a sampled depth: d in red, fract(16·d) in green, to make depth errors visible.
+pub const FS_DEPTH: &str = "precision highp float; uniform sampler2D s; varying vec2 t;
+    void main() { float d = texture2D(s, t).r; gl_FragColor = vec4(d, fract(d * 16.0), 0.0, 1.0); }";
+
+/// A `size`×`size` `DEPTH_COMPONENT` texture bound as the depth of a new framebuffer object,
+/// which is bound with the viewport on it and the depth test on; the texture.
+pub fn depth_texture_target(gl: Gl<'_>, n: &mut Names, size: i32) -> Result<u32, ClientError> {
+    let (fb, tex) = (n.next(), n.next());
+    gl.glBindTexture(TEXTURE_2D, tex)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, 0x1902, size, size, 0, 0x1902, UNSIGNED_INT, None)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    gl.glFramebufferTexture2D(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_2D, tex, 0)?;
+    if gl.glCheckFramebufferStatus(FRAMEBUFFER)? != 0x8CD5 {
+        return Err(ClientError::Unsupported("depth-only framebuffer incomplete".into()));
+    }
+    gl.glViewport(0, 0, size, size)?;
+    gl.glEnable(DEPTH_TEST)?;
+    Ok(tex)
+}
+
+/// Back to the window (depth test off, full viewport), showing depth texture `tex` with
+/// [`FS_DEPTH`] over it.
+pub fn show_depth_texture(gl: Gl<'_>, n: &mut Names, tex: u32) -> R {
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glDisable(DEPTH_TEST)?;
+    gl.glViewport(0, 0, W, H)?;
+    program(gl, n, VS_TEX, FS_DEPTH, &["pos", "uv"])?;
+    gl.glBindTexture(TEXTURE_2D, tex)?;
+    textured_quad(gl, n, 0.0, 1.0)
+}
+
 /// A full-screen quad with texture coordinates `uv0..uv1` drawn with the bound texture program.
 pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
     let v = [

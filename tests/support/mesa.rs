@@ -78,6 +78,19 @@ fn unsupported(what: &str) -> ClientError {
 }
 
 impl MesaGl {
+    /// Mesa for a test that needs it as its oracle: `None` where it is unavailable (the test
+    /// then skips, saying why), unless oracles are required, where the test fails.
+    pub fn open_or_skip(width: i32, height: i32) -> Option<MesaGl> {
+        match MesaGl::open(width, height) {
+            Ok(m) => Some(m),
+            Err(e) if super::oracles_required() => panic!("Mesa GLES2 unavailable ({e}) and oracles are required"),
+            Err(e) => {
+                eprintln!("SKIPPED: Mesa GLES2 unavailable ({e})");
+                None
+            }
+        }
+    }
+
     /// Opens Mesa, or explains why not.
     pub fn open(width: i32, height: i32) -> Result<MesaGl, String> {
         let dir = lib_dir();
