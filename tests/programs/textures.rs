@@ -94,6 +94,7 @@ fn float_texture_linear(gl: Gl<'_>, n: &mut Names) -> R {
     new_texture(gl, n, linear, linear)?;
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, FLOAT, Some(Blob::borrowed(&float_data(&v, FLOAT))))?;
     blit(gl, n, [0, 0, 32, 64])?;
+    // Half floats are filtered (`GL_OES_texture_half_float_linear`).
     new_texture(gl, n, LINEAR, LINEAR)?;
     let half = float_data(&v, HALF_FLOAT_OES);
     gl.glTexImage2D(TEXTURE_2D, 0, RGB as i32, 4, 4, 0, RGB, HALF_FLOAT_OES, Some(Blob::borrowed(&half[..96])))?;

@@ -25,6 +25,7 @@ pub(super) fn elements_ubyte(gl: Gl<'_>, n: &mut Names) -> R {
 pub(super) fn elements_ushort(gl: Gl<'_>, n: &mut Names) -> R {
     indexed(gl, n, UNSIGNED_SHORT)
 }
+/// 32-bit indices (`GL_OES_element_index_uint`).
 pub(super) fn elements_uint(gl: Gl<'_>, n: &mut Names) -> R {
     indexed(gl, n, UNSIGNED_INT)
 }

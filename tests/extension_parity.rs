@@ -1,0 +1,129 @@
+//! The extension-parity file (`tests/extension_parity.txt`) against the live extension strings
+//! of Mesa held to ES 2.0 and of Strata: it lists every extension Mesa offers on an ES 2.0
+//! context exactly once, says "advertised" exactly for those Strata advertises (naming tests
+//! that cover each), and Strata advertises nothing Mesa does not.
+
+mod programs;
+mod support;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use programs::harness::strata_context;
+use programs::{H, W};
+use strata_client::Calls;
+use support::mesa::MesaGl;
+use support::Daemon;
+
+const GL_VERSION: u32 = 0x1F02;
+const GL_EXTENSIONS: u32 = 0x1F03;
+
+/// What the parity file says of one extension.
+#[derive(Debug, PartialEq)]
+enum Status {
+    /// Advertised, with the test files (under `tests/`) that cover it.
+    Advertised(Vec<String>),
+    /// Not advertised, because wgpu cannot express it: the reason.
+    Excused(String),
+    /// Not advertised yet: what it needs.
+    Missing(String),
+}
+
+/// The parity file's lines, by extension name.
+fn parity_file() -> BTreeMap<String, Status> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/extension_parity.txt");
+    let text = std::fs::read_to_string(&path).expect("tests/extension_parity.txt");
+    let mut out = BTreeMap::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line.splitn(3, '|').map(str::trim).collect();
+        let [name, status, detail] = fields[..] else { panic!("line {}: NAME | STATUS | DETAIL: {line}", i + 1) };
+        assert!(!detail.is_empty(), "line {}: {name} gives no detail", i + 1);
+        let status = match status {
+            "advertised" => {
+                let files = detail.split(':').next().unwrap_or_default();
+                Status::Advertised(files.split(',').map(|f| f.trim().to_string()).collect())
+            }
+            "excused" => Status::Excused(detail.to_string()),
+            "missing" => Status::Missing(detail.to_string()),
+            other => panic!("line {}: unknown status {other:?}", i + 1),
+        };
+        assert!(out.insert(name.to_string(), status).is_none(), "line {}: {name} listed twice", i + 1);
+    }
+    out
+}
+
+fn words(s: Option<String>) -> BTreeSet<String> {
+    s.unwrap_or_default().split_whitespace().map(str::to_string).collect()
+}
+
+/// Mesa's extensions on an ES 2.0 context: Mesa held to ES 2.0, with every other `MESA_*`
+/// override cleared (this test binary runs nothing else, so the environment is its own).
+fn mesa_extensions() -> Option<BTreeSet<String>> {
+    for (k, _) in std::env::vars_os() {
+        if k.to_string_lossy().starts_with("MESA_") {
+            std::env::remove_var(k);
+        }
+    }
+    std::env::set_var("MESA_GLES_VERSION_OVERRIDE", "2.0");
+    let mut mesa = MesaGl::open_or_skip(W, H)?;
+    let version = mesa.glGetString(GL_VERSION).expect("GL_VERSION").unwrap_or_default();
+    assert!(version.starts_with("OpenGL ES 2.0"), "Mesa is not held to ES 2.0: {version}");
+    Some(words(mesa.glGetString(GL_EXTENSIONS).expect("GL_EXTENSIONS")))
+}
+
+#[test]
+fn the_parity_file_matches_both_extension_strings() {
+    let file = parity_file();
+    let Some(mesa) = mesa_extensions() else { return };
+    let daemon = Daemon::start("extension-parity", &[]);
+    let mut strata = strata_context(&daemon.socket, "extension-parity").expect("context");
+    let ours = words(strata.glGetString(GL_EXTENSIONS).expect("GL_EXTENSIONS"));
+    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests");
+
+    let mut wrong = Vec::new();
+    for name in mesa.iter().filter(|n| !file.contains_key(*n)) {
+        wrong.push(format!("{name}: Mesa offers it on ES 2.0, and the file has no line for it"));
+    }
+    for name in file.keys().filter(|n| !mesa.contains(*n)) {
+        wrong.push(format!("{name}: listed, but Mesa does not offer it on ES 2.0"));
+    }
+    for name in ours.iter().filter(|n| !mesa.contains(*n)) {
+        wrong.push(format!("{name}: Strata advertises it, and Mesa does not offer it on ES 2.0"));
+    }
+    for (name, status) in &file {
+        let advertised = ours.contains(name);
+        match status {
+            Status::Advertised(files) => {
+                if !advertised {
+                    wrong.push(format!("{name}: listed as advertised, and Strata does not advertise it"));
+                }
+                let bare = name.trim_start_matches("GL_");
+                for f in files {
+                    match std::fs::read_to_string(tests.join(f)) {
+                        Ok(src) if src.contains(bare) => {}
+                        Ok(_) => wrong.push(format!("{name}: tests/{f} does not mention {bare}")),
+                        Err(e) => wrong.push(format!("{name}: tests/{f}: {e}")),
+                    }
+                }
+            }
+            Status::Excused(_) | Status::Missing(_) if advertised => {
+                wrong.push(format!("{name}: Strata advertises it, and the file says it does not"))
+            }
+            _ => {}
+        }
+    }
+    assert!(wrong.is_empty(), "tests/extension_parity.txt is out of date:\n{}", wrong.join("\n"));
+
+    let count = |f: fn(&Status) -> bool| file.values().filter(|s| f(s)).count();
+    eprintln!(
+        "Mesa offers {} extensions on ES 2.0: Strata advertises {}, {} excused, {} missing",
+        mesa.len(),
+        count(|s| matches!(s, Status::Advertised(_))),
+        count(|s| matches!(s, Status::Excused(_))),
+        count(|s| matches!(s, Status::Missing(_))),
+    );
+}
