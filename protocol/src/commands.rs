@@ -256,6 +256,15 @@ command_set! {
         glDrawElementsBaseVertexOES [Context] => DrawElementsBaseVertexOES { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64, base_vertex: GLint };
         /// `glDrawElementsBaseVertexOES` with a client-side index array.
         strataDrawElementsBaseVertexData [Context] => DrawElementsBaseVertexData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a>, base_vertex: GLint };
+        /// `GL_EXT_multi_draw_arrays`: `glDrawArrays` for each of the first `drawcount`
+        /// (`first`, `count`) pairs.
+        glMultiDrawArraysEXT [Context] => MultiDrawArraysEXT { mode: GLenum, first: Slice<'a, GLint>, count: Slice<'a, GLsizei>, drawcount: GLsizei };
+        /// `GL_EXT_multi_draw_arrays`: `glDrawElements` from the element buffer for each of the
+        /// first `drawcount` (`count`, byte offset) pairs.
+        glMultiDrawElementsEXT [Context] => MultiDrawElementsEXT { mode: GLenum, count: Slice<'a, GLsizei>, index_type: GLenum, offsets: Slice<'a, u64>, drawcount: GLsizei };
+        /// `GL_OES_draw_elements_base_vertex` with `GL_EXT_multi_draw_arrays`:
+        /// `glMultiDrawElementsEXT` with a base vertex for each draw.
+        glMultiDrawElementsBaseVertexEXT [Context] => MultiDrawElementsBaseVertexEXT { mode: GLenum, count: Slice<'a, GLsizei>, index_type: GLenum, offsets: Slice<'a, u64>, drawcount: GLsizei, base_vertex: Slice<'a, GLint> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -34,6 +34,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_required_internalformat",
     "GL_OES_draw_elements_base_vertex",
     "GL_EXT_read_format_bgra",
+    "GL_EXT_draw_elements_base_vertex",
+    "GL_EXT_multi_draw_arrays",
     "EGL_KHR_create_context",
 ];
 

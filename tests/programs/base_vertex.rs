@@ -4,7 +4,7 @@
 use super::*;
 
 /// Three coloured quads' corners in one buffer (position xyz, colour rgba), four vertices each.
-fn quads_buffer(gl: Gl<'_>, n: &mut Names) -> R {
+pub(super) fn quads_buffer(gl: Gl<'_>, n: &mut Names) -> R {
     let quad = |x0: f32, y0: f32, c: [f32; 4]| -> Vec<f32> {
         [(x0, y0), (x0 + 0.6, y0), (x0, y0 + 0.6), (x0 + 0.6, y0 + 0.6)]
             .iter()

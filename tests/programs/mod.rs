@@ -272,6 +272,7 @@ mod derivatives;
 mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
+mod multi_draw;
 mod objects;
 mod offset_clamp;
 mod parallel_compile;
@@ -291,6 +292,7 @@ pub fn all() -> Vec<Case> {
     all.extend(offset_clamp::all());
     all.extend(parallel_compile::all());
     all.extend(base_vertex::all());
+    all.extend(multi_draw::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

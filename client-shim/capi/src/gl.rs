@@ -488,44 +488,38 @@ fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
 mod families;
 pub use families::{active, attrib, delete, get_arrays, get_int, get_strings, matrix, names, uniforms};
 
-/// The names of every GL entry point, by module.
-#[cfg(test)]
-pub(crate) const MODULE_NAMES: &[&[&str]] = &[
-    simple::NAMES,
-    uniforms::NAMES,
-    matrix::NAMES,
-    attrib::NAMES,
-    names::NAMES,
-    delete::NAMES,
-    get_int::NAMES,
-    get_arrays::NAMES,
-    get_strings::NAMES,
-    active::NAMES,
-    hand::NAMES,
-    base_vertex::NAMES,
-    crate::vao::NAMES,
-    crate::debug::NAMES,
-    crate::discard::NAMES,
-];
+/// The GL entry-point modules, listed once: [`lookup`] searches them in order, and the tests
+/// check every name they export.
+macro_rules! gl_modules {
+    ($($($seg:ident)::+),* $(,)?) => {
+        /// The names of every GL entry point, by module.
+        #[cfg(test)]
+        pub(crate) const MODULE_NAMES: &[&[&str]] = &[$($($seg)::+::NAMES),*];
 
-/// The address of a GL entry point, by name.
-pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
-    simple::lookup(name)
-        .or_else(|| uniforms::lookup(name))
-        .or_else(|| matrix::lookup(name))
-        .or_else(|| attrib::lookup(name))
-        .or_else(|| names::lookup(name))
-        .or_else(|| delete::lookup(name))
-        .or_else(|| get_int::lookup(name))
-        .or_else(|| get_arrays::lookup(name))
-        .or_else(|| get_strings::lookup(name))
-        .or_else(|| active::lookup(name))
-        .or_else(|| hand::lookup(name))
-        .or_else(|| base_vertex::lookup(name))
-        .or_else(|| crate::vao::lookup(name))
-        .or_else(|| crate::debug::lookup(name))
-        .or_else(|| crate::discard::lookup(name))
+        /// The address of a GL entry point, by name.
+        pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
+            None$(.or_else(|| $($seg)::+::lookup(name)))*
+        }
+    };
 }
+
+gl_modules!(
+    simple,
+    uniforms,
+    matrix,
+    attrib,
+    names,
+    delete,
+    get_int,
+    get_arrays,
+    get_strings,
+    active,
+    hand,
+    draws,
+    crate::vao,
+    crate::debug,
+    crate::discard,
+);
 
 fn tex_image_bytes<'a>(
     st: &GlState,
@@ -547,8 +541,8 @@ fn tex_image_bytes<'a>(
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
 pub mod hand;
 
-/// Element draws: `glDrawElements` and its base-vertex form.
-pub mod base_vertex;
+/// Element draws (`glDrawElements` and its base-vertex forms) and multi-draws.
+pub mod draws;
 
 #[cfg(test)]
 mod tests {

@@ -202,6 +202,10 @@ mod tests {
             "glPolygonOffsetClampEXT",
             "glMaxShaderCompilerThreadsKHR",
             "glDrawElementsBaseVertexOES",
+            "glDrawElementsBaseVertexEXT",
+            "glMultiDrawArraysEXT",
+            "glMultiDrawElementsEXT",
+            "glMultiDrawElementsBaseVertexEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

@@ -15,7 +15,7 @@ use super::GlesExecutor;
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// A base-vertex draw of `count` indices of `index_type` from `indices`.
-    fn draw_base_vertex(
+    pub(super) fn draw_base_vertex(
         &mut self,
         ctx: &mut Context,
         mode: u32,

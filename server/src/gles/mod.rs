@@ -31,6 +31,7 @@ mod frames;
 pub mod glsl;
 mod images;
 mod labels;
+mod multi_draw;
 mod names;
 mod pixels;
 mod programs;

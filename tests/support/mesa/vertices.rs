@@ -183,6 +183,67 @@ impl Arms<'_> {
         Ok(())
     }
 
+    pub(super) fn glMultiDrawArraysEXT(
+        &mut self,
+        mode: &GLenum,
+        first: &Slice<'_, GLint>,
+        count: &Slice<'_, GLsizei>,
+        drawcount: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let (f, c) = (padded(first, *drawcount), padded(count, *drawcount));
+        let (m, n) = (*mode, *drawcount);
+        call!(self, "glMultiDrawArraysEXT", fn(u32, *const i32, *const i32, i32) -> (), m, f.as_ptr(), c.as_ptr(), n);
+        Ok(())
+    }
+
+    pub(super) fn glMultiDrawElementsEXT(
+        &mut self,
+        mode: &GLenum,
+        count: &Slice<'_, GLsizei>,
+        index_type: &GLenum,
+        offsets: &Slice<'_, u64>,
+        drawcount: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let (c, o) = (padded(count, *drawcount), offsets_of(offsets, *drawcount));
+        let (m, t, n) = (*mode, *index_type, *drawcount);
+        call!(
+            self,
+            "glMultiDrawElementsEXT",
+            fn(u32, *const i32, u32, *const usize, i32) -> (),
+            m,
+            c.as_ptr(),
+            t,
+            o.as_ptr(),
+            n
+        );
+        Ok(())
+    }
+
+    pub(super) fn glMultiDrawElementsBaseVertexEXT(
+        &mut self,
+        mode: &GLenum,
+        count: &Slice<'_, GLsizei>,
+        index_type: &GLenum,
+        offsets: &Slice<'_, u64>,
+        drawcount: &GLsizei,
+        base_vertex: &Slice<'_, GLint>,
+    ) -> Result<(), ClientError> {
+        let (c, o, b) = (padded(count, *drawcount), offsets_of(offsets, *drawcount), padded(base_vertex, *drawcount));
+        let (m, t, n) = (*mode, *index_type, *drawcount);
+        call!(
+            self,
+            "glMultiDrawElementsBaseVertexEXT",
+            fn(u32, *const i32, u32, *const usize, i32, *const i32) -> (),
+            m,
+            c.as_ptr(),
+            t,
+            o.as_ptr(),
+            n,
+            b.as_ptr()
+        );
+        Ok(())
+    }
+
     pub(super) fn strataVertexAttribDataPacked(
         &mut self,
         index: &GLuint,
@@ -222,4 +283,18 @@ impl Arms<'_> {
     pub(super) fn glIsBuffer(&mut self, name: &GLuint) -> Result<bool, ClientError> {
         Ok(call!(self, "glIsBuffer", fn(u32) -> u8, *name) != 0)
     }
+}
+
+/// A multi-draw's array, padded with zeros to the draw count so that Mesa reads only it.
+fn padded(values: &Slice<'_, i32>, drawcount: i32) -> Vec<i32> {
+    let mut v = values.to_vec();
+    v.resize(v.len().max(drawcount.max(0) as usize), 0);
+    v
+}
+
+/// A multi-draw's element-buffer offsets as the pointers GL takes, padded like [`padded`].
+fn offsets_of(offsets: &Slice<'_, u64>, drawcount: i32) -> Vec<usize> {
+    let mut v: Vec<usize> = offsets.iter().map(|o| o as usize).collect();
+    v.resize(v.len().max(drawcount.max(0) as usize), 0);
+    v
 }
