@@ -70,6 +70,7 @@ impl GlesExecutor {
         Ok(())
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glMultiDrawElementsBaseVertexEXT(
         &mut self,
         ctx: &mut Context,
