@@ -14,6 +14,26 @@ use support::mesa::MesaGl;
 /// A fragment shader body that needs nothing from any extension.
 const BODY: &str = "precision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
 
+/// Vertex shaders (name, source) whose extension directives decide whether they compile.
+fn vertex_cases() -> Vec<(&'static str, String)> {
+    let instance = "attribute vec4 p;\nvoid main() { gl_Position = p + vec4(float(gl_InstanceIDEXT)); }\n";
+    vec![
+        ("GL_EXT_draw_instanced enabled", format!("#extension GL_EXT_draw_instanced : enable\n{instance}")),
+        ("GL_EXT_draw_instanced required", format!("#extension GL_EXT_draw_instanced : require\n{instance}")),
+        ("GL_EXT_draw_instanced never enabled", instance.to_string()),
+        (
+            "GL_EXT_draw_instanced enabled, then disabled",
+            format!(
+                "#extension GL_EXT_draw_instanced : enable\n#extension GL_EXT_draw_instanced : disable\n{instance}"
+            ),
+        ),
+        (
+            "GL_EXT_draw_instanced's macro in a vertex shader",
+            "#ifndef GL_EXT_draw_instanced\n#error no macro\n#endif\nvoid main() { gl_Position = vec4(0.0); }\n".into(),
+        ),
+    ]
+}
+
 /// Shaders (name, fragment source) whose preprocessing decides whether they compile.
 fn cases() -> Vec<(&'static str, String)> {
     let derivatives =
@@ -88,12 +108,22 @@ fn cases() -> Vec<(&'static str, String)> {
             "GL_EXT_frag_depth's macro",
             format!("#ifndef GL_EXT_frag_depth\n#error no macro\n#endif\n{BODY}"),
         ),
+        (
+            "GL_EXT_draw_instanced's instance number in a fragment shader",
+            "#extension GL_EXT_draw_instanced : enable\nprecision mediump float;\n\
+             void main() { gl_FragColor = vec4(float(gl_InstanceIDEXT)); }\n"
+                .into(),
+        ),
+        (
+            "GL_EXT_draw_instanced's macro in a fragment shader",
+            format!("#ifndef GL_EXT_draw_instanced\n#error no macro\n#endif\n{BODY}"),
+        ),
     ]
 }
 
-/// Whether Mesa compiles `source` as a fragment shader, with its info log.
-fn mesa_compiles(gl: &mut MesaGl, name: u32, source: &str) -> Result<(bool, String), ClientError> {
-    gl.glCreateShader(0x8B30, name)?;
+/// Whether Mesa compiles `source` as a shader of `stage`, with its info log.
+fn mesa_compiles(gl: &mut MesaGl, stage: glsl::Stage, name: u32, source: &str) -> Result<(bool, String), ClientError> {
+    gl.glCreateShader(if stage == glsl::Stage::Vertex { 0x8B31 } else { 0x8B30 }, name)?;
     gl.glShaderSource(name, Text::borrowed(source))?;
     gl.glCompileShader(name)?;
     Ok((gl.glGetShaderiv(name, 0x8B81)? != 0, gl.glGetShaderInfoLog(name)?))
@@ -104,9 +134,11 @@ fn conditional_sections_and_their_directives_match_mesa() {
     let Some(mut mesa) = MesaGl::open_or_skip(16, 16) else { return };
     let mut outcomes = [0usize; 2];
     let mut disagreements = Vec::new();
-    for (i, (name, source)) in cases().into_iter().enumerate() {
-        let (native, log) = mesa_compiles(&mut mesa, 100 + i as u32, &source).expect("Mesa");
-        let ours = glsl::compile(glsl::Stage::Fragment, &source);
+    let staged = cases().into_iter().map(|(n, s)| (n, glsl::Stage::Fragment, s));
+    let staged = staged.chain(vertex_cases().into_iter().map(|(n, s)| (n, glsl::Stage::Vertex, s)));
+    for (i, (name, stage, source)) in staged.enumerate() {
+        let (native, log) = mesa_compiles(&mut mesa, stage, 100 + i as u32, &source).expect("Mesa");
+        let ours = glsl::compile(stage, &source);
         eprintln!("{name}: Mesa {native}, Strata {}", ours.is_ok());
         outcomes[usize::from(native)] += 1;
         if ours.is_ok() != native {

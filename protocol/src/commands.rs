@@ -265,6 +265,13 @@ command_set! {
         /// `GL_OES_draw_elements_base_vertex` with `GL_EXT_multi_draw_arrays`:
         /// `glMultiDrawElementsEXT` with a base vertex for each draw.
         glMultiDrawElementsBaseVertexEXT [Context] => MultiDrawElementsBaseVertexEXT { mode: GLenum, count: Slice<'a, GLsizei>, index_type: GLenum, offsets: Slice<'a, u64>, drawcount: GLsizei, base_vertex: Slice<'a, GLint> };
+        /// `GL_EXT_draw_instanced`: `glDrawArrays` `primcount` times, each instance's
+        /// `gl_InstanceIDEXT` its number.
+        glDrawArraysInstancedEXT [Context] => DrawArraysInstancedEXT { mode: GLenum, first: GLint, count: GLsizei, primcount: GLsizei };
+        /// `GL_EXT_draw_instanced`: `glDrawElements` `primcount` times.
+        glDrawElementsInstancedEXT [Context] => DrawElementsInstancedEXT { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64, primcount: GLsizei };
+        /// `glDrawElementsInstancedEXT` with a client-side index array.
+        strataDrawElementsInstancedData [Context] => DrawElementsInstancedData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a>, primcount: GLsizei };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -36,6 +36,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_read_format_bgra",
     "GL_EXT_draw_elements_base_vertex",
     "GL_EXT_multi_draw_arrays",
+    "GL_EXT_draw_instanced",
     "EGL_KHR_create_context",
 ];
 

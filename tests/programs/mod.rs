@@ -56,6 +56,7 @@ impl Names {
 }
 
 // GL enums used below.
+pub const POINTS: u32 = 0x0000;
 pub const TRIANGLES: u32 = 0x0004;
 pub const TRIANGLE_STRIP: u32 = 0x0005;
 pub const TRIANGLE_FAN: u32 = 0x0006;
@@ -272,6 +273,7 @@ mod derivatives;
 mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
+mod instanced;
 mod multi_draw;
 mod objects;
 mod offset_clamp;
@@ -293,6 +295,7 @@ pub fn all() -> Vec<Case> {
     all.extend(parallel_compile::all());
     all.extend(base_vertex::all());
     all.extend(multi_draw::all());
+    all.extend(instanced::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

@@ -7,7 +7,7 @@ use super::base_vertex::quads_buffer;
 use super::*;
 
 /// Marks `e`, the error after call `i`, as a colour in a column along the top edge.
-fn mark_error(gl: Gl<'_>, i: i32, e: u32) -> R {
+pub(super) fn mark_error(gl: Gl<'_>, i: i32, e: u32) -> R {
     gl.glEnable(SCISSOR_TEST)?;
     gl.glScissor(i * 4, H - 4, 4, 4)?;
     gl.glClearColor((e & 0xFF) as f32 / 255.0, ((e >> 8) & 0xFF) as f32 / 255.0, 0.5, 1.0)?;

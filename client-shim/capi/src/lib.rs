@@ -206,6 +206,8 @@ mod tests {
             "glMultiDrawArraysEXT",
             "glMultiDrawElementsEXT",
             "glMultiDrawElementsBaseVertexEXT",
+            "glDrawArraysInstancedEXT",
+            "glDrawElementsInstancedEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

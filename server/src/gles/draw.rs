@@ -211,13 +211,15 @@ fn plan_inputs(
 
 /// Plans a `GL_POINTS` draw: one instance per point (in index order for indexed draws, whose
 /// arrays are gathered), four vertices each, which the program's points vertex stage expands
-/// to a square; `strata_point` carries the viewport's pixel size.
+/// to a square; `strata_point` carries the viewport's pixel size and the instance's number
+/// (`gl_InstanceIDEXT`).
 fn plan_points(
     ctx: &Context,
     program: &LinkedProgram,
     count: u32,
     indices: Option<(IndexType, Indices<'_>)>,
     first: u32,
+    instance: u32,
 ) -> GlResult<(Vec<VertexInput>, (u32, u32))> {
     let order = match indices {
         Some((ty, i)) => Some(index_values(ctx, ty, i, count)?.0),
@@ -229,7 +231,7 @@ fn plan_points(
     };
     let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref())?;
     let [_, _, w, h] = ctx.raster.viewport;
-    let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, 0.0, 0.0];
+    let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, instance as f32, 0.0];
     inputs.push(VertexInput {
         location: program.info.point_input,
         format: wgpu::VertexFormat::Float32x4,
@@ -299,6 +301,14 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
     }
 }
 
+/// Which instances one planned draw covers: points draw each instance on its own (`instance`);
+/// other primitives draw all `instances` at once.
+#[derive(Clone, Copy)]
+struct Instancing {
+    instance: u32,
+    instances: u32,
+}
+
 /// Validates a draw of the current program into `target` (a reversed-Z framebuffer 0 with
 /// `reversed`); `None` if it draws nothing.
 fn plan_draw<'c>(
@@ -309,6 +319,7 @@ fn plan_draw<'c>(
     count: u32,
     indices: Option<(IndexType, Indices<'_>)>,
     first: u32,
+    shape: Instancing,
 ) -> GlResult<Option<DrawSpec<'c>>> {
     let Some(p) = ctx.objects.programs.get(&ctx.bindings.program) else { return Ok(None) };
     let Some(program) = p.linked.clone() else { return Ok(None) };
@@ -316,14 +327,14 @@ fn plan_draw<'c>(
         return Ok(None);
     }
     let (inputs, index, count, first, instances) = if prim == Primitive::Points {
-        let (inputs, instances) = plan_points(ctx, &program, count, indices, first)?;
+        let (inputs, instances) = plan_points(ctx, &program, count, indices, first, shape.instance)?;
         (inputs, None, 4, 0, instances)
     } else {
         let IndexPlan { index, count, vertex_count } = plan_indices(ctx, prim, count, indices, first)?;
         if count == 0 {
             return Ok(None);
         }
-        (plan_inputs(ctx, &program, vertex_count, None)?, index, count, first, (0, 1))
+        (plan_inputs(ctx, &program, vertex_count, None)?, index, count, first, (0, shape.instances))
     };
     let textures = program
         .info
@@ -398,6 +409,20 @@ impl GlesExecutor {
         indices: Option<(u32, Indices<'_>)>,
         first: u32,
     ) -> GlResult {
+        self.draw_instances(ctx, mode, count, indices, first, 1)
+    }
+
+    /// [`Self::draw`] of `instances` instances (`GL_EXT_draw_instanced`). Points, which are
+    /// already drawn one instance per point, are drawn once per instance, each told its number.
+    pub(super) fn draw_instances(
+        &mut self,
+        ctx: &mut Context,
+        mode: u32,
+        count: u32,
+        indices: Option<(u32, Indices<'_>)>,
+        first: u32,
+        instances: u32,
+    ) -> GlResult {
         let prim = Primitive::from_gl(mode)?;
         let indices = match indices {
             Some((ty, i)) => Some((IndexType::from_gl(ty)?, i)),
@@ -419,21 +444,27 @@ impl GlesExecutor {
             None => None,
         };
         let renderer = &mut self.r;
-        let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first)? else { return Ok(()) };
-        if let Some((vs, fs)) = reversed_stages {
-            spec.vs = vs;
-            spec.fs = fs;
-        } else if spec.raster.points {
-            match spec.program.points_vs(&gpu) {
-                Ok(vs) => spec.vs = vs,
-                Err(e) => {
-                    // GL has no error for this: the draw is dropped, and the reason logged.
-                    tracing::warn!("points draw dropped: the points vertex stage failed: {e}");
-                    return Ok(());
+        let plans = if prim == Primitive::Points { instances } else { instances.min(1) };
+        for instance in 0..plans {
+            let shape = Instancing { instance, instances };
+            let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first, shape)? else {
+                return Ok(());
+            };
+            if let Some((vs, fs)) = reversed_stages.clone() {
+                spec.vs = vs;
+                spec.fs = fs;
+            } else if spec.raster.points {
+                match spec.program.points_vs(&gpu) {
+                    Ok(vs) => spec.vs = vs,
+                    Err(e) => {
+                        // GL has no error for this: the draw is dropped, and the reason logged.
+                        tracing::warn!("points draw dropped: the points vertex stage failed: {e}");
+                        return Ok(());
+                    }
                 }
             }
+            renderer.draw(&target, spec);
         }
-        renderer.draw(&target, spec);
         Ok(())
     }
 

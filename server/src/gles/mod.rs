@@ -30,6 +30,7 @@ mod framebuffers;
 mod frames;
 pub mod glsl;
 mod images;
+mod instanced;
 mod labels;
 mod multi_draw;
 mod names;

@@ -15,7 +15,7 @@ const EXTENSIONS_STRING: &str = "GL_OES_element_index_uint GL_OES_vertex_half_fl
 GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_texture GL_OES_vertex_array_object \
 GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
 GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile GL_OES_required_internalformat GL_OES_draw_elements_base_vertex GL_EXT_read_format_bgra \
-GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays";
+GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack

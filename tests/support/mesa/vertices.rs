@@ -244,6 +244,44 @@ impl Arms<'_> {
         Ok(())
     }
 
+    pub(super) fn glDrawArraysInstancedEXT(
+        &mut self,
+        mode: &GLenum,
+        first: &GLint,
+        count: &GLsizei,
+        primcount: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let (m, f, c, n) = (*mode, *first, *count, *primcount);
+        call!(self, "glDrawArraysInstancedEXT", fn(u32, i32, i32, i32) -> (), m, f, c, n);
+        Ok(())
+    }
+
+    pub(super) fn glDrawElementsInstancedEXT(
+        &mut self,
+        mode: &GLenum,
+        count: &GLsizei,
+        index_type: &GLenum,
+        offset: &u64,
+        primcount: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let (m, c, t, o, n) = (*mode, *count, *index_type, *offset as usize, *primcount);
+        call!(self, "glDrawElementsInstancedEXT", fn(u32, i32, u32, usize, i32) -> (), m, c, t, o, n);
+        Ok(())
+    }
+
+    pub(super) fn strataDrawElementsInstancedData(
+        &mut self,
+        mode: &GLenum,
+        count: &GLsizei,
+        index_type: &GLenum,
+        indices: &Blob<'_>,
+        primcount: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let (m, c, t, p, n) = (*mode, *count, *index_type, indices.as_bytes().as_ptr(), *primcount);
+        call!(self, "glDrawElementsInstancedEXT", fn(u32, i32, u32, *const u8, i32) -> (), m, c, t, p, n);
+        Ok(())
+    }
+
     pub(super) fn strataVertexAttribDataPacked(
         &mut self,
         index: &GLuint,

@@ -3,25 +3,37 @@
 //! client arrays their indices read (each index plus the base, if any) and the draw; the daemon
 //! offsets the indices. `GL_EXT_multi_draw_arrays`' multi-draws go as one command where every
 //! array is in a buffer, and draw by draw where client arrays must be sent for each.
+//! `GL_EXT_draw_instanced`'s draws send what the single draw sends.
 
 use super::*;
 
+/// What an element draw adds to `glDrawElements`.
+#[derive(Clone, Copy)]
+pub(super) enum Extra {
+    /// Nothing: `glDrawElements`.
+    None,
+    /// A base vertex added to each index (`glDrawElementsBaseVertexOES`).
+    Base(GLint),
+    /// Instances (`glDrawElementsInstancedEXT`).
+    Instances(GLsizei),
+}
+
 /// An element draw of `count` indices of `ty` at `indices` (an offset into the bound element
-/// buffer, or a client-side array, which is sent along), with `base` added to each index for
-/// `glDrawElementsBaseVertexOES`.
+/// buffer, or a client-side array, which is sent along), with what `extra` adds.
 pub(super) fn draw_elements(
     gl: &mut Gl<'_>,
     mode: GLenum,
     count: GLsizei,
     ty: GLenum,
     indices: *const c_void,
-    base: Option<GLint>,
+    extra: Extra,
 ) -> Result<(), ClientError> {
     let draw_buffer = |gl: &mut Gl<'_>| {
         let offset = indices as usize as u64;
-        match base {
-            None => gl.conn.glDrawElements(mode, count, ty, offset),
-            Some(b) => gl.conn.glDrawElementsBaseVertexOES(mode, count, ty, offset, b),
+        match extra {
+            Extra::None => gl.conn.glDrawElements(mode, count, ty, offset),
+            Extra::Base(b) => gl.conn.glDrawElementsBaseVertexOES(mode, count, ty, offset, b),
+            Extra::Instances(n) => gl.conn.glDrawElementsInstancedEXT(mode, count, ty, offset, n),
         }
     };
     let Some(size) = type_size(ty).filter(|_| count > 0) else {
@@ -30,8 +42,8 @@ pub(super) fn draw_elements(
     };
     let len = size * count as usize;
     // The vertices the draw reads: up to the largest index, plus the base.
-    let reach = |n: u64| match base {
-        Some(b) if n > 0 => (n as i64 + i64::from(b)).max(0) as u64,
+    let reach = |n: u64| match extra {
+        Extra::Base(b) if n > 0 => (n as i64 + i64::from(b)).max(0) as u64,
         _ => n,
     };
     if gl.st.element_buffer != 0 {
@@ -56,9 +68,11 @@ pub(super) fn draw_elements(
     if uses_client_arrays(gl.st) {
         send_client_arrays(gl, reach(vertex_count(data, ty)))?;
     }
-    match base {
-        None => gl.conn.strataDrawElementsData(mode, count, ty, Blob::borrowed(data)),
-        Some(b) => gl.conn.strataDrawElementsBaseVertexData(mode, count, ty, Blob::borrowed(data), b),
+    let data = Blob::borrowed(data);
+    match extra {
+        Extra::None => gl.conn.strataDrawElementsData(mode, count, ty, data),
+        Extra::Base(b) => gl.conn.strataDrawElementsBaseVertexData(mode, count, ty, data, b),
+        Extra::Instances(n) => gl.conn.strataDrawElementsInstancedData(mode, count, ty, data, n),
     }
 }
 
@@ -113,7 +127,8 @@ fn multi_draw_elements(
         return Ok(());
     }
     for (i, (&c, &p)) in counts.iter().zip(pointers).enumerate().filter(|&(_, (&c, _))| c > 0) {
-        draw_elements(gl, mode, c, ty, p, bases.map(|b| b.get(i).copied().unwrap_or(0)))?;
+        let extra = bases.map_or(Extra::None, |b| Extra::Base(b.get(i).copied().unwrap_or(0)));
+        draw_elements(gl, mode, c, ty, p, extra)?;
     }
     Ok(())
 }
@@ -122,12 +137,12 @@ crate::entry_points! {
     /// Indices from the bound element buffer, or a client-side index array sent along, each
     /// plus `basevertex`.
     fn glDrawElementsBaseVertexOES(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void, basevertex: GLint) {
-        with_gl("glDrawElementsBaseVertexOES", (), |gl| draw_elements(gl, mode, count, ty, indices, Some(basevertex)))
+        with_gl("glDrawElementsBaseVertexOES", (), |gl| draw_elements(gl, mode, count, ty, indices, Extra::Base(basevertex)))
     }
 
     /// `GL_EXT_draw_elements_base_vertex`'s name for `glDrawElementsBaseVertexOES`.
     fn glDrawElementsBaseVertexEXT(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void, basevertex: GLint) {
-        with_gl("glDrawElementsBaseVertexEXT", (), |gl| draw_elements(gl, mode, count, ty, indices, Some(basevertex)))
+        with_gl("glDrawElementsBaseVertexEXT", (), |gl| draw_elements(gl, mode, count, ty, indices, Extra::Base(basevertex)))
     }
 
     /// One command: the client arrays the draws read (up to the furthest vertex), then the
@@ -165,5 +180,21 @@ crate::entry_points! {
             let base = if basevertex.is_null() { [0i32; 0].as_ptr() } else { basevertex };
             multi_draw_elements(gl, mode, count, ty, indices, drawcount, base)
         })
+    }
+
+    /// `GL_EXT_draw_instanced`: the client arrays the draw reads (every attribute steps per
+    /// vertex), then the draw.
+    fn glDrawArraysInstancedEXT(mode: GLenum, first: GLint, count: GLsizei, primcount: GLsizei) {
+        with_gl("glDrawArraysInstancedEXT", (), |gl| {
+            if first >= 0 && count > 0 && primcount > 0 && uses_client_arrays(gl.st) {
+                send_client_arrays(gl, first as u64 + count as u64)?;
+            }
+            gl.conn.glDrawArraysInstancedEXT(mode, first, count, primcount)
+        })
+    }
+
+    /// `GL_EXT_draw_instanced`: indices as `glDrawElements` takes them, drawn `primcount` times.
+    fn glDrawElementsInstancedEXT(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void, primcount: GLsizei) {
+        with_gl("glDrawElementsInstancedEXT", (), |gl| draw_elements(gl, mode, count, ty, indices, Extra::Instances(primcount)))
     }
 }

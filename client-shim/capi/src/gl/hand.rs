@@ -398,7 +398,7 @@ crate::entry_points! {
 
     /// Indices from the bound element buffer, or a client-side index array sent along.
     fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void) {
-        with_gl("glDrawElements", (), |gl| super::draws::draw_elements(gl, mode, count, ty, indices, None))
+        with_gl("glDrawElements", (), |gl| super::draws::draw_elements(gl, mode, count, ty, indices, super::draws::Extra::None))
     }
 
     /// Tracks the unpack state (upload sizes depend on it).

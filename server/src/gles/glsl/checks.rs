@@ -50,6 +50,12 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
             return Err(at(span, &format!("`{FRAG_DEPTH}' undeclared")));
         }
     }
+    // `GL_EXT_draw_instanced`'s input exists only in vertex shaders that enable it.
+    if let Some(span) = calls.instance_id {
+        if stage == Stage::Fragment || !parsed.enabled.draw_instanced {
+            return Err(at(span, &format!("`{INSTANCE_ID}' undeclared")));
+        }
+    }
     globals(&parsed.tu, &at)?;
     super::writes::check(stage, &parsed.tu, &at)?;
     let uniform_precisions = precision::check(stage, &parsed.tu, &at)?;
@@ -69,14 +75,17 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
 
 /// `GL_EXT_frag_depth`'s fragment depth output.
 pub(super) const FRAG_DEPTH: &str = "gl_FragDepthEXT";
+/// `GL_EXT_draw_instanced`'s instance number.
+pub(super) const INSTANCE_ID: &str = "gl_InstanceIDEXT";
 
-/// Every function called by name, with where; every variable named; the first use of
-/// [`FRAG_DEPTH`].
+/// Every function called by name, with where; every variable named; the first uses of
+/// [`FRAG_DEPTH`] and [`INSTANCE_ID`].
 #[derive(Default)]
 struct Calls {
     found: Vec<(String, Option<ast::NodeSpan>)>,
     variables: HashSet<String>,
     frag_depth: Option<Option<ast::NodeSpan>>,
+    instance_id: Option<Option<ast::NodeSpan>>,
 }
 
 impl Visitor for Calls {
@@ -85,6 +94,9 @@ impl Visitor for Calls {
             self.variables.insert(id.0.to_string());
             if id.0 == FRAG_DEPTH && self.frag_depth.is_none() {
                 self.frag_depth = Some(e.span);
+            }
+            if id.0 == INSTANCE_ID && self.instance_id.is_none() {
+                self.instance_id = Some(e.span);
             }
         }
         if let ExprData::FunCall(f, _) = &e.content {

@@ -65,6 +65,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         uniforms: vec![],
         point_coord: false,
         frag_depth: false,
+        instance_id: false,
         has_main: false,
         log: parsed.warnings.join("\n"),
         facts,
@@ -218,11 +219,13 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         stage,
         point_coord: false,
         frag_depth: false,
+        instance_id: false,
     };
     shader.body.visit_mut(&mut rewrite);
     super::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
     shader.frag_depth = rewrite.frag_depth;
+    shader.instance_id = rewrite.instance_id;
     if let Some(e) = rewrite.error {
         return Err(e);
     }

@@ -434,11 +434,18 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         pc_corner.push_str("    strata_PointCoord = vec2(strata_corner.x, 1.0 - strata_corner.y);\n");
     }
     vsrc.push_str("float strata_PointSize;\n");
+    // gl_InstanceIDEXT: the instance's number, which the points stage is told per draw.
+    let (instance, point_instance) = if vs.instance_id {
+        vsrc.push_str("int strata_InstanceID;\n");
+        ("    strata_InstanceID = int(gl_InstanceIndex);\n", "    strata_InstanceID = int(strata_point.z);\n")
+    } else {
+        ("", "")
+    };
     let point_input = used.iter().position(|u| !u).unwrap_or(used.len()) as u32;
     let vs_body = transpile(vs)?;
     let body = &vs_body.text;
     let points_source = format!(
-        "{vsrc}layout(location = {point_input}) in vec4 strata_point;\n{body}\nvoid main() {{\n    strata_PointSize = 1.0;\n    strata_main();\n{vs_copy}\
+        "{vsrc}layout(location = {point_input}) in vec4 strata_point;\n{body}\nvoid main() {{\n    strata_PointSize = 1.0;\n{point_instance}    strata_main();\n{vs_copy}\
     float strata_size = clamp(strata_PointSize, 1.0, {MAX_POINT_SIZE:.1});\n\
     vec2 strata_corner = vec2(float(gl_VertexIndex & 1), float((gl_VertexIndex >> 1) & 1));\n{pc_corner}\
     gl_Position.xy += (strata_corner * 2.0 - 1.0) * (strata_size * gl_Position.w) * strata_point.xy;\n{CONVENTIONS}}}\n"
@@ -446,7 +453,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let vs_first_line = vsrc.matches('\n').count();
     vsrc.push_str(body);
     vsrc.push_str(&format!(
-        "\nvoid main() {{\n    strata_PointSize = 1.0;\n    strata_main();\n{vs_copy}{pc_default}{CONVENTIONS}}}\n"
+        "\nvoid main() {{\n    strata_PointSize = 1.0;\n{instance}    strata_main();\n{vs_copy}{pc_default}{CONVENTIONS}}}\n"
     ));
 
     let mut fsrc = common;

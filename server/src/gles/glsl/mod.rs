@@ -228,6 +228,8 @@ pub struct Shader {
     pub point_coord: bool,
     /// Whether it writes `gl_FragDepthEXT` (fragment shaders, `GL_EXT_frag_depth`).
     pub frag_depth: bool,
+    /// Whether it reads `gl_InstanceIDEXT` (vertex shaders, `GL_EXT_draw_instanced`).
+    pub instance_id: bool,
     /// Whether it defines `main` (a program without one fails to link).
     pub has_main: bool,
     /// The info log of a successful compile (warnings), empty if none.

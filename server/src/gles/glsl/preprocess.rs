@@ -17,6 +17,8 @@ use super::Stage;
 pub(super) const OES_STANDARD_DERIVATIVES: &str = "GL_OES_standard_derivatives";
 /// `gl_FragDepthEXT` in fragment shaders.
 pub(super) const EXT_FRAG_DEPTH: &str = "GL_EXT_frag_depth";
+/// `gl_InstanceIDEXT` in vertex shaders.
+pub(super) const EXT_DRAW_INSTANCED: &str = "GL_EXT_draw_instanced";
 
 /// Which of the offered extensions a shader's directives leave enabled.
 #[derive(Debug, Clone, Copy, Default)]
@@ -25,6 +27,8 @@ pub(super) struct Enabled {
     pub(super) derivatives: bool,
     /// `GL_EXT_frag_depth`.
     pub(super) frag_depth: bool,
+    /// `GL_EXT_draw_instanced`.
+    pub(super) draw_instanced: bool,
 }
 
 /// The preprocessor's extension registry: only what Strata offers, so that only those
@@ -33,6 +37,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     let mut r = Registry::new();
     r.add(ExtensionSpec::new(ExtNameAtom::from(OES_STANDARD_DERIVATIVES), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_FRAG_DEPTH), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_INSTANCED), vec![]));
     r
 });
 
@@ -100,6 +105,10 @@ fn extension_directive(
     }
     if name == EXT_FRAG_DEPTH {
         enabled.frag_depth = behavior != "disable";
+        return Ok(());
+    }
+    if name == EXT_DRAW_INSTANCED {
+        enabled.draw_instanced = behavior != "disable";
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));

@@ -31,6 +31,8 @@ pub(super) struct Rewrite {
     pub(super) point_coord: bool,
     /// Whether the (fragment) shader writes `gl_FragDepthEXT`.
     pub(super) frag_depth: bool,
+    /// Whether the (vertex) shader reads `gl_InstanceIDEXT`.
+    pub(super) instance_id: bool,
 }
 
 /// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
@@ -252,6 +254,10 @@ impl VisitorMut for Rewrite {
                     // Clamped and written out by the generated `main` (`link`).
                     self.frag_depth = true;
                     Some(var("strata_FragDepth"))
+                } else if name == super::checks::INSTANCE_ID && self.stage == Stage::Vertex {
+                    // Set by the generated `main` (`link`).
+                    self.instance_id = true;
+                    Some(var("strata_InstanceID"))
                 } else if let Some(ty) = self.samplers.get(name) {
                     let t = if *ty == Ty::Sampler2D { T::Sampler2D } else { T::SamplerCube };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))

@@ -345,6 +345,7 @@ fn encode(
         rp.set_stencil_reference(r.stencil_ref);
         let [br, bg, bb, ba] = r.blend_color;
         rp.set_blend_constant(wgpu::Color { r: br, g: bg, b: bb, a: ba });
+        let (i0, n) = r.instances;
         match &r.index {
             Some((src, off, fmt)) => {
                 match src {
@@ -355,10 +356,9 @@ fn encode(
                         }
                     }
                 }
-                rp.draw_indexed(0..r.count, 0, 0..1);
+                rp.draw_indexed(0..r.count, 0, i0..i0 + n);
             }
             None => {
-                let (i0, n) = r.instances;
                 rp.draw(r.first..r.first + r.count, i0..i0 + n);
             }
         }
