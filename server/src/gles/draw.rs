@@ -311,6 +311,7 @@ struct Instancing {
 
 /// Validates a draw of the current program into `target` (a reversed-Z framebuffer 0 with
 /// `reversed`); `None` if it draws nothing.
+#[allow(clippy::too_many_arguments)]
 fn plan_draw<'c>(
     ctx: &'c Context,
     target: &Target,
