@@ -37,6 +37,10 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_draw_elements_base_vertex",
     "GL_EXT_multi_draw_arrays",
     "GL_EXT_draw_instanced",
+    "GL_OES_stencil8",
+    "GL_EXT_texture_compression_dxt1",
+    "GL_ANGLE_texture_compression_dxt3",
+    "GL_ANGLE_texture_compression_dxt5",
     "EGL_KHR_create_context",
 ];
 

@@ -1,5 +1,7 @@
-//! Programs for the compressed formats: S3TC (`EXT_texture_compression_s3tc`) and ETC1
-//! (`OES_compressed_ETC1_RGB8_texture`) blocks of every kind, partial blocks of small levels
+//! Programs for the compressed formats: S3TC (`EXT_texture_compression_s3tc`, whose DXT1,
+//! DXT3 and DXT5 formats `EXT_texture_compression_dxt1`, `ANGLE_texture_compression_dxt3` and
+//! `ANGLE_texture_compression_dxt5` also name) and ETC1 (`OES_compressed_ETC1_RGB8_texture`)
+//! blocks of every kind, partial blocks of small levels
 //! and odd sizes, sub-image updates, and uncompressed data for S3TC internal formats.
 
 use super::textures::{blit, new_texture};

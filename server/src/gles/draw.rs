@@ -252,7 +252,7 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
     });
     // Culling both faces draws nothing; emulate with a never-passing depth test.
     let cull_all = cull == Some(None);
-    let depth = if target.depth.is_some() && (ds.depth_test || cull_all) {
+    let depth = if target.has_depth() && (ds.depth_test || cull_all) {
         let func = if cull_all { NEVER } else { ds.depth_func };
         Some((compare(func), ds.depth_mask && !cull_all))
     } else {
@@ -276,7 +276,7 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         color: blend_component(blend.func[0], blend.func[1], blend.eq[0]),
         alpha: blend_component(blend.func[2], blend.func[3], blend.eq[1]),
     });
-    let bias = (raster.polygon_offset_fill && triangles && target.depth.is_some()).then(|| {
+    let bias = (raster.polygon_offset_fill && triangles && target.has_depth()).then(|| {
         // GL's units are in minimum resolvable depth steps, as Vulkan's constant factor is.
         let [factor, units, clamp] = raster.polygon_offset;
         (factor.to_bits(), units as i32, clamp.to_bits())
@@ -523,7 +523,7 @@ impl GlesExecutor {
         });
         let clear_depth = if reversed { Mirror::depth(ds.clear_depth) } else { ds.clear_depth };
         let depth =
-            (mask & DEPTH_BUFFER_BIT != 0 && target.depth.is_some() && ds.depth_mask).then_some((clear_depth, true));
+            (mask & DEPTH_BUFFER_BIT != 0 && target.has_depth() && ds.depth_mask).then_some((clear_depth, true));
         let stencil = (mask & STENCIL_BUFFER_BIT != 0 && target.has_stencil() && ds.stencil[0].write & 0xff != 0)
             .then_some((ds.clear_stencil as u32 & 0xff, ds.stencil[0].write & 0xff));
         let scissor = ctx.raster.scissor_test.then(|| clip_rect(ctx.raster.scissor, &target));

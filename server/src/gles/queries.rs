@@ -15,7 +15,7 @@ const EXTENSIONS_STRING: &str = "GL_OES_element_index_uint GL_OES_vertex_half_fl
 GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_texture GL_OES_vertex_array_object \
 GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
 GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile GL_OES_required_internalformat GL_OES_draw_elements_base_vertex GL_EXT_read_format_bgra \
-GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced";
+GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced GL_OES_stencil8";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -27,7 +27,13 @@ fn texture_extensions(features: wgpu::Features) -> String {
     }
     ext.extend(["GL_EXT_texture_format_BGRA8888", "GL_EXT_unpack_subimage", "GL_OES_compressed_ETC1_RGB8_texture"]);
     if features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC) {
-        ext.push("GL_EXT_texture_compression_s3tc");
+        // The S3TC formats, and the same formats under the names of their subsets.
+        ext.extend([
+            "GL_EXT_texture_compression_s3tc",
+            "GL_EXT_texture_compression_dxt1",
+            "GL_ANGLE_texture_compression_dxt3",
+            "GL_ANGLE_texture_compression_dxt5",
+        ]);
     }
     ext.join(" ")
 }

@@ -46,7 +46,11 @@ impl Renderer {
         let key = ClearKey {
             color: color.map(|(_, m)| m),
             depth: target.depth.as_ref().map(|(_, f)| {
-                (*f, depth.is_some_and(|(_, w)| w), stencil.filter(|_| target.has_stencil()).map(|(_, m)| m))
+                (
+                    *f,
+                    depth.is_some_and(|(_, w)| w) && f.has_depth_aspect(),
+                    stencil.filter(|_| target.has_stencil()).map(|(_, m)| m),
+                )
             }),
             target_color: target.color.is_some(),
         };

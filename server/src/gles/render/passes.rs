@@ -299,7 +299,7 @@ fn encode(
     });
     let depth = t.depth.as_ref().map(|(view, f)| wgpu::RenderPassDepthStencilAttachment {
         view,
-        depth_ops: Some(wgpu::Operations {
+        depth_ops: f.has_depth_aspect().then(|| wgpu::Operations {
             load: pass.clear_depth.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load),
             store: wgpu::StoreOp::Store,
         }),

@@ -22,6 +22,12 @@ pub struct Target {
 }
 
 impl Target {
+    /// Whether the depth/stencil format has a depth aspect (a `STENCIL_INDEX8` attachment
+    /// alone has none, and the depth test then passes as with no depth buffer).
+    pub fn has_depth(&self) -> bool {
+        matches!(self.depth, Some((_, f)) if f.has_depth_aspect())
+    }
+
     /// Whether the depth/stencil format has a stencil aspect.
     pub fn has_stencil(&self) -> bool {
         matches!(self.depth, Some((_, f)) if f.has_stencil_aspect())
