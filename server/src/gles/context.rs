@@ -304,6 +304,11 @@ pub struct Context {
     pub call: &'static str,
     /// `GL_FRAGMENT_SHADER_DERIVATIVE_HINT_OES`.
     pub derivative_hint: u32,
+    /// Created with `EGL_CONTEXT_OPENGL_NO_ERROR_KHR` (`GL_KHR_no_error`): calls are still
+    /// validated, and one in error still does nothing, but only `GL_OUT_OF_MEMORY` is reported.
+    pub no_error: bool,
+    /// Created with `EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR` (`GL_KHR_context_flush_control`).
+    pub release_none: bool,
 }
 
 impl Context {
@@ -325,11 +330,16 @@ impl Context {
             debug: DebugState::default(),
             call: "",
             derivative_hint: DONT_CARE,
+            no_error: false,
+            release_none: false,
         }
     }
 
     /// Records `e` (the first error wins until `glGetError`), and generates its debug message.
     pub fn record(&mut self, e: GlError) {
+        if self.no_error && e != GlError::OutOfMemory {
+            return;
+        }
         self.error.record(e);
         self.debug.error(self.call, e);
     }

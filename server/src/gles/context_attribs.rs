@@ -1,6 +1,7 @@
 //! `eglCreateContext`'s attribute list: EGL 1.4's client version, `EGL_KHR_create_context`'s
-//! minor version, flags and reset strategy, and `EGL_IMG_context_priority`, validated as Mesa
-//! validates them.
+//! minor version, flags and reset strategy, `EGL_KHR_create_context_no_error`,
+//! `EGL_KHR_context_flush_control` and `EGL_IMG_context_priority`, validated as Mesa validates
+//! them.
 
 use strata_protocol::control::Priority;
 use strata_protocol::EglResult;
@@ -14,14 +15,26 @@ pub(super) struct ContextAttribs {
     pub(super) debug: bool,
     /// `EGL_CONTEXT_PRIORITY_LEVEL_IMG`'s class.
     pub(super) priority: Option<Priority>,
+    /// A context that reports no errors (`EGL_CONTEXT_OPENGL_NO_ERROR_KHR`, any value but 0).
+    pub(super) no_error: bool,
+    /// No flush when the context is released (`EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR`).
+    pub(super) release_none: bool,
 }
+
+/// `EGL_KHR_create_context_no_error`'s attribute.
+const EGL_CONTEXT_OPENGL_NO_ERROR_KHR: i32 = 0x31B3;
+/// `EGL_KHR_context_flush_control`'s attribute and its two values.
+const EGL_CONTEXT_RELEASE_BEHAVIOR_KHR: i32 = 0x2097;
+const EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR: i32 = 0;
+const EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR: i32 = 0x2098;
 
 /// Validates an OpenGL ES context's attribute list as EGL 1.4 with `EGL_KHR_create_context`
 /// and `EGL_IMG_context_priority` define it, and as Mesa answers it: version 2.0 only (ES 1 and
 /// ES 3 have no config here: `EGL_BAD_CONFIG`; another version or a minor version of 2 above 0:
 /// `EGL_BAD_MATCH`); the debug flag; either reset notification strategy; the profile mask and
 /// the forward-compatible flag (desktop OpenGL's), robust access, and unknown attributes, values
-/// or flag bits: `EGL_BAD_ATTRIBUTE`.
+/// or flag bits: `EGL_BAD_ATTRIBUTE`. A no-error context may not be a debug context
+/// (`EGL_BAD_MATCH`); the release behaviour is flush or none.
 pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
     let (mut major, mut minor, mut out) = (1, 0, ContextAttribs::default());
     for pair in list.chunks(2) {
@@ -43,9 +56,16 @@ pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
             // Taken (as Mesa takes it) though nothing here resets: no robustness is offered.
             [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR] =>
                 {}
+            [EGL_CONTEXT_OPENGL_NO_ERROR_KHR, v] => out.no_error = v != 0,
+            [EGL_CONTEXT_RELEASE_BEHAVIOR_KHR, v @ (EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR | EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR)] => {
+                out.release_none = v == EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR
+            }
             [EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, _] => return Err(EGL_BAD_ATTRIBUTE),
             _ => return Err(EGL_BAD_ATTRIBUTE),
         }
+    }
+    if out.no_error && out.debug {
+        return Err(EGL_BAD_MATCH);
     }
     match (major, minor) {
         (2, 0) => Ok(out),

@@ -340,6 +340,8 @@ impl GlesExecutor {
         let mut ctx = Context::new(c);
         // KHR_debug: a debug context starts with debug output enabled.
         ctx.debug.output = asked.debug;
+        ctx.no_error = asked.no_error;
+        ctx.release_none = asked.release_none;
         self.contexts.insert(id, ctx);
         let asked = asked.priority;
         // The class applies to the whole client; the daemon's configuration wins over it.
