@@ -280,6 +280,7 @@ mod offset_clamp;
 mod parallel_compile;
 mod points;
 mod samplers;
+mod texture_rg;
 mod textures;
 
 /// Every program, with its tolerance.
@@ -296,6 +297,7 @@ pub fn all() -> Vec<Case> {
     all.extend(base_vertex::all());
     all.extend(multi_draw::all());
     all.extend(instanced::all());
+    all.extend(texture_rg::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

@@ -58,7 +58,7 @@ pub(super) fn blit(gl: Gl<'_>, n: &mut Names, r: [i32; 4]) -> R {
 }
 
 /// `v` as `FLOAT` or `HALF_FLOAT_OES` texel data.
-fn float_data(v: &[f32], ty: u32) -> Vec<u8> {
+pub(super) fn float_data(v: &[f32], ty: u32) -> Vec<u8> {
     if ty == FLOAT {
         f32s(v)
     } else {

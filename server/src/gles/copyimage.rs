@@ -163,7 +163,8 @@ impl GlesExecutor {
                 ..Default::default()
             });
             let color = Some((dst_tex, view));
-            let level_target = Target { key: (uid, 3), color, depth: None, width: lw, height: lh, opaque: true };
+            let absent = wgpu::ColorWrites::ALPHA;
+            let level_target = Target { key: (uid, 3), color, depth: None, width: lw, height: lh, absent };
             let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }

@@ -290,12 +290,8 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         stencil,
         bias,
         blend: blend_state,
-        // A colour buffer without alpha keeps alpha at 1.
-        write_mask: if target.opaque {
-            color_writes(blend.color_mask) - wgpu::ColorWrites::ALPHA
-        } else {
-            color_writes(blend.color_mask)
-        },
+        // Channels the colour buffer lacks keep their fixed values.
+        write_mask: color_writes(blend.color_mask) - target.absent,
         points: false,
         reversed_z: None,
     }
@@ -513,14 +509,8 @@ impl GlesExecutor {
         let renderer = &mut self.r;
         let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
         let writes = color_writes(blend.color_mask);
-        let color = (mask & COLOR_BUFFER_BIT != 0 && target.color.is_some() && !writes.is_empty()).then(|| {
-            let mut c = blend.clear_color.map(|c| c.clamp(0.0, 1.0));
-            if target.opaque {
-                // A colour buffer without alpha keeps alpha at 1.
-                c[3] = 1.0;
-            }
-            (c, writes)
-        });
+        let color = (mask & COLOR_BUFFER_BIT != 0 && target.color.is_some() && !writes.is_empty())
+            .then(|| (target.stored(blend.clear_color.map(|c| c.clamp(0.0, 1.0))), writes));
         let clear_depth = if reversed { Mirror::depth(ds.clear_depth) } else { ds.clear_depth };
         let depth =
             (mask & DEPTH_BUFFER_BIT != 0 && target.has_depth() && ds.depth_mask).then_some((clear_depth, true));

@@ -119,6 +119,10 @@ pub const UNPACK_ROW_LENGTH: u32 = 0x0CF2;
 pub const UNPACK_SKIP_ROWS: u32 = 0x0CF3;
 pub const UNPACK_SKIP_PIXELS: u32 = 0x0CF4;
 pub const BGRA_EXT: u32 = 0x80E1;
+pub const RED_EXT: u32 = 0x1903;
+pub const RG_EXT: u32 = 0x8227;
+pub const R8_EXT: u32 = 0x8229;
+pub const RG8_EXT: u32 = 0x822B;
 /// `GL_EXT_read_format_bgra`'s reversed 16-bit packings.
 pub const UNSIGNED_SHORT_4_4_4_4_REV_EXT: u32 = 0x8365;
 pub const UNSIGNED_SHORT_1_5_5_5_REV_EXT: u32 = 0x8366;

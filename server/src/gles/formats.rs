@@ -170,9 +170,40 @@ pub fn offered_compressed(features: wgpu::Features) -> Vec<u32> {
     COMPRESSED_FORMATS.into_iter().filter(|&f| Compressed::offered_gl(f, features).is_some()).collect()
 }
 
-/// Whether `f` is a colour format of uploads (`BGRA_EXT` included).
+/// Whether `f` is a colour format of uploads (`BGRA_EXT`, and `GL_EXT_texture_rg`'s
+/// `RED_EXT` and `RG_EXT`, included).
 pub fn is_color_format(f: u32) -> bool {
-    matches!(f, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA | BGRA_EXT)
+    matches!(f, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT)
+}
+
+/// Red, green, blue and alpha bits of a colour texture's or renderbuffer's format `f`: colour
+/// is stored as 8 bits per channel whatever the format, and a channel the format lacks has
+/// none (RGB and luminance have no alpha bits; `GL_EXT_texture_rg`'s RED and RG no blue).
+pub fn color_bits(f: u32) -> [i32; 4] {
+    match f {
+        RGB | LUMINANCE | RGB565 | RGB8_OES => [8, 8, 8, 0],
+        RED_EXT | R8_EXT => [8, 0, 0, 0],
+        RG_EXT | RG8_EXT => [8, 8, 0, 0],
+        _ => [8; 4],
+    }
+}
+
+/// The channels a colour attachment of format `f` lacks (see [`color_bits`]); luminance is
+/// never attached, so only its alpha counts.
+pub fn absent_channels(f: u32) -> wgpu::ColorWrites {
+    let bits = color_bits(f);
+    let mut absent = wgpu::ColorWrites::empty();
+    for (b, ch) in bits.iter().zip([
+        wgpu::ColorWrites::RED,
+        wgpu::ColorWrites::GREEN,
+        wgpu::ColorWrites::BLUE,
+        wgpu::ColorWrites::ALPHA,
+    ]) {
+        if *b == 0 {
+            absent |= ch;
+        }
+    }
+    absent
 }
 
 /// Whether `f` is a format enum uploads know at all.
@@ -201,7 +232,7 @@ fn known_type(ty: u32) -> bool {
 /// except that a depth format with another type is `GL_INVALID_ENUM` (as Mesa and ANGLE
 /// answer, and as Strata always has).
 pub fn upload_storage(format: u32, ty: u32) -> GlResult<Storage> {
-    let plain = matches!(format, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA);
+    let plain = matches!(format, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA | RED_EXT | RG_EXT);
     Ok(match (format, ty) {
         (_, UNSIGNED_BYTE) if plain || format == BGRA_EXT => Storage::Rgba8,
         (RGB, UNSIGNED_SHORT_5_6_5) | (RGBA, UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1) => Storage::Rgba8,
@@ -232,6 +263,8 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
         RGBA8_OES => matches!(format, RGBA | BGRA_EXT) && ty == UNSIGNED_BYTE,
         RGB5_A1 => format == RGBA && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_5_5_5_1),
         RGBA4 => format == RGBA && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_4_4_4_4),
+        R8_EXT => format == RED_EXT && ty == UNSIGNED_BYTE,
+        RG8_EXT => format == RG_EXT && ty == UNSIGNED_BYTE,
         DEPTH_COMPONENT16 => format == DEPTH_COMPONENT && matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT),
         DEPTH_COMPONENT24_OES => format == DEPTH_COMPONENT && ty == UNSIGNED_INT,
         DEPTH24_STENCIL8_OES => format == DEPTH_STENCIL_OES && ty == UNSIGNED_INT_24_8_OES,

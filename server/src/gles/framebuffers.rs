@@ -7,7 +7,7 @@ use super::context::{Context, MAX_TEXTURE};
 use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{Compressed, Storage};
+use super::formats::{absent_channels, color_bits, Compressed, Storage};
 use super::render::{Target, COLOR_FORMAT};
 use super::GlesExecutor;
 use crate::quota::Kind;
@@ -91,7 +91,7 @@ fn resolve_object(ctx: &Context) -> Result<Target, u32> {
         }
     };
     let mut key = (bound as u64) << 32;
-    let mut opaque = false;
+    let mut absent = wgpu::ColorWrites::empty();
     let color = match fb.color {
         Attachment::None => None,
         Attachment::Texture { name, level, face } => {
@@ -106,7 +106,7 @@ fn resolve_object(ctx: &Context) -> Result<Target, u32> {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             same((img.width >> level).max(1), (img.height >> level).max(1))?;
-            opaque = t.format == RGB;
+            absent = absent_channels(t.format);
             key ^= t.uid.wrapping_mul(31).wrapping_add(u64::from(level) * 7 + u64::from(face));
             let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
                 dimension: Some(wgpu::TextureViewDimension::D2),
@@ -121,11 +121,11 @@ fn resolve_object(ctx: &Context) -> Result<Target, u32> {
         Attachment::Renderbuffer(name) => {
             let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            if !matches!(rb.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES) {
+            if !matches!(rb.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             same(rb.width, rb.height)?;
-            opaque = matches!(rb.format, RGB565 | RGB8_OES);
+            absent = absent_channels(rb.format);
             key ^= rb.uid.wrapping_mul(31);
             Some((tex.clone(), view.clone()))
         }
@@ -170,7 +170,7 @@ fn resolve_object(ctx: &Context) -> Result<Target, u32> {
         key ^= d.2.wrapping_mul(131);
     }
     let (width, height) = size.ok_or(FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT)?;
-    Ok(Target { key: (key, 1), color, depth: depth.map(|d| (d.0, d.1)), width, height, opaque })
+    Ok(Target { key: (key, 1), color, depth: depth.map(|d| (d.0, d.1)), width, height, absent })
 }
 
 #[allow(non_snake_case)]
@@ -228,7 +228,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         let format = match internalformat {
-            RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES => COLOR_FORMAT,
+            RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT => COLOR_FORMAT,
             DEPTH_COMPONENT16 => wgpu::TextureFormat::Depth16Unorm,
             DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
             DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
@@ -257,12 +257,13 @@ impl GlesExecutor {
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
         let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
-        if matches!(internalformat, RGB565 | RGB8_OES) && width > 0 && height > 0 {
-            // Alpha reads as 1 in a buffer without alpha; draws never change it (see `Target`).
+        let absent = absent_channels(internalformat);
+        if !absent.is_empty() && format == COLOR_FORMAT && width > 0 && height > 0 {
+            // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
             let color = Some((tex.clone(), view.clone()));
-            let t = Target { key: (uid, 2), color, depth: None, width: w, height: h, opaque: true };
-            self.r.clear(&t, Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALL)), None, None, None);
+            let t = Target { key: (uid, 2), color, depth: None, width: w, height: h, absent };
+            self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
         }
         let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         *rb = Renderbuffer {
@@ -448,8 +449,10 @@ impl GlesExecutor {
 /// their formats name (none before storage is given).
 fn renderbuffer_bits(format: u32) -> [i32; 6] {
     match format {
-        RGBA4 | RGB5_A1 | RGBA8_OES => [8, 8, 8, 8, 0, 0],
-        RGB565 | RGB8_OES => [8, 8, 8, 0, 0, 0],
+        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT => {
+            let [r, g, b, a] = color_bits(format);
+            [r, g, b, a, 0, 0]
+        }
         DEPTH_COMPONENT16 => [0, 0, 0, 0, 16, 0],
         DEPTH_COMPONENT24_OES => [0, 0, 0, 0, 24, 0],
         DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],

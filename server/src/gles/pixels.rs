@@ -35,6 +35,10 @@ enum ReadFormat {
     /// `GL_BGRA_EXT`, `GL_UNSIGNED_SHORT_1_5_5_5_REV_EXT`: blue in the low five bits, alpha
     /// in the top bit.
     Bgra1555Rev,
+    /// `GL_RED_EXT`, `GL_UNSIGNED_BYTE` (`GL_EXT_texture_rg`): red only.
+    R8,
+    /// `GL_RG_EXT`, `GL_UNSIGNED_BYTE` (`GL_EXT_texture_rg`): red and green.
+    Rg8,
 }
 
 impl ReadFormat {
@@ -45,8 +49,11 @@ impl ReadFormat {
             (BGRA_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Bgra8),
             (BGRA_EXT, UNSIGNED_SHORT_4_4_4_4_REV_EXT) => Ok(ReadFormat::Bgra4444Rev),
             (BGRA_EXT, UNSIGNED_SHORT_1_5_5_5_REV_EXT) => Ok(ReadFormat::Bgra1555Rev),
+            (RED_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::R8),
+            (RG_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Rg8),
             _ => {
-                let format_known = matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT);
+                let format_known =
+                    matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT);
                 let type_known = type_size(ty).is_some()
                     || matches!(
                         ty,
@@ -65,7 +72,8 @@ impl ReadFormat {
     fn bytes(self) -> usize {
         match self {
             ReadFormat::Rgba8 | ReadFormat::Bgra8 => 4,
-            ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev => 2,
+            ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev | ReadFormat::Rg8 => 2,
+            ReadFormat::R8 => 1,
         }
     }
 
@@ -79,6 +87,8 @@ impl ReadFormat {
         match self {
             ReadFormat::Rgba8 => out.copy_from_slice(p),
             ReadFormat::Bgra8 => out.copy_from_slice(&[p[2], p[1], p[0], p[3]]),
+            ReadFormat::R8 => out.copy_from_slice(&p[..1]),
+            ReadFormat::Rg8 => out.copy_from_slice(&p[..2]),
             ReadFormat::Bgra4444Rev => {
                 let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
                 out.copy_from_slice(&v.to_ne_bytes());

@@ -5,7 +5,7 @@ use super::context::{Context, MAX_ATTRIBS, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNIT
 use super::conv::Capability;
 use super::enums::*;
 use super::error::GlError;
-use super::formats::offered_compressed;
+use super::formats::{color_bits, offered_compressed};
 use super::framebuffers::Attachment;
 use super::GlesExecutor;
 use crate::gpu::Gpu;
@@ -16,7 +16,7 @@ GL_OES_rgb8_rgba8 GL_OES_depth24 GL_OES_packed_depth_stencil GL_OES_depth_textur
 GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
 GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile GL_OES_required_internalformat GL_OES_draw_elements_base_vertex GL_EXT_read_format_bgra \
 GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced GL_OES_stencil8 \
-GL_KHR_no_error GL_KHR_context_flush_control";
+GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -57,15 +57,10 @@ fn framebuffer_bits(ctx: &Context) -> [i32; 6] {
     // Colour is stored as RGBA8 whatever the format; a format without alpha reads alpha 1.
     let color = match fb.color {
         Attachment::None => [0; 4],
-        Attachment::Texture { name, .. } => match ctx.objects.textures.get(&name).map(|t| t.format) {
-            Some(RGB | LUMINANCE) => [8, 8, 8, 0],
-            Some(_) => [8; 4],
-            None => [0; 4],
-        },
+        Attachment::Texture { name, .. } => ctx.objects.textures.get(&name).map_or([0; 4], |t| color_bits(t.format)),
         Attachment::Renderbuffer(name) => match ctx.objects.renderbuffers.get(&name).map(|r| r.format) {
-            Some(RGB565 | RGB8_OES) => [8, 8, 8, 0],
             Some(0) | None => [0; 4],
-            Some(_) => [8; 4],
+            Some(f) => color_bits(f),
         },
     };
     let ds_bits = |a: Attachment| -> (i32, i32) {
@@ -179,7 +174,12 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         SUBPIXEL_BITS => i(8),
         // Every surface and framebuffer object is single-sampled.
         SAMPLE_BUFFERS | SAMPLES => i(0),
-        IMPLEMENTATION_COLOR_READ_FORMAT => u(RGBA),
+        // RGBA, or for GL_EXT_texture_rg's framebuffers RED or RG, as Mesa answers.
+        IMPLEMENTATION_COLOR_READ_FORMAT => u(match framebuffer_bits(ctx) {
+            [8, 0, 0, ..] => RED_EXT,
+            [8, 8, 0, ..] => RG_EXT,
+            _ => RGBA,
+        }),
         IMPLEMENTATION_COLOR_READ_TYPE => u(UNSIGNED_BYTE),
         NUM_COMPRESSED_TEXTURE_FORMATS => i(offered_compressed(gpu.features).len() as i32),
         COMPRESSED_TEXTURE_FORMATS => Ints(offered_compressed(gpu.features).into_iter().map(|f| f as i32).collect()),

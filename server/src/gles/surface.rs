@@ -195,11 +195,11 @@ impl GlesExecutor {
         let color_view = color.create_view(&Default::default());
         let depth = depth_tex.as_ref().map(|t| (t.create_view(&Default::default()), t.format()));
         let uid = self.next_uid();
-        let opaque = config.rgba[3] == 0;
-        let target = Target { key: (uid, 0), color: Some((color, color_view)), depth, width: w, height: h, opaque };
+        let absent = if config.rgba[3] == 0 { wgpu::ColorWrites::ALPHA } else { wgpu::ColorWrites::empty() };
+        let target = Target { key: (uid, 0), color: Some((color, color_view)), depth, width: w, height: h, absent };
         self.r.clear(
             &target,
-            Some(([0.0, 0.0, 0.0, if target.opaque { 1.0 } else { 0.0 }], wgpu::ColorWrites::ALL)),
+            Some((target.stored([0.0; 4]), wgpu::ColorWrites::ALL)),
             target.depth.as_ref().map(|_| (if reversed { 0.0 } else { 1.0 }, true)),
             target.has_stencil().then_some((0, 0xff)),
             None,
@@ -343,7 +343,7 @@ impl GlesExecutor {
         let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
         let Some(win) = &mut s.frames else { return Ok(()) };
         let back = win.back;
-        let opaque = s.target.opaque;
+        let opaque = s.target.opaque();
         scene.submit(client, surface, back);
         let copy = win.buffers[back].copy.clone();
         if let Some(c) = &copy {

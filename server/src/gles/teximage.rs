@@ -102,7 +102,7 @@ fn block_aligned(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32
 /// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
 /// has no alpha (RGB and luminance images read alpha as 1 whatever their colour).
 fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
-    let alpha: f32 = if matches!(format, RGB | LUMINANCE) { 1.0 } else { 0.0 };
+    let alpha: f32 = if matches!(format, RGB | LUMINANCE | RED_EXT | RG_EXT) { 1.0 } else { 0.0 };
     let rgba = [0.0, 0.0, 0.0, alpha];
     let texel: Vec<u8> = match storage {
         Storage::Half => rgba.iter().flat_map(|v| half::f16::from_f32(*v).to_bits().to_ne_bytes()).collect(),

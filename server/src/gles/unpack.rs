@@ -61,7 +61,7 @@ fn components(format: u32) -> usize {
     match format {
         RGBA | BGRA_EXT => 4,
         RGB => 3,
-        LUMINANCE_ALPHA => 2,
+        LUMINANCE_ALPHA | RG_EXT => 2,
         _ => 1,
     }
 }
@@ -92,6 +92,8 @@ fn rgba8_pixel(px: &[u8], format: u32, ty: u32) -> [u8; 4] {
         (LUMINANCE_ALPHA, UNSIGNED_BYTE) => [px[0], px[0], px[0], px[1]],
         (LUMINANCE, UNSIGNED_BYTE) => [px[0], px[0], px[0], 255],
         (ALPHA, UNSIGNED_BYTE) => [0, 0, 0, px[0]],
+        (RED_EXT, UNSIGNED_BYTE) => [px[0], 0, 0, 255],
+        (RG_EXT, UNSIGNED_BYTE) => [px[0], px[1], 0, 255],
         (_, t) => {
             let v = u16::from_ne_bytes([px[0], px[1]]);
             match t {
@@ -120,6 +122,8 @@ fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
         RGB => [c(0), c(1), c(2), 1.0],
         LUMINANCE_ALPHA => [c(0), c(0), c(0), c(1)],
         LUMINANCE => [c(0), c(0), c(0), 1.0],
+        RED_EXT => [c(0), 0.0, 0.0, 1.0],
+        RG_EXT => [c(0), c(1), 0.0, 1.0],
         _ => [0.0, 0.0, 0.0, c(0)],
     }
 }

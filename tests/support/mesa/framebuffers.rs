@@ -85,7 +85,7 @@ impl Arms<'_> {
         let components = match *format {
             0x1908 | 0x80E1 => 4,
             0x1907 => 3,
-            0x190A => 2,
+            0x190A | 0x8227 => 2,
             _ => 1,
         };
         let bpp = match *pixel_type {

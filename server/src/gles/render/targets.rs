@@ -16,12 +16,31 @@ pub struct Target {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// The colour buffer has no alpha (an RGB renderbuffer or texture): alpha reads as 1, so
-    /// draws leave it alone and clears set it to 1.
-    pub opaque: bool,
+    /// The channels the colour buffer's format lacks (alpha of RGB, and green and blue of
+    /// `GL_EXT_texture_rg`'s RED and RG): they read as 0 (colour) and 1 (alpha), so draws
+    /// leave them alone and clears set them to those values.
+    pub absent: wgpu::ColorWrites,
 }
 
 impl Target {
+    /// Whether the colour buffer has no alpha.
+    pub fn opaque(&self) -> bool {
+        self.absent.contains(wgpu::ColorWrites::ALPHA)
+    }
+
+    /// A clear colour as the buffer stores it: absent channels at 0, absent alpha at 1.
+    pub fn stored(&self, mut c: [f32; 4]) -> [f32; 4] {
+        for (i, ch) in [wgpu::ColorWrites::RED, wgpu::ColorWrites::GREEN, wgpu::ColorWrites::BLUE].iter().enumerate() {
+            if self.absent.contains(*ch) {
+                c[i] = 0.0;
+            }
+        }
+        if self.opaque() {
+            c[3] = 1.0;
+        }
+        c
+    }
+
     /// Whether the depth/stencil format has a depth aspect (a `STENCIL_INDEX8` attachment
     /// alone has none, and the depth test then passes as with no depth buffer).
     pub fn has_depth(&self) -> bool {
