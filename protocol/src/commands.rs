@@ -272,6 +272,12 @@ command_set! {
         glDrawElementsInstancedEXT [Context] => DrawElementsInstancedEXT { mode: GLenum, count: GLsizei, index_type: GLenum, offset: u64, primcount: GLsizei };
         /// `glDrawElementsInstancedEXT` with a client-side index array.
         strataDrawElementsInstancedData [Context] => DrawElementsInstancedData { mode: GLenum, count: GLsizei, index_type: GLenum, indices: Blob<'a>, primcount: GLsizei };
+        /// `GL_EXT_debug_label`: labels an object of `object_type` (a length of 0: the label
+        /// is NUL-terminated, and sent whole).
+        glLabelObjectEXT [Context] => LabelObjectEXT { object_type: GLenum, object: GLuint, length: GLsizei, label: Option<Blob<'a>> };
+        /// `GL_NV_read_buffer`: the colour buffer reads use (`GL_BACK`, `GL_COLOR_ATTACHMENT0`
+        /// or `GL_NONE`).
+        glReadBufferNV [Context] => ReadBufferNV { mode: GLenum };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -343,6 +349,9 @@ command_set! {
         glGetDebugMessageLogKHR [Context] => GetDebugMessageLogKHR { count: GLuint, buf_size: GLsizei, log: bool } -> Vec<DebugMessage>;
         /// The whole label (the client truncates it to `buf_size`), `None` after a GL error.
         glGetObjectLabelKHR [Context] => GetObjectLabelKHR { identifier: GLenum, name: GLuint, buf_size: GLsizei } -> Option<Bytes>;
+        /// `GL_EXT_debug_label`: an object's label (whole; the caller truncates), or `None`
+        /// after a GL error.
+        glGetObjectLabelEXT [Context] => GetObjectLabelEXT { object_type: GLenum, object: GLuint, buf_size: GLsizei } -> Option<Bytes>;
         /// As `glGetObjectLabelKHR`, for a sync object.
         glGetObjectPtrLabelKHR [Context] => GetObjectPtrLabelKHR { ptr: u64, buf_size: GLsizei } -> Option<Bytes>;
         /// The messages generated for the application's debug callback since the last call.

@@ -41,6 +41,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_KHR_no_error",
     "GL_KHR_context_flush_control",
     "GL_EXT_texture_rg",
+    "GL_EXT_debug_label",
+    "GL_NV_read_buffer",
     "GL_EXT_texture_compression_dxt1",
     "GL_ANGLE_texture_compression_dxt3",
     "GL_ANGLE_texture_compression_dxt5",

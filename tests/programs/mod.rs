@@ -269,6 +269,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 mod base_vertex;
 mod cases;
 mod compressed;
+mod debug_label;
 mod derivatives;
 mod frag_depth;
 mod framebuffer_ext;
@@ -279,6 +280,7 @@ mod objects;
 mod offset_clamp;
 mod parallel_compile;
 mod points;
+mod read_buffer;
 mod samplers;
 mod texture_rg;
 mod textures;
@@ -298,6 +300,8 @@ pub fn all() -> Vec<Case> {
     all.extend(multi_draw::all());
     all.extend(instanced::all());
     all.extend(texture_rg::all());
+    all.extend(debug_label::all());
+    all.extend(read_buffer::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

@@ -6,11 +6,15 @@
 use super::base_vertex::quads_buffer;
 use super::*;
 
-/// Marks `e`, the error after call `i`, as a colour in a column along the top edge.
+/// Marks `e`, the error (or value) after call `i`, as a colour in a 4×4 cell: 16 cells a row,
+/// rows down from the top edge.
 pub(super) fn mark_error(gl: Gl<'_>, i: i32, e: u32) -> R {
     gl.glEnable(SCISSOR_TEST)?;
-    gl.glScissor(i * 4, H - 4, 4, 4)?;
-    gl.glClearColor((e & 0xFF) as f32 / 255.0, ((e >> 8) & 0xFF) as f32 / 255.0, 0.5, 1.0)?;
+    gl.glScissor(i % 16 * 4, H - 4 - i / 16 * 4, 4, 4)?;
+    // The low 16 bits, 6 + 6 + 4 to a channel and spread out, so that values differing in
+    // their last bit differ by more than the comparison's tolerance.
+    let (r, g, b) = ((e & 0x3F) << 2, ((e >> 6) & 0x3F) << 2, ((e >> 12) & 0xF) << 4);
+    gl.glClearColor(r as f32 / 255.0, g as f32 / 255.0, b as f32 / 255.0, 1.0)?;
     gl.glClear(COLOR_BUFFER_BIT)?;
     gl.glDisable(SCISSOR_TEST)
 }

@@ -301,6 +301,30 @@ crate::entry_points! {
         })
     }
 
+    /// `GL_EXT_debug_label`: a length of 0 sends the whole NUL-terminated label; a negative
+    /// one nothing (the daemon reports the error).
+    fn glLabelObjectEXT(object_type: GLenum, object: GLuint, length: GLsizei, label: *const GLchar) {
+        with_gl("glLabelObjectEXT", (), |gl| {
+            let len = if length == 0 { -1 } else { length };
+            // SAFETY: `label` holds `length` bytes, or is NUL-terminated.
+            let t = (!label.is_null() && length >= 0).then(|| Blob::borrowed(unsafe { text(label, len, MAX_LABEL_LENGTH) }));
+            gl.conn.glLabelObjectEXT(object_type, object, length, t)
+        })
+    }
+
+    /// `GL_EXT_debug_label`: the label truncated to `buf_size`, and with a `buf_size` of 0 only
+    /// its whole length.
+    fn glGetObjectLabelEXT(object_type: GLenum, object: GLuint, buf_size: GLsizei, length: *mut GLsizei, label: *mut GLchar) {
+        with_gl("glGetObjectLabelEXT", (), |gl| {
+            if let Some(s) = gl.conn.glGetObjectLabelEXT(object_type, object, buf_size)? {
+                let label = if buf_size == 0 { std::ptr::null_mut() } else { label };
+                // SAFETY: out-pointers as the extension specifies.
+                unsafe { copy_label(&s.0, buf_size, length, label) };
+            }
+            Ok(())
+        })
+    }
+
     /// Labels a sync object (ES 2.0 has none: the daemon reports the error).
     fn glObjectPtrLabelKHR(ptr: *const c_void, length: GLsizei, label: *const GLchar) {
         with_gl("glObjectPtrLabelKHR", (), |gl| {

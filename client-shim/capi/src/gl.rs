@@ -251,6 +251,7 @@ pub mod simple {
         fn glPolygonOffset(factor: GLfloat, units: GLfloat);
         fn glPolygonOffsetClampEXT(factor: GLfloat, units: GLfloat, clamp: GLfloat);
         fn glMaxShaderCompilerThreadsKHR(count: GLuint);
+        fn glReadBufferNV(mode: GLenum);
         fn glReleaseShaderCompiler();
         fn glRenderbufferStorage(target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei);
         fn glSampleCoverage(value: GLfloat, invert: GLboolean);

@@ -208,6 +208,9 @@ mod tests {
             "glMultiDrawElementsBaseVertexEXT",
             "glDrawArraysInstancedEXT",
             "glDrawElementsInstancedEXT",
+            "glLabelObjectEXT",
+            "glGetObjectLabelEXT",
+            "glReadBufferNV",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

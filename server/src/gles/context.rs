@@ -309,6 +309,8 @@ pub struct Context {
     pub no_error: bool,
     /// Created with `EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR` (`GL_KHR_context_flush_control`).
     pub release_none: bool,
+    /// Reads from the default framebuffer select no colour buffer (`GL_NV_read_buffer`).
+    pub read_none: bool,
 }
 
 impl Context {
@@ -332,6 +334,7 @@ impl Context {
             derivative_hint: DONT_CARE,
             no_error: false,
             release_none: false,
+            read_none: false,
         }
     }
 

@@ -66,6 +66,7 @@ impl GlesExecutor {
         border: i32,
     ) -> GlResult {
         let src = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
+        super::read_buffer::read_selected(ctx)?;
         let uid = self.next_uid();
         let account = self.account.clone();
         let gpu = &self.gpu;

@@ -40,6 +40,8 @@ pub struct Framebuffer {
     pub depth: Attachment,
     /// `STENCIL_ATTACHMENT`.
     pub stencil: Attachment,
+    /// Reads select no colour buffer (`glReadBufferNV(GL_NONE)`, `GL_NV_read_buffer`).
+    pub read_none: bool,
 }
 
 /// A renderbuffer.

@@ -2,6 +2,11 @@
 //! kinds an ES 2.0 context has, and the pointer variants, which name sync objects (ES 2.0 has
 //! none, so every pointer is invalid).
 //!
+//! `GL_EXT_debug_label`'s `glLabelObjectEXT` and `glGetObjectLabelEXT` label the same objects
+//! under their own type names (Mesa also takes `GL_KHR_debug`'s), with their own rules: an
+//! object that does not exist is `GL_INVALID_OPERATION`, a negative length
+//! `GL_INVALID_VALUE`, and a length of 0 a NUL-terminated label.
+//!
 //! Labels live beside the objects, in `Objects::labels`, keyed by the label namespace and the
 //! name; deleting an object forgets its label, so a name that is used again starts unlabelled.
 
@@ -33,6 +38,31 @@ fn check_object(objects: &Objects, current_vao: u32, identifier: u32, name: u32)
     } else {
         Err(GlError::InvalidValue)
     }
+}
+
+/// The `GL_KHR_debug` namespace a `GL_EXT_debug_label` object type names: `GL_INVALID_ENUM`
+/// for no type, `GL_INVALID_OPERATION` for queries and program pipelines, which an ES 2.0
+/// context here has none of.
+fn ext_namespace(object_type: u32) -> GlResult<u32> {
+    Ok(match object_type {
+        BUFFER_OBJECT_EXT | BUFFER_KHR => BUFFER_KHR,
+        SHADER_OBJECT_EXT | SHADER_KHR => SHADER_KHR,
+        PROGRAM_OBJECT_EXT | PROGRAM_KHR => PROGRAM_KHR,
+        VERTEX_ARRAY_OBJECT_EXT | VERTEX_ARRAY_KHR => VERTEX_ARRAY_KHR,
+        TEXTURE | RENDERBUFFER | FRAMEBUFFER => object_type,
+        QUERY_OBJECT_EXT | PROGRAM_PIPELINE_OBJECT_EXT => return Err(GlError::InvalidOperation),
+        _ => return Err(GlError::InvalidEnum),
+    })
+}
+
+/// The namespace of a `GL_EXT_debug_label` object that exists (`GL_INVALID_OPERATION` if not).
+fn ext_object(ctx: &Context, object_type: u32, object: u32) -> GlResult<u32> {
+    let namespace = ext_namespace(object_type)?;
+    check_object(&ctx.objects, ctx.bindings.vertex_array, namespace, object).map_err(|e| match e {
+        GlError::InvalidValue => GlError::InvalidOperation,
+        e => e,
+    })?;
+    Ok(namespace)
 }
 
 impl Objects {
@@ -85,6 +115,39 @@ impl GlesExecutor {
         };
         match checked {
             Ok(()) => Some(Bytes(ctx.objects.labels.get(&(identifier, name)).cloned().unwrap_or_default())),
+            Err(e) => {
+                ctx.record(e);
+                None
+            }
+        }
+    }
+
+    pub(super) fn glLabelObjectEXT(
+        &mut self,
+        ctx: &mut Context,
+        object_type: u32,
+        object: u32,
+        length: i32,
+        label: Option<Blob<'_>>,
+    ) -> GlResult {
+        if length < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        let namespace = ext_object(ctx, object_type, object)?;
+        // A length of 0 is GL_KHR_debug's negative one: the whole NUL-terminated label.
+        self.glObjectLabelKHR(ctx, namespace, object, if length == 0 { -1 } else { length }, label)
+    }
+
+    pub(super) fn glGetObjectLabelEXT(
+        &mut self,
+        ctx: &mut Context,
+        object_type: u32,
+        object: u32,
+        buf_size: i32,
+    ) -> Option<Bytes> {
+        let checked = if buf_size < 0 { Err(GlError::InvalidValue) } else { ext_object(ctx, object_type, object) };
+        match checked {
+            Ok(namespace) => Some(Bytes(ctx.objects.labels.get(&(namespace, object)).cloned().unwrap_or_default())),
             Err(e) => {
                 ctx.record(e);
                 None

@@ -37,6 +37,7 @@ mod names;
 mod pixels;
 mod programs;
 mod queries;
+mod read_buffer;
 mod render;
 mod shaders;
 mod state;

@@ -125,6 +125,10 @@ impl GlesExecutor {
                 return Bytes(Vec::new());
             }
         };
+        if let Err(e) = super::read_buffer::read_selected(ctx) {
+            ctx.record(e);
+            return Bytes(Vec::new());
+        }
         let bpp = how.bytes();
         let Ok(target) = self.draw_target(ctx) else {
             ctx.record(GlError::InvalidFramebufferOperation);

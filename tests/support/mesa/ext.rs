@@ -21,8 +21,9 @@ impl MesaGl {
     /// Mesa's name for object `name` in label namespace `identifier`.
     fn object_for(&self, identifier: u32, name: u32) -> u32 {
         match identifier {
-            0x82E1 | 0x82E2 => self.shader(name),
-            0x8074 => self.vao(name),
+            // GL_KHR_debug's and GL_EXT_debug_label's names of shaders, programs and VAOs.
+            0x82E1 | 0x82E2 | 0x8B48 | 0x8B40 => self.shader(name),
+            0x8074 | 0x9154 => self.vao(name),
             _ => name,
         }
     }
@@ -254,6 +255,45 @@ impl Arms<'_> {
             fn(u32, u32, i32, *mut i32, *mut u8) -> (),
             *identifier,
             name,
+            *buf_size,
+            &mut len,
+            buf.as_mut_ptr()
+        );
+        buf.truncate(len.max(0) as usize);
+        Ok((len >= 0).then_some(Bytes(buf)))
+    }
+
+    pub(super) fn glLabelObjectEXT(
+        &mut self,
+        object_type: &GLenum,
+        object: &GLuint,
+        length: &GLsizei,
+        label: &Option<Blob<'_>>,
+    ) -> Result<(), ClientError> {
+        let object = self.object_for(*object_type, *object);
+        // A length of 0 reads a NUL-terminated label: end the bytes with one.
+        let text: Option<Vec<u8>> = label.as_ref().map(|l| [l.as_bytes(), &[0]].concat());
+        let p = text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr());
+        ext!(self, "glLabelObjectEXT", fn(u32, u32, i32, *const u8) -> (), *object_type, object, *length, p);
+        Ok(())
+    }
+
+    pub(super) fn glGetObjectLabelEXT(
+        &mut self,
+        object_type: &GLenum,
+        object: &GLuint,
+        buf_size: &GLsizei,
+    ) -> Result<Option<Bytes>, ClientError> {
+        let object = self.object_for(*object_type, *object);
+        let mut buf = vec![0u8; (*buf_size).max(1) as usize];
+        // Left at -1 when the call fails with a GL error.
+        let mut len = -1i32;
+        ext!(
+            self,
+            "glGetObjectLabelEXT",
+            fn(u32, u32, i32, *mut i32, *mut u8) -> (),
+            *object_type,
+            object,
             *buf_size,
             &mut len,
             buf.as_mut_ptr()

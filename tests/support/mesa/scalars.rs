@@ -58,6 +58,7 @@ scalar_arms! {
     glPolygonOffset(factor: GLfloat => f32, units: GLfloat => f32);
     glPolygonOffsetClampEXT(factor: GLfloat => f32, units: GLfloat => f32, clamp: GLfloat => f32);
     glMaxShaderCompilerThreadsKHR(count: GLuint => u32);
+    glReadBufferNV(mode: GLenum => u32);
     glScissor(x: GLint => i32, y: GLint => i32, width: GLsizei => i32, height: GLsizei => i32);
     glStencilFunc(func: GLenum => u32, reference: GLint => i32, mask: GLuint => u32);
     glStencilFuncSeparate(face: GLenum => u32, func: GLenum => u32, reference: GLint => i32, mask: GLuint => u32);
