@@ -25,7 +25,7 @@ fn read_buffer(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 8, 8, 0, RGBA, UNSIGNED_BYTE, None)?;
     gl.glBindTexture(TEXTURE_2D, copy)?;
     let mut marks = Vec::new();
-    let mut set = |gl: Gl<'_>, marks: &mut Vec<u32>, mode: u32| -> R {
+    let set = |gl: Gl<'_>, marks: &mut Vec<u32>, mode: u32| -> R {
         gl.glReadBufferNV(mode)?;
         marks.push(gl.glGetError()?);
         marks.push(gl.glGetIntegerv(READ_BUFFER_NV)?.first().copied().unwrap_or(-1) as u32);
