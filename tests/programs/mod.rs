@@ -281,6 +281,7 @@ mod offset_clamp;
 mod parallel_compile;
 mod points;
 mod read_buffer;
+mod render_mipmap;
 mod samplers;
 mod texture_rg;
 mod textures;
@@ -302,6 +303,7 @@ pub fn all() -> Vec<Case> {
     all.extend(texture_rg::all());
     all.extend(debug_label::all());
     all.extend(read_buffer::all());
+    all.extend(render_mipmap::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

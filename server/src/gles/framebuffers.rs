@@ -9,6 +9,7 @@ use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{absent_channels, color_bits, Compressed, Storage};
 use super::render::{Target, COLOR_FORMAT};
+use super::teximage::MAX_LEVEL;
 use super::GlesExecutor;
 use crate::quota::Kind;
 
@@ -104,7 +105,9 @@ fn resolve_object(ctx: &Context) -> Result<Target, u32> {
             if !img.storage.color_renderable() || Compressed::from_gl(t.format).is_some() {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            if t.defined[face as usize] & (1 << level) == 0 {
+            // A level above 0 is attachable only while the texture's levels are complete (as
+            // Mesa decides with GL_OES_fbo_render_mipmap).
+            if t.defined[face as usize] & (1 << level) == 0 || (level > 0 && !t.levels_complete()) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             same((img.width >> level).max(1), (img.height >> level).max(1))?;
@@ -342,13 +345,18 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         let face = ImageTarget::from_gl(textarget)?.face;
-        if level != 0 && texture != 0 {
+        // GL_OES_fbo_render_mipmap: any level a texture can have.
+        if !(0..=MAX_LEVEL).contains(&level) && texture != 0 {
             return Err(GlError::InvalidValue);
         }
         if texture != 0 && !ctx.objects.textures.contains_key(&texture) {
             return Err(GlError::InvalidOperation);
         }
-        let a = if texture == 0 { Attachment::None } else { Attachment::Texture { name: texture, level: 0, face } };
+        let a = if texture == 0 {
+            Attachment::None
+        } else {
+            Attachment::Texture { name: texture, level: level as u32, face }
+        };
         set_attachment(ctx, attachment, a)
     }
 

@@ -61,6 +61,15 @@ pub struct Texture {
 }
 
 impl Texture {
+    /// Whether every level of every face is defined, consistently with level 0 (the mipmap
+    /// completeness of GL ES 2.0 §3.7.10, whatever the filter).
+    pub fn levels_complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let all = ((1u64 << img.levels) - 1) as u32;
+        self.defined[..faces].iter().all(|d| d & all == all)
+    }
+
     /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
     /// image the device cannot filter is incomplete with a linear filter
     /// (`OES_texture_float_linear` not offered).
