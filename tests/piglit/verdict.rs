@@ -44,6 +44,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_debug_label",
     "GL_NV_read_buffer",
     "GL_OES_fbo_render_mipmap",
+    "GL_EXT_texture_filter_anisotropic",
     "GL_EXT_texture_compression_dxt1",
     "GL_ANGLE_texture_compression_dxt3",
     "GL_ANGLE_texture_compression_dxt5",

@@ -266,6 +266,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
     gl.glDrawArrays(TRIANGLES, 0, 6)
 }
 
+mod anisotropic;
 mod base_vertex;
 mod cases;
 mod compressed;
@@ -304,6 +305,7 @@ pub fn all() -> Vec<Case> {
     all.extend(debug_label::all());
     all.extend(read_buffer::all());
     all.extend(render_mipmap::all());
+    all.extend(anisotropic::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all

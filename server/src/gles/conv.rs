@@ -524,6 +524,7 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
     } else {
         wgpu::MipmapFilterMode::Nearest
     };
+    let all_linear = s.mag == LINEAR && s.min == LINEAR_MIPMAP_LINEAR;
     wgpu::SamplerDescriptor {
         label: None,
         address_mode_u: wrap(s.wrap_s),
@@ -535,7 +536,9 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
         lod_min_clamp: 0.0,
         lod_max_clamp: if s.uses_mipmaps() { 32.0 } else { 0.0 },
         compare: None,
-        anisotropy_clamp: 1,
+        // wgpu filters anisotropically only with every filter linear: GL's anisotropy with
+        // another filter is left out.
+        anisotropy_clamp: if all_linear { f32::from_bits(s.anisotropy).round().clamp(1.0, 16.0) as u16 } else { 1 },
         border_color: None,
     }
 }

@@ -17,7 +17,7 @@ GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
 GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile GL_OES_required_internalformat GL_OES_draw_elements_base_vertex GL_EXT_read_format_bgra \
 GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced GL_OES_stencil8 \
 GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
-GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap";
+GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -154,6 +154,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
         READ_BUFFER_NV => u(super::read_buffer::read_buffer(ctx)),
+        MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(super::textures::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
         CONTEXT_RELEASE_BEHAVIOR_KHR => u(if ctx.release_none { 0 } else { CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR }),
         FRAGMENT_SHADER_DERIVATIVE_HINT_OES => u(ctx.derivative_hint),

@@ -23,11 +23,23 @@ pub struct SamplerState {
     pub wrap_s: u32,
     /// `TEXTURE_WRAP_T`.
     pub wrap_t: u32,
+    /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
+    /// from 1 to [`MAX_ANISOTROPY`].
+    pub anisotropy: u32,
 }
+
+/// `GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT`: wgpu's largest anisotropy clamp (and Mesa's value).
+pub const MAX_ANISOTROPY: f32 = 16.0;
 
 impl Default for SamplerState {
     fn default() -> Self {
-        SamplerState { min: NEAREST_MIPMAP_LINEAR, mag: LINEAR, wrap_s: REPEAT, wrap_t: REPEAT }
+        SamplerState {
+            min: NEAREST_MIPMAP_LINEAR,
+            mag: LINEAR,
+            wrap_s: REPEAT,
+            wrap_t: REPEAT,
+            anisotropy: 1.0f32.to_bits(),
+        }
     }
 }
 
@@ -87,6 +99,15 @@ impl Texture {
 /// Sets one sampling parameter of the texture bound to `target`.
 fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult {
     let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
+    if pname == TEXTURE_MAX_ANISOTROPY_EXT {
+        // Below 1 is an error; above the largest is that, as Mesa stores it.
+        if v.is_nan() || v < 1.0 {
+            return Err(GlError::InvalidValue);
+        }
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.sampler.anisotropy = v.min(MAX_ANISOTROPY).to_bits();
+        return Ok(());
+    }
     let v = v as u32;
     let ok = match pname {
         TEXTURE_MIN_FILTER => matches!(
@@ -117,17 +138,18 @@ fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult
 
 /// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
 /// answering nothing) for a bad target or name, or when nothing is bound.
-fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
+fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
     let bound = TextureTarget::from_gl(target).ok().map(|t| ctx.bindings.texture(t));
     let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
-        TEXTURE_MIN_FILTER => Some(s.min),
-        TEXTURE_MAG_FILTER => Some(s.mag),
-        TEXTURE_WRAP_S => Some(s.wrap_s),
-        TEXTURE_WRAP_T => Some(s.wrap_t),
+        TEXTURE_MIN_FILTER => Some(s.min as f32),
+        TEXTURE_MAG_FILTER => Some(s.mag as f32),
+        TEXTURE_WRAP_S => Some(s.wrap_s as f32),
+        TEXTURE_WRAP_T => Some(s.wrap_t as f32),
+        TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
         _ => None,
     });
     match v {
-        Some(v) => vec![v as i32],
+        Some(v) => vec![v],
         None => {
             ctx.record(GlError::InvalidEnum);
             vec![]
@@ -215,11 +237,12 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetTexParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
-        get_tex_parameter(ctx, target, pname)
+        // Rounded to the nearest integer, as GL converts a float state to an integer.
+        get_tex_parameter(ctx, target, pname).into_iter().map(|x| x.round() as i32).collect()
     }
 
     pub(super) fn glGetTexParameterfv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
-        get_tex_parameter(ctx, target, pname).into_iter().map(|x| x as f32).collect()
+        get_tex_parameter(ctx, target, pname)
     }
 
     pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, flushed: &Flushed, target: u32) -> GlResult {

@@ -50,8 +50,13 @@ impl Renderer {
             })
             .clone();
         drop(shared);
-        let linear =
-            self.sampler(SamplerState { min: LINEAR, mag: LINEAR, wrap_s: CLAMP_TO_EDGE, wrap_t: CLAMP_TO_EDGE });
+        let linear = self.sampler(SamplerState {
+            min: LINEAR,
+            mag: LINEAR,
+            wrap_s: CLAMP_TO_EDGE,
+            wrap_t: CLAMP_TO_EDGE,
+            ..SamplerState::default()
+        });
         let d = &self.gpu.device;
         let mut enc = d.create_command_encoder(&Default::default());
         for layer in 0..layers {
