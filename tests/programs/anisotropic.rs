@@ -46,7 +46,7 @@ fn anisotropic_texture(gl: Gl<'_>, n: &mut Names) -> R {
         let dim = 20 * level as u8;
         let texels: Vec<u8> = (0..size * size)
             .flat_map(|i| {
-                if ((i % size) / cell + (i / size) / cell) % 2 == 0 {
+                if ((i % size) / cell + (i / size) / cell).is_multiple_of(2) {
                     [230 - dim, 230 - dim, 230, 255]
                 } else {
                     [20, 40 + dim, 160, 255]
