@@ -278,6 +278,12 @@ command_set! {
         /// `GL_NV_read_buffer`: the colour buffer reads use (`GL_BACK`, `GL_COLOR_ATTACHMENT0`
         /// or `GL_NONE`).
         glReadBufferNV [Context] => ReadBufferNV { mode: GLenum };
+        /// `GL_OES_mapbuffer` / `GL_EXT_map_buffer_range`: ends the mapping of the buffer bound
+        /// to `target`, first writing `data` at byte `offset` (what the application changed).
+        glUnmapBufferOES [Context, Flush] => UnmapBufferOES { target: GLenum, offset: i64, data: Blob<'a> };
+        /// `GL_EXT_map_buffer_range`: makes the `length` bytes at `offset` within the mapping
+        /// (`data`, sent whole) the buffer's contents.
+        glFlushMappedBufferRangeEXT [Context, Flush] => FlushMappedBufferRangeEXT { target: GLenum, offset: i64, length: i64, data: Blob<'a> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -363,6 +369,12 @@ command_set! {
         /// A context attribute only the daemon knows (`EGL_CONTEXT_PRIORITY_LEVEL_IMG`: the class
         /// its client is scheduled in).
         eglQueryContext [NoContext] => QueryContext { display: EglHandle, context: EglHandle, attribute: EGLint } -> EglResult<EGLint>;
+        /// `GL_OES_mapbuffer`: maps the whole buffer bound to `target`. Reply: its contents
+        /// (`None` on error).
+        glMapBufferOES [Context] => MapBufferOES { target: GLenum, access: GLenum } -> Option<Bytes>;
+        /// `GL_EXT_map_buffer_range`: maps `length` bytes at `offset`. Reply: their contents,
+        /// empty where `access` invalidates them (`None` on error).
+        glMapBufferRangeEXT [Context] => MapBufferRangeEXT { target: GLenum, offset: i64, length: i64, access: GLbitfield } -> Option<Bytes>;
     }
 }
 
@@ -464,7 +476,11 @@ mod tests {
         for &op in Opcode::ALL {
             let n = op.name();
             let upload = n.starts_with("gl")
-                && (n.contains("Image") || n.contains("Mipmap") || (n.contains("Buffer") && n.ends_with("Data")));
+                && (n.contains("Image")
+                    || n.contains("Mipmap")
+                    || (n.contains("Buffer") && n.ends_with("Data"))
+                    || n.contains("UnmapBuffer")
+                    || n.contains("FlushMappedBuffer"));
             assert_eq!(op.flushes_first(), upload, "{n}: the flush rule");
             assert!(!op.flushes_first() || op.needs_context(), "{n}: a flush needs a context");
         }

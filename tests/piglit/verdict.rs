@@ -48,6 +48,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_texture_compression_dxt1",
     "GL_ANGLE_texture_compression_dxt3",
     "GL_ANGLE_texture_compression_dxt5",
+    "GL_EXT_map_buffer_range",
     "EGL_KHR_create_context",
 ];
 

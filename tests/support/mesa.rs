@@ -67,6 +67,7 @@ macro_rules! call {
 mod ext;
 mod egl;
 mod framebuffers;
+mod mapping;
 mod programs;
 mod scalars;
 mod state;

@@ -1,4 +1,4 @@
-//! The GLES 2.0 entry points (and `GL_OES_mapbuffer`).
+//! The GLES 2.0 entry points and those of the extensions.
 //!
 //! Calls that map one-to-one onto a protocol command are generated from the table in
 //! [`simple`]; the ones below marshal pointers: arrays and strings in and out, client-side
@@ -16,9 +16,6 @@ use strata_protocol::{Blob, Calls, Slice, Text};
 use crate::state::{self, process, ClientArray, GlState};
 use crate::types::*;
 
-/// The extensions the shim implements itself, appended to the daemon's `GL_EXTENSIONS`.
-const SHIM_EXTENSIONS: &str = "GL_OES_mapbuffer";
-
 /// What a GL entry point works with: the connection and the current context's client state.
 pub(crate) struct Gl<'a> {
     /// The daemon connection.
@@ -27,6 +24,9 @@ pub(crate) struct Gl<'a> {
     pub st: &'a mut GlState,
     /// The process's name counter.
     pub next_name: &'a mut u32,
+    /// The process's mapped buffers, by name (names are the process's, so one table serves
+    /// every share group).
+    pub maps: &'a mut HashMap<u32, mapping::Mapping>,
 }
 
 impl Gl<'_> {
@@ -114,9 +114,9 @@ fn with_gl_locked<R>(
         }
         return default;
     }
-    let state::Process { conn: Some(conn), contexts, next_name, .. } = p else { return default };
+    let state::Process { conn: Some(conn), contexts, next_name, maps, .. } = p else { return default };
     let Some(ctx) = contexts.get_mut(&cur.context) else { return default };
-    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name });
+    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name, maps });
     if check_errors() && name != "glGetError" && result.is_ok() {
         // Debugging aid: name the call that raised each GL error (one round trip per call).
         match conn.glGetError() {
@@ -517,6 +517,7 @@ gl_modules!(
     active,
     hand,
     draws,
+    mapping,
     crate::vao,
     crate::debug,
     crate::discard,
@@ -544,6 +545,9 @@ pub mod hand;
 
 /// Element draws (`glDrawElements` and its base-vertex forms) and multi-draws.
 pub mod draws;
+
+/// Mapped buffers (`GL_OES_mapbuffer`, `GL_EXT_map_buffer_range`).
+pub mod mapping;
 
 #[cfg(test)]
 mod tests {

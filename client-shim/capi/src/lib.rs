@@ -151,7 +151,12 @@ mod tests {
             return;
         };
         let exported = exported_names();
-        for (ext, count) in [("GL_KHR_debug", 11), ("GL_OES_vertex_array_object", 4), ("GL_OES_mapbuffer", 3)] {
+        for (ext, count) in [
+            ("GL_KHR_debug", 11),
+            ("GL_OES_vertex_array_object", 4),
+            ("GL_OES_mapbuffer", 3),
+            ("GL_EXT_map_buffer_range", 2),
+        ] {
             let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
             let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
             let names: Vec<&str> = text[start..end]
@@ -211,6 +216,11 @@ mod tests {
             "glLabelObjectEXT",
             "glGetObjectLabelEXT",
             "glReadBufferNV",
+            "glMapBufferOES",
+            "glUnmapBufferOES",
+            "glGetBufferPointervOES",
+            "glMapBufferRangeEXT",
+            "glFlushMappedBufferRangeEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

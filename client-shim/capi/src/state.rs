@@ -57,11 +57,8 @@ pub(crate) struct GlState {
     /// `GL_UNPACK_ROW_LENGTH_EXT`, `GL_UNPACK_SKIP_ROWS_EXT`, `GL_UNPACK_SKIP_PIXELS_EXT`
     /// (`EXT_unpack_subimage`): where an upload's rows lie in the application's memory.
     pub unpack_rows: [usize; 3],
-    /// A copy of every buffer's contents: index ranges of client-array draws and
-    /// `glMapBufferOES` read it.
+    /// A copy of every buffer's contents: index ranges of client-array draws read it.
     pub buffers: HashMap<u32, Vec<u8>>,
-    /// Buffers mapped with `glMapBufferOES`: the memory handed to the application.
-    pub mapped: HashMap<u32, Box<[u8]>>,
 }
 
 impl Default for GlState {
@@ -77,7 +74,6 @@ impl Default for GlState {
             unpack_alignment: 4,
             unpack_rows: [0; 3],
             buffers: HashMap::new(),
-            mapped: HashMap::new(),
         }
     }
 }
@@ -176,6 +172,8 @@ pub(crate) struct Process {
     pub daemon_current: Option<(u32, u32, u32)>,
     /// The next GL object name (names are allocated by the client).
     pub next_name: u32,
+    /// Mapped buffers, by name: the memory handed to the application.
+    pub maps: HashMap<u32, crate::gl::mapping::Mapping>,
 }
 
 static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
@@ -190,6 +188,7 @@ static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
         next_surface: 1,
         daemon_current: None,
         next_name: 1,
+        maps: HashMap::new(),
     })
 });
 

@@ -25,6 +25,27 @@ pub struct Buffer {
     pub generation: u64,
     /// The memory of the shadow and the GPU copy, held against the client's quota.
     pub _reserved: Option<crate::quota::Reservation>,
+    /// The mapped range, while the buffer is mapped (`GL_OES_mapbuffer`, `GL_EXT_map_buffer_range`).
+    pub map: Option<super::mapping::Mapping>,
+}
+
+impl Buffer {
+    /// Writes `bytes` at `off` (already checked to lie within the buffer) into the shadow and
+    /// the GPU copy.
+    pub(super) fn write(&mut self, gpu: &crate::gpu::Gpu, flushed: &Flushed, off: usize, bytes: &[u8]) {
+        self.data[off..off + bytes.len()].copy_from_slice(bytes);
+        self.generation += 1;
+        if let Some(g) = &self.gpu {
+            // wgpu writes whole 4-byte words; widen the range using the shadow.
+            let start = off / 4 * 4;
+            let stop = ((off + bytes.len()).div_ceil(4) * 4).min(g.size() as usize);
+            let mut words = self.data[start..stop.min(self.data.len())].to_vec();
+            words.resize(stop - start, 0);
+            if !words.is_empty() {
+                write_words(gpu, flushed, g, start as u64, &words);
+            }
+        }
+    }
 }
 
 /// Writes whole 4-byte `words` into `buffer` at `offset`, after the pending pass.
@@ -104,7 +125,8 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let name = validate_buffer_data(ctx, target, size, data.as_ref(), usage)?;
         let b = ctx.objects.buffers.entry(name).or_default();
-        // The old contents' memory is given back before the new contents' is reserved.
+        // The old contents' memory is given back before the new contents' is reserved; a
+        // mapping ends with them.
         *b = Buffer { generation: b.generation, usage: b.usage, ..Buffer::default() };
         let padded = (size as u64).div_ceil(4).max(1) * 4;
         b._reserved = Some(account.reserve(size as u64 + padded).map_err(|_| GlError::OutOfMemory)?);
@@ -135,23 +157,18 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
         let b = ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        let end = offset.checked_add(data.len() as i64);
-        if offset < 0 || end.is_none_or(|e| e as usize > b.data.len()) {
+        if offset < 0 {
             return Err(GlError::InvalidValue);
         }
-        let off = offset as usize;
-        b.data[off..off + data.len()].copy_from_slice(data.as_bytes());
-        b.generation += 1;
-        if let Some(g) = &b.gpu {
-            // wgpu writes whole 4-byte words; widen the range using the shadow.
-            let start = off / 4 * 4;
-            let stop = ((off + data.len()).div_ceil(4) * 4).min(g.size() as usize);
-            let mut words = b.data[start..stop.min(b.data.len())].to_vec();
-            words.resize(stop - start, 0);
-            if !words.is_empty() {
-                write_words(gpu, flushed, g, start as u64, &words);
-            }
+        // A mapped buffer is written only through its mapping.
+        if b.map.is_some() {
+            return Err(GlError::InvalidOperation);
         }
+        let end = offset.checked_add(data.len() as i64);
+        if end.is_none_or(|e| e as usize > b.data.len()) {
+            return Err(GlError::InvalidValue);
+        }
+        b.write(gpu, flushed, offset as usize, data.as_bytes());
         Ok(())
     }
 
@@ -167,6 +184,9 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidOperation);
             return 0;
         };
+        if let Some(v) = super::mapping::parameter(b, pname) {
+            return v;
+        }
         match pname {
             BUFFER_SIZE => b.data.len() as i32,
             BUFFER_USAGE => {

@@ -32,6 +32,7 @@ pub mod glsl;
 mod images;
 mod instanced;
 mod labels;
+mod mapping;
 mod multi_draw;
 mod names;
 mod pixels;

@@ -17,7 +17,8 @@ GL_KHR_debug GL_EXT_blend_minmax GL_EXT_discard_framebuffer \
 GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR_parallel_shader_compile GL_OES_required_internalformat GL_OES_draw_elements_base_vertex GL_EXT_read_format_bgra \
 GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced GL_OES_stencil8 \
 GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
-GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic";
+GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic \
+GL_OES_mapbuffer GL_EXT_map_buffer_range";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack

@@ -29,7 +29,7 @@ impl MesaGl {
     }
 
     /// An extension entry point, by `eglGetProcAddress`.
-    fn ext(&mut self, name: &'static str) -> Result<Ptr, ClientError> {
+    pub(super) fn ext(&mut self, name: &'static str) -> Result<Ptr, ClientError> {
         if let Some(p) = self.fns.get(name) {
             return Ok(*p);
         }

@@ -1,6 +1,6 @@
 //! The hand-written entry points: everything that marshals pointers or keeps client state
-//! (arrays and strings in and out, client-side vertex and index arrays, buffer shadows for
-//! mapping, client-allocated object names).
+//! (arrays and strings in and out, client-side vertex and index arrays, buffer shadows,
+//! client-allocated object names).
 
 use super::*;
 
@@ -33,7 +33,6 @@ crate::entry_points! {
     fn glGetString(name: GLenum) -> *const GLubyte {
         with_gl("glGetString", std::ptr::null(), |gl| {
             Ok(match gl.conn.glGetString(name)? {
-                Some(s) if name == GL_EXTENSIONS => intern(format!("{} {SHIM_EXTENSIONS}", s.trim_end())),
                 Some(s) => intern(s),
                 None => std::ptr::null(),
             })
@@ -50,15 +49,10 @@ crate::entry_points! {
         })
     }
 
-    /// Mapping state is the shim's; everything else the daemon's.
+    /// One value, the mapping's included (the daemon keeps it).
     fn glGetBufferParameteriv(target: GLenum, pname: GLenum, params: *mut GLint) {
         with_gl("glGetBufferParameteriv", (), |gl| {
-            let mapped = gl.st.bound(target).is_some_and(|b| gl.st.mapped.contains_key(&b));
-            let v = match pname {
-                GL_BUFFER_MAPPED_OES => GLint::from(mapped),
-                GL_BUFFER_ACCESS_OES => GL_WRITE_ONLY_OES as GLint,
-                _ => gl.conn.glGetBufferParameteriv(target, pname)?,
-            };
+            let v = gl.conn.glGetBufferParameteriv(target, pname)?;
             // SAFETY: `params` points at one GLint.
             unsafe { put(params, v) };
             Ok(())
@@ -232,7 +226,7 @@ crate::entry_points! {
             let v = unsafe { values(buffers, i64::from(n)) };
             for &b in v.iter().filter(|&&b| b != 0) {
                 gl.st.buffers.remove(&b);
-                gl.st.mapped.remove(&b);
+                gl.maps.remove(&b);
                 if gl.st.array_buffer == b {
                     gl.st.array_buffer = 0;
                 }
@@ -262,6 +256,8 @@ crate::entry_points! {
             // SAFETY: a non-null `data` holds `size` bytes.
             let Some(d) = (unsafe { sized_bytes(gl.st, data, size) }) else { return Ok(()) };
             if let Some(b) = gl.st.bound(target).filter(|&b| b != 0) {
+                // New contents end a mapping.
+                gl.maps.remove(&b);
                 let shadow = if data.is_null() { vec![0; size as usize] } else { d.to_vec() };
                 gl.st.buffers.insert(b, shadow);
             }
@@ -285,62 +281,6 @@ crate::entry_points! {
                 }
             }
             gl.conn.glBufferSubData(target, offset as i64, Blob::borrowed(d))
-        })
-    }
-
-    /// `GL_OES_mapbuffer`: hands out a copy of the buffer's contents, written back on unmap.
-    fn glMapBufferOES(target: GLenum, access: GLenum) -> *mut c_void {
-        with_gl("glMapBufferOES", std::ptr::null_mut(), |gl| {
-            if access != GL_WRITE_ONLY_OES {
-                gl.st.err(GL_INVALID_ENUM);
-                return Ok(std::ptr::null_mut());
-            }
-            let Some(b) = gl.st.bound(target) else {
-                gl.st.err(GL_INVALID_ENUM);
-                return Ok(std::ptr::null_mut());
-            };
-            if b == 0 || gl.st.mapped.contains_key(&b) {
-                gl.st.err(GL_INVALID_OPERATION);
-                return Ok(std::ptr::null_mut());
-            }
-            let copy: Box<[u8]> = gl.st.buffers.get(&b).cloned().unwrap_or_default().into_boxed_slice();
-            let map = gl.st.mapped.entry(b).or_insert(copy);
-            Ok(map.as_mut_ptr().cast())
-        })
-    }
-
-    /// `GL_OES_mapbuffer`: uploads the mapped memory as the buffer's new contents.
-    fn glUnmapBufferOES(target: GLenum) -> GLboolean {
-        with_gl("glUnmapBufferOES", 0, |gl| {
-            let Some(b) = gl.st.bound(target) else {
-                gl.st.err(GL_INVALID_ENUM);
-                return Ok(0);
-            };
-            let Some(data) = gl.st.mapped.remove(&b) else {
-                gl.st.err(GL_INVALID_OPERATION);
-                return Ok(0);
-            };
-            gl.conn.glBufferSubData(target, 0, Blob::borrowed(&data))?;
-            gl.st.buffers.insert(b, data.into_vec());
-            Ok(1)
-        })
-    }
-
-    /// `GL_OES_mapbuffer`: the mapped pointer (null when not mapped).
-    fn glGetBufferPointervOES(target: GLenum, pname: GLenum, params: *mut *mut c_void) {
-        with_gl("glGetBufferPointervOES", (), |gl| {
-            if pname != GL_BUFFER_MAP_POINTER_OES {
-                gl.st.err(GL_INVALID_ENUM);
-                return Ok(());
-            }
-            let Some(b) = gl.st.bound(target) else {
-                gl.st.err(GL_INVALID_ENUM);
-                return Ok(());
-            };
-            let ptr = gl.st.mapped.get_mut(&b).map_or(std::ptr::null_mut(), |m| m.as_mut_ptr().cast());
-            // SAFETY: `params` points at one pointer.
-            unsafe { put(params, ptr) };
-            Ok(())
         })
     }
 
