@@ -49,6 +49,10 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_ANGLE_texture_compression_dxt3",
     "GL_ANGLE_texture_compression_dxt5",
     "GL_EXT_map_buffer_range",
+    "GL_EXT_compressed_ETC1_RGB8_sub_texture",
+    "GL_NV_pack_subimage",
+    "GL_ANGLE_pack_reverse_row_order",
+    "GL_EXT_texture_type_2_10_10_10_REV",
     "EGL_KHR_create_context",
 ];
 

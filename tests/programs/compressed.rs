@@ -2,7 +2,8 @@
 //! DXT3 and DXT5 formats `EXT_texture_compression_dxt1`, `ANGLE_texture_compression_dxt3` and
 //! `ANGLE_texture_compression_dxt5` also name) and ETC1 (`OES_compressed_ETC1_RGB8_texture`)
 //! blocks of every kind, partial blocks of small levels
-//! and odd sizes, sub-image updates, and uncompressed data for S3TC internal formats.
+//! and odd sizes, sub-image updates (of ETC1 images too: `EXT_compressed_ETC1_RGB8_sub_texture`),
+//! and uncompressed data for S3TC internal formats.
 
 use super::textures::{blit, new_texture};
 use super::*;
@@ -119,8 +120,93 @@ fn etc1_textures(gl: Gl<'_>, n: &mut Names) -> R {
     blit(gl, n, [0, 34, 24, 28])
 }
 
+/// `blocks` ETC1 blocks from `rng`.
+fn etc1_blocks(blocks: i32, rng: &mut Lcg) -> Vec<u8> {
+    (0..blocks).flat_map(|_| etc1_block(rng)).collect()
+}
+
+/// `EXT_compressed_ETC1_RGB8_sub_texture`: parts of ETC1 images replaced, in whole blocks and
+/// in the partial blocks at the right and top edges, of an image decoded on upload (10×10)
+/// and of one whose blocks may be kept (16×16 with its levels); then the errors of parts that
+/// are not allowed, for ETC1 and for DXT1, each marked as a colour.
+fn etc1_sub_texture(gl: Gl<'_>, n: &mut Names) -> R {
+    program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
+    let mut rng = Lcg(23);
+    new_texture(gl, n, NEAREST, NEAREST)?;
+    gl.glCompressedTexImage2D(TEXTURE_2D, 0, ETC1_RGB8_OES, 10, 10, 0, Blob::borrowed(&etc1_blocks(9, &mut rng)))?;
+    for [x, y, w, h] in [[0, 0, 4, 4], [4, 4, 6, 6], [8, 8, 2, 2], [8, 0, 2, 4], [0, 0, 0, 0]] {
+        let data = etc1_blocks(((w + 3) / 4) * ((h + 3) / 4), &mut rng);
+        gl.glCompressedTexSubImage2D(TEXTURE_2D, 0, x, y, w, h, ETC1_RGB8_OES, Blob::borrowed(&data))?;
+    }
+    blit(gl, n, [0, 0, 40, 40])?;
+    new_texture(gl, n, NEAREST_MIPMAP_NEAREST, NEAREST)?;
+    for (level, size) in [16, 8, 4, 2, 1].into_iter().enumerate() {
+        let data = etc1_blocks(((size + 3) / 4) * ((size + 3) / 4), &mut rng);
+        gl.glCompressedTexImage2D(TEXTURE_2D, level as i32, ETC1_RGB8_OES, size, size, 0, Blob::borrowed(&data))?;
+    }
+    for (level, [x, y, w, h]) in
+        [(0, [4, 4, 8, 4]), (1, [4, 0, 4, 8]), (2, [0, 0, 4, 4]), (3, [0, 0, 2, 2]), (4, [0, 0, 1, 1])]
+    {
+        let data = etc1_blocks(((w + 3) / 4) * ((h + 3) / 4), &mut rng);
+        gl.glCompressedTexSubImage2D(TEXTURE_2D, level, x, y, w, h, ETC1_RGB8_OES, Blob::borrowed(&data))?;
+    }
+    blit(gl, n, [42, 0, 16, 16])?;
+    blit(gl, n, [42, 18, 8, 8])?;
+    blit(gl, n, [52, 18, 4, 4])?;
+    let block = etc1_blocks(16, &mut rng);
+    let mut i = 0;
+    let mut mark = |gl: Gl<'_>| -> R {
+        let e = gl.glGetError()?;
+        i += 1;
+        super::multi_draw::mark_error(gl, i - 1, e)
+    };
+    for format in [ETC1_RGB8_OES, DXT1_RGB] {
+        new_texture(gl, n, NEAREST, NEAREST)?;
+        gl.glCompressedTexImage2D(TEXTURE_2D, 0, format, 10, 10, 0, Blob::borrowed(&block[..72]))?;
+        // Offsets off a block boundary, widths short of the edge, rectangles beyond it.
+        for [x, y, w, h] in
+            [[2, 0, 4, 4], [0, 2, 4, 4], [0, 0, 3, 4], [4, 0, 5, 4], [8, 8, 4, 4], [0, 0, 12, 12], [-4, 0, 4, 4]]
+        {
+            let len = (((w + 3) / 4) * ((h + 3) / 4) * 8).clamp(0, 128) as usize;
+            gl.glCompressedTexSubImage2D(TEXTURE_2D, 0, x, y, w, h, format, Blob::borrowed(&block[..len]))?;
+            mark(gl)?;
+        }
+        // The wrong size, another compressed format, an undefined level, formats that are not
+        // compressed ones (before the level and the offsets are looked at), a bad target.
+        let other = if format == DXT1_RGB { ETC1_RGB8_OES } else { DXT1_RGB };
+        for (target, level, x, f, len) in [
+            (TEXTURE_2D, 0, 0, format, 7),
+            (TEXTURE_2D, 0, 0, other, 8),
+            (TEXTURE_2D, 1, 0, format, 8),
+            (TEXTURE_2D, 0, 0, RGBA, 8),
+            (TEXTURE_2D, 0, 0, 0x1234, 8),
+            (TEXTURE_2D, -1, 0, 0x1234, 8),
+            (TEXTURE_2D, -1, 0, format, 8),
+            (TEXTURE_2D, 0, -4, 0x1234, 8),
+            (0x1234, 0, 0, 0x1234, 8),
+        ] {
+            gl.glCompressedTexSubImage2D(target, level, x, 0, 4, 4, f, Blob::borrowed(&block[..len]))?;
+            mark(gl)?;
+        }
+    }
+    // An uncompressed image, and the default texture with no image.
+    new_texture(gl, n, NEAREST, NEAREST)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 8, 8, 0, RGBA, UNSIGNED_BYTE, None)?;
+    for f in [ETC1_RGB8_OES, RGBA, 0x1234] {
+        gl.glCompressedTexSubImage2D(TEXTURE_2D, 0, 0, 0, 4, 4, f, Blob::borrowed(&block[..8]))?;
+        mark(gl)?;
+    }
+    gl.glBindTexture(TEXTURE_2D, 0)?;
+    gl.glCompressedTexSubImage2D(TEXTURE_2D, 0, 0, 0, 4, 4, ETC1_RGB8_OES, Blob::borrowed(&block[..8]))?;
+    mark(gl)
+}
+
 /// Every program of this file, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
-    vec![c("s3tc_textures", s3tc_textures, DEFAULT), c("etc1_textures", etc1_textures, DEFAULT)]
+    vec![
+        c("s3tc_textures", s3tc_textures, DEFAULT),
+        c("etc1_textures", etc1_textures, DEFAULT),
+        c("etc1_sub_texture", etc1_sub_texture, DEFAULT),
+    ]
 }

@@ -286,6 +286,7 @@ mod render_mipmap;
 mod samplers;
 mod texture_rg;
 mod textures;
+mod type_2_10_10_10;
 
 /// Every program, with its tolerance.
 pub fn all() -> Vec<Case> {
@@ -308,5 +309,6 @@ pub fn all() -> Vec<Case> {
     all.extend(anisotropic::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
+    all.extend(type_2_10_10_10::all());
     all
 }

@@ -35,6 +35,18 @@ pub(crate) struct Attrib {
     pub client: Option<ClientArray>,
 }
 
+/// The pack state `glReadPixels` lays its rows out by in the application's memory.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Pack {
+    /// `GL_PACK_ALIGNMENT`.
+    pub alignment: usize,
+    /// `GL_PACK_ROW_LENGTH_NV`, `GL_PACK_SKIP_ROWS_NV`, `GL_PACK_SKIP_PIXELS_NV`
+    /// (`NV_pack_subimage`).
+    pub rows: [usize; 3],
+    /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE`: the top row first.
+    pub reverse: bool,
+}
+
 /// The client-side part of one GL context.
 #[derive(Debug)]
 pub(crate) struct GlState {
@@ -57,6 +69,8 @@ pub(crate) struct GlState {
     /// `GL_UNPACK_ROW_LENGTH_EXT`, `GL_UNPACK_SKIP_ROWS_EXT`, `GL_UNPACK_SKIP_PIXELS_EXT`
     /// (`EXT_unpack_subimage`): where an upload's rows lie in the application's memory.
     pub unpack_rows: [usize; 3],
+    /// Where `glReadPixels` puts its rows: see [`Pack`].
+    pub pack: Pack,
     /// A copy of every buffer's contents: index ranges of client-array draws read it.
     pub buffers: HashMap<u32, Vec<u8>>,
 }
@@ -73,6 +87,7 @@ impl Default for GlState {
             debug: crate::debug::DebugClient::default(),
             unpack_alignment: 4,
             unpack_rows: [0; 3],
+            pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
             buffers: HashMap::new(),
         }
     }

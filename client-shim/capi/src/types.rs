@@ -137,6 +137,8 @@ pub const GL_ARRAY_BUFFER: GLenum = 0x8892;
 pub const GL_ELEMENT_ARRAY_BUFFER: GLenum = 0x8893;
 /// `GL_UNPACK_ALIGNMENT`.
 pub const GL_UNPACK_ALIGNMENT: GLenum = 0x0CF5;
+/// `GL_PACK_ALIGNMENT`.
+pub const GL_PACK_ALIGNMENT: GLenum = 0x0D05;
 /// `GL_EXTENSIONS`.
 pub const GL_EXTENSIONS: GLenum = 0x1F03;
 /// `GL_WRITE_ONLY_OES`.

@@ -258,6 +258,13 @@ pub struct PixelStore {
     pub unpack_skip_rows: i32,
     /// `GL_UNPACK_SKIP_PIXELS_EXT`.
     pub unpack_skip_pixels: i32,
+    /// `GL_PACK_ROW_LENGTH_NV`, `GL_PACK_SKIP_ROWS_NV` and `GL_PACK_SKIP_PIXELS_NV`
+    /// (`NV_pack_subimage`): where `glReadPixels` puts its rows in the application's memory,
+    /// which the drop-in library applies.
+    pub pack_rows: [i32; 3],
+    /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE`, kept as the byte Mesa keeps (nonzero: the top row
+    /// first).
+    pub pack_reverse: u8,
 }
 
 impl Default for PixelStore {
@@ -268,6 +275,8 @@ impl Default for PixelStore {
             unpack_row_length: 0,
             unpack_skip_rows: 0,
             unpack_skip_pixels: 0,
+            pack_rows: [0; 3],
+            pack_reverse: 0,
         }
     }
 }

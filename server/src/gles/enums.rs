@@ -28,6 +28,12 @@ pub const UNSIGNED_INT: u32 = 0x1405;
 pub const FLOAT: u32 = 0x1406;
 pub const FIXED: u32 = 0x140C;
 pub const HALF_FLOAT_OES: u32 = 0x8D61;
+/// `GL_UNSIGNED_INT_2_10_10_10_REV_EXT` (`EXT_texture_type_2_10_10_10_REV`).
+pub const UNSIGNED_INT_2_10_10_10_REV_EXT: u32 = 0x8368;
+/// `GL_RGB10_A2_EXT`, the sized format of RGBA 2_10_10_10_REV data.
+pub const RGB10_A2_EXT: u32 = 0x8059;
+/// `GL_RGB10_EXT`, the sized format of RGB 2_10_10_10_REV data.
+pub const RGB10_EXT: u32 = 0x8052;
 pub const UNSIGNED_SHORT_4_4_4_4: u32 = 0x8033;
 pub const UNSIGNED_SHORT_5_5_5_1: u32 = 0x8034;
 pub const UNSIGNED_SHORT_5_6_5: u32 = 0x8363;
@@ -118,6 +124,14 @@ pub const UNPACK_ALIGNMENT: u32 = 0x0CF5;
 pub const UNPACK_ROW_LENGTH: u32 = 0x0CF2;
 pub const UNPACK_SKIP_ROWS: u32 = 0x0CF3;
 pub const UNPACK_SKIP_PIXELS: u32 = 0x0CF4;
+/// `GL_PACK_ROW_LENGTH_NV` (`NV_pack_subimage`).
+pub const PACK_ROW_LENGTH: u32 = 0x0D02;
+/// `GL_PACK_SKIP_ROWS_NV`.
+pub const PACK_SKIP_ROWS: u32 = 0x0D03;
+/// `GL_PACK_SKIP_PIXELS_NV`.
+pub const PACK_SKIP_PIXELS: u32 = 0x0D04;
+/// `GL_PACK_REVERSE_ROW_ORDER_ANGLE` (`ANGLE_pack_reverse_row_order`).
+pub const PACK_REVERSE_ROW_ORDER_ANGLE: u32 = 0x93A4;
 pub const BGRA_EXT: u32 = 0x80E1;
 pub const BUFFER_OBJECT_EXT: u32 = 0x9151;
 pub const SHADER_OBJECT_EXT: u32 = 0x8B48;
@@ -224,9 +238,8 @@ pub const ALPHA8_OES: u32 = 0x803C;
 pub const LUMINANCE8_OES: u32 = 0x8040;
 pub const LUMINANCE4_ALPHA4_OES: u32 = 0x8043;
 pub const LUMINANCE8_ALPHA8_OES: u32 = 0x8045;
-/// Sized formats of extensions Strata does not offer, which Mesa knows.
+/// A sized format of an extension Strata does not offer, which Mesa knows.
 pub const DEPTH_COMPONENT32_OES: u32 = 0x81A7;
-pub const RGB10_A2_EXT: u32 = 0x8059;
 pub const COLOR_ATTACHMENT0: u32 = 0x8CE0;
 pub const DEPTH_ATTACHMENT: u32 = 0x8D00;
 pub const STENCIL_ATTACHMENT: u32 = 0x8D20;

@@ -224,6 +224,7 @@ fn known_type(ty: u32) -> bool {
             | FLOAT
             | HALF_FLOAT_OES
             | UNSIGNED_INT_24_8_OES
+            | UNSIGNED_INT_2_10_10_10_REV_EXT
     )
 }
 
@@ -238,6 +239,9 @@ pub fn upload_storage(format: u32, ty: u32) -> GlResult<Storage> {
         (RGB, UNSIGNED_SHORT_5_6_5) | (RGBA, UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1) => Storage::Rgba8,
         (_, FLOAT) if plain => Storage::Float,
         (_, HALF_FLOAT_OES) if plain => Storage::Half,
+        // EXT_texture_type_2_10_10_10_REV: 10 bits a channel need more than RGBA8 keeps; as
+        // on Mesa, such an image cannot be rendered to.
+        (RGBA | RGB, UNSIGNED_INT_2_10_10_10_REV_EXT) => Storage::Half,
         (DEPTH_COMPONENT, UNSIGNED_SHORT | UNSIGNED_INT) => Storage::Depth,
         (DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES) => Storage::DepthStencil,
         // As Mesa answers on an ES 2.0 context: DEPTH_STENCIL_OES with a basic type is an
@@ -265,6 +269,8 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
         RGBA4 => format == RGBA && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_4_4_4_4),
         R8_EXT => format == RED_EXT && ty == UNSIGNED_BYTE,
         RG8_EXT => format == RG_EXT && ty == UNSIGNED_BYTE,
+        RGB10_A2_EXT => format == RGBA && ty == UNSIGNED_INT_2_10_10_10_REV_EXT,
+        RGB10_EXT => format == RGB && ty == UNSIGNED_INT_2_10_10_10_REV_EXT,
         DEPTH_COMPONENT16 => format == DEPTH_COMPONENT && matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT),
         DEPTH_COMPONENT24_OES => format == DEPTH_COMPONENT && ty == UNSIGNED_INT,
         DEPTH24_STENCIL8_OES => format == DEPTH_STENCIL_OES && ty == UNSIGNED_INT_24_8_OES,

@@ -18,17 +18,20 @@ GL_OES_standard_derivatives GL_EXT_frag_depth GL_EXT_polygon_offset_clamp GL_KHR
 GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced GL_OES_stencil8 \
 GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
 GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic \
-GL_OES_mapbuffer GL_EXT_map_buffer_range";
+GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
+GL_EXT_texture_type_2_10_10_10_REV";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
-/// sub-rectangles, ETC1 (native or decoded), and S3TC where the device has BC formats.
+/// sub-rectangles, ETC1 (native or decoded, and updated in part), and S3TC where the device
+/// has BC formats.
 fn texture_extensions(features: wgpu::Features) -> String {
     let mut ext = vec!["GL_OES_texture_float", "GL_OES_texture_half_float", "GL_OES_texture_half_float_linear"];
     if features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
         ext.push("GL_OES_texture_float_linear");
     }
     ext.extend(["GL_EXT_texture_format_BGRA8888", "GL_EXT_unpack_subimage", "GL_OES_compressed_ETC1_RGB8_texture"]);
+    ext.push("GL_EXT_compressed_ETC1_RGB8_sub_texture");
     if features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC) {
         // The S3TC formats, and the same formats under the names of their subsets.
         ext.extend([
@@ -151,6 +154,10 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         UNPACK_ROW_LENGTH => i(ctx.pixel_store.unpack_row_length),
         UNPACK_SKIP_ROWS => i(ctx.pixel_store.unpack_skip_rows),
         UNPACK_SKIP_PIXELS => i(ctx.pixel_store.unpack_skip_pixels),
+        PACK_ROW_LENGTH => i(ctx.pixel_store.pack_rows[0]),
+        PACK_SKIP_ROWS => i(ctx.pixel_store.pack_rows[1]),
+        PACK_SKIP_PIXELS => i(ctx.pixel_store.pack_rows[2]),
+        PACK_REVERSE_ROW_ORDER_ANGLE => i(i32::from(ctx.pixel_store.pack_reverse)),
         GENERATE_MIPMAP_HINT => u(ctx.mipmap_hint),
         // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),

@@ -302,6 +302,12 @@ impl GlesExecutor {
             UNPACK_ROW_LENGTH => store.unpack_row_length = param,
             UNPACK_SKIP_ROWS => store.unpack_skip_rows = param,
             UNPACK_SKIP_PIXELS => store.unpack_skip_pixels = param,
+            // NV_pack_subimage and ANGLE_pack_reverse_row_order.
+            PACK_ROW_LENGTH | PACK_SKIP_ROWS | PACK_SKIP_PIXELS if param < 0 => return Err(GlError::InvalidValue),
+            PACK_ROW_LENGTH | PACK_SKIP_ROWS | PACK_SKIP_PIXELS => {
+                store.pack_rows[(pname - PACK_ROW_LENGTH) as usize] = param;
+            }
+            PACK_REVERSE_ROW_ORDER_ANGLE => store.pack_reverse = param as u8,
             _ => return Err(GlError::InvalidEnum),
         }
         Ok(())

@@ -70,7 +70,7 @@ fn components(format: u32) -> usize {
 pub fn bytes_per_pixel(format: u32, ty: u32) -> usize {
     match ty {
         UNSIGNED_SHORT_5_6_5 | UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1 | UNSIGNED_SHORT => 2,
-        UNSIGNED_INT | UNSIGNED_INT_24_8_OES => 4,
+        UNSIGNED_INT | UNSIGNED_INT_24_8_OES | UNSIGNED_INT_2_10_10_10_REV_EXT => 4,
         FLOAT => 4 * components(format),
         HALF_FLOAT_OES => 2 * components(format),
         _ => components(format),
@@ -107,8 +107,9 @@ fn rgba8_pixel(px: &[u8], format: u32, ty: u32) -> [u8; 4] {
     }
 }
 
-/// One pixel of `FLOAT` or `HALF_FLOAT_OES` data as RGBA floats (GL's expansion of each
-/// format: luminance to R, G and B, missing colour 0, missing alpha 1).
+/// One pixel of `FLOAT`, `HALF_FLOAT_OES` or `UNSIGNED_INT_2_10_10_10_REV_EXT` data as RGBA
+/// floats (GL's expansion of each format: luminance to R, G and B, missing colour 0, missing
+/// alpha 1).
 fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
     let c = |i: usize| {
         if ty == FLOAT {
@@ -117,6 +118,13 @@ fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
             f16::from_bits(u16::from_ne_bytes([px[2 * i], px[2 * i + 1]])).to_f32()
         }
     };
+    if ty == UNSIGNED_INT_2_10_10_10_REV_EXT {
+        // Red in the low 10 bits, then green and blue, alpha in the top 2; RGB ignores alpha.
+        let v = u32::from_ne_bytes([px[0], px[1], px[2], px[3]]);
+        let unorm = |shift: u32, bits: u32| ((v >> shift) & ((1 << bits) - 1)) as f32 / ((1 << bits) - 1) as f32;
+        let alpha = if format == RGB { 1.0 } else { unorm(30, 2) };
+        return [unorm(0, 10), unorm(10, 10), unorm(20, 10), alpha];
+    }
     match format {
         RGBA => [c(0), c(1), c(2), c(3)],
         RGB => [c(0), c(1), c(2), 1.0],
@@ -142,7 +150,7 @@ pub fn to_storage(
     let bpp = bytes_per_pixel(format, ty);
     let rows = unpack.rows(src, width, height, bpp)?;
     let mut out = Vec::with_capacity(width * height * storage.texel_bytes() as usize);
-    let float_input = matches!(ty, FLOAT | HALF_FLOAT_OES);
+    let float_input = matches!(ty, FLOAT | HALF_FLOAT_OES | UNSIGNED_INT_2_10_10_10_REV_EXT);
     for row in rows {
         for px in row.chunks_exact(bpp) {
             match storage {

@@ -351,6 +351,15 @@ crate::entry_points! {
             if let (Some(i @ 0..=2), Ok(v)) = (pname.checked_sub(0x0CF2), usize::try_from(param)) {
                 gl.st.unpack_rows[i as usize] = v;
             }
+            // PACK_ALIGNMENT; NV_pack_subimage's PACK_ROW_LENGTH_NV, PACK_SKIP_ROWS_NV,
+            // PACK_SKIP_PIXELS_NV; ANGLE_pack_reverse_row_order's byte.
+            let pack = &mut gl.st.pack;
+            match (pname, usize::try_from(param)) {
+                (GL_PACK_ALIGNMENT, Ok(a @ (1 | 2 | 4 | 8))) => pack.alignment = a,
+                (0x0D02..=0x0D04, Ok(v)) => pack.rows[(pname - 0x0D02) as usize] = v,
+                (0x93A4, _) => pack.reverse = param as u8 != 0,
+                _ => {}
+            }
             gl.conn.glPixelStorei(pname, param)
         })
     }
@@ -467,9 +476,20 @@ crate::entry_points! {
     ) {
         with_gl("glReadPixels", (), |gl| {
             let data = gl.conn.glReadPixels(x, y, width, height, format, ty)?;
-            // SAFETY: `pixels` has room for the packed rectangle, which is what the daemon
-            // returns (nothing on error).
-            unsafe { write_out(pixels.cast::<u8>(), &data.0) };
+            // The daemon returns the rows packed by `PACK_ALIGNMENT` (nothing on error); they
+            // are laid out here by the rest of the pack state.
+            match pixel_size(format, ty).filter(|_| !data.0.is_empty() && !pixels.is_null()) {
+                Some(bpp) => {
+                    let rows = packed_rows(&data.0, width as usize, height as usize, bpp, gl.st.pack);
+                    for (at, row) in rows {
+                        // SAFETY: `pixels` has room for the rectangle as the pack state lays it
+                        // out, and `at + row.len()` lies within it.
+                        unsafe { write_out(pixels.cast::<u8>().add(at), row) };
+                    }
+                }
+                // SAFETY: as above, for a format the library does not know the size of.
+                None => unsafe { write_out(pixels.cast::<u8>(), &data.0) },
+            }
             Ok(())
         })
     }

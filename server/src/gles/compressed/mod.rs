@@ -1,5 +1,6 @@
 //! Compressed texture images: `glCompressedTexImage2D` and `glCompressedTexSubImage2D` for
-//! `EXT_texture_compression_s3tc` and `OES_compressed_ETC1_RGB8_texture`. Where the device has
+//! `EXT_texture_compression_s3tc` and `OES_compressed_ETC1_RGB8_texture` (with
+//! `EXT_compressed_ETC1_RGB8_sub_texture`). Where the device has
 //! the block format (and the image's size is a whole number of blocks, as wgpu requires) the
 //! blocks are uploaded as they are; otherwise they are decoded to RGBA8 here.
 
@@ -82,10 +83,13 @@ impl GlesExecutor {
         data: Blob<'_>,
     ) -> GlResult {
         let image = ImageTarget::from_gl(target)?;
-        let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidEnum)?;
+        // As on Mesa, a format that is not an offered compressed one cannot match the image,
+        // whatever the level and the rectangle.
+        let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidOperation)?;
         let gpu = &self.gpu;
-        // ETC1 images cannot be updated in part; the others only by data of their own format.
-        let fits = |t: &super::textures::Texture, _: &_| c != Compressed::Etc1 && t.format == format;
+        // An image is updated only by data of its own format (ETC1's too, by
+        // `EXT_compressed_ETC1_RGB8_sub_texture`).
+        let fits = |t: &super::textures::Texture, _: &_| t.format == format;
         let SubImage { texture: t, region, .. } =
             sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
         if data.len() != c.image_size(region.width, region.height) {

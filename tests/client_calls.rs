@@ -1,0 +1,284 @@
+//! The drop-in library's own work against Mesa, through the C entry points an application
+//! calls: each sequence below runs on Mesa's libEGL/libGLESv2 (held to ES 2.0) and on the
+//! drop-in library talking to `stratad`, and every observation (each return value, each error,
+//! the bytes written to the application's memory and the pixels drawn) must be the same. What
+//! the library does itself cannot be compared through the protocol:
+//! - `mapping`: `GL_OES_mapbuffer` and `GL_EXT_map_buffer_range`, whose memory is the
+//!   library's;
+//! - `pack`: where `glReadPixels` puts its rows (`GL_PACK_ALIGNMENT`, `GL_NV_pack_subimage`,
+//!   `GL_ANGLE_pack_reverse_row_order`), and how many bytes uploads of each format read.
+//!
+//! Its own test binary: it points the library at the daemon through the process environment.
+
+mod support;
+
+use std::ffi::{c_void, CString};
+
+use libloading::Library;
+use support::{Daemon, TempDir};
+
+type Ptr = *mut c_void;
+
+const NONE: i32 = 0x3038;
+const ARRAY: u32 = 0x8892;
+const STATIC_DRAW: u32 = 0x88E4;
+
+#[path = "client_calls/mapping.rs"]
+mod mapping;
+#[path = "client_calls/pack.rs"]
+mod pack;
+/// Declares [`Api`]: each entry point's field name, C name and prototype.
+macro_rules! api {
+    ($($field:ident = $name:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
+        /// The GL entry points the sequence calls, resolved through `eglGetProcAddress`.
+        #[derive(Clone, Copy)]
+        struct Api {
+            $($field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
+        }
+
+        impl Api {
+            /// Resolves every entry point; the name of the first that is missing.
+            fn resolve(get_proc: GetProc<'_>) -> Result<Api, String> {
+                Ok(Api {
+                    $($field: {
+                        let p = get_proc($name);
+                        if p.is_null() {
+                            return Err(format!("{} unresolved", $name));
+                        }
+                        // SAFETY: the entry point has the prototype gl2.h / gl2ext.h gives it.
+                        unsafe { std::mem::transmute::<Ptr, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
+                    },)*
+                })
+            }
+        }
+    };
+}
+
+api! {
+    get_error = "glGetError": fn() -> u32;
+    gen_buffers = "glGenBuffers": fn(i32, *mut u32);
+    bind_buffer = "glBindBuffer": fn(u32, u32);
+    buffer_data = "glBufferData": fn(u32, isize, *const c_void, u32);
+    buffer_sub_data = "glBufferSubData": fn(u32, isize, isize, *const c_void);
+    delete_buffers = "glDeleteBuffers": fn(i32, *const u32);
+    get_buffer_parameteriv = "glGetBufferParameteriv": fn(u32, u32, *mut i32);
+    map = "glMapBufferOES": fn(u32, u32) -> Ptr;
+    unmap = "glUnmapBufferOES": fn(u32) -> u8;
+    get_pointer = "glGetBufferPointervOES": fn(u32, u32, *mut Ptr);
+    map_range = "glMapBufferRangeEXT": fn(u32, isize, isize, u32) -> Ptr;
+    flush_range = "glFlushMappedBufferRangeEXT": fn(u32, isize, isize);
+    create_shader = "glCreateShader": fn(u32) -> u32;
+    shader_source = "glShaderSource": fn(u32, i32, *const *const i8, *const i32);
+    compile_shader = "glCompileShader": fn(u32);
+    create_program = "glCreateProgram": fn() -> u32;
+    attach_shader = "glAttachShader": fn(u32, u32);
+    bind_attrib_location = "glBindAttribLocation": fn(u32, u32, *const i8);
+    link_program = "glLinkProgram": fn(u32);
+    use_program = "glUseProgram": fn(u32);
+    vertex_attrib_pointer = "glVertexAttribPointer": fn(u32, i32, u32, u8, i32, *const c_void);
+    enable_vertex_attrib_array = "glEnableVertexAttribArray": fn(u32);
+    draw_arrays = "glDrawArrays": fn(u32, i32, i32);
+    viewport = "glViewport": fn(i32, i32, i32, i32);
+    clear_color = "glClearColor": fn(f32, f32, f32, f32);
+    clear = "glClear": fn(u32);
+    read_pixels = "glReadPixels": fn(i32, i32, i32, i32, u32, u32, *mut c_void);
+    pixel_store_i = "glPixelStorei": fn(u32, i32);
+    get_integerv = "glGetIntegerv": fn(u32, *mut i32);
+    gen_textures = "glGenTextures": fn(i32, *mut u32);
+    bind_texture = "glBindTexture": fn(u32, u32);
+    tex_parameteri = "glTexParameteri": fn(u32, u32, i32);
+    tex_image_2d = "glTexImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
+    tex_sub_image_2d = "glTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
+}
+
+/// What the sequence saw, one line per observation.
+struct Log(Vec<String>);
+
+impl Log {
+    fn push(&mut self, line: String) {
+        self.0.push(line);
+    }
+}
+
+/// One side's state as the sequence runs.
+struct Run {
+    gl: Api,
+    log: Log,
+}
+
+impl Run {
+    /// Logs `what` with the error it left.
+    fn note(&mut self, what: &str) {
+        // SAFETY: a context is current.
+        let e = unsafe { (self.gl.get_error)() };
+        self.log.push(format!("{what}: error {e:#x}"));
+    }
+
+    /// Compiles and uses a program from `vs` and `fs`, attributes 0 and 1 named `pos` and
+    /// `color` (the second may be unused).
+    fn program(&mut self, vs: &str, fs: &str) {
+        let gl = self.gl;
+        // SAFETY: a context is current; the strings are NUL-terminated.
+        unsafe {
+            let p = (gl.create_program)();
+            for (ty, src) in [(0x8B31, vs), (0x8B30, fs)] {
+                let s = (gl.create_shader)(ty);
+                let src = CString::new(src).expect("source");
+                (gl.shader_source)(s, 1, &src.as_ptr(), std::ptr::null());
+                (gl.compile_shader)(s);
+                (gl.attach_shader)(p, s);
+            }
+            for (i, name) in [(0, c"pos"), (1, c"color")] {
+                (gl.bind_attrib_location)(p, i, name.as_ptr());
+            }
+            (gl.link_program)(p);
+            (gl.use_program)(p);
+        }
+        self.note("program");
+    }
+}
+
+/// An EGL library's `eglGetProcAddress`, by name.
+type GetProc<'a> = &'a dyn Fn(&str) -> Ptr;
+
+/// Makes a pbuffer context current on `lib`'s EGL and resolves the GL entry points.
+///
+/// # Safety
+/// `lib` is an EGL library; `display` is what it answers for the display wanted.
+unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result<Api, String> {
+    // SAFETY: EGL's prototypes (egl.h); every out-pointer is valid.
+    unsafe {
+        let get_proc: unsafe extern "C" fn(*const i8) -> Ptr =
+            *lib.get(b"eglGetProcAddress\0").map_err(|e| e.to_string())?;
+        let proc = |name: &str| -> Ptr {
+            let c = CString::new(name).expect("a name");
+            get_proc(c.as_ptr())
+        };
+        let f = |name: &str| -> Result<Ptr, String> {
+            let p = proc(name);
+            if p.is_null() {
+                Err(format!("{name} unresolved"))
+            } else {
+                Ok(p)
+            }
+        };
+        let dpy = display(&proc);
+        if dpy.is_null() {
+            return Err("no display".into());
+        }
+        let init: unsafe extern "C" fn(Ptr, *mut i32, *mut i32) -> u32 = std::mem::transmute(f("eglInitialize")?);
+        let bind: unsafe extern "C" fn(u32) -> u32 = std::mem::transmute(f("eglBindAPI")?);
+        let choose: unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32 =
+            std::mem::transmute(f("eglChooseConfig")?);
+        let pbuffer: unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr =
+            std::mem::transmute(f("eglCreatePbufferSurface")?);
+        let create: unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr =
+            std::mem::transmute(f("eglCreateContext")?);
+        let make_current: unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32 = std::mem::transmute(f("eglMakeCurrent")?);
+        if init(dpy, std::ptr::null_mut(), std::ptr::null_mut()) == 0 || bind(0x30A0) == 0 {
+            return Err("eglInitialize".into());
+        }
+        let attribs = [0x3033, 1, 0x3040, 4, 0x3024, 8, 0x3023, 8, 0x3022, 8, 0x3021, 8, NONE];
+        let (mut config, mut n) = (std::ptr::null_mut(), 0);
+        if choose(dpy, attribs.as_ptr(), &mut config, 1, &mut n) == 0 || n < 1 {
+            return Err("no RGBA8 pbuffer config".into());
+        }
+        let surface = pbuffer(dpy, config, [0x3057, 16, 0x3056, 16, NONE].as_ptr());
+        let ctx = create(dpy, config, std::ptr::null_mut(), [0x3098, 2, NONE].as_ptr());
+        if surface.is_null() || ctx.is_null() || make_current(dpy, surface, surface, ctx) == 0 {
+            return Err("no current pbuffer context".into());
+        }
+        Api::resolve(&proc)
+    }
+}
+
+/// A sequence of calls, by name.
+type Sequence = (&'static str, fn(&mut Run));
+
+/// Runs every sequence; what each observed, one line each, under the sequence's name.
+fn run_all(gl: Api) -> Vec<String> {
+    let sequences: [Sequence; 2] = [("mapping", mapping::sequence), ("pack", pack::sequence)];
+    let mut lines = Vec::new();
+    for (name, sequence) in sequences {
+        let mut r = Run { gl, log: Log(Vec::new()) };
+        sequence(&mut r);
+        lines.extend(r.log.0.into_iter().map(|l| format!("{name}: {l}")));
+    }
+    lines
+}
+
+#[test]
+fn client_calls_behave_as_on_mesa() {
+    // Mesa held to ES 2.0, surfaceless.
+    // SAFETY: set before this binary's only test loads either library or starts a thread.
+    unsafe {
+        std::env::set_var("MESA_GLES_VERSION_OVERRIDE", "2.0");
+        std::env::remove_var("DISPLAY");
+    }
+    let dir = support::mesa::lib_dir();
+    // SAFETY: the system's EGL; its initialisers are benign.
+    let mesa = match unsafe { Library::new(format!("{dir}/libEGL.so.1")) } {
+        Ok(l) => l,
+        Err(e) if support::oracles_required() => panic!("Mesa's libEGL unavailable: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPED: Mesa's libEGL unavailable ({e})");
+            return;
+        }
+    };
+    // SAFETY: EGL_EXT_platform_base's prototype; the surfaceless platform takes no display.
+    let expected = unsafe {
+        current(&mesa, &|proc| {
+            let gpd = proc("eglGetPlatformDisplayEXT");
+            if gpd.is_null() {
+                return gpd;
+            }
+            let gpd: unsafe extern "C" fn(u32, Ptr, *const i32) -> Ptr = std::mem::transmute(gpd);
+            gpd(0x31DD, std::ptr::null_mut(), std::ptr::null())
+        })
+    };
+    let expected = match expected {
+        Ok(gl) => run_all(gl),
+        Err(e) if support::oracles_required() => panic!("Mesa's GLES2 unavailable: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPED: Mesa's GLES2 unavailable ({e})");
+            return;
+        }
+    };
+
+    let daemon = Daemon::start("client-calls", &[]);
+    // SAFETY: as above; the library reads it at eglInitialize.
+    unsafe { std::env::set_var("STRATA_SOCKET", &daemon.socket) };
+    let tmp = TempDir::new("client-calls");
+    // SAFETY: loading the drop-in library runs no initialisers that need anything from the test.
+    let shim =
+        unsafe { Library::new(support::shim_dir(&tmp).join("libEGL.so.1")) }.expect("dlopen the drop-in library");
+    // SAFETY: eglGetDisplay's prototype.
+    let gl = unsafe {
+        current(&shim, &|proc| {
+            let gd: unsafe extern "C" fn(Ptr) -> Ptr = std::mem::transmute(proc("eglGetDisplay"));
+            gd(std::ptr::null_mut())
+        })
+    }
+    .expect("a current context through the drop-in library");
+    let actual = run_all(gl);
+
+    let differ: Vec<String> = expected
+        .iter()
+        .zip(&actual)
+        .filter(|(e, a)| e != a)
+        .map(|(e, a)| format!("  Mesa:   {e}\n  Strata: {a}"))
+        .collect();
+    assert!(
+        differ.is_empty() && expected.len() == actual.len(),
+        "{} of {} observations differ ({} against {} lines):\n{}",
+        differ.len(),
+        expected.len(),
+        expected.len(),
+        actual.len(),
+        differ.join("\n")
+    );
+    eprintln!("{} observations agree", expected.len());
+    if std::env::var_os("STRATA_SHOW_OBSERVATIONS").is_some() {
+        eprintln!("{}", actual.join("\n"));
+    }
+}
