@@ -53,6 +53,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_NV_pack_subimage",
     "GL_ANGLE_pack_reverse_row_order",
     "GL_EXT_texture_type_2_10_10_10_REV",
+    "GL_EXT_depth_clamp",
+    "GL_APPLE_texture_max_level",
     "EGL_KHR_create_context",
 ];
 

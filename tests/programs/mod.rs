@@ -271,11 +271,13 @@ mod base_vertex;
 mod cases;
 mod compressed;
 mod debug_label;
+mod depth_clamp;
 mod derivatives;
 mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
 mod instanced;
+mod max_level;
 mod multi_draw;
 mod objects;
 mod offset_clamp;
@@ -310,5 +312,7 @@ pub fn all() -> Vec<Case> {
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all.extend(type_2_10_10_10::all());
+    all.extend(depth_clamp::all());
+    all.extend(max_level::all());
     all
 }

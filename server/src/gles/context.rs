@@ -112,6 +112,8 @@ pub struct Raster {
     pub front_face: u32,
     /// `GL_POLYGON_OFFSET_FILL`.
     pub polygon_offset_fill: bool,
+    /// `GL_DEPTH_CLAMP_EXT`.
+    pub depth_clamp: bool,
     /// `GL_POLYGON_OFFSET_FACTOR`, `_UNITS` and `_CLAMP_EXT`.
     pub polygon_offset: [f32; 3],
     /// `GL_LINE_WIDTH`.
@@ -135,6 +137,7 @@ impl Default for Raster {
             cull_face: BACK,
             front_face: CCW,
             polygon_offset_fill: false,
+            depth_clamp: false,
             polygon_offset: [0.0; 3],
             line_width: 1.0,
             sample_coverage: false,
@@ -365,6 +368,7 @@ impl Context {
             Capability::ScissorTest => self.raster.scissor_test,
             Capability::StencilTest => self.depth_stencil.stencil_test,
             Capability::PolygonOffsetFill => self.raster.polygon_offset_fill,
+            Capability::DepthClamp => self.raster.depth_clamp,
             Capability::Dither => self.blend.dither,
             Capability::SampleCoverage => self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => self.raster.alpha_to_coverage,
@@ -382,6 +386,7 @@ impl Context {
             Capability::ScissorTest => &mut self.raster.scissor_test,
             Capability::StencilTest => &mut self.depth_stencil.stencil_test,
             Capability::PolygonOffsetFill => &mut self.raster.polygon_offset_fill,
+            Capability::DepthClamp => &mut self.raster.depth_clamp,
             Capability::Dither => &mut self.blend.dither,
             Capability::SampleCoverage => &mut self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => &mut self.raster.alpha_to_coverage,

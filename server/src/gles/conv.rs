@@ -135,9 +135,22 @@ pub enum Capability {
     DebugOutput,
     /// `GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR`.
     DebugOutputSynchronous,
+    /// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`, where the device has
+    /// `wgpu::Features::DEPTH_CLIP_CONTROL`).
+    DepthClamp,
 }
 
 impl Capability {
+    /// Parses a capability the device with `features` has; anything else is `GL_INVALID_ENUM`.
+    pub fn on(cap: u32, features: wgpu::Features) -> GlResult<Self> {
+        match Capability::from_gl(cap)? {
+            Capability::DepthClamp if !features.contains(wgpu::Features::DEPTH_CLIP_CONTROL) => {
+                Err(GlError::InvalidEnum)
+            }
+            c => Ok(c),
+        }
+    }
+
     /// Parses a capability; anything else is `GL_INVALID_ENUM`.
     pub fn from_gl(cap: u32) -> GlResult<Self> {
         Ok(match cap {
@@ -152,6 +165,7 @@ impl Capability {
             SAMPLE_ALPHA_TO_COVERAGE => Capability::SampleAlphaToCoverage,
             DEBUG_OUTPUT => Capability::DebugOutput,
             DEBUG_OUTPUT_SYNCHRONOUS => Capability::DebugOutputSynchronous,
+            DEPTH_CLAMP_EXT => Capability::DepthClamp,
             _ => return Err(GlError::InvalidEnum),
         })
     }
@@ -534,7 +548,8 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
         min_filter: filter(s.min),
         mipmap_filter: mip,
         lod_min_clamp: 0.0,
-        lod_max_clamp: if s.uses_mipmaps() { 32.0 } else { 0.0 },
+        // Levels past TEXTURE_MAX_LEVEL_APPLE are never sampled.
+        lod_max_clamp: if s.uses_mipmaps() { (s.max_level as f32).min(32.0) } else { 0.0 },
         compare: None,
         // wgpu filters anisotropically only with every filter linear: GL's anisotropy with
         // another filter is left out.

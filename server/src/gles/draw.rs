@@ -294,6 +294,7 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         write_mask: color_writes(blend.color_mask) - target.absent,
         points: false,
         reversed_z: None,
+        unclipped_depth: raster.depth_clamp,
     }
 }
 

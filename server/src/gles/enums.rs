@@ -28,6 +28,8 @@ pub const UNSIGNED_INT: u32 = 0x1405;
 pub const FLOAT: u32 = 0x1406;
 pub const FIXED: u32 = 0x140C;
 pub const HALF_FLOAT_OES: u32 = 0x8D61;
+/// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`).
+pub const DEPTH_CLAMP_EXT: u32 = 0x864F;
 /// `GL_UNSIGNED_INT_2_10_10_10_REV_EXT` (`EXT_texture_type_2_10_10_10_REV`).
 pub const UNSIGNED_INT_2_10_10_10_REV_EXT: u32 = 0x8368;
 /// `GL_RGB10_A2_EXT`, the sized format of RGBA 2_10_10_10_REV data.
@@ -386,6 +388,8 @@ pub const MAX_SHADER_COMPILER_THREADS_KHR: u32 = 0x91B0;
 pub const CONTEXT_RELEASE_BEHAVIOR_KHR: u32 = 0x82FB;
 pub const READ_BUFFER_NV: u32 = 0x0C02;
 pub const TEXTURE_MAX_ANISOTROPY_EXT: u32 = 0x84FE;
+/// `GL_TEXTURE_MAX_LEVEL_APPLE` (`APPLE_texture_max_level`).
+pub const TEXTURE_MAX_LEVEL_APPLE: u32 = 0x813D;
 pub const MAX_TEXTURE_MAX_ANISOTROPY_EXT: u32 = 0x84FF;
 pub const CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR: u32 = 0x82FC;
 pub const COMPLETION_STATUS_KHR: u32 = 0x91B1;

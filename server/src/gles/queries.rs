@@ -19,7 +19,7 @@ GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced 
 GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
 GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic \
 GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
-GL_EXT_texture_type_2_10_10_10_REV";
+GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -92,7 +92,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
     let i = |x: i32| Ints(vec![x]);
     let u = |x: u32| Ints(vec![x as i32]);
     let f = |x: f32| Floats(vec![x]);
-    if let Ok(cap) = Capability::from_gl(pname) {
+    if let Ok(cap) = Capability::on(pname, gpu.features) {
         return Some(b(ctx.enabled(cap)));
     }
     let (raster, ds, blend, bind) = (&ctx.raster, &ctx.depth_stencil, &ctx.blend, &ctx.bindings);
@@ -236,7 +236,11 @@ impl GlesExecutor {
             RENDERER => format!("Strata on {}", self.gpu.info.name),
             VERSION => format!("OpenGL ES 2.0 Strata {}", env!("CARGO_PKG_VERSION")),
             SHADING_LANGUAGE_VERSION => "OpenGL ES GLSL ES 1.00".to_string(),
-            EXTENSIONS => format!("{EXTENSIONS_STRING} {}", texture_extensions(self.gpu.features)),
+            EXTENSIONS => {
+                let clamp = self.gpu.features.contains(wgpu::Features::DEPTH_CLIP_CONTROL);
+                let depth_clamp = if clamp { " GL_EXT_depth_clamp" } else { "" };
+                format!("{EXTENSIONS_STRING} {}{depth_clamp}", texture_extensions(self.gpu.features))
+            }
             _ => {
                 ctx.record(GlError::InvalidEnum);
                 return None;

@@ -26,6 +26,9 @@ pub struct SamplerState {
     /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
     /// from 1 to [`MAX_ANISOTROPY`].
     pub anisotropy: u32,
+    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`): the last level sampled, and
+    /// the last a mipmapped texture needs.
+    pub max_level: u32,
 }
 
 /// `GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT`: wgpu's largest anisotropy clamp (and Mesa's value).
@@ -39,6 +42,7 @@ impl Default for SamplerState {
             wrap_s: REPEAT,
             wrap_t: REPEAT,
             anisotropy: 1.0f32.to_bits(),
+            max_level: 1000,
         }
     }
 }
@@ -91,7 +95,8 @@ impl Texture {
             return false;
         }
         let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let need = if self.sampler.uses_mipmaps() { ((1u64 << img.levels) - 1) as u32 } else { 1 };
+        let levels = img.levels.min(self.sampler.max_level.saturating_add(1));
+        let need = if self.sampler.uses_mipmaps() { ((1u64 << levels) - 1) as u32 } else { 1 };
         self.defined[..faces].iter().all(|d| d & need == need)
     }
 }
@@ -106,6 +111,16 @@ fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult
         }
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         t.sampler.anisotropy = v.min(MAX_ANISOTROPY).to_bits();
+        return Ok(());
+    }
+    if pname == TEXTURE_MAX_LEVEL_APPLE {
+        // Rounded as Mesa rounds a float; a negative level is an error.
+        let level = v.round();
+        if level.is_nan() || level < 0.0 {
+            return Err(GlError::InvalidValue);
+        }
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.sampler.max_level = level as u32;
         return Ok(());
     }
     let v = v as u32;
@@ -146,6 +161,7 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
         TEXTURE_WRAP_S => Some(s.wrap_s as f32),
         TEXTURE_WRAP_T => Some(s.wrap_t as f32),
         TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
+        TEXTURE_MAX_LEVEL_APPLE => Some(s.max_level as f32),
         _ => None,
     });
     match v {

@@ -32,12 +32,14 @@ pub enum GpuError {
 /// Optional device features the executor uses where the adapter has them: linear filtering
 /// of RGBA32F (`OES_texture_float_linear`), and BC and ETC2 block formats (compressed textures
 /// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
-/// 32float` for configs with stencil), and timestamps (the composite's own device time).
+/// 32float` for configs with stencil), timestamps (the composite's own device time), and
+/// depth clip control (`EXT_depth_clamp`).
 pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
     .union(wgpu::Features::TIMESTAMP_QUERY)
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
-    .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2);
+    .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2)
+    .union(wgpu::Features::DEPTH_CLIP_CONTROL);
 
 /// The pipelines of `write_depth`, one per depth format.
 type DepthWriters = HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>;

@@ -95,6 +95,9 @@ pub struct RasterState {
     /// Reversed-Z framebuffer 0 (near and far bits): the vertex stage is its reversed-Z
     /// variant, so pipelines differ.
     pub reversed_z: Option<(u32, u32)>,
+    /// `GL_DEPTH_CLAMP_EXT`: depth is clamped to the depth range instead of clipped (wgpu's
+    /// unclipped depth, which is Vulkan's depth clamp).
+    pub unclipped_depth: bool,
 }
 
 /// Everything a validated draw needs.

@@ -174,7 +174,7 @@ impl Renderer {
                 strip_index_format: r.strip_index,
                 front_face: front_face(r.front_ccw),
                 cull_mode: r.cull,
-                unclipped_depth: false,
+                unclipped_depth: r.unclipped_depth,
                 polygon_mode: wgpu::PolygonMode::Fill,
                 conservative: false,
             },
