@@ -6,7 +6,9 @@
 //! - `mapping`: `GL_OES_mapbuffer` and `GL_EXT_map_buffer_range`, whose memory is the
 //!   library's;
 //! - `pack`: where `glReadPixels` puts its rows (`GL_PACK_ALIGNMENT`, `GL_NV_pack_subimage`,
-//!   `GL_ANGLE_pack_reverse_row_order`), and how many bytes uploads of each format read.
+//!   `GL_ANGLE_pack_reverse_row_order`), and how many bytes uploads of each format read;
+//! - `surfaceless`: contexts current with no surface (`EGL_KHR_surfaceless_context`,
+//!   `GL_OES_surfaceless_context`), which the library passes on.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -27,6 +29,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 mod mapping;
 #[path = "client_calls/pack.rs"]
 mod pack;
+#[path = "client_calls/surfaceless.rs"]
+mod surfaceless;
 /// Declares [`Api`]: each entry point's field name, C name and prototype.
 macro_rules! api {
     ($($field:ident = $name:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
@@ -89,6 +93,26 @@ api! {
     tex_parameteri = "glTexParameteri": fn(u32, u32, i32);
     tex_image_2d = "glTexImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
     tex_sub_image_2d = "glTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
+    check_framebuffer_status = "glCheckFramebufferStatus": fn(u32) -> u32;
+    gen_framebuffers = "glGenFramebuffers": fn(i32, *mut u32);
+    bind_framebuffer = "glBindFramebuffer": fn(u32, u32);
+    framebuffer_texture_2d = "glFramebufferTexture2D": fn(u32, u32, u32, u32, i32);
+    egl_make_current = "eglMakeCurrent": fn(Ptr, Ptr, Ptr, Ptr) -> u32;
+    egl_create_context = "eglCreateContext": fn(Ptr, Ptr, Ptr, *const i32) -> Ptr;
+    egl_destroy_context = "eglDestroyContext": fn(Ptr, Ptr) -> u32;
+    egl_get_current_surface = "eglGetCurrentSurface": fn(i32) -> Ptr;
+    egl_get_error = "eglGetError": fn() -> i32;
+    egl_swap_interval = "eglSwapInterval": fn(Ptr, i32) -> u32;
+}
+
+/// The EGL objects the sequences start with: the display, the config, and the pbuffer and
+/// context current on it.
+#[derive(Clone, Copy)]
+struct Binding {
+    display: Ptr,
+    config: Ptr,
+    surface: Ptr,
+    context: Ptr,
 }
 
 /// What the sequence saw, one line per observation.
@@ -103,6 +127,7 @@ impl Log {
 /// One side's state as the sequence runs.
 struct Run {
     gl: Api,
+    egl: Binding,
     log: Log,
 }
 
@@ -145,7 +170,7 @@ type GetProc<'a> = &'a dyn Fn(&str) -> Ptr;
 ///
 /// # Safety
 /// `lib` is an EGL library; `display` is what it answers for the display wanted.
-unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result<Api, String> {
+unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result<(Api, Binding), String> {
     // SAFETY: EGL's prototypes (egl.h); every out-pointer is valid.
     unsafe {
         let get_proc: unsafe extern "C" fn(*const i8) -> Ptr =
@@ -188,7 +213,7 @@ unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result
         if surface.is_null() || ctx.is_null() || make_current(dpy, surface, surface, ctx) == 0 {
             return Err("no current pbuffer context".into());
         }
-        Api::resolve(&proc)
+        Ok((Api::resolve(&proc)?, Binding { display: dpy, config, surface, context: ctx }))
     }
 }
 
@@ -196,11 +221,12 @@ unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result
 type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
-fn run_all(gl: Api) -> Vec<String> {
-    let sequences: [Sequence; 2] = [("mapping", mapping::sequence), ("pack", pack::sequence)];
+fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
+    let sequences: [Sequence; 3] =
+        [("mapping", mapping::sequence), ("pack", pack::sequence), ("surfaceless", surfaceless::sequence)];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {
-        let mut r = Run { gl, log: Log(Vec::new()) };
+        let mut r = Run { gl, egl, log: Log(Vec::new()) };
         sequence(&mut r);
         lines.extend(r.log.0.into_iter().map(|l| format!("{name}: {l}")));
     }

@@ -55,6 +55,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_texture_type_2_10_10_10_REV",
     "GL_EXT_depth_clamp",
     "GL_APPLE_texture_max_level",
+    "GL_OES_surfaceless_context",
+    "EGL_KHR_surfaceless_context",
     "EGL_KHR_create_context",
 ];
 

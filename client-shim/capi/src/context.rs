@@ -45,14 +45,19 @@ pub(crate) fn make_current(dpy: EGLDisplay, draw: u32, read: u32, ctx: u32) -> R
         return Err(EGL_BAD_ACCESS);
     }
     let d_ctx = c.daemon.ok_or(EGL_BAD_CONTEXT)?;
-    if !p.surfaces.contains_key(&draw) || !p.surfaces.contains_key(&read) {
+    // EGL_KHR_surfaceless_context: no surface at all is a binding; one of two is not.
+    if (draw == 0) != (read == 0) {
+        return Err(EGL_BAD_MATCH);
+    }
+    let known = |s: u32| s == 0 || p.surfaces.contains_key(&s);
+    if !known(draw) || !known(read) {
         return Err(EGL_BAD_SURFACE);
     }
     surface::follow_window(&mut p, draw);
     if read != draw {
         surface::follow_window(&mut p, read);
     }
-    let (d_draw, d_read) = (p.daemon_surface(draw), p.daemon_surface(read));
+    let (d_draw, d_read) = (p.bound_surface(draw), p.bound_surface(read));
     let (Some(d_draw), Some(d_read)) = (d_draw, d_read) else { return Err(EGL_BAD_SURFACE) };
     surface::bind_daemon(&mut p, d_ctx, d_draw, d_read)?;
     if let Some(old) = state::current() {

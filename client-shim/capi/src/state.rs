@@ -299,10 +299,19 @@ impl Process {
         self.surfaces.get(&s).map(|i| i.daemon)
     }
 
+    /// The daemon surface a binding of the application's surface `s` names: none (0) for no
+    /// surface (`EGL_KHR_surfaceless_context`).
+    pub fn bound_surface(&self, s: u32) -> Option<u32> {
+        if s == 0 {
+            return Some(0);
+        }
+        self.daemon_surface(s)
+    }
+
     /// What the daemon must have current for `cur` (daemon handles), if its context is live and
-    /// both its surfaces still exist.
+    /// both its surfaces (if any) still exist.
     pub fn binding(&self, cur: &Current) -> Option<(u32, u32, u32)> {
-        Some((self.daemon_context(cur.context)?, self.daemon_surface(cur.draw)?, self.daemon_surface(cur.read)?))
+        Some((self.daemon_context(cur.context)?, self.bound_surface(cur.draw)?, self.bound_surface(cur.read)?))
     }
 }
 

@@ -290,8 +290,12 @@ pub struct Context {
     pub config: Config,
     /// The pending GL error.
     pub error: ErrorFlag,
-    /// Whether it has been current (the first `eglMakeCurrent` sizes viewport and scissor).
+    /// Whether it has been current with a surface (the first such `eglMakeCurrent` sizes
+    /// viewport and scissor, as on Mesa).
     pub made_current: bool,
+    /// Current with no surface (`EGL_KHR_surfaceless_context`): framebuffer 0 is
+    /// `GL_FRAMEBUFFER_UNDEFINED_OES`.
+    pub surfaceless: bool,
     /// Name tables.
     pub objects: Objects,
     /// Bindings.
@@ -332,6 +336,7 @@ impl Context {
             config,
             error: ErrorFlag::default(),
             made_current: false,
+            surfaceless: false,
             objects: Objects::default(),
             bindings: Bindings::default(),
             attribs: vec![Attrib::default(); MAX_ATTRIBS],

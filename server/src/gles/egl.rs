@@ -387,9 +387,18 @@ impl GlesExecutor {
         if draw != read {
             return Err(EGL_BAD_MATCH);
         }
+        if draw == 0 {
+            // EGL_KHR_surfaceless_context: current with no default framebuffer.
+            let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
+            ctx.surfaceless = true;
+            self.r.flush();
+            self.current = Some((context, 0));
+            return Ok(());
+        }
         let surface = self.surfaces.get(&draw).ok_or(EGL_BAD_SURFACE)?;
         let (w, h) = (surface.target.width as i32, surface.target.height as i32);
         let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
+        ctx.surfaceless = false;
         if !ctx.made_current {
             ctx.made_current = true;
             ctx.raster.viewport = [0, 0, w, h];
@@ -404,6 +413,9 @@ impl GlesExecutor {
         self.check_display(display)?;
         // EGL: the interval applies to the window surface bound to the current context.
         let (_, surface) = self.current.ok_or(EGL_BAD_CONTEXT)?;
+        if surface == 0 {
+            return Err(EGL_BAD_SURFACE);
+        }
         if let Some((scene, client, _)) = &self.scene {
             scene.set_interval(*client, surface, interval);
         }

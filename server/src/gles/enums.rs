@@ -28,6 +28,8 @@ pub const UNSIGNED_INT: u32 = 0x1405;
 pub const FLOAT: u32 = 0x1406;
 pub const FIXED: u32 = 0x140C;
 pub const HALF_FLOAT_OES: u32 = 0x8D61;
+/// `GL_FRAMEBUFFER_UNDEFINED_OES` (`OES_surfaceless_context`): framebuffer 0 with no surface.
+pub const FRAMEBUFFER_UNDEFINED_OES: u32 = 0x8219;
 /// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`).
 pub const DEPTH_CLAMP_EXT: u32 = 0x864F;
 /// `GL_UNSIGNED_INT_2_10_10_10_REV_EXT` (`EXT_texture_type_2_10_10_10_REV`).

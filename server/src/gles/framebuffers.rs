@@ -186,6 +186,10 @@ impl GlesExecutor {
     pub(super) fn draw_target(&self, ctx: &Context) -> Result<Target, u32> {
         let (_, sid) = self.current.ok_or(FRAMEBUFFER_UNSUPPORTED)?;
         if ctx.bindings.framebuffer == 0 {
+            if sid == 0 {
+                // Current with no surface (EGL_KHR_surfaceless_context).
+                return Err(FRAMEBUFFER_UNDEFINED_OES);
+            }
             return self.surfaces.get(&sid).map(|s| s.target.clone()).ok_or(FRAMEBUFFER_UNSUPPORTED);
         }
         resolve_object(ctx)

@@ -19,7 +19,7 @@ GL_EXT_draw_elements_base_vertex GL_EXT_multi_draw_arrays GL_EXT_draw_instanced 
 GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
 GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic \
 GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
-GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level";
+GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -56,6 +56,9 @@ enum Value {
 fn framebuffer_bits(ctx: &Context) -> [i32; 6] {
     let bound = ctx.bindings.framebuffer;
     let Some(fb) = ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) else {
+        if ctx.surfaceless {
+            return [0; 6];
+        }
         let c = &ctx.config;
         return [8, 8, 8, c.rgba[3], c.depth, c.stencil];
     };
@@ -219,6 +222,13 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
 impl GlesExecutor {
     /// State `pname`, recording `GL_INVALID_ENUM` (and answering nothing) if there is none.
     fn state(&mut self, ctx: &mut Context, pname: u32) -> Value {
+        // The read format of a framebuffer that cannot be read (framebuffer 0 with no surface):
+        // an error, and 0 written, as Mesa writes it.
+        let read_format = matches!(pname, IMPLEMENTATION_COLOR_READ_FORMAT | IMPLEMENTATION_COLOR_READ_TYPE);
+        if read_format && ctx.bindings.framebuffer == 0 && ctx.surfaceless {
+            ctx.record(GlError::InvalidOperation);
+            return Value::Ints(vec![0]);
+        }
         let gpu = &self.gpu;
         get_state(ctx, gpu, pname).unwrap_or_else(|| {
             ctx.record(GlError::InvalidEnum);
