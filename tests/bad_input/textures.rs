@@ -51,8 +51,13 @@ pub fn misuse(gl: Gl<'_>, check: &mut dyn FnMut(&str, u32, u32)) -> Result<(), C
     let floats = f32s(&[0.0; 64]);
     gl.glTexImage2D(TEXTURE_2D, 0, BGRA_EXT as i32, 4, 4, 0, BGRA_EXT, FLOAT, Some(Blob::borrowed(&floats)))?;
     expect(gl, check, "BGRA with FLOAT", INVALID_OPERATION)?;
-    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, BGRA_EXT, UNSIGNED_BYTE, Some(Blob::borrowed(&red)))?;
-    expect(gl, check, "BGRA data for an RGBA internal format", INVALID_OPERATION)?;
+    // MESA_bgra: an RGBA image takes BGRA data (the same red, so the image stays as it was);
+    // an RGB one does not.
+    let red_bgra: Vec<u8> = red.chunks_exact(4).flat_map(|p| [p[2], p[1], p[0], p[3]]).collect();
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, BGRA_EXT, UNSIGNED_BYTE, Some(Blob::borrowed(&red_bgra)))?;
+    expect(gl, check, "BGRA data for an RGBA internal format", 0)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, RGB as i32, 4, 4, 0, BGRA_EXT, UNSIGNED_BYTE, Some(Blob::borrowed(&red)))?;
+    expect(gl, check, "BGRA data for an RGB internal format", INVALID_OPERATION)?;
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, 0x1234, Some(Blob::borrowed(&red)))?;
     expect(gl, check, "unknown type", INVALID_ENUM)?;
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, UNSIGNED_INT_24_8_OES, Some(Blob::borrowed(&red)))?;

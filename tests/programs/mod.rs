@@ -278,6 +278,7 @@ mod framebuffer_ext;
 pub mod harness;
 mod instanced;
 mod max_level;
+mod mesa_bgra;
 mod multi_draw;
 mod objects;
 mod offset_clamp;
@@ -314,5 +315,6 @@ pub fn all() -> Vec<Case> {
     all.extend(type_2_10_10_10::all());
     all.extend(depth_clamp::all());
     all.extend(max_level::all());
+    all.extend(mesa_bgra::all());
     all
 }

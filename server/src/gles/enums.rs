@@ -137,6 +137,8 @@ pub const PACK_SKIP_PIXELS: u32 = 0x0D04;
 /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE` (`ANGLE_pack_reverse_row_order`).
 pub const PACK_REVERSE_ROW_ORDER_ANGLE: u32 = 0x93A4;
 pub const BGRA_EXT: u32 = 0x80E1;
+/// `GL_BGR_EXT` (`MESA_bgra`).
+pub const BGR_EXT: u32 = 0x80E0;
 pub const BUFFER_OBJECT_EXT: u32 = 0x9151;
 pub const SHADER_OBJECT_EXT: u32 = 0x8B48;
 pub const PROGRAM_OBJECT_EXT: u32 = 0x8B40;

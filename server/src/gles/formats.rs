@@ -206,9 +206,16 @@ pub fn absent_channels(f: u32) -> wgpu::ColorWrites {
     absent
 }
 
-/// Whether `f` is a format enum uploads know at all.
+/// Whether `f` is a format enum uploads know at all (`MESA_bgra`'s `BGR_EXT` included, which
+/// no type uploads on an ES 2.0 context, as on Mesa).
 fn known_format(f: u32) -> bool {
-    is_color_format(f) || matches!(f, DEPTH_COMPONENT | DEPTH_STENCIL_OES)
+    is_color_format(f) || matches!(f, DEPTH_COMPONENT | DEPTH_STENCIL_OES | BGR_EXT)
+}
+
+/// Whether data in `format` fits an image of internal format `internal` without compression:
+/// the same format, or RGBA and BGRA for each other (`MESA_bgra`).
+pub fn same_layout(internal: u32, format: u32) -> bool {
+    internal == format || matches!((internal, format), (RGBA, BGRA_EXT) | (BGRA_EXT, RGBA))
 }
 
 /// Whether `ty` is a type enum uploads know at all.
@@ -225,7 +232,19 @@ fn known_type(ty: u32) -> bool {
             | HALF_FLOAT_OES
             | UNSIGNED_INT_24_8_OES
             | UNSIGNED_INT_2_10_10_10_REV_EXT
+            // Reversed packings Mesa knows, which no upload takes on an ES 2.0 context.
+            | 0x8365
+            | 0x8366
+            | 0x8367
     )
+}
+
+/// Whether `internal` names an internal format at all: Mesa answers `GL_INVALID_VALUE` for
+/// one that does not (`MESA_bgra`'s `BGR_EXT` among them), before it pairs format and type.
+pub fn known_internal(internal: u32) -> bool {
+    (is_color_format(internal) || matches!(internal, DEPTH_COMPONENT | DEPTH_STENCIL_OES | DEPTH_COMPONENT32_OES))
+        || sized_fits(internal, 0, 0).is_some()
+        || Compressed::from_gl(internal).is_some()
 }
 
 /// The storage an upload of `format`/`ty` data is kept in: `GL_INVALID_ENUM` for an unknown
@@ -297,7 +316,7 @@ pub fn internal_accepts(internal: u32, format: u32, features: wgpu::Features) ->
     match Compressed::from_gl(internal) {
         Some(c @ Compressed::S3tc(_)) => c.offered(features) && matches!(format, RGB | RGBA),
         Some(Compressed::Etc1) => false,
-        None => internal == format,
+        None => same_layout(internal, format),
     }
 }
 

@@ -10,7 +10,7 @@ use super::conv::ImageTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{internal_accepts, sized_fits, upload_storage, Compressed, Storage};
+use super::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
 use super::images::{Region, TextureImage};
 use super::textures::Texture;
 use super::unpack::{depth_stencil_values, to_storage, Unpack};
@@ -130,7 +130,12 @@ impl GlesExecutor {
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
         let image = ImageTarget::from_gl(target)?;
-        let storage = upload_storage(format, pixel_type)?;
+        let storage = upload_storage(format, pixel_type);
+        // Unknown enums first, then an internal format that is none, then the pairing.
+        if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat as u32) {
+            return Err(GlError::InvalidValue);
+        }
+        let storage = storage?;
         // A sized internal format (GL_OES_required_internalformat) stores as its unsized one.
         let internal = match sized_fits(internalformat as u32, format, pixel_type) {
             Some(true) => format,
@@ -258,8 +263,9 @@ impl GlesExecutor {
             // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture).
             Some(Compressed::Etc1) => false,
             Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
-            // ES 2.0: the format must be the image's; the type must give the same storage.
-            None => t.format == format && storage == img.storage,
+            // ES 2.0: the format must be the image's (RGBA and BGRA count as one, MESA_bgra);
+            // the type must give the same storage.
+            None => same_layout(t.format, format) && storage == img.storage,
         };
         let SubImage { texture: t, region, size } =
             sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
