@@ -284,6 +284,12 @@ command_set! {
         /// `GL_EXT_map_buffer_range`: makes the `length` bytes at `offset` within the mapping
         /// (`data`, sent whole) the buffer's contents.
         glFlushMappedBufferRangeEXT [Context, Flush] => FlushMappedBufferRangeEXT { target: GLenum, offset: i64, length: i64, data: Blob<'a> };
+        /// `GL_EXT_occlusion_query_boolean`: query names (allocated by the client).
+        glGenQueriesEXT [Context] => GenQueriesEXT { names: Slice<'a, GLuint> };
+        glDeleteQueriesEXT [Context] => DeleteQueriesEXT { names: Slice<'a, GLuint> };
+        /// Starts occlusion query `id`: the draws until `glEndQueryEXT` count for it.
+        glBeginQueryEXT [Context] => BeginQueryEXT { target: GLenum, id: GLuint };
+        glEndQueryEXT [Context] => EndQueryEXT { target: GLenum };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -375,6 +381,12 @@ command_set! {
         /// `GL_EXT_map_buffer_range`: maps `length` bytes at `offset`. Reply: their contents,
         /// empty where `access` invalidates them (`None` on error).
         glMapBufferRangeEXT [Context] => MapBufferRangeEXT { target: GLenum, offset: i64, length: i64, access: GLbitfield } -> Option<Bytes>;
+        glIsQueryEXT [Context] => IsQueryEXT { id: GLuint } -> bool;
+        /// `GL_CURRENT_QUERY_EXT` of `target` (nothing on error).
+        glGetQueryivEXT [Context] => GetQueryivEXT { target: GLenum, pname: GLenum } -> Vec<GLint>;
+        /// A query's result or its availability (nothing on error); the result waits for the
+        /// draws it counts.
+        glGetQueryObjectuivEXT [Context] => GetQueryObjectuivEXT { id: GLuint, pname: GLenum } -> Vec<GLuint>;
     }
 }
 

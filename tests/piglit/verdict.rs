@@ -58,6 +58,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_surfaceless_context",
     "EGL_KHR_surfaceless_context",
     "GL_MESA_bgra",
+    "GL_EXT_occlusion_query_boolean",
     "EGL_KHR_create_context",
 ];
 

@@ -281,6 +281,7 @@ mod max_level;
 mod mesa_bgra;
 mod multi_draw;
 mod objects;
+mod occlusion;
 mod offset_clamp;
 mod parallel_compile;
 mod points;
@@ -316,5 +317,6 @@ pub fn all() -> Vec<Case> {
     all.extend(depth_clamp::all());
     all.extend(max_level::all());
     all.extend(mesa_bgra::all());
+    all.extend(occlusion::all());
     all
 }

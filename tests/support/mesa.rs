@@ -38,6 +38,8 @@ pub struct MesaGl {
     shaders: HashMap<u32, u32>,
     /// The client's vertex array names and Mesa's.
     vaos: HashMap<u32, u32>,
+    /// The client's query names and Mesa's.
+    queries: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
     client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
@@ -69,6 +71,7 @@ mod egl;
 mod framebuffers;
 mod mapping;
 mod programs;
+mod queries;
 mod scalars;
 mod state;
 mod textures;
@@ -146,6 +149,7 @@ impl MesaGl {
             fns: HashMap::new(),
             shaders: HashMap::new(),
             vaos: HashMap::new(),
+            queries: HashMap::new(),
             client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),

@@ -272,6 +272,8 @@ pub mod simple {
         fn glUniform3i(location: GLint, x: GLint, y: GLint, z: GLint);
         fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
         fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
+        fn glBeginQueryEXT(target: GLenum, id: GLuint);
+        fn glEndQueryEXT(target: GLenum);
         fn glUseProgram(program: GLuint);
         fn glValidateProgram(program: GLuint);
         fn glVertexAttrib1f(index: GLuint, x: GLfloat);
@@ -287,6 +289,7 @@ pub mod simple {
         fn glIsRenderbuffer(name: GLuint) -> GLboolean;
         fn glIsShader(name: GLuint) -> GLboolean;
         fn glIsTexture(name: GLuint) -> GLboolean;
+        fn glIsQueryEXT(id: GLuint) -> GLboolean;
     }
 }
 

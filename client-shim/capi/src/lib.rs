@@ -221,6 +221,13 @@ mod tests {
             "glGetBufferPointervOES",
             "glMapBufferRangeEXT",
             "glFlushMappedBufferRangeEXT",
+            "glGenQueriesEXT",
+            "glDeleteQueriesEXT",
+            "glIsQueryEXT",
+            "glBeginQueryEXT",
+            "glEndQueryEXT",
+            "glGetQueryivEXT",
+            "glGetQueryObjectuivEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

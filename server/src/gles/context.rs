@@ -298,6 +298,10 @@ pub struct Context {
     pub surfaceless: bool,
     /// Name tables.
     pub objects: Objects,
+    /// Query objects (`GL_EXT_occlusion_query_boolean`; a context's own, never shared).
+    pub queries: super::names::Names<super::occlusion::Query>,
+    /// The occlusion query active, if any.
+    pub active_query: Option<super::occlusion::Active>,
     /// Bindings.
     pub bindings: Bindings,
     /// Generic vertex attributes.
@@ -338,6 +342,8 @@ impl Context {
             made_current: false,
             surfaceless: false,
             objects: Objects::default(),
+            queries: Default::default(),
+            active_query: None,
             bindings: Bindings::default(),
             attribs: vec![Attrib::default(); MAX_ATTRIBS],
             raster: Raster::default(),

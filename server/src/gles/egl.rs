@@ -382,6 +382,7 @@ impl GlesExecutor {
             }
             self.r.flush();
             self.current = None;
+            self.r.occlusion = None;
             return Ok(());
         }
         if draw != read {
@@ -392,6 +393,7 @@ impl GlesExecutor {
             let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
             ctx.surfaceless = true;
             self.r.flush();
+            self.r.occlusion = ctx.active_query.and_then(|a| ctx.queries.get(&a.name)).and_then(|q| q.last.clone());
             self.current = Some((context, 0));
             return Ok(());
         }
@@ -405,6 +407,8 @@ impl GlesExecutor {
             ctx.raster.scissor = [0, 0, w, h];
         }
         self.r.flush();
+        // Draws count for the occlusion query this context has active.
+        self.r.occlusion = ctx.active_query.and_then(|a| ctx.queries.get(&a.name)).and_then(|q| q.last.clone());
         self.current = Some((context, draw));
         Ok(())
     }
@@ -454,6 +458,7 @@ impl GlesExecutor {
         if self.current.is_some_and(|(c, _)| c == context) {
             self.r.flush();
             self.current = None;
+            self.r.occlusion = None;
         }
         self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)
     }

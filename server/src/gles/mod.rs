@@ -35,6 +35,7 @@ mod labels;
 mod mapping;
 mod multi_draw;
 mod names;
+mod occlusion;
 mod pixels;
 mod programs;
 mod queries;

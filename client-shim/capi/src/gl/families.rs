@@ -261,6 +261,7 @@ pub mod names {
         glGenFramebuffers;
         glGenRenderbuffers;
         glGenTextures;
+        glGenQueriesEXT;
     }
 }
 
@@ -271,6 +272,7 @@ pub mod delete {
         glDeleteFramebuffers;
         glDeleteRenderbuffers;
         glDeleteTextures;
+        glDeleteQueriesEXT;
     }
 }
 
@@ -297,6 +299,8 @@ pub mod get_arrays {
         glGetUniformiv(program: GLuint, location: GLint) -> GLint;
         glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
         glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
+        glGetQueryivEXT(target: GLenum, pname: GLenum) -> GLint;
+        glGetQueryObjectuivEXT(id: GLuint, pname: GLenum) -> GLuint;
     }
 }
 

@@ -77,6 +77,8 @@ impl Renderer {
             scissor,
             stencil_ref: stencil.map(|(s, _)| s).unwrap_or(0),
             blend_color: [0.0; 4],
+            // Clears are no draws: an occlusion query does not count them.
+            query: None,
         });
     }
 

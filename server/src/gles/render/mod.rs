@@ -13,6 +13,7 @@
 
 mod clears;
 mod mipmaps;
+pub mod occlusion;
 mod passes;
 mod pipelines;
 mod readback;
@@ -28,6 +29,7 @@ use super::programs::LinkedProgram;
 use super::textures::SamplerState;
 use crate::gpu::Gpu;
 use clears::ClearKey;
+use occlusion::Occlusion;
 use passes::Pass;
 use pipelines::PipelineKey;
 
@@ -158,6 +160,8 @@ pub struct Renderer {
     layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
     /// The client's way onto the queue.
     pub lane: Arc<crate::schedule::Lane>,
+    /// The occlusion query the current context has active: draws recorded count for it.
+    pub occlusion: Option<Arc<Occlusion>>,
 }
 
 /// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.
@@ -292,6 +296,7 @@ impl Renderer {
             align,
             fixed,
             layouts: HashMap::new(),
+            occlusion: None,
         }
     }
 }

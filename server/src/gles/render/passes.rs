@@ -6,6 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::super::enums::*;
+use super::occlusion::{Occlusion, PassQueries};
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
 
 /// What a recorded draw binds at group 0.
@@ -45,6 +46,8 @@ pub(super) struct Recorded {
     pub(super) stencil_ref: u32,
     /// Blend constant.
     pub(super) blend_color: [f64; 4],
+    /// The occlusion query it counts for (`GL_EXT_occlusion_query_boolean`).
+    pub(super) query: Option<Arc<Occlusion>>,
 }
 
 /// The open pass: its target, load operations and recorded draws.
@@ -75,6 +78,11 @@ impl Renderer {
         self.pass.as_ref().is_some_and(|p| {
             !p.draws.is_empty() || p.clear_color.is_some() || p.clear_depth.is_some() || p.clear_stencil.is_some()
         })
+    }
+
+    /// Whether the open pass has draws that count for occlusion query `q`.
+    pub fn counts_for(&self, q: &Arc<Occlusion>) -> bool {
+        self.pass.as_ref().is_some_and(|p| p.draws.iter().any(|r| r.query.as_ref().is_some_and(|d| Arc::ptr_eq(d, q))))
     }
 
     /// The open pass for `target`; a pass open for another target is submitted first.
@@ -159,6 +167,7 @@ impl Renderer {
             scissor: spec.scissor,
             stencil_ref: spec.stencil_ref,
             blend_color: spec.blend_color,
+            query: self.occlusion.clone(),
         };
         self.pass_for(target).draws.push(rec);
     }
@@ -173,8 +182,15 @@ impl Renderer {
         let groups = self.bind_groups(&pass, ring.as_ref());
         let mut enc =
             self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("gles pass") });
-        encode(&mut enc, &pass, &groups, ring.as_ref());
+        let queries = PassQueries::new(&self.gpu, pass.draws.iter().filter_map(|r| r.query.clone()).collect());
+        encode(&mut enc, &pass, &groups, ring.as_ref(), queries.as_ref());
+        if let Some(q) = &queries {
+            q.resolve(&mut enc);
+        }
         self.lane.submit(&self.gpu, vec![enc.finish()]);
+        if let Some(q) = queries {
+            q.read_back();
+        }
         if let Some(e) = pollster::block_on(guard.pop()) {
             self.errors.push(error_chain(&e));
         }
@@ -282,12 +298,14 @@ impl Renderer {
     }
 }
 
-/// Encodes `pass` with the bind groups from `bind_groups` and the ring holding its staged data.
+/// Encodes `pass` with the bind groups from `bind_groups`, the ring holding its staged data,
+/// and the query set its queried draws count into.
 fn encode(
     enc: &mut wgpu::CommandEncoder,
     pass: &Pass,
     groups: &[Option<wgpu::BindGroup>],
     ring: Option<&wgpu::Buffer>,
+    queries: Option<&PassQueries>,
 ) {
     let t = &pass.target;
     let clear = |op: Option<wgpu::Color>| op.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load);
@@ -314,12 +332,22 @@ fn encode(
         color_attachments: if t.color.is_some() { &colors } else { &[] },
         depth_stencil_attachment: depth,
         timestamp_writes: None,
-        occlusion_query_set: None,
+        occlusion_query_set: queries.map(PassQueries::set),
         multiview_mask: None,
     });
+    let mut slot = 0;
     for (r, g) in pass.draws.iter().zip(groups) {
+        // Every queried draw has its slot, counted even where nothing is drawn.
+        let queried = r.query.is_some() && queries.is_some();
+        if queried {
+            rp.begin_occlusion_query(slot);
+            slot += 1;
+        }
         let [sx, sy, sw, sh] = r.scissor;
         if sw == 0 || sh == 0 {
+            if queried {
+                rp.end_occlusion_query();
+            }
             continue;
         }
         rp.set_pipeline(&r.pipeline);
@@ -361,6 +389,9 @@ fn encode(
             None => {
                 rp.draw(r.first..r.first + r.count, i0..i0 + n);
             }
+        }
+        if queried {
+            rp.end_occlusion_query();
         }
     }
 }

@@ -1,0 +1,136 @@
+//! `GL_EXT_occlusion_query_boolean`: query objects, one active occlusion query per context,
+//! and its answer, validated in Mesa's order. Each begin/end is a [`render::occlusion::Occlusion`]
+//! that the draws recorded meanwhile count for; the answer waits only for the passes those
+//! draws went into.
+
+use std::sync::Arc;
+
+use strata_protocol::Slice;
+
+use super::context::Context;
+use super::error::{GlError, GlResult};
+use super::render::occlusion::Occlusion;
+use super::GlesExecutor;
+
+/// `GL_ANY_SAMPLES_PASSED_EXT`.
+const ANY_SAMPLES_PASSED: u32 = 0x8C2F;
+/// `GL_ANY_SAMPLES_PASSED_CONSERVATIVE_EXT`.
+const ANY_SAMPLES_PASSED_CONSERVATIVE: u32 = 0x8D6A;
+/// `GL_CURRENT_QUERY_EXT`.
+const CURRENT_QUERY: u32 = 0x8865;
+/// `GL_QUERY_RESULT_EXT`.
+const QUERY_RESULT: u32 = 0x8866;
+/// `GL_QUERY_RESULT_AVAILABLE_EXT`.
+const QUERY_RESULT_AVAILABLE: u32 = 0x8867;
+
+/// A query object: a name from `glGenQueriesEXT`, which becomes a query of one target when it
+/// is first begun.
+#[derive(Default)]
+pub struct Query {
+    /// Its target once begun (0 before).
+    pub target: u32,
+    /// Its last begin/end.
+    pub last: Option<Arc<Occlusion>>,
+}
+
+/// The occlusion query a context has active: its name and target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Active {
+    /// The query's name.
+    pub name: u32,
+    /// `GL_ANY_SAMPLES_PASSED_EXT` or `GL_ANY_SAMPLES_PASSED_CONSERVATIVE_EXT`.
+    pub target: u32,
+}
+
+/// Checks an occlusion query target.
+fn target(t: u32) -> GlResult<u32> {
+    match t {
+        ANY_SAMPLES_PASSED | ANY_SAMPLES_PASSED_CONSERVATIVE => Ok(t),
+        _ => Err(GlError::InvalidEnum),
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenQueriesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        ctx.queries.generate(names.iter());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteQueriesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.queries.delete(names.iter()) {
+            // Deleting the active query ends it.
+            if ctx.active_query.is_some_and(|a| a.name == n) {
+                ctx.active_query = None;
+                self.r.occlusion = None;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glIsQueryEXT(&mut self, ctx: &mut Context, id: u32) -> bool {
+        ctx.queries.get(&id).is_some_and(|q| q.target != 0)
+    }
+
+    pub(super) fn glBeginQueryEXT(&mut self, ctx: &mut Context, target_: u32, id: u32) -> GlResult {
+        let target = target(target_)?;
+        // Both targets share one slot: one occlusion query at a time.
+        if id == 0 || ctx.active_query.is_some() {
+            return Err(GlError::InvalidOperation);
+        }
+        let q = ctx.queries.get_mut(&id).ok_or(GlError::InvalidOperation)?;
+        if q.target != 0 && q.target != target {
+            return Err(GlError::InvalidOperation);
+        }
+        let occlusion = Occlusion::new();
+        q.target = target;
+        q.last = Some(occlusion.clone());
+        ctx.active_query = Some(Active { name: id, target });
+        self.r.occlusion = Some(occlusion);
+        Ok(())
+    }
+
+    pub(super) fn glEndQueryEXT(&mut self, ctx: &mut Context, target_: u32) -> GlResult {
+        let target = target(target_)?;
+        if ctx.active_query.is_none_or(|a| a.target != target) {
+            return Err(GlError::InvalidOperation);
+        }
+        ctx.active_query = None;
+        self.r.occlusion = None;
+        Ok(())
+    }
+
+    pub(super) fn glGetQueryivEXT(&mut self, ctx: &mut Context, target_: u32, pname: u32) -> Vec<i32> {
+        let r = target(target_).and_then(|t| match pname {
+            CURRENT_QUERY => Ok(ctx.active_query.filter(|a| a.target == t).map_or(0, |a| a.name as i32)),
+            _ => Err(GlError::InvalidEnum),
+        });
+        match r {
+            Ok(v) => vec![v],
+            Err(e) => {
+                ctx.record(e);
+                Vec::new()
+            }
+        }
+    }
+
+    pub(super) fn glGetQueryObjectuivEXT(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Vec<u32> {
+        let active = ctx.active_query.is_some_and(|a| a.name == id);
+        let last = ctx.queries.get(&id).filter(|q| q.target != 0 && !active).and_then(|q| q.last.clone());
+        let Some(occlusion) = last else {
+            ctx.record(GlError::InvalidOperation);
+            return Vec::new();
+        };
+        if !matches!(pname, QUERY_RESULT | QUERY_RESULT_AVAILABLE) {
+            ctx.record(GlError::InvalidEnum);
+            return Vec::new();
+        }
+        // Its draws still in the open pass are submitted first: asked repeatedly, the answer
+        // must become available.
+        if self.r.counts_for(&occlusion) {
+            self.r.flush();
+        }
+        let v = if pname == QUERY_RESULT { occlusion.result(&self.gpu) } else { occlusion.available(&self.gpu) };
+        vec![u32::from(v)]
+    }
+}
