@@ -290,6 +290,10 @@ command_set! {
         /// Starts occlusion query `id`: the draws until `glEndQueryEXT` count for it.
         glBeginQueryEXT [Context] => BeginQueryEXT { target: GLenum, id: GLuint };
         glEndQueryEXT [Context] => EndQueryEXT { target: GLenum };
+        /// `GL_NV_conditional_render`: draws and clears until `glEndConditionalRenderNV` are
+        /// done only if occlusion query `id` passed a sample.
+        glBeginConditionalRenderNV [Context] => BeginConditionalRenderNV { id: GLuint, mode: GLenum };
+        glEndConditionalRenderNV [Context] => EndConditionalRenderNV {};
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

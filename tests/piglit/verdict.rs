@@ -59,6 +59,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "EGL_KHR_surfaceless_context",
     "GL_MESA_bgra",
     "GL_EXT_occlusion_query_boolean",
+    "GL_NV_conditional_render",
     "EGL_KHR_create_context",
 ];
 

@@ -1,7 +1,8 @@
 //! `GL_EXT_occlusion_query_boolean`: queries over draws hidden behind a nearer quad, partly
 //! visible, clipped away by the scissor, absent, and spread over two passes (a framebuffer
 //! object drawn between); both targets; the names, the current query and the errors. Every
-//! answer is marked as a colour beside the drawn scene.
+//! answer is marked as a colour beside the drawn scene. Then `GL_NV_conditional_render` on
+//! such answers.
 
 use super::multi_draw::mark_error;
 use super::*;
@@ -136,7 +137,68 @@ fn occlusion_queries(gl: Gl<'_>, n: &mut Names) -> R {
     Ok(())
 }
 
+/// `GL_NV_conditional_render`: draws and clears on the answers of a hidden and a visible draw's
+/// queries, in each mode; the errors marked as colours.
+fn conditional_render(gl: Gl<'_>, n: &mut Names) -> R {
+    let (hidden, visible, never, idle) = (n.next(), n.next(), n.next(), n.next());
+    gl.glGenQueriesEXT(Slice::new(&[hidden, visible, never, idle]))?;
+    program(gl, n, VS_COLOR, FS_VARY, &["pos", "col"])?;
+    gl.glEnable(DEPTH_TEST)?;
+    gl.glDepthFunc(LESS)?;
+    gl.glClear(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT)?;
+    quad(gl, n, [-1.0, -1.0, 1.0, 0.0], -0.5, [0.3, 0.3, 0.3])?;
+    gl.glBeginQueryEXT(ANY_SAMPLES_PASSED, hidden)?;
+    quad(gl, n, [-0.5, -0.9, 0.5, -0.1], 0.5, [1.0, 0.0, 0.0])?;
+    gl.glEndQueryEXT(ANY_SAMPLES_PASSED)?;
+    gl.glBeginQueryEXT(ANY_SAMPLES_PASSED, visible)?;
+    quad(gl, n, [-0.5, 0.1, 0.5, 0.5], 0.5, [0.0, 0.0, 1.0])?;
+    gl.glEndQueryEXT(ANY_SAMPLES_PASSED)?;
+    gl.glDisable(DEPTH_TEST)?;
+    let mut marks = Vec::new();
+    // Each mode, on each answer: a quad across the window, and a scissored clear.
+    for (i, mode) in (0x8E13..=0x8E16).enumerate() {
+        for (j, id) in [hidden, visible].into_iter().enumerate() {
+            gl.glBeginConditionalRenderNV(id, mode)?;
+            marks.push(gl.glGetError()?);
+            let x = -1.0 + (i * 2 + j) as f32 * 0.25;
+            quad(gl, n, [x, -1.0, x + 0.2, 1.0], 0.0, [0.0, 1.0, 0.0])?;
+            gl.glEnable(SCISSOR_TEST)?;
+            gl.glScissor((i * 2 + j) as i32 * 8, 40, 4, 4)?;
+            gl.glClearColor(1.0, 1.0, 0.0, 1.0)?;
+            gl.glClear(COLOR_BUFFER_BIT)?;
+            gl.glDisable(SCISSOR_TEST)?;
+            gl.glEndConditionalRenderNV()?;
+            marks.push(gl.glGetError()?);
+        }
+    }
+    // A name that is no query, 0, one never begun, a bad mode, one active, twice, and an end
+    // with none begun.
+    gl.glBeginConditionalRenderNV(999, 0x8E13)?;
+    marks.push(gl.glGetError()?);
+    gl.glBeginConditionalRenderNV(0, 0x8E13)?;
+    marks.push(gl.glGetError()?);
+    gl.glBeginConditionalRenderNV(never, 0x8E13)?;
+    marks.push(gl.glGetError()?);
+    gl.glBeginConditionalRenderNV(visible, 0x1234)?;
+    marks.push(gl.glGetError()?);
+    gl.glBeginQueryEXT(ANY_SAMPLES_PASSED, idle)?;
+    gl.glBeginConditionalRenderNV(idle, 0x8E13)?;
+    marks.push(gl.glGetError()?);
+    gl.glEndQueryEXT(ANY_SAMPLES_PASSED)?;
+    gl.glBeginConditionalRenderNV(visible, 0x8E13)?;
+    gl.glBeginConditionalRenderNV(visible, 0x8E13)?;
+    marks.push(gl.glGetError()?);
+    gl.glEndConditionalRenderNV()?;
+    gl.glEndConditionalRenderNV()?;
+    marks.push(gl.glGetError()?);
+    for (i, e) in marks.into_iter().enumerate() {
+        mark_error(gl, i as i32, e)?;
+    }
+    Ok(())
+}
+
 /// Every program of this file, with its tolerance.
 pub fn all() -> Vec<Case> {
-    vec![Case { name: "occlusion_queries", run: occlusion_queries, tol: DEFAULT, expects_error: false }]
+    let c = |name, run| Case { name, run, tol: DEFAULT, expects_error: false };
+    vec![c("occlusion_queries", occlusion_queries), c("conditional_render", conditional_render)]
 }

@@ -228,6 +228,8 @@ mod tests {
             "glEndQueryEXT",
             "glGetQueryivEXT",
             "glGetQueryObjectuivEXT",
+            "glBeginConditionalRenderNV",
+            "glEndConditionalRenderNV",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

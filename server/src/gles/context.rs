@@ -302,6 +302,9 @@ pub struct Context {
     pub queries: super::names::Names<super::occlusion::Query>,
     /// The occlusion query active, if any.
     pub active_query: Option<super::occlusion::Active>,
+    /// While a conditional render is active (`GL_NV_conditional_render`): whether its query
+    /// passed a sample, so that draws and clears are done.
+    pub conditional: Option<bool>,
     /// Bindings.
     pub bindings: Bindings,
     /// Generic vertex attributes.
@@ -344,6 +347,7 @@ impl Context {
             objects: Objects::default(),
             queries: Default::default(),
             active_query: None,
+            conditional: None,
             bindings: Bindings::default(),
             attribs: vec![Attrib::default(); MAX_ATTRIBS],
             raster: Raster::default(),

@@ -448,6 +448,10 @@ impl GlesExecutor {
             let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first, shape)? else {
                 return Ok(());
             };
+            // Validated, and discarded by a conditional render whose query passed no sample.
+            if ctx.conditional == Some(false) {
+                return Ok(());
+            }
             if let Some((vs, fs)) = reversed_stages.clone() {
                 spec.vs = vs;
                 spec.fs = fs;
@@ -518,7 +522,7 @@ impl GlesExecutor {
         let stencil = (mask & STENCIL_BUFFER_BIT != 0 && target.has_stencil() && ds.stencil[0].write & 0xff != 0)
             .then_some((ds.clear_stencil as u32 & 0xff, ds.stencil[0].write & 0xff));
         let scissor = ctx.raster.scissor_test.then(|| clip_rect(ctx.raster.scissor, &target));
-        if color.is_none() && depth.is_none() && stencil.is_none() {
+        if (color.is_none() && depth.is_none() && stencil.is_none()) || ctx.conditional == Some(false) {
             return Ok(());
         }
         renderer.clear(&target, color, depth, stencil, scissor);

@@ -1,5 +1,6 @@
 //! `GL_EXT_occlusion_query_boolean`: query objects, one active occlusion query per context,
-//! and its answer, validated in Mesa's order. Each begin/end is a [`render::occlusion::Occlusion`]
+//! and its answer, validated in Mesa's order; `GL_NV_conditional_render` on its answers, which
+//! every mode waits for (the no-wait modes may, and then never draw what should not be drawn). Each begin/end is a [`render::occlusion::Occlusion`]
 //! that the draws recorded meanwhile count for; the answer waits only for the passes those
 //! draws went into.
 
@@ -22,6 +23,8 @@ const CURRENT_QUERY: u32 = 0x8865;
 const QUERY_RESULT: u32 = 0x8866;
 /// `GL_QUERY_RESULT_AVAILABLE_EXT`.
 const QUERY_RESULT_AVAILABLE: u32 = 0x8867;
+/// `GL_QUERY_WAIT_NV` … `GL_QUERY_BY_REGION_NO_WAIT_NV`: conditional render modes.
+const CONDITIONAL_MODES: std::ops::RangeInclusive<u32> = 0x8E13..=0x8E16;
 
 /// A query object: a name from `glGenQueriesEXT`, which becomes a query of one target when it
 /// is first begun.
@@ -98,6 +101,28 @@ impl GlesExecutor {
         ctx.active_query = None;
         self.r.occlusion = None;
         Ok(())
+    }
+
+    pub(super) fn glBeginConditionalRenderNV(&mut self, ctx: &mut Context, id: u32, mode: u32) -> GlResult {
+        let q = ctx.queries.get(&id).filter(|_| id != 0).ok_or(GlError::InvalidValue)?;
+        if !CONDITIONAL_MODES.contains(&mode) {
+            return Err(GlError::InvalidEnum);
+        }
+        let active = ctx.active_query.is_some_and(|a| a.name == id);
+        let last = q.last.clone().filter(|_| q.target != 0 && !active);
+        if ctx.conditional.is_some() {
+            return Err(GlError::InvalidOperation);
+        }
+        let occlusion = last.ok_or(GlError::InvalidOperation)?;
+        if self.r.counts_for(&occlusion) {
+            self.r.flush();
+        }
+        ctx.conditional = Some(occlusion.result(&self.gpu));
+        Ok(())
+    }
+
+    pub(super) fn glEndConditionalRenderNV(&mut self, ctx: &mut Context) -> GlResult {
+        ctx.conditional.take().map(|_| ()).ok_or(GlError::InvalidOperation)
     }
 
     pub(super) fn glGetQueryivEXT(&mut self, ctx: &mut Context, target_: u32, pname: u32) -> Vec<i32> {

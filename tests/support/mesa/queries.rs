@@ -60,4 +60,15 @@ impl Arms<'_> {
         ext!(self, "glGetQueryObjectuivEXT", fn(u32, u32, *mut u32) -> (), q, *pname, &mut v);
         Ok(if v == u32::MAX { Vec::new() } else { vec![v] })
     }
+
+    pub(super) fn glBeginConditionalRenderNV(&mut self, id: &GLuint, mode: &GLenum) -> Result<(), ClientError> {
+        let q = self.query(*id);
+        ext!(self, "glBeginConditionalRenderNV", fn(u32, u32) -> (), q, *mode);
+        Ok(())
+    }
+
+    pub(super) fn glEndConditionalRenderNV(&mut self) -> Result<(), ClientError> {
+        ext!(self, "glEndConditionalRenderNV", fn() -> (),);
+        Ok(())
+    }
 }
