@@ -2,7 +2,7 @@
 //! angle, drawn with anisotropy 1, 4 and 16 (trilinear filtering, which wgpu needs for it);
 //! the parameter's errors, clamping and queries marked along the top.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::new_texture;
 use super::*;
 
@@ -26,9 +26,7 @@ fn anisotropic_state(gl: Gl<'_>, n: &mut Names) -> R {
         marks.push(gl.glGetTexParameteriv(TEXTURE_2D, TEXTURE_MAX_ANISOTROPY_EXT)?.first().copied().unwrap_or(-1) as u32);
     }
     gl.glViewport(0, 0, W, H)?;
-    for (i, m) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, m)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

@@ -3,7 +3,7 @@
 //! that do not exist, unknown types, negative lengths and sizes, labels too long), drawn as
 //! colours.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::*;
 
 const BUFFER_OBJECT_EXT: u32 = 0x9151;
@@ -85,9 +85,7 @@ fn debug_label(gl: Gl<'_>, n: &mut Names) -> R {
         }
     }
     marks.push(label_mark(gl, BUFFER_OBJECT_EXT, buffer, -1)?);
-    for (i, m) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, m)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

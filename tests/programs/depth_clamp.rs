@@ -2,7 +2,7 @@
 //! far plane, drawn into a depth texture with the depth range [0.25, 0.75], clamped (left) and
 //! clipped (right); the depths shown; the capability's queries and errors marked as colours.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::*;
 
 const DEPTH_CLAMP: u32 = 0x864F;
@@ -39,9 +39,7 @@ fn depth_clamp(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBindTexture(TEXTURE_2D, tex)?;
     program(gl, n, VS_TEX, FS_DEPTH_RED, &["pos", "uv"])?;
     textured_quad(gl, n, 0.0, 1.0)?;
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

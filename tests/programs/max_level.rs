@@ -3,7 +3,7 @@
 //! level 2); a texture with only levels 0 and 1, complete with the limit at 1 and not at 2;
 //! the parameter's default, rounding, errors and queries marked as colours.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::{blit, new_texture};
 use super::*;
 
@@ -62,9 +62,7 @@ fn max_level(gl: Gl<'_>, n: &mut Names) -> R {
     marks.push(gl.glGetTexParameteriv(TEXTURE_CUBE_MAP, TEXTURE_MAX_LEVEL)?.first().copied().unwrap_or(-7) as u32);
     gl.glTexParameteri(0x1234, TEXTURE_MAX_LEVEL, 3)?;
     marks.push(gl.glGetError()?);
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

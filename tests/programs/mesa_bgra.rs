@@ -2,7 +2,7 @@
 //! images RGBA data, whole and in part; `GL_BGR_EXT` is a format no upload takes. The images
 //! are drawn, and the errors marked as colours.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::{blit, new_texture};
 use super::*;
 
@@ -37,9 +37,7 @@ fn mesa_bgra(gl: Gl<'_>, n: &mut Names) -> R {
     }
     gl.glCopyTexImage2D(TEXTURE_2D, 0, BGRA, 0, 0, 2, 2, 0)?;
     marks.push(gl.glGetError()?);
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

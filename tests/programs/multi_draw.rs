@@ -19,6 +19,14 @@ pub(super) fn mark_error(gl: Gl<'_>, i: i32, e: u32) -> R {
     gl.glDisable(SCISSOR_TEST)
 }
 
+/// Marks each of `marks` (errors or values) in its cell, in order.
+pub(super) fn mark_all(gl: Gl<'_>, marks: &[u32]) -> R {
+    for (i, &e) in marks.iter().enumerate() {
+        mark_error(gl, i as i32, e)?;
+    }
+    Ok(())
+}
+
 /// Quads 0, 2 and 3 as strips from one call (quad 1's draw has count 0, and a draw count of
 /// two leaves a third entry unread).
 fn multi_draw_arrays(gl: Gl<'_>, n: &mut Names) -> R {

@@ -4,7 +4,7 @@
 //! answer is marked as a colour beside the drawn scene. Then `GL_NV_conditional_render` on
 //! such answers.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::*;
 
 const ANY_SAMPLES_PASSED: u32 = 0x8C2F;
@@ -131,9 +131,7 @@ fn occlusion_queries(gl: Gl<'_>, n: &mut Names) -> R {
     occlusion(gl, n, &mut marks)?;
     misuse(gl, n, &mut marks)?;
     gl.glDisable(DEPTH_TEST)?;
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 
@@ -191,9 +189,7 @@ fn conditional_render(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glEndConditionalRenderNV()?;
     gl.glEndConditionalRenderNV()?;
     marks.push(gl.glGetError()?);
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

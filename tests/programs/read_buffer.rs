@@ -2,7 +2,7 @@
 //! object, each keeping its own selection; reads and copies with no buffer selected; the
 //! errors; `GL_READ_BUFFER_NV`; all drawn as colours.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::*;
 
 const READ_BUFFER_NV: u32 = 0x0C02;
@@ -63,9 +63,7 @@ fn read_buffer(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glViewport(0, 0, 32, 32)?;
     textured_quad(gl, n, 0.0, 1.0)?;
     gl.glViewport(0, 0, W, H)?;
-    for (i, m) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, m)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

@@ -2,7 +2,7 @@
 //! sampled level by level; attachments of levels whose texture's levels are not all defined
 //! (incomplete), and of levels out of range (errors); all marked along the top.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::{blit, new_texture};
 use super::*;
 
@@ -60,9 +60,7 @@ fn render_mipmap(gl: Gl<'_>, n: &mut Names) -> R {
     blit(gl, n, [0, 0, 16, 16])?;
     blit(gl, n, [20, 0, 4, 4])?;
     gl.glViewport(0, 0, W, H)?;
-    for (i, m) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, m)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

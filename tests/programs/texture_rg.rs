@@ -3,7 +3,7 @@
 //! rendered into, whose absent channels draws and clears leave alone; reads in RED and RG; the
 //! framebuffers' channel bits and read format.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::{blit, float_data, new_texture};
 use super::*;
 
@@ -77,9 +77,7 @@ fn rg_render(gl: Gl<'_>, n: &mut Names) -> R {
         blit(gl, n, [16 + 16 * i as i32, 0, 16, 16])?;
     }
     gl.glViewport(0, 0, W, H)?;
-    for (i, m) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, m)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 

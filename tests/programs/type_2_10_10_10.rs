@@ -4,7 +4,7 @@
 //! the pairs that are refused and a framebuffer with such an image attached (incomplete on
 //! Mesa), each marked as a colour.
 
-use super::multi_draw::mark_error;
+use super::multi_draw::mark_all;
 use super::textures::{blit, new_texture};
 use super::*;
 
@@ -74,9 +74,7 @@ fn type_2_10_10_10(gl: Gl<'_>, n: &mut Names) -> R {
     marks.push(gl.glCheckFramebufferStatus(FRAMEBUFFER)?);
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     marks.push(gl.glGetError()?);
-    for (i, e) in marks.into_iter().enumerate() {
-        mark_error(gl, i as i32, e)?;
-    }
+    mark_all(gl, &marks)?;
     Ok(())
 }
 
