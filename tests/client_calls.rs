@@ -8,7 +8,9 @@
 //! - `pack`: where `glReadPixels` puts its rows (`GL_PACK_ALIGNMENT`, `GL_NV_pack_subimage`,
 //!   `GL_ANGLE_pack_reverse_row_order`), and how many bytes uploads of each format read;
 //! - `surfaceless`: contexts current with no surface (`EGL_KHR_surfaceless_context`,
-//!   `GL_OES_surfaceless_context`), which the library passes on.
+//!   `GL_OES_surfaceless_context`), which the library passes on;
+//! - `robustness`: the reset status and the reads bounded by the application's buffer size
+//!   (`GL_EXT_robustness`, `GL_KHR_robustness`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -29,6 +31,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 mod mapping;
 #[path = "client_calls/pack.rs"]
 mod pack;
+#[path = "client_calls/robustness.rs"]
+mod robustness;
 #[path = "client_calls/surfaceless.rs"]
 mod surfaceless;
 /// Declares [`Api`]: each entry point's field name, C name and prototype.
@@ -103,6 +107,15 @@ api! {
     egl_get_current_surface = "eglGetCurrentSurface": fn(i32) -> Ptr;
     egl_get_error = "eglGetError": fn() -> i32;
     egl_swap_interval = "eglSwapInterval": fn(Ptr, i32) -> u32;
+    reset_status_ext = "glGetGraphicsResetStatusEXT": fn() -> u32;
+    reset_status_khr = "glGetGraphicsResetStatusKHR": fn() -> u32;
+    readn_pixels_ext = "glReadnPixelsEXT": fn(i32, i32, i32, i32, u32, u32, i32, *mut c_void);
+    readn_pixels_khr = "glReadnPixelsKHR": fn(i32, i32, i32, i32, u32, u32, i32, *mut c_void);
+    getn_uniform_fv = "glGetnUniformfvEXT": fn(u32, i32, i32, *mut f32);
+    getn_uniform_iv = "glGetnUniformivKHR": fn(u32, i32, i32, *mut i32);
+    get_uniform_location = "glGetUniformLocation": fn(u32, *const i8) -> i32;
+    uniform4f = "glUniform4f": fn(i32, f32, f32, f32, f32);
+    get_booleanv = "glGetBooleanv": fn(u32, *mut u8);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -141,7 +154,7 @@ impl Run {
 
     /// Compiles and uses a program from `vs` and `fs`, attributes 0 and 1 named `pos` and
     /// `color` (the second may be unused).
-    fn program(&mut self, vs: &str, fs: &str) {
+    fn program(&mut self, vs: &str, fs: &str) -> u32 {
         let gl = self.gl;
         // SAFETY: a context is current; the strings are NUL-terminated.
         unsafe {
@@ -158,8 +171,9 @@ impl Run {
             }
             (gl.link_program)(p);
             (gl.use_program)(p);
+            self.note("program");
+            p
         }
-        self.note("program");
     }
 }
 
@@ -222,8 +236,12 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 3] =
-        [("mapping", mapping::sequence), ("pack", pack::sequence), ("surfaceless", surfaceless::sequence)];
+    let sequences: [Sequence; 4] = [
+        ("mapping", mapping::sequence),
+        ("pack", pack::sequence),
+        ("surfaceless", surfaceless::sequence),
+        ("robustness", robustness::sequence),
+    ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {
         let mut r = Run { gl, egl, log: Log(Vec::new()) };

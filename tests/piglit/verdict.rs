@@ -60,6 +60,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_MESA_bgra",
     "GL_EXT_occlusion_query_boolean",
     "GL_NV_conditional_render",
+    "GL_EXT_robustness",
+    "GL_KHR_robustness",
     "EGL_KHR_create_context",
 ];
 

@@ -492,6 +492,7 @@ gl_modules!(
     hand,
     draws,
     mapping,
+    robustness,
     crate::vao,
     crate::debug,
     crate::discard,
@@ -505,3 +506,6 @@ pub mod draws;
 
 /// Mapped buffers (`GL_OES_mapbuffer`, `GL_EXT_map_buffer_range`).
 pub mod mapping;
+
+/// The reset status and bounded reads (`GL_EXT_robustness`, `GL_KHR_robustness`).
+pub mod robustness;

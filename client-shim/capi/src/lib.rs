@@ -156,6 +156,8 @@ mod tests {
             ("GL_OES_vertex_array_object", 4),
             ("GL_OES_mapbuffer", 3),
             ("GL_EXT_map_buffer_range", 2),
+            ("GL_EXT_robustness", 4),
+            ("GL_KHR_robustness", 5),
         ] {
             let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
             let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
@@ -230,6 +232,15 @@ mod tests {
             "glGetQueryObjectuivEXT",
             "glBeginConditionalRenderNV",
             "glEndConditionalRenderNV",
+            "glGetGraphicsResetStatusEXT",
+            "glReadnPixelsEXT",
+            "glGetnUniformfvEXT",
+            "glGetnUniformivEXT",
+            "glGetGraphicsResetStatusKHR",
+            "glReadnPixelsKHR",
+            "glGetnUniformfvKHR",
+            "glGetnUniformivKHR",
+            "glGetnUniformuivKHR",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

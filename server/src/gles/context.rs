@@ -332,6 +332,8 @@ pub struct Context {
     pub no_error: bool,
     /// Created with `EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR` (`GL_KHR_context_flush_control`).
     pub release_none: bool,
+    /// Created with `EGL_LOSE_CONTEXT_ON_RESET_KHR`: `GL_RESET_NOTIFICATION_STRATEGY_EXT`.
+    pub lose_on_reset: bool,
     /// Reads from the default framebuffer select no colour buffer (`GL_NV_read_buffer`).
     pub read_none: bool,
 }
@@ -361,6 +363,7 @@ impl Context {
             derivative_hint: DONT_CARE,
             no_error: false,
             release_none: false,
+            lose_on_reset: false,
             read_none: false,
         }
     }

@@ -19,6 +19,8 @@ pub(super) struct ContextAttribs {
     pub(super) no_error: bool,
     /// No flush when the context is released (`EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR`).
     pub(super) release_none: bool,
+    /// `EGL_LOSE_CONTEXT_ON_RESET_KHR` asked for (`GL_RESET_NOTIFICATION_STRATEGY_EXT`).
+    pub(super) lose_on_reset: bool,
 }
 
 /// `EGL_KHR_create_context_no_error`'s attribute.
@@ -53,9 +55,10 @@ pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
             [EGL_CONTEXT_PRIORITY_LEVEL_IMG, v] => {
                 out.priority = Some(Priority::from_egl_level(v).ok_or(EGL_BAD_ATTRIBUTE)?)
             }
-            // Taken (as Mesa takes it) though nothing here resets: no robustness is offered.
-            [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR] =>
-                {}
+            // Kept for GL_RESET_NOTIFICATION_STRATEGY_EXT (EXT_robustness, KHR_robustness).
+            [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, v @ (EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR)] => {
+                out.lose_on_reset = v == EGL_LOSE_CONTEXT_ON_RESET_KHR
+            }
             [EGL_CONTEXT_OPENGL_NO_ERROR_KHR, v] => out.no_error = v != 0,
             [EGL_CONTEXT_RELEASE_BEHAVIOR_KHR, v @ (EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR | EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR)] => {
                 out.release_none = v == EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR

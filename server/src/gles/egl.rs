@@ -342,6 +342,7 @@ impl GlesExecutor {
         ctx.debug.output = asked.debug;
         ctx.no_error = asked.no_error;
         ctx.release_none = asked.release_none;
+        ctx.lose_on_reset = asked.lose_on_reset;
         self.contexts.insert(id, ctx);
         let asked = asked.priority;
         // The class applies to the whole client; the daemon's configuration wins over it.

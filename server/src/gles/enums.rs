@@ -28,6 +28,14 @@ pub const UNSIGNED_INT: u32 = 0x1405;
 pub const FLOAT: u32 = 0x1406;
 pub const FIXED: u32 = 0x140C;
 pub const HALF_FLOAT_OES: u32 = 0x8D61;
+/// `GL_CONTEXT_ROBUST_ACCESS_EXT` (`EXT_robustness`).
+pub const CONTEXT_ROBUST_ACCESS_EXT: u32 = 0x90F3;
+/// `GL_RESET_NOTIFICATION_STRATEGY_EXT`.
+pub const RESET_NOTIFICATION_STRATEGY_EXT: u32 = 0x8256;
+/// `GL_LOSE_CONTEXT_ON_RESET_EXT`.
+pub const LOSE_CONTEXT_ON_RESET_EXT: u32 = 0x8252;
+/// `GL_NO_RESET_NOTIFICATION_EXT`.
+pub const NO_RESET_NOTIFICATION_EXT: u32 = 0x8261;
 /// `GL_FRAMEBUFFER_UNDEFINED_OES` (`OES_surfaceless_context`): framebuffer 0 with no surface.
 pub const FRAMEBUFFER_UNDEFINED_OES: u32 = 0x8219;
 /// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`).

@@ -20,7 +20,7 @@ GL_KHR_no_error GL_KHR_context_flush_control GL_EXT_texture_rg \
 GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_filter_anisotropic \
 GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
-GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render";
+GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -169,6 +169,11 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(super::textures::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
         CONTEXT_RELEASE_BEHAVIOR_KHR => u(if ctx.release_none { 0 } else { CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR }),
+        // EXT_robustness / KHR_robustness: never a robust-access context; the strategy asked.
+        CONTEXT_ROBUST_ACCESS_EXT => b(false),
+        RESET_NOTIFICATION_STRATEGY_EXT => {
+            u(if ctx.lose_on_reset { LOSE_CONTEXT_ON_RESET_EXT } else { NO_RESET_NOTIFICATION_EXT })
+        }
         FRAGMENT_SHADER_DERIVATIVE_HINT_OES => u(ctx.derivative_hint),
         MAX_TEXTURE_SIZE | MAX_CUBE_MAP_TEXTURE_SIZE | MAX_RENDERBUFFER_SIZE => {
             i(MAX_TEXTURE.min(gpu.limits.max_texture_dimension_2d) as i32)

@@ -227,6 +227,8 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetUniformiv(&mut self, ctx: &mut Context, program: u32, location: i32) -> Vec<i32> {
-        self.glGetUniformfv(ctx, program, location).iter().map(|v| *v as i32).collect()
+        // A float uniform read as integers is rounded to the nearest, as GL converts (and Mesa
+        // does); integer and boolean uniforms are whole already.
+        self.glGetUniformfv(ctx, program, location).iter().map(|v| v.round() as i32).collect()
     }
 }
