@@ -461,7 +461,7 @@ fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
 mod families;
 mod pixels;
 pub use families::{active, attrib, delete, get_arrays, get_int, get_strings, matrix, names, uniforms};
-use pixels::{packed_rows, pixel_size, tex_image_bytes};
+use pixels::{read_pixels, tex_image_bytes};
 
 /// The GL entry-point modules, listed once: [`lookup`] searches them in order, and the tests
 /// check every name they export.

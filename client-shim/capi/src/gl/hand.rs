@@ -475,22 +475,8 @@ crate::entry_points! {
         pixels: *mut c_void,
     ) {
         with_gl("glReadPixels", (), |gl| {
-            let data = gl.conn.glReadPixels(x, y, width, height, format, ty)?;
-            // The daemon returns the rows packed by `PACK_ALIGNMENT` (nothing on error); they
-            // are laid out here by the rest of the pack state.
-            match pixel_size(format, ty).filter(|_| !data.0.is_empty() && !pixels.is_null()) {
-                Some(bpp) => {
-                    let rows = packed_rows(&data.0, width as usize, height as usize, bpp, gl.st.pack);
-                    for (at, row) in rows {
-                        // SAFETY: `pixels` has room for the rectangle as the pack state lays it
-                        // out, and `at + row.len()` lies within it.
-                        unsafe { write_out(pixels.cast::<u8>().add(at), row) };
-                    }
-                }
-                // SAFETY: as above, for a format the library does not know the size of.
-                None => unsafe { write_out(pixels.cast::<u8>(), &data.0) },
-            }
-            Ok(())
+            // SAFETY: `pixels` has room for the rectangle as the pack state lays it out.
+            unsafe { read_pixels(gl, [x, y, width, height], format, ty, pixels, None) }
         })
     }
 }

@@ -78,6 +78,46 @@ pub(super) fn tex_image_bytes<'a>(
     Some(unsafe { bytes(pixels, upload_size(width, height, bpp, st.unpack_alignment, st.unpack_rows)) })
 }
 
+/// `glReadPixels` of `[x, y, width, height]` into the application's `pixels`. The daemon
+/// returns the rows packed by `PACK_ALIGNMENT` (nothing on error); they are laid out here by the
+/// rest of the pack state. With a `limit` (the bounded reads of `GL_EXT_robustness`), a read
+/// that does not fit in that many bytes is `GL_INVALID_OPERATION` and writes nothing.
+///
+/// # Safety
+/// A non-null `pixels` has room for the rectangle as the pack state lays it out, or for
+/// `limit` bytes where there is one.
+pub(super) unsafe fn read_pixels(
+    gl: &mut Gl<'_>,
+    [x, y, width, height]: [GLint; 4],
+    format: GLenum,
+    ty: GLenum,
+    pixels: *mut c_void,
+    limit: Option<usize>,
+) -> Result<(), ClientError> {
+    let data = gl.conn.glReadPixels(x, y, width, height, format, ty)?;
+    let Some(bpp) = pixel_size(format, ty).filter(|_| !data.0.is_empty()) else {
+        if limit.is_none() {
+            // SAFETY: see the function's contract (a format whose size the library does not
+            // know is written as the daemon packed it).
+            unsafe { write_out(pixels.cast::<u8>(), &data.0) };
+        }
+        return Ok(());
+    };
+    let rows: Vec<_> = packed_rows(&data.0, width as usize, height as usize, bpp, gl.st.pack).collect();
+    let need = rows.iter().map(|(at, row)| at + row.len()).max().unwrap_or(0);
+    if limit.is_some_and(|l| need > l) {
+        gl.st.err(GL_INVALID_OPERATION);
+        return Ok(());
+    }
+    if !pixels.is_null() {
+        for (at, row) in rows {
+            // SAFETY: see the function's contract: every row ends within the destination.
+            unsafe { write_out(pixels.cast::<u8>().add(at), row) };
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -33,22 +33,9 @@ fn read_bounded(
     pixels: *mut c_void,
 ) {
     with_gl(name, (), |gl| {
-        let data = gl.conn.glReadPixels(x, y, width, height, format, ty)?;
-        let Some(bpp) = pixel_size(format, ty).filter(|_| !data.0.is_empty()) else { return Ok(()) };
-        let rows: Vec<_> = packed_rows(&data.0, width as usize, height as usize, bpp, gl.st.pack).collect();
-        let need = rows.iter().map(|(at, row)| at + row.len()).max().unwrap_or(0);
-        if need > usize::try_from(buf_size).unwrap_or(0) {
-            gl.st.err(GL_INVALID_OPERATION);
-            return Ok(());
-        }
-        if !pixels.is_null() {
-            for (at, row) in rows {
-                // SAFETY: the application's buffer holds `buf_size` bytes, and every row ends
-                // within them.
-                unsafe { write_out(pixels.cast::<u8>().add(at), row) };
-            }
-        }
-        Ok(())
+        let limit = Some(usize::try_from(buf_size).unwrap_or(0));
+        // SAFETY: the application's buffer holds `buf_size` bytes.
+        unsafe { read_pixels(gl, [x, y, width, height], format, ty, pixels, limit) }
     })
 }
 
