@@ -23,23 +23,19 @@ fn texels(n: u32, seed: u32) -> Vec<u8> {
         .collect()
 }
 
+/// A 4×4 image of `internal` from packed `data` in `format`.
+fn upload(gl: Gl<'_>, internal: u32, format: u32, data: &[u8]) -> R {
+    let ty = UNSIGNED_INT_2_10_10_10_REV;
+    gl.glTexImage2D(TEXTURE_2D, 0, internal as i32, 4, 4, 0, format, ty, Some(Blob::borrowed(data)))
+}
+
 fn type_2_10_10_10(gl: Gl<'_>, n: &mut Names) -> R {
     program(gl, n, VS_TEX, FS_TEX, &["pos", "uv"])?;
     let uploads = [(RGBA, RGBA, NEAREST), (RGB, RGB, NEAREST), (RGB10_A2, RGBA, LINEAR), (RGB10, RGB, LINEAR)];
     for (i, (internal, format, filter)) in uploads.into_iter().enumerate() {
         new_texture(gl, n, filter, filter)?;
         let data = texels(16, i as u32);
-        gl.glTexImage2D(
-            TEXTURE_2D,
-            0,
-            internal as i32,
-            4,
-            4,
-            0,
-            format,
-            UNSIGNED_INT_2_10_10_10_REV,
-            Some(Blob::borrowed(&data)),
-        )?;
+        upload(gl, internal, format, &data)?;
         // One texel replaced, by data of the same type.
         let one = texels(1, 99 + i as u32);
         gl.glTexSubImage2D(TEXTURE_2D, 0, 1, 2, 1, 1, format, UNSIGNED_INT_2_10_10_10_REV, Blob::borrowed(&one))?;
@@ -50,17 +46,7 @@ fn type_2_10_10_10(gl: Gl<'_>, n: &mut Names) -> R {
     // Internal format and format apart, a format the type does not pack, sized formats with
     // another type or format.
     for (internal, format) in [(RGBA, RGB), (RGB, RGBA), (LUMINANCE, LUMINANCE), (RGB10, RGBA), (RGB10_A2, RGB)] {
-        gl.glTexImage2D(
-            TEXTURE_2D,
-            0,
-            internal as i32,
-            4,
-            4,
-            0,
-            format,
-            UNSIGNED_INT_2_10_10_10_REV,
-            Some(Blob::borrowed(&data)),
-        )?;
+        upload(gl, internal, format, &data)?;
         marks.push(gl.glGetError()?);
     }
     gl.glTexImage2D(TEXTURE_2D, 0, RGB10_A2 as i32, 4, 4, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&data)))?;
