@@ -1,11 +1,23 @@
 // glClear with a scissor or partial write masks: a full-screen triangle whose colour, depth
 // and stencil writes are governed by the pipeline's masks, the scissor and the reference.
+// Each colour slot (draw buffer) gets its own colour: the clear colour as its image stores it.
 struct ClearParams {
-    color: vec4<f32>,
+    colors: array<vec4<f32>, 8>,
     depth: f32,
 };
 
 @group(0) @binding(0) var<uniform> params: ClearParams;
+
+struct Out {
+    @location(0) c0: vec4<f32>,
+    @location(1) c1: vec4<f32>,
+    @location(2) c2: vec4<f32>,
+    @location(3) c3: vec4<f32>,
+    @location(4) c4: vec4<f32>,
+    @location(5) c5: vec4<f32>,
+    @location(6) c6: vec4<f32>,
+    @location(7) c7: vec4<f32>,
+};
 
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
@@ -14,6 +26,7 @@ fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 }
 
 @fragment
-fn fs() -> @location(0) vec4<f32> {
-    return params.color;
+fn fs() -> Out {
+    let c = params.colors;
+    return Out(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]);
 }

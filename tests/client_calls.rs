@@ -27,6 +27,8 @@ const NONE: i32 = 0x3038;
 const ARRAY: u32 = 0x8892;
 const STATIC_DRAW: u32 = 0x88E4;
 
+#[path = "client_calls/draw_buffers.rs"]
+mod draw_buffers;
 #[path = "client_calls/mapping.rs"]
 mod mapping;
 #[path = "client_calls/pack.rs"]
@@ -116,6 +118,9 @@ api! {
     get_uniform_location = "glGetUniformLocation": fn(u32, *const i8) -> i32;
     uniform4f = "glUniform4f": fn(i32, f32, f32, f32, f32);
     get_booleanv = "glGetBooleanv": fn(u32, *mut u8);
+    draw_buffers_ext = "glDrawBuffersEXT": fn(i32, *const u32);
+    draw_buffers_nv = "glDrawBuffersNV": fn(i32, *const u32);
+    read_buffer_nv = "glReadBufferNV": fn(u32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -236,11 +241,12 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 4] = [
+    let sequences: [Sequence; 5] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
         ("robustness", robustness::sequence),
+        ("draw_buffers", draw_buffers::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -65,6 +65,9 @@ pub struct DebugMessage {
 pub const MAX_LABEL_LENGTH: GLsizei = 256;
 /// `GL_MAX_DEBUG_MESSAGE_LENGTH_KHR`: a message must be shorter than this (in bytes).
 pub const MAX_DEBUG_MESSAGE_LENGTH: GLsizei = 4096;
+/// `GL_MAX_DRAW_BUFFERS_EXT` and `GL_MAX_COLOR_ATTACHMENTS_EXT`: the colour buffers one draw
+/// writes (`GL_EXT_draw_buffers`).
+pub const MAX_DRAW_BUFFERS: GLsizei = 8;
 
 /// Owned raw bytes in a reply (e.g. `glReadPixels`), encoded without per-element framing.
 #[derive(Clone, PartialEq, Eq, Default)]
@@ -294,6 +297,9 @@ command_set! {
         /// done only if occlusion query `id` passed a sample.
         glBeginConditionalRenderNV [Context] => BeginConditionalRenderNV { id: GLuint, mode: GLenum };
         glEndConditionalRenderNV [Context] => EndConditionalRenderNV {};
+        /// `GL_EXT_draw_buffers` / `GL_NV_draw_buffers`: the colour buffer each fragment output
+        /// writes (`GL_NONE`, `GL_BACK` or `GL_COLOR_ATTACHMENTi`); at most `MAX_DRAW_BUFFERS`.
+        glDrawBuffersEXT [Context] => DrawBuffersEXT { buffers: Slice<'a, GLenum> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

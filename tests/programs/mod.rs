@@ -273,6 +273,7 @@ mod compressed;
 mod debug_label;
 mod depth_clamp;
 mod derivatives;
+mod draw_buffers;
 mod frag_depth;
 mod framebuffer_ext;
 pub mod harness;
@@ -315,6 +316,7 @@ pub fn all() -> Vec<Case> {
     all.extend(samplers::all());
     all.extend(type_2_10_10_10::all());
     all.extend(depth_clamp::all());
+    all.extend(draw_buffers::all());
     all.extend(max_level::all());
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());

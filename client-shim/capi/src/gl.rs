@@ -496,6 +496,7 @@ gl_modules!(
     crate::vao,
     crate::debug,
     crate::discard,
+    crate::draw_buffers,
 );
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.

@@ -12,6 +12,7 @@ mod context;
 pub mod debug;
 pub mod discard;
 mod display;
+pub mod draw_buffers;
 pub mod egl;
 pub mod gl;
 mod glvnd;
@@ -158,6 +159,8 @@ mod tests {
             ("GL_EXT_map_buffer_range", 2),
             ("GL_EXT_robustness", 4),
             ("GL_KHR_robustness", 5),
+            ("GL_EXT_draw_buffers", 1),
+            ("GL_NV_draw_buffers", 1),
         ] {
             let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
             let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
@@ -206,6 +209,8 @@ mod tests {
         // The entry points of the extensions the daemon advertises.
         const EXTENSION_ENTRY_POINTS: &[&str] = &[
             "glDiscardFramebufferEXT",
+            "glDrawBuffersEXT",
+            "glDrawBuffersNV",
             "glPolygonOffsetClampEXT",
             "glMaxShaderCompilerThreadsKHR",
             "glDrawElementsBaseVertexOES",

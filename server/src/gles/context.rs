@@ -21,6 +21,8 @@ use super::vertex::Attrib;
 pub const MAX_ATTRIBS: usize = 16;
 /// Texture units (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
 pub const MAX_UNITS: usize = 16;
+/// Colour attachments and draw buffers (`GL_EXT_draw_buffers`).
+pub const MAX_DRAW_BUFFERS: usize = strata_protocol::commands::MAX_DRAW_BUFFERS as usize;
 /// Largest texture, renderbuffer, viewport and surface dimension.
 pub const MAX_TEXTURE: u32 = 8192;
 /// Largest point size (`GL_ALIASED_POINT_SIZE_RANGE`): points are drawn as squares of two
@@ -73,8 +75,12 @@ pub struct Bindings {
     pub units: [[u32; 2]; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.
     pub program: u32,
-    /// `GL_FRAMEBUFFER_BINDING`.
+    /// `GL_FRAMEBUFFER_BINDING`: the framebuffer draws and clears address.
     pub framebuffer: u32,
+    /// The framebuffer reads and copies address. `glBindFramebuffer(GL_FRAMEBUFFER)` binds both;
+    /// Mesa's ES 2.0 also takes `GL_DRAW_FRAMEBUFFER` and `GL_READ_FRAMEBUFFER` there, which
+    /// bind one each.
+    pub read_framebuffer: u32,
     /// `GL_RENDERBUFFER_BINDING`.
     pub renderbuffer: u32,
     /// `GL_VERTEX_ARRAY_BINDING_OES`.
@@ -336,6 +342,8 @@ pub struct Context {
     pub lose_on_reset: bool,
     /// Reads from the default framebuffer select no colour buffer (`GL_NV_read_buffer`).
     pub read_none: bool,
+    /// Draws to the default framebuffer write no colour buffer (`glDrawBuffersEXT(GL_NONE)`).
+    pub draw_none: bool,
 }
 
 impl Context {
@@ -365,6 +373,7 @@ impl Context {
             release_none: false,
             lose_on_reset: false,
             read_none: false,
+            draw_none: false,
         }
     }
 

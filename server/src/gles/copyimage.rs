@@ -65,7 +65,7 @@ impl GlesExecutor {
         h: i32,
         border: i32,
     ) -> GlResult {
-        let src = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
+        let src = self.read_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
         super::read_buffer::read_selected(ctx)?;
         let uid = self.next_uid();
         let account = self.account.clone();
@@ -165,7 +165,8 @@ impl GlesExecutor {
             });
             let color = Some((dst_tex, view));
             let absent = wgpu::ColorWrites::ALPHA;
-            let level_target = Target { key: (uid, 3), color, depth: None, width: lw, height: lh, absent };
+            let level_target =
+                Target { key: (uid, 3), color, more: Vec::new(), depth: None, width: lw, height: lh, absent };
             let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }

@@ -290,8 +290,8 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         stencil,
         bias,
         blend: blend_state,
-        // Channels the colour buffer lacks keep their fixed values.
-        write_mask: color_writes(blend.color_mask) - target.absent,
+        // Channels each colour buffer lacks keep their fixed values (the pipeline masks them).
+        write_mask: color_writes(blend.color_mask),
         points: false,
         reversed_z: None,
         unclipped_depth: raster.depth_clamp,
@@ -514,8 +514,8 @@ impl GlesExecutor {
         let renderer = &mut self.r;
         let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
         let writes = color_writes(blend.color_mask);
-        let color = (mask & COLOR_BUFFER_BIT != 0 && target.color.is_some() && !writes.is_empty())
-            .then(|| (target.stored(blend.clear_color.map(|c| c.clamp(0.0, 1.0))), writes));
+        let color = (mask & COLOR_BUFFER_BIT != 0 && target.has_color() && !writes.is_empty())
+            .then(|| (blend.clear_color.map(|c| c.clamp(0.0, 1.0)), writes));
         let clear_depth = if reversed { Mirror::depth(ds.clear_depth) } else { ds.clear_depth };
         let depth =
             (mask & DEPTH_BUFFER_BIT != 0 && target.has_depth() && ds.depth_mask).then_some((clear_depth, true));

@@ -255,6 +255,12 @@ pub const LUMINANCE8_ALPHA8_OES: u32 = 0x8045;
 /// A sized format of an extension Strata does not offer, which Mesa knows.
 pub const DEPTH_COMPONENT32_OES: u32 = 0x81A7;
 pub const COLOR_ATTACHMENT0: u32 = 0x8CE0;
+pub const READ_FRAMEBUFFER: u32 = 0x8CA8;
+pub const DRAW_FRAMEBUFFER: u32 = 0x8CA9;
+pub const MAX_COLOR_ATTACHMENTS: u32 = 0x8CDF;
+pub const MAX_DRAW_BUFFERS: u32 = 0x8824;
+pub const DRAW_BUFFER0: u32 = 0x8825;
+pub const DRAW_BUFFER7: u32 = 0x882C;
 pub const DEPTH_ATTACHMENT: u32 = 0x8D00;
 pub const STENCIL_ATTACHMENT: u32 = 0x8D20;
 pub const FRAMEBUFFER_COMPLETE: u32 = 0x8CD5;

@@ -3,11 +3,11 @@
 
 use strata_protocol::Slice;
 
-use super::context::{Context, MAX_TEXTURE};
+use super::context::{Context, MAX_DRAW_BUFFERS, MAX_TEXTURE};
 use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{absent_channels, color_bits, Compressed, Storage};
+use super::formats::{absent_channels, color_bits};
 use super::render::{Target, COLOR_FORMAT};
 use super::teximage::MAX_LEVEL;
 use super::GlesExecutor;
@@ -33,16 +33,49 @@ pub enum Attachment {
 }
 
 /// A framebuffer object.
-#[derive(Default, Clone)]
+#[derive(Clone)]
 pub struct Framebuffer {
-    /// `COLOR_ATTACHMENT0`.
-    pub color: Attachment,
+    /// `COLOR_ATTACHMENT0` … `COLOR_ATTACHMENT7` (`GL_NV_fbo_color_attachments`).
+    pub colors: [Attachment; MAX_DRAW_BUFFERS],
     /// `DEPTH_ATTACHMENT`.
     pub depth: Attachment,
     /// `STENCIL_ATTACHMENT`.
     pub stencil: Attachment,
-    /// Reads select no colour buffer (`glReadBufferNV(GL_NONE)`, `GL_NV_read_buffer`).
-    pub read_none: bool,
+    /// `glDrawBuffersEXT`: per fragment output, `GL_NONE` or the colour attachment it writes.
+    pub draw_buffers: [u32; MAX_DRAW_BUFFERS],
+    /// `glReadBufferNV`: the colour attachment reads use, or `GL_NONE`.
+    pub read: u32,
+}
+
+impl Default for Framebuffer {
+    fn default() -> Self {
+        let mut draw_buffers = [NONE; MAX_DRAW_BUFFERS];
+        draw_buffers[0] = COLOR_ATTACHMENT0;
+        Framebuffer {
+            colors: Default::default(),
+            depth: Attachment::None,
+            stencil: Attachment::None,
+            draw_buffers,
+            read: COLOR_ATTACHMENT0,
+        }
+    }
+}
+
+/// The colour attachment `attachment` names among the first `named` (the enums a call knows):
+/// `None` for another enum, `Err` for one past the attachments Strata has.
+pub(super) fn color_slot(attachment: u32, named: u32) -> Option<Result<usize, GlError>> {
+    let i = attachment.checked_sub(COLOR_ATTACHMENT0).filter(|i| *i < named)?;
+    Some(if (i as usize) < MAX_DRAW_BUFFERS { Ok(i as usize) } else { Err(GlError::InvalidOperation) })
+}
+
+/// What a target is resolved for: draws and clears write the draw buffers, reads and copies
+/// read the read buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Purpose {
+    /// The draw buffers.
+    Draw,
+    /// The read buffer.
+    Read,
 }
 
 /// A renderbuffer.
@@ -62,139 +95,20 @@ pub struct Renderbuffer {
     pub _reserved: Option<crate::quota::Reservation>,
 }
 
-/// A resolved depth/stencil attachment: view, format, renderbuffer uid, width, height.
-type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32);
-
 /// Attaches `a` to `attachment` of the bound framebuffer object.
 fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
     let bound = ctx.bindings.framebuffer;
     let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
     match attachment {
-        COLOR_ATTACHMENT0 => fb.color = a,
         DEPTH_ATTACHMENT => fb.depth = a,
         STENCIL_ATTACHMENT => fb.stencil = a,
-        _ => return Err(GlError::InvalidEnum),
+        _ => fb.colors[color_slot(attachment, 16).ok_or(GlError::InvalidEnum)??] = a,
     }
     Ok(())
 }
 
-/// The render target of framebuffer object `ctx.bindings.framebuffer`, or why it is incomplete
-/// (a `GL_FRAMEBUFFER_*` status).
-fn resolve_object(ctx: &Context) -> Result<Target, u32> {
-    let bound = ctx.bindings.framebuffer;
-    let fb = ctx.objects.framebuffers.get(&bound).cloned().unwrap_or_default();
-    let mut size: Option<(u32, u32)> = None;
-    let mut same = |w: u32, h: u32| -> Result<(), u32> {
-        match size {
-            Some(s) if s != (w, h) => Err(FRAMEBUFFER_INCOMPLETE_DIMENSIONS),
-            _ => {
-                size = Some((w, h));
-                Ok(())
-            }
-        }
-    };
-    let mut key = (bound as u64) << 32;
-    let mut absent = wgpu::ColorWrites::empty();
-    let color = match fb.color {
-        Attachment::None => None,
-        Attachment::Texture { name, level, face } => {
-            let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            // ES 2.0 renders only into 8-bit colour (no float colour buffers are offered), and
-            // never into compressed images.
-            if !img.storage.color_renderable() || Compressed::from_gl(t.format).is_some() {
-                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
-            }
-            // A level above 0 is attachable only while the texture's levels are complete (as
-            // Mesa decides with GL_OES_fbo_render_mipmap).
-            if t.defined[face as usize] & (1 << level) == 0 || (level > 0 && !t.levels_complete()) {
-                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
-            }
-            same((img.width >> level).max(1), (img.height >> level).max(1))?;
-            absent = absent_channels(t.format);
-            key ^= t.uid.wrapping_mul(31).wrapping_add(u64::from(level) * 7 + u64::from(face));
-            let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                base_array_layer: face,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
-            Some((img.texture.clone(), view))
-        }
-        Attachment::Renderbuffer(name) => {
-            let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            if !matches!(rb.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT) {
-                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
-            }
-            same(rb.width, rb.height)?;
-            absent = absent_channels(rb.format);
-            key ^= rb.uid.wrapping_mul(31);
-            Some((tex.clone(), view.clone()))
-        }
-    };
-    let ds = |a: Attachment, ok: &[u32]| -> Result<Option<DepthAttachment>, u32> {
-        match a {
-            Attachment::None => Ok(None),
-            Attachment::Texture { name, .. } => {
-                let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-                let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-                // A depth texture is a depth attachment; a depth-stencil one is either.
-                let fits = match img.storage {
-                    Storage::Depth => ok.contains(&DEPTH_COMPONENT16),
-                    Storage::DepthStencil => ok.contains(&DEPTH24_STENCIL8_OES),
-                    _ => false,
-                };
-                if !fits {
-                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
-                }
-                let view = img.texture.create_view(&Default::default());
-                Ok(Some((view, img.storage.wgpu(), t.uid, img.width, img.height)))
-            }
-            Attachment::Renderbuffer(name) => {
-                let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-                let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-                if !ok.contains(&rb.format) {
-                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
-                }
-                Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height)))
-            }
-        }
-    };
-    let depth = ds(fb.depth, &[DEPTH_COMPONENT16, DEPTH_COMPONENT24_OES, DEPTH24_STENCIL8_OES])?;
-    let stencil = ds(fb.stencil, &[STENCIL_INDEX8, DEPTH24_STENCIL8_OES])?;
-    let depth = match (depth, stencil) {
-        (Some(d), Some(s)) if d.2 != s.2 => return Err(FRAMEBUFFER_UNSUPPORTED),
-        (Some(d), _) | (None, Some(d)) => Some(d),
-        (None, None) => None,
-    };
-    if let Some(d) = &depth {
-        same(d.3, d.4)?;
-        key ^= d.2.wrapping_mul(131);
-    }
-    let (width, height) = size.ok_or(FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT)?;
-    Ok(Target { key: (key, 1), color, depth: depth.map(|d| (d.0, d.1)), width, height, absent })
-}
-
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    /// What draws, clears and reads address: the current surface for framebuffer 0, else the
-    /// bound framebuffer object; `Err` is the `GL_FRAMEBUFFER_*` status that makes it
-    /// incomplete.
-    pub(super) fn draw_target(&self, ctx: &Context) -> Result<Target, u32> {
-        let (_, sid) = self.current.ok_or(FRAMEBUFFER_UNSUPPORTED)?;
-        if ctx.bindings.framebuffer == 0 {
-            if sid == 0 {
-                // Current with no surface (EGL_KHR_surfaceless_context).
-                return Err(FRAMEBUFFER_UNDEFINED_OES);
-            }
-            return self.surfaces.get(&sid).map(|s| s.target.clone()).ok_or(FRAMEBUFFER_UNSUPPORTED);
-        }
-        resolve_object(ctx)
-    }
-
     pub(super) fn glGenRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
         self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh(names.iter()))?;
         ctx.objects.renderbuffers.generate(names.iter());
@@ -271,7 +185,7 @@ impl GlesExecutor {
             // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
             let color = Some((tex.clone(), view.clone()));
-            let t = Target { key: (uid, 2), color, depth: None, width: w, height: h, absent };
+            let t = Target { key: (uid, 2), color, more: Vec::new(), depth: None, width: w, height: h, absent };
             self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
         }
         let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
@@ -318,17 +232,28 @@ impl GlesExecutor {
             if ctx.bindings.framebuffer == n {
                 ctx.bindings.framebuffer = 0;
             }
+            if ctx.bindings.read_framebuffer == n {
+                ctx.bindings.read_framebuffer = 0;
+            }
         }
         Ok(())
     }
 
     pub(super) fn glBindFramebuffer(&mut self, ctx: &mut Context, target: u32, framebuffer: u32) -> GlResult {
-        if target != FRAMEBUFFER {
-            return Err(GlError::InvalidEnum);
-        }
+        let (draw, read) = match target {
+            FRAMEBUFFER => (true, true),
+            DRAW_FRAMEBUFFER => (true, false),
+            READ_FRAMEBUFFER => (false, true),
+            _ => return Err(GlError::InvalidEnum),
+        };
         self.admit(ctx, Kind::Framebuffer, ctx.objects.framebuffers.fresh([framebuffer]))?;
         ctx.objects.framebuffers.bind(framebuffer);
-        ctx.bindings.framebuffer = framebuffer;
+        if draw {
+            ctx.bindings.framebuffer = framebuffer;
+        }
+        if read {
+            ctx.bindings.read_framebuffer = framebuffer;
+        }
         Ok(())
     }
 
@@ -391,7 +316,13 @@ impl GlesExecutor {
     ) -> i32 {
         let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
         let a = match (target, fb, attachment) {
-            (FRAMEBUFFER, Some(fb), COLOR_ATTACHMENT0) => fb.color,
+            (FRAMEBUFFER, Some(fb), _) if color_slot(attachment, 16).is_some() => match color_slot(attachment, 16) {
+                Some(Ok(i)) => fb.colors[i],
+                _ => {
+                    ctx.record(GlError::InvalidOperation);
+                    return 0;
+                }
+            },
             (FRAMEBUFFER, Some(fb), DEPTH_ATTACHMENT) => fb.depth,
             (FRAMEBUFFER, Some(fb), STENCIL_ATTACHMENT) => fb.stencil,
             (FRAMEBUFFER, None, _) => {

@@ -130,7 +130,7 @@ impl GlesExecutor {
             return Bytes(Vec::new());
         }
         let bpp = how.bytes();
-        let Ok(target) = self.draw_target(ctx) else {
+        let Ok(target) = self.read_target(ctx) else {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
         };

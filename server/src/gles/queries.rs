@@ -1,7 +1,9 @@
 //! State queries: `glGetError`, `glGetString`, and `glGetIntegerv`/`glGetFloatv`/`glGetBooleanv`
 //! over one table of state values with GL's conversions between the three types.
 
-use super::context::{Context, MAX_ATTRIBS, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS};
+use super::context::{
+    Context, MAX_ATTRIBS, MAX_DRAW_BUFFERS as MAX_DRAW_BUFFERS_COUNT, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS,
+};
 use super::conv::Capability;
 use super::enums::*;
 use super::error::GlError;
@@ -64,7 +66,9 @@ fn framebuffer_bits(ctx: &Context) -> [i32; 6] {
         return [8, 8, 8, c.rgba[3], c.depth, c.stencil];
     };
     // Colour is stored as RGBA8 whatever the format; a format without alpha reads alpha 1.
-    let color = match fb.color {
+    // The first colour attachment's, as Mesa answers.
+    let first = fb.colors.iter().find(|a| **a != Attachment::None).copied().unwrap_or_default();
+    let color = match first {
         Attachment::None => [0; 4],
         Attachment::Texture { name, .. } => ctx.objects.textures.get(&name).map_or([0; 4], |t| color_bits(t.format)),
         Attachment::Renderbuffer(name) => match ctx.objects.renderbuffers.get(&name).map(|r| r.format) {
@@ -166,6 +170,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
         READ_BUFFER_NV => u(super::read_buffer::read_buffer(ctx)),
+        MAX_DRAW_BUFFERS | MAX_COLOR_ATTACHMENTS => u(MAX_DRAW_BUFFERS_COUNT as u32),
+        DRAW_BUFFER0..=DRAW_BUFFER7 => u(super::draw_buffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
         MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(super::textures::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
         CONTEXT_RELEASE_BEHAVIOR_KHR => u(if ctx.release_none { 0 } else { CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR }),
@@ -231,7 +237,7 @@ impl GlesExecutor {
         // The read format of a framebuffer that cannot be read (framebuffer 0 with no surface):
         // an error, and 0 written, as Mesa writes it.
         let read_format = matches!(pname, IMPLEMENTATION_COLOR_READ_FORMAT | IMPLEMENTATION_COLOR_READ_TYPE);
-        if read_format && ctx.bindings.framebuffer == 0 && ctx.surfaceless {
+        if read_format && ctx.bindings.read_framebuffer == 0 && ctx.surfaceless {
             ctx.record(GlError::InvalidOperation);
             return Value::Ints(vec![0]);
         }
@@ -255,7 +261,11 @@ impl GlesExecutor {
             EXTENSIONS => {
                 let clamp = self.gpu.features.contains(wgpu::Features::DEPTH_CLIP_CONTROL);
                 let depth_clamp = if clamp { " GL_EXT_depth_clamp" } else { "" };
-                format!("{EXTENSIONS_STRING} {}{depth_clamp}", texture_extensions(self.gpu.features))
+                // Every draw buffer is a colour attachment of one pass.
+                let mrt = self.gpu.limits.max_color_attachments as usize >= MAX_DRAW_BUFFERS_COUNT;
+                let draw_buffers =
+                    if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
+                format!("{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}", texture_extensions(self.gpu.features))
             }
             _ => {
                 ctx.record(GlError::InvalidEnum);

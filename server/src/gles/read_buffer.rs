@@ -1,30 +1,38 @@
 //! `GL_NV_read_buffer`: `glReadBufferNV` selects the colour buffer that `glReadPixels` and the
-//! texture copies read: `GL_BACK` or `GL_NONE` for the default framebuffer, and
-//! `GL_COLOR_ATTACHMENT0` or `GL_NONE` for a framebuffer object, each of which keeps its own.
-//! Reading with `GL_NONE` selected is `GL_INVALID_OPERATION`, as on Mesa.
+//! texture copies read: `GL_BACK` or `GL_NONE` for the default framebuffer, and one of the
+//! colour attachments (`GL_NV_fbo_color_attachments`) or `GL_NONE` for a framebuffer object,
+//! each of which keeps its own. It applies to the framebuffer bound for reading. Reading with `GL_NONE` selected, or from an attachment with
+//! no image, is `GL_INVALID_OPERATION`, as on Mesa.
 
 use super::context::Context;
 use super::enums::*;
 use super::error::{GlError, GlResult};
+use super::framebuffers::{color_slot, Attachment};
 use super::GlesExecutor;
 
 /// `GL_READ_BUFFER_NV`: the colour buffer reads use, or `GL_NONE`.
 pub(super) fn read_buffer(ctx: &Context) -> u32 {
-    let bound = ctx.bindings.framebuffer;
-    let none = match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
-        Some(fb) => fb.read_none,
-        None => ctx.read_none,
-    };
-    match (none, bound) {
-        (true, _) => NONE,
-        (false, 0) => BACK,
-        (false, _) => COLOR_ATTACHMENT0,
+    let bound = ctx.bindings.read_framebuffer;
+    match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
+        Some(fb) => fb.read,
+        None if ctx.read_none => NONE,
+        None => BACK,
     }
 }
 
-/// `GL_INVALID_OPERATION` where reads have no colour buffer selected.
+/// `GL_INVALID_OPERATION` where reads have no colour buffer selected, or the selected
+/// attachment has no image.
 pub(super) fn read_selected(ctx: &Context) -> GlResult {
-    if read_buffer(ctx) == NONE {
+    let bound = ctx.bindings.read_framebuffer;
+    let attached = match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
+        Some(fb) => fb
+            .read
+            .checked_sub(COLOR_ATTACHMENT0)
+            .and_then(|i| fb.colors.get(i as usize))
+            .is_some_and(|a| *a != Attachment::None),
+        None => !ctx.read_none,
+    };
+    if !attached {
         return Err(GlError::InvalidOperation);
     }
     Ok(())
@@ -33,20 +41,18 @@ pub(super) fn read_selected(ctx: &Context) -> GlResult {
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glReadBufferNV(&mut self, ctx: &mut Context, mode: u32) -> GlResult {
-        let bound = ctx.bindings.framebuffer;
-        let attachment = (COLOR_ATTACHMENT0..COLOR_ATTACHMENT0 + 16).contains(&mode);
-        let none = match mode {
-            NONE => true,
-            BACK if bound == 0 => false,
-            COLOR_ATTACHMENT0 if bound != 0 => false,
-            // The other framebuffer's buffers, and attachments past the one colour attachment.
-            BACK => return Err(GlError::InvalidOperation),
-            _ if attachment => return Err(GlError::InvalidOperation),
-            _ => return Err(GlError::InvalidEnum),
-        };
-        match ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0) {
-            Some(fb) => fb.read_none = none,
-            None => ctx.read_none = none,
+        let bound = ctx.bindings.read_framebuffer;
+        let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0);
+        match (mode, fb) {
+            (NONE, Some(fb)) => fb.read = NONE,
+            (NONE, None) => ctx.read_none = true,
+            (BACK, None) => ctx.read_none = false,
+            // The other framebuffer's buffers, and attachments past the ones Strata has.
+            (BACK, Some(_)) => return Err(GlError::InvalidOperation),
+            (_, fb) => match (color_slot(mode, 32).ok_or(GlError::InvalidEnum)??, fb) {
+                (_, Some(fb)) => fb.read = mode,
+                (_, None) => return Err(GlError::InvalidOperation),
+            },
         }
         Ok(())
     }

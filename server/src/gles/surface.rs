@@ -196,7 +196,15 @@ impl GlesExecutor {
         let depth = depth_tex.as_ref().map(|t| (t.create_view(&Default::default()), t.format()));
         let uid = self.next_uid();
         let absent = if config.rgba[3] == 0 { wgpu::ColorWrites::ALPHA } else { wgpu::ColorWrites::empty() };
-        let target = Target { key: (uid, 0), color: Some((color, color_view)), depth, width: w, height: h, absent };
+        let target = Target {
+            key: (uid, 0),
+            color: Some((color, color_view)),
+            more: Vec::new(),
+            depth,
+            width: w,
+            height: h,
+            absent,
+        };
         self.r.clear(
             &target,
             Some((target.stored([0.0; 4]), wgpu::ColorWrites::ALL)),

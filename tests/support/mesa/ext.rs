@@ -193,6 +193,12 @@ impl Arms<'_> {
         Ok(())
     }
 
+    pub(super) fn glDrawBuffersEXT(&mut self, buffers: &Slice<'_, GLenum>) -> Result<(), ClientError> {
+        let list: Vec<u32> = buffers.iter().collect();
+        ext!(self, "glDrawBuffersEXT", fn(i32, *const u32) -> (), list.len() as i32, list.as_ptr());
+        Ok(())
+    }
+
     pub(super) fn glIsVertexArrayOES(&mut self, array: &GLuint) -> Result<bool, ClientError> {
         let a = self.vao(*array);
         Ok(ext!(self, "glIsVertexArrayOES", fn(u32) -> u8, a) != 0)

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glsl_lang::ast::{self, BinaryOpData as B, ExprData, UnaryOpData as U};
 
-use crate::gles::context::{MAX_ATTRIBS, MAX_UNITS};
+use crate::gles::context::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_UNITS};
 
 /// A folded constant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,7 +20,7 @@ pub(super) enum Val {
 }
 
 /// The built-in constants of GLSL ES 1.00 §7.4, as Strata reports the matching limits.
-fn builtin(name: &str) -> Option<i64> {
+pub(super) fn builtin(name: &str) -> Option<i64> {
     Some(match name {
         "gl_MaxVertexAttribs" => MAX_ATTRIBS as i64,
         "gl_MaxVertexUniformVectors" | "gl_MaxFragmentUniformVectors" => 256,
@@ -28,7 +28,7 @@ fn builtin(name: &str) -> Option<i64> {
         "gl_MaxVertexTextureImageUnits" | "gl_MaxCombinedTextureImageUnits" | "gl_MaxTextureImageUnits" => {
             MAX_UNITS as i64
         }
-        "gl_MaxDrawBuffers" => 1,
+        "gl_MaxDrawBuffers" => MAX_DRAW_BUFFERS as i64,
         _ => return None,
     })
 }

@@ -66,6 +66,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         point_coord: false,
         frag_depth: false,
         instance_id: false,
+        frag_data: false,
         has_main: false,
         log: parsed.warnings.join("\n"),
         facts,
@@ -220,12 +221,18 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         point_coord: false,
         frag_depth: false,
         instance_id: false,
+        frag_color: false,
+        frag_data: false,
     };
     shader.body.visit_mut(&mut rewrite);
     super::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
     shader.frag_depth = rewrite.frag_depth;
     shader.instance_id = rewrite.instance_id;
+    shader.frag_data = rewrite.frag_data;
+    if rewrite.frag_color && rewrite.frag_data {
+        return Err("0:0(0): error: fragment shader writes to both `gl_FragColor' and `gl_FragData'".into());
+    }
     if let Some(e) = rewrite.error {
         return Err(e);
     }

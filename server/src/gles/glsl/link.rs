@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use super::super::context::MAX_POINT_SIZE;
+use super::super::context::{MAX_DRAW_BUFFERS, MAX_POINT_SIZE};
 use super::translate::{naga_module, transpile, Body, Placed};
 use super::{Scalar, Shader, Stage, Ty, Var};
 
@@ -484,7 +484,22 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     if fs.point_coord {
         let _ = writeln!(fsrc, "layout(location = {next}) in vec2 strata_PointCoord;");
     }
-    fsrc.push_str("layout(location = 0) out vec4 strata_FragColor;\n");
+    // One output per draw buffer (`GL_EXT_draw_buffers`): `gl_FragData[i]` writes output `i`,
+    // and `gl_FragColor` writes every output, as the extension specifies.
+    let mut color_out = String::new();
+    if fs.frag_data {
+        let _ = writeln!(fsrc, "vec4 strata_FragData[{MAX_DRAW_BUFFERS}];");
+        for i in 0..MAX_DRAW_BUFFERS {
+            let _ = writeln!(fsrc, "layout(location = {i}) out vec4 strata_FragOut{i};");
+            let _ = writeln!(color_out, "    strata_FragOut{i} = strata_FragData[{i}];");
+        }
+    } else {
+        fsrc.push_str("layout(location = 0) out vec4 strata_FragColor;\n");
+        for i in 1..MAX_DRAW_BUFFERS {
+            let _ = writeln!(fsrc, "layout(location = {i}) out vec4 strata_FragOut{i};");
+            let _ = writeln!(color_out, "    strata_FragOut{i} = strata_FragColor;");
+        }
+    }
     let depth_out = if fs.frag_depth {
         fsrc.push_str("float strata_FragDepth;\n");
         FRAG_DEPTH_OUT
@@ -494,7 +509,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let fs_body = transpile(fs)?;
     let fs_first_line = fsrc.matches('\n').count();
     fsrc.push_str(&fs_body.text);
-    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n{depth_out}}}\n"));
+    fsrc.push_str(&format!("\nvoid main() {{\n{fs_copy}    strata_main();\n{color_out}{depth_out}}}\n"));
     Ok(Generated {
         vsrc,
         fsrc,

@@ -2,7 +2,8 @@
 //!
 //! naga's GLSL front end accepts only GLSL 440+, so each ES shader is preprocessed and parsed
 //! with glsl-lang (with `GL_ES` defined), its global interface is lifted out, and its AST is
-//! rewritten: `gl_FragColor`/`gl_FragData[0]` become an `out` variable, `texture2D`-style
+//! rewritten: `gl_FragColor` and `gl_FragData` become variables that the generated `main`
+//! copies to one output per draw buffer, the built-in constants become literals, `texture2D`-style
 //! calls become `texture(sampler2D(t, s), …)` on split texture/sampler bindings, precision
 //! qualifiers go, and `main` is renamed so that a generated `main` can apply Strata's
 //! conventions (y negated, clip z mapped from [-1, 1] to [0, 1]). Linking then packs every loose
@@ -230,6 +231,8 @@ pub struct Shader {
     pub frag_depth: bool,
     /// Whether it reads `gl_InstanceIDEXT` (vertex shaders, `GL_EXT_draw_instanced`).
     pub instance_id: bool,
+    /// Whether it uses `gl_FragData` (fragment shaders, `GL_EXT_draw_buffers`).
+    pub frag_data: bool,
     /// Whether it defines `main` (a program without one fails to link).
     pub has_main: bool,
     /// The info log of a successful compile (warnings), empty if none.

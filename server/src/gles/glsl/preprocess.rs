@@ -19,6 +19,9 @@ pub(super) const OES_STANDARD_DERIVATIVES: &str = "GL_OES_standard_derivatives";
 pub(super) const EXT_FRAG_DEPTH: &str = "GL_EXT_frag_depth";
 /// `gl_InstanceIDEXT` in vertex shaders.
 pub(super) const EXT_DRAW_INSTANCED: &str = "GL_EXT_draw_instanced";
+/// `gl_FragData[i]` for every draw buffer. As on Mesa, the array is there whether or not a
+/// shader enables the extension; the directive is accepted and the macro defined.
+pub(super) const EXT_DRAW_BUFFERS: &str = "GL_EXT_draw_buffers";
 
 /// Which of the offered extensions a shader's directives leave enabled.
 #[derive(Debug, Clone, Copy, Default)]
@@ -38,6 +41,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     r.add(ExtensionSpec::new(ExtNameAtom::from(OES_STANDARD_DERIVATIVES), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_FRAG_DEPTH), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_INSTANCED), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_BUFFERS), vec![]));
     r
 });
 
@@ -109,6 +113,9 @@ fn extension_directive(
     }
     if name == EXT_DRAW_INSTANCED {
         enabled.draw_instanced = behavior != "disable";
+        return Ok(());
+    }
+    if name == EXT_DRAW_BUFFERS {
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));

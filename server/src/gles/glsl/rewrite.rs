@@ -9,6 +9,7 @@ use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, T
 use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
 
 use super::{Stage, Ty};
+use crate::gles::context::MAX_DRAW_BUFFERS;
 
 /// The AST rewrite applied to every function body and remaining global.
 pub(super) struct Rewrite {
@@ -33,6 +34,10 @@ pub(super) struct Rewrite {
     pub(super) frag_depth: bool,
     /// Whether the (vertex) shader reads `gl_InstanceIDEXT`.
     pub(super) instance_id: bool,
+    /// Whether the (fragment) shader uses `gl_FragColor`.
+    pub(super) frag_color: bool,
+    /// Whether the (fragment) shader uses `gl_FragData` (`GL_EXT_draw_buffers`).
+    pub(super) frag_data: bool,
 }
 
 /// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
@@ -243,7 +248,15 @@ impl VisitorMut for Rewrite {
             ExprData::Variable(id) => {
                 let name = id.0.as_str();
                 if name == "gl_FragColor" && self.stage == Stage::Fragment {
+                    self.frag_color = true;
                     Some(var("strata_FragColor"))
+                } else if name == "gl_FragData" && self.stage == Stage::Fragment {
+                    // One colour per draw buffer, written out by the generated `main` (`link`).
+                    self.frag_data = true;
+                    Some(var("strata_FragData"))
+                } else if let Some(v) = super::consts::builtin(name) {
+                    // The built-in constants (§7.4), which naga does not know.
+                    Some(ExprData::IntConst(v as i32).into())
                 } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
                     // Points are drawn as quads whose size the generated `main` reads from this.
                     Some(var("strata_PointSize"))
@@ -271,16 +284,17 @@ impl VisitorMut for Rewrite {
                         _ => T::Bool,
                     };
                     Some(ctor(t, vec![var(&format!("strata_b_{name}"))]))
-                } else if name == "gl_FragData" {
-                    self.error.get_or_insert_with(|| "0: gl_FragData may only be indexed with 0".into());
-                    None
                 } else {
                     None
                 }
             }
             ExprData::Bracket(base, index) => match (&base.content, &index.content) {
-                (ExprData::Variable(id), ExprData::IntConst(0)) if id.0 == "gl_FragData" => {
-                    Some(var("strata_FragColor"))
+                (ExprData::Variable(id), ExprData::IntConst(k)) if id.0 == "gl_FragData" => {
+                    if *k < 0 || *k >= MAX_DRAW_BUFFERS as i32 {
+                        let msg = format!("0: array index must be < {MAX_DRAW_BUFFERS}");
+                        self.error.get_or_insert(msg);
+                    }
+                    None
                 }
                 (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()) == Some(&true) => {
                     let mut idx = (**index).clone();

@@ -2,19 +2,25 @@
 //! any other clear is a quad that honours the scissor and the write masks.
 
 use super::passes::{offset_of, Bind, Recorded};
+use super::targets::stored;
 use super::{Renderer, Target, COLOR_FORMAT};
+
+/// Bytes of the clear quad's parameters: eight colours, then the depth (`shaders/clear.wgsl`).
+pub(super) const CLEAR_PARAMS: u64 = 144;
 
 /// What selects a clear pipeline.
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub(super) struct ClearKey {
     color: Option<wgpu::ColorWrites>,
     depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
-    target_color: bool,
+    /// Which colour slots have an image.
+    slots: Vec<bool>,
 }
 
 impl Renderer {
-    /// `glClear` of the whole target with full masks, folded into the pass's load operations
-    /// when nothing has been drawn yet.
+    /// `glClear` of the target's colour slots to `color` (as each image stores it: see
+    /// [`stored`]), its depth and its stencil. A clear of the whole target with full masks
+    /// becomes the pass's load operations when nothing has been drawn yet.
     #[allow(clippy::too_many_arguments)]
     pub fn clear(
         &mut self,
@@ -31,7 +37,7 @@ impl Renderer {
         let pass = self.pass_for(target);
         if pass.draws.is_empty() && full_color && full_depth && full_stencil && whole {
             if let Some((c, _)) = color {
-                pass.clear_color = Some(wgpu::Color { r: c[0].into(), g: c[1].into(), b: c[2].into(), a: c[3].into() });
+                pass.clear_color = Some(c);
             }
             if let Some((d, _)) = depth {
                 pass.clear_depth = Some(d.clamp(0.0, 1.0));
@@ -42,7 +48,6 @@ impl Renderer {
             return;
         }
         // A quad that honours masks and the scissor.
-        let has_depth = target.depth.is_some();
         let key = ClearKey {
             color: color.map(|(_, m)| m),
             depth: target.depth.as_ref().map(|(_, f)| {
@@ -52,19 +57,22 @@ impl Renderer {
                     stencil.filter(|_| target.has_stencil()).map(|(_, m)| m),
                 )
             }),
-            target_color: target.color.is_some(),
+            slots: target.slots().iter().map(Option::is_some).collect(),
         };
         let pipeline = self.clear_pipeline(&key);
-        let mut params = [0u8; 32];
+        let mut params = [0u8; CLEAR_PARAMS as usize];
         let c = color.map(|(c, _)| c).unwrap_or([0.0; 4]);
-        for (i, v) in c.iter().enumerate() {
-            params[i * 4..i * 4 + 4].copy_from_slice(&v.to_ne_bytes());
+        for (slot, s) in target.slots().iter().enumerate() {
+            let c = stored(s.map_or(wgpu::ColorWrites::empty(), |s| s.1), c);
+            for (i, v) in c.iter().enumerate() {
+                let at = slot * 16 + i * 4;
+                params[at..at + 4].copy_from_slice(&v.to_ne_bytes());
+            }
         }
-        params[16..20].copy_from_slice(&depth.map(|(d, _)| d.clamp(0.0, 1.0)).unwrap_or(0.0).to_ne_bytes());
+        params[128..132].copy_from_slice(&depth.map(|(d, _)| d.clamp(0.0, 1.0)).unwrap_or(0.0).to_ne_bytes());
         let off = offset_of(&mut self.staging, &params, self.align) as u32;
         let scissor = scissor.unwrap_or([0, 0, target.width, target.height]);
         let pass = self.pass_for(target);
-        let _ = has_depth;
         pass.draws.push(Recorded {
             pipeline,
             bind: Bind::Clear(off),
@@ -91,11 +99,12 @@ impl Renderer {
             self.clear_pipelines.insert(key.clone(), p.clone());
             return p;
         }
-        let targets = [Some(wgpu::ColorTargetState {
-            format: COLOR_FORMAT,
-            blend: None,
-            write_mask: key.color.unwrap_or(wgpu::ColorWrites::empty()),
-        })];
+        let write_mask = key.color.unwrap_or(wgpu::ColorWrites::empty());
+        let targets: Vec<Option<wgpu::ColorTargetState>> = key
+            .slots
+            .iter()
+            .map(|s| s.then_some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend: None, write_mask }))
+            .collect();
         let depth_stencil = key.depth.map(|(format, write, stencil)| {
             let face = wgpu::StencilFaceState {
                 compare: wgpu::CompareFunction::Always,
@@ -130,7 +139,7 @@ impl Renderer {
                 module: &self.fixed.clear_module,
                 entry_point: Some("fs"),
                 compilation_options: Default::default(),
-                targets: if key.target_color { &targets } else { &[] },
+                targets: if key.slots.iter().any(|s| *s) { &targets } else { &[] },
             }),
             multiview_mask: None,
             cache: None,

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use super::super::enums::*;
 use super::occlusion::{Occlusion, PassQueries};
+use super::targets::stored;
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
 
 /// What a recorded draw binds at group 0.
@@ -54,8 +55,9 @@ pub(super) struct Recorded {
 pub(super) struct Pass {
     /// The target every draw of the pass renders to.
     pub(super) target: Target,
-    /// Colour load operation: clear to this, or load.
-    pub(super) clear_color: Option<wgpu::Color>,
+    /// Colour load operation: clear every colour slot to this (as each image stores it), or
+    /// load.
+    pub(super) clear_color: Option<[f32; 4]>,
     /// Depth load operation.
     pub(super) clear_depth: Option<f32>,
     /// Stencil load operation.
@@ -243,7 +245,7 @@ impl Renderer {
                                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                                         buffer: ring,
                                         offset: 0,
-                                        size: wgpu::BufferSize::new(32),
+                                        size: wgpu::BufferSize::new(super::clears::CLEAR_PARAMS),
                                     }),
                                 }],
                             }));
@@ -308,13 +310,27 @@ fn encode(
     queries: Option<&PassQueries>,
 ) {
     let t = &pass.target;
-    let clear = |op: Option<wgpu::Color>| op.map(wgpu::LoadOp::Clear).unwrap_or(wgpu::LoadOp::Load);
-    let color = t.color.as_ref().map(|(_, view)| wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations { load: clear(pass.clear_color), store: wgpu::StoreOp::Store },
-    });
+    let colors: Vec<Option<wgpu::RenderPassColorAttachment<'_>>> = t
+        .slots()
+        .into_iter()
+        .map(|s| {
+            s.map(|(view, absent)| {
+                let load = match pass.clear_color {
+                    Some(c) => {
+                        let [r, g, b, a] = stored(absent, c).map(f64::from);
+                        wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a })
+                    }
+                    None => wgpu::LoadOp::Load,
+                };
+                wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+                }
+            })
+        })
+        .collect();
     let depth = t.depth.as_ref().map(|(view, f)| wgpu::RenderPassDepthStencilAttachment {
         view,
         depth_ops: f.has_depth_aspect().then(|| wgpu::Operations {
@@ -326,10 +342,9 @@ fn encode(
             store: wgpu::StoreOp::Store,
         }),
     });
-    let colors = [color];
     let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("gles"),
-        color_attachments: if t.color.is_some() { &colors } else { &[] },
+        color_attachments: if t.has_color() { &colors } else { &[] },
         depth_stencil_attachment: depth,
         timestamp_writes: None,
         occlusion_query_set: queries.map(PassQueries::set),

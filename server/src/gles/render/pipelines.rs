@@ -13,7 +13,8 @@ pub(super) struct PipelineKey {
     depth_mask: u32,
     inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
     raster: RasterState,
-    color: bool,
+    /// Per colour slot, whether it has an image and the channels that image lacks.
+    colors: Vec<Option<wgpu::ColorWrites>>,
     depth_format: Option<wgpu::TextureFormat>,
 }
 
@@ -111,7 +112,7 @@ impl Renderer {
             depth_mask,
             inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride)).collect(),
             raster: spec.raster.clone(),
-            color: target.color.is_some(),
+            colors: target.slots().iter().map(|s| s.map(|s| s.1)).collect(),
             depth_format: target.depth.as_ref().map(|d| d.1),
         };
         if let Some(p) = self.pipelines.get(&key) {
@@ -159,7 +160,19 @@ impl Renderer {
                 None => Default::default(),
             },
         });
-        let targets = [Some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend: r.blend, write_mask: r.write_mask })];
+        // Every slot blends alike (ES 2.0 has one blend state); channels an image lacks are
+        // never written.
+        let targets: Vec<Option<wgpu::ColorTargetState>> = key
+            .colors
+            .iter()
+            .map(|s| {
+                s.map(|absent| wgpu::ColorTargetState {
+                    format: COLOR_FORMAT,
+                    blend: r.blend,
+                    write_mask: r.write_mask - absent,
+                })
+            })
+            .collect();
         let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("gles"),
             layout: Some(&pipeline_layout),
@@ -184,7 +197,7 @@ impl Renderer {
                 module: spec.fs.as_ref().unwrap_or(&spec.program.fs),
                 entry_point: Some("main"),
                 compilation_options: Default::default(),
-                targets: if key.color { &targets } else { &[] },
+                targets: if key.colors.iter().any(Option::is_some) { &targets } else { &[] },
             }),
             multiview_mask: None,
             cache: None,

@@ -8,8 +8,12 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 pub struct Target {
     /// Identity for pass batching (surface or attachment ids).
     pub key: (u64, u64),
-    /// Colour image: texture and single-level view.
+    /// Colour image: texture and single-level view. For draws it is what fragment output 0
+    /// writes; for reads, the read buffer.
     pub color: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// What fragment outputs 1, 2, … write (`GL_EXT_draw_buffers`): a view and the channels
+    /// its format lacks, `None` for an output that writes nothing; empty for one colour image.
+    pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites)>>,
     /// Depth/stencil view and its format.
     pub depth: Option<(wgpu::TextureView, wgpu::TextureFormat)>,
     /// Width in pixels.
@@ -29,16 +33,19 @@ impl Target {
     }
 
     /// A clear colour as the buffer stores it: absent channels at 0, absent alpha at 1.
-    pub fn stored(&self, mut c: [f32; 4]) -> [f32; 4] {
-        for (i, ch) in [wgpu::ColorWrites::RED, wgpu::ColorWrites::GREEN, wgpu::ColorWrites::BLUE].iter().enumerate() {
-            if self.absent.contains(*ch) {
-                c[i] = 0.0;
-            }
-        }
-        if self.opaque() {
-            c[3] = 1.0;
-        }
-        c
+    pub fn stored(&self, c: [f32; 4]) -> [f32; 4] {
+        stored(self.absent, c)
+    }
+
+    /// Per colour slot (fragment output), the view it writes and the channels its image lacks.
+    pub fn slots(&self) -> Vec<Option<(&wgpu::TextureView, wgpu::ColorWrites)>> {
+        let first = self.color.as_ref().map(|(_, v)| (v, self.absent));
+        std::iter::once(first).chain(self.more.iter().map(|m| m.as_ref().map(|(v, a)| (v, *a)))).collect()
+    }
+
+    /// Whether any slot has a colour image.
+    pub fn has_color(&self) -> bool {
+        self.color.is_some() || self.more.iter().any(Option::is_some)
     }
 
     /// Whether the depth/stencil format has a depth aspect (a `STENCIL_INDEX8` attachment
@@ -51,4 +58,18 @@ impl Target {
     pub fn has_stencil(&self) -> bool {
         matches!(self.depth, Some((_, f)) if f.has_stencil_aspect())
     }
+}
+
+/// Clear colour `c` as an image lacking the `absent` channels stores it: absent colour
+/// channels at 0, absent alpha at 1.
+pub fn stored(absent: wgpu::ColorWrites, mut c: [f32; 4]) -> [f32; 4] {
+    for (i, ch) in [wgpu::ColorWrites::RED, wgpu::ColorWrites::GREEN, wgpu::ColorWrites::BLUE].iter().enumerate() {
+        if absent.contains(*ch) {
+            c[i] = 0.0;
+        }
+    }
+    if absent.contains(wgpu::ColorWrites::ALPHA) {
+        c[3] = 1.0;
+    }
+    c
 }
