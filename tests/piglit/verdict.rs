@@ -61,6 +61,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_draw_buffers",
     "GL_NV_draw_buffers",
     "GL_NV_fbo_color_attachments",
+    "GL_EXT_blend_func_extended",
     "GL_EXT_occlusion_query_boolean",
     "GL_NV_conditional_render",
     "GL_EXT_robustness",

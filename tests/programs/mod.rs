@@ -268,6 +268,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 
 mod anisotropic;
 mod base_vertex;
+mod blend_extended;
 mod cases;
 mod compressed;
 mod debug_label;
@@ -317,6 +318,7 @@ pub fn all() -> Vec<Case> {
     all.extend(type_2_10_10_10::all());
     all.extend(depth_clamp::all());
     all.extend(draw_buffers::all());
+    all.extend(blend_extended::all());
     all.extend(max_level::all());
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());

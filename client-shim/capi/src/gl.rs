@@ -497,6 +497,7 @@ gl_modules!(
     crate::debug,
     crate::discard,
     crate::draw_buffers,
+    crate::blend_extended,
 );
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.

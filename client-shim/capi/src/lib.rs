@@ -8,6 +8,7 @@
 #![allow(non_snake_case, clippy::missing_safety_doc)]
 #![warn(missing_docs)]
 
+pub mod blend_extended;
 mod context;
 pub mod debug;
 pub mod discard;
@@ -161,6 +162,7 @@ mod tests {
             ("GL_KHR_robustness", 5),
             ("GL_EXT_draw_buffers", 1),
             ("GL_NV_draw_buffers", 1),
+            ("GL_EXT_blend_func_extended", 4),
         ] {
             let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
             let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
@@ -211,6 +213,10 @@ mod tests {
             "glDiscardFramebufferEXT",
             "glDrawBuffersEXT",
             "glDrawBuffersNV",
+            "glBindFragDataLocationIndexedEXT",
+            "glBindFragDataLocationEXT",
+            "glGetFragDataIndexEXT",
+            "glGetProgramResourceLocationIndexEXT",
             "glPolygonOffsetClampEXT",
             "glMaxShaderCompilerThreadsKHR",
             "glDrawElementsBaseVertexOES",

@@ -351,8 +351,18 @@ pub fn blend_factor(f: u32) -> Option<wgpu::BlendFactor> {
         // wgpu has one blend constant; its alpha is what CONSTANT_ALPHA reads.
         CONSTANT_ALPHA => B::Constant,
         ONE_MINUS_CONSTANT_ALPHA => B::OneMinusConstant,
+        // GL_EXT_blend_func_extended: the fragment's second colour.
+        SRC1_COLOR_EXT => B::Src1,
+        ONE_MINUS_SRC1_COLOR_EXT => B::OneMinusSrc1,
+        SRC1_ALPHA_EXT => B::Src1Alpha,
+        ONE_MINUS_SRC1_ALPHA_EXT => B::OneMinusSrc1Alpha,
         _ => return None,
     })
+}
+
+/// Whether `f` reads the second colour (`GL_EXT_blend_func_extended`).
+pub fn reads_src1(f: u32) -> bool {
+    matches!(f, SRC1_COLOR_EXT | ONE_MINUS_SRC1_COLOR_EXT | SRC1_ALPHA_EXT | ONE_MINUS_SRC1_ALPHA_EXT)
 }
 
 /// The wgpu blend operation for a GL blend equation (`EXT_blend_minmax` included), `None`
@@ -369,8 +379,10 @@ pub fn blend_op(e: u32) -> Option<wgpu::BlendOperation> {
 }
 
 /// One blend component: GL's `MIN`/`MAX` ignore the factors, and wgpu requires them to be
-/// `One` for those operations.
-pub fn blend_component(src: u32, dst: u32, eq: u32) -> wgpu::BlendComponent {
+/// `One` for those operations. Without a second colour (`dual` false: the program writes
+/// none, which GL leaves undefined and wgpu refuses to blend with) the second colour's factors
+/// read it as 0.
+pub fn blend_component(src: u32, dst: u32, eq: u32, dual: bool) -> wgpu::BlendComponent {
     let operation = blend_op(eq).unwrap_or(wgpu::BlendOperation::Add);
     if matches!(operation, wgpu::BlendOperation::Min | wgpu::BlendOperation::Max) {
         return wgpu::BlendComponent {
@@ -379,7 +391,11 @@ pub fn blend_component(src: u32, dst: u32, eq: u32) -> wgpu::BlendComponent {
             operation,
         };
     }
-    let f = |x| blend_factor(x).unwrap_or(wgpu::BlendFactor::One);
+    let f = |x| match (blend_factor(x).unwrap_or(wgpu::BlendFactor::One), dual) {
+        (wgpu::BlendFactor::Src1 | wgpu::BlendFactor::Src1Alpha, false) => wgpu::BlendFactor::Zero,
+        (wgpu::BlendFactor::OneMinusSrc1 | wgpu::BlendFactor::OneMinusSrc1Alpha, false) => wgpu::BlendFactor::One,
+        (b, _) => b,
+    };
     wgpu::BlendComponent { src_factor: f(src), dst_factor: f(dst), operation }
 }
 

@@ -7,8 +7,8 @@ use strata_protocol::Blob;
 
 use super::context::{Context, StencilFace};
 use super::conv::{
-    blend_component, clip_rect, color_writes, compare, component, float_format, native_format, stencil_op, type_size,
-    viewport, IndexType, Mirror, Primitive,
+    blend_component, clip_rect, color_writes, compare, component, float_format, native_format, reads_src1, stencil_op,
+    type_size, viewport, IndexType, Mirror, Primitive,
 };
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -241,8 +241,9 @@ fn plan_points(
     Ok((inputs, instances))
 }
 
-/// The fixed-function state of a draw with `topology` into `target`.
-fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Target) -> RasterState {
+/// The fixed-function state of a draw with `topology` into `target` by a program that writes
+/// a second colour (`dual`) or not.
+fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Target, dual: bool) -> RasterState {
     let (raster, ds, blend) = (&ctx.raster, &ctx.depth_stencil, &ctx.blend);
     let triangles = matches!(topology, wgpu::PrimitiveTopology::TriangleList | wgpu::PrimitiveTopology::TriangleStrip);
     let cull = (raster.cull && triangles).then_some(match raster.cull_face {
@@ -273,8 +274,8 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         }
     });
     let blend_state = blend.enabled.then(|| wgpu::BlendState {
-        color: blend_component(blend.func[0], blend.func[1], blend.eq[0]),
-        alpha: blend_component(blend.func[2], blend.func[3], blend.eq[1]),
+        color: blend_component(blend.func[0], blend.func[1], blend.eq[0], dual),
+        alpha: blend_component(blend.func[2], blend.func[3], blend.eq[1], dual),
     });
     let bias = (raster.polygon_offset_fill && triangles && target.has_depth()).then(|| {
         // GL's units are in minimum resolvable depth steps, as Vulkan's constant factor is.
@@ -350,8 +351,12 @@ fn plan_draw<'c>(
             t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))
         })
         .collect();
+    // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
+    if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
+        return Err(GlError::InvalidOperation);
+    }
     let topology = prim.topology();
-    let mut raster = raster_state(ctx, topology, target);
+    let mut raster = raster_state(ctx, topology, target, program.info.dual);
     if matches!(topology, wgpu::PrimitiveTopology::LineStrip | wgpu::PrimitiveTopology::TriangleStrip) {
         raster.strip_index = index.as_ref().map(|i| i.1);
     }

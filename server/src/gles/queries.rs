@@ -171,6 +171,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
         READ_BUFFER_NV => u(super::read_buffer::read_buffer(ctx)),
         MAX_DRAW_BUFFERS | MAX_COLOR_ATTACHMENTS => u(MAX_DRAW_BUFFERS_COUNT as u32),
+        MAX_DUAL_SOURCE_DRAW_BUFFERS_EXT if gpu.dual_source() => i(1),
         DRAW_BUFFER0..=DRAW_BUFFER7 => u(super::draw_buffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
         MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(super::textures::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
@@ -265,7 +266,11 @@ impl GlesExecutor {
                 let mrt = self.gpu.limits.max_color_attachments as usize >= MAX_DRAW_BUFFERS_COUNT;
                 let draw_buffers =
                     if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
-                format!("{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}", texture_extensions(self.gpu.features))
+                let dual = if self.gpu.dual_source() { " GL_EXT_blend_func_extended" } else { "" };
+                format!(
+                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}",
+                    texture_extensions(self.gpu.features)
+                )
             }
             _ => {
                 ctx.record(GlError::InvalidEnum);

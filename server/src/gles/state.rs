@@ -2,7 +2,7 @@
 //! culling, blending, stencil, polygon offset, line width, hints and pixel store.
 
 use super::context::{Context, StencilFace, MAX_TEXTURE};
-use super::conv::{blend_factor, blend_op, valid_func, valid_stencil_op, Capability};
+use super::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op, Capability};
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::GlesExecutor;
@@ -17,8 +17,12 @@ fn clampf(x: f32) -> f32 {
 }
 
 /// Sets the blend factors (RGB source, RGB destination, alpha source, alpha destination).
-fn set_blend_func(ctx: &mut Context, f: [u32; 4]) -> GlResult {
-    if f.iter().all(|&x| blend_factor(x).is_some()) && f[1] != SRC_ALPHA_SATURATE && f[3] != SRC_ALPHA_SATURATE {
+/// With `extended` (`GL_EXT_blend_func_extended`), the second colour's factors are factors, and
+/// `GL_SRC_ALPHA_SATURATE` is a destination factor too.
+fn set_blend_func(ctx: &mut Context, f: [u32; 4], extended: bool) -> GlResult {
+    let known = |x: u32| blend_factor(x).is_some() && (extended || !reads_src1(x));
+    let saturate_dst = f[1] == SRC_ALPHA_SATURATE || f[3] == SRC_ALPHA_SATURATE;
+    if f.iter().all(|&x| known(x)) && (extended || !saturate_dst) {
         ctx.blend.func = f;
         Ok(())
     } else {
@@ -165,7 +169,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBlendFunc(&mut self, ctx: &mut Context, sfactor: u32, dfactor: u32) -> GlResult {
-        set_blend_func(ctx, [sfactor, dfactor, sfactor, dfactor])
+        set_blend_func(ctx, [sfactor, dfactor, sfactor, dfactor], self.gpu.dual_source())
     }
 
     pub(super) fn glBlendFuncSeparate(
@@ -176,7 +180,7 @@ impl GlesExecutor {
         src_alpha: u32,
         dst_alpha: u32,
     ) -> GlResult {
-        set_blend_func(ctx, [src_rgb, dst_rgb, src_alpha, dst_alpha])
+        set_blend_func(ctx, [src_rgb, dst_rgb, src_alpha, dst_alpha], self.gpu.dual_source())
     }
 
     pub(super) fn glBlendEquation(&mut self, ctx: &mut Context, mode: u32) -> GlResult {

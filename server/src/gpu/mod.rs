@@ -39,7 +39,8 @@ pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FIL
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
     .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2)
-    .union(wgpu::Features::DEPTH_CLIP_CONTROL);
+    .union(wgpu::Features::DEPTH_CLIP_CONTROL)
+    .union(wgpu::Features::DUAL_SOURCE_BLENDING);
 
 /// The pipelines of `write_depth`, one per depth format.
 type DepthWriters = HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>;
@@ -85,6 +86,11 @@ impl std::fmt::Debug for Gpu {
 }
 
 impl Gpu {
+    /// Whether the device blends with a fragment's second colour (`GL_EXT_blend_func_extended`).
+    pub fn dual_source(&self) -> bool {
+        self.features.contains(wgpu::Features::DUAL_SOURCE_BLENDING)
+    }
+
     /// Whether the device was lost.
     pub fn is_lost(&self) -> bool {
         self.lost.load(std::sync::atomic::Ordering::Acquire)

@@ -56,6 +56,12 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
             return Err(at(span, &format!("`{INSTANCE_ID}' undeclared")));
         }
     }
+    // `GL_EXT_blend_func_extended`'s outputs exist only in fragment shaders that enable it.
+    if let Some((name, span)) = &calls.secondary {
+        if stage == Stage::Vertex || !parsed.enabled.blend_func_extended {
+            return Err(at(*span, &format!("`{name}' undeclared")));
+        }
+    }
     globals(&parsed.tu, &at)?;
     super::writes::check(stage, &parsed.tu, &at)?;
     let uniform_precisions = precision::check(stage, &parsed.tu, &at)?;
@@ -77,6 +83,8 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
 pub(super) const FRAG_DEPTH: &str = "gl_FragDepthEXT";
 /// `GL_EXT_draw_instanced`'s instance number.
 pub(super) const INSTANCE_ID: &str = "gl_InstanceIDEXT";
+/// `GL_EXT_blend_func_extended`'s second colour outputs.
+pub(super) const SECONDARY: [&str; 2] = ["gl_SecondaryFragColorEXT", "gl_SecondaryFragDataEXT"];
 
 /// Every function called by name, with where; every variable named; the first uses of
 /// [`FRAG_DEPTH`] and [`INSTANCE_ID`].
@@ -86,6 +94,7 @@ struct Calls {
     variables: HashSet<String>,
     frag_depth: Option<Option<ast::NodeSpan>>,
     instance_id: Option<Option<ast::NodeSpan>>,
+    secondary: Option<(String, Option<ast::NodeSpan>)>,
 }
 
 impl Visitor for Calls {
@@ -97,6 +106,9 @@ impl Visitor for Calls {
             }
             if id.0 == INSTANCE_ID && self.instance_id.is_none() {
                 self.instance_id = Some(e.span);
+            }
+            if SECONDARY.contains(&id.0.as_str()) && self.secondary.is_none() {
+                self.secondary = Some((id.0.to_string(), e.span));
             }
         }
         if let ExprData::FunCall(f, _) = &e.content {

@@ -29,6 +29,7 @@ pub(super) fn builtin(name: &str) -> Option<i64> {
             MAX_UNITS as i64
         }
         "gl_MaxDrawBuffers" => MAX_DRAW_BUFFERS as i64,
+        "gl_MaxDualSourceDrawBuffersEXT" => 1,
         _ => return None,
     })
 }

@@ -67,6 +67,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         frag_depth: false,
         instance_id: false,
         frag_data: false,
+        dual: false,
         has_main: false,
         log: parsed.warnings.join("\n"),
         facts,
@@ -223,15 +224,29 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         instance_id: false,
         frag_color: false,
         frag_data: false,
+        secondary_color: false,
+        secondary_data: false,
     };
     shader.body.visit_mut(&mut rewrite);
     super::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
     shader.frag_depth = rewrite.frag_depth;
     shader.instance_id = rewrite.instance_id;
-    shader.frag_data = rewrite.frag_data;
+    shader.frag_data = rewrite.frag_data || rewrite.secondary_data;
+    shader.dual = rewrite.secondary_color || rewrite.secondary_data;
+    // Each colour output pairs with its own second colour (Mesa's messages).
+    let both = |a: &str, b: &str| format!("0:0(0): error: fragment shader writes to both `{a}' and `{b}'");
     if rewrite.frag_color && rewrite.frag_data {
-        return Err("0:0(0): error: fragment shader writes to both `gl_FragColor' and `gl_FragData'".into());
+        return Err(both("gl_FragColor", "gl_FragData"));
+    }
+    if rewrite.frag_color && rewrite.secondary_data {
+        return Err(both("gl_FragColor", "gl_FragSecondaryDataEXT"));
+    }
+    if rewrite.frag_data && rewrite.secondary_color {
+        return Err(both("gl_FragData", "gl_FragSecondaryColorEXT"));
+    }
+    if rewrite.secondary_color && rewrite.secondary_data {
+        return Err(both("gl_FragSecondaryColorEXT", "gl_FragSecondaryDataEXT"));
     }
     if let Some(e) = rewrite.error {
         return Err(e);

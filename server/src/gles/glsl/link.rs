@@ -56,6 +56,9 @@ pub struct Linked {
     /// The vertex input location of the points stage's `strata_point` parameter:
     /// (1 / viewport width, 1 / viewport height, 0, 0), constant over the draw.
     pub point_input: u32,
+    /// Whether the fragment stage writes a second colour (`GL_EXT_blend_func_extended`): its
+    /// one output is location 0's two blend sources.
+    pub dual: bool,
 }
 
 /// The largest uniform block: wgpu's guaranteed uniform binding size (64 KiB, 4096 vectors,
@@ -217,6 +220,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         vertex_source,
         reversed_fragment_source,
         point_input,
+        dual: fs.dual,
     })
 }
 
@@ -487,7 +491,20 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     // One output per draw buffer (`GL_EXT_draw_buffers`): `gl_FragData[i]` writes output `i`,
     // and `gl_FragColor` writes every output, as the extension specifies.
     let mut color_out = String::new();
-    if fs.frag_data {
+    if fs.dual {
+        // Dual-source blending (`GL_EXT_blend_func_extended`): location 0's two sources are
+        // the only outputs, as one draw buffer is all it allows.
+        let (first, second) = if fs.frag_data {
+            let _ = writeln!(fsrc, "vec4 strata_FragData[{MAX_DRAW_BUFFERS}];\nvec4 strata_SecondaryFragData[1];");
+            ("strata_FragData[0]", "strata_SecondaryFragData[0]")
+        } else {
+            fsrc.push_str("vec4 strata_FragColor;\nvec4 strata_SecondaryFragColor;\n");
+            ("strata_FragColor", "strata_SecondaryFragColor")
+        };
+        fsrc.push_str("layout(location = 0, index = 0) out vec4 strata_FragOut0;\n");
+        fsrc.push_str("layout(location = 0, index = 1) out vec4 strata_FragOut0b;\n");
+        let _ = writeln!(color_out, "    strata_FragOut0 = {first};\n    strata_FragOut0b = {second};");
+    } else if fs.frag_data {
         let _ = writeln!(fsrc, "vec4 strata_FragData[{MAX_DRAW_BUFFERS}];");
         for i in 0..MAX_DRAW_BUFFERS {
             let _ = writeln!(fsrc, "layout(location = {i}) out vec4 strata_FragOut{i};");

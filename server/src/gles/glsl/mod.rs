@@ -231,8 +231,12 @@ pub struct Shader {
     pub frag_depth: bool,
     /// Whether it reads `gl_InstanceIDEXT` (vertex shaders, `GL_EXT_draw_instanced`).
     pub instance_id: bool,
-    /// Whether it uses `gl_FragData` (fragment shaders, `GL_EXT_draw_buffers`).
+    /// Whether it uses `gl_FragData` (fragment shaders, `GL_EXT_draw_buffers`), or
+    /// `gl_SecondaryFragDataEXT`.
     pub frag_data: bool,
+    /// Whether it writes a second colour for dual-source blending (fragment shaders,
+    /// `GL_EXT_blend_func_extended`).
+    pub dual: bool,
     /// Whether it defines `main` (a program without one fails to link).
     pub has_main: bool,
     /// The info log of a successful compile (warnings), empty if none.

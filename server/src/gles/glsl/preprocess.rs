@@ -22,6 +22,9 @@ pub(super) const EXT_DRAW_INSTANCED: &str = "GL_EXT_draw_instanced";
 /// `gl_FragData[i]` for every draw buffer. As on Mesa, the array is there whether or not a
 /// shader enables the extension; the directive is accepted and the macro defined.
 pub(super) const EXT_DRAW_BUFFERS: &str = "GL_EXT_draw_buffers";
+/// `gl_SecondaryFragColorEXT` and `gl_SecondaryFragDataEXT`, the second colour dual-source
+/// blending reads, in fragment shaders.
+pub(super) const EXT_BLEND_FUNC_EXTENDED: &str = "GL_EXT_blend_func_extended";
 
 /// Which of the offered extensions a shader's directives leave enabled.
 #[derive(Debug, Clone, Copy, Default)]
@@ -32,6 +35,8 @@ pub(super) struct Enabled {
     pub(super) frag_depth: bool,
     /// `GL_EXT_draw_instanced`.
     pub(super) draw_instanced: bool,
+    /// `GL_EXT_blend_func_extended`.
+    pub(super) blend_func_extended: bool,
 }
 
 /// The preprocessor's extension registry: only what Strata offers, so that only those
@@ -42,6 +47,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_FRAG_DEPTH), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_INSTANCED), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_BUFFERS), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_BLEND_FUNC_EXTENDED), vec![]));
     r
 });
 
@@ -116,6 +122,10 @@ fn extension_directive(
         return Ok(());
     }
     if name == EXT_DRAW_BUFFERS {
+        return Ok(());
+    }
+    if name == EXT_BLEND_FUNC_EXTENDED {
+        enabled.blend_func_extended = behavior != "disable";
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));

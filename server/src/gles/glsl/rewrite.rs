@@ -38,6 +38,10 @@ pub(super) struct Rewrite {
     pub(super) frag_color: bool,
     /// Whether the (fragment) shader uses `gl_FragData` (`GL_EXT_draw_buffers`).
     pub(super) frag_data: bool,
+    /// Whether the (fragment) shader uses `gl_SecondaryFragColorEXT` (`GL_EXT_blend_func_extended`).
+    pub(super) secondary_color: bool,
+    /// Whether the (fragment) shader uses `gl_SecondaryFragDataEXT`.
+    pub(super) secondary_data: bool,
 }
 
 /// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
@@ -250,6 +254,14 @@ impl VisitorMut for Rewrite {
                 if name == "gl_FragColor" && self.stage == Stage::Fragment {
                     self.frag_color = true;
                     Some(var("strata_FragColor"))
+                } else if name == "gl_SecondaryFragColorEXT" && self.stage == Stage::Fragment {
+                    // The second colour of dual-source blending, written out by the generated
+                    // `main` (`link`).
+                    self.secondary_color = true;
+                    Some(var("strata_SecondaryFragColor"))
+                } else if name == "gl_SecondaryFragDataEXT" && self.stage == Stage::Fragment {
+                    self.secondary_data = true;
+                    Some(var("strata_SecondaryFragData"))
                 } else if name == "gl_FragData" && self.stage == Stage::Fragment {
                     // One colour per draw buffer, written out by the generated `main` (`link`).
                     self.frag_data = true;
@@ -289,10 +301,12 @@ impl VisitorMut for Rewrite {
                 }
             }
             ExprData::Bracket(base, index) => match (&base.content, &index.content) {
-                (ExprData::Variable(id), ExprData::IntConst(k)) if id.0 == "gl_FragData" => {
-                    if *k < 0 || *k >= MAX_DRAW_BUFFERS as i32 {
-                        let msg = format!("0: array index must be < {MAX_DRAW_BUFFERS}");
-                        self.error.get_or_insert(msg);
+                (ExprData::Variable(id), ExprData::IntConst(k))
+                    if id.0 == "gl_FragData" || id.0 == "gl_SecondaryFragDataEXT" =>
+                {
+                    let len = if id.0 == "gl_FragData" { MAX_DRAW_BUFFERS as i32 } else { 1 };
+                    if *k < 0 || *k >= len {
+                        self.error.get_or_insert(format!("0: array index must be < {len}"));
                     }
                     None
                 }

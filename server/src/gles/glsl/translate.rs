@@ -107,7 +107,7 @@ pub(super) fn naga_module(stage: Stage, src: &str, placed: &Placed<'_>) -> Resul
             .collect();
         lines.join("\n")
     })?;
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::DUAL_SOURCE_BLENDING)
         .validate(&module)
         .map_err(|e| {
             debug!(target: "strata_server::gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
