@@ -29,6 +29,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 
 #[path = "client_calls/draw_buffers.rs"]
 mod draw_buffers;
+#[path = "client_calls/fence_sync.rs"]
+mod fence_sync;
 #[path = "client_calls/mapping.rs"]
 mod mapping;
 #[path = "client_calls/pack.rs"]
@@ -121,6 +123,13 @@ api! {
     draw_buffers_ext = "glDrawBuffersEXT": fn(i32, *const u32);
     draw_buffers_nv = "glDrawBuffersNV": fn(i32, *const u32);
     read_buffer_nv = "glReadBufferNV": fn(u32);
+    finish = "glFinish": fn();
+    get_string = "glGetString": fn(u32) -> *const u8;
+    egl_create_sync = "eglCreateSyncKHR": fn(Ptr, u32, *const i32) -> Ptr;
+    egl_destroy_sync = "eglDestroySyncKHR": fn(Ptr, Ptr) -> u32;
+    egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;
+    egl_get_sync_attrib = "eglGetSyncAttribKHR": fn(Ptr, Ptr, i32, *mut i32) -> u32;
+    egl_wait_sync = "eglWaitSyncKHR": fn(Ptr, Ptr, i32) -> i32;
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -241,12 +250,13 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 5] = [
+    let sequences: [Sequence; 6] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
         ("robustness", robustness::sequence),
         ("draw_buffers", draw_buffers::sequence),
+        ("fence_sync", fence_sync::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

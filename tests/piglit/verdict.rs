@@ -62,6 +62,9 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_NV_draw_buffers",
     "GL_NV_fbo_color_attachments",
     "GL_EXT_blend_func_extended",
+    "GL_OES_EGL_sync",
+    "EGL_KHR_fence_sync",
+    "EGL_KHR_wait_sync",
     "GL_EXT_occlusion_query_boolean",
     "GL_NV_conditional_render",
     "GL_EXT_robustness",
@@ -72,7 +75,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
 /// The reasons a test may be excused, as the part of a reason before its first colon.
 /// No "ES 3.x context": held to ES 2.0, Mesa cannot pass a test that needs one. "EGL pixmap
 /// surface": the test needs a config that renders to X pixmaps, which Strata has no surfaces for.
-pub const EXCUSES: &[&str] = &["desktop GL context", "ES 1.x context", "extension", "EGL pixmap surface"];
+pub const EXCUSES: &[&str] =
+    &["desktop GL context", "ES 1.x context", "extension", "EGL pixmap surface", "ES 3 config"];
 
 /// One test's result as piglit recorded it.
 #[derive(Debug, Clone, Default)]

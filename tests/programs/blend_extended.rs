@@ -3,6 +3,7 @@
 //! factors in both places and `GL_SRC_ALPHA_SATURATE` as a destination; the built-ins' rules;
 //! all as colours.
 
+use super::draw_buffers::compiles;
 use super::multi_draw::mark_all;
 use super::*;
 
@@ -18,7 +19,6 @@ const ZERO: u32 = 0;
 const ONE: u32 = 1;
 const FRAGMENT_SHADER: u32 = 0x8B30;
 const VERTEX_SHADER: u32 = 0x8B31;
-const COMPILE_STATUS: u32 = 0x8B81;
 
 /// The primary colour from the varying, the second one its own pattern.
 const FS_DUAL: &str = "#extension GL_EXT_blend_func_extended : require
@@ -35,15 +35,6 @@ const FS_DUAL_DATA: &str = "#extension GL_EXT_blend_func_extended : enable
         gl_FragData[0] = v.bgra;
         gl_SecondaryFragDataEXT[0] = vec4(0.25, v.g, v.b, 1.0 - v.r);
     }";
-
-/// A shader's compile status.
-fn compiles(gl: Gl<'_>, n: &mut Names, ty: u32, source: &str) -> Result<u32, ClientError> {
-    let s = n.next();
-    gl.glCreateShader(ty, s)?;
-    gl.glShaderSource(s, Text::borrowed(source))?;
-    gl.glCompileShader(s)?;
-    Ok(gl.glGetShaderiv(s, COMPILE_STATUS)? as u32)
-}
 
 /// Sets the blend factors, marking the error.
 fn func(gl: Gl<'_>, marks: &mut Vec<u32>, f: [u32; 4]) -> R {

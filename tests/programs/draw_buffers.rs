@@ -37,10 +37,10 @@ const FS_LOOP: &str = "#extension GL_EXT_draw_buffers : enable
         }
     }";
 
-/// A fragment shader's compile status.
-fn compiles(gl: Gl<'_>, n: &mut Names, source: &str) -> Result<u32, ClientError> {
+/// The compile status of a shader of type `ty`.
+pub(super) fn compiles(gl: Gl<'_>, n: &mut Names, ty: u32, source: &str) -> Result<u32, ClientError> {
     let s = n.next();
-    gl.glCreateShader(FRAGMENT_SHADER, s)?;
+    gl.glCreateShader(ty, s)?;
     gl.glShaderSource(s, Text::borrowed(source))?;
     gl.glCompileShader(s)?;
     Ok(gl.glGetShaderiv(s, COMPILE_STATUS)? as u32)
@@ -134,7 +134,7 @@ fn object_errors(gl: Gl<'_>, n: &mut Names, marks: &mut Vec<u32>) -> R {
         "#ifndef GL_EXT_draw_buffers\n#error missing\n#endif\nvoid main() { gl_FragColor = vec4(1.0); }",
         "uniform mediump float a[gl_MaxDrawBuffers == 8 ? 1 : -1];\nvoid main() { gl_FragData[0] = vec4(a[0]); }",
     ] {
-        marks.push(compiles(gl, n, fs)?);
+        marks.push(compiles(gl, n, FRAGMENT_SHADER, fs)?);
     }
     Ok(())
 }

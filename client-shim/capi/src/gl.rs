@@ -283,7 +283,6 @@ pub mod simple {
         fn glVertexAttrib3f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat);
         fn glVertexAttrib4f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
         fn glCheckFramebufferStatus(target: GLenum) -> GLenum;
-        fn glFinish();
         fn glIsBuffer(name: GLuint) -> GLboolean;
         fn glIsEnabled(cap: GLenum) -> GLboolean;
         fn glIsFramebuffer(name: GLuint) -> GLboolean;

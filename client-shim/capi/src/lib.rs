@@ -21,6 +21,7 @@ pub mod glx;
 mod input;
 mod state;
 mod surface;
+pub mod sync;
 mod types;
 pub mod vao;
 mod x11;
@@ -104,13 +105,13 @@ pub(crate) use entry_points;
 
 /// The address of any exported EGL or GL entry point, by name.
 pub(crate) fn proc_address(name: &[u8]) -> Option<*const c_void> {
-    egl::lookup(name).or_else(|| gl::lookup(name)).or_else(|| glx::lookup(name))
+    egl::lookup(name).or_else(|| sync::lookup(name)).or_else(|| gl::lookup(name)).or_else(|| glx::lookup(name))
 }
 
 /// Every exported entry point's name.
 #[cfg(test)]
 pub(crate) fn exported_names() -> Vec<&'static str> {
-    egl::NAMES.iter().chain(gl::MODULE_NAMES.iter().flat_map(|m| m.iter())).copied().collect()
+    egl::NAMES.iter().chain(sync::NAMES).chain(gl::MODULE_NAMES.iter().flat_map(|m| m.iter())).copied().collect()
 }
 
 #[cfg(test)]

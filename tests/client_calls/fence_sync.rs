@@ -1,0 +1,105 @@
+//! `EGL_KHR_fence_sync` and `EGL_KHR_wait_sync`, with `GL_OES_EGL_sync` in the GL extension
+//! string: fences' attributes, their status before and after `glFinish`, waits that poll and
+//! waits that block, the errors for bad displays, types, attributes and handles, and a fence
+//! asked for with no context current.
+
+use super::*;
+
+const SYNC_FENCE: u32 = 0x30F9;
+const SYNC_TYPE: i32 = 0x30F7;
+const SYNC_STATUS: i32 = 0x30F1;
+const SYNC_CONDITION: i32 = 0x30F8;
+const SIGNALED: i32 = 0x30F2;
+const UNSIGNALED: i32 = 0x30F3;
+const TIMEOUT_EXPIRED: i32 = 0x30F5;
+const CONDITION_SATISFIED: i32 = 0x30F6;
+const FOREVER: u64 = u64::MAX;
+
+/// Not a sync: the address of a constant of this program, as piglit passes.
+static CANARY: u32 = 0x3141_5926;
+
+impl Run {
+    /// Creates a sync; logs whether one came and EGL's error.
+    fn create_sync(&mut self, what: &str, dpy: Ptr, ty: u32, attribs: *const i32) -> Ptr {
+        // SAFETY: EGL's prototype; `attribs` is NULL or EGL_NONE-terminated.
+        let (s, e) = unsafe { ((self.gl.egl_create_sync)(dpy, ty, attribs), (self.gl.egl_get_error)()) };
+        self.log.push(format!("create {what}: made {}, EGL error {e:#x}", !s.is_null()));
+        s
+    }
+
+    /// Logs `f`'s answer and EGL's error.
+    fn egl_note(&mut self, what: &str, answer: i64) {
+        // SAFETY: eglGetError's prototype.
+        let e = unsafe { (self.gl.egl_get_error)() };
+        self.log.push(format!("{what}: {answer:#x}, EGL error {e:#x}"));
+    }
+
+    /// Logs a sync attribute, with the value left where the call fails.
+    fn sync_attrib(&mut self, what: &str, sync: Ptr, attribute: i32) {
+        let mut v = 0x3141_5926;
+        // SAFETY: EGL's prototype; one value.
+        let ok = unsafe { (self.gl.egl_get_sync_attrib)(self.egl.display, sync, attribute, &mut v) };
+        self.egl_note(&format!("{what} (value {v:#x})"), i64::from(ok));
+    }
+}
+
+/// The fence-sync sequence.
+pub fn sequence(r: &mut Run) {
+    let (gl, egl) = (r.gl, r.egl);
+    let canary = std::ptr::addr_of!(CANARY) as Ptr;
+    // SAFETY: glGetString's prototype; the answer is NUL-terminated or NULL.
+    let extensions = unsafe {
+        let s = (gl.get_string)(0x1F03);
+        if s.is_null() {
+            String::new()
+        } else {
+            std::ffi::CStr::from_ptr(s.cast()).to_string_lossy().into_owned()
+        }
+    };
+    r.log.push(format!("GL_OES_EGL_sync offered: {}", extensions.split(' ').any(|e| e == "GL_OES_EGL_sync")));
+    r.create_sync("of an unknown type", egl.display, SYNC_TYPE as u32, std::ptr::null());
+    r.create_sync("with an attribute", egl.display, SYNC_FENCE, [0x3098, 2, NONE].as_ptr());
+    r.create_sync("on no display", std::ptr::null_mut(), SYNC_FENCE, std::ptr::null());
+    let s = r.create_sync("a fence", egl.display, SYNC_FENCE, [NONE].as_ptr());
+    r.sync_attrib("type", s, SYNC_TYPE);
+    r.sync_attrib("condition", s, SYNC_CONDITION);
+    r.sync_attrib("an attribute no sync has", s, 0x3094);
+    let mut v = 0;
+    // SAFETY: GL and EGL calls with this run's handles; every out-pointer has room.
+    unsafe {
+        let ok = (gl.egl_get_sync_attrib)(egl.display, s, SYNC_STATUS, &mut v);
+        r.egl_note(&format!("status is one of the two {}", v == SIGNALED || v == UNSIGNALED), i64::from(ok));
+        // A poll, then a finish: the fence is done.
+        (gl.clear)(0x4000);
+        let w = (gl.egl_client_wait_sync)(egl.display, s, 0, 0);
+        r.egl_note(&format!("poll answers one of the two {}", w == TIMEOUT_EXPIRED || w == CONDITION_SATISFIED), 0);
+        (gl.finish)();
+        r.sync_attrib("status after glFinish", s, SYNC_STATUS);
+        let w = (gl.egl_client_wait_sync)(egl.display, s, 0, 0);
+        r.egl_note("poll after glFinish", i64::from(w));
+        r.egl_note("destroy", i64::from((gl.egl_destroy_sync)(egl.display, s)));
+        r.egl_note("destroy again", i64::from((gl.egl_destroy_sync)(egl.display, s)));
+        // Waits that block, with and without a flush asked for.
+        let s = r.create_sync("another fence", egl.display, SYNC_FENCE, std::ptr::null());
+        (gl.clear)(0x4000);
+        r.egl_note("wait 0.5 s", i64::from((gl.egl_client_wait_sync)(egl.display, s, 1, 500_000_000)));
+        r.sync_attrib("status after the wait", s, SYNC_STATUS);
+        r.egl_note("wait forever", i64::from((gl.egl_client_wait_sync)(egl.display, s, 0, FOREVER)));
+        r.egl_note("server wait", i64::from((gl.egl_wait_sync)(egl.display, s, 0)));
+        r.egl_note("server wait with a flag", i64::from((gl.egl_wait_sync)(egl.display, s, 1)));
+        // Handles that are no syncs.
+        r.sync_attrib("type of no sync", canary, SYNC_TYPE);
+        r.egl_note("wait for no sync", i64::from((gl.egl_client_wait_sync)(egl.display, canary, 0, 0)));
+        r.egl_note("server wait for no sync", i64::from((gl.egl_wait_sync)(egl.display, canary, 0)));
+        r.egl_note("destroy no sync", i64::from((gl.egl_destroy_sync)(egl.display, canary)));
+        // With no context current there is nothing to fence; a fence made before stays.
+        let ok = (gl.egl_make_current)(egl.display, std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut());
+        r.egl_note("release", i64::from(ok));
+        r.create_sync("with no context", egl.display, SYNC_FENCE, std::ptr::null());
+        r.egl_note("wait with no context", i64::from((gl.egl_client_wait_sync)(egl.display, s, 0, FOREVER)));
+        r.egl_note("server wait with no context", i64::from((gl.egl_wait_sync)(egl.display, s, 0)));
+        let ok = (gl.egl_make_current)(egl.display, egl.surface, egl.surface, egl.context);
+        r.egl_note("current again", i64::from(ok));
+        r.egl_note("destroy", i64::from((gl.egl_destroy_sync)(egl.display, s)));
+    }
+}
