@@ -10,7 +10,11 @@
 //! - `surfaceless`: contexts current with no surface (`EGL_KHR_surfaceless_context`,
 //!   `GL_OES_surfaceless_context`), which the library passes on;
 //! - `robustness`: the reset status and the reads bounded by the application's buffer size
-//!   (`GL_EXT_robustness`, `GL_KHR_robustness`).
+//!   (`GL_EXT_robustness`, `GL_KHR_robustness`);
+//! - `draw_buffers`: the counts the library refuses before reading the list, both names of
+//!   `glDrawBuffers*`, and a draw into two attachments (`GL_EXT_draw_buffers`,
+//!   `GL_NV_draw_buffers`);
+//! - `fence_sync`: fences, which are the library's (`EGL_KHR_fence_sync`, `EGL_KHR_wait_sync`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 

@@ -28,7 +28,7 @@ const EGL_WIDTH: EGLint = 0x3057;
 
 /// Client extensions (`eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)`): only what is implemented.
 const CLIENT_EXTENSIONS: &CStr =
-    c"EGL_EXT_client_extensions EGL_EXT_platform_base EGL_KHR_platform_x11 EGL_EXT_platform_x11";
+    c"EGL_EXT_client_extensions EGL_EXT_platform_base EGL_KHR_platform_x11 EGL_EXT_platform_x11 EGL_KHR_client_get_all_proc_addresses";
 
 /// Longest attribute list read from the application (pairs), against unterminated lists.
 const MAX_ATTRIBS: usize = 256;
@@ -222,7 +222,7 @@ crate::entry_points! {
             EGL_CLIENT_APIS => c"OpenGL_ES",
             // The daemon answers them (`EGL_STRATA_surface_id` and `EGL_STRATA_surface_projection`: surface attributes the
             // library passes through, see docs/projection.md).
-            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_wait_sync EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
+            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_wait_sync EGL_KHR_get_all_proc_addresses EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();

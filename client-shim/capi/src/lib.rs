@@ -148,28 +148,43 @@ mod tests {
 
     #[test]
     fn every_entry_point_of_the_offered_extensions_is_exported_and_resolvable() {
-        let Some(text) = std::fs::read_to_string("/usr/include/GLES2/gl2ext.h").ok() else {
-            assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "GLES2/gl2ext.h missing");
-            eprintln!("skipping: /usr/include/GLES2/gl2ext.h not installed (libgles-dev)");
+        offered_sections_resolve(
+            "GLES2/gl2ext.h",
+            "GL_APICALL",
+            &[
+                ("GL_KHR_debug", 11),
+                ("GL_OES_vertex_array_object", 4),
+                ("GL_OES_mapbuffer", 3),
+                ("GL_EXT_map_buffer_range", 2),
+                ("GL_EXT_robustness", 4),
+                ("GL_KHR_robustness", 5),
+                ("GL_EXT_draw_buffers", 1),
+                ("GL_NV_draw_buffers", 1),
+                ("GL_EXT_blend_func_extended", 4),
+            ],
+        );
+    }
+
+    #[test]
+    fn every_entry_point_of_the_offered_egl_extensions_is_exported_and_resolvable() {
+        offered_sections_resolve("EGL/eglext.h", "EGLAPI", &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_wait_sync", 1)]);
+    }
+
+    /// Each extension's section of the Khronos header `header` (under /usr/include) declares
+    /// `count` entry points (lines starting with `prefix`); each is exported and resolvable.
+    fn offered_sections_resolve(header: &str, prefix: &str, extensions: &[(&str, usize)]) {
+        let Some(text) = std::fs::read_to_string(format!("/usr/include/{header}")).ok() else {
+            assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "{header} missing");
+            eprintln!("skipping: /usr/include/{header} not installed");
             return;
         };
         let exported = exported_names();
-        for (ext, count) in [
-            ("GL_KHR_debug", 11),
-            ("GL_OES_vertex_array_object", 4),
-            ("GL_OES_mapbuffer", 3),
-            ("GL_EXT_map_buffer_range", 2),
-            ("GL_EXT_robustness", 4),
-            ("GL_KHR_robustness", 5),
-            ("GL_EXT_draw_buffers", 1),
-            ("GL_NV_draw_buffers", 1),
-            ("GL_EXT_blend_func_extended", 4),
-        ] {
-            let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in gl2ext.h"));
+        for &(ext, count) in extensions {
+            let start = text.find(&format!("#ifndef {ext}\n")).unwrap_or_else(|| panic!("{ext} not in {header}"));
             let end = text[start..].find(&format!("#endif /* {ext} */")).map(|e| start + e).expect("section end");
             let names: Vec<&str> = text[start..end]
                 .lines()
-                .filter(|l| l.starts_with("GL_APICALL"))
+                .filter(|l| l.starts_with(prefix))
                 .filter_map(|l| l.split('(').next()?.split_whitespace().last())
                 .collect();
             assert_eq!(names.len(), count, "{ext} declares {count} entry points");
