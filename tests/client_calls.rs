@@ -14,7 +14,8 @@
 //! - `draw_buffers`: the counts the library refuses before reading the list, both names of
 //!   `glDrawBuffers*`, and a draw into two attachments (`GL_EXT_draw_buffers`,
 //!   `GL_NV_draw_buffers`);
-//! - `fence_sync`: fences, which are the library's (`EGL_KHR_fence_sync`, `EGL_KHR_wait_sync`).
+//! - `fence_sync`: fences and reusable syncs, which are the library's (`EGL_KHR_fence_sync`,
+//!   `EGL_KHR_reusable_sync`, `EGL_KHR_wait_sync`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -134,6 +135,7 @@ api! {
     egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;
     egl_get_sync_attrib = "eglGetSyncAttribKHR": fn(Ptr, Ptr, i32, *mut i32) -> u32;
     egl_wait_sync = "eglWaitSyncKHR": fn(Ptr, Ptr, i32) -> i32;
+    egl_signal_sync = "eglSignalSyncKHR": fn(Ptr, Ptr, u32) -> u32;
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and

@@ -1,11 +1,14 @@
-//! `EGL_KHR_fence_sync` and `EGL_KHR_wait_sync`, with `GL_OES_EGL_sync` in the GL extension
-//! string: fences' attributes, their status before and after `glFinish`, waits that poll and
-//! waits that block, the errors for bad displays, types, attributes and handles, and a fence
-//! asked for with no context current.
+//! `EGL_KHR_fence_sync`, `EGL_KHR_reusable_sync` and `EGL_KHR_wait_sync`, with
+//! `GL_OES_EGL_sync` in the GL extension string: fences' attributes, their status before and
+//! after `glFinish`, waits that poll and waits that block, the errors for bad displays, types,
+//! attributes and handles, a fence asked for with no context current; a reusable sync
+//! signalled and unsignalled, waited for with a timeout, and signalled by another thread
+//! while this one waits.
 
 use super::*;
 
 const SYNC_FENCE: u32 = 0x30F9;
+const SYNC_REUSABLE: u32 = 0x30FA;
 const SYNC_TYPE: i32 = 0x30F7;
 const SYNC_STATUS: i32 = 0x30F1;
 const SYNC_CONDITION: i32 = 0x30F8;
@@ -98,8 +101,45 @@ pub fn sequence(r: &mut Run) {
         r.create_sync("with no context", egl.display, SYNC_FENCE, std::ptr::null());
         r.egl_note("wait with no context", i64::from((gl.egl_client_wait_sync)(egl.display, s, 0, FOREVER)));
         r.egl_note("server wait with no context", i64::from((gl.egl_wait_sync)(egl.display, s, 0)));
+        // A reusable sync needs no context, and only the application signals it.
+        let u = r.create_sync("a reusable sync", egl.display, SYNC_REUSABLE, std::ptr::null());
+        r.sync_attrib("its type", u, SYNC_TYPE);
+        r.sync_attrib("its status", u, SYNC_STATUS);
+        r.sync_attrib("its condition", u, SYNC_CONDITION);
+        r.egl_note("wait 1 ms", i64::from((gl.egl_client_wait_sync)(egl.display, u, 0, 1_000_000)));
+        r.egl_note("signal with a bad mode", i64::from((gl.egl_signal_sync)(egl.display, u, 0x1234)));
+        r.egl_note("signal", i64::from((gl.egl_signal_sync)(egl.display, u, SIGNALED as u32)));
+        r.sync_attrib("status once signalled", u, SYNC_STATUS);
+        r.egl_note("wait forever, signalled", i64::from((gl.egl_client_wait_sync)(egl.display, u, 0, FOREVER)));
+        r.egl_note("unsignal", i64::from((gl.egl_signal_sync)(egl.display, u, UNSIGNALED as u32)));
+        r.egl_note("poll", i64::from((gl.egl_client_wait_sync)(egl.display, u, 0, 0)));
+        // Signalled by another thread while this one waits.
+        let (signal, display, handle) = (gl.egl_signal_sync, egl.display as usize, u as usize);
+        let other = std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            // EGL's prototype with the run's display and sync (inside the unsafe block above).
+            signal(display as Ptr, handle as Ptr, SIGNALED as u32)
+        });
+        r.egl_note(
+            "wait forever, signalled by another thread",
+            i64::from((gl.egl_client_wait_sync)(egl.display, u, 0, FOREVER)),
+        );
+        let signalled = other.join().unwrap_or(0);
+        r.log.push(format!("the other thread's signal: {signalled:#x}"));
         let ok = (gl.egl_make_current)(egl.display, egl.surface, egl.surface, egl.context);
         r.egl_note("current again", i64::from(ok));
+        r.egl_note("server wait for it", i64::from((gl.egl_wait_sync)(egl.display, u, 0)));
+        r.create_sync(
+            "a reusable sync with an attribute",
+            egl.display,
+            SYNC_REUSABLE,
+            [SYNC_STATUS, SIGNALED, NONE].as_ptr(),
+        );
+        let f = r.create_sync("a fence", egl.display, SYNC_FENCE, std::ptr::null());
+        r.egl_note("signal a fence", i64::from((gl.egl_signal_sync)(egl.display, f, SIGNALED as u32)));
         r.egl_note("destroy", i64::from((gl.egl_destroy_sync)(egl.display, s)));
+        r.egl_note("destroy the reusable sync", i64::from((gl.egl_destroy_sync)(egl.display, u)));
+        r.egl_note("destroy the fence", i64::from((gl.egl_destroy_sync)(egl.display, f)));
+        r.egl_note("signal it destroyed", i64::from((gl.egl_signal_sync)(egl.display, u, SIGNALED as u32)));
     }
 }

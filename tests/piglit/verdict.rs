@@ -65,6 +65,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_EGL_sync",
     "EGL_KHR_fence_sync",
     "EGL_KHR_wait_sync",
+    "EGL_KHR_reusable_sync",
     "GL_EXT_occlusion_query_boolean",
     "GL_NV_conditional_render",
     "GL_EXT_robustness",

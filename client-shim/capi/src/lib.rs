@@ -167,7 +167,11 @@ mod tests {
 
     #[test]
     fn every_entry_point_of_the_offered_egl_extensions_is_exported_and_resolvable() {
-        offered_sections_resolve("EGL/eglext.h", "EGLAPI", &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_wait_sync", 1)]);
+        offered_sections_resolve(
+            "EGL/eglext.h",
+            "EGLAPI",
+            &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_reusable_sync", 1), ("EGL_KHR_wait_sync", 1)],
+        );
     }
 
     /// Each extension's section of the Khronos header `header` (under /usr/include) declares

@@ -1,5 +1,6 @@
-//! `EGL_KHR_fence_sync` and `EGL_KHR_wait_sync` (with `GL_OES_EGL_sync` on the GL side): fence
-//! syncs, and `glFinish`, which signals them.
+//! `EGL_KHR_fence_sync`, `EGL_KHR_reusable_sync` and `EGL_KHR_wait_sync` (with
+//! `GL_OES_EGL_sync` on the GL side): fence syncs, `glFinish`, which signals them, and reusable
+//! syncs, which only the application signals (`eglSignalSyncKHR`) and a wait blocks on.
 //!
 //! A fence is signalled once the GL commands before it have completed. The daemon runs each
 //! process's commands in order on one connection, and its `glFinish` waits until the GPU has
@@ -13,7 +14,8 @@
 use std::collections::HashMap;
 use std::ffi::c_void;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Condvar, Mutex, PoisonError};
+use std::time::{Duration, Instant};
 
 use strata_protocol::Calls;
 
@@ -36,17 +38,31 @@ const EGL_UNSIGNALED_KHR: EGLint = 0x30F3;
 const EGL_SYNC_PRIOR_COMMANDS_COMPLETE_KHR: EGLint = 0x30F0;
 const EGL_TIMEOUT_EXPIRED_KHR: EGLint = 0x30F5;
 const EGL_CONDITION_SATISFIED_KHR: EGLint = 0x30F6;
+const EGL_SYNC_REUSABLE_KHR: EGLint = 0x30FA;
+const EGL_FOREVER_KHR: EGLTimeKHR = u64::MAX;
 
 /// `glFinish` calls completed in this process (the application's and the waits').
 static FINISHES: AtomicU64 = AtomicU64::new(0);
 
-/// A fence sync.
+/// A sync object.
 struct Fence {
     /// The shim's display number it belongs to.
     display: usize,
-    /// [`FINISHES`] when it was created: any later finish signals it.
-    finishes: u64,
+    /// What signals it.
+    kind: Kind,
 }
+
+/// What signals a sync.
+#[derive(Clone, Copy)]
+enum Kind {
+    /// A fence: any finish after [`FINISHES`] had this value.
+    Fence(u64),
+    /// A reusable sync: the application, and this is its state.
+    Reusable(bool),
+}
+
+/// Woken whenever a reusable sync is signalled.
+static SIGNALLED: Condvar = Condvar::new();
 
 /// The live fences by handle; handles are never reused.
 static FENCES: Mutex<(usize, Option<HashMap<usize, Fence>>)> = Mutex::new((0, None));
@@ -58,9 +74,37 @@ fn fences<R>(f: impl FnOnce(&mut usize, &mut HashMap<usize, Fence>) -> R) -> R {
     f(next, map.get_or_insert_with(HashMap::new))
 }
 
-/// Whether fence `f` is signalled.
+/// Whether sync `f` is signalled.
 fn signaled(f: &Fence) -> bool {
-    FINISHES.load(Ordering::SeqCst) > f.finishes
+    match f.kind {
+        Kind::Fence(finishes) => FINISHES.load(Ordering::SeqCst) > finishes,
+        Kind::Reusable(signalled) => signalled,
+    }
+}
+
+/// Blocks until reusable sync `sync` is signalled, destroyed, or `timeout` (ns) has passed;
+/// whether it was signalled.
+fn wait_reusable(sync: usize, timeout: EGLTimeKHR) -> bool {
+    let deadline =
+        if timeout == EGL_FOREVER_KHR { None } else { Instant::now().checked_add(Duration::from_nanos(timeout)) };
+    let mut g = FENCES.lock().unwrap_or_else(PoisonError::into_inner);
+    loop {
+        match g.1.as_ref().and_then(|m| m.get(&sync)).map(|f| f.kind) {
+            Some(Kind::Reusable(false)) => {}
+            Some(Kind::Reusable(true)) => return true,
+            _ => return false,
+        }
+        g = match deadline {
+            None => SIGNALLED.wait(g).unwrap_or_else(PoisonError::into_inner),
+            Some(d) => {
+                let left = d.saturating_duration_since(Instant::now());
+                if left.is_zero() {
+                    return false;
+                }
+                SIGNALLED.wait_timeout(g, left).unwrap_or_else(PoisonError::into_inner).0
+            }
+        };
+    }
 }
 
 /// Checks `dpy` and that `sync` is one of its fences; `f` runs on it.
@@ -96,24 +140,31 @@ fn answer<T>(r: Result<T, EGLint>, fail: T) -> T {
     }
 }
 
-/// `eglCreateSyncKHR`: a fence after the current context's commands, which are flushed.
+/// `eglCreateSyncKHR`: a fence after the current context's commands, which are flushed, or an
+/// unsignalled reusable sync.
 fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyncKHR, EGLint> {
     let d = initialized(&mut process(), dpy)?;
     // SAFETY: a non-null list is EGL_NONE-terminated, as EGL requires.
-    if ty as EGLint != EGL_SYNC_FENCE_KHR || (!attribs.is_null() && unsafe { *attribs } != EGL_NONE) {
+    if !attribs.is_null() && unsafe { *attribs } != EGL_NONE {
         return Err(EGL_BAD_ATTRIBUTE);
     }
-    if state::current().is_none_or(|c| c.display != d) {
-        return Err(EGL_BAD_MATCH);
-    }
-    // SAFETY: glFlush takes no arguments.
-    unsafe { crate::gl::simple::glFlush() };
-    let finishes = FINISHES.load(Ordering::SeqCst);
+    let kind = match ty as EGLint {
+        EGL_SYNC_FENCE_KHR => {
+            if state::current().is_none_or(|c| c.display != d) {
+                return Err(EGL_BAD_MATCH);
+            }
+            // SAFETY: glFlush takes no arguments.
+            unsafe { crate::gl::simple::glFlush() };
+            Kind::Fence(FINISHES.load(Ordering::SeqCst))
+        }
+        EGL_SYNC_REUSABLE_KHR => Kind::Reusable(false),
+        _ => return Err(EGL_BAD_ATTRIBUTE),
+    };
     Ok(fences(|next, map| {
         *next += 1;
         // Handles far from small integers and null, and never reused.
         let handle = 0x5E70_0000 + *next * 16;
-        map.insert(handle, Fence { display: d, finishes });
+        map.insert(handle, Fence { display: d, kind });
         handle as EGLSyncKHR
     }))
 }
@@ -129,42 +180,75 @@ crate::entry_points! {
         })
     }
 
-    /// A fence sync (`EGL_SYNC_FENCE_KHR`, no attributes) after the current context's commands.
+    /// A fence sync (`EGL_SYNC_FENCE_KHR`, no attributes) after the current context's commands,
+    /// or a reusable sync (`EGL_SYNC_REUSABLE_KHR`).
     fn eglCreateSyncKHR(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> EGLSyncKHR {
         answer(create(dpy, ty, attribs), std::ptr::null_mut())
     }
 
-    /// Destroys a fence.
+    /// Destroys a sync; a wait blocked on it returns.
     fn eglDestroySyncKHR(dpy: EGLDisplay, sync: EGLSyncKHR) -> EGLBoolean {
         let r = with_fence(dpy, sync, |_| ()).map(|()| {
             fences(|_, map| map.remove(&(sync as usize)));
+            SIGNALLED.notify_all();
             EGL_TRUE
         });
         answer(r, EGL_FALSE)
     }
 
-    /// Waits for a fence: a zero timeout polls, any other finishes the process's commands.
+    /// Waits for a sync: a zero timeout polls; a fence is then waited for by finishing the
+    /// process's commands, a reusable sync until it is signalled or the timeout passes.
     fn eglClientWaitSyncKHR(dpy: EGLDisplay, sync: EGLSyncKHR, _flags: EGLint, timeout: EGLTimeKHR) -> EGLint {
-        let r = with_fence(dpy, sync, signaled).map(|done| {
-            if !done && timeout == 0 {
+        let r = with_fence(dpy, sync, |f| (signaled(f), f.kind)).map(|(done, kind)| {
+            if done {
+                return EGL_CONDITION_SATISFIED_KHR;
+            }
+            if timeout == 0 {
                 return EGL_TIMEOUT_EXPIRED_KHR;
             }
-            if !done {
-                finish_everything();
+            match kind {
+                Kind::Fence(_) => finish_everything(),
+                Kind::Reusable(_) if !wait_reusable(sync as usize, timeout) => return EGL_TIMEOUT_EXPIRED_KHR,
+                Kind::Reusable(_) => {}
             }
             EGL_CONDITION_SATISFIED_KHR
         });
         answer(r, EGL_FALSE as EGLint)
     }
 
+    /// Signals or unsignals a reusable sync, waking its waiters.
+    fn eglSignalSyncKHR(dpy: EGLDisplay, sync: EGLSyncKHR, mode: EGLenum) -> EGLBoolean {
+        let r = with_fence(dpy, sync, |f| f.kind).and_then(|kind| {
+            if !matches!(kind, Kind::Reusable(_)) {
+                return Err(EGL_BAD_MATCH);
+            }
+            let on = match mode as EGLint {
+                EGL_SIGNALED_KHR => true,
+                EGL_UNSIGNALED_KHR => false,
+                _ => return Err(EGL_BAD_ATTRIBUTE),
+            };
+            fences(|_, map| {
+                if let Some(f) = map.get_mut(&(sync as usize)) {
+                    f.kind = Kind::Reusable(on);
+                }
+            });
+            SIGNALLED.notify_all();
+            Ok(EGL_TRUE)
+        });
+        answer(r, EGL_FALSE)
+    }
+
     /// A fence's type, status or condition.
     fn eglGetSyncAttribKHR(dpy: EGLDisplay, sync: EGLSyncKHR, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
-        let r = with_fence(dpy, sync, signaled).and_then(|done| {
+        let r = with_fence(dpy, sync, |f| (signaled(f), f.kind)).and_then(|(done, kind)| {
+            let fence = matches!(kind, Kind::Fence(_));
             let v = match attribute {
-                EGL_SYNC_TYPE_KHR => EGL_SYNC_FENCE_KHR,
+                EGL_SYNC_TYPE_KHR if fence => EGL_SYNC_FENCE_KHR,
+                EGL_SYNC_TYPE_KHR => EGL_SYNC_REUSABLE_KHR,
                 EGL_SYNC_STATUS_KHR if done => EGL_SIGNALED_KHR,
                 EGL_SYNC_STATUS_KHR => EGL_UNSIGNALED_KHR,
-                EGL_SYNC_CONDITION_KHR => EGL_SYNC_PRIOR_COMMANDS_COMPLETE_KHR,
+                // A reusable sync has no condition.
+                EGL_SYNC_CONDITION_KHR if fence => EGL_SYNC_PRIOR_COMMANDS_COMPLETE_KHR,
                 _ => return Err(EGL_BAD_ATTRIBUTE),
             };
             if value.is_null() {
