@@ -33,32 +33,28 @@ const CLIENT_EXTENSIONS: &CStr =
 /// Longest attribute list read from the application (pairs), against unterminated lists.
 const MAX_ATTRIBS: usize = 256;
 
-/// Sets the thread's EGL error from `r` and converts it to an `EGLBoolean`.
-fn boolean(r: Result<(), EGLint>) -> EGLBoolean {
+/// Sets the thread's EGL error from `r` (`EGL_SUCCESS` for a value); the value, or `fail`.
+pub(crate) fn answer<T>(r: Result<T, EGLint>, fail: T) -> T {
     match r {
-        Ok(()) => {
+        Ok(v) => {
             state::set_egl_error(EGL_SUCCESS);
-            EGL_TRUE
+            v
         }
         Err(e) => {
             state::set_egl_error(e);
-            EGL_FALSE
+            fail
         }
     }
 }
 
+/// Sets the thread's EGL error from `r` and converts it to an `EGLBoolean`.
+fn boolean(r: Result<(), EGLint>) -> EGLBoolean {
+    answer(r.map(|()| EGL_TRUE), EGL_FALSE)
+}
+
 /// Sets the thread's EGL error from `r` and converts a handle to a pointer (null on error).
 fn handle_ptr(r: Result<u32, EGLint>) -> *mut c_void {
-    match r {
-        Ok(h) => {
-            state::set_egl_error(EGL_SUCCESS);
-            h as usize as *mut c_void
-        }
-        Err(e) => {
-            state::set_egl_error(e);
-            std::ptr::null_mut()
-        }
-    }
+    answer(r.map(|h| h as usize as *mut c_void), std::ptr::null_mut())
 }
 
 /// A handle the application passed back, as the daemon's number.

@@ -20,6 +20,7 @@ use std::time::{Duration, Instant};
 use strata_protocol::Calls;
 
 use crate::display::initialized;
+use crate::egl::answer;
 use crate::gl::with_gl;
 use crate::state::{self, process};
 use crate::types::*;
@@ -124,20 +125,6 @@ fn finish_everything() {
         }
     }
     FINISHES.fetch_add(1, Ordering::SeqCst);
-}
-
-/// Sets the thread's EGL error from `r`, giving its value or `fail`.
-fn answer<T>(r: Result<T, EGLint>, fail: T) -> T {
-    match r {
-        Ok(v) => {
-            state::set_egl_error(EGL_SUCCESS);
-            v
-        }
-        Err(e) => {
-            state::set_egl_error(e);
-            fail
-        }
-    }
 }
 
 /// `eglCreateSyncKHR`: a fence after the current context's commands, which are flushed, or an
