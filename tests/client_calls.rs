@@ -15,7 +15,9 @@
 //!   `glDrawBuffers*`, and a draw into two attachments (`GL_EXT_draw_buffers`,
 //!   `GL_NV_draw_buffers`);
 //! - `fence_sync`: fences and reusable syncs, which are the library's (`EGL_KHR_fence_sync`,
-//!   `EGL_KHR_reusable_sync`, `EGL_KHR_wait_sync`).
+//!   `EGL_KHR_reusable_sync`, `EGL_KHR_wait_sync`);
+//! - `program_binary`: where the library writes a program binary and its length
+//!   (`GL_OES_get_program_binary`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -40,6 +42,8 @@ mod fence_sync;
 mod mapping;
 #[path = "client_calls/pack.rs"]
 mod pack;
+#[path = "client_calls/program_binary.rs"]
+mod program_binary;
 #[path = "client_calls/robustness.rs"]
 mod robustness;
 #[path = "client_calls/surfaceless.rs"]
@@ -136,6 +140,9 @@ api! {
     egl_get_sync_attrib = "eglGetSyncAttribKHR": fn(Ptr, Ptr, i32, *mut i32) -> u32;
     egl_wait_sync = "eglWaitSyncKHR": fn(Ptr, Ptr, i32) -> i32;
     egl_signal_sync = "eglSignalSyncKHR": fn(Ptr, Ptr, u32) -> u32;
+    get_programiv = "glGetProgramiv": fn(u32, u32, *mut i32);
+    get_program_binary = "glGetProgramBinaryOES": fn(u32, i32, *mut i32, *mut u32, *mut c_void);
+    program_binary = "glProgramBinaryOES": fn(u32, u32, *const c_void, i32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -256,13 +263,14 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 6] = [
+    let sequences: [Sequence; 7] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
         ("robustness", robustness::sequence),
         ("draw_buffers", draw_buffers::sequence),
         ("fence_sync", fence_sync::sequence),
+        ("program_binary", program_binary::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -300,6 +300,9 @@ command_set! {
         /// `GL_EXT_draw_buffers` / `GL_NV_draw_buffers`: the colour buffer each fragment output
         /// writes (`GL_NONE`, `GL_BACK` or `GL_COLOR_ATTACHMENTi`); at most `MAX_DRAW_BUFFERS`.
         glDrawBuffersEXT [Context] => DrawBuffersEXT { buffers: Slice<'a, GLenum> };
+        /// `GL_OES_get_program_binary`: links `program` from a binary `glGetProgramBinaryOES`
+        /// answered; `binary` holds the first `length` bytes (none for a negative `length`).
+        glProgramBinaryOES [Context] => ProgramBinaryOES { program: GLuint, binary_format: GLenum, length: GLsizei, binary: Blob<'a> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -397,6 +400,11 @@ command_set! {
         /// A query's result or its availability (nothing on error); the result waits for the
         /// draws it counts.
         glGetQueryObjectuivEXT [Context] => GetQueryObjectuivEXT { id: GLuint, pname: GLenum } -> Vec<GLuint>;
+        /// `GL_OES_get_program_binary`: the binary of `program`'s last link, if `buf_size` bytes
+        /// hold it. Reply: `None` for an error found before the length is written (a bad name
+        /// or a negative size), `Some(None)` for one found after it is set to 0, else the
+        /// binary's format and bytes.
+        glGetProgramBinaryOES [Context] => GetProgramBinaryOES { program: GLuint, buf_size: GLsizei } -> Option<Option<(GLenum, Bytes)>>;
     }
 }
 

@@ -287,6 +287,7 @@ mod occlusion;
 mod offset_clamp;
 mod parallel_compile;
 mod points;
+mod program_binary;
 mod read_buffer;
 mod render_mipmap;
 mod samplers;
@@ -322,5 +323,6 @@ pub fn all() -> Vec<Case> {
     all.extend(max_level::all());
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());
+    all.extend(program_binary::all());
     all
 }

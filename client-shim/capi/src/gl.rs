@@ -497,6 +497,7 @@ gl_modules!(
     crate::discard,
     crate::draw_buffers,
     crate::blend_extended,
+    program_binary,
 );
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
@@ -510,3 +511,6 @@ pub mod mapping;
 
 /// The reset status and bounded reads (`GL_EXT_robustness`, `GL_KHR_robustness`).
 pub mod robustness;
+
+/// Program binaries (`GL_OES_get_program_binary`).
+pub mod program_binary;

@@ -161,6 +161,7 @@ mod tests {
                 ("GL_EXT_draw_buffers", 1),
                 ("GL_NV_draw_buffers", 1),
                 ("GL_EXT_blend_func_extended", 4),
+                ("GL_OES_get_program_binary", 2),
             ],
         );
     }
@@ -272,6 +273,8 @@ mod tests {
             "glGetnUniformfvKHR",
             "glGetnUniformivKHR",
             "glGetnUniformuivKHR",
+            "glGetProgramBinaryOES",
+            "glProgramBinaryOES",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

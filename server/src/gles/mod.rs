@@ -38,6 +38,7 @@ mod multi_draw;
 mod names;
 mod occlusion;
 mod pixels;
+mod program_binary;
 mod programs;
 mod queries;
 mod read_buffer;

@@ -10,6 +10,7 @@ use super::context::{Context, Objects, MAX_ATTRIBS};
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::glsl::{self, Stage};
+use super::program_binary::Recipe;
 use super::render::{error_chain, layout_entries};
 use super::GlesExecutor;
 use crate::gpu::Gpu;
@@ -28,6 +29,8 @@ pub struct LinkedProgram {
     pub layout: wgpu::PipelineLayout,
     /// Location → (uniform index, array element).
     pub locations: Vec<(usize, u32)>,
+    /// What it was linked from, which its program binary holds.
+    pub recipe: Recipe,
     /// Unique id for caches.
     pub id: u64,
     /// The points vertex stage, created on the first `GL_POINTS` draw (or why it failed).
@@ -78,6 +81,26 @@ pub struct Program {
     pub validated: bool,
 }
 
+impl Program {
+    /// Makes a link's result the program's: its executable with uniforms at their initial
+    /// values, or the failure's log (the previous executable stays in use, as GL specifies).
+    pub(super) fn install(&mut self, result: Result<LinkedProgram, String>) {
+        match result {
+            Ok(linked) => {
+                self.data = vec![0; linked.info.block_size as usize];
+                self.units = vec![0; linked.info.samplers.len()];
+                self.linked = Some(Arc::new(linked));
+                self.link_ok = true;
+                self.log.clear();
+            }
+            Err(log) => {
+                self.link_ok = false;
+                self.log = log;
+            }
+        }
+    }
+}
+
 /// `f` of program `name`, or `default` after recording the error GL gives for a bad name.
 fn with_program<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&Program) -> T) -> T {
     match ctx.objects.programs.get(&name) {
@@ -112,19 +135,35 @@ pub fn linked_for_query(objects: &Objects, program: u32) -> GlResult<&LinkedProg
 }
 
 /// Links the program's attached shaders: the program info log on failure.
-fn link_stages(objects: &Objects, p: &Program) -> Result<glsl::Linked, String> {
+fn link_stages(objects: &Objects, p: &Program) -> Result<(glsl::Linked, Recipe), String> {
     let find = |stage: Stage| p.attached.iter().filter_map(|s| objects.shaders.get(s)).find(|s| s.stage == stage);
     match (find(Stage::Vertex), find(Stage::Fragment)) {
         (Some(vs), Some(fs)) => match (&vs.compiled, &fs.compiled) {
-            (Some(v), Some(f)) if vs.compiled_ok && fs.compiled_ok => glsl::link(v, f, &p.bindings, MAX_ATTRIBS as u32),
+            (Some(v), Some(f)) if vs.compiled_ok && fs.compiled_ok => link_shaders(v, f, &p.bindings),
             _ => Err("error: an attached shader did not compile".to_string()),
         },
         _ => Err("error: a program needs one vertex and one fragment shader".to_string()),
     }
 }
 
+/// Links two compiled shaders with attribute `bindings`, with what they were linked from.
+pub(super) fn link_shaders(
+    v: &glsl::Shader,
+    f: &glsl::Shader,
+    bindings: &HashMap<String, u32>,
+) -> Result<(glsl::Linked, Recipe), String> {
+    let info = glsl::link(v, f, bindings, MAX_ATTRIBS as u32)?;
+    let mut listed: Vec<(String, u32)> = bindings.iter().map(|(k, v)| (k.clone(), *v)).collect();
+    listed.sort();
+    Ok((info, Recipe { vertex: v.source.clone(), fragment: f.source.clone(), bindings: listed }))
+}
+
 /// Creates a linked program's shader modules and layouts; the info log if the GPU rejects them.
-fn create_gpu_program(gpu: &Gpu, info: glsl::Linked, id: u64) -> Result<LinkedProgram, String> {
+pub(super) fn create_gpu_program(
+    gpu: &Gpu,
+    (info, recipe): (glsl::Linked, Recipe),
+    id: u64,
+) -> Result<LinkedProgram, String> {
     let d = &gpu.device;
     let guard = d.push_error_scope(wgpu::ErrorFilter::Validation);
     let vs = d.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -151,7 +190,7 @@ fn create_gpu_program(gpu: &Gpu, info: glsl::Linked, id: u64) -> Result<LinkedPr
             locations.push((i, e));
         }
     }
-    Ok(LinkedProgram { info, vs, fs, bgl, layout, locations, id, points_vs: OnceLock::new() })
+    Ok(LinkedProgram { info, vs, fs, bgl, layout, locations, recipe, id, points_vs: OnceLock::new() })
 }
 
 #[allow(non_snake_case)]
@@ -245,19 +284,8 @@ impl GlesExecutor {
         let objects = &mut ctx.objects;
         let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
         let result = link_stages(objects, p).and_then(|info| create_gpu_program(gpu, info, id));
-        let Some(p) = objects.programs.get_mut(&program) else { return Ok(()) };
-        match result {
-            Ok(linked) => {
-                p.data = vec![0; linked.info.block_size as usize];
-                p.units = vec![0; linked.info.samplers.len()];
-                p.linked = Some(Arc::new(linked));
-                p.link_ok = true;
-                p.log.clear();
-            }
-            Err(log) => {
-                p.link_ok = false;
-                p.log = log;
-            }
+        if let Some(p) = objects.programs.get_mut(&program) {
+            p.install(result);
         }
         Ok(())
     }
@@ -305,6 +333,7 @@ impl GlesExecutor {
                     VALIDATE_STATUS => Ok(i32::from(p.validated)),
                     INFO_LOG_LENGTH => Ok(if p.log.is_empty() { 0 } else { p.log.len() as i32 + 1 }),
                     ATTACHED_SHADERS => Ok(p.attached.len() as i32),
+                    PROGRAM_BINARY_LENGTH_OES => Ok(super::program_binary::length(p)),
                     ACTIVE_ATTRIBUTES => Ok(linked.map_or(0, |l| l.info.attributes.len() as i32)),
                     ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
                     ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked

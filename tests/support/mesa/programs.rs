@@ -362,3 +362,45 @@ impl Arms<'_> {
         Ok(call!(self, "glIsShader", fn(u32) -> u8, real) != 0)
     }
 }
+
+impl Arms<'_> {
+    pub(super) fn glProgramBinaryOES(
+        &mut self,
+        program: &GLuint,
+        binary_format: &GLenum,
+        length: &GLsizei,
+        binary: &Blob<'_>,
+    ) -> Result<(), ClientError> {
+        let p = self.shader(*program);
+        let b = binary.as_bytes();
+        ext!(self, "glProgramBinaryOES", fn(u32, u32, *const u8, i32) -> (), p, *binary_format, b.as_ptr(), *length);
+        Ok(())
+    }
+
+    pub(super) fn glGetProgramBinaryOES(
+        &mut self,
+        program: &GLuint,
+        buf_size: &GLsizei,
+    ) -> Result<Option<Option<(GLenum, Bytes)>>, ClientError> {
+        let p = self.shader(*program);
+        let mut buf = vec![0u8; (*buf_size).max(0) as usize];
+        // Left at -1 where the call writes no length, 0 where it fails after writing it.
+        let (mut len, mut format) = (-1i32, 0u32);
+        ext!(
+            self,
+            "glGetProgramBinaryOES",
+            fn(u32, i32, *mut i32, *mut u32, *mut u8) -> (),
+            p,
+            *buf_size,
+            &mut len,
+            &mut format,
+            buf.as_mut_ptr()
+        );
+        buf.truncate(len.max(0) as usize);
+        Ok(match len {
+            ..0 => None,
+            0 => Some(None),
+            _ => Some(Some((format, Bytes(buf)))),
+        })
+    }
+}

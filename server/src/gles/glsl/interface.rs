@@ -70,6 +70,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         dual: false,
         has_main: false,
         log: parsed.warnings.join("\n"),
+        source: source.to_string(),
         facts,
         line_starts: std::iter::once(0).chain(parsed.text.match_indices('\n').map(|(i, _)| i + 1)).collect(),
     };

@@ -241,6 +241,8 @@ pub struct Shader {
     pub has_main: bool,
     /// The info log of a successful compile (warnings), empty if none.
     pub log: String,
+    /// The source it was compiled from (what a program binary holds).
+    pub source: String,
     /// What linking checks across stages.
     pub facts: checks::Facts,
     /// Byte offset of each source line's start, to name the line of an error found later.
