@@ -303,6 +303,9 @@ command_set! {
         /// `GL_OES_get_program_binary`: links `program` from a binary `glGetProgramBinaryOES`
         /// answered; `binary` holds the first `length` bytes (none for a negative `length`).
         glProgramBinaryOES [Context] => ProgramBinaryOES { program: GLuint, binary_format: GLenum, length: GLsizei, binary: Blob<'a> };
+        /// `GL_EXT_clip_control`: the window origin (`GL_LOWER_LEFT_EXT`, `GL_UPPER_LEFT_EXT`)
+        /// and the clip depth range (`GL_NEGATIVE_ONE_TO_ONE_EXT`, `GL_ZERO_TO_ONE_EXT`).
+        glClipControlEXT [Context] => ClipControlEXT { origin: GLenum, depth: GLenum };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -64,6 +64,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_blend_func_extended",
     "GL_OES_EGL_sync",
     "GL_OES_get_program_binary",
+    "GL_EXT_clip_control",
     "EGL_KHR_fence_sync",
     "EGL_KHR_wait_sync",
     "EGL_KHR_reusable_sync",

@@ -270,6 +270,7 @@ mod anisotropic;
 mod base_vertex;
 mod blend_extended;
 mod cases;
+mod clip_control;
 mod compressed;
 mod debug_label;
 mod depth_clamp;
@@ -324,5 +325,6 @@ pub fn all() -> Vec<Case> {
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());
     all.extend(program_binary::all());
+    all.extend(clip_control::all());
     all
 }

@@ -250,6 +250,7 @@ pub mod simple {
         fn glLinkProgram(program: GLuint);
         fn glPolygonOffset(factor: GLfloat, units: GLfloat);
         fn glPolygonOffsetClampEXT(factor: GLfloat, units: GLfloat, clamp: GLfloat);
+        fn glClipControlEXT(origin: GLenum, depth: GLenum);
         fn glMaxShaderCompilerThreadsKHR(count: GLuint);
         fn glReadBufferNV(mode: GLenum);
         fn glReleaseShaderCompiler();

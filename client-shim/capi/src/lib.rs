@@ -162,6 +162,7 @@ mod tests {
                 ("GL_NV_draw_buffers", 1),
                 ("GL_EXT_blend_func_extended", 4),
                 ("GL_OES_get_program_binary", 2),
+                ("GL_EXT_clip_control", 1),
             ],
         );
     }
@@ -275,6 +276,7 @@ mod tests {
             "glGetnUniformuivKHR",
             "glGetProgramBinaryOES",
             "glProgramBinaryOES",
+            "glClipControlEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

@@ -102,6 +102,15 @@ impl Bindings {
     }
 }
 
+/// `GL_EXT_clip_control`'s state: the window origin and the clip depth range.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct ClipControl {
+    /// `GL_UPPER_LEFT_EXT` (else `GL_LOWER_LEFT_EXT`): clip y points down the window.
+    pub upper_left: bool,
+    /// `GL_ZERO_TO_ONE_EXT` (else `GL_NEGATIVE_ONE_TO_ONE_EXT`): clip z ranges over [0, w].
+    pub zero_to_one: bool,
+}
+
 /// Rasterisation: viewport, scissor, culling, polygon offset, lines, multisample coverage.
 pub struct Raster {
     /// `GL_VIEWPORT`.
@@ -120,6 +129,8 @@ pub struct Raster {
     pub polygon_offset_fill: bool,
     /// `GL_DEPTH_CLAMP_EXT`.
     pub depth_clamp: bool,
+    /// `GL_CLIP_ORIGIN_EXT` and `GL_CLIP_DEPTH_MODE_EXT` (`GL_EXT_clip_control`).
+    pub clip: ClipControl,
     /// `GL_POLYGON_OFFSET_FACTOR`, `_UNITS` and `_CLAMP_EXT`.
     pub polygon_offset: [f32; 3],
     /// `GL_LINE_WIDTH`.
@@ -144,6 +155,7 @@ impl Default for Raster {
             front_face: CCW,
             polygon_offset_fill: false,
             depth_clamp: false,
+            clip: ClipControl::default(),
             polygon_offset: [0.0; 3],
             line_width: 1.0,
             sample_coverage: false,

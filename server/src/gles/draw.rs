@@ -14,15 +14,9 @@ use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::glsl::Ty;
 use super::programs::LinkedProgram;
-use super::render::{error_chain, DrawSpec, RasterState, Source, Target, VertexInput};
+use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
 use super::surface::ReversedZ;
 use super::GlesExecutor;
-
-/// A reversed-Z draw's vertex stage and, when the program reads `gl_FragCoord`, fragment stage.
-type Stages = (wgpu::ShaderModule, Option<wgpu::ShaderModule>);
-
-/// Reversed-Z stages one surface keeps (by linked program) before it forgets them all.
-const MAX_REVERSED_STAGES: usize = 64;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.
 const MAX_CONVERTED: usize = 256 << 20;
@@ -296,6 +290,7 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
         points: false,
         reversed_z: None,
         unclipped_depth: raster.depth_clamp,
+        clip: raster.clip,
     }
 }
 
@@ -432,19 +427,14 @@ impl GlesExecutor {
             None => None,
         };
         let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
-        let gpu = self.gpu.clone();
         let reversed = self.reversed_target(ctx);
-        let reversed_stages = match reversed {
-            Some(r) => match self.reversed_stages(ctx, r, prim == Primitive::Points) {
-                Some(Ok(stages)) => Some(stages),
-                Some(Err(e)) => {
-                    // GL has no error for this: the draw is dropped, and the reason logged.
-                    tracing::warn!("draw dropped: a reversed-Z stage failed: {e}");
-                    return Ok(());
-                }
-                None => None,
-            },
-            None => None,
+        let stages = match self.draw_stages(ctx, reversed, prim == Primitive::Points) {
+            Ok(stages) => stages,
+            Err(e) => {
+                // GL has no error for this: the draw is dropped, and the reason logged.
+                tracing::warn!("draw dropped: a variant of the program's stages failed: {e}");
+                return Ok(());
+            }
         };
         let renderer = &mut self.r;
         let plans = if prim == Primitive::Points { instances } else { instances.min(1) };
@@ -457,18 +447,9 @@ impl GlesExecutor {
             if ctx.conditional == Some(false) {
                 return Ok(());
             }
-            if let Some((vs, fs)) = reversed_stages.clone() {
+            if let Some((vs, fs)) = stages.clone() {
                 spec.vs = vs;
                 spec.fs = fs;
-            } else if spec.raster.points {
-                match spec.program.points_vs(&gpu) {
-                    Ok(vs) => spec.vs = vs,
-                    Err(e) => {
-                        // GL has no error for this: the draw is dropped, and the reason logged.
-                        tracing::warn!("points draw dropped: the points vertex stage failed: {e}");
-                        return Ok(());
-                    }
-                }
             }
             renderer.draw(&target, spec);
         }
@@ -532,56 +513,6 @@ impl GlesExecutor {
         }
         renderer.clear(&target, color, depth, stencil, scissor);
         Ok(())
-    }
-
-    /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's
-    /// framebuffer 0.
-    fn reversed_target(&self, ctx: &Context) -> Option<ReversedZ> {
-        let (_, sid) = self.current?;
-        if ctx.bindings.framebuffer != 0 {
-            return None;
-        }
-        self.surfaces.get(&sid)?.reversed
-    }
-
-    /// The current program's reversed-Z stages for the current surface `r`: the vertex stage
-    /// (`points`: its points variant) and, if it reads `gl_FragCoord`, the fragment stage;
-    /// created on first use and kept by the surface; `None` without a linked program.
-    fn reversed_stages(&mut self, ctx: &Context, r: ReversedZ, points: bool) -> Option<Result<Stages, String>> {
-        let (_, sid) = self.current?;
-        let program = ctx.objects.programs.get(&ctx.bindings.program)?.linked.clone()?;
-        let surface = self.surfaces.get_mut(&sid)?;
-        if let Some(stages) = surface.reversed_stages.get(&(program.id, points)) {
-            return Some(Ok(stages.clone()));
-        }
-        let d = &self.gpu.device;
-        let module = |label, module| {
-            let guard = d.push_error_scope(wgpu::ErrorFilter::Validation);
-            let m = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
-            });
-            match pollster::block_on(guard.pop()) {
-                Some(e) => Err(error_chain(&e)),
-                None => Ok(m),
-            }
-        };
-        let made = (|| {
-            let vs = module("vs reversed-z", program.info.reversed_vertex(points, r.near, r.far)?)?;
-            let fs = match program.info.reversed_fragment() {
-                Some(fs) => Some(module("fs reversed-z", fs?)?),
-                None => None,
-            };
-            Ok((vs, fs))
-        })();
-        if let Ok(stages) = &made {
-            // Programs relinked frame after frame would otherwise grow the cache without end.
-            if surface.reversed_stages.len() >= MAX_REVERSED_STAGES {
-                surface.reversed_stages.clear();
-            }
-            surface.reversed_stages.insert((program.id, points), stages.clone());
-        }
-        Some(made)
     }
 
     pub(super) fn glFlush(&mut self, _ctx: &mut Context) -> GlResult {

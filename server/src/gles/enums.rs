@@ -201,6 +201,13 @@ pub const SHADER_TYPE: u32 = 0x8B4F;
 pub const DELETE_STATUS: u32 = 0x8B80;
 pub const COMPILE_STATUS: u32 = 0x8B81;
 pub const LINK_STATUS: u32 = 0x8B82;
+/// `GL_EXT_clip_control`'s enumerants.
+pub const LOWER_LEFT_EXT: u32 = 0x8CA1;
+pub const UPPER_LEFT_EXT: u32 = 0x8CA2;
+pub const CLIP_ORIGIN_EXT: u32 = 0x935C;
+pub const CLIP_DEPTH_MODE_EXT: u32 = 0x935D;
+pub const NEGATIVE_ONE_TO_ONE_EXT: u32 = 0x935E;
+pub const ZERO_TO_ONE_EXT: u32 = 0x935F;
 /// `GL_PROGRAM_BINARY_LENGTH_OES`.
 pub const PROGRAM_BINARY_LENGTH_OES: u32 = 0x8741;
 /// `GL_NUM_PROGRAM_BINARY_FORMATS_OES`.

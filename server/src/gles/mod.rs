@@ -45,6 +45,7 @@ mod read_buffer;
 mod render;
 mod resolve;
 mod shaders;
+mod stages;
 mod state;
 mod surface;
 mod teximage;

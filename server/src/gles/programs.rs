@@ -2,11 +2,11 @@
 //! wgpu shader modules and layouts), use, deletion and queries.
 
 use std::collections::HashMap;
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use strata_protocol::{ActiveVariable, Text};
 
-use super::context::{Context, Objects, MAX_ATTRIBS};
+use super::context::{ClipControl, Context, Objects, MAX_ATTRIBS};
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::glsl::{self, Stage};
@@ -35,24 +35,40 @@ pub struct LinkedProgram {
     pub id: u64,
     /// The points vertex stage, created on the first `GL_POINTS` draw (or why it failed).
     points_vs: OnceLock<Result<wgpu::ShaderModule, String>>,
+    /// Vertex stages for `GL_EXT_clip_control` states other than the default, by (points,
+    /// state), created on first use (or why they failed).
+    clip_vs: Mutex<HashMap<(bool, ClipControl), Result<wgpu::ShaderModule, String>>>,
+}
+
+/// A shader module from a translated stage; the error if the GPU refuses it.
+pub(super) fn shader_module(gpu: &Gpu, label: &str, module: naga::Module) -> Result<wgpu::ShaderModule, String> {
+    let guard = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let m = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
+    });
+    match pollster::block_on(guard.pop()) {
+        Some(e) => Err(error_chain(&e)),
+        None => Ok(m),
+    }
 }
 
 impl LinkedProgram {
     /// The vertex module of `GL_POINTS` draws (see `glsl::Linked::points_source`), created
     /// on first use; the error says why the GPU or the translator refused it.
     pub fn points_vs(&self, gpu: &Gpu) -> Result<wgpu::ShaderModule, String> {
-        self.points_vs
-            .get_or_init(|| {
-                let module = glsl::points_vertex(&self.info)?;
-                let guard = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-                let vs = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("vs points"),
-                    source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
-                });
-                match pollster::block_on(guard.pop()) {
-                    Some(e) => Err(error_chain(&e)),
-                    None => Ok(vs),
-                }
+        self.points_vs.get_or_init(|| shader_module(gpu, "vs points", glsl::points_vertex(&self.info)?)).clone()
+    }
+
+    /// The vertex module (`points`: the points variant) for the clip control state `clip`,
+    /// created on first use.
+    pub fn clip_vs(&self, gpu: &Gpu, points: bool, clip: ClipControl) -> Result<wgpu::ShaderModule, String> {
+        let mut cache = self.clip_vs.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        cache
+            .entry((points, clip))
+            .or_insert_with(|| {
+                let z = if clip.zero_to_one { glsl::ClipZ::Direct } else { glsl::ClipZ::Forward };
+                shader_module(gpu, "vs clip control", self.info.vertex_variant(points, clip.upper_left, z)?)
             })
             .clone()
     }
@@ -190,7 +206,18 @@ pub(super) fn create_gpu_program(
             locations.push((i, e));
         }
     }
-    Ok(LinkedProgram { info, vs, fs, bgl, layout, locations, recipe, id, points_vs: OnceLock::new() })
+    Ok(LinkedProgram {
+        info,
+        vs,
+        fs,
+        bgl,
+        layout,
+        locations,
+        recipe,
+        id,
+        points_vs: OnceLock::new(),
+        clip_vs: Mutex::default(),
+    })
 }
 
 #[allow(non_snake_case)]

@@ -23,7 +23,7 @@ GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_fil
 GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
 GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness \
-GL_OES_EGL_sync GL_OES_get_program_binary";
+GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -214,6 +214,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         NUM_SHADER_BINARY_FORMATS => i(0),
         SHADER_BINARY_FORMATS => Ints(vec![]),
         NUM_PROGRAM_BINARY_FORMATS_OES => i(1),
+        CLIP_ORIGIN_EXT => u(if raster.clip.upper_left { UPPER_LEFT_EXT } else { LOWER_LEFT_EXT }),
+        CLIP_DEPTH_MODE_EXT => u(if raster.clip.zero_to_one { ZERO_TO_ONE_EXT } else { NEGATIVE_ONE_TO_ONE_EXT }),
         PROGRAM_BINARY_FORMATS_OES => u(super::program_binary::PROGRAM_BINARY_FORMAT),
         // Not ES 2.0 state (desktop GL and ES 1.x), answered anyway as Mesa does: piglit's
         // shader_runner asks for it unconditionally. No user clip planes.

@@ -1,7 +1,7 @@
 //! Fixed-function state: capabilities, viewport and scissor, clear values, write masks, depth,
 //! culling, blending, stencil, polygon offset, line width, hints and pixel store.
 
-use super::context::{Context, StencilFace, MAX_TEXTURE};
+use super::context::{ClipControl, Context, StencilFace, MAX_TEXTURE};
 use super::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op, Capability};
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -165,6 +165,17 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         ctx.raster.front_face = mode;
+        Ok(())
+    }
+
+    /// `GL_EXT_clip_control`: the window origin and the clip depth range of later draws.
+    pub(super) fn glClipControlEXT(&mut self, ctx: &mut Context, origin: u32, depth: u32) -> GlResult {
+        if !matches!(origin, LOWER_LEFT_EXT | UPPER_LEFT_EXT)
+            || !matches!(depth, NEGATIVE_ONE_TO_ONE_EXT | ZERO_TO_ONE_EXT)
+        {
+            return Err(GlError::InvalidEnum);
+        }
+        ctx.raster.clip = ClipControl { upper_left: origin == UPPER_LEFT_EXT, zero_to_one: depth == ZERO_TO_ONE_EXT };
         Ok(())
     }
 

@@ -130,7 +130,7 @@ pub struct Surface {
     pub reversed: Option<ReversedZ>,
     /// Stages of reversed-Z draws (the vertex stage with the reversed-Z epilogue, and a
     /// fragment stage reading `gl_FragCoord` as GL's depth), by program id and points variant.
-    pub(super) reversed_stages: HashMap<(u64, bool), (wgpu::ShaderModule, Option<wgpu::ShaderModule>)>,
+    pub(super) reversed_stages: HashMap<(u64, bool, bool), super::stages::Stages>,
     /// A pbuffer's memory, held against the client's quota (a window's buffers hold theirs).
     _reserved: Option<crate::quota::Reservation>,
     /// A window surface's ID in the scene (`ctl`'s, and `EGL_SURFACE_ID_STRATA`'s answer).

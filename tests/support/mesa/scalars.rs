@@ -57,6 +57,7 @@ scalar_arms! {
     glLineWidth(width: GLfloat => f32);
     glPolygonOffset(factor: GLfloat => f32, units: GLfloat => f32);
     glPolygonOffsetClampEXT(factor: GLfloat => f32, units: GLfloat => f32, clamp: GLfloat => f32);
+    glClipControlEXT(origin: GLenum => u32, depth: GLenum => u32);
     glMaxShaderCompilerThreadsKHR(count: GLuint => u32);
     glReadBufferNV(mode: GLenum => u32);
     glScissor(x: GLint => i32, y: GLint => i32, width: GLsizei => i32, height: GLsizei => i32);

@@ -71,88 +71,14 @@ pub const MAX_VARYING_VECTORS: u32 = 15;
 /// Samplers a program may declare (sampler sets are kept as 32-bit masks: depth-texture layouts).
 const MAX_SAMPLERS: usize = 32;
 
-/// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1].
-const CONVENTIONS: &str =
+/// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]
+/// (`variants::FLIP_Y` and `variants::FORWARD_Z`, which the stage's variants replace).
+pub(super) const CONVENTIONS: &str =
     "    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
 
 /// The generated fragment `main`'s last step where the shader writes `gl_FragDepthEXT`
 /// (`GL_EXT_frag_depth`): the value, clamped to [0, 1] as GL stores it, is the fragment's depth.
-const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDepth, 0.0, 1.0);\n";
-
-/// [`FRAG_DEPTH_OUT`] for a reversed-Z framebuffer, which stores 1 − GL's window depth.
-const FRAG_DEPTH_OUT_REVERSED: &str = "    gl_FragDepth = 1.0 - clamp(strata_FragDepth, 0.0, 1.0);\n";
-
-/// The clip z step of [`CONVENTIONS`], which the reversed-Z variant replaces.
-const FORWARD_Z: &str = "    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
-
-/// The clip z of a reversed-Z surface's vertex stage for a perspective projection with
-/// `near` and `far` (`inf` allowed): `n·(f − w)/(f − n)`, so that z/w is 1 − the forward
-/// window depth for the standard perspective z row, where w is the eye distance. Computed
-/// from w alone, it has no cancellation near the far plane, where reversed float depth is
-/// most precise.
-fn reversed_z(near: f32, far: f32) -> String {
-    if far.is_infinite() {
-        // The limit f → ∞: z = n, z/w = n/w.
-        return format!("    gl_Position.z = {near:?};\n");
-    }
-    let span = (f64::from(far) - f64::from(near)) as f32;
-    format!("    gl_Position.z = {near:?} * ({far:?} - gl_Position.w) / {span:?};\n")
-}
-
-impl Linked {
-    /// The vertex stage (the points variant with `points`) that stores reversed depth for a
-    /// perspective projection with `near` and `far`: Strata's conventions with clip z
-    /// `n·(f − w)/(f − n)` instead of `(z + w)/2`. It trusts the declaration: the
-    /// program's projection must have the standard perspective z row for `near` and `far`.
-    pub fn reversed_vertex(&self, points: bool, near: f32, far: f32) -> Result<naga::Module, String> {
-        let source = if points { &self.points_source } else { &self.vertex_source };
-        // The generated `main` comes last: its step is the last occurrence.
-        let at = source.rfind(FORWARD_Z).ok_or("internal error: no clip z step in the vertex stage")?;
-        let mut text = String::with_capacity(source.len() + 64);
-        text.push_str(&source[..at]);
-        text.push_str(&reversed_z(near, far));
-        text.push_str(&source[at + FORWARD_Z.len()..]);
-        let none = Body { text: String::new(), lines: Vec::new() };
-        std::panic::catch_unwind(|| naga_module(Stage::Vertex, &text, &Placed { first_line: usize::MAX, body: &none }))
-            .unwrap_or_else(|_| Err("internal error: translating the reversed-Z vertex stage failed".into()))
-    }
-
-    /// The fragment stage for a reversed-Z framebuffer when it reads `gl_FragCoord` (whose z
-    /// is then 1 − the stored depth, as GL defines it) or writes `gl_FragDepthEXT` (stored as
-    /// 1 − it), else `None`: the program's own serves.
-    pub fn reversed_fragment(&self) -> Option<Result<naga::Module, String>> {
-        let source = self.reversed_fragment_source.as_ref()?;
-        let none = Body { text: String::new(), lines: Vec::new() };
-        Some(
-            std::panic::catch_unwind(|| {
-                naga_module(Stage::Fragment, source, &Placed { first_line: usize::MAX, body: &none })
-            })
-            .unwrap_or_else(|_| Err("internal error: translating the reversed-Z fragment stage failed".into())),
-        )
-    }
-}
-
-/// The fragment stage `fsrc` (whose shader's own code starts at line `body_line`) for a
-/// reversed-Z framebuffer, if it reads `gl_FragCoord` or writes `gl_FragDepthEXT`: the shader
-/// reads a copy of `gl_FragCoord` whose z is 1 − the stored depth, GL's window depth, and the
-/// depth it writes is stored as 1 − it.
-fn reversed_fragment_source(fsrc: &str, body_line: usize) -> Option<String> {
-    let writes_depth = fsrc.contains(FRAG_DEPTH_OUT);
-    if !fsrc.contains("gl_FragCoord") && !writes_depth {
-        return None;
-    }
-    let at = fsrc.match_indices('\n').nth(body_line.checked_sub(1)?)?.0 + 1;
-    let body = fsrc[at..].replace("gl_FragCoord", "strata_FragCoord").replace(FRAG_DEPTH_OUT, FRAG_DEPTH_OUT_REVERSED);
-    let call = "    strata_main();\n";
-    let main = body.rfind(call)?;
-    Some(format!(
-        "{}vec4 strata_FragCoord;\n{}    strata_FragCoord = vec4(gl_FragCoord.xy, 1.0 - gl_FragCoord.z, \
-         gl_FragCoord.w);\n{}",
-        &fsrc[..at],
-        &body[..main],
-        &body[main..]
-    ))
-}
+pub(super) const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDepth, 0.0, 1.0);\n";
 
 /// Parses and validates the points vertex stage of a linked program (`Linked::points_source`).
 pub fn points_vertex(linked: &Linked) -> Result<naga::Module, String> {
@@ -205,7 +131,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         .map_err(|e| format!("vertex shader:\n{e}"))?;
     let fragment = naga_module(Stage::Fragment, &g.fsrc, &placed(g.fs_first_line, &g.fs_body))
         .map_err(|e| format!("fragment shader:\n{e}"))?;
-    let reversed_fragment_source = reversed_fragment_source(&g.fsrc, g.fs_first_line);
+    let reversed_fragment_source = super::variants::reversed_fragment_source(&g.fsrc, g.fs_first_line);
     let Generated {
         vsrc: vertex_source, attributes, uniforms, block_size, samplers, points_source, point_input, ..
     } = g;
@@ -541,42 +467,4 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         points_source,
         point_input,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use std::collections::HashMap;
-
-    use super::super::{compile, link, Stage};
-
-    #[test]
-    fn reversed_z_variants_replace_only_the_generated_step() {
-        // The shader writes the forward step itself: only the generated one is replaced.
-        let vs = "attribute vec4 p; void main() { gl_Position = p;
-            gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5; gl_PointSize = 2.0; }";
-        let fs = "precision mediump float; void main() { gl_FragColor = vec4(gl_PointCoord, 0.0, 1.0); }";
-        let linked = |fs: &str| {
-            link(
-                &compile(Stage::Vertex, vs).expect("vs"),
-                &compile(Stage::Fragment, fs).expect("fs"),
-                &HashMap::new(),
-                16,
-            )
-            .expect("link")
-        };
-        let l = linked(fs);
-        for points in [false, true] {
-            for far in [100.0, f32::INFINITY] {
-                l.reversed_vertex(points, 0.1, far).expect("reversed variant");
-            }
-        }
-        assert_eq!(super::reversed_z(0.5, 20.0), "    gl_Position.z = 0.5 * (20.0 - gl_Position.w) / 19.5;\n");
-        assert_eq!(super::reversed_z(0.5, f32::INFINITY), "    gl_Position.z = 0.5;\n");
-        assert!(l.vertex_source.ends_with(&format!("{}}}\n", super::CONVENTIONS)));
-        assert!(l.reversed_fragment().is_none(), "no gl_FragCoord, no fragment variant");
-        let fs =
-            "precision mediump float; vec4 f() { return vec4(gl_FragCoord.z); } void main() { gl_FragColor = f(); }";
-        let l = linked(fs);
-        l.reversed_fragment().expect("a fragment variant").expect("it translates");
-    }
 }

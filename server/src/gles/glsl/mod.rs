@@ -26,11 +26,13 @@ mod precision;
 mod preprocess;
 mod rewrite;
 mod translate;
+mod variants;
 mod writes;
 
 use glsl_lang::ast::{self, TypeSpecifierNonArrayData as T};
 
 pub use link::{link, points_vertex, Linked, UniformSlot, MAX_VARYING_VECTORS};
+pub use variants::ClipZ;
 
 use super::enums as gl;
 

@@ -25,6 +25,7 @@ use std::sync::Arc;
 pub use pipelines::layout_entries;
 pub use targets::{Target, COLOR_FORMAT};
 
+use super::context::ClipControl;
 use super::programs::LinkedProgram;
 use super::textures::SamplerState;
 use crate::gpu::Gpu;
@@ -100,6 +101,9 @@ pub struct RasterState {
     /// `GL_DEPTH_CLAMP_EXT`: depth is clamped to the depth range instead of clipped (wgpu's
     /// unclipped depth, which is Vulkan's depth clamp).
     pub unclipped_depth: bool,
+    /// `GL_EXT_clip_control`: the vertex stage is its variant, and with the upper-left origin
+    /// the winding as wgpu sees it is GL's reversed.
+    pub clip: ClipControl,
 }
 
 /// Everything a validated draw needs.

@@ -185,7 +185,7 @@ impl Renderer {
             primitive: wgpu::PrimitiveState {
                 topology: r.topology,
                 strip_index_format: r.strip_index,
-                front_face: front_face(r.front_ccw),
+                front_face: front_face(r.front_ccw != r.clip.upper_left),
                 cull_mode: r.cull,
                 unclipped_depth: r.unclipped_depth,
                 polygon_mode: wgpu::PolygonMode::Fill,

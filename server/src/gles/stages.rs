@@ -1,0 +1,89 @@
+//! The stages a draw runs: the linked program's own, or a variant its framebuffer or state
+//! selects (a reversed-Z surface's depth, `GL_EXT_clip_control`'s origin and depth range, the
+//! points stage), each created on first use and kept.
+
+use super::context::{ClipControl, Context};
+use super::glsl::ClipZ;
+use super::programs::shader_module;
+use super::surface::ReversedZ;
+use super::GlesExecutor;
+
+/// A draw's vertex stage and, when not the program's own, its fragment stage.
+pub(super) type Stages = (wgpu::ShaderModule, Option<wgpu::ShaderModule>);
+
+/// Reversed-Z stages one surface keeps (by linked program) before it forgets them all.
+const MAX_REVERSED_STAGES: usize = 64;
+
+impl GlesExecutor {
+    /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's
+    /// framebuffer 0.
+    pub(super) fn reversed_target(&self, ctx: &Context) -> Option<ReversedZ> {
+        let (_, sid) = self.current?;
+        if ctx.bindings.framebuffer != 0 {
+            return None;
+        }
+        self.surfaces.get(&sid)?.reversed
+    }
+
+    /// The stages of a draw of the current program (`points`: of `GL_POINTS`) into a
+    /// framebuffer with `reversed` depth, when they are not the program's own; `None` without
+    /// a linked program or where its own serve. The error says why a variant failed.
+    pub(super) fn draw_stages(
+        &mut self,
+        ctx: &Context,
+        reversed: Option<ReversedZ>,
+        points: bool,
+    ) -> Result<Option<Stages>, String> {
+        let Some(program) = ctx.objects.programs.get(&ctx.bindings.program).and_then(|p| p.linked.clone()) else {
+            return Ok(None);
+        };
+        let clip = ctx.raster.clip;
+        if let Some(r) = reversed {
+            return self.reversed_stages(ctx, r, points, clip.upper_left).map(Some);
+        }
+        if clip != ClipControl::default() {
+            return program.clip_vs(&self.gpu, points, clip).map(|vs| Some((vs, None)));
+        }
+        if points {
+            return program.points_vs(&self.gpu).map(|vs| Some((vs, None)));
+        }
+        Ok(None)
+    }
+
+    /// The current program's reversed-Z stages for the current surface `r`: the vertex stage
+    /// (`points`: its points variant; `upper_left`: with that window origin) and, if it reads
+    /// `gl_FragCoord`, the fragment stage; created on first use and kept by the surface.
+    fn reversed_stages(
+        &mut self,
+        ctx: &Context,
+        r: ReversedZ,
+        points: bool,
+        upper_left: bool,
+    ) -> Result<Stages, String> {
+        let (_, sid) = self.current.ok_or("no current surface")?;
+        let program = ctx
+            .objects
+            .programs
+            .get(&ctx.bindings.program)
+            .and_then(|p| p.linked.clone())
+            .ok_or("no linked program")?;
+        let surface = self.surfaces.get_mut(&sid).ok_or("no current surface")?;
+        let key = (program.id, points, upper_left);
+        if let Some(stages) = surface.reversed_stages.get(&key) {
+            return Ok(stages.clone());
+        }
+        let gpu = &self.gpu;
+        let z = ClipZ::Reversed { near: r.near, far: r.far };
+        let vs = shader_module(gpu, "vs reversed-z", program.info.vertex_variant(points, upper_left, z)?)?;
+        let fs = match program.info.reversed_fragment() {
+            Some(fs) => Some(shader_module(gpu, "fs reversed-z", fs?)?),
+            None => None,
+        };
+        // Programs relinked frame after frame would otherwise grow the cache without end.
+        if surface.reversed_stages.len() >= MAX_REVERSED_STAGES {
+            surface.reversed_stages.clear();
+        }
+        surface.reversed_stages.insert(key, (vs.clone(), fs.clone()));
+        Ok((vs, fs))
+    }
+}
