@@ -17,7 +17,10 @@
 //! - `fence_sync`: fences and reusable syncs, which are the library's (`EGL_KHR_fence_sync`,
 //!   `EGL_KHR_reusable_sync`, `EGL_KHR_wait_sync`);
 //! - `program_binary`: where the library writes a program binary and its length
-//!   (`GL_OES_get_program_binary`).
+//!   (`GL_OES_get_program_binary`);
+//! - `robust_access`: robust contexts and the draws that read past their arrays
+//!   (`EGL_EXT_create_context_robustness`, `GL_KHR_robust_buffer_access_behavior`), which
+//!   need a context of their own.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -44,6 +47,8 @@ mod mapping;
 mod pack;
 #[path = "client_calls/program_binary.rs"]
 mod program_binary;
+#[path = "client_calls/robust_access.rs"]
+mod robust_access;
 #[path = "client_calls/robustness.rs"]
 mod robustness;
 #[path = "client_calls/surfaceless.rs"]
@@ -143,6 +148,7 @@ api! {
     get_programiv = "glGetProgramiv": fn(u32, u32, *mut i32);
     get_program_binary = "glGetProgramBinaryOES": fn(u32, i32, *mut i32, *mut u32, *mut c_void);
     program_binary = "glProgramBinaryOES": fn(u32, u32, *const c_void, i32);
+    draw_elements = "glDrawElements": fn(u32, i32, u32, *const c_void);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -263,7 +269,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 7] = [
+    let sequences: [Sequence; 8] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -271,6 +277,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("draw_buffers", draw_buffers::sequence),
         ("fence_sync", fence_sync::sequence),
         ("program_binary", program_binary::sequence),
+        ("robust_access", robust_access::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

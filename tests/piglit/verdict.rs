@@ -65,6 +65,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_EGL_sync",
     "GL_OES_get_program_binary",
     "GL_EXT_clip_control",
+    "GL_KHR_robust_buffer_access_behavior",
+    "EGL_EXT_create_context_robustness",
     "EGL_KHR_fence_sync",
     "EGL_KHR_wait_sync",
     "EGL_KHR_reusable_sync",

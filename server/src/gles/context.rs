@@ -352,6 +352,10 @@ pub struct Context {
     pub release_none: bool,
     /// Created with `EGL_LOSE_CONTEXT_ON_RESET_KHR`: `GL_RESET_NOTIFICATION_STRATEGY_EXT`.
     pub lose_on_reset: bool,
+    /// Created with robust buffer access (`EGL_EXT_create_context_robustness`,
+    /// `GL_KHR_robust_buffer_access_behavior`): draws that read past their arrays or index
+    /// data draw, reading zeros, instead of failing with `GL_INVALID_OPERATION`.
+    pub robust: bool,
     /// Reads from the default framebuffer select no colour buffer (`GL_NV_read_buffer`).
     pub read_none: bool,
     /// Draws to the default framebuffer write no colour buffer (`glDrawBuffersEXT(GL_NONE)`).
@@ -384,6 +388,7 @@ impl Context {
             no_error: false,
             release_none: false,
             lose_on_reset: false,
+            robust: false,
             read_none: false,
             draw_none: false,
         }

@@ -1,5 +1,6 @@
 //! `eglCreateContext`'s attribute list: EGL 1.4's client version, `EGL_KHR_create_context`'s
-//! minor version, flags and reset strategy, `EGL_KHR_create_context_no_error`,
+//! minor version, flags and reset strategy, `EGL_EXT_create_context_robustness`'s robust
+//! access and reset strategy, `EGL_KHR_create_context_no_error`,
 //! `EGL_KHR_context_flush_control` and `EGL_IMG_context_priority`, validated as Mesa validates
 //! them.
 
@@ -21,7 +22,14 @@ pub(super) struct ContextAttribs {
     pub(super) release_none: bool,
     /// `EGL_LOSE_CONTEXT_ON_RESET_KHR` asked for (`GL_RESET_NOTIFICATION_STRATEGY_EXT`).
     pub(super) lose_on_reset: bool,
+    /// Robust buffer access (`EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT` of `EGL_TRUE`).
+    pub(super) robust: bool,
 }
+
+/// `EGL_EXT_create_context_robustness`'s attributes (its reset strategy's values are
+/// `EGL_KHR_create_context`'s).
+const EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT: i32 = 0x30BF;
+const EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT: i32 = 0x3138;
 
 /// `EGL_KHR_create_context_no_error`'s attribute.
 const EGL_CONTEXT_OPENGL_NO_ERROR_KHR: i32 = 0x31B3;
@@ -56,10 +64,12 @@ pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
                 out.priority = Some(Priority::from_egl_level(v).ok_or(EGL_BAD_ATTRIBUTE)?)
             }
             // Kept for GL_RESET_NOTIFICATION_STRATEGY_EXT (EXT_robustness, KHR_robustness).
-            [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR, v @ (EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR)] => {
+            [EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_KHR | EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT, v @ (EGL_NO_RESET_NOTIFICATION_KHR | EGL_LOSE_CONTEXT_ON_RESET_KHR)] => {
                 out.lose_on_reset = v == EGL_LOSE_CONTEXT_ON_RESET_KHR
             }
             [EGL_CONTEXT_OPENGL_NO_ERROR_KHR, v] => out.no_error = v != 0,
+            // As Mesa: only EGL_TRUE asks for it; any other value is taken, and asks nothing.
+            [EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT, v] => out.robust = v == EGL_TRUE,
             [EGL_CONTEXT_RELEASE_BEHAVIOR_KHR, v @ (EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR | EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR)] => {
                 out.release_none = v == EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR
             }

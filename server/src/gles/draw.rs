@@ -13,124 +13,26 @@ use super::conv::{
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::glsl::Ty;
+use super::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
 use super::programs::LinkedProgram;
 use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
 use super::surface::ReversedZ;
 use super::GlesExecutor;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.
-const MAX_CONVERTED: usize = 256 << 20;
-
-/// Where a draw's indices come from.
-#[derive(Clone, Copy)]
-pub(super) enum Indices<'a> {
-    /// The bound element array buffer, at a byte offset.
-    Buffer(u64),
-    /// A client-side index array sent with the draw.
-    Client(&'a [u8]),
-}
-
-/// A draw's indices: the index source wgpu reads, and how many vertices they reach.
-struct IndexPlan {
-    index: Option<(Source, wgpu::IndexFormat)>,
-    count: u32,
-    vertex_count: u64,
-}
-
-/// Reads a draw's `count` indices, checked against their source: the values, and the byte
-/// offset and GPU buffer of an element array buffer (`None` for client indices).
-pub(super) fn index_values<'c>(
-    ctx: &'c Context,
-    ty: IndexType,
-    indices: Indices<'c>,
-    count: u32,
-) -> GlResult<(Vec<u32>, u64, Option<&'c wgpu::Buffer>)> {
-    let (offset, gpu, data): (u64, Option<&wgpu::Buffer>, &[u8]) = match indices {
-        Indices::Buffer(offset) => {
-            let buf = ctx.objects.buffers.get(&ctx.bindings.element_buffer).ok_or(GlError::InvalidOperation)?;
-            (offset, buf.gpu.as_ref(), &buf.data)
-        }
-        // Client indices are always rewritten into the per-pass ring.
-        Indices::Client(bytes) => (0, None, bytes),
-    };
-    let end = offset.checked_add(u64::from(count) * ty.size());
-    let bytes = end.and_then(|e| data.get(offset as usize..e as usize)).ok_or(GlError::InvalidOperation)?;
-    let values: Vec<u32> = match ty {
-        IndexType::U8 => bytes.iter().map(|&b| u32::from(b)).collect(),
-        IndexType::U16 => bytes.chunks_exact(2).map(|c| u32::from(u16::from_ne_bytes([c[0], c[1]]))).collect(),
-        IndexType::U32 => bytes.chunks_exact(4).map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect(),
-    };
-    Ok((values, offset, gpu))
-}
-
-/// Refuses a draw whose generated index list (at most three indices per vertex, for a fan)
-/// would pass `MAX_CONVERTED` bytes: `GL_OUT_OF_MEMORY`, where a count the client chose would
-/// otherwise make the daemon allocate without bound.
-fn generated_size(count: u32) -> GlResult {
-    if u64::from(count) * 12 > MAX_CONVERTED as u64 {
-        return Err(GlError::OutOfMemory);
-    }
-    Ok(())
-}
-
-/// Validates a draw's indices (or its vertex range) and plans what wgpu reads: the element
-/// buffer directly where wgpu can, else indices generated into the per-pass ring.
-fn plan_indices(
-    ctx: &Context,
-    prim: Primitive,
-    count: u32,
-    indices: Option<(IndexType, Indices<'_>)>,
-    first: u32,
-) -> GlResult<IndexPlan> {
-    let mut index: Option<(Source, wgpu::IndexFormat)> = None;
-    let mut list: Option<Vec<u32>> = None;
-    let vertex_count: u64;
-    if let Some((ty, indices)) = indices {
-        let (values, offset, gpu) = index_values(ctx, ty, indices, count)?;
-        vertex_count = u64::from(values.iter().copied().max().unwrap_or(0)) + 1;
-        // A u16 strip containing 0xFFFF would restart under wgpu; widen it to u32, whose
-        // restart value no validated index can reach.
-        let restart_hazard = prim.is_strip() && ty == IndexType::U16 && values.contains(&0xFFFF);
-        let direct = ty != IndexType::U8
-            && offset.is_multiple_of(ty.size())
-            && !prim.generates_indices()
-            && !restart_hazard
-            && gpu.is_some();
-        if direct {
-            let fmt = if ty == IndexType::U16 { wgpu::IndexFormat::Uint16 } else { wgpu::IndexFormat::Uint32 };
-            index = gpu.cloned().map(|g| (Source::Buffer(g, offset), fmt));
-        } else {
-            list = Some(values);
-        }
-    } else {
-        vertex_count = u64::from(first) + u64::from(count);
-        if prim.generates_indices() {
-            generated_size(count)?;
-            list = Some((first..first + count).collect());
-        }
-    }
-    let mut draw_count = count;
-    if let Some(v) = list {
-        generated_size(count)?;
-        let out: Vec<u32> = match prim {
-            Primitive::LineLoop => v.iter().copied().chain(v.first().copied()).collect(),
-            Primitive::TriangleFan => (1..v.len().saturating_sub(1)).flat_map(|i| [v[0], v[i], v[i + 1]]).collect(),
-            _ => v,
-        };
-        draw_count = out.len() as u32;
-        index = Some((Source::Bytes(bytemuck::cast_slice(&out).to_vec()), wgpu::IndexFormat::Uint32));
-    }
-    Ok(IndexPlan { index, count: draw_count, vertex_count })
-}
+pub(super) const MAX_CONVERTED: usize = 256 << 20;
 
 /// Validates the program's vertex inputs against their arrays for `vertex_count` vertices and
 /// plans each: the buffer as wgpu reads it, or converted to float in the per-pass ring. With
-/// `order` (indexed points), each array is gathered in that order and converted.
+/// `order` (indexed points), each array is gathered in that order and converted. With `robust`
+/// what lies past an array reads as zeros (a vec4 of 2 components as (0, 0, 0, 1)), as on
+/// Mesa, where it is otherwise `GL_INVALID_OPERATION`.
 fn plan_inputs(
     ctx: &Context,
     program: &LinkedProgram,
     vertex_count: u64,
     order: Option<&[u32]>,
+    robust: bool,
 ) -> GlResult<Vec<VertexInput>> {
     let mut inputs = Vec::with_capacity(program.info.attributes.len());
     for (_, loc) in &program.info.attributes {
@@ -159,14 +61,16 @@ fn plan_inputs(
             .saturating_sub(1)
             .checked_mul(stride as u64)
             .and_then(|x| x.checked_add(offset))
-            .and_then(|x| x.checked_add(elem as u64))
-            .ok_or(GlError::InvalidOperation)?;
-        if need > data.len() as u64 {
+            .and_then(|x| x.checked_add(elem as u64));
+        let within = need.filter(|&n| n <= data.len() as u64);
+        if within.is_none() && !robust {
             return Err(GlError::InvalidOperation);
         }
-        let (need, offset) = (need as usize, offset as usize);
+        let (need, offset) = (within.unwrap_or(0) as usize, offset as usize);
         match native_format(a.ty, a.size, a.normalized) {
-            Some(fmt) if order.is_none() && offset.is_multiple_of(4) && stride.is_multiple_of(4) => {
+            Some(fmt)
+                if within.is_some() && order.is_none() && offset.is_multiple_of(4) && stride.is_multiple_of(4) =>
+            {
                 let source = match gpu {
                     Some(g) => Source::Buffer(g.clone(), offset as u64),
                     None => Source::Bytes(data[..need].to_vec()),
@@ -181,10 +85,16 @@ fn plan_inputs(
                 let bytes = rows.checked_mul(a.size as usize * 4).filter(|&b| b <= MAX_CONVERTED);
                 let mut out = Vec::with_capacity(bytes.ok_or(GlError::OutOfMemory)?);
                 let mut convert = |v: usize| {
-                    let base = offset + v * stride;
-                    for c in 0..a.size as usize {
-                        let at = base + c * ts;
-                        out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
+                    let base = v.checked_mul(stride).and_then(|x| x.checked_add(offset));
+                    match base.filter(|b| b.checked_add(elem).is_some_and(|end| end <= data.len())) {
+                        Some(base) => {
+                            for c in 0..a.size as usize {
+                                let at = base + c * ts;
+                                out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
+                            }
+                        }
+                        // Past the array: zeros, the components it lacks filled as for any.
+                        None => out.extend(std::iter::repeat_n(0u8, a.size as usize * 4)),
                     }
                 };
                 match order {
@@ -223,7 +133,7 @@ fn plan_points(
         Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, count)),
         None => (u64::from(first) + u64::from(count), (first, count)),
     };
-    let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref())?;
+    let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref(), ctx.robust)?;
     let [_, _, w, h] = ctx.raster.viewport;
     let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, instance as f32, 0.0];
     inputs.push(VertexInput {
@@ -324,11 +234,27 @@ fn plan_draw<'c>(
         let (inputs, instances) = plan_points(ctx, &program, count, indices, first, shape.instance)?;
         (inputs, None, 4, 0, instances)
     } else {
-        let IndexPlan { index, count, vertex_count } = plan_indices(ctx, prim, count, indices, first)?;
-        if count == 0 {
-            return Ok(None);
+        let planned = plan_indices(ctx, prim, count, indices, first)
+            .and_then(|plan| Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false)?, plan)));
+        match planned {
+            Ok((inputs, IndexPlan { index, count, .. })) => {
+                if count == 0 {
+                    return Ok(None);
+                }
+                (inputs, index, count, first, (0, shape.instances))
+            }
+            // Robust access, with an array too short for the draw: each vertex the draw reads
+            // is gathered, what lies past an array as zeros, and drawn unindexed.
+            Err(GlError::InvalidOperation) if ctx.robust => {
+                let order = robust_order(ctx, prim, count, indices, first)?;
+                if order.is_empty() {
+                    return Ok(None);
+                }
+                let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true)?;
+                (inputs, None, order.len() as u32, 0, (0, shape.instances))
+            }
+            Err(e) => return Err(e),
         }
-        (plan_inputs(ctx, &program, vertex_count, None)?, index, count, first, (0, shape.instances))
     };
     let textures = program
         .info

@@ -343,6 +343,7 @@ impl GlesExecutor {
         ctx.no_error = asked.no_error;
         ctx.release_none = asked.release_none;
         ctx.lose_on_reset = asked.lose_on_reset;
+        ctx.robust = asked.robust;
         self.contexts.insert(id, ctx);
         let asked = asked.priority;
         // The class applies to the whole client; the daemon's configuration wins over it.

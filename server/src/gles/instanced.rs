@@ -6,8 +6,8 @@
 use strata_protocol::Blob;
 
 use super::context::Context;
-use super::draw::Indices;
 use super::error::{GlError, GlResult};
+use super::indices::Indices;
 use super::GlesExecutor;
 
 #[allow(non_snake_case)]

@@ -31,6 +31,7 @@ mod framebuffers;
 mod frames;
 pub mod glsl;
 mod images;
+mod indices;
 mod instanced;
 mod labels;
 mod mapping;

@@ -8,8 +8,8 @@ use strata_protocol::Slice;
 
 use super::context::Context;
 use super::conv::{IndexType, Primitive};
-use super::draw::Indices;
 use super::error::{GlError, GlResult};
+use super::indices::Indices;
 use super::GlesExecutor;
 
 /// The first `drawcount` entries of each array, validated: `GL_INVALID_VALUE` for a negative
