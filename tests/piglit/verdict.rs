@@ -65,6 +65,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_EGL_sync",
     "GL_OES_get_program_binary",
     "GL_EXT_clip_control",
+    "GL_EXT_texture_compression_s3tc_srgb",
     "GL_KHR_robust_buffer_access_behavior",
     "EGL_EXT_create_context_robustness",
     "EGL_KHR_fence_sync",

@@ -15,7 +15,7 @@ const DXT5: u32 = 0x83F3;
 const ETC1_RGB8_OES: u32 = 0x8D64;
 
 /// Deterministic pseudo-random bytes.
-struct Lcg(u32);
+pub(super) struct Lcg(pub(super) u32);
 
 impl Lcg {
     fn next(&mut self) -> u32 {
@@ -23,7 +23,7 @@ impl Lcg {
         self.0 >> 8
     }
 
-    fn bytes(&mut self, n: usize) -> Vec<u8> {
+    pub(super) fn bytes(&mut self, n: usize) -> Vec<u8> {
         (0..n).map(|_| self.next() as u8).collect()
     }
 }
@@ -34,10 +34,11 @@ fn colour_block(rng: &mut Lcg) -> Vec<u8> {
 }
 
 /// `blocks` blocks of `format`.
-fn s3tc_blocks(format: u32, blocks: usize, rng: &mut Lcg) -> Vec<u8> {
+pub(super) fn s3tc_blocks(format: u32, blocks: usize, rng: &mut Lcg) -> Vec<u8> {
     (0..blocks)
         .flat_map(|_| match format {
-            DXT1_RGB | DXT1_RGBA => colour_block(rng),
+            // The sRGB forms' DXT1 too (GL_EXT_texture_compression_s3tc_srgb).
+            DXT1_RGB | DXT1_RGBA | 0x8C4C | 0x8C4D => colour_block(rng),
             _ => [rng.bytes(8), colour_block(rng)].concat(),
         })
         .collect()

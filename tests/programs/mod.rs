@@ -291,6 +291,7 @@ mod points;
 mod program_binary;
 mod read_buffer;
 mod render_mipmap;
+mod s3tc_srgb;
 mod samplers;
 mod texture_rg;
 mod textures;
@@ -326,5 +327,6 @@ pub fn all() -> Vec<Case> {
     all.extend(occlusion::all());
     all.extend(program_binary::all());
     all.extend(clip_control::all());
+    all.extend(s3tc_srgb::all());
     all
 }

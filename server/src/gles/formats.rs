@@ -69,6 +69,9 @@ impl Storage {
 pub enum Compressed {
     /// One of `EXT_texture_compression_s3tc`'s four formats.
     S3tc(S3tc),
+    /// Its sRGB form (`EXT_texture_compression_s3tc_srgb`): the colour channels are sRGB
+    /// encoded, and read as linear.
+    S3tcSrgb(S3tc),
     /// `ETC1_RGB8_OES` (`OES_compressed_ETC1_RGB8_texture`).
     Etc1,
 }
@@ -91,6 +94,10 @@ impl Compressed {
             COMPRESSED_RGBA_S3TC_DXT1_EXT => Compressed::S3tc(S3tc::Dxt1Rgba),
             COMPRESSED_RGBA_S3TC_DXT3_EXT => Compressed::S3tc(S3tc::Dxt3),
             COMPRESSED_RGBA_S3TC_DXT5_EXT => Compressed::S3tc(S3tc::Dxt5),
+            COMPRESSED_SRGB_S3TC_DXT1_EXT => Compressed::S3tcSrgb(S3tc::Dxt1Rgb),
+            COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT => Compressed::S3tcSrgb(S3tc::Dxt1Rgba),
+            COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT => Compressed::S3tcSrgb(S3tc::Dxt3),
+            COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => Compressed::S3tcSrgb(S3tc::Dxt5),
             ETC1_RGB8_OES => Compressed::Etc1,
             _ => return None,
         })
@@ -99,7 +106,7 @@ impl Compressed {
     /// Bytes per 4×4 block.
     pub fn block_bytes(self) -> usize {
         match self {
-            Compressed::S3tc(d) => d.block_bytes(),
+            Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => d.block_bytes(),
             Compressed::Etc1 => 8,
         }
     }
@@ -118,6 +125,10 @@ impl Compressed {
             Compressed::S3tc(S3tc::Dxt1Rgba) => Some(F::Bc1RgbaUnorm),
             Compressed::S3tc(S3tc::Dxt3) => Some(F::Bc2RgbaUnorm),
             Compressed::S3tc(S3tc::Dxt5) => Some(F::Bc3RgbaUnorm),
+            Compressed::S3tcSrgb(S3tc::Dxt1Rgb) => None,
+            Compressed::S3tcSrgb(S3tc::Dxt1Rgba) => Some(F::Bc1RgbaUnormSrgb),
+            Compressed::S3tcSrgb(S3tc::Dxt3) => Some(F::Bc2RgbaUnormSrgb),
+            Compressed::S3tcSrgb(S3tc::Dxt5) => Some(F::Bc3RgbaUnormSrgb),
             // ETC1 is the subset of ETC2 RGB8 without ETC2's extra modes.
             Compressed::Etc1 => Some(F::Etc2Rgb8Unorm),
         }
@@ -127,7 +138,7 @@ impl Compressed {
     /// ETC2 is missing), S3TC where the device has BC formats.
     pub fn offered(self, features: wgpu::Features) -> bool {
         match self {
-            Compressed::S3tc(_) => features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC),
+            Compressed::S3tc(_) | Compressed::S3tcSrgb(_) => features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC),
             Compressed::Etc1 => true,
         }
     }
@@ -142,6 +153,33 @@ impl Compressed {
         self.native_format().filter(|f| features.contains(f.required_features()))
     }
 
+    /// The storage of an image of this format that is decoded on upload: RGBA8, or for the
+    /// sRGB formats RGBA16F holding the linear values ([`Self::decode_for`]), which filter as
+    /// GL filters an sRGB image, after the conversion.
+    pub fn decoded_storage(self) -> Storage {
+        match self {
+            Compressed::S3tcSrgb(_) => Storage::Half,
+            _ => Storage::Rgba8,
+        }
+    }
+
+    /// Decodes a `width`×`height` image to texels of [`Self::decoded_storage`].
+    pub fn decode_for(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
+        let rgba = self.decode(data, width, height);
+        match self {
+            Compressed::S3tcSrgb(_) => rgba
+                .chunks_exact(4)
+                .flat_map(|px| {
+                    let linear =
+                        [srgb_to_linear(px[0]), srgb_to_linear(px[1]), srgb_to_linear(px[2]), f32::from(px[3]) / 255.0];
+                    linear.map(|v| half::f16::from_f32(v).to_bits().to_ne_bytes())
+                })
+                .flatten()
+                .collect(),
+            _ => rgba,
+        }
+    }
+
     /// Decodes a `width`×`height` image (blocks in row order) to tightly packed RGBA8 rows.
     /// `data` must hold [`Self::image_size`] bytes.
     pub fn decode(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
@@ -150,7 +188,7 @@ impl Compressed {
         let (bw, bb) = (w.div_ceil(4), self.block_bytes());
         for (i, block) in data.chunks_exact(bb).take(bw * h.div_ceil(4)).enumerate() {
             let texels = match self {
-                Compressed::S3tc(d) => super::compressed::s3tc::decode_block(d, block),
+                Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => super::compressed::s3tc::decode_block(d, block),
                 Compressed::Etc1 => etc1::decode_block(block),
             };
             let (x0, y0) = ((i % bw) * 4, (i / bw) * 4);
@@ -162,6 +200,16 @@ impl Compressed {
             }
         }
         out
+    }
+}
+
+/// An sRGB-encoded 8-bit value as linear (the sRGB transfer function).
+fn srgb_to_linear(v: u8) -> f32 {
+    let c = f32::from(v) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
     }
 }
 
@@ -315,7 +363,8 @@ pub fn sized_color_base(internal: u32) -> Option<u32> {
 pub fn internal_accepts(internal: u32, format: u32, features: wgpu::Features) -> bool {
     match Compressed::from_gl(internal) {
         Some(c @ Compressed::S3tc(_)) => c.offered(features) && matches!(format, RGB | RGBA),
-        Some(Compressed::Etc1) => false,
+        // As on Mesa: the sRGB forms take compressed data only.
+        Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
         None => same_layout(internal, format),
     }
 }

@@ -43,6 +43,7 @@ fn texture_extensions(features: wgpu::Features) -> String {
             "GL_EXT_texture_compression_dxt1",
             "GL_ANGLE_texture_compression_dxt3",
             "GL_ANGLE_texture_compression_dxt5",
+            "GL_EXT_texture_compression_s3tc_srgb",
         ]);
     }
     ext.join(" ")

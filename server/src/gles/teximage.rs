@@ -260,8 +260,9 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let unpack = Unpack::of(&ctx.pixel_store);
         let fits = |t: &Texture, img: &TextureImage| match Compressed::from_gl(t.format) {
-            // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture).
-            Some(Compressed::Etc1) => false,
+            // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture), nor
+            // sRGB S3TC images by uncompressed data.
+            Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
             Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
             // ES 2.0: the format must be the image's (RGBA and BGRA count as one, MESA_bgra);
             // the type must give the same storage.

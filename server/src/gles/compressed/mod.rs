@@ -1,8 +1,9 @@
 //! Compressed texture images: `glCompressedTexImage2D` and `glCompressedTexSubImage2D` for
-//! `EXT_texture_compression_s3tc` and `OES_compressed_ETC1_RGB8_texture` (with
-//! `EXT_compressed_ETC1_RGB8_sub_texture`). Where the device has
-//! the block format (and the image's size is a whole number of blocks, as wgpu requires) the
-//! blocks are uploaded as they are; otherwise they are decoded to RGBA8 here.
+//! `EXT_texture_compression_s3tc` (and its sRGB forms, `EXT_texture_compression_s3tc_srgb`)
+//! and `OES_compressed_ETC1_RGB8_texture` (with `EXT_compressed_ETC1_RGB8_sub_texture`). Where
+//! the device has the block format (and the image's size is a whole number of blocks, as wgpu
+//! requires) the blocks are uploaded as they are; otherwise they are decoded here, to RGBA8,
+//! or for the sRGB forms to linear RGBA16F.
 
 pub mod etc1;
 pub mod s3tc;
@@ -48,7 +49,7 @@ impl GlesExecutor {
         if level == 0 {
             let whole_blocks = w > 0 && h > 0 && w % 4 == 0 && h % 4 == 0;
             let native = whole_blocks && c.native_on(gpu.features).is_some();
-            t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { Storage::Rgba8 })?;
+            t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { c.decoded_storage() })?;
             t.format = internalformat;
         }
         let face = image.face;
@@ -62,7 +63,7 @@ impl GlesExecutor {
         let region = Region { face, level, x: 0, y: 0, width: w, height: h };
         match img.storage {
             Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
-            _ => img.write(gpu, flushed, region, &c.decode(data.as_bytes(), w, h)),
+            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
         }
         t.defined[face as usize] |= 1 << level;
         Ok(())
@@ -99,7 +100,7 @@ impl GlesExecutor {
         let (w, h) = (region.width, region.height);
         match img.storage {
             Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
-            _ => img.write(gpu, flushed, region, &c.decode(data.as_bytes(), w, h)),
+            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
         }
         Ok(())
     }
