@@ -20,7 +20,9 @@
 //!   (`GL_OES_get_program_binary`);
 //! - `robust_access`: robust contexts and the draws that read past their arrays
 //!   (`EGL_EXT_create_context_robustness`, `GL_KHR_robust_buffer_access_behavior`), which
-//!   need a context of their own.
+//!   need a context of their own;
+//! - `no_config`: a context made with no config (`EGL_KHR_no_config_context`), which the
+//!   library passes on.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -43,6 +45,8 @@ mod draw_buffers;
 mod fence_sync;
 #[path = "client_calls/mapping.rs"]
 mod mapping;
+#[path = "client_calls/no_config.rs"]
+mod no_config;
 #[path = "client_calls/pack.rs"]
 mod pack;
 #[path = "client_calls/program_binary.rs"]
@@ -149,6 +153,11 @@ api! {
     get_program_binary = "glGetProgramBinaryOES": fn(u32, i32, *mut i32, *mut u32, *mut c_void);
     program_binary = "glProgramBinaryOES": fn(u32, u32, *const c_void, i32);
     draw_elements = "glDrawElements": fn(u32, i32, u32, *const c_void);
+    egl_choose_config = "eglChooseConfig": fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32;
+    egl_create_pbuffer = "eglCreatePbufferSurface": fn(Ptr, Ptr, *const i32) -> Ptr;
+    egl_destroy_surface = "eglDestroySurface": fn(Ptr, Ptr) -> u32;
+    egl_query_context = "eglQueryContext": fn(Ptr, Ptr, i32, *mut i32) -> u32;
+    egl_get_config_attrib = "eglGetConfigAttrib": fn(Ptr, Ptr, i32, *mut i32) -> u32;
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -269,7 +278,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 8] = [
+    let sequences: [Sequence; 9] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -278,6 +287,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("fence_sync", fence_sync::sequence),
         ("program_binary", program_binary::sequence),
         ("robust_access", robust_access::sequence),
+        ("no_config", no_config::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -304,7 +304,9 @@ impl Default for PixelStore {
 
 /// One GL context's state.
 pub struct Context {
-    /// The EGL config it was created with.
+    /// The EGL config of the surface it was last made current with (the one it was created
+    /// with before that, or the first for `EGL_KHR_no_config_context`): what framebuffer 0's
+    /// bits answer, as on Mesa.
     pub config: Config,
     /// The pending GL error.
     pub error: ErrorFlag,

@@ -332,7 +332,8 @@ impl GlesExecutor {
         attribs: Slice<'_, i32>,
     ) -> EglResult<EglHandle> {
         self.check_display(display)?;
-        let c = Config::get(config).ok_or(EGL_BAD_CONFIG)?;
+        // EGL_KHR_no_config_context: EGL_NO_CONFIG_KHR takes each surface's config.
+        let c = if config == 0 { CONFIGS[0] } else { Config::get(config).ok_or(EGL_BAD_CONFIG)? };
         let asked = super::context_attribs::parse(&attribs.to_vec())?;
         self.account.admit(crate::quota::Kind::Context, self.contexts.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
         let id = self.next_handle;
@@ -401,8 +402,10 @@ impl GlesExecutor {
         }
         let surface = self.surfaces.get(&draw).ok_or(EGL_BAD_SURFACE)?;
         let (w, h) = (surface.target.width as i32, surface.target.height as i32);
+        let config = surface.config;
         let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
         ctx.surfaceless = false;
+        ctx.config = config;
         if !ctx.made_current {
             ctx.made_current = true;
             ctx.raster.viewport = [0, 0, w, h];
