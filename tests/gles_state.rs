@@ -48,6 +48,9 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     // GL_KHR_parallel_shader_compile.
     (0x91B0, "MAX_SHADER_COMPILER_THREADS_KHR", 1, State),
     (0x8037, "POLYGON_OFFSET_FILL", 1, State),
+    // GL_EXT_clip_control.
+    (0x935C, "CLIP_ORIGIN_EXT", 1, State),
+    (0x935D, "CLIP_DEPTH_MODE_EXT", 1, State),
     // 6.6 multisampling.
     (0x809E, "SAMPLE_ALPHA_TO_COVERAGE", 1, State),
     (0x80A0, "SAMPLE_COVERAGE", 1, State),
@@ -113,6 +116,9 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     (0x8DF9, "NUM_SHADER_BINARY_FORMATS", 1, Impl),
     (0x8DF8, "SHADER_BINARY_FORMATS", 0, Impl),
     (0x8DFA, "SHADER_COMPILER", 1, Impl),
+    // GL_OES_get_program_binary.
+    (0x87FE, "NUM_PROGRAM_BINARY_FORMATS_OES", 1, Impl),
+    (0x87FF, "PROGRAM_BINARY_FORMATS_OES", 0, Impl),
     (0x84E8, "MAX_RENDERBUFFER_SIZE", 1, Impl),
     (0x8869, "MAX_VERTEX_ATTRIBS", 1, Impl),
     (0x8DFB, "MAX_VERTEX_UNIFORM_VECTORS", 1, Impl),
@@ -175,6 +181,7 @@ fn set_state(gl: Gl<'_>, n: &mut Names) -> Result<(), ClientError> {
     gl.glCullFace(0x0408)?;
     gl.glFrontFace(0x0900)?;
     gl.glPolygonOffsetClampEXT(-1.5, 2.5, 0.125)?;
+    gl.glClipControlEXT(0x8CA2, 0x935F)?;
     gl.glMaxShaderCompilerThreadsKHR(3)?;
     gl.glEnable(0x8037)?;
     gl.glEnable(0x809E)?;

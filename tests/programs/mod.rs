@@ -290,6 +290,7 @@ mod parallel_compile;
 mod points;
 mod program_binary;
 mod read_buffer;
+mod read_depth;
 mod render_mipmap;
 mod s3tc_srgb;
 mod samplers;
@@ -328,5 +329,6 @@ pub fn all() -> Vec<Case> {
     all.extend(program_binary::all());
     all.extend(clip_control::all());
     all.extend(s3tc_srgb::all());
+    all.extend(read_depth::all());
     all
 }

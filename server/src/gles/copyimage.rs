@@ -165,8 +165,16 @@ impl GlesExecutor {
             });
             let color = Some((dst_tex, view));
             let absent = wgpu::ColorWrites::ALPHA;
-            let level_target =
-                Target { key: (uid, 3), color, more: Vec::new(), depth: None, width: lw, height: lh, absent };
+            let level_target = Target {
+                key: (uid, 3),
+                color,
+                more: Vec::new(),
+                depth: None,
+                depth_image: None,
+                width: lw,
+                height: lh,
+                absent,
+            };
             let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }

@@ -177,7 +177,10 @@ impl GlesExecutor {
         let reserved = Some(self.reserve(bytes)?);
         let gpu = &self.gpu;
         let size = ((width as u32).max(1), (height as u32).max(1));
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        // Sampled too: depth reads (GL_NV_read_depth) pass through the depth reader.
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::TEXTURE_BINDING;
         let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
         let absent = absent_channels(internalformat);
@@ -185,7 +188,16 @@ impl GlesExecutor {
             // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
             let color = Some((tex.clone(), view.clone()));
-            let t = Target { key: (uid, 2), color, more: Vec::new(), depth: None, width: w, height: h, absent };
+            let t = Target {
+                key: (uid, 2),
+                color,
+                more: Vec::new(),
+                depth: None,
+                depth_image: None,
+                width: w,
+                height: h,
+                absent,
+            };
             self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
         }
         let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;

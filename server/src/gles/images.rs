@@ -75,9 +75,8 @@ impl TextureImage {
         if storage.attachable() {
             usage |= wgpu::TextureUsages::RENDER_ATTACHMENT;
         }
-        if !storage.is_depth() {
-            usage |= wgpu::TextureUsages::COPY_SRC;
-        }
+        // Colour copies out, and depth and stencil reads (GL_NV_read_stencil copies that aspect).
+        usage |= wgpu::TextureUsages::COPY_SRC;
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("gl texture"),
             size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: layers },

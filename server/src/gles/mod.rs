@@ -43,6 +43,7 @@ mod program_binary;
 mod programs;
 mod queries;
 mod read_buffer;
+mod read_depth;
 mod render;
 mod resolve;
 mod shaders;

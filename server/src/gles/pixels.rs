@@ -8,6 +8,7 @@ use strata_protocol::Bytes;
 use super::conv::type_size;
 use super::enums::*;
 use super::error::GlError;
+use super::read_depth::{depth_bits, DepthRead};
 use super::GlesExecutor;
 
 /// The largest `glReadPixels` reply: half the protocol's message limit.
@@ -21,6 +22,15 @@ fn packed_size(width: usize, height: usize, bpp: usize, alignment: usize) -> usi
     }
     let row = (width * bpp).div_ceil(alignment) * alignment;
     row * (height - 1) + width * bpp
+}
+
+/// What a `glReadPixels` reads.
+#[derive(Debug, Clone, Copy)]
+enum Read {
+    /// The colour read buffer.
+    Color(ReadFormat),
+    /// Depth, stencil, or both (`GL_NV_read_depth` and its kin).
+    Depth(DepthRead),
 }
 
 /// How `glReadPixels` writes each pixel.
@@ -118,21 +128,40 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidValue);
             return Bytes(Vec::new());
         }
-        let how = match ReadFormat::from_gl(format, pixel_type) {
+        let how = match DepthRead::from_gl(format, pixel_type) {
+            Some(depth) => depth.map(Read::Depth),
+            None => ReadFormat::from_gl(format, pixel_type).map(Read::Color),
+        };
+        let how = match how {
             Ok(how) => how,
             Err(e) => {
                 ctx.record(e);
                 return Bytes(Vec::new());
             }
         };
-        if let Err(e) = super::read_buffer::read_selected(ctx) {
+        let selected = match how {
+            Read::Color(_) => super::read_buffer::read_selected(ctx),
+            Read::Depth(_) => Ok(()),
+        };
+        if let Err(e) = selected {
             ctx.record(e);
             return Bytes(Vec::new());
         }
-        let bpp = how.bytes();
         let Ok(target) = self.read_target(ctx) else {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
+        };
+        let bpp = match how {
+            Read::Color(c) => c.bytes(),
+            Read::Depth(d) => {
+                // The buffers it reads must be there.
+                let (depth, stencil) = d.aspects();
+                if (depth && !target.has_depth()) || (stencil && !target.has_stencil()) {
+                    ctx.record(GlError::InvalidOperation);
+                    return Bytes(Vec::new());
+                }
+                d.bytes()
+            }
         };
         let align = ctx.pixel_store.pack_alignment.max(1) as usize;
         let (w, h) = (width as usize, height as usize);
@@ -153,13 +182,34 @@ impl GlesExecutor {
         let y1 = (y + i64::from(height)).clamp(0, i64::from(target.height));
         if x1 > x0 && y1 > y0 {
             let rect = [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32];
-            if let Some(px) = self.r.read_rgba(&target, rect) {
-                let cw = rect[2] as usize * 4;
-                for r in 0..rect[3] as usize {
-                    let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
-                    let src = &px[r * cw..(r + 1) * cw];
-                    for (i, p) in src.chunks_exact(4).enumerate() {
-                        how.write(p, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
+            let rw = rect[2] as usize;
+            match how {
+                Read::Color(how) => {
+                    if let Some(px) = self.r.read_rgba(&target, rect) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            let src = &px[r * rw * 4..(r + 1) * rw * 4];
+                            for (i, p) in src.chunks_exact(4).enumerate() {
+                                how.write(p, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
+                            }
+                        }
+                    }
+                }
+                Read::Depth(d) => {
+                    // Framebuffer 0 of a reversed-Z surface stores 1 − GL's depth.
+                    let reversed = ctx.bindings.read_framebuffer == 0
+                        && self.current.and_then(|(_, s)| self.surfaces.get(&s)).is_some_and(|s| s.reversed.is_some());
+                    let bits = target.depth.as_ref().map_or(24, |(_, f)| depth_bits(*f));
+                    if let Some((depths, stencils)) = self.r.read_depth_stencil(&target, rect, d.aspects().1) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            for i in 0..rw {
+                                let stored = depths.get(r * rw + i).copied().unwrap_or(0.0);
+                                let depth = if reversed { 1.0 - stored } else { stored };
+                                let stencil = stencils.get(r * rw + i).copied().unwrap_or(0);
+                                d.write(depth, bits, stencil, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
+                            }
+                        }
                     }
                 }
             }

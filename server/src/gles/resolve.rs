@@ -13,7 +13,7 @@ use super::render::Target;
 use super::GlesExecutor;
 
 /// A resolved depth/stencil attachment: view, format, image uid, width, height.
-type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32);
+type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, wgpu::Texture);
 
 /// A resolved colour attachment.
 #[derive(Clone)]
@@ -97,7 +97,7 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             let view = img.texture.create_view(&Default::default());
-            Ok(Some((view, img.storage.wgpu(), t.uid, img.width, img.height)))
+            Ok(Some((view, img.storage.wgpu(), t.uid, img.width, img.height, img.texture.clone())))
         }
         Attachment::Renderbuffer(name) => {
             let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
@@ -105,7 +105,7 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
             if !ok.contains(&rb.format) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height)))
+            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height, tex.clone())))
         }
     }
 }
@@ -169,6 +169,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
         absent: first.as_ref().map_or(wgpu::ColorWrites::empty(), |c| c.absent),
         color: first.map(|c| (c.texture, c.view)),
         more,
+        depth_image: depth.as_ref().map(|d| d.5.clone()),
         depth: depth.map(|d| (d.0, d.1)),
         width,
         height,

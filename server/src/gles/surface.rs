@@ -188,7 +188,9 @@ impl GlesExecutor {
         let (color, depth_tex) = match images {
             Some(images) => images,
             None => {
-                let depth_usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+                let depth_usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC;
                 (new("surface colour", COLOR_FORMAT, usage), depth_format.map(|f| new("surface depth", f, depth_usage)))
             }
         };
@@ -201,6 +203,7 @@ impl GlesExecutor {
             color: Some((color, color_view)),
             more: Vec::new(),
             depth,
+            depth_image: depth_tex.clone(),
             width: w,
             height: h,
             absent,

@@ -77,7 +77,8 @@ pub struct DeviceIdentity {
 /// attachment that is sampled, and colour is also copied (reads, uploads).
 fn vk_usage(format: wgpu::TextureFormat) -> vk::ImageUsageFlags {
     if format.is_depth_stencil_format() {
-        vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED
+        // Transfers out: glReadPixels of stencil (GL_NV_read_stencil) copies that aspect.
+        vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_SRC
     } else {
         vk::ImageUsageFlags::COLOR_ATTACHMENT
             | vk::ImageUsageFlags::SAMPLED
@@ -90,7 +91,7 @@ fn vk_usage(format: wgpu::TextureFormat) -> vk::ImageUsageFlags {
 pub fn shared_usage(format: wgpu::TextureFormat) -> wgpu::TextureUsages {
     use wgpu::TextureUsages as U;
     if format.is_depth_stencil_format() {
-        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC
     } else {
         U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC | U::COPY_DST
     }
@@ -99,7 +100,7 @@ pub fn shared_usage(format: wgpu::TextureFormat) -> wgpu::TextureUsages {
 fn hal_usage(format: wgpu::TextureFormat) -> wgpu::wgt::TextureUses {
     use wgpu::wgt::TextureUses as U;
     if format.is_depth_stencil_format() {
-        U::DEPTH_STENCIL_READ | U::DEPTH_STENCIL_WRITE | U::RESOURCE
+        U::DEPTH_STENCIL_READ | U::DEPTH_STENCIL_WRITE | U::RESOURCE | U::COPY_SRC
     } else {
         U::COLOR_TARGET | U::RESOURCE | U::COPY_SRC | U::COPY_DST
     }

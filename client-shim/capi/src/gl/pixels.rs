@@ -8,6 +8,7 @@ use super::*;
 pub(super) fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
     let components = match format {
         0x1906 | 0x1909 | 0x1902 => 1, // ALPHA, LUMINANCE, DEPTH_COMPONENT
+        0x1901 => 1,                   // STENCIL_INDEX_OES (GL_NV_read_stencil)
         0x1903 => 1,                   // RED_EXT
         0x190A | 0x8227 => 2,          // LUMINANCE_ALPHA, RG_EXT
         0x1907 => 3,                   // RGB

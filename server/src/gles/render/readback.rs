@@ -13,6 +13,52 @@ impl Renderer {
         self.gpu.read_rgba8(tex, rect)
     }
 
+    /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in
+    /// [0, 1] as stored) and, with `stencil`, its stencil; rows bottom first. `None` without
+    /// the image or the aspect.
+    pub fn read_depth_stencil(
+        &mut self,
+        target: &Target,
+        rect: [u32; 4],
+        stencil: bool,
+    ) -> Option<(Vec<f32>, Vec<u8>)> {
+        self.flush();
+        let tex = target.depth_image.as_ref()?;
+        let format = tex.format();
+        let depths = if format.has_depth_aspect() {
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+            let size = (target.width, target.height);
+            let out = self.gpu.texture_2d("depth read", wgpu::TextureFormat::R32Float, size, usage);
+            let (bgl, pipeline) = self.gpu.depth_reader();
+            let aspect = wgpu::TextureAspect::DepthOnly;
+            let src = tex.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
+            let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("depth read"),
+                layout: &bgl,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src) }],
+            });
+            let dst = out.create_view(&Default::default());
+            let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+            crate::gpu::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
+            self.gpu.queue.submit([enc.finish()]);
+            let bytes = self.gpu.read_texels(&out, rect, wgpu::TextureAspect::All, 4)?;
+            bytes.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect()
+        } else {
+            Vec::new()
+        };
+        let stencils = match stencil && format.has_stencil_aspect() {
+            true => {
+                // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
+                let (tw, th) = (tex.width(), tex.height());
+                let all = self.gpu.read_texels(tex, [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
+                let [x, y, w, h] = rect;
+                (y..y + h).flat_map(|r| all[(r * tw + x) as usize..(r * tw + x + w) as usize].to_vec()).collect()
+            }
+            false => Vec::new(),
+        };
+        Some((depths, stencils))
+    }
+
     /// Waits until the GPU has finished everything this client submitted.
     pub fn finish(&mut self) {
         self.flush();
