@@ -65,6 +65,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_OES_EGL_sync",
     "GL_OES_get_program_binary",
     "GL_EXT_clip_control",
+    "GL_OES_depth_texture_cube_map",
     "GL_NV_read_depth",
     "GL_NV_read_stencil",
     "GL_NV_read_depth_stencil",

@@ -274,6 +274,7 @@ mod clip_control;
 mod compressed;
 mod debug_label;
 mod depth_clamp;
+mod depth_cube;
 mod derivatives;
 mod draw_buffers;
 mod frag_depth;
@@ -330,5 +331,6 @@ pub fn all() -> Vec<Case> {
     all.extend(clip_control::all());
     all.extend(s3tc_srgb::all());
     all.extend(read_depth::all());
+    all.extend(depth_cube::all());
     all
 }

@@ -13,7 +13,7 @@ use super::render::Target;
 use super::GlesExecutor;
 
 /// A resolved depth/stencil attachment: view, format, image uid, width, height.
-type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, wgpu::Texture);
+type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, (wgpu::Texture, u32));
 
 /// A resolved colour attachment.
 #[derive(Clone)]
@@ -84,7 +84,7 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
 fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<DepthAttachment>, u32> {
     match a {
         Attachment::None => Ok(None),
-        Attachment::Texture { name, .. } => {
+        Attachment::Texture { name, face, .. } => {
             let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             // A depth texture is a depth attachment; a depth-stencil one is either.
@@ -96,8 +96,18 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
             if !fits {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            let view = img.texture.create_view(&Default::default());
-            Ok(Some((view, img.storage.wgpu(), t.uid, img.width, img.height, img.texture.clone())))
+            // A cube face's depth (OES_depth_texture_cube_map) must be defined.
+            if t.defined[face as usize] & 1 == 0 {
+                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+            }
+            let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: face,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let id = t.uid ^ u64::from(face) << 56;
+            Ok(Some((view, img.storage.wgpu(), id, img.width, img.height, (img.texture.clone(), face))))
         }
         Attachment::Renderbuffer(name) => {
             let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
@@ -105,7 +115,7 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
             if !ok.contains(&rb.format) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height, tex.clone())))
+            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height, (tex.clone(), 0))))
         }
     }
 }

@@ -203,7 +203,7 @@ impl GlesExecutor {
             color: Some((color, color_view)),
             more: Vec::new(),
             depth,
-            depth_image: depth_tex.clone(),
+            depth_image: depth_tex.clone().map(|t| (t, 0)),
             width: w,
             height: h,
             absent,

@@ -143,8 +143,9 @@ impl GlesExecutor {
             None => internalformat as u32,
         };
         if storage.is_depth() {
-            // Depth formats are 2D-only and have no mipmaps (OES_depth_texture).
-            if internal != format || image.cube || level != 0 {
+            // Depth formats have no mipmaps (OES_depth_texture); cube faces take them too
+            // (OES_depth_texture_cube_map).
+            if internal != format || level != 0 {
                 return Err(GlError::InvalidOperation);
             }
             validate_size(image, level, width, height, border)?;
@@ -152,6 +153,7 @@ impl GlesExecutor {
             return self.depth_tex_image(
                 ctx,
                 flushed,
+                image,
                 width as u32,
                 height as u32,
                 format,
@@ -201,12 +203,14 @@ impl GlesExecutor {
         Ok(())
     }
 
-    /// `glTexImage2D` of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image (2D, level 0).
+    /// `glTexImage2D` of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image (level 0 of
+    /// a 2D texture or a cube face).
     #[allow(clippy::too_many_arguments)]
     fn depth_tex_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
+        image: ImageTarget,
         w: u32,
         h: u32,
         format: u32,
@@ -224,16 +228,20 @@ impl GlesExecutor {
             }
             None => None,
         };
-        let name = ctx.bindings.texture(super::conv::TextureTarget::TwoD);
+        let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         t.ensure_image(gpu, &account, uid, w, h, storage)?;
-        t.defined = [1, 0, 0, 0, 0, 0];
+        if image.cube {
+            t.defined[image.face as usize] = 1;
+        } else {
+            t.defined = [1, 0, 0, 0, 0, 0];
+        }
         t.format = format;
         let Some(img) = &t.gpu else { return Ok(()) };
         let texture = img.texture.clone();
         if let Some((depths, stencil)) = values.filter(|_| w > 0 && h > 0) {
             let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
-            self.r.upload_depth(flushed, &texture, (w, h), [0, 0, w, h], &depths, stencil);
+            self.r.upload_depth(flushed, &texture, image.face, (w, h), [0, 0, w, h], &depths, stencil);
         }
         Ok(())
     }
@@ -282,7 +290,7 @@ impl GlesExecutor {
             let texture = img.texture.clone();
             let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
             let rect = [region.x, region.y, w, h];
-            self.r.upload_depth(flushed, &texture, size, rect, &depths, stencil);
+            self.r.upload_depth(flushed, &texture, image.face, size, rect, &depths, stencil);
             return Ok(());
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };

@@ -321,16 +321,17 @@ impl Gpu {
     /// Writes depth values (in [0, 1], rows in memory order) into a whole `width`×`height`
     /// depth texture.
     pub fn write_depth(&self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
-        self.write_depth_region(tex, (width, height), [0, 0, width, height], values, None);
+        self.write_depth_region(tex, 0, (width, height), [0, 0, width, height], values, None);
     }
 
     /// Writes depth values (in [0, 1], rows in memory order) into the rectangle `[x, y, w, h]`
-    /// of a `width`×`height` depth or depth-stencil texture, and stencil values (one byte per
-    /// texel) if given. wgpu cannot copy into depth aspects, so the depths pass through a float
+    /// of array layer `layer` (a cube face) of a `width`×`height` depth or depth-stencil
+    /// texture, and stencil values (one byte per texel) if given. wgpu cannot copy into depth aspects, so the depths pass through a float
     /// texture and a scissored pass that sets `frag_depth`; stencil is copied directly.
     pub fn write_depth_region(
         &self,
         tex: &wgpu::Texture,
+        layer: u32,
         size: (u32, u32),
         rect: [u32; 4],
         depths: &[f32],
@@ -392,7 +393,12 @@ impl Gpu {
             layout: &bgl,
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src_view) }],
         });
-        let dst = tex.create_view(&Default::default());
+        let dst = tex.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            base_array_layer: layer,
+            array_layer_count: Some(1),
+            ..Default::default()
+        });
         let keep_depth = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
         let keep_stencil = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
         let mut enc = d.create_command_encoder(&Default::default());
@@ -420,7 +426,7 @@ impl Gpu {
                 wgpu::TexelCopyTextureInfo {
                     texture: tex,
                     mip_level: 0,
-                    origin: wgpu::Origin3d { x, y, z: 0 },
+                    origin: wgpu::Origin3d { x, y, z: layer },
                     aspect: wgpu::TextureAspect::StencilOnly,
                 },
                 s,
@@ -432,14 +438,15 @@ impl Gpu {
 
     /// Reads `[x, y, w, h]` of an RGBA8 texture as tightly packed rows in memory order.
     pub fn read_rgba8(&self, tex: &wgpu::Texture, rect: [u32; 4]) -> Option<Vec<u8>> {
-        self.read_texels(tex, rect, wgpu::TextureAspect::All, 4)
+        self.read_texels(tex, 0, rect, wgpu::TextureAspect::All, 4)
     }
 
-    /// Reads `[x, y, w, h]` of `aspect` of a texture whose texels there take `bpp` bytes (the
-    /// stencil aspect: 1), as tightly packed rows in memory order.
+    /// Reads `[x, y, w, h]` of `aspect` of array layer `layer` of a texture whose texels there
+    /// take `bpp` bytes (the stencil aspect: 1), as tightly packed rows in memory order.
     pub fn read_texels(
         &self,
         tex: &wgpu::Texture,
+        layer: u32,
         rect: [u32; 4],
         aspect: wgpu::TextureAspect,
         bpp: u32,
@@ -457,7 +464,12 @@ impl Gpu {
         });
         let mut enc = self.device.create_command_encoder(&Default::default());
         enc.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo { texture: tex, mip_level: 0, origin: wgpu::Origin3d { x, y, z: 0 }, aspect },
+            wgpu::TexelCopyTextureInfo {
+                texture: tex,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x, y, z: layer },
+                aspect,
+            },
             wgpu::TexelCopyBufferInfo {
                 buffer: &buf,
                 layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },

@@ -23,7 +23,8 @@ impl Renderer {
         stencil: bool,
     ) -> Option<(Vec<f32>, Vec<u8>)> {
         self.flush();
-        let tex = target.depth_image.as_ref()?;
+        let (tex, layer) = target.depth_image.as_ref()?;
+        let layer = *layer;
         let format = tex.format();
         let depths = if format.has_depth_aspect() {
             let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
@@ -31,7 +32,13 @@ impl Renderer {
             let out = self.gpu.texture_2d("depth read", wgpu::TextureFormat::R32Float, size, usage);
             let (bgl, pipeline) = self.gpu.depth_reader();
             let aspect = wgpu::TextureAspect::DepthOnly;
-            let src = tex.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
+            let src = tex.create_view(&wgpu::TextureViewDescriptor {
+                aspect,
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: layer,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
             let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("depth read"),
                 layout: &bgl,
@@ -41,7 +48,7 @@ impl Renderer {
             let mut enc = self.gpu.device.create_command_encoder(&Default::default());
             crate::gpu::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
             self.gpu.queue.submit([enc.finish()]);
-            let bytes = self.gpu.read_texels(&out, rect, wgpu::TextureAspect::All, 4)?;
+            let bytes = self.gpu.read_texels(&out, 0, rect, wgpu::TextureAspect::All, 4)?;
             bytes.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect()
         } else {
             Vec::new()
@@ -50,7 +57,7 @@ impl Renderer {
             true => {
                 // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
                 let (tw, th) = (tex.width(), tex.height());
-                let all = self.gpu.read_texels(tex, [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
+                let all = self.gpu.read_texels(tex, layer, [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
                 let [x, y, w, h] = rect;
                 (y..y + h).flat_map(|r| all[(r * tw + x) as usize..(r * tw + x + w) as usize].to_vec()).collect()
             }
@@ -66,16 +73,19 @@ impl Renderer {
     }
 
     /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
-    /// rectangle `[x, y, w, h]` of a `size` depth or depth-stencil texture.
+    /// rectangle `[x, y, w, h]` of array layer `layer` (a cube face) of a `size` depth or
+    /// depth-stencil texture.
+    #[allow(clippy::too_many_arguments)]
     pub fn upload_depth(
         &mut self,
         _: &Flushed,
         tex: &wgpu::Texture,
+        layer: u32,
         size: (u32, u32),
         rect: [u32; 4],
         depths: &[f32],
         stencil: Option<&[u8]>,
     ) {
-        self.gpu.write_depth_region(tex, size, rect, depths, stencil);
+        self.gpu.write_depth_region(tex, layer, size, rect, depths, stencil);
     }
 }

@@ -16,8 +16,9 @@ pub struct Target {
     pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites)>>,
     /// Depth/stencil view and its format.
     pub depth: Option<(wgpu::TextureView, wgpu::TextureFormat)>,
-    /// The depth/stencil image itself, which reads of depth and stencil address.
-    pub depth_image: Option<wgpu::Texture>,
+    /// The depth/stencil image itself and its array layer (a cube face), which reads of depth
+    /// and stencil address.
+    pub depth_image: Option<(wgpu::Texture, u32)>,
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
