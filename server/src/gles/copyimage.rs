@@ -163,18 +163,9 @@ impl GlesExecutor {
                 array_layer_count: Some(1),
                 ..Default::default()
             });
-            let color = Some((dst_tex, view));
+            let color = (dst_tex, view);
             let absent = wgpu::ColorWrites::ALPHA;
-            let level_target = Target {
-                key: (uid, 3),
-                color,
-                more: Vec::new(),
-                depth: None,
-                depth_image: None,
-                width: lw,
-                height: lh,
-                absent,
-            };
+            let level_target = Target::color_only((uid, 3), color, (lw, lh), absent);
             let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }

@@ -187,17 +187,8 @@ impl GlesExecutor {
         if !absent.is_empty() && format == COLOR_FORMAT && width > 0 && height > 0 {
             // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
-            let color = Some((tex.clone(), view.clone()));
-            let t = Target {
-                key: (uid, 2),
-                color,
-                more: Vec::new(),
-                depth: None,
-                depth_image: None,
-                width: w,
-                height: h,
-                absent,
-            };
+            let color = (tex.clone(), view.clone());
+            let t = Target::color_only((uid, 2), color, (w, h), absent);
             self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
         }
         let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;

@@ -5,7 +5,7 @@
 use super::context::Context;
 use strata_protocol::Bytes;
 
-use super::conv::type_size;
+use super::conv::{type_size, Mirror};
 use super::enums::*;
 use super::error::GlError;
 use super::read_depth::{depth_bits, DepthRead};
@@ -197,15 +197,14 @@ impl GlesExecutor {
                 }
                 Read::Depth(d) => {
                     // Framebuffer 0 of a reversed-Z surface stores 1 − GL's depth.
-                    let reversed = ctx.bindings.read_framebuffer == 0
-                        && self.current.and_then(|(_, s)| self.surfaces.get(&s)).is_some_and(|s| s.reversed.is_some());
+                    let reversed = self.reversed_framebuffer(ctx.bindings.read_framebuffer).is_some();
                     let bits = target.depth.as_ref().map_or(24, |(_, f)| depth_bits(*f));
                     if let Some((depths, stencils)) = self.r.read_depth_stencil(&target, rect, d.aspects().1) {
                         for r in 0..rect[3] as usize {
                             let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
                             for i in 0..rw {
                                 let stored = depths.get(r * rw + i).copied().unwrap_or(0.0);
-                                let depth = if reversed { 1.0 - stored } else { stored };
+                                let depth = if reversed { Mirror::depth(stored) } else { stored };
                                 let stencil = stencils.get(r * rw + i).copied().unwrap_or(0);
                                 d.write(depth, bits, stencil, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
                             }

@@ -4,7 +4,7 @@
 
 use super::context::{ClipControl, Context};
 use super::glsl::ClipZ;
-use super::programs::shader_module;
+use super::programs::{shader_module, LinkedProgram};
 use super::surface::ReversedZ;
 use super::GlesExecutor;
 
@@ -18,8 +18,14 @@ impl GlesExecutor {
     /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's
     /// framebuffer 0.
     pub(super) fn reversed_target(&self, ctx: &Context) -> Option<ReversedZ> {
+        self.reversed_framebuffer(ctx.bindings.framebuffer)
+    }
+
+    /// The reversed-Z constants of framebuffer `bound` (a draw or read binding) when it is a
+    /// reversed-Z surface's framebuffer 0.
+    pub(super) fn reversed_framebuffer(&self, bound: u32) -> Option<ReversedZ> {
         let (_, sid) = self.current?;
-        if ctx.bindings.framebuffer != 0 {
+        if bound != 0 {
             return None;
         }
         self.surfaces.get(&sid)?.reversed
@@ -39,7 +45,7 @@ impl GlesExecutor {
         };
         let clip = ctx.raster.clip;
         if let Some(r) = reversed {
-            return self.reversed_stages(ctx, r, points, clip.upper_left).map(Some);
+            return self.reversed_stages(&program, r, points, clip.upper_left).map(Some);
         }
         if clip != ClipControl::default() {
             return program.clip_vs(&self.gpu, points, clip).map(|vs| Some((vs, None)));
@@ -50,23 +56,17 @@ impl GlesExecutor {
         Ok(None)
     }
 
-    /// The current program's reversed-Z stages for the current surface `r`: the vertex stage
+    /// `program`'s reversed-Z stages for the current surface `r`: the vertex stage
     /// (`points`: its points variant; `upper_left`: with that window origin) and, if it reads
     /// `gl_FragCoord`, the fragment stage; created on first use and kept by the surface.
     fn reversed_stages(
         &mut self,
-        ctx: &Context,
+        program: &LinkedProgram,
         r: ReversedZ,
         points: bool,
         upper_left: bool,
     ) -> Result<Stages, String> {
         let (_, sid) = self.current.ok_or("no current surface")?;
-        let program = ctx
-            .objects
-            .programs
-            .get(&ctx.bindings.program)
-            .and_then(|p| p.linked.clone())
-            .ok_or("no linked program")?;
         let surface = self.surfaces.get_mut(&sid).ok_or("no current surface")?;
         let key = (program.id, points, upper_left);
         if let Some(stages) = surface.reversed_stages.get(&key) {

@@ -30,6 +30,26 @@ pub struct Target {
 }
 
 impl Target {
+    /// A target of one colour image (`texture` and its single-level `view`) of `width`×`height`
+    /// lacking the `absent` channels, with no depth, batched under `key`.
+    pub fn color_only(
+        key: (u64, u64),
+        (texture, view): (wgpu::Texture, wgpu::TextureView),
+        (width, height): (u32, u32),
+        absent: wgpu::ColorWrites,
+    ) -> Target {
+        Target {
+            key,
+            color: Some((texture, view)),
+            more: Vec::new(),
+            depth: None,
+            depth_image: None,
+            width,
+            height,
+            absent,
+        }
+    }
+
     /// Whether the colour buffer has no alpha.
     pub fn opaque(&self) -> bool {
         self.absent.contains(wgpu::ColorWrites::ALPHA)
