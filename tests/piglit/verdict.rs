@@ -70,6 +70,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_NV_read_stencil",
     "GL_NV_read_depth_stencil",
     "GL_EXT_texture_compression_s3tc_srgb",
+    "GL_KHR_texture_compression_astc_ldr",
     "GL_KHR_robust_buffer_access_behavior",
     "EGL_EXT_create_context_robustness",
     "EGL_KHR_fence_sync",

@@ -267,6 +267,7 @@ pub fn textured_quad(gl: Gl<'_>, names: &mut Names, uv0: f32, uv1: f32) -> R {
 }
 
 mod anisotropic;
+mod astc;
 mod base_vertex;
 mod blend_extended;
 mod cases;
@@ -330,6 +331,7 @@ pub fn all() -> Vec<Case> {
     all.extend(program_binary::all());
     all.extend(clip_control::all());
     all.extend(s3tc_srgb::all());
+    all.extend(astc::all());
     all.extend(read_depth::all());
     all.extend(depth_cube::all());
     all

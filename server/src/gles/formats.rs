@@ -1,8 +1,8 @@
 //! Texture formats: which GL format/type pairs an upload accepts, the storage each is kept in
-//! on the GPU, and the compressed formats offered (S3TC and ETC1, sampled natively where the
-//! device has the block format, else decoded to RGBA8 on upload).
+//! on the GPU, and the compressed formats offered (S3TC, ETC1 and ASTC LDR, sampled natively
+//! where the device has the block format, else decoded on upload).
 
-use super::compressed::{etc1, s3tc::S3tc};
+use super::compressed::{astc, astc::Astc, etc1, s3tc::S3tc};
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::render::COLOR_FORMAT;
@@ -74,10 +74,14 @@ pub enum Compressed {
     S3tcSrgb(S3tc),
     /// `ETC1_RGB8_OES` (`OES_compressed_ETC1_RGB8_texture`).
     Etc1,
+    /// An ASTC LDR format of one footprint (`KHR_texture_compression_astc_ldr`).
+    Astc(Astc),
+    /// Its sRGB form: the colour channels are sRGB encoded, and read as linear.
+    AstcSrgb(Astc),
 }
 
-/// Every compressed format known, in the order `GL_COMPRESSED_TEXTURE_FORMATS` lists the
-/// offered ones.
+/// The S3TC and ETC1 formats, in the order `GL_COMPRESSED_TEXTURE_FORMATS` lists the offered
+/// ones; the ASTC formats follow them ([`Astc::all_gl`]).
 const COMPRESSED_FORMATS: [u32; 5] = [
     COMPRESSED_RGB_S3TC_DXT1_EXT,
     COMPRESSED_RGBA_S3TC_DXT1_EXT,
@@ -99,21 +103,45 @@ impl Compressed {
             COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT => Compressed::S3tcSrgb(S3tc::Dxt3),
             COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => Compressed::S3tcSrgb(S3tc::Dxt5),
             ETC1_RGB8_OES => Compressed::Etc1,
-            _ => return None,
+            _ => match Astc::from_gl(f)? {
+                (a, false) => Compressed::Astc(a),
+                (a, true) => Compressed::AstcSrgb(a),
+            },
         })
     }
 
-    /// Bytes per 4×4 block.
+    /// Bytes per block.
     pub fn block_bytes(self) -> usize {
         match self {
             Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => d.block_bytes(),
             Compressed::Etc1 => 8,
+            Compressed::Astc(_) | Compressed::AstcSrgb(_) => astc::BLOCK_BYTES,
         }
     }
 
-    /// Bytes of a `width`×`height` image: one block per started 4×4 square.
+    /// Width and height of a block in texels: 4×4 but for ASTC's footprints.
+    pub fn block_size(self) -> (u32, u32) {
+        match self {
+            Compressed::Astc(a) | Compressed::AstcSrgb(a) => (u32::from(a.width), u32::from(a.height)),
+            _ => (4, 4),
+        }
+    }
+
+    /// Whether the colour channels are sRGB encoded.
+    pub fn is_srgb(self) -> bool {
+        matches!(self, Compressed::S3tcSrgb(_) | Compressed::AstcSrgb(_))
+    }
+
+    /// Blocks across and down a `width`×`height` image: one per started block.
+    pub fn blocks(self, width: u32, height: u32) -> (u32, u32) {
+        let (bw, bh) = self.block_size();
+        (width.div_ceil(bw), height.div_ceil(bh))
+    }
+
+    /// Bytes of a `width`×`height` image.
     pub fn image_size(self, width: u32, height: u32) -> usize {
-        width.div_ceil(4) as usize * height.div_ceil(4) as usize * self.block_bytes()
+        let (across, down) = self.blocks(width, height);
+        across as usize * down as usize * self.block_bytes()
     }
 
     /// The wgpu block format that samples exactly as GL defines this format. DXT1's RGB
@@ -131,15 +159,17 @@ impl Compressed {
             Compressed::S3tcSrgb(S3tc::Dxt5) => Some(F::Bc3RgbaUnormSrgb),
             // ETC1 is the subset of ETC2 RGB8 without ETC2's extra modes.
             Compressed::Etc1 => Some(F::Etc2Rgb8Unorm),
+            Compressed::Astc(a) => Some(a.native(false)),
+            Compressed::AstcSrgb(a) => Some(a.native(true)),
         }
     }
 
-    /// Whether a device with `features` offers this format: ETC1 everywhere (decoded where
-    /// ETC2 is missing), S3TC where the device has BC formats.
+    /// Whether a device with `features` offers this format: ETC1 and ASTC everywhere (decoded
+    /// where the device lacks them), S3TC where the device has BC formats.
     pub fn offered(self, features: wgpu::Features) -> bool {
         match self {
             Compressed::S3tc(_) | Compressed::S3tcSrgb(_) => features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC),
-            Compressed::Etc1 => true,
+            Compressed::Etc1 | Compressed::Astc(_) | Compressed::AstcSrgb(_) => true,
         }
     }
 
@@ -157,17 +187,18 @@ impl Compressed {
     /// sRGB formats RGBA16F holding the linear values ([`Self::decode_for`]), which filter as
     /// GL filters an sRGB image, after the conversion.
     pub fn decoded_storage(self) -> Storage {
-        match self {
-            Compressed::S3tcSrgb(_) => Storage::Half,
-            _ => Storage::Rgba8,
+        if self.is_srgb() {
+            Storage::Half
+        } else {
+            Storage::Rgba8
         }
     }
 
     /// Decodes a `width`×`height` image to texels of [`Self::decoded_storage`].
     pub fn decode_for(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
         let rgba = self.decode(data, width, height);
-        match self {
-            Compressed::S3tcSrgb(_) => rgba
+        match self.is_srgb() {
+            true => rgba
                 .chunks_exact(4)
                 .flat_map(|px| {
                     let linear =
@@ -176,7 +207,7 @@ impl Compressed {
                 })
                 .flatten()
                 .collect(),
-            _ => rgba,
+            false => rgba,
         }
     }
 
@@ -185,15 +216,20 @@ impl Compressed {
     pub fn decode(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
         let (w, h) = (width as usize, height as usize);
         let mut out = vec![0u8; w * h * 4];
-        let (bw, bb) = (w.div_ceil(4), self.block_bytes());
-        for (i, block) in data.chunks_exact(bb).take(bw * h.div_ceil(4)).enumerate() {
+        let (across, down) = self.blocks(width, height);
+        let (bw, bh) = self.block_size();
+        let (across, bw, bh) = (across as usize, bw as usize, bh as usize);
+        for (i, block) in data.chunks_exact(self.block_bytes()).take(across * down as usize).enumerate() {
             let texels = match self {
-                Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => super::compressed::s3tc::decode_block(d, block),
-                Compressed::Etc1 => etc1::decode_block(block),
+                Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => {
+                    super::compressed::s3tc::decode_block(d, block).to_vec()
+                }
+                Compressed::Etc1 => etc1::decode_block(block).to_vec(),
+                Compressed::Astc(a) | Compressed::AstcSrgb(a) => a.decode_block(block),
             };
-            let (x0, y0) = ((i % bw) * 4, (i / bw) * 4);
+            let (x0, y0) = ((i % across) * bw, (i / across) * bh);
             for (t, px) in texels.iter().enumerate() {
-                let (x, y) = (x0 + t % 4, y0 + t / 4);
+                let (x, y) = (x0 + t % bw, y0 + t / bw);
                 if x < w && y < h {
                     out[(y * w + x) * 4..][..4].copy_from_slice(px);
                 }
@@ -215,7 +251,11 @@ fn srgb_to_linear(v: u8) -> f32 {
 
 /// The compressed formats a device with `features` offers (`GL_COMPRESSED_TEXTURE_FORMATS`).
 pub fn offered_compressed(features: wgpu::Features) -> Vec<u32> {
-    COMPRESSED_FORMATS.into_iter().filter(|&f| Compressed::offered_gl(f, features).is_some()).collect()
+    COMPRESSED_FORMATS
+        .into_iter()
+        .chain(Astc::all_gl())
+        .filter(|&f| Compressed::offered_gl(f, features).is_some())
+        .collect()
 }
 
 /// Whether `f` is a colour format of uploads (`BGRA_EXT`, and `GL_EXT_texture_rg`'s
@@ -287,12 +327,13 @@ fn known_type(ty: u32) -> bool {
     )
 }
 
-/// Whether `internal` names an internal format at all: Mesa answers `GL_INVALID_VALUE` for
-/// one that does not (`MESA_bgra`'s `BGR_EXT` among them), before it pairs format and type.
+/// Whether `internal` names an internal format `glTexImage2D` knows at all: Mesa answers
+/// `GL_INVALID_VALUE` for one that does not (`MESA_bgra`'s `BGR_EXT` among them, and the ETC1
+/// and ASTC formats, which only compressed uploads name), before it pairs format and type.
 pub fn known_internal(internal: u32) -> bool {
     (is_color_format(internal) || matches!(internal, DEPTH_COMPONENT | DEPTH_STENCIL_OES | DEPTH_COMPONENT32_OES))
         || sized_fits(internal, 0, 0).is_some()
-        || Compressed::from_gl(internal).is_some()
+        || matches!(Compressed::from_gl(internal), Some(Compressed::S3tc(_) | Compressed::S3tcSrgb(_)))
 }
 
 /// The storage an upload of `format`/`ty` data is kept in: `GL_INVALID_ENUM` for an unknown
@@ -363,8 +404,8 @@ pub fn sized_color_base(internal: u32) -> Option<u32> {
 pub fn internal_accepts(internal: u32, format: u32, features: wgpu::Features) -> bool {
     match Compressed::from_gl(internal) {
         Some(c @ Compressed::S3tc(_)) => c.offered(features) && matches!(format, RGB | RGBA),
-        // As on Mesa: the sRGB forms take compressed data only.
-        Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
+        // As on Mesa: the sRGB forms and ASTC take compressed data only.
+        Some(Compressed::Etc1 | Compressed::S3tcSrgb(_) | Compressed::Astc(_) | Compressed::AstcSrgb(_)) => false,
         None => same_layout(internal, format),
     }
 }

@@ -120,18 +120,17 @@ impl TextureImage {
         if r.width == 0 || r.height == 0 {
             return;
         }
-        let (mut width, mut height, bytes_per_row) = match self.storage {
+        let (width, height, bytes_per_row) = match self.storage {
             Storage::Native(c) => {
-                (r.width.div_ceil(4) * 4, r.height.div_ceil(4) * 4, r.width.div_ceil(4) * c.block_bytes() as u32)
+                // Copies of block formats cover whole blocks, clipped to the level's
+                // block-rounded size.
+                let ((bw, bh), (across, down)) = (c.block_size(), c.blocks(r.width, r.height));
+                let (lw, lh) = self.level_size(r.level);
+                let (level_w, level_h) = (lw.div_ceil(bw) * bw, lh.div_ceil(bh) * bh);
+                ((across * bw).min(level_w - r.x), (down * bh).min(level_h - r.y), across * c.block_bytes() as u32)
             }
             s => (r.width, r.height, r.width * s.texel_bytes()),
         };
-        if let Storage::Native(_) = self.storage {
-            // Copies of block formats cover whole blocks, clipped to the level's block-rounded size.
-            let (lw, lh) = self.level_size(r.level);
-            width = width.min(lw.div_ceil(4) * 4 - r.x);
-            height = height.min(lh.div_ceil(4) * 4 - r.y);
-        }
         gpu.queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.texture,
@@ -153,12 +152,13 @@ impl TextureImage {
             return;
         }
         let (lw, lh) = self.level_size(r.level);
-        let bb = c.block_bytes();
-        let level_row = lw.div_ceil(4) as usize * bb;
+        let (bb, (bw, bh)) = (c.block_bytes(), c.block_size());
+        let level_row = c.blocks(lw, lh).0 as usize * bb;
         let full = self.blocks.entry((r.face, r.level)).or_insert_with(|| vec![0; c.image_size(lw, lh)]);
-        let row = r.width.div_ceil(4) as usize * bb;
-        for (i, src) in data.chunks_exact(row).take(r.height.div_ceil(4) as usize).enumerate() {
-            let at = (r.y as usize / 4 + i) * level_row + r.x as usize / 4 * bb;
+        let (across, down) = c.blocks(r.width, r.height);
+        let row = across as usize * bb;
+        for (i, src) in data.chunks_exact(row).take(down as usize).enumerate() {
+            let at = ((r.y / bh) as usize + i) * level_row + (r.x / bw) as usize * bb;
             if let Some(dst) = full.get_mut(at..at + row) {
                 dst.copy_from_slice(src);
             }

@@ -27,15 +27,15 @@ GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buff
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
-/// sub-rectangles, ETC1 (native or decoded, and updated in part), and S3TC where the device
-/// has BC formats.
+/// sub-rectangles, ETC1 (native or decoded, and updated in part), ASTC LDR (native or
+/// decoded), and S3TC where the device has BC formats.
 fn texture_extensions(features: wgpu::Features) -> String {
     let mut ext = vec!["GL_OES_texture_float", "GL_OES_texture_half_float", "GL_OES_texture_half_float_linear"];
     if features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
         ext.push("GL_OES_texture_float_linear");
     }
     ext.extend(["GL_EXT_texture_format_BGRA8888", "GL_EXT_unpack_subimage", "GL_OES_compressed_ETC1_RGB8_texture"]);
-    ext.push("GL_EXT_compressed_ETC1_RGB8_sub_texture");
+    ext.extend(["GL_EXT_compressed_ETC1_RGB8_sub_texture", "GL_KHR_texture_compression_astc_ldr"]);
     if features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC) {
         // The S3TC formats, and the same formats under the names of their subsets.
         ext.extend([

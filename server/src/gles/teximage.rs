@@ -61,8 +61,9 @@ pub struct SubImage<'a> {
 }
 
 /// The checks `glTexSubImage2D` and `glCompressedTexSubImage2D` share, in GL's order: a level
-/// outside 0..=13 is `GL_INVALID_VALUE`; no texture bound, an undefined image, or data that
-/// `format_fits` refuses for the texture is `GL_INVALID_OPERATION`; a rectangle outside the
+/// outside 0..=13 is `GL_INVALID_VALUE`; no texture bound or an undefined image is
+/// `GL_INVALID_OPERATION`; then data that `format_fits` refuses for the texture is the error it
+/// gives; a rectangle outside the
 /// level is `GL_INVALID_VALUE`; and on a compressed image, a rectangle that is not whole blocks
 /// (`EXT_texture_compression_s3tc`) is `GL_INVALID_OPERATION`.
 pub fn sub_image<'a>(
@@ -70,7 +71,7 @@ pub fn sub_image<'a>(
     image: ImageTarget,
     level: i32,
     [x, y, width, height]: [i32; 4],
-    format_fits: impl FnOnce(&Texture, &TextureImage) -> bool,
+    format_fits: impl FnOnce(&Texture, &TextureImage) -> GlResult,
 ) -> GlResult<SubImage<'a>> {
     if !(0..=MAX_LEVEL).contains(&level) {
         return Err(GlError::InvalidValue);
@@ -79,24 +80,26 @@ pub fn sub_image<'a>(
     let texture = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
     let (face, level) = (image.face, level as u32);
     let img = texture.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
-    if texture.defined[face as usize] & (1 << level) == 0 || !format_fits(texture, img) {
+    if texture.defined[face as usize] & (1 << level) == 0 {
         return Err(GlError::InvalidOperation);
     }
+    format_fits(texture, img)?;
     let size = img.level_size(level);
     validate_rect(size, x, y, width, height)?;
-    if Compressed::from_gl(texture.format).is_some() && !block_aligned(size, x, y, width, height) {
+    if Compressed::from_gl(texture.format).is_some_and(|c| !block_aligned(c.block_size(), size, x, y, width, height)) {
         return Err(GlError::InvalidOperation);
     }
     let region = Region { face, level, x: x as u32, y: y as u32, width: width as u32, height: height as u32 };
     Ok(SubImage { texture, region, size })
 }
 
-/// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image: the
-/// rectangle starts on a block boundary and covers whole blocks, except where it reaches the
-/// level's right or top edge.
-fn block_aligned(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
-    let edge = |o: i32, n: i32, size: u32| n % 4 == 0 || i64::from(o) + i64::from(n) == i64::from(size);
-    x % 4 == 0 && y % 4 == 0 && edge(x, width, level_size.0) && edge(y, height, level_size.1)
+/// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image (ASTC's is
+/// the same for its footprints): the rectangle starts on a block boundary and covers whole
+/// blocks, except where it reaches the level's right or top edge.
+fn block_aligned(block: (u32, u32), level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
+    let (bw, bh) = (block.0 as i32, block.1 as i32);
+    let edge = |o: i32, n: i32, b: i32, size: u32| n % b == 0 || i64::from(o) + i64::from(n) == i64::from(size);
+    x % bw == 0 && y % bh == 0 && edge(x, width, bw, level_size.0) && edge(y, height, bh, level_size.1)
 }
 
 /// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
@@ -267,14 +270,24 @@ impl GlesExecutor {
         let account = self.account.clone();
         let gpu = &self.gpu;
         let unpack = Unpack::of(&ctx.pixel_store);
-        let fits = |t: &Texture, img: &TextureImage| match Compressed::from_gl(t.format) {
-            // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture), nor
-            // sRGB S3TC images by uncompressed data.
-            Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
-            Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
-            // ES 2.0: the format must be the image's (RGBA and BGRA count as one, MESA_bgra);
-            // the type must give the same storage.
-            None => same_layout(t.format, format) && storage == img.storage,
+        let fits = |t: &Texture, img: &TextureImage| {
+            let fits = match Compressed::from_gl(t.format) {
+                Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
+                // ASTC images take no uncompressed data: Mesa finds no format to convert it
+                // to, which is GL_INVALID_VALUE.
+                Some(Compressed::Astc(_) | Compressed::AstcSrgb(_)) => return Err(GlError::InvalidValue),
+                // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture), nor
+                // sRGB S3TC images by uncompressed data.
+                Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
+                // ES 2.0: the format must be the image's (RGBA and BGRA count as one,
+                // MESA_bgra); the type must give the same storage.
+                None => same_layout(t.format, format) && storage == img.storage,
+            };
+            if fits {
+                Ok(())
+            } else {
+                Err(GlError::InvalidOperation)
+            }
         };
         let SubImage { texture: t, region, size } =
             sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;

@@ -30,7 +30,7 @@ pub enum GpuError {
 }
 
 /// Optional device features the executor uses where the adapter has them: linear filtering
-/// of RGBA32F (`OES_texture_float_linear`), and BC and ETC2 block formats (compressed textures
+/// of RGBA32F (`OES_texture_float_linear`), and BC, ETC2 and ASTC block formats (compressed textures
 /// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
 /// 32float` for configs with stencil), timestamps (the composite's own device time), and
 /// depth clip control (`EXT_depth_clamp`).
@@ -39,6 +39,7 @@ pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FIL
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
     .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2)
+    .union(wgpu::Features::TEXTURE_COMPRESSION_ASTC)
     .union(wgpu::Features::DEPTH_CLIP_CONTROL)
     .union(wgpu::Features::DUAL_SOURCE_BLENDING);
 

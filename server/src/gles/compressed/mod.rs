@@ -1,10 +1,12 @@
 //! Compressed texture images: `glCompressedTexImage2D` and `glCompressedTexSubImage2D` for
-//! `EXT_texture_compression_s3tc` (and its sRGB forms, `EXT_texture_compression_s3tc_srgb`)
-//! and `OES_compressed_ETC1_RGB8_texture` (with `EXT_compressed_ETC1_RGB8_sub_texture`). Where
+//! `EXT_texture_compression_s3tc` (and its sRGB forms, `EXT_texture_compression_s3tc_srgb`),
+//! `OES_compressed_ETC1_RGB8_texture` (with `EXT_compressed_ETC1_RGB8_sub_texture`) and
+//! `KHR_texture_compression_astc_ldr` (in its linear and sRGB forms). Where
 //! the device has the block format (and the image's size is a whole number of blocks, as wgpu
 //! requires) the blocks are uploaded as they are; otherwise they are decoded here, to RGBA8,
 //! or for the sRGB forms to linear RGBA16F.
 
+pub mod astc;
 pub mod etc1;
 pub mod s3tc;
 
@@ -47,7 +49,8 @@ impl GlesExecutor {
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         if level == 0 {
-            let whole_blocks = w > 0 && h > 0 && w % 4 == 0 && h % 4 == 0;
+            let (bw, bh) = c.block_size();
+            let whole_blocks = w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
             let native = whole_blocks && c.native_on(gpu.features).is_some();
             t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { c.decoded_storage() })?;
             t.format = internalformat;
@@ -90,12 +93,20 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         // An image is updated only by data of its own format (ETC1's too, by
         // `EXT_compressed_ETC1_RGB8_sub_texture`).
-        let fits = |t: &super::textures::Texture, _: &_| t.format == format;
-        let SubImage { texture: t, region, .. } =
-            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
-        if data.len() != c.image_size(region.width, region.height) {
+        let fits = |t: &super::textures::Texture, _: &_| {
+            if t.format == format {
+                Ok(())
+            } else {
+                Err(GlError::InvalidOperation)
+            }
+        };
+        // As on Mesa, data of the wrong size for the rectangle in the format named is refused
+        // before the texture is looked at.
+        if width >= 0 && height >= 0 && data.len() != c.image_size(width as u32, height as u32) {
             return Err(GlError::InvalidValue);
         }
+        let SubImage { texture: t, region, .. } =
+            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
         let Some(img) = &mut t.gpu else { return Ok(()) };
         let (w, h) = (region.width, region.height);
         match img.storage {
@@ -113,7 +124,7 @@ mod tests {
 
     /// The levels of a KTX 1 file (little-endian): its internal format, level-0 size, and
     /// each level's bytes.
-    fn ktx_levels(file: &[u8]) -> (u32, u32, u32, Vec<Vec<u8>>) {
+    pub(in crate::gles::compressed) fn ktx_levels(file: &[u8]) -> (u32, u32, u32, Vec<Vec<u8>>) {
         let word = |i: usize| u32::from_le_bytes(file[12 + 4 * i..16 + 4 * i].try_into().expect("word"));
         assert_eq!(word(0), 0x0403_0201, "little-endian KTX");
         let (internal, width, height, levels, kv) = (word(4), word(6), word(7), word(11), word(12));
