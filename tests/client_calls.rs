@@ -41,6 +41,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 
 #[path = "client_calls/draw_buffers.rs"]
 mod draw_buffers;
+#[path = "client_calls/egl_image.rs"]
+mod egl_image;
 #[path = "client_calls/fence_sync.rs"]
 mod fence_sync;
 #[path = "client_calls/mapping.rs"]
@@ -158,6 +160,22 @@ api! {
     egl_destroy_surface = "eglDestroySurface": fn(Ptr, Ptr) -> u32;
     egl_query_context = "eglQueryContext": fn(Ptr, Ptr, i32, *mut i32) -> u32;
     egl_get_config_attrib = "eglGetConfigAttrib": fn(Ptr, Ptr, i32, *mut i32) -> u32;
+    egl_create_image = "eglCreateImageKHR": fn(Ptr, Ptr, u32, Ptr, *const i32) -> Ptr;
+    egl_destroy_image = "eglDestroyImageKHR": fn(Ptr, Ptr) -> u32;
+    egl_image_target_texture = "glEGLImageTargetTexture2DOES": fn(u32, Ptr);
+    egl_image_target_renderbuffer = "glEGLImageTargetRenderbufferStorageOES": fn(u32, Ptr);
+    gen_renderbuffers = "glGenRenderbuffers": fn(i32, *mut u32);
+    bind_renderbuffer = "glBindRenderbuffer": fn(u32, u32);
+    renderbuffer_storage = "glRenderbufferStorage": fn(u32, u32, i32, i32);
+    framebuffer_renderbuffer = "glFramebufferRenderbuffer": fn(u32, u32, u32, u32);
+    get_renderbuffer_parameteriv = "glGetRenderbufferParameteriv": fn(u32, u32, *mut i32);
+    get_tex_parameteriv = "glGetTexParameteriv": fn(u32, u32, *mut i32);
+    generate_mipmap = "glGenerateMipmap": fn(u32);
+    delete_textures = "glDeleteTextures": fn(i32, *const u32);
+    get_shaderiv = "glGetShaderiv": fn(u32, u32, *mut i32);
+    enable = "glEnable": fn(u32);
+    disable = "glDisable": fn(u32);
+    scissor = "glScissor": fn(i32, i32, i32, i32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -278,7 +296,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 9] = [
+    let sequences: [Sequence; 10] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -288,6 +306,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("program_binary", program_binary::sequence),
         ("robust_access", robust_access::sequence),
         ("no_config", no_config::sequence),
+        ("egl_image", egl_image::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -306,6 +306,11 @@ command_set! {
         /// `GL_EXT_clip_control`: the window origin (`GL_LOWER_LEFT_EXT`, `GL_UPPER_LEFT_EXT`)
         /// and the clip depth range (`GL_NEGATIVE_ONE_TO_ONE_EXT`, `GL_ZERO_TO_ONE_EXT`).
         glClipControlEXT [Context] => ClipControlEXT { origin: GLenum, depth: GLenum };
+        /// `GL_OES_EGL_image` (and `GL_OES_EGL_image_external`): the bound texture's image
+        /// becomes the EGLImage's.
+        glEGLImageTargetTexture2DOES [Context] => EGLImageTargetTexture2DOES { target: GLenum, image: EglHandle };
+        /// `GL_OES_EGL_image`: the bound renderbuffer's image becomes the EGLImage's.
+        glEGLImageTargetRenderbufferStorageOES [Context] => EGLImageTargetRenderbufferStorageOES { target: GLenum, image: EglHandle };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -408,6 +413,11 @@ command_set! {
         /// or a negative size), `Some(None)` for one found after it is set to 0, else the
         /// binary's format and bytes.
         glGetProgramBinaryOES [Context] => GetProgramBinaryOES { program: GLuint, buf_size: GLsizei } -> Option<Option<(GLenum, Bytes)>>;
+        /// `EGL_KHR_image_base`: an EGLImage of one level (and face) of a texture, or of a
+        /// renderbuffer, of `context`'s objects (`EGL_KHR_gl_texture_2D_image`,
+        /// `EGL_KHR_gl_texture_cubemap_image`, `EGL_KHR_gl_renderbuffer_image`). Reply: its handle.
+        eglCreateImageKHR [NoContext] => CreateImageKHR { display: EglHandle, context: EglHandle, target: EGLint, buffer: GLuint, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
+        eglDestroyImageKHR [NoContext] => DestroyImageKHR { display: EglHandle, image: EglHandle } -> EglResult<()>;
     }
 }
 

@@ -499,6 +499,7 @@ gl_modules!(
     crate::draw_buffers,
     crate::blend_extended,
     program_binary,
+    crate::image::targets,
 );
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.

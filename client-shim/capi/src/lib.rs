@@ -18,6 +18,7 @@ pub mod egl;
 pub mod gl;
 mod glvnd;
 pub mod glx;
+pub mod image;
 mod input;
 mod state;
 mod surface;
@@ -105,13 +106,23 @@ pub(crate) use entry_points;
 
 /// The address of any exported EGL or GL entry point, by name.
 pub(crate) fn proc_address(name: &[u8]) -> Option<*const c_void> {
-    egl::lookup(name).or_else(|| sync::lookup(name)).or_else(|| gl::lookup(name)).or_else(|| glx::lookup(name))
+    egl::lookup(name)
+        .or_else(|| sync::lookup(name))
+        .or_else(|| image::lookup(name))
+        .or_else(|| gl::lookup(name))
+        .or_else(|| glx::lookup(name))
 }
 
 /// Every exported entry point's name.
 #[cfg(test)]
 pub(crate) fn exported_names() -> Vec<&'static str> {
-    egl::NAMES.iter().chain(sync::NAMES).chain(gl::MODULE_NAMES.iter().flat_map(|m| m.iter())).copied().collect()
+    egl::NAMES
+        .iter()
+        .chain(sync::NAMES)
+        .chain(image::NAMES)
+        .chain(gl::MODULE_NAMES.iter().flat_map(|m| m.iter()))
+        .copied()
+        .collect()
 }
 
 #[cfg(test)]
@@ -163,6 +174,7 @@ mod tests {
                 ("GL_EXT_blend_func_extended", 4),
                 ("GL_OES_get_program_binary", 2),
                 ("GL_EXT_clip_control", 1),
+                ("GL_OES_EGL_image", 2),
             ],
         );
     }
@@ -172,7 +184,7 @@ mod tests {
         offered_sections_resolve(
             "EGL/eglext.h",
             "EGLAPI",
-            &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_reusable_sync", 1), ("EGL_KHR_wait_sync", 1)],
+            &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_reusable_sync", 1), ("EGL_KHR_wait_sync", 1), ("EGL_KHR_image", 2)],
         );
     }
 
@@ -277,6 +289,8 @@ mod tests {
             "glGetProgramBinaryOES",
             "glProgramBinaryOES",
             "glClipControlEXT",
+            "glEGLImageTargetTexture2DOES",
+            "glEGLImageTargetRenderbufferStorageOES",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

@@ -71,8 +71,9 @@ pub struct Bindings {
     pub element_buffer: u32,
     /// `GL_ACTIVE_TEXTURE` − `GL_TEXTURE0`.
     pub active_unit: usize,
-    /// Per texture unit: the 2D and the cube map texture.
-    pub units: [[u32; 2]; MAX_UNITS],
+    /// Per texture unit: the 2D, the cube map and the external (`GL_OES_EGL_image_external`)
+    /// texture.
+    pub units: [[u32; 3]; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.
     pub program: u32,
     /// `GL_FRAMEBUFFER_BINDING`: the framebuffer draws and clears address.

@@ -50,6 +50,9 @@ pub enum TextureTarget {
     TwoD,
     /// `GL_TEXTURE_CUBE_MAP`.
     CubeMap,
+    /// `GL_TEXTURE_EXTERNAL_OES` (`GL_OES_EGL_image_external`): a 2D image from an EGLImage,
+    /// sampled through `samplerExternalOES`.
+    External,
 }
 
 impl TextureTarget {
@@ -58,6 +61,7 @@ impl TextureTarget {
         match target {
             TEXTURE_2D => Ok(TextureTarget::TwoD),
             TEXTURE_CUBE_MAP => Ok(TextureTarget::CubeMap),
+            super::egl_image::TEXTURE_EXTERNAL_OES => Ok(TextureTarget::External),
             _ => Err(GlError::InvalidEnum),
         }
     }
@@ -67,6 +71,7 @@ impl TextureTarget {
         match self {
             TextureTarget::TwoD => TEXTURE_2D,
             TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
+            TextureTarget::External => super::egl_image::TEXTURE_EXTERNAL_OES,
         }
     }
 
@@ -75,6 +80,7 @@ impl TextureTarget {
         match self {
             TextureTarget::TwoD => 0,
             TextureTarget::CubeMap => 1,
+            TextureTarget::External => 2,
         }
     }
 }

@@ -135,18 +135,19 @@ impl GlesExecutor {
         }
         let dst = [(xo + sx0 - x) as u32, (yo + sy0 - y) as u32, (sx1 - sx0) as u32, (sy1 - sy0) as u32];
         let dst_tex = img.texture.clone();
+        let (from, to) = (src.color_at, img.at(image.face, level));
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         enc.copy_texture_to_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: src_tex,
-                mip_level: 0,
-                origin: wgpu::Origin3d { x: sx0 as u32, y: sy0 as u32, z: 0 },
+                mip_level: from.level,
+                origin: wgpu::Origin3d { x: sx0 as u32, y: sy0 as u32, z: from.layer },
                 aspect: wgpu::TextureAspect::All,
             },
             wgpu::TexelCopyTextureInfo {
                 texture: &img.texture,
-                mip_level: level,
-                origin: wgpu::Origin3d { x: dst[0], y: dst[1], z: image.face },
+                mip_level: to.level,
+                origin: wgpu::Origin3d { x: dst[0], y: dst[1], z: to.layer },
                 aspect: wgpu::TextureAspect::All,
             },
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
@@ -155,14 +156,7 @@ impl GlesExecutor {
         self.r.lane.submit(&self.gpu, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.
-            let view = dst_tex.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                base_array_layer: image.face,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
+            let view = to.view(&dst_tex, wgpu::TextureAspect::All);
             let color = (dst_tex, view);
             let absent = wgpu::ColorWrites::ALPHA;
             let level_target = Target::color_only((uid, 3), color, (lw, lh), absent);

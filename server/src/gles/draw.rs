@@ -8,7 +8,7 @@ use strata_protocol::Blob;
 use super::context::{Context, StencilFace};
 use super::conv::{
     blend_component, clip_rect, color_writes, compare, component, float_format, native_format, reads_src1, stencil_op,
-    type_size, viewport, IndexType, Mirror, Primitive,
+    type_size, viewport, IndexType, Mirror, Primitive, TextureTarget,
 };
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -262,11 +262,14 @@ fn plan_draw<'c>(
         .iter()
         .zip(&p.units)
         .map(|((ty, _), unit)| {
-            let slot = if *ty == Ty::SamplerCube { 1 } else { 0 };
-            let name = ctx.bindings.units.get(*unit as usize)?[slot];
+            let target = match ty {
+                Ty::SamplerCube => TextureTarget::CubeMap,
+                Ty::SamplerExternal => TextureTarget::External,
+                _ => TextureTarget::TwoD,
+            };
+            let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];
             let t = ctx.objects.textures.get(&name)?;
-            let want = if *ty == Ty::SamplerCube { TEXTURE_CUBE_MAP } else { TEXTURE_2D };
-            if t.target != want || !t.complete() {
+            if t.target != target.as_gl() || !t.complete() {
                 return None;
             }
             t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))

@@ -91,8 +91,19 @@ pub struct Renderbuffer {
     pub gpu: Option<(wgpu::Texture, wgpu::TextureView)>,
     /// Unique id for caches.
     pub uid: u64,
-    /// The image's memory, held against the client's quota.
-    pub _reserved: Option<crate::quota::Reservation>,
+    /// The image's memory, held against the client's quota (shared with the EGLImages made
+    /// from it and their siblings).
+    pub reserved: Option<std::sync::Arc<crate::quota::Reservation>>,
+    /// The level and layer of the texture the view shows: (0, 0) but for an EGLImage sibling.
+    pub at: super::images::Subresource,
+}
+
+impl Renderbuffer {
+    /// Whether it holds colour: a colour format of its own, or an EGLImage's colour image.
+    pub fn is_color(&self) -> bool {
+        matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT)
+            || (super::formats::is_color_format(self.format) && self.gpu.is_some())
+    }
 }
 
 /// Attaches `a` to `attachment` of the bound framebuffer object.
@@ -178,8 +189,10 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let size = ((width as u32).max(1), (height as u32).max(1));
         // Sampled too: depth reads (GL_NV_read_depth) pass through the depth reader.
+        // Written to as well: a texture made from it through an EGLImage takes uploads.
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST
             | wgpu::TextureUsages::TEXTURE_BINDING;
         let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
@@ -198,7 +211,8 @@ impl GlesExecutor {
             height: height as u32,
             gpu: Some((tex, view)),
             uid,
-            _reserved: reserved,
+            reserved: reserved.map(std::sync::Arc::new),
+            at: Default::default(),
         };
         Ok(())
     }

@@ -34,8 +34,36 @@ pub struct TextureImage {
     /// For natively compressed images: the blocks of every specified level, by (face, level),
     /// kept so that the image can be decoded to RGBA8 if uncompressed data is written to it.
     pub blocks: HashMap<(u32, u32), Vec<u8>>,
-    /// The GPU memory it holds against its client's quota.
-    _reserved: Reservation,
+    /// Where GL's face 0, level 0 lies in `texture`: (0, 0) but for an EGLImage sibling, whose
+    /// one level is a level (and face) of the texture the image was made from.
+    pub base: Subresource,
+    /// The GPU memory it holds against its client's quota, shared with the EGLImages made from
+    /// it and their siblings (so that it is held while any of them lives).
+    pub reserved: Arc<Reservation>,
+}
+
+/// One level of one array layer of a wgpu texture.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Subresource {
+    /// Array layer (cube face).
+    pub layer: u32,
+    /// Mip level.
+    pub level: u32,
+}
+
+impl Subresource {
+    /// A view of just this level and layer, as a 2D image.
+    pub fn view(self, texture: &wgpu::Texture, aspect: wgpu::TextureAspect) -> wgpu::TextureView {
+        texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            aspect,
+            base_mip_level: self.level,
+            mip_level_count: Some(1),
+            base_array_layer: self.layer,
+            array_layer_count: Some(1),
+            ..Default::default()
+        })
+    }
 }
 
 /// A rectangle of one level of one face.
@@ -105,8 +133,45 @@ impl TextureImage {
             storage,
             filterable,
             blocks: HashMap::new(),
-            _reserved: reserved,
+            base: Subresource::default(),
+            reserved: Arc::new(reserved),
         })
+    }
+
+    /// An image whose one level is `sub` of `texture` (an EGLImage's), `width`×`height`, kept
+    /// as `storage`; its memory stays held by `reserved`.
+    pub fn sibling(
+        texture: wgpu::Texture,
+        sub: Subresource,
+        (width, height): (u32, u32),
+        storage: Storage,
+        filterable: bool,
+        reserved: Arc<Reservation>,
+    ) -> Self {
+        let view = sub.view(&texture, wgpu::TextureAspect::All);
+        TextureImage {
+            texture,
+            view,
+            width,
+            height,
+            mips: 1,
+            levels: 32 - width.max(height).max(1).leading_zeros(),
+            storage,
+            filterable,
+            blocks: HashMap::new(),
+            base: sub,
+            reserved,
+        }
+    }
+
+    /// Where `level` of `face` lies in the wgpu texture.
+    pub fn at(&self, face: u32, level: u32) -> Subresource {
+        Subresource { layer: self.base.layer + face, level: self.base.level + level }
+    }
+
+    /// Whether an EGLImage or a sibling shares the image.
+    pub fn shared(&self) -> bool {
+        Arc::strong_count(&self.reserved) > 1
     }
 
     /// Width and height of `level`.
@@ -134,8 +199,8 @@ impl TextureImage {
         gpu.queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.texture,
-                mip_level: r.level,
-                origin: wgpu::Origin3d { x: r.x, y: r.y, z: r.face },
+                mip_level: self.at(r.face, r.level).level,
+                origin: wgpu::Origin3d { x: r.x, y: r.y, z: self.at(r.face, r.level).layer },
                 aspect: wgpu::TextureAspect::All,
             },
             data,
@@ -180,7 +245,12 @@ impl Texture {
         height: u32,
         storage: Storage,
     ) -> GlResult {
-        if self.gpu.as_ref().is_some_and(|i| i.width == width && i.height == height && i.storage == storage) {
+        // An image an EGLImage shares is left to it: respecifying the texture orphans it.
+        if self
+            .gpu
+            .as_ref()
+            .is_some_and(|i| i.width == width && i.height == height && i.storage == storage && !i.shared())
+        {
             return Ok(());
         }
         // The old image's memory is given back before the new one is reserved.

@@ -24,6 +24,7 @@ mod dispatch;
 mod draw;
 mod draw_buffers;
 pub mod egl;
+mod egl_image;
 pub mod enums;
 mod error;
 mod formats;
@@ -75,6 +76,9 @@ pub struct GlesExecutor {
     initialized: bool,
     surfaces: HashMap<u32, Surface>,
     contexts: HashMap<u32, Context>,
+    /// The client's EGLImages, by handle (handles share `next_handle` with contexts and
+    /// surfaces).
+    images: HashMap<u32, egl_image::EglImage>,
     next_handle: u32,
     /// The current (context, surface).
     current: Option<(u32, u32)>,
@@ -128,6 +132,7 @@ impl GlesExecutor {
             initialized: false,
             surfaces: HashMap::new(),
             contexts: HashMap::new(),
+            images: HashMap::new(),
             next_handle: 1,
             current: None,
             uid: 1,

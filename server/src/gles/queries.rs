@@ -23,7 +23,8 @@ GL_EXT_debug_label GL_NV_read_buffer GL_OES_fbo_render_mipmap GL_EXT_texture_fil
 GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_reverse_row_order \
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
 GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness \
-GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buffer_access_behavior GL_NV_read_depth GL_NV_read_stencil GL_NV_read_depth_stencil GL_OES_depth_texture_cube_map";
+GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buffer_access_behavior GL_NV_read_depth GL_NV_read_stencil GL_NV_read_depth_stencil GL_OES_depth_texture_cube_map \
+GL_OES_EGL_image GL_OES_EGL_image_external";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -158,6 +159,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         RENDERBUFFER_BINDING => u(bind.renderbuffer),
         TEXTURE_BINDING_2D => u(bind.units[bind.active_unit][0]),
         TEXTURE_BINDING_CUBE_MAP => u(bind.units[bind.active_unit][1]),
+        TEXTURE_BINDING_EXTERNAL_OES => u(bind.units[bind.active_unit][2]),
         ACTIVE_TEXTURE => u(TEXTURE0 + bind.active_unit as u32),
         UNPACK_ALIGNMENT => i(ctx.pixel_store.unpack_alignment),
         PACK_ALIGNMENT => i(ctx.pixel_store.pack_alignment),

@@ -9,6 +9,7 @@ use super::context::Context;
 use super::enums::*;
 use super::formats::{absent_channels, Compressed, Storage};
 use super::framebuffers::{Attachment, Purpose};
+use super::images::Subresource;
 use super::render::Target;
 use super::GlesExecutor;
 
@@ -26,6 +27,8 @@ struct ColorImage {
     absent: wgpu::ColorWrites,
     /// What identifies the image: uid, level, face.
     id: (u64, u32, u32),
+    /// The level and layer of `texture` the view shows.
+    at: Subresource,
     /// Width and height.
     size: (u32, u32),
 }
@@ -47,26 +50,20 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
             if t.defined[face as usize] & (1 << level) == 0 || (level > 0 && !t.levels_complete()) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                base_array_layer: face,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
+            let at = img.at(face, level);
             ColorImage {
                 texture: img.texture.clone(),
-                view,
+                view: at.view(&img.texture, wgpu::TextureAspect::All),
                 absent: absent_channels(t.format),
                 id: (t.uid, level, face),
+                at,
                 size: ((img.width >> level).max(1), (img.height >> level).max(1)),
             }
         }
         Attachment::Renderbuffer(name) => {
             let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let (tex, view) = rb.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            if !matches!(rb.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT) {
+            if !rb.is_color() {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             ColorImage {
@@ -74,6 +71,7 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
                 view: view.clone(),
                 absent: absent_channels(rb.format),
                 id: (rb.uid, 0, 0),
+                at: rb.at,
                 size: (rb.width, rb.height),
             }
         }
@@ -177,6 +175,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
     Ok(Target {
         key: (h.finish(), 1),
         absent: first.as_ref().map_or(wgpu::ColorWrites::empty(), |c| c.absent),
+        color_at: first.as_ref().map_or_else(Subresource::default, |c| c.at),
         color: first.map(|c| (c.texture, c.view)),
         more,
         depth_image: depth.as_ref().map(|d| d.5.clone()),

@@ -201,6 +201,7 @@ impl GlesExecutor {
         let target = Target {
             key: (uid, 0),
             color: Some((color, color_view)),
+            color_at: Default::default(),
             more: Vec::new(),
             depth,
             depth_image: depth_tex.clone().map(|t| (t, 0)),

@@ -101,9 +101,24 @@ impl Texture {
     }
 }
 
+/// `GL_REQUIRED_TEXTURE_IMAGE_UNITS_OES`: the units an external texture takes (always 1).
+const REQUIRED_TEXTURE_IMAGE_UNITS_OES: u32 = 0x8D68;
+
 /// Sets one sampling parameter of the texture bound to `target`.
 fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult {
-    let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
+    let target = TextureTarget::from_gl(target)?;
+    // GL_OES_EGL_image_external: external textures have no mipmaps and only clamp.
+    if target == TextureTarget::External {
+        let ok = match pname {
+            TEXTURE_MIN_FILTER => matches!(v as u32, NEAREST | LINEAR),
+            TEXTURE_WRAP_S | TEXTURE_WRAP_T => v as u32 == CLAMP_TO_EDGE,
+            _ => true,
+        };
+        if !ok {
+            return Err(GlError::InvalidEnum);
+        }
+    }
+    let name = ctx.bindings.texture(target);
     if pname == TEXTURE_MAX_ANISOTROPY_EXT {
         // Below 1 is an error; above the largest is that, as Mesa stores it.
         if v.is_nan() || v < 1.0 {
@@ -162,6 +177,8 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
         TEXTURE_WRAP_T => Some(s.wrap_t as f32),
         TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
         TEXTURE_MAX_LEVEL_APPLE => Some(s.max_level as f32),
+        // Every texture takes one unit (Mesa answers for every target).
+        REQUIRED_TEXTURE_IMAGE_UNITS_OES => Some(1.0),
         _ => None,
     });
     match v {
@@ -210,6 +227,10 @@ impl GlesExecutor {
             // A texture takes the target it is first bound to, and keeps it.
             if t.target == 0 {
                 t.target = target.as_gl();
+                if target == TextureTarget::External {
+                    // GL_OES_EGL_image_external's initial state.
+                    (t.sampler.min, t.sampler.wrap_s, t.sampler.wrap_t) = (LINEAR, CLAMP_TO_EDGE, CLAMP_TO_EDGE);
+                }
             } else if t.target != target.as_gl() {
                 return Err(GlError::InvalidOperation);
             }
@@ -262,7 +283,11 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, flushed: &Flushed, target: u32) -> GlResult {
-        let name = ctx.bindings.texture(TextureTarget::from_gl(target)?);
+        let target = TextureTarget::from_gl(target)?;
+        if target == TextureTarget::External {
+            return Err(GlError::InvalidEnum);
+        }
+        let name = ctx.bindings.texture(target);
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
         let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;

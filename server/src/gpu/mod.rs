@@ -439,15 +439,16 @@ impl Gpu {
 
     /// Reads `[x, y, w, h]` of an RGBA8 texture as tightly packed rows in memory order.
     pub fn read_rgba8(&self, tex: &wgpu::Texture, rect: [u32; 4]) -> Option<Vec<u8>> {
-        self.read_texels(tex, 0, rect, wgpu::TextureAspect::All, 4)
+        self.read_texels(tex, (0, 0), rect, wgpu::TextureAspect::All, 4)
     }
 
-    /// Reads `[x, y, w, h]` of `aspect` of array layer `layer` of a texture whose texels there
-    /// take `bpp` bytes (the stencil aspect: 1), as tightly packed rows in memory order.
+    /// Reads `[x, y, w, h]` of `aspect` of array layer `layer`, mip level `level`, of a texture
+    /// whose texels there take `bpp` bytes (the stencil aspect: 1), as tightly packed rows in
+    /// memory order.
     pub fn read_texels(
         &self,
         tex: &wgpu::Texture,
-        layer: u32,
+        (layer, level): (u32, u32),
         rect: [u32; 4],
         aspect: wgpu::TextureAspect,
         bpp: u32,
@@ -467,7 +468,7 @@ impl Gpu {
         enc.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: tex,
-                mip_level: 0,
+                mip_level: level,
                 origin: wgpu::Origin3d { x, y, z: layer },
                 aspect,
             },

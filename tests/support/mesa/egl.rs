@@ -180,4 +180,43 @@ impl Arms<'_> {
         let _ = (display, context, attribute);
         Err(unsupported("eglQueryContext (EGL: the reference draws on a context of its own)"))
     }
+
+    pub(super) fn eglCreateImageKHR(
+        &mut self,
+        display: &EglHandle,
+        context: &EglHandle,
+        target: &EGLint,
+        buffer: &GLuint,
+        attribs: &Slice<'_, EGLint>,
+    ) -> Result<EglResult<EglHandle>, ClientError> {
+        let _ = (display, context, target, buffer, attribs);
+        Err(unsupported("eglCreateImageKHR (EGL: tests/client_calls.rs compares EGLImages with Mesa)"))
+    }
+
+    pub(super) fn eglDestroyImageKHR(
+        &mut self,
+        display: &EglHandle,
+        image: &EglHandle,
+    ) -> Result<EglResult<()>, ClientError> {
+        let _ = (display, image);
+        Err(unsupported("eglDestroyImageKHR (EGL: tests/client_calls.rs compares EGLImages with Mesa)"))
+    }
+
+    pub(super) fn glEGLImageTargetTexture2DOES(
+        &mut self,
+        target: &GLenum,
+        image: &EglHandle,
+    ) -> Result<(), ClientError> {
+        let _ = (target, image);
+        Err(unsupported("glEGLImageTargetTexture2DOES (its images are EGL's: tests/client_calls.rs)"))
+    }
+
+    pub(super) fn glEGLImageTargetRenderbufferStorageOES(
+        &mut self,
+        target: &GLenum,
+        image: &EglHandle,
+    ) -> Result<(), ClientError> {
+        let _ = (target, image);
+        Err(unsupported("glEGLImageTargetRenderbufferStorageOES (its images are EGL's: tests/client_calls.rs)"))
+    }
 }

@@ -66,7 +66,12 @@ pub enum Ty {
     Mat4,
     Sampler2D,
     SamplerCube,
+    /// `samplerExternalOES` (`GL_OES_EGL_image_external`), sampled as a 2D image.
+    SamplerExternal,
 }
+
+/// `GL_SAMPLER_EXTERNAL_OES`, the type `glGetActiveUniform` reports for `samplerExternalOES`.
+const SAMPLER_EXTERNAL_OES: u32 = 0x8D66;
 
 impl Ty {
     fn from_spec(t: &T) -> Option<Ty> {
@@ -88,6 +93,8 @@ impl Ty {
             T::Mat4 => Ty::Mat4,
             T::Sampler2D => Ty::Sampler2D,
             T::SamplerCube => Ty::SamplerCube,
+            // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
+            T::Sampler2DRect => Ty::SamplerExternal,
             _ => return None,
         })
     }
@@ -112,6 +119,7 @@ impl Ty {
             Ty::Mat4 => gl::FLOAT_MAT4,
             Ty::Sampler2D => gl::SAMPLER_2D,
             Ty::SamplerCube => gl::SAMPLER_CUBE,
+            Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
         }
     }
 
@@ -137,7 +145,7 @@ impl Ty {
             Ty::Mat2 => "mat2",
             Ty::Mat3 => "mat3",
             Ty::Mat4 => "mat4",
-            Ty::Sampler2D => "texture2D",
+            Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
             Ty::SamplerCube => "textureCube",
         }
     }
@@ -145,7 +153,7 @@ impl Ty {
     /// Scalars per element (a matrix counts all its entries).
     pub fn components(self) -> usize {
         match self {
-            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube => 1,
+            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => 1,
             Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => 2,
             Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => 3,
             Ty::Vec4 | Ty::IVec4 | Ty::BVec4 | Ty::Mat2 => 4,
@@ -167,7 +175,9 @@ impl Ty {
     /// What a `glUniform*` call must match: float, int (and samplers), or bool (either).
     pub fn scalar(self) -> Scalar {
         match self {
-            Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 | Ty::Sampler2D | Ty::SamplerCube => Scalar::Int,
+            Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => {
+                Scalar::Int
+            }
             Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
             _ => Scalar::Float,
         }
@@ -175,7 +185,7 @@ impl Ty {
 
     /// Whether this is a sampler.
     pub fn is_sampler(self) -> bool {
-        matches!(self, Ty::Sampler2D | Ty::SamplerCube)
+        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal)
     }
 
     /// std140 (size, alignment) of one element that is not in an array.
@@ -188,7 +198,7 @@ impl Ty {
             Ty::Mat2 => (32, 16),
             Ty::Mat3 => (48, 16),
             Ty::Mat4 => (64, 16),
-            Ty::Sampler2D | Ty::SamplerCube => (0, 1),
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => (0, 1),
         }
     }
 }

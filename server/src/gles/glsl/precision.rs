@@ -18,7 +18,7 @@ fn is_float(t: &T) -> bool {
 
 /// Whether a type may carry a precision qualifier (§4.5.2).
 fn takes_precision(t: &T) -> bool {
-    is_float(t) || is_int(t) || matches!(t, T::Sampler2D | T::SamplerCube)
+    is_float(t) || is_int(t) || matches!(t, T::Sampler2D | T::SamplerCube | T::Sampler2DRect)
 }
 
 fn explicit(q: Option<&ast::TypeQualifier>) -> Option<P> {
@@ -79,7 +79,9 @@ impl Walk<'_> {
         match &d.content {
             ast::DeclarationData::Precision(p, ty) => {
                 let t = &ty.ty.content;
-                if !matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube) || ty.array_specifier.is_some() {
+                if !matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube | T::Sampler2DRect)
+                    || ty.array_specifier.is_some()
+                {
                     return Err((self.at)(
                         d.span,
                         "default precision statements apply only to float, int and sampler types",

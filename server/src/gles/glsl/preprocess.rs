@@ -25,6 +25,13 @@ pub(super) const EXT_DRAW_BUFFERS: &str = "GL_EXT_draw_buffers";
 /// `gl_SecondaryFragColorEXT` and `gl_SecondaryFragDataEXT`, the second colour dual-source
 /// blending reads, in fragment shaders.
 pub(super) const EXT_BLEND_FUNC_EXTENDED: &str = "GL_EXT_blend_func_extended";
+/// `samplerExternalOES`, sampled with `texture2D` and `texture2DProj`.
+pub(super) const OES_EGL_IMAGE_EXTERNAL: &str = "GL_OES_EGL_image_external";
+
+/// How the parser is shown `samplerExternalOES`, which it does not know: as a sampler type
+/// GLSL ES 1.00 reserves (so no ES 1.00 shader names it itself), padded to the same length so
+/// that every column stays where it was.
+const EXTERNAL_SPELLING: &str = "sampler2DRect     ";
 
 /// Which of the offered extensions a shader's directives leave enabled.
 #[derive(Debug, Clone, Copy, Default)]
@@ -37,6 +44,8 @@ pub(super) struct Enabled {
     pub(super) draw_instanced: bool,
     /// `GL_EXT_blend_func_extended`.
     pub(super) blend_func_extended: bool,
+    /// `GL_OES_EGL_image_external`.
+    pub(super) image_external: bool,
 }
 
 /// The preprocessor's extension registry: only what Strata offers, so that only those
@@ -48,6 +57,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_INSTANCED), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_BUFFERS), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_BLEND_FUNC_EXTENDED), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(OES_EGL_IMAGE_EXTERNAL), vec![]));
     r
 });
 
@@ -126,6 +136,10 @@ fn extension_directive(
     }
     if name == EXT_BLEND_FUNC_EXTENDED {
         enabled.blend_func_extended = behavior != "disable";
+        return Ok(());
+    }
+    if name == OES_EGL_IMAGE_EXTERNAL {
+        enabled.image_external = behavior != "disable";
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));
@@ -282,6 +296,9 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
         }
         text = String::from_utf8(bytes).map_err(|e| format!("internal: {e}"))?;
     }
+    if enabled.image_external {
+        text = spell_external(&text);
+    }
     let state = initial_state(stage)?;
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
@@ -292,9 +309,38 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     }
 }
 
+/// `text` with every `samplerExternalOES` identifier spelled as [`EXTERNAL_SPELLING`].
+fn spell_external(text: &str) -> String {
+    const NAME: &str = "samplerExternalOES";
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find(NAME) {
+        let before = rest[..i].chars().next_back();
+        let after = rest[i + NAME.len()..].chars().next();
+        out.push_str(&rest[..i]);
+        if before.is_some_and(ident) || after.is_some_and(ident) {
+            out.push_str(NAME);
+        } else {
+            out.push_str(EXTERNAL_SPELLING);
+        }
+        rest = &rest[i + NAME.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn external_samplers_keep_their_columns() {
+        let text = "uniform samplerExternalOES s; xsamplerExternalOES samplerExternalOES_x\n";
+        let spelled = spell_external(text);
+        assert_eq!(spelled.len(), text.len());
+        assert_eq!(spelled, "uniform sampler2DRect      s; xsamplerExternalOES samplerExternalOES_x\n");
+    }
 
     /// A `##` whose directive runs to the end of the source (through an open string, an open
     /// comment or a continuation) once made the preprocessor loop forever: now each returns,

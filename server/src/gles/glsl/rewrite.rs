@@ -284,7 +284,7 @@ impl VisitorMut for Rewrite {
                     self.instance_id = true;
                     Some(var("strata_InstanceID"))
                 } else if let Some(ty) = self.samplers.get(name) {
-                    let t = if *ty == Ty::Sampler2D { T::Sampler2D } else { T::SamplerCube };
+                    let t = if *ty == Ty::SamplerCube { T::SamplerCube } else { T::Sampler2D };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
                 } else if self.mat2s.get(name) == Some(&false) {
                     Some(mat2_of(name, None))

@@ -10,7 +10,8 @@ impl Renderer {
     pub fn read_rgba(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
         self.flush();
         let (tex, _) = target.color.as_ref()?;
-        self.gpu.read_rgba8(tex, rect)
+        let at = target.color_at;
+        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 4)
     }
 
     /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in
@@ -48,7 +49,7 @@ impl Renderer {
             let mut enc = self.gpu.device.create_command_encoder(&Default::default());
             crate::gpu::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
             self.gpu.queue.submit([enc.finish()]);
-            let bytes = self.gpu.read_texels(&out, 0, rect, wgpu::TextureAspect::All, 4)?;
+            let bytes = self.gpu.read_texels(&out, (0, 0), rect, wgpu::TextureAspect::All, 4)?;
             bytes.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect()
         } else {
             Vec::new()
@@ -57,7 +58,7 @@ impl Renderer {
             true => {
                 // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
                 let (tw, th) = (tex.width(), tex.height());
-                let all = self.gpu.read_texels(tex, layer, [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
+                let all = self.gpu.read_texels(tex, (layer, 0), [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
                 let [x, y, w, h] = rect;
                 (y..y + h).flat_map(|r| all[(r * tw + x) as usize..(r * tw + x + w) as usize].to_vec()).collect()
             }

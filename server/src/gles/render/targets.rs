@@ -1,5 +1,7 @@
 //! Render targets: the images a draw, clear or read addresses.
 
+use super::super::images::Subresource;
+
 /// Colour format of every colour target and texture.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
@@ -11,6 +13,9 @@ pub struct Target {
     /// Colour image: texture and single-level view. For draws it is what fragment output 0
     /// writes; for reads, the read buffer.
     pub color: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// The level and layer of the colour texture the view shows, which reads and copies
+    /// address: (0, 0) but for a texture's level above 0, a cube face, or an EGLImage's.
+    pub color_at: Subresource,
     /// What fragment outputs 1, 2, … write (`GL_EXT_draw_buffers`): a view and the channels
     /// its format lacks, `None` for an output that writes nothing; empty for one colour image.
     pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites)>>,
@@ -41,6 +46,7 @@ impl Target {
         Target {
             key,
             color: Some((texture, view)),
+            color_at: Subresource::default(),
             more: Vec::new(),
             depth: None,
             depth_image: None,
