@@ -51,6 +51,8 @@ mod mapping;
 mod no_config;
 #[path = "client_calls/pack.rs"]
 mod pack;
+#[path = "client_calls/pixel_buffer.rs"]
+mod pixel_buffer;
 #[path = "client_calls/program_binary.rs"]
 mod program_binary;
 #[path = "client_calls/robust_access.rs"]
@@ -176,6 +178,7 @@ api! {
     enable = "glEnable": fn(u32);
     disable = "glDisable": fn(u32);
     scissor = "glScissor": fn(i32, i32, i32, i32);
+    compressed_tex_image_2d = "glCompressedTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, *const c_void);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -296,7 +299,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 10] = [
+    let sequences: [Sequence; 11] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -307,6 +310,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("robust_access", robust_access::sequence),
         ("no_config", no_config::sequence),
         ("egl_image", egl_image::sequence),
+        ("pixel_buffer", pixel_buffer::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

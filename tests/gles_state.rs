@@ -34,6 +34,9 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     // 6.2 vertex arrays and 6.4 transformation.
     (0x8894, "ARRAY_BUFFER_BINDING", 1, State),
     (0x8895, "ELEMENT_ARRAY_BUFFER_BINDING", 1, State),
+    // GL_NV_pixel_buffer_object.
+    (0x88ED, "PIXEL_PACK_BUFFER_BINDING_NV", 1, State),
+    (0x88EF, "PIXEL_UNPACK_BUFFER_BINDING_NV", 1, State),
     (0x0BA2, "VIEWPORT", 4, State),
     (0x0B70, "DEPTH_RANGE", 2, State),
     // 6.5 rasterisation.
@@ -59,6 +62,8 @@ const PNAMES: &[(u32, &str, usize, Kind)] = &[
     // 6.7 textures.
     (0x8069, "TEXTURE_BINDING_2D", 1, State),
     (0x8514, "TEXTURE_BINDING_CUBE_MAP", 1, State),
+    // GL_OES_EGL_image_external.
+    (0x8D67, "TEXTURE_BINDING_EXTERNAL_OES", 1, State),
     (0x84E0, "ACTIVE_TEXTURE", 1, State),
     // 6.9 pixel operations.
     (0x0C11, "SCISSOR_TEST", 1, State),

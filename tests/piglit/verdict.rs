@@ -73,6 +73,7 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_KHR_texture_compression_astc_ldr",
     "GL_OES_EGL_image",
     "GL_OES_EGL_image_external",
+    "GL_NV_pixel_buffer_object",
     "EGL_KHR_image_base",
     "EGL_KHR_gl_texture_2D_image",
     "EGL_KHR_gl_texture_cubemap_image",

@@ -459,6 +459,7 @@ fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
 }
 
 mod families;
+mod pixel_buffer;
 mod pixels;
 pub use families::{active, attrib, delete, get_arrays, get_int, get_strings, matrix, names, uniforms};
 use pixels::{read_pixels, tex_image_bytes};

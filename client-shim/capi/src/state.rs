@@ -71,8 +71,13 @@ pub(crate) struct GlState {
     pub unpack_rows: [usize; 3],
     /// Where `glReadPixels` puts its rows: see [`Pack`].
     pub pack: Pack,
-    /// A copy of every buffer's contents: index ranges of client-array draws read it.
+    /// A copy of every buffer's contents: index ranges of client-array draws read it, uploads
+    /// from an unpack buffer read it, and reads into a pack buffer write it.
     pub buffers: HashMap<u32, Vec<u8>>,
+    /// `GL_PIXEL_PACK_BUFFER_BINDING_NV` (`GL_NV_pixel_buffer_object`).
+    pub pack_buffer: u32,
+    /// `GL_PIXEL_UNPACK_BUFFER_BINDING_NV`.
+    pub unpack_buffer: u32,
 }
 
 impl Default for GlState {
@@ -89,6 +94,8 @@ impl Default for GlState {
             unpack_rows: [0; 3],
             pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
             buffers: HashMap::new(),
+            pack_buffer: 0,
+            unpack_buffer: 0,
         }
     }
 }
@@ -111,6 +118,8 @@ impl GlState {
         match target {
             GL_ARRAY_BUFFER => Some(self.array_buffer),
             GL_ELEMENT_ARRAY_BUFFER => Some(self.element_buffer),
+            0x88EB => Some(self.pack_buffer),
+            0x88EC => Some(self.unpack_buffer),
             _ => None,
         }
     }

@@ -88,6 +88,12 @@ impl GlesExecutor {
             if ctx.bindings.element_buffer == n {
                 ctx.bindings.element_buffer = 0;
             }
+            if ctx.bindings.pixel_pack == n {
+                ctx.bindings.pixel_pack = 0;
+            }
+            if ctx.bindings.pixel_unpack == n {
+                ctx.bindings.pixel_unpack = 0;
+            }
             for a in &mut ctx.attribs {
                 if a.buffer == n {
                     a.buffer = 0;
@@ -103,6 +109,8 @@ impl GlesExecutor {
         match target {
             BufferTarget::Array => ctx.bindings.array_buffer = buffer,
             BufferTarget::ElementArray => ctx.bindings.element_buffer = buffer,
+            BufferTarget::PixelPack => ctx.bindings.pixel_pack = buffer,
+            BufferTarget::PixelUnpack => ctx.bindings.pixel_unpack = buffer,
         }
         ctx.objects.buffers.bind(buffer);
         Ok(())

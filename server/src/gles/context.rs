@@ -69,6 +69,10 @@ pub struct Bindings {
     pub array_buffer: u32,
     /// `GL_ELEMENT_ARRAY_BUFFER_BINDING`.
     pub element_buffer: u32,
+    /// `GL_PIXEL_PACK_BUFFER_BINDING_NV` (`GL_NV_pixel_buffer_object`).
+    pub pixel_pack: u32,
+    /// `GL_PIXEL_UNPACK_BUFFER_BINDING_NV`.
+    pub pixel_unpack: u32,
     /// `GL_ACTIVE_TEXTURE` − `GL_TEXTURE0`.
     pub active_unit: usize,
     /// Per texture unit: the 2D, the cube map and the external (`GL_OES_EGL_image_external`)
@@ -94,6 +98,8 @@ impl Bindings {
         match target {
             BufferTarget::Array => self.array_buffer,
             BufferTarget::ElementArray => self.element_buffer,
+            BufferTarget::PixelPack => self.pixel_pack,
+            BufferTarget::PixelUnpack => self.pixel_unpack,
         }
     }
 

@@ -30,6 +30,11 @@ pub enum BufferTarget {
     Array,
     /// `GL_ELEMENT_ARRAY_BUFFER`.
     ElementArray,
+    /// `GL_PIXEL_PACK_BUFFER_NV` (`GL_NV_pixel_buffer_object`): where `glReadPixels` writes;
+    /// the library does the writing, so the daemon only keeps the buffer.
+    PixelPack,
+    /// `GL_PIXEL_UNPACK_BUFFER_NV`: what uploads read; the library reads it.
+    PixelUnpack,
 }
 
 impl BufferTarget {
@@ -38,6 +43,8 @@ impl BufferTarget {
         match target {
             ARRAY_BUFFER => Ok(BufferTarget::Array),
             ELEMENT_ARRAY_BUFFER => Ok(BufferTarget::ElementArray),
+            PIXEL_PACK_BUFFER_NV => Ok(BufferTarget::PixelPack),
+            PIXEL_UNPACK_BUFFER_NV => Ok(BufferTarget::PixelUnpack),
             _ => Err(GlError::InvalidEnum),
         }
     }

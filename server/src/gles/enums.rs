@@ -55,6 +55,11 @@ pub const ARRAY_BUFFER: u32 = 0x8892;
 pub const ELEMENT_ARRAY_BUFFER: u32 = 0x8893;
 pub const ARRAY_BUFFER_BINDING: u32 = 0x8894;
 pub const ELEMENT_ARRAY_BUFFER_BINDING: u32 = 0x8895;
+/// `GL_NV_pixel_buffer_object`'s targets and bindings.
+pub const PIXEL_PACK_BUFFER_NV: u32 = 0x88EB;
+pub const PIXEL_UNPACK_BUFFER_NV: u32 = 0x88EC;
+pub const PIXEL_PACK_BUFFER_BINDING_NV: u32 = 0x88ED;
+pub const PIXEL_UNPACK_BUFFER_BINDING_NV: u32 = 0x88EF;
 pub const STREAM_DRAW: u32 = 0x88E0;
 pub const STATIC_DRAW: u32 = 0x88E4;
 pub const DYNAMIC_DRAW: u32 = 0x88E8;

@@ -233,17 +233,26 @@ crate::entry_points! {
                 if gl.st.element_buffer == b {
                     gl.st.element_buffer = 0;
                 }
+                if gl.st.pack_buffer == b {
+                    gl.st.pack_buffer = 0;
+                }
+                if gl.st.unpack_buffer == b {
+                    gl.st.unpack_buffer = 0;
+                }
             }
             gl.conn.glDeleteBuffers(Slice::new(v))
         })
     }
 
-    /// Tracks the array and element bindings (client arrays and index ranges need them).
+    /// Tracks the array and element bindings (client arrays and index ranges need them), and
+    /// the pixel pack and unpack bindings (`GL_NV_pixel_buffer_object`).
     fn glBindBuffer(target: GLenum, buffer: GLuint) {
         with_gl("glBindBuffer", (), |gl| {
             match target {
                 GL_ARRAY_BUFFER => gl.st.array_buffer = buffer,
                 GL_ELEMENT_ARRAY_BUFFER => gl.st.element_buffer = buffer,
+                super::pixel_buffer::PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
+                super::pixel_buffer::PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)
@@ -377,6 +386,11 @@ crate::entry_points! {
         pixels: *const c_void,
     ) {
         with_gl("glTexImage2D", (), |gl| {
+            if let Some(from) = super::pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
+                let Some(d) = from else { return Ok(()) };
+                let data = Some(Blob::borrowed(&d));
+                return gl.conn.glTexImage2D(target, level, internalformat, width, height, border, format, ty, data);
+            }
             let data = tex_image_bytes(gl.st, width, height, format, ty, pixels).map(Blob::borrowed);
             gl.conn.glTexImage2D(target, level, internalformat, width, height, border, format, ty, data)
         })
@@ -395,6 +409,11 @@ crate::entry_points! {
         pixels: *const c_void,
     ) {
         with_gl("glTexSubImage2D", (), |gl| {
+            if let Some(from) = super::pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
+                let Some(d) = from else { return Ok(()) };
+                let data = Blob::borrowed(&d);
+                return gl.conn.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, ty, data);
+            }
             let data = tex_image_bytes(gl.st, width, height, format, ty, pixels).unwrap_or(&[]);
             gl.conn.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, ty, Blob::borrowed(data))
         })
@@ -412,6 +431,11 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexImage2D", (), |gl| {
+            if let Some(from) = super::pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
+                let Some(d) = from else { return Ok(()) };
+                let d = Blob::borrowed(&d);
+                return gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, d);
+            }
             // SAFETY: `data` holds `image_size` bytes.
             let Some(d) = (unsafe { sized_bytes(gl.st, data, image_size as isize) }) else { return Ok(()) };
             gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, Blob::borrowed(d))
@@ -431,6 +455,11 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexSubImage2D", (), |gl| {
+            if let Some(from) = super::pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
+                let Some(d) = from else { return Ok(()) };
+                let d = Blob::borrowed(&d);
+                return gl.conn.glCompressedTexSubImage2D(target, level, xoffset, yoffset, width, height, format, d);
+            }
             // SAFETY: `data` holds `image_size` bytes.
             let Some(d) = (unsafe { sized_bytes(gl.st, data, image_size as isize) }) else { return Ok(()) };
             gl.conn.glCompressedTexSubImage2D(
@@ -475,6 +504,9 @@ crate::entry_points! {
         pixels: *mut c_void,
     ) {
         with_gl("glReadPixels", (), |gl| {
+            if super::pixel_buffer::pack(gl, [x, y, width, height], format, ty, pixels)? {
+                return Ok(());
+            }
             // SAFETY: `pixels` has room for the rectangle as the pack state lays it out.
             unsafe { read_pixels(gl, [x, y, width, height], format, ty, pixels, None) }
         })
