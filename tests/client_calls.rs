@@ -61,6 +61,8 @@ mod robust_access;
 mod robustness;
 #[path = "client_calls/surfaceless.rs"]
 mod surfaceless;
+#[path = "client_calls/timer_query.rs"]
+mod timer_query;
 /// Declares [`Api`]: each entry point's field name, C name and prototype.
 macro_rules! api {
     ($($field:ident = $name:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
@@ -179,6 +181,18 @@ api! {
     disable = "glDisable": fn(u32);
     scissor = "glScissor": fn(i32, i32, i32, i32);
     compressed_tex_image_2d = "glCompressedTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, *const c_void);
+    gen_queries = "glGenQueriesEXT": fn(i32, *mut u32);
+    delete_queries = "glDeleteQueriesEXT": fn(i32, *const u32);
+    is_query = "glIsQueryEXT": fn(u32) -> u8;
+    begin_query = "glBeginQueryEXT": fn(u32, u32);
+    end_query = "glEndQueryEXT": fn(u32);
+    query_counter = "glQueryCounterEXT": fn(u32, u32);
+    get_query_iv = "glGetQueryivEXT": fn(u32, u32, *mut i32);
+    get_query_object_iv = "glGetQueryObjectivEXT": fn(u32, u32, *mut i32);
+    get_query_object_uiv = "glGetQueryObjectuivEXT": fn(u32, u32, *mut u32);
+    get_query_object_i64v = "glGetQueryObjecti64vEXT": fn(u32, u32, *mut i64);
+    get_query_object_ui64v = "glGetQueryObjectui64vEXT": fn(u32, u32, *mut u64);
+    get_integer64v = "glGetInteger64vEXT": fn(u32, *mut i64);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -299,7 +313,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 11] = [
+    let sequences: [Sequence; 12] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -311,6 +325,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("no_config", no_config::sequence),
         ("egl_image", egl_image::sequence),
         ("pixel_buffer", pixel_buffer::sequence),
+        ("timer_query", timer_query::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -306,11 +306,14 @@ command_set! {
         /// `GL_EXT_clip_control`: the window origin (`GL_LOWER_LEFT_EXT`, `GL_UPPER_LEFT_EXT`)
         /// and the clip depth range (`GL_NEGATIVE_ONE_TO_ONE_EXT`, `GL_ZERO_TO_ONE_EXT`).
         glClipControlEXT [Context] => ClipControlEXT { origin: GLenum, depth: GLenum };
+        /// `GL_EXT_disjoint_timer_query`: query `id` records the device's time once the
+        /// commands before it have completed.
+        glQueryCounterEXT [Context] => QueryCounterEXT { id: GLuint, target: GLenum };
         /// `GL_OES_EGL_image` (and `GL_OES_EGL_image_external`): the bound texture's image
         /// becomes the EGLImage's.
-        glEGLImageTargetTexture2DOES [Context] => EGLImageTargetTexture2DOES { target: GLenum, image: EglHandle };
+        glEGLImageTargetTexture2DOES [Context, Flush] => EGLImageTargetTexture2DOES { target: GLenum, image: EglHandle };
         /// `GL_OES_EGL_image`: the bound renderbuffer's image becomes the EGLImage's.
-        glEGLImageTargetRenderbufferStorageOES [Context] => EGLImageTargetRenderbufferStorageOES { target: GLenum, image: EglHandle };
+        glEGLImageTargetRenderbufferStorageOES [Context, Flush] => EGLImageTargetRenderbufferStorageOES { target: GLenum, image: EglHandle };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -413,6 +416,13 @@ command_set! {
         /// or a negative size), `Some(None)` for one found after it is set to 0, else the
         /// binary's format and bytes.
         glGetProgramBinaryOES [Context] => GetProgramBinaryOES { program: GLuint, buf_size: GLsizei } -> Option<Option<(GLenum, Bytes)>>;
+        /// `GL_EXT_disjoint_timer_query`: a query's result or availability in the caller's type
+        /// (nothing on error); a result waits for the commands it measures.
+        glGetQueryObjectivEXT [Context] => GetQueryObjectivEXT { id: GLuint, pname: GLenum } -> Vec<GLint>;
+        glGetQueryObjecti64vEXT [Context] => GetQueryObjecti64vEXT { id: GLuint, pname: GLenum } -> Vec<i64>;
+        glGetQueryObjectui64vEXT [Context] => GetQueryObjectui64vEXT { id: GLuint, pname: GLenum } -> Vec<u64>;
+        /// A state value as 64-bit integers; `GL_TIMESTAMP_EXT` is the device's time now.
+        glGetInteger64vEXT [Context] => GetInteger64vEXT { pname: GLenum } -> Vec<i64>;
         /// `EGL_KHR_image_base`: an EGLImage of one level (and face) of a texture, or of a
         /// renderbuffer, of `context`'s objects (`EGL_KHR_gl_texture_2D_image`,
         /// `EGL_KHR_gl_texture_cubemap_image`, `EGL_KHR_gl_renderbuffer_image`). Reply: its handle.

@@ -277,6 +277,7 @@ pub mod simple {
         fn glEndConditionalRenderNV();
         fn glBeginQueryEXT(target: GLenum, id: GLuint);
         fn glEndQueryEXT(target: GLenum);
+        fn glQueryCounterEXT(id: GLuint, target: GLenum);
         fn glUseProgram(program: GLuint);
         fn glValidateProgram(program: GLuint);
         fn glVertexAttrib1f(index: GLuint, x: GLfloat);

@@ -175,6 +175,7 @@ mod tests {
                 ("GL_OES_get_program_binary", 2),
                 ("GL_EXT_clip_control", 1),
                 ("GL_OES_EGL_image", 2),
+                ("GL_EXT_disjoint_timer_query", 12),
             ],
         );
     }
@@ -291,6 +292,11 @@ mod tests {
             "glClipControlEXT",
             "glEGLImageTargetTexture2DOES",
             "glEGLImageTargetRenderbufferStorageOES",
+            "glQueryCounterEXT",
+            "glGetQueryObjectivEXT",
+            "glGetQueryObjecti64vEXT",
+            "glGetQueryObjectui64vEXT",
+            "glGetInteger64vEXT",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

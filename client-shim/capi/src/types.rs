@@ -39,6 +39,10 @@ pub type GLbitfield = u32;
 pub type GLint = i32;
 /// `GLuint`.
 pub type GLuint = u32;
+/// `GLint64` (`GL_EXT_disjoint_timer_query`).
+pub type GLint64 = i64;
+/// `GLuint64`.
+pub type GLuint64 = u64;
 /// `GLsizei`.
 pub type GLsizei = i32;
 /// `GLfloat`.

@@ -327,6 +327,8 @@ pub struct Context {
     pub objects: Objects,
     /// Query objects (`GL_EXT_occlusion_query_boolean`; a context's own, never shared).
     pub queries: super::names::Names<super::occlusion::Query>,
+    /// The `GL_TIME_ELAPSED_EXT` query active, if any (`GL_EXT_disjoint_timer_query`).
+    pub active_timer: Option<u32>,
     /// The occlusion query active, if any.
     pub active_query: Option<super::occlusion::Active>,
     /// While a conditional render is active (`GL_NV_conditional_render`): whether its query
@@ -382,6 +384,7 @@ impl Context {
             objects: Objects::default(),
             queries: Default::default(),
             active_query: None,
+            active_timer: None,
             conditional: None,
             bindings: Bindings::default(),
             attribs: vec![Attrib::default(); MAX_ATTRIBS],

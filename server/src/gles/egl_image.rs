@@ -19,6 +19,7 @@ use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
 use super::context::Context;
+use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{is_color_format, Storage};
@@ -183,6 +184,7 @@ impl GlesExecutor {
     pub(super) fn glEGLImageTargetTexture2DOES(
         &mut self,
         ctx: &mut Context,
+        _: &Flushed,
         target: u32,
         image: EglHandle,
     ) -> GlResult {
@@ -216,6 +218,7 @@ impl GlesExecutor {
     pub(super) fn glEGLImageTargetRenderbufferStorageOES(
         &mut self,
         ctx: &mut Context,
+        _: &Flushed,
         target: u32,
         image: EglHandle,
     ) -> GlResult {

@@ -53,6 +53,7 @@ mod state;
 mod surface;
 mod teximage;
 mod textures;
+mod timer;
 mod uniforms;
 mod unpack;
 mod vao;

@@ -11,6 +11,7 @@ use strata_protocol::Slice;
 use super::context::Context;
 use super::error::{GlError, GlResult};
 use super::render::occlusion::Occlusion;
+use super::timer::{QUERY_COUNTER_BITS, TIMESTAMP, TIME_ELAPSED};
 use super::GlesExecutor;
 
 /// `GL_ANY_SAMPLES_PASSED_EXT`.
@@ -34,6 +35,8 @@ pub struct Query {
     pub target: u32,
     /// Its last begin/end.
     pub last: Option<Arc<Occlusion>>,
+    /// A timer query's timestamps (`GL_EXT_disjoint_timer_query`).
+    pub timer: Option<super::timer::Timer>,
 }
 
 /// The occlusion query a context has active: its name and target.
@@ -67,6 +70,9 @@ impl GlesExecutor {
                 ctx.active_query = None;
                 self.r.occlusion = None;
             }
+            if ctx.active_timer == Some(n) {
+                ctx.active_timer = None;
+            }
         }
         Ok(())
     }
@@ -76,6 +82,9 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBeginQueryEXT(&mut self, ctx: &mut Context, target_: u32, id: u32) -> GlResult {
+        if target_ == TIME_ELAPSED && self.has_timers() {
+            return self.begin_timer(ctx, id);
+        }
         let target = target(target_)?;
         // Both targets share one slot: one occlusion query at a time.
         if id == 0 || ctx.active_query.is_some() {
@@ -94,6 +103,9 @@ impl GlesExecutor {
     }
 
     pub(super) fn glEndQueryEXT(&mut self, ctx: &mut Context, target_: u32) -> GlResult {
+        if target_ == TIME_ELAPSED && self.has_timers() {
+            return self.end_timer(ctx);
+        }
         let target = target(target_)?;
         if ctx.active_query.is_none_or(|a| a.target != target) {
             return Err(GlError::InvalidOperation);
@@ -126,10 +138,16 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetQueryivEXT(&mut self, ctx: &mut Context, target_: u32, pname: u32) -> Vec<i32> {
-        let r = target(target_).and_then(|t| match pname {
-            CURRENT_QUERY => Ok(ctx.active_query.filter(|a| a.target == t).map_or(0, |a| a.name as i32)),
-            _ => Err(GlError::InvalidEnum),
-        });
+        let timers = self.has_timers();
+        let r = match (target_, pname) {
+            (TIME_ELAPSED, CURRENT_QUERY) if timers => Ok(ctx.active_timer.map_or(0, |n| n as i32)),
+            (TIMESTAMP, CURRENT_QUERY) if timers => Ok(0),
+            (TIME_ELAPSED | TIMESTAMP, QUERY_COUNTER_BITS) if timers => Ok(64),
+            _ => target(target_).and_then(|t| match pname {
+                CURRENT_QUERY => Ok(ctx.active_query.filter(|a| a.target == t).map_or(0, |a| a.name as i32)),
+                _ => Err(GlError::InvalidEnum),
+            }),
+        };
         match r {
             Ok(v) => vec![v],
             Err(e) => {
@@ -140,22 +158,48 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetQueryObjectuivEXT(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Vec<u32> {
-        let active = ctx.active_query.is_some_and(|a| a.name == id);
-        let last = ctx.queries.get(&id).filter(|q| q.target != 0 && !active).and_then(|q| q.last.clone());
-        let Some(occlusion) = last else {
+        self.query_object(ctx, id, pname).map(|v| u32::try_from(v).unwrap_or(u32::MAX)).into_iter().collect()
+    }
+
+    pub(super) fn glGetQueryObjectivEXT(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Vec<i32> {
+        self.query_object(ctx, id, pname).map(|v| i32::try_from(v).unwrap_or(i32::MAX)).into_iter().collect()
+    }
+
+    pub(super) fn glGetQueryObjecti64vEXT(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Vec<i64> {
+        self.query_object(ctx, id, pname).map(|v| i64::try_from(v).unwrap_or(i64::MAX)).into_iter().collect()
+    }
+
+    pub(super) fn glGetQueryObjectui64vEXT(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Vec<u64> {
+        self.query_object(ctx, id, pname).into_iter().collect()
+    }
+
+    /// A query's result or its availability (recording the error, and answering nothing, for
+    /// an unknown or active query or a bad `pname`); a larger result than the caller's type
+    /// holds is saturated.
+    fn query_object(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Option<u64> {
+        let active = ctx.active_query.is_some_and(|a| a.name == id) || ctx.active_timer == Some(id);
+        let Some(q) = ctx.queries.get(&id).filter(|q| q.target != 0 && !active) else {
             ctx.record(GlError::InvalidOperation);
-            return Vec::new();
+            return None;
         };
         if !matches!(pname, QUERY_RESULT | QUERY_RESULT_AVAILABLE) {
             ctx.record(GlError::InvalidEnum);
-            return Vec::new();
+            return None;
         }
+        if q.timer.is_some() {
+            return self.timer_value(ctx, id, pname == QUERY_RESULT);
+        }
+        let occlusion = q.last.clone()?;
         // Its draws still in the open pass are submitted first: asked repeatedly, the answer
         // must become available.
         if self.r.counts_for(&occlusion) {
             self.r.flush();
         }
         let v = if pname == QUERY_RESULT { occlusion.result(&self.gpu) } else { occlusion.available(&self.gpu) };
-        vec![u32::from(v)]
+        Some(u64::from(v))
+    }
+
+    pub(super) fn glGetInteger64vEXT(&mut self, ctx: &mut Context, pname: u32) -> Vec<i64> {
+        self.glGetIntegerv(ctx, pname).into_iter().map(i64::from).collect()
     }
 }

@@ -153,6 +153,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         STENCIL_BACK_PASS_DEPTH_PASS => u(back.zpass),
         STENCIL_BACK_WRITEMASK => u(back.write),
         ARRAY_BUFFER_BINDING => u(bind.array_buffer),
+        // GL_EXT_disjoint_timer_query: the device's clock never jumps.
+        super::timer::GPU_DISJOINT if gpu.features.contains(wgpu::Features::TIMESTAMP_QUERY) => b(false),
         ELEMENT_ARRAY_BUFFER_BINDING => u(bind.element_buffer),
         PIXEL_PACK_BUFFER_BINDING_NV => u(bind.pixel_pack),
         PIXEL_UNPACK_BUFFER_BINDING_NV => u(bind.pixel_unpack),
@@ -277,8 +279,9 @@ impl GlesExecutor {
                 let draw_buffers =
                     if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
                 let dual = if self.gpu.dual_source() { " GL_EXT_blend_func_extended" } else { "" };
+                let timers = if self.has_timers() { " GL_EXT_disjoint_timer_query" } else { "" };
                 format!(
-                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}",
+                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}",
                     texture_extensions(self.gpu.features)
                 )
             }

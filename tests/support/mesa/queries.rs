@@ -61,6 +61,39 @@ impl Arms<'_> {
         Ok(if v == u32::MAX { Vec::new() } else { vec![v] })
     }
 
+    pub(super) fn glGetQueryObjectivEXT(&mut self, id: &GLuint, pname: &GLenum) -> Result<Vec<GLint>, ClientError> {
+        let q = self.query(*id);
+        let mut v = i32::MIN;
+        ext!(self, "glGetQueryObjectivEXT", fn(u32, u32, *mut i32) -> (), q, *pname, &mut v);
+        Ok(if v == i32::MIN { Vec::new() } else { vec![v] })
+    }
+
+    pub(super) fn glGetQueryObjecti64vEXT(&mut self, id: &GLuint, pname: &GLenum) -> Result<Vec<i64>, ClientError> {
+        let q = self.query(*id);
+        let mut v = i64::MIN;
+        ext!(self, "glGetQueryObjecti64vEXT", fn(u32, u32, *mut i64) -> (), q, *pname, &mut v);
+        Ok(if v == i64::MIN { Vec::new() } else { vec![v] })
+    }
+
+    pub(super) fn glGetQueryObjectui64vEXT(&mut self, id: &GLuint, pname: &GLenum) -> Result<Vec<u64>, ClientError> {
+        let q = self.query(*id);
+        let mut v = u64::MAX;
+        ext!(self, "glGetQueryObjectui64vEXT", fn(u32, u32, *mut u64) -> (), q, *pname, &mut v);
+        Ok(if v == u64::MAX { Vec::new() } else { vec![v] })
+    }
+
+    pub(super) fn glGetInteger64vEXT(&mut self, pname: &GLenum) -> Result<Vec<i64>, ClientError> {
+        let mut v = i64::MIN;
+        ext!(self, "glGetInteger64vEXT", fn(u32, *mut i64) -> (), *pname, &mut v);
+        Ok(if v == i64::MIN { Vec::new() } else { vec![v] })
+    }
+
+    pub(super) fn glQueryCounterEXT(&mut self, id: &GLuint, target: &GLenum) -> Result<(), ClientError> {
+        let q = self.query(*id);
+        ext!(self, "glQueryCounterEXT", fn(u32, u32) -> (), q, *target);
+        Ok(())
+    }
+
     pub(super) fn glBeginConditionalRenderNV(&mut self, id: &GLuint, mode: &GLenum) -> Result<(), ClientError> {
         let q = self.query(*id);
         ext!(self, "glBeginConditionalRenderNV", fn(u32, u32) -> (), q, *mode);

@@ -301,6 +301,10 @@ pub mod get_arrays {
         glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
         glGetQueryivEXT(target: GLenum, pname: GLenum) -> GLint;
         glGetQueryObjectuivEXT(id: GLuint, pname: GLenum) -> GLuint;
+        glGetQueryObjectivEXT(id: GLuint, pname: GLenum) -> GLint;
+        glGetQueryObjecti64vEXT(id: GLuint, pname: GLenum) -> GLint64;
+        glGetQueryObjectui64vEXT(id: GLuint, pname: GLenum) -> GLuint64;
+        glGetInteger64vEXT(pname: GLenum) -> GLint64;
     }
 }
 
