@@ -308,6 +308,13 @@ unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result
     }
 }
 
+/// A vertex stage passing a window-filling quad's texture coordinates (attribute `pos`).
+const TEXTURED_VS: &str = "attribute vec2 pos; varying vec2 uv;
+    void main() { uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }";
+/// A fragment stage sampling unit 0's 2D texture there.
+const TEXTURED_FS: &str = "precision mediump float; uniform sampler2D s; varying vec2 uv;
+    void main() { gl_FragColor = texture2D(s, uv); }";
+
 /// A sequence of calls, by name.
 type Sequence = (&'static str, fn(&mut Run));
 

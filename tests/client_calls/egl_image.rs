@@ -38,10 +38,6 @@ const EGL_GL_RENDERBUFFER: u32 = 0x30B9;
 const EGL_TEXTURE_LEVEL: i32 = 0x30BC;
 const EGL_IMAGE_PRESERVED: i32 = 0x30D2;
 
-const VS: &str = "attribute vec2 pos; varying vec2 uv;
-    void main() { uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }";
-const FS_2D: &str = "precision mediump float; uniform sampler2D s; varying vec2 uv;
-    void main() { gl_FragColor = texture2D(s, uv); }";
 const FS_EXTERNAL: &str = "#extension GL_OES_EGL_image_external : require
     precision mediump float; uniform samplerExternalOES s; varying vec2 uv;
     void main() { gl_FragColor = texture2DProj(s, vec3(uv, 1.0)) * 0.5 + texture2D(s, uv) * 0.5; }";
@@ -147,34 +143,17 @@ pub fn sequence(r: &mut Run) {
         (gl.tex_image_2d)(TEXTURE_2D, 0, RGBA as i32, 8, 8, 0, RGBA, UNSIGNED_BYTE, texels(8, 8, 9).as_ptr().cast());
         let a = r.texture(TEXTURE_2D);
         let d = r.texture(TEXTURE_2D);
+        let upload = |t: u32, level: usize, size: usize, data: &[u8]| {
+            let size = size as i32;
+            (gl.bind_texture)(TEXTURE_2D, t);
+            let (level, format) = (level as i32, RGBA as i32);
+            (gl.tex_image_2d)(TEXTURE_2D, level, format, size, size, 0, RGBA, UNSIGNED_BYTE, data.as_ptr().cast());
+        };
         for (level, size) in [8, 4, 2, 1].into_iter().enumerate() {
             let data = texels(size, size, 1 + level as u8);
-            let size = size as i32;
-            (gl.bind_texture)(TEXTURE_2D, a);
-            (gl.tex_image_2d)(
-                TEXTURE_2D,
-                level as i32,
-                RGBA as i32,
-                size,
-                size,
-                0,
-                RGBA,
-                UNSIGNED_BYTE,
-                data.as_ptr().cast(),
-            );
+            upload(a, level, size, &data);
             if level < 2 {
-                (gl.bind_texture)(TEXTURE_2D, d);
-                (gl.tex_image_2d)(
-                    TEXTURE_2D,
-                    level as i32,
-                    RGBA as i32,
-                    size,
-                    size,
-                    0,
-                    RGBA,
-                    UNSIGNED_BYTE,
-                    data.as_ptr().cast(),
-                );
+                upload(d, level, size, &data);
             }
         }
         let b = r.texture(TEXTURE_2D);
@@ -238,7 +217,7 @@ pub fn sequence(r: &mut Run) {
         let ctx2 = (gl.egl_create_context)(egl.display, egl.config, std::ptr::null_mut(), attribs.as_ptr());
         r.image("A in the second context", ctx2, EGL_GL_TEXTURE_2D, a, &[]);
         (gl.egl_make_current)(egl.display, egl.surface, egl.surface, ctx2);
-        let p2d = r.program(VS, FS_2D);
+        let p2d = r.program(TEXTURED_VS, TEXTURED_FS);
         let t0 = r.texture(TEXTURE_2D);
         (gl.egl_image_target_texture)(TEXTURE_2D, i0);
         r.note("Z as a texture of the second context");
@@ -302,7 +281,7 @@ pub fn sequence(r: &mut Run) {
         (gl.bind_texture)(TEXTURE_EXTERNAL, e);
         (gl.egl_image_target_texture)(TEXTURE_EXTERNAL, i1);
         r.note("A level 1 as an external texture");
-        let pe = r.program(VS, FS_EXTERNAL);
+        let pe = r.program(TEXTURED_VS, FS_EXTERNAL);
         let mut status = -1;
         (gl.get_programiv)(pe, 0x8B82, &mut status);
         r.note(&format!("samplerExternalOES program linked: {status}"));

@@ -24,10 +24,6 @@ const PACK_ALIGNMENT: u32 = 0x0D05;
 const UNPACK_ROW_LENGTH: u32 = 0x0CF2;
 const PACK_ROW_LENGTH: u32 = 0x0D02;
 
-const VS: &str = "attribute vec2 pos; varying vec2 uv;
-    void main() { uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }";
-const FS: &str = "precision mediump float; uniform sampler2D s; varying vec2 uv;
-    void main() { gl_FragColor = texture2D(s, uv); }";
 const QUAD: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
 
 impl Run {
@@ -76,7 +72,7 @@ pub fn sequence(r: &mut Run) {
     // SAFETY: GL calls with a current context; with a pixel buffer bound, pointers are offsets
     // (never dereferenced); otherwise every pointer is valid for the call.
     unsafe {
-        r.program(VS, FS);
+        r.program(TEXTURED_VS, TEXTURED_FS);
         let mut names = [0u32; 3];
         (gl.gen_buffers)(3, names.as_mut_ptr());
         let [unpack, pack, other] = names;
