@@ -24,6 +24,9 @@ const CURRENT_QUERY: u32 = 0x8865;
 const QUERY_RESULT: u32 = 0x8866;
 /// `GL_QUERY_RESULT_AVAILABLE_EXT`.
 const QUERY_RESULT_AVAILABLE: u32 = 0x8867;
+/// Query objects one context may hold: each may hold device query sets, so a client that
+/// asks for more is told `GL_OUT_OF_MEMORY` (applications use tens).
+pub const MAX_QUERIES: u64 = 16_384;
 /// `GL_QUERY_WAIT_NV` … `GL_QUERY_BY_REGION_NO_WAIT_NV`: conditional render modes.
 const CONDITIONAL_MODES: std::ops::RangeInclusive<u32> = 0x8E13..=0x8E16;
 
@@ -59,6 +62,9 @@ fn target(t: u32) -> GlResult<u32> {
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glGenQueriesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        if ctx.queries.len() as u64 + ctx.queries.fresh(names.iter()) > MAX_QUERIES {
+            return Err(GlError::OutOfMemory);
+        }
         ctx.queries.generate(names.iter());
         Ok(())
     }

@@ -190,6 +190,9 @@ impl GlesExecutor {
         }
         // As on Mesa, a name never generated becomes a query here.
         if ctx.queries.get(&id).is_none() {
+            if ctx.queries.len() as u64 >= super::occlusion::MAX_QUERIES {
+                return Err(GlError::OutOfMemory);
+            }
             ctx.queries.generate([id]);
         }
         let q = ctx.queries.get_mut(&id).ok_or(GlError::InvalidOperation)?;
