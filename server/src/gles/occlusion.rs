@@ -204,8 +204,4 @@ impl GlesExecutor {
         let v = if pname == QUERY_RESULT { occlusion.result(&self.gpu) } else { occlusion.available(&self.gpu) };
         Some(u64::from(v))
     }
-
-    pub(super) fn glGetInteger64vEXT(&mut self, ctx: &mut Context, pname: u32) -> Vec<i64> {
-        self.glGetIntegerv(ctx, pname).into_iter().map(i64::from).collect()
-    }
 }

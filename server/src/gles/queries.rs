@@ -292,6 +292,12 @@ impl GlesExecutor {
         })
     }
 
+    /// `GL_EXT_disjoint_timer_query`'s 64-bit form of `glGetIntegerv` (which, as on Mesa held
+    /// to ES 2.0, does not answer `GL_TIMESTAMP_EXT`).
+    pub(super) fn glGetInteger64vEXT(&mut self, ctx: &mut Context, pname: u32) -> Vec<i64> {
+        self.glGetIntegerv(ctx, pname).into_iter().map(i64::from).collect()
+    }
+
     pub(super) fn glGetIntegerv(&mut self, ctx: &mut Context, pname: u32) -> Vec<i32> {
         match self.state(ctx, pname) {
             Value::Ints(v) => v,

@@ -84,7 +84,8 @@ impl Timer {
         enc.finish()
     }
 
-    /// Asks for the read once the last timestamp has been submitted.
+    /// Asks for the read (after the last timestamp has been submitted: a buffer waiting to be
+    /// mapped cannot be used by a submission).
     fn request(&mut self) {
         if !self.requested {
             self.requested = true;
@@ -142,10 +143,15 @@ impl GlesExecutor {
         self.gpu.features.contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
-    /// Submits what is pending and then `cmd`.
-    fn submit_timestamp(&mut self, cmd: wgpu::CommandBuffer) {
+    /// Writes `timer`'s timestamp `index` after what is pending, and asks for the read once
+    /// it was the last.
+    fn stamp(&mut self, timer: &mut Timer, index: u32) {
+        let cmd = timer.write(&self.gpu, index);
         self.r.flush();
         self.r.lane.submit(&self.gpu, vec![cmd]);
+        if index + 1 == timer.count {
+            timer.request();
+        }
     }
 
     /// `glBeginQueryEXT(GL_TIME_ELAPSED_EXT, id)`.
@@ -157,12 +163,11 @@ impl GlesExecutor {
         if q.target != 0 && q.target != TIME_ELAPSED {
             return Err(GlError::InvalidOperation);
         }
-        let timer = Timer::new(&self.gpu, 2);
-        let cmd = timer.write(&self.gpu, 0);
+        let mut timer = Timer::new(&self.gpu, 2);
+        self.stamp(&mut timer, 0);
         q.target = TIME_ELAPSED;
         q.timer = Some(timer);
         ctx.active_timer = Some(id);
-        self.submit_timestamp(cmd);
         Ok(())
     }
 
@@ -170,10 +175,7 @@ impl GlesExecutor {
     pub(super) fn end_timer(&mut self, ctx: &mut Context) -> GlResult {
         let id = ctx.active_timer.take().ok_or(GlError::InvalidOperation)?;
         let Some(timer) = ctx.queries.get_mut(&id).and_then(|q| q.timer.as_mut()) else { return Ok(()) };
-        let cmd = timer.write(&self.gpu, 1);
-        self.r.flush();
-        self.r.lane.submit(&self.gpu, vec![cmd]);
-        timer.request();
+        self.stamp(timer, 1);
         Ok(())
     }
 
@@ -200,10 +202,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidOperation);
         }
         let mut timer = Timer::new(&self.gpu, 1);
-        let cmd = timer.write(&self.gpu, 0);
-        self.r.flush();
-        self.r.lane.submit(&self.gpu, vec![cmd]);
-        timer.request();
+        self.stamp(&mut timer, 0);
         q.target = TIMESTAMP;
         q.timer = Some(timer);
         Ok(())
