@@ -22,7 +22,9 @@
 //!   (`EGL_EXT_create_context_robustness`, `GL_KHR_robust_buffer_access_behavior`), which
 //!   need a context of their own;
 //! - `no_config`: a context made with no config (`EGL_KHR_no_config_context`), which the
-//!   library passes on.
+//!   library passes on;
+//! - `separate`: program pipelines and their programs (`GL_EXT_separate_shader_objects`),
+//!   whose one-stage programs the library makes from source.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -59,6 +61,8 @@ mod program_binary;
 mod robust_access;
 #[path = "client_calls/robustness.rs"]
 mod robustness;
+#[path = "client_calls/separate.rs"]
+mod separate;
 #[path = "client_calls/surfaceless.rs"]
 mod surfaceless;
 #[path = "client_calls/timer_query.rs"]
@@ -193,6 +197,26 @@ api! {
     get_query_object_i64v = "glGetQueryObjecti64vEXT": fn(u32, u32, *mut i64);
     get_query_object_ui64v = "glGetQueryObjectui64vEXT": fn(u32, u32, *mut u64);
     get_integer64v = "glGetInteger64vEXT": fn(u32, *mut i64);
+    active_texture = "glActiveTexture": fn(u32);
+    delete_program = "glDeleteProgram": fn(u32);
+    get_uniformfv = "glGetUniformfv": fn(u32, i32, *mut f32);
+    gen_program_pipelines = "glGenProgramPipelinesEXT": fn(i32, *mut u32);
+    delete_program_pipelines = "glDeleteProgramPipelinesEXT": fn(i32, *const u32);
+    bind_program_pipeline = "glBindProgramPipelineEXT": fn(u32);
+    is_program_pipeline = "glIsProgramPipelineEXT": fn(u32) -> u8;
+    use_program_stages = "glUseProgramStagesEXT": fn(u32, u32, u32);
+    active_shader_program = "glActiveShaderProgramEXT": fn(u32, u32);
+    program_parameteri = "glProgramParameteriEXT": fn(u32, u32, i32);
+    validate_program_pipeline = "glValidateProgramPipelineEXT": fn(u32);
+    get_program_pipeline_iv = "glGetProgramPipelineivEXT": fn(u32, u32, *mut i32);
+    get_program_pipeline_info_log = "glGetProgramPipelineInfoLogEXT": fn(u32, i32, *mut i32, *mut i8);
+    create_shader_program = "glCreateShaderProgramvEXT": fn(u32, i32, *const *const i8) -> u32;
+    program_uniform1f = "glProgramUniform1fEXT": fn(u32, i32, f32);
+    program_uniform4f = "glProgramUniform4fEXT": fn(u32, i32, f32, f32, f32, f32);
+    program_uniform1i = "glProgramUniform1iEXT": fn(u32, i32, i32);
+    program_uniform1iv = "glProgramUniform1ivEXT": fn(u32, i32, i32, *const i32);
+    program_uniform4fv = "glProgramUniform4fvEXT": fn(u32, i32, i32, *const f32);
+    program_uniform_matrix2fv = "glProgramUniformMatrix2fvEXT": fn(u32, i32, i32, u8, *const f32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -320,7 +344,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 12] = [
+    let sequences: [Sequence; 13] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -333,6 +357,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("egl_image", egl_image::sequence),
         ("pixel_buffer", pixel_buffer::sequence),
         ("timer_query", timer_query::sequence),
+        ("separate", separate::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

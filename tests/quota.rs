@@ -202,3 +202,22 @@ fn query_objects_are_limited_per_context() {
     assert!(draws(&mut gl, [40, 80, 120]));
     daemon.assert_running();
 }
+
+/// Program pipelines are limited per context (each may keep an executable linked from two
+/// programs' stages): `GL_OUT_OF_MEMORY` beyond, and nothing else disturbed.
+#[test]
+fn program_pipelines_are_limited_per_context() {
+    const MAX_PIPELINES: u32 = 4096;
+    let mut daemon = Daemon::start("quota-pipelines", &[]);
+    let (mut gl, _) = connect(&daemon.socket, "pipelines");
+    let names: Vec<u32> = (1..=MAX_PIPELINES).collect();
+    gl.glGenProgramPipelinesEXT(Slice::new(&names)).expect("io");
+    assert_eq!(error(&mut gl), GL_NO_ERROR, "the limit's worth of names");
+    gl.glGenProgramPipelinesEXT(Slice::new(&[MAX_PIPELINES + 1])).expect("io");
+    assert_eq!(error(&mut gl), GL_OUT_OF_MEMORY, "one name more");
+    gl.glDeleteProgramPipelinesEXT(Slice::new(&[1])).expect("io");
+    gl.glGenProgramPipelinesEXT(Slice::new(&[MAX_PIPELINES + 1])).expect("io");
+    assert_eq!(error(&mut gl), GL_NO_ERROR, "room again after a deletion");
+    assert!(draws(&mut gl, [40, 80, 120]));
+    daemon.assert_running();
+}

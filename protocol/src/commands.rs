@@ -314,6 +314,36 @@ command_set! {
         glEGLImageTargetTexture2DOES [Context, Flush] => EGLImageTargetTexture2DOES { target: GLenum, image: EglHandle };
         /// `GL_OES_EGL_image`: the bound renderbuffer's image becomes the EGLImage's.
         glEGLImageTargetRenderbufferStorageOES [Context, Flush] => EGLImageTargetRenderbufferStorageOES { target: GLenum, image: EglHandle };
+        /// `GL_EXT_separate_shader_objects`: program pipeline names (allocated by the client).
+        glGenProgramPipelinesEXT [Context] => GenProgramPipelinesEXT { names: Slice<'a, GLuint> };
+        glDeleteProgramPipelinesEXT [Context] => DeleteProgramPipelinesEXT { names: Slice<'a, GLuint> };
+        /// The pipeline whose stages draw while no program is in use (0: none).
+        glBindProgramPipelineEXT [Context] => BindProgramPipelineEXT { pipeline: GLuint };
+        /// `program`'s executables serve `pipeline`'s `stages` (`GL_VERTEX_SHADER_BIT_EXT`,
+        /// `GL_FRAGMENT_SHADER_BIT_EXT`); program 0 empties them.
+        glUseProgramStagesEXT [Context] => UseProgramStagesEXT { pipeline: GLuint, stages: GLbitfield, program: GLuint };
+        /// The program `glUniform*` writes while `pipeline` is bound and no program is in use.
+        glActiveShaderProgramEXT [Context] => ActiveShaderProgramEXT { pipeline: GLuint, program: GLuint };
+        /// `GL_PROGRAM_SEPARABLE_EXT`: whether the next link makes a program pipelines can use.
+        glProgramParameteriEXT [Context] => ProgramParameteriEXT { program: GLuint, pname: GLenum, value: GLint };
+        /// Checks that `pipeline`'s stages can draw together (`GL_VALIDATE_STATUS`, info log).
+        glValidateProgramPipelineEXT [Context] => ValidateProgramPipelineEXT { pipeline: GLuint };
+        /// Compiles `source` as one stage (`shader_type`) and links it alone into the separable
+        /// program `name` (allocated by the client); a failed compile is the program's link log.
+        glCreateShaderProgramvEXT [Context] => CreateShaderProgramvEXT { shader_type: GLenum, name: GLuint, source: Text<'a> };
+        /// `glUniform*` on `program`'s uniforms, whether or not it is in use (the library sends
+        /// the scalar forms as one-element arrays).
+        glProgramUniform1fvEXT [Context] => ProgramUniform1fvEXT { program: GLuint, location: GLint, values: Slice<'a, GLfloat> };
+        glProgramUniform2fvEXT [Context] => ProgramUniform2fvEXT { program: GLuint, location: GLint, values: Slice<'a, GLfloat> };
+        glProgramUniform3fvEXT [Context] => ProgramUniform3fvEXT { program: GLuint, location: GLint, values: Slice<'a, GLfloat> };
+        glProgramUniform4fvEXT [Context] => ProgramUniform4fvEXT { program: GLuint, location: GLint, values: Slice<'a, GLfloat> };
+        glProgramUniform1ivEXT [Context] => ProgramUniform1ivEXT { program: GLuint, location: GLint, values: Slice<'a, GLint> };
+        glProgramUniform2ivEXT [Context] => ProgramUniform2ivEXT { program: GLuint, location: GLint, values: Slice<'a, GLint> };
+        glProgramUniform3ivEXT [Context] => ProgramUniform3ivEXT { program: GLuint, location: GLint, values: Slice<'a, GLint> };
+        glProgramUniform4ivEXT [Context] => ProgramUniform4ivEXT { program: GLuint, location: GLint, values: Slice<'a, GLint> };
+        glProgramUniformMatrix2fvEXT [Context] => ProgramUniformMatrix2fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glProgramUniformMatrix3fvEXT [Context] => ProgramUniformMatrix3fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glProgramUniformMatrix4fvEXT [Context] => ProgramUniformMatrix4fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -428,6 +458,12 @@ command_set! {
         /// `EGL_KHR_gl_texture_cubemap_image`, `EGL_KHR_gl_renderbuffer_image`). Reply: its handle.
         eglCreateImageKHR [NoContext] => CreateImageKHR { display: EglHandle, context: EglHandle, target: EGLint, buffer: GLuint, attribs: Slice<'a, EGLint> } -> EglResult<EglHandle>;
         eglDestroyImageKHR [NoContext] => DestroyImageKHR { display: EglHandle, image: EglHandle } -> EglResult<()>;
+        /// `GL_EXT_separate_shader_objects`: whether `pipeline` names a pipeline object.
+        glIsProgramPipelineEXT [Context] => IsProgramPipelineEXT { pipeline: GLuint } -> bool;
+        /// A pipeline's state (`GL_ACTIVE_PROGRAM_EXT`, a stage's program, validation, log
+        /// length); nothing on error.
+        glGetProgramPipelineivEXT [Context] => GetProgramPipelineivEXT { pipeline: GLuint, pname: GLenum } -> Vec<GLint>;
+        glGetProgramPipelineInfoLogEXT [Context] => GetProgramPipelineInfoLogEXT { pipeline: GLuint } -> String;
     }
 }
 

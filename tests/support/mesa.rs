@@ -40,6 +40,8 @@ pub struct MesaGl {
     vaos: HashMap<u32, u32>,
     /// The client's query names and Mesa's.
     queries: HashMap<u32, u32>,
+    /// The client's program pipeline names and Mesa's.
+    pipelines: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
     client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
@@ -70,6 +72,7 @@ mod ext;
 mod egl;
 mod framebuffers;
 mod mapping;
+mod pipelines;
 mod programs;
 mod queries;
 mod scalars;
@@ -150,6 +153,7 @@ impl MesaGl {
             shaders: HashMap::new(),
             vaos: HashMap::new(),
             queries: HashMap::new(),
+            pipelines: HashMap::new(),
             client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),

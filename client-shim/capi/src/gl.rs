@@ -278,6 +278,11 @@ pub mod simple {
         fn glBeginQueryEXT(target: GLenum, id: GLuint);
         fn glEndQueryEXT(target: GLenum);
         fn glQueryCounterEXT(id: GLuint, target: GLenum);
+        fn glBindProgramPipelineEXT(pipeline: GLuint);
+        fn glUseProgramStagesEXT(pipeline: GLuint, stages: GLbitfield, program: GLuint);
+        fn glActiveShaderProgramEXT(pipeline: GLuint, program: GLuint);
+        fn glProgramParameteriEXT(program: GLuint, pname: GLenum, value: GLint);
+        fn glValidateProgramPipelineEXT(pipeline: GLuint);
         fn glUseProgram(program: GLuint);
         fn glValidateProgram(program: GLuint);
         fn glVertexAttrib1f(index: GLuint, x: GLfloat);
@@ -293,6 +298,7 @@ pub mod simple {
         fn glIsShader(name: GLuint) -> GLboolean;
         fn glIsTexture(name: GLuint) -> GLboolean;
         fn glIsQueryEXT(id: GLuint) -> GLboolean;
+        fn glIsProgramPipelineEXT(pipeline: GLuint) -> GLboolean;
     }
 }
 
@@ -501,6 +507,10 @@ gl_modules!(
     crate::draw_buffers,
     crate::blend_extended,
     program_binary,
+    separate,
+    separate::scalars,
+    separate::arrays,
+    separate::matrices,
     crate::image::targets,
 );
 
@@ -518,3 +528,6 @@ pub mod robustness;
 
 /// Program binaries (`GL_OES_get_program_binary`).
 pub mod program_binary;
+
+/// Program pipelines' programs (`GL_EXT_separate_shader_objects`).
+pub mod separate;

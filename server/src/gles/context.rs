@@ -46,6 +46,8 @@ pub struct Objects {
     pub programs: HashMap<u32, Program>,
     /// Vertex array objects other than the bound one, whose state is in `Context::attribs`.
     pub vertex_arrays: Names<VertexArray>,
+    /// Program pipeline objects (`GL_EXT_separate_shader_objects`).
+    pub pipelines: Names<super::pipelines::Pipeline>,
     /// `GL_KHR_debug` object labels by (namespace, name).
     pub labels: HashMap<(u32, u32), Vec<u8>>,
 }
@@ -80,6 +82,8 @@ pub struct Bindings {
     pub units: [[u32; 3]; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.
     pub program: u32,
+    /// `GL_PROGRAM_PIPELINE_BINDING_EXT`: the pipeline that draws while no program is in use.
+    pub pipeline: u32,
     /// `GL_FRAMEBUFFER_BINDING`: the framebuffer draws and clears address.
     pub framebuffer: u32,
     /// The framebuffer reads and copies address. `glBindFramebuffer(GL_FRAMEBUFFER)` binds both;

@@ -225,8 +225,8 @@ fn plan_draw<'c>(
     first: u32,
     shape: Instancing,
 ) -> GlResult<Option<DrawSpec<'c>>> {
-    let Some(p) = ctx.objects.programs.get(&ctx.bindings.program) else { return Ok(None) };
-    let Some(program) = p.linked.clone() else { return Ok(None) };
+    let Some(exe) = ctx.executable() else { return Ok(None) };
+    let program = exe.program.clone();
     if count == 0 {
         return Ok(None);
     }
@@ -260,7 +260,7 @@ fn plan_draw<'c>(
         .info
         .samplers
         .iter()
-        .zip(&p.units)
+        .zip(exe.units.iter())
         .map(|((ty, _), unit)| {
             let target = match ty {
                 Ty::SamplerCube => TextureTarget::CubeMap,
@@ -310,7 +310,7 @@ fn plan_draw<'c>(
         vs: program.vs.clone(),
         fs: None,
         program,
-        uniforms: &p.data,
+        uniforms: exe.data,
         textures,
         inputs,
         index,
@@ -356,6 +356,7 @@ impl GlesExecutor {
             None => None,
         };
         let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
+        self.prepare_pipeline(ctx)?;
         let reversed = self.reversed_target(ctx);
         let stages = match self.draw_stages(ctx, reversed, prim == Primitive::Points) {
             Ok(stages) => stages,

@@ -39,6 +39,7 @@ mod mapping;
 mod multi_draw;
 mod names;
 mod occlusion;
+mod pipelines;
 mod pixels;
 mod program_binary;
 mod programs;

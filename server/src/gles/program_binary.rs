@@ -14,7 +14,7 @@ use strata_protocol::{Blob, Bytes};
 use super::context::{Context, MAX_ATTRIBS};
 use super::error::{GlError, GlResult};
 use super::glsl::{self, Stage};
-use super::programs::{create_gpu_program, link_shaders, Program};
+use super::programs::{create_gpu_program, link_either, LinkResult, LinkedStages, Program};
 use super::GlesExecutor;
 
 /// `GL_PROGRAM_BINARY_FORMATS_OES`' one entry: Strata's program binary format.
@@ -37,6 +37,19 @@ pub struct Recipe {
     pub fragment: String,
     /// `glBindAttribLocation` requests in force at the link, by name.
     pub bindings: Vec<(String, u32)>,
+}
+
+impl Recipe {
+    /// The recipe of a link of `s` alone (the other stage's source empty) with `bindings`.
+    pub fn new(s: &glsl::Shader, bindings: &HashMap<String, u32>) -> Recipe {
+        let mut listed: Vec<(String, u32)> = bindings.iter().map(|(k, v)| (k.clone(), *v)).collect();
+        listed.sort();
+        let (vertex, fragment) = match s.stage {
+            Stage::Vertex => (s.source.clone(), String::new()),
+            Stage::Fragment => (String::new(), s.source.clone()),
+        };
+        Recipe { vertex, fragment, bindings: listed }
+    }
 }
 
 /// Why a binary was refused.
@@ -102,17 +115,23 @@ pub fn length(p: &Program) -> i32 {
     }
 }
 
-/// Compiles and links what `bytes` holds: the program info log on failure.
-fn relink(bytes: &[u8]) -> Result<(glsl::Linked, Recipe), String> {
+/// Compiles and links what `bytes` holds (a one-stage binary as a separable program's
+/// stage, which `separable` must allow): the program info log on failure.
+fn relink(bytes: &[u8], separable: bool) -> Result<LinkResult, String> {
     let recipe = decode(bytes).map_err(|e| format!("error: {e}"))?;
     let compile = |stage: Stage, source: &str, what: &str| {
+        if source.is_empty() {
+            return Ok(None);
+        }
         glsl::compile(stage, source)
+            .map(Some)
             .map_err(|log| format!("error: the binary's {what} shader does not compile:\n{log}"))
     };
-    let v = compile(Stage::Vertex, &recipe.vertex, "vertex")?;
-    let f = compile(Stage::Fragment, &recipe.fragment, "fragment")?;
+    let vertex = compile(Stage::Vertex, &recipe.vertex, "vertex")?;
+    let fragment = compile(Stage::Fragment, &recipe.fragment, "fragment")?;
     let bindings: HashMap<String, u32> = recipe.bindings.iter().cloned().collect();
-    link_shaders(&v, &f, &bindings)
+    let (info, recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &bindings, separable)?;
+    Ok((info, recipe, LinkedStages::new(separable, vertex, fragment)))
 }
 
 #[allow(non_snake_case)]
@@ -140,7 +159,7 @@ impl GlesExecutor {
         }
         let bytes = binary.as_bytes();
         let bytes = &bytes[..bytes.len().min(length as usize)];
-        let result = relink(bytes).and_then(|linked| create_gpu_program(&self.gpu, linked, id));
+        let result = relink(bytes, p.separable).and_then(|linked| create_gpu_program(&self.gpu, linked, id));
         p.install(result);
         Ok(())
     }
@@ -233,7 +252,7 @@ mod tests {
             bytes.extend_from_slice(&payload);
             let bytes = resealed(bytes);
             if decode(&bytes).is_ok() {
-                let _ = relink(&bytes);
+                let _ = relink(&bytes, false);
             }
         }
 
@@ -248,8 +267,8 @@ mod tests {
     #[test]
     fn a_binary_whose_sources_fail_fails_the_link_with_the_compile_log() {
         let bad = Recipe { fragment: "void main() { gl_FragColor = oops; }".into(), ..recipe() };
-        let log = relink(&encode(&bad)).err().unwrap_or_default();
+        let log = relink(&encode(&bad), false).err().unwrap_or_default();
         assert!(log.contains("fragment shader does not compile"), "{log}");
-        assert!(relink(&encode(&recipe())).is_ok());
+        assert!(relink(&encode(&recipe()), false).is_ok());
     }
 }

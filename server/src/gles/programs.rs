@@ -33,11 +33,40 @@ pub struct LinkedProgram {
     pub recipe: Recipe,
     /// Unique id for caches.
     pub id: u64,
+    /// The compiled stages it was linked from, for program pipelines.
+    pub stages: LinkedStages,
     /// The points vertex stage, created on the first `GL_POINTS` draw (or why it failed).
     points_vs: OnceLock<Result<wgpu::ShaderModule, String>>,
     /// Vertex stages for `GL_EXT_clip_control` states other than the default, by (points,
     /// state), created on first use (or why they failed).
     clip_vs: Mutex<HashMap<(bool, ClipControl), Result<wgpu::ShaderModule, String>>>,
+}
+
+/// The stages a link used: program pipelines link a vertex stage of one separable program
+/// with the fragment stage of another (`GL_EXT_separate_shader_objects`), so a separable
+/// program keeps its compiled stages.
+#[derive(Default)]
+pub struct LinkedStages {
+    /// Whether it was linked separable: only such programs serve pipeline stages.
+    pub separable: bool,
+    /// The stages it has code for, as `GL_*_SHADER_BIT_EXT` bits.
+    pub bits: u32,
+    /// The vertex stage, if it has one and is separable.
+    pub vertex: Option<glsl::Shader>,
+    /// The fragment stage, if it has one and is separable.
+    pub fragment: Option<glsl::Shader>,
+}
+
+impl LinkedStages {
+    /// What a link of `vertex` and `fragment` keeps: the stages only if `separable`.
+    pub fn new(separable: bool, vertex: Option<glsl::Shader>, fragment: Option<glsl::Shader>) -> LinkedStages {
+        let bits = u32::from(vertex.is_some()) | (u32::from(fragment.is_some()) << 1);
+        if separable {
+            LinkedStages { separable, bits, vertex, fragment }
+        } else {
+            LinkedStages { separable, bits, vertex: None, fragment: None }
+        }
+    }
 }
 
 /// A shader module from a translated stage; the error if the GPU refuses it.
@@ -95,6 +124,8 @@ pub struct Program {
     pub delete_pending: bool,
     /// `glValidateProgram` result.
     pub validated: bool,
+    /// `GL_PROGRAM_SEPARABLE_EXT`: whether the next link makes a program pipelines can use.
+    pub separable: bool,
 }
 
 impl Program {
@@ -141,6 +172,15 @@ fn release_shaders(objects: &mut Objects, shaders: &[u32]) {
     }
 }
 
+/// Removes `program` (deleted, and no longer in use) with its label, freeing the shaders
+/// that were deleted while attached to it.
+pub(super) fn remove_program(objects: &mut Objects, program: u32) {
+    if let Some(p) = objects.programs.remove(&program) {
+        objects.forget_label(PROGRAM_KHR, program);
+        release_shaders(objects, &p.attached);
+    }
+}
+
 /// The last successful link of `program`, for the active-variable queries: an unlinked
 /// program is `GL_INVALID_VALUE`, a name that is no program the usual error.
 pub fn linked_for_query(objects: &Objects, program: u32) -> GlResult<&LinkedProgram> {
@@ -150,16 +190,41 @@ pub fn linked_for_query(objects: &Objects, program: u32) -> GlResult<&LinkedProg
     }
 }
 
-/// Links the program's attached shaders: the program info log on failure.
-fn link_stages(objects: &Objects, p: &Program) -> Result<(glsl::Linked, Recipe), String> {
+/// What a link produced, and the stages it used.
+pub(super) type LinkResult = (glsl::Linked, Recipe, LinkedStages);
+
+/// Links the program's attached shaders: the program info log on failure. A separable
+/// program may have one stage; it is linked against a stand-in for the other.
+fn link_stages(objects: &Objects, p: &Program) -> Result<LinkResult, String> {
     let find = |stage: Stage| p.attached.iter().filter_map(|s| objects.shaders.get(s)).find(|s| s.stage == stage);
-    match (find(Stage::Vertex), find(Stage::Fragment)) {
-        (Some(vs), Some(fs)) => match (&vs.compiled, &fs.compiled) {
-            (Some(v), Some(f)) if vs.compiled_ok && fs.compiled_ok => link_shaders(v, f, &p.bindings),
-            _ => Err("error: an attached shader did not compile".to_string()),
-        },
+    let compiled = |s: &super::shaders::ShaderObj| match &s.compiled {
+        Some(c) if s.compiled_ok => Ok(c.clone()),
+        _ => Err("error: an attached shader did not compile".to_string()),
+    };
+    let vertex = find(Stage::Vertex).map(compiled).transpose()?;
+    let fragment = find(Stage::Fragment).map(compiled).transpose()?;
+    let (info, recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &p.bindings, p.separable)?;
+    Ok((info, recipe, LinkedStages::new(p.separable, vertex, fragment)))
+}
+
+/// Links both stages, or one alone where `separable` allows.
+pub(super) fn link_either(
+    vertex: Option<&glsl::Shader>,
+    fragment: Option<&glsl::Shader>,
+    bindings: &HashMap<String, u32>,
+    separable: bool,
+) -> Result<(glsl::Linked, Recipe), String> {
+    match (vertex, fragment) {
+        (Some(v), Some(f)) => link_shaders(v, f, bindings),
+        (Some(one), None) | (None, Some(one)) if separable => link_one(one, bindings),
         _ => Err("error: a program needs one vertex and one fragment shader".to_string()),
     }
+}
+
+/// Links one compiled stage alone, as a separable program.
+pub(super) fn link_one(s: &glsl::Shader, bindings: &HashMap<String, u32>) -> Result<(glsl::Linked, Recipe), String> {
+    let info = glsl::link_alone(s, bindings, MAX_ATTRIBS as u32)?;
+    Ok((info, Recipe::new(s, bindings)))
 }
 
 /// Links two compiled shaders with attribute `bindings`, with what they were linked from.
@@ -169,15 +234,15 @@ pub(super) fn link_shaders(
     bindings: &HashMap<String, u32>,
 ) -> Result<(glsl::Linked, Recipe), String> {
     let info = glsl::link(v, f, bindings, MAX_ATTRIBS as u32)?;
-    let mut listed: Vec<(String, u32)> = bindings.iter().map(|(k, v)| (k.clone(), *v)).collect();
-    listed.sort();
-    Ok((info, Recipe { vertex: v.source.clone(), fragment: f.source.clone(), bindings: listed }))
+    let mut recipe = Recipe::new(v, bindings);
+    recipe.fragment = f.source.clone();
+    Ok((info, recipe))
 }
 
 /// Creates a linked program's shader modules and layouts; the info log if the GPU rejects them.
 pub(super) fn create_gpu_program(
     gpu: &Gpu,
-    (info, recipe): (glsl::Linked, Recipe),
+    (info, recipe, stages): LinkResult,
     id: u64,
 ) -> Result<LinkedProgram, String> {
     let d = &gpu.device;
@@ -215,6 +280,7 @@ pub(super) fn create_gpu_program(
         locations,
         recipe,
         id,
+        stages,
         points_vs: OnceLock::new(),
         clip_vs: Mutex::default(),
     })
@@ -240,14 +306,10 @@ impl GlesExecutor {
         if !objects.programs.contains_key(&program) {
             return Err(objects.shader_or_program_error(program));
         }
-        if ctx.bindings.program == program {
-            if let Some(p) = objects.programs.get_mut(&program) {
-                p.delete_pending = true;
-            }
-        } else if let Some(p) = objects.programs.remove(&program) {
-            objects.forget_label(PROGRAM_KHR, program);
-            release_shaders(objects, &p.attached);
+        if let Some(p) = objects.programs.get_mut(&program) {
+            p.delete_pending = true;
         }
+        super::pipelines::release_if_unused(ctx, program);
         Ok(())
     }
 
@@ -310,7 +372,7 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let objects = &mut ctx.objects;
         let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
-        let result = link_stages(objects, p).and_then(|info| create_gpu_program(gpu, info, id));
+        let result = link_stages(objects, p).and_then(|linked| create_gpu_program(gpu, linked, id));
         if let Some(p) = objects.programs.get_mut(&program) {
             p.install(result);
         }
@@ -322,14 +384,8 @@ impl GlesExecutor {
         if program != 0 && !objects.programs.get(&program).is_some_and(|p| p.link_ok) {
             return Err(objects.shader_or_program_error(program));
         }
-        let old = ctx.bindings.program;
-        ctx.bindings.program = program;
-        if old != program && objects.programs.get(&old).is_some_and(|p| p.delete_pending) {
-            if let Some(p) = objects.programs.remove(&old) {
-                objects.forget_label(PROGRAM_KHR, old);
-                release_shaders(objects, &p.attached);
-            }
-        }
+        let old = std::mem::replace(&mut ctx.bindings.program, program);
+        super::pipelines::release_if_unused(ctx, old);
         Ok(())
     }
 
@@ -357,6 +413,7 @@ impl GlesExecutor {
                     // Linking completes within glLinkProgram.
                     COMPLETION_STATUS_KHR => Ok(1),
                     DELETE_STATUS => Ok(i32::from(p.delete_pending)),
+                    PROGRAM_SEPARABLE_EXT => Ok(i32::from(p.separable)),
                     VALIDATE_STATUS => Ok(i32::from(p.validated)),
                     INFO_LOG_LENGTH => Ok(if p.log.is_empty() { 0 } else { p.log.len() as i32 + 1 }),
                     ATTACHED_SHADERS => Ok(p.attached.len() as i32),

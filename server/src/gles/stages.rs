@@ -40,7 +40,7 @@ impl GlesExecutor {
         reversed: Option<ReversedZ>,
         points: bool,
     ) -> Result<Option<Stages>, String> {
-        let Some(program) = ctx.objects.programs.get(&ctx.bindings.program).and_then(|p| p.linked.clone()) else {
+        let Some(program) = ctx.executable().map(|e| e.program) else {
             return Ok(None);
         };
         let clip = ctx.raster.clip;

@@ -40,13 +40,12 @@ fn scalar_offset(base: usize, c: usize, columns: usize) -> usize {
     }
 }
 
-/// Writes `vals` (elements of `n` components, or `columns`×`columns` matrices) to the current
-/// program's uniform at `location`.
-fn set_uniform(ctx: &mut Context, location: i32, n: usize, columns: usize, vals: Vals<'_>) -> GlResult {
+/// Writes `vals` (elements of `n` components, or `columns`×`columns` matrices) to `program`'s
+/// uniform at `location`.
+fn set_uniform(ctx: &mut Context, program: u32, location: i32, n: usize, columns: usize, vals: Vals<'_>) -> GlResult {
     if location == -1 {
         return Ok(());
     }
-    let program = ctx.bindings.program;
     let p = ctx.objects.programs.get_mut(&program).ok_or(GlError::InvalidOperation)?;
     let l = p.linked.clone().ok_or(GlError::InvalidOperation)?;
     let &(ui, element) =
@@ -107,11 +106,19 @@ fn set_uniform(ctx: &mut Context, location: i32, n: usize, columns: usize, vals:
 }
 
 /// `glUniformMatrix*fv`: ES 2.0 requires `transpose` to be false.
-fn set_matrix(ctx: &mut Context, location: i32, transpose: bool, n: usize, v: &[f32]) -> GlResult {
+fn set_matrix(ctx: &mut Context, program: u32, location: i32, transpose: bool, n: usize, v: &[f32]) -> GlResult {
     if transpose {
         return Err(GlError::InvalidValue);
     }
-    set_uniform(ctx, location, n, n, Vals::F(v))
+    set_uniform(ctx, program, location, n, n, Vals::F(v))
+}
+
+/// The program a `glProgramUniform*EXT` names: GL's usual error for a bad name.
+fn named(ctx: &Context, program: u32) -> GlResult<u32> {
+    match ctx.objects.programs.contains_key(&program) {
+        true => Ok(program),
+        false => Err(ctx.objects.shader_or_program_error(program)),
+    }
 }
 
 /// The value at `location` of `program`, as floats.
@@ -140,24 +147,37 @@ fn get_uniform(ctx: &Context, program: u32, location: i32) -> GlResult<Vec<f32>>
         .collect())
 }
 
-/// `glUniform{1,2,3,4}{f,i}`, their `v` forms and `glUniformMatrix{2,3,4}fv`: one body each, by
-/// component count and type.
+/// `glUniform{1,2,3,4}{f,i}`, their `v` forms and `glUniformMatrix{2,3,4}fv` (writing the
+/// program in use, or the bound pipeline's active program), and the `v` and matrix forms of
+/// `glProgramUniform*EXT` (writing the program named): one body each, by component count
+/// and type.
 macro_rules! uniform_setters {
     (
         scalars { $( $sgl:ident: $sn:literal, $sty:ty, $svals:ident ( $( $c:ident ),+ ); )* }
-        vectors { $( $vgl:ident: $vn:literal, $vty:ty, $vvals:ident; )* }
-        matrices { $( $mgl:ident: $mn:literal; )* }
+        vectors { $( $vgl:ident / $pvgl:ident: $vn:literal, $vty:ty, $vvals:ident; )* }
+        matrices { $( $mgl:ident / $pmgl:ident: $mn:literal; )* }
     ) => {
         #[allow(non_snake_case)]
         impl GlesExecutor {
             $( pub(super) fn $sgl(&mut self, ctx: &mut Context, location: i32, $( $c: $sty ),+) -> GlResult {
-                set_uniform(ctx, location, $sn, 0, Vals::$svals(&[$( $c ),+]))
+                let program = ctx.uniform_program();
+                set_uniform(ctx, program, location, $sn, 0, Vals::$svals(&[$( $c ),+]))
             } )*
             $( pub(super) fn $vgl(&mut self, ctx: &mut Context, location: i32, values: Slice<'_, $vty>) -> GlResult {
-                set_uniform(ctx, location, $vn, 0, Vals::$vvals(&values.to_vec()))
+                let program = ctx.uniform_program();
+                set_uniform(ctx, program, location, $vn, 0, Vals::$vvals(&values.to_vec()))
+            }
+            pub(super) fn $pvgl(&mut self, ctx: &mut Context, program: u32, location: i32, values: Slice<'_, $vty>) -> GlResult {
+                let program = named(ctx, program)?;
+                set_uniform(ctx, program, location, $vn, 0, Vals::$vvals(&values.to_vec()))
             } )*
             $( pub(super) fn $mgl(&mut self, ctx: &mut Context, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
-                set_matrix(ctx, location, transpose, $mn, &values.to_vec())
+                let program = ctx.uniform_program();
+                set_matrix(ctx, program, location, transpose, $mn, &values.to_vec())
+            }
+            pub(super) fn $pmgl(&mut self, ctx: &mut Context, program: u32, location: i32, transpose: bool, values: Slice<'_, f32>) -> GlResult {
+                let program = named(ctx, program)?;
+                set_matrix(ctx, program, location, transpose, $mn, &values.to_vec())
             } )*
         }
     };
@@ -175,19 +195,19 @@ uniform_setters! {
         glUniform4i: 4, i32, I(x, y, z, w);
     }
     vectors {
-        glUniform1fv: 1, f32, F;
-        glUniform2fv: 2, f32, F;
-        glUniform3fv: 3, f32, F;
-        glUniform4fv: 4, f32, F;
-        glUniform1iv: 1, i32, I;
-        glUniform2iv: 2, i32, I;
-        glUniform3iv: 3, i32, I;
-        glUniform4iv: 4, i32, I;
+        glUniform1fv / glProgramUniform1fvEXT: 1, f32, F;
+        glUniform2fv / glProgramUniform2fvEXT: 2, f32, F;
+        glUniform3fv / glProgramUniform3fvEXT: 3, f32, F;
+        glUniform4fv / glProgramUniform4fvEXT: 4, f32, F;
+        glUniform1iv / glProgramUniform1ivEXT: 1, i32, I;
+        glUniform2iv / glProgramUniform2ivEXT: 2, i32, I;
+        glUniform3iv / glProgramUniform3ivEXT: 3, i32, I;
+        glUniform4iv / glProgramUniform4ivEXT: 4, i32, I;
     }
     matrices {
-        glUniformMatrix2fv: 2;
-        glUniformMatrix3fv: 3;
-        glUniformMatrix4fv: 4;
+        glUniformMatrix2fv / glProgramUniformMatrix2fvEXT: 2;
+        glUniformMatrix3fv / glProgramUniformMatrix3fvEXT: 3;
+        glUniformMatrix4fv / glProgramUniformMatrix4fvEXT: 4;
     }
 }
 

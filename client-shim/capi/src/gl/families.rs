@@ -262,6 +262,7 @@ pub mod names {
         glGenRenderbuffers;
         glGenTextures;
         glGenQueriesEXT;
+        glGenProgramPipelinesEXT;
     }
 }
 
@@ -273,6 +274,7 @@ pub mod delete {
         glDeleteRenderbuffers;
         glDeleteTextures;
         glDeleteQueriesEXT;
+        glDeleteProgramPipelinesEXT;
     }
 }
 
@@ -305,6 +307,7 @@ pub mod get_arrays {
         glGetQueryObjecti64vEXT(id: GLuint, pname: GLenum) -> GLint64;
         glGetQueryObjectui64vEXT(id: GLuint, pname: GLenum) -> GLuint64;
         glGetInteger64vEXT(pname: GLenum) -> GLint64;
+        glGetProgramPipelineivEXT(pipeline: GLuint, pname: GLenum) -> GLint;
     }
 }
 
@@ -315,6 +318,7 @@ pub mod get_strings {
         glGetProgramInfoLog(program);
         glGetShaderInfoLog(shader);
         glGetShaderSource(shader);
+        glGetProgramPipelineInfoLogEXT(pipeline);
     }
 }
 

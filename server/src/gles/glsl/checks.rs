@@ -20,6 +20,8 @@ const DERIVATIVES: [&str; 3] = ["dFdx", "dFdy", "fwidth"];
 pub struct Facts {
     /// Precision of each float or int uniform.
     pub uniform_precisions: HashMap<String, ast::PrecisionQualifierData>,
+    /// Precision of each varying.
+    pub varying_precisions: HashMap<String, ast::PrecisionQualifierData>,
     /// Every variable name the shader's functions read or write.
     pub used: HashSet<String>,
     /// Built-in variables declared `invariant`.
@@ -64,7 +66,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     }
     globals(&parsed.tu, &at)?;
     super::writes::check(stage, &parsed.tu, &at)?;
-    let uniform_precisions = precision::check(stage, &parsed.tu, &at)?;
+    let precisions = precision::check(stage, &parsed.tu, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {
@@ -76,7 +78,12 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
             }
         }
     }
-    Ok(Facts { uniform_precisions, used: calls.variables, invariants })
+    Ok(Facts {
+        uniform_precisions: precisions.uniforms,
+        varying_precisions: precisions.varyings,
+        used: calls.variables,
+        invariants,
+    })
 }
 
 /// `GL_EXT_frag_depth`'s fragment depth output.

@@ -89,7 +89,7 @@ pub fn points_vertex(linked: &Linked) -> Result<naga::Module, String> {
     .unwrap_or_else(|_| Err("internal error: translating the points stage failed".into()))
 }
 
-fn array_suffix(v: &Var) -> String {
+pub(super) fn array_suffix(v: &Var) -> String {
     v.array.map_or(String::new(), |n| format!("[{n}]"))
 }
 
@@ -154,24 +154,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
 /// the same varyings and nothing else): the errors only naga finds, such as types, fail the
 /// compile with the shader's line. What only a real link can judge is left to the link.
 pub(super) fn check_stage(s: Shader) -> Result<Shader, String> {
-    let stand_in = match s.stage {
-        Stage::Vertex => "void main() { gl_FragColor = vec4(0.0); }".to_string(),
-        Stage::Fragment => {
-            let mut src = String::new();
-            for v in &s.varyings {
-                let _ = writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
-            }
-            for (frag, vert) in [("gl_FragCoord", "gl_Position"), ("gl_PointCoord", "gl_PointSize")] {
-                if s.facts.invariants.contains(frag) {
-                    let _ = writeln!(src, "invariant {vert};");
-                }
-            }
-            src.push_str("void main() { gl_Position = vec4(0.0); }");
-            src
-        }
-    };
-    let other_stage = if s.stage == Stage::Vertex { Stage::Fragment } else { Stage::Vertex };
-    let Ok(other) = super::interface::compile_inner(other_stage, &stand_in) else { return Ok(s) };
+    let Ok(other) = super::separate::stand_in(&s) else { return Ok(s) };
     let (vs, fs) = if s.stage == Stage::Vertex { (&s, &other) } else { (&other, &s) };
     let Ok(g) = generate(vs, fs, &HashMap::new(), 1024) else { return Ok(s) };
     let (src, placed) = match s.stage {

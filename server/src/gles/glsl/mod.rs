@@ -16,6 +16,7 @@
 //! | `interface` | lifting attributes, varyings and uniforms out of the AST; ES restrictions |
 //! | `rewrite` | the AST rewrite to Vulkan-flavoured GLSL |
 //! | `link` | the program-wide uniform block, locations, generated `main`s |
+//! | `separate` | one-stage programs, and two programs' stages linked into one executable |
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
 mod checks;
@@ -25,6 +26,7 @@ mod link;
 mod precision;
 mod preprocess;
 mod rewrite;
+mod separate;
 mod translate;
 mod variants;
 mod writes;
@@ -32,6 +34,7 @@ mod writes;
 use glsl_lang::ast::{self, TypeSpecifierNonArrayData as T};
 
 pub use link::{link, points_vertex, Linked, UniformSlot, MAX_VARYING_VECTORS};
+pub use separate::{fragment_uniform_name, interfaces_match, link_alone, rename_uniforms};
 pub use variants::ClipZ;
 
 use super::enums as gl;

@@ -36,18 +36,21 @@ struct Walk<'a> {
     stage: Stage,
     /// Precision of each float or int uniform.
     uniforms: HashMap<String, P>,
+    varyings: HashMap<String, P>,
 }
 
 fn is_int(t: &T) -> bool {
     matches!(t, T::Int | T::IVec2 | T::IVec3 | T::IVec4)
 }
 
-fn is_uniform(q: Option<&ast::TypeQualifier>) -> bool {
+fn is_storage(q: Option<&ast::TypeQualifier>, storage: &ast::StorageQualifierData) -> bool {
     q.is_some_and(|q| {
-        q.qualifiers.iter().any(|s| {
-            matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
-        })
+        q.qualifiers.iter().any(|s| matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == *storage))
     })
+}
+
+fn is_uniform(q: Option<&ast::TypeQualifier>) -> bool {
+    is_storage(q, &ast::StorageQualifierData::Uniform)
 }
 
 impl Walk<'_> {
@@ -97,6 +100,14 @@ impl Walk<'_> {
                 let h = &list.head;
                 let q = h.ty.qualifier.as_ref();
                 let float = self.precision_of(q, &h.ty.ty, h.span)?;
+                if is_storage(q, &ast::StorageQualifierData::Varying) {
+                    if let Some(prec) = &float {
+                        let names = h.name.iter().chain(list.tail.iter().map(|t| &t.ident.ident));
+                        for n in names {
+                            self.varyings.insert(n.0.to_string(), prec.clone());
+                        }
+                    }
+                }
                 if is_uniform(q) {
                     let int_default = if self.stage == Stage::Vertex { P::High } else { P::Medium };
                     let prec =
@@ -177,12 +188,20 @@ impl Walk<'_> {
     }
 }
 
-/// Checks the precision rules of one shader; returns the precision of each float or int
-/// uniform (a uniform both stages use must have the same precision in both).
-pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Result<HashMap<String, P>, String> {
+/// The precisions linking compares across stages.
+pub(super) struct Precisions {
+    /// Of each float or int uniform (a uniform both stages use must have the same precision
+    /// in both).
+    pub(super) uniforms: HashMap<String, P>,
+    /// Of each varying (`GL_EXT_separate_shader_objects` matches them across programs).
+    pub(super) varyings: HashMap<String, P>,
+}
+
+/// Checks the precision rules of one shader; returns the precisions linking compares.
+pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Result<Precisions, String> {
     // The vertex language's default float precision is highp.
     let global = if stage == Stage::Vertex { Some(P::High) } else { None };
-    let mut w = Walk { scopes: vec![global], at, stage, uniforms: HashMap::new() };
+    let mut w = Walk { scopes: vec![global], at, stage, uniforms: HashMap::new(), varyings: HashMap::new() };
     let mut prototypes: HashMap<String, Option<P>> = HashMap::new();
     for decl in &tu.0 {
         match &decl.content {
@@ -209,5 +228,5 @@ pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Resu
             _ => {}
         }
     }
-    Ok(w.uniforms)
+    Ok(Precisions { uniforms: w.uniforms, varyings: w.varyings })
 }

@@ -28,6 +28,10 @@ pub(super) const EXT_BLEND_FUNC_EXTENDED: &str = "GL_EXT_blend_func_extended";
 /// `samplerExternalOES`, sampled with `texture2D` and `texture2DProj`.
 pub(super) const OES_EGL_IMAGE_EXTERNAL: &str = "GL_OES_EGL_image_external";
 
+/// Program pipelines. GLSL ES 1.00 gains nothing from it: the directive is accepted and the
+/// macro defined.
+pub(super) const EXT_SEPARATE_SHADER_OBJECTS: &str = "GL_EXT_separate_shader_objects";
+
 /// How the parser is shown `samplerExternalOES`, which it does not know: as a sampler type
 /// GLSL ES 1.00 reserves (so no ES 1.00 shader names it itself), padded to the same length so
 /// that every column stays where it was.
@@ -58,6 +62,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_DRAW_BUFFERS), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_BLEND_FUNC_EXTENDED), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(OES_EGL_IMAGE_EXTERNAL), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_SEPARATE_SHADER_OBJECTS), vec![]));
     r
 });
 
@@ -131,7 +136,7 @@ fn extension_directive(
         enabled.draw_instanced = behavior != "disable";
         return Ok(());
     }
-    if name == EXT_DRAW_BUFFERS {
+    if name == EXT_DRAW_BUFFERS || name == EXT_SEPARATE_SHADER_OBJECTS {
         return Ok(());
     }
     if name == EXT_BLEND_FUNC_EXTENDED {

@@ -116,7 +116,7 @@ pub struct DrawSpec<'a> {
     /// stage reading `gl_FragCoord`).
     pub fs: Option<wgpu::ShaderModule>,
     /// Uniform block bytes.
-    pub uniforms: &'a [u8],
+    pub uniforms: std::borrow::Cow<'a, [u8]>,
     /// Per sampler: texture view, its uid, sampling state, and whether the image cannot be
     /// filtered (depth, or float without `FLOAT32_FILTERABLE`) (`None`: incomplete, sample black).
     pub textures: Vec<Option<(wgpu::TextureView, u64, SamplerState, bool)>>,

@@ -115,7 +115,7 @@ impl Renderer {
         // uploads and empties the staging area, so this draw's data must go in after that.
         self.pass_for(target);
         let uniform =
-            (!spec.uniforms.is_empty()).then(|| offset_of(&mut self.staging, spec.uniforms, self.align) as u32);
+            (!spec.uniforms.is_empty()).then(|| offset_of(&mut self.staging, &spec.uniforms, self.align) as u32);
         let mut textures = Vec::with_capacity(spec.textures.len());
         for (i, t) in spec.textures.iter().enumerate() {
             let cube = spec.program.info.samplers.get(i).is_some_and(|s| s.0 == super::super::glsl::Ty::SamplerCube);
