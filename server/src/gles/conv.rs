@@ -558,7 +558,8 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
         }
     };
     let wrap = |w: u32| match w {
-        CLAMP_TO_EDGE => wgpu::AddressMode::ClampToEdge,
+        // GL_EXT_texture_mirror_clamp_to_edge: the shader takes the coordinate's magnitude.
+        CLAMP_TO_EDGE | MIRROR_CLAMP_TO_EDGE_EXT => wgpu::AddressMode::ClampToEdge,
         MIRRORED_REPEAT => wgpu::AddressMode::MirrorRepeat,
         _ => wgpu::AddressMode::Repeat,
     };

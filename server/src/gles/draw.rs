@@ -3,6 +3,8 @@
 //! ([`DrawSpec`]), every read checked against the CPU shadows of the buffers involved, and the
 //! plan is then lowered onto the renderer's open pass.
 
+use std::borrow::Cow;
+
 use strata_protocol::Blob;
 
 use super::context::{Context, StencilFace};
@@ -17,6 +19,7 @@ use super::indices::{index_values, plan_indices, robust_order, IndexPlan, Indice
 use super::programs::LinkedProgram;
 use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
 use super::surface::ReversedZ;
+use super::textures::SamplerState;
 use super::GlesExecutor;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.
@@ -204,6 +207,25 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
     }
 }
 
+/// The uniform block with each sampler's `GL_MIRROR_CLAMP_TO_EDGE_EXT` flags set where its
+/// texture wraps so (`glsl::link`'s wrap offsets); copied only where one does.
+fn with_wrap_flags<'c>(
+    mut data: Cow<'c, [u8]>,
+    textures: &[Option<(wgpu::TextureView, u64, SamplerState, bool)>],
+    offsets: &[u32],
+) -> Cow<'c, [u8]> {
+    for (t, &at) in textures.iter().zip(offsets) {
+        let Some((_, _, sampler, _)) = t else { continue };
+        for (axis, on) in sampler.mirror_clamp().into_iter().enumerate() {
+            let at = at as usize + 4 * axis;
+            if let Some(flag) = on.then(|| data.to_mut().get_mut(at..at + 4)).flatten() {
+                flag.copy_from_slice(&1.0f32.to_ne_bytes());
+            }
+        }
+    }
+    data
+}
+
 /// Which instances one planned draw covers: points draw each instance on its own (`instance`);
 /// other primitives draw all `instances` at once.
 #[derive(Clone, Copy)]
@@ -274,7 +296,8 @@ fn plan_draw<'c>(
             }
             t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))
         })
-        .collect();
+        .collect::<Vec<_>>();
+    let uniforms = with_wrap_flags(exe.data, &textures, &program.info.wrap_offsets);
     // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
     if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
         return Err(GlError::InvalidOperation);
@@ -310,7 +333,7 @@ fn plan_draw<'c>(
         vs: program.vs.clone(),
         fs: None,
         program,
-        uniforms: exe.data,
+        uniforms,
         textures,
         inputs,
         index,

@@ -202,6 +202,8 @@ pub const LINEAR_MIPMAP_LINEAR: u32 = 0x2703;
 pub const REPEAT: u32 = 0x2901;
 pub const CLAMP_TO_EDGE: u32 = 0x812F;
 pub const MIRRORED_REPEAT: u32 = 0x8370;
+/// `GL_MIRROR_CLAMP_TO_EDGE_EXT` (`GL_EXT_texture_mirror_clamp_to_edge`).
+pub const MIRROR_CLAMP_TO_EDGE_EXT: u32 = 0x8743;
 pub const TEXTURE0: u32 = 0x84C0;
 
 // Shaders and programs.

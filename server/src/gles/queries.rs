@@ -24,7 +24,7 @@ GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_rever
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
 GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness \
 GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buffer_access_behavior GL_NV_read_depth GL_NV_read_stencil GL_NV_read_depth_stencil GL_OES_depth_texture_cube_map \
-GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects";
+GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects GL_EXT_texture_mirror_clamp_to_edge";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack

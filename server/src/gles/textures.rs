@@ -53,6 +53,12 @@ impl SamplerState {
         !matches!(self.min, NEAREST | LINEAR)
     }
 
+    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s and t: the sampler clamps to the edge and
+    /// the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
+    pub fn mirror_clamp(&self) -> [bool; 2] {
+        [self.wrap_s == MIRROR_CLAMP_TO_EDGE_EXT, self.wrap_t == MIRROR_CLAMP_TO_EDGE_EXT]
+    }
+
     /// Whether either filter interpolates between texels or levels.
     pub fn filters_linearly(&self) -> bool {
         self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
@@ -150,7 +156,9 @@ fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult
                 | LINEAR_MIPMAP_LINEAR
         ),
         TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
-        TEXTURE_WRAP_S | TEXTURE_WRAP_T => matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT),
+        TEXTURE_WRAP_S | TEXTURE_WRAP_T => {
+            matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT | MIRROR_CLAMP_TO_EDGE_EXT)
+        }
         _ => false,
     };
     if !ok {

@@ -44,6 +44,9 @@ pub struct Linked {
     pub block_size: u32,
     /// Sampler uniforms: (type, bind-group binding of the texture; the sampler follows).
     pub samplers: Vec<(Ty, u32)>,
+    /// Per sampler: the block offset of its wrap flags, a `vec4` whose x and y are 1.0 where
+    /// s and t wrap by `GL_MIRROR_CLAMP_TO_EDGE_EXT` (the draw writes them; see [`WRAP_FNS`]).
+    pub wrap_offsets: Vec<u32>,
     /// The vertex stage of `GL_POINTS` draws, as GLSL (parsed on first use by
     /// [`points_vertex`]): one instance per point, four vertices per instance, expanded to a
     /// square of `gl_PointSize` pixels with `gl_PointCoord` for the fragment stage.
@@ -133,7 +136,15 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         .map_err(|e| format!("fragment shader:\n{e}"))?;
     let reversed_fragment_source = super::variants::reversed_fragment_source(&g.fsrc, g.fs_first_line);
     let Generated {
-        vsrc: vertex_source, attributes, uniforms, block_size, samplers, points_source, point_input, ..
+        vsrc: vertex_source,
+        attributes,
+        uniforms,
+        block_size,
+        samplers,
+        wrap_offsets,
+        points_source,
+        point_input,
+        ..
     } = g;
     Ok(Linked {
         vertex,
@@ -142,6 +153,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         uniforms,
         block_size,
         samplers,
+        wrap_offsets,
         points_source,
         vertex_source,
         reversed_fragment_source,
@@ -179,6 +191,7 @@ struct Generated {
     uniforms: Vec<UniformSlot>,
     block_size: u32,
     samplers: Vec<(Ty, u32)>,
+    wrap_offsets: Vec<u32>,
     points_source: String,
     point_input: u32,
 }
@@ -248,10 +261,17 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         });
         offset = offset.checked_add(size).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
     }
-    let block_size = offset.div_ceil(16) * 16;
     if samplers.len() > MAX_SAMPLERS {
         return Err(format!("error: more than {MAX_SAMPLERS} samplers declared"));
     }
+    // Each sampler's wrap flags, after the uniforms.
+    let mut wrap_offsets = Vec::with_capacity(samplers.len());
+    for _ in &samplers {
+        offset = offset.div_ceil(16) * 16;
+        wrap_offsets.push(offset);
+        offset = offset.checked_add(16).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
+    }
+    let block_size = offset.div_ceil(16) * 16;
 
     // Attributes: bound locations first, then the lowest free ones.
     let mut attributes: Vec<(Var, u32)> = Vec::new();
@@ -295,16 +315,17 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             let arr = if u.is_array { format!("[{}]", u.len) } else { String::new() };
             let _ = writeln!(common, "    {} {name}{arr};", u.ty.glsl(true));
         }
+        for name in sampler_names(&uniforms) {
+            let _ = writeln!(common, "    vec4 {name}__w;");
+        }
         common.push_str("};\n");
     }
-    for u in uniforms.iter().filter(|u| u.ty.is_sampler()) {
-        let first = u.sampler.unwrap_or(0);
-        for k in 0..u.len {
-            let binding = samplers[first + k as usize].1;
-            let name = if u.is_array { super::rewrite::sampler_element(&u.name, k) } else { u.name.clone() };
-            let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", u.ty.glsl(true));
-            let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__s;", binding + 1);
-        }
+    if !samplers.is_empty() {
+        common.push_str(WRAP_FNS);
+    }
+    for ((ty, binding), name) in samplers.iter().zip(sampler_names(&uniforms)) {
+        let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", ty.glsl(true));
+        let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__s;", binding + 1);
     }
 
     let mut vsrc = common.clone();
@@ -447,7 +468,34 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         uniforms,
         block_size,
         samplers,
+        wrap_offsets,
         points_source,
         point_input,
     })
 }
+
+/// The name of each sampler, in the order of the program's sampler list: an array's elements
+/// one by one.
+fn sampler_names(uniforms: &[UniformSlot]) -> Vec<String> {
+    let mut names = Vec::new();
+    for u in uniforms.iter().filter(|u| u.ty.is_sampler()) {
+        for k in 0..u.len {
+            names.push(if u.is_array { super::rewrite::sampler_element(&u.name, k) } else { u.name.clone() });
+        }
+    }
+    names
+}
+
+/// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` (the rewrite applies it to
+/// every 2D lookup, with the sampler's flags `w`): where a flag is set, the sampler clamps to
+/// the edge and the coordinate is its magnitude, which mirrors it once exactly, filtering
+/// included. A projective lookup is projected first, and its divisor becomes 1.
+pub(super) const WRAP_FNS: &str = "\
+vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }
+vec3 strata_wrap(vec3 c, vec4 w) {
+    return any(greaterThan(w.xy, vec2(0.5))) ? vec3(strata_wrap(c.xy / c.z, w), 1.0) : c;
+}
+vec4 strata_wrap(vec4 c, vec4 w) {
+    return any(greaterThan(w.xy, vec2(0.5))) ? vec4(strata_wrap(c.xy / c.w, w), c.z, 1.0) : c;
+}
+";

@@ -226,7 +226,7 @@ impl VisitorMut for Rewrite {
                 match split {
                     Some((t, name)) => {
                         let tex = if t == Ty::SamplerCube { T::TextureCube } else { T::Texture2D };
-                        for (ty, suffix) in [(tex, "__t"), (T::Sampler, "__s")] {
+                        for (ty, suffix) in [(tex, "__t"), (T::Sampler, "__s"), (T::Vec4, "__w")] {
                             let spec: ast::TypeSpecifier =
                                 ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
                             let ident: ast::ArrayedIdentifier = ast::ArrayedIdentifierData {
@@ -366,11 +366,28 @@ impl VisitorMut for Rewrite {
                                     (ExprData::Variable(v), true) if self.samplers.contains_key(v.0.as_str()) => {
                                         expanded.push(var(&format!("{}__t", v.0)));
                                         expanded.push(var(&format!("{}__s", v.0)));
+                                        expanded.push(var(&format!("{}__w", v.0)));
                                     }
                                     _ => expanded.push(arg),
                                 }
                             }
                             *args = expanded;
+                        }
+                        // GL_EXT_texture_mirror_clamp_to_edge: a 2D lookup's coordinate passes
+                        // through the sampler's wrap (`link::WRAP_FNS`).
+                        let two_d = matches!(
+                            id.0.as_str(),
+                            "texture2D" | "texture2DProj" | "texture2DLod" | "texture2DProjLod"
+                        );
+                        if let (true, [first, coord, ..]) = (two_d, args.as_mut_slice()) {
+                            if let ExprData::Variable(v) = &first.content {
+                                if self.samplers.get(v.0.as_str()).is_some_and(|t| *t != Ty::SamplerCube) {
+                                    let w = var(&format!("{}__w", v.0));
+                                    let c = std::mem::replace(coord, ExprData::IntConst(0).into());
+                                    let f = FunIdentifierData::Expr(Box::new(var("strata_wrap"))).into();
+                                    *coord = ExprData::FunCall(f, vec![c, w]).into();
+                                }
+                            }
                         }
                         // A vertex shader has no derivatives: ES defines its implicit-LOD
                         // lookups as level 0, so they become explicit-LOD lookups.
