@@ -76,6 +76,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_NV_pixel_buffer_object",
     "GL_EXT_separate_shader_objects",
     "GL_EXT_texture_mirror_clamp_to_edge",
+    "GL_EXT_texture_border_clamp",
+    "GL_OES_texture_border_clamp",
     "GL_EXT_disjoint_timer_query",
     "EGL_KHR_image_base",
     "EGL_KHR_gl_texture_2D_image",

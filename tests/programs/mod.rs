@@ -270,6 +270,7 @@ mod anisotropic;
 mod astc;
 mod base_vertex;
 mod blend_extended;
+mod border_clamp;
 mod cases;
 mod clip_control;
 mod compressed;
@@ -326,6 +327,7 @@ pub fn all() -> Vec<Case> {
     all.extend(draw_buffers::all());
     all.extend(blend_extended::all());
     all.extend(max_level::all());
+    all.extend(border_clamp::all());
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());
     all.extend(program_binary::all());

@@ -511,6 +511,7 @@ gl_modules!(
     separate::scalars,
     separate::arrays,
     separate::matrices,
+    border,
     crate::image::targets,
 );
 
@@ -531,3 +532,6 @@ pub mod program_binary;
 
 /// Program pipelines' programs (`GL_EXT_separate_shader_objects`).
 pub mod separate;
+
+/// Border colours' integer forms (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
+pub mod border;

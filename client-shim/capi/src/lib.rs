@@ -177,6 +177,8 @@ mod tests {
                 ("GL_OES_EGL_image", 2),
                 ("GL_EXT_disjoint_timer_query", 12),
                 ("GL_EXT_separate_shader_objects", 30),
+                ("GL_EXT_texture_border_clamp", 4),
+                ("GL_OES_texture_border_clamp", 4),
             ],
         );
     }
@@ -191,7 +193,8 @@ mod tests {
     }
 
     /// Entry points of an offered extension's section that only an ES 3.0 context can use
-    /// (unsigned and non-square matrix uniforms, which GLSL ES 1.00 has none of), by prefix.
+    /// (unsigned and non-square matrix uniforms, which GLSL ES 1.00 has none of, and sampler
+    /// objects), by prefix.
     const NEED_ES3: &[&str] = &[
         "glProgramUniform1ui",
         "glProgramUniform2ui",
@@ -200,6 +203,9 @@ mod tests {
         "glProgramUniformMatrix2x",
         "glProgramUniformMatrix3x",
         "glProgramUniformMatrix4x",
+        // Sampler objects.
+        "glSamplerParameterI",
+        "glGetSamplerParameterI",
     ];
 
     /// Each extension's section of the Khronos header `header` (under /usr/include) declares
@@ -316,6 +322,8 @@ mod tests {
             "glUseProgramStagesEXT",
             "glProgramUniform4fEXT",
             "glProgramUniformMatrix4fvEXT",
+            "glTexParameterIivEXT",
+            "glGetTexParameterIuivOES",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

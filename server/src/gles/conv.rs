@@ -548,8 +548,11 @@ pub fn float_format(n: i32) -> wgpu::VertexFormat {
     }
 }
 
-/// The wgpu sampler for a texture's GL sampling state.
-pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
+/// The wgpu sampler for a texture's GL sampling state; `white`: the border sampler of
+/// `GL_CLAMP_TO_BORDER_EXT`, whose border is opaque white where the other's is transparent
+/// black (`glsl::link::lookup_helpers` weighs the application's border colour by their
+/// difference).
+pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescriptor<'static> {
     let filter = |f: u32| {
         if matches!(f, LINEAR | LINEAR_MIPMAP_NEAREST | LINEAR_MIPMAP_LINEAR) {
             wgpu::FilterMode::Linear
@@ -560,6 +563,7 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
     let wrap = |w: u32| match w {
         // GL_EXT_texture_mirror_clamp_to_edge: the shader takes the coordinate's magnitude.
         CLAMP_TO_EDGE | MIRROR_CLAMP_TO_EDGE_EXT => wgpu::AddressMode::ClampToEdge,
+        CLAMP_TO_BORDER_EXT => wgpu::AddressMode::ClampToBorder,
         MIRRORED_REPEAT => wgpu::AddressMode::MirrorRepeat,
         _ => wgpu::AddressMode::Repeat,
     };
@@ -584,6 +588,10 @@ pub fn sampler_descriptor(s: SamplerState) -> wgpu::SamplerDescriptor<'static> {
         // wgpu filters anisotropically only with every filter linear: GL's anisotropy with
         // another filter is left out.
         anisotropy_clamp: if all_linear { f32::from_bits(s.anisotropy).round().clamp(1.0, 16.0) as u16 } else { 1 },
-        border_color: None,
+        border_color: s.clamps_to_border().then_some(if white {
+            wgpu::SamplerBorderColor::OpaqueWhite
+        } else {
+            wgpu::SamplerBorderColor::TransparentBlack
+        }),
     }
 }

@@ -14,12 +14,13 @@ use super::conv::{
 };
 use super::enums::*;
 use super::error::{GlError, GlResult};
+use super::formats::{border_color, Storage};
 use super::glsl::Ty;
 use super::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
 use super::programs::LinkedProgram;
 use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
 use super::surface::ReversedZ;
-use super::textures::SamplerState;
+use super::textures::Texture;
 use super::GlesExecutor;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.
@@ -207,19 +208,25 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
     }
 }
 
-/// The uniform block with each sampler's `GL_MIRROR_CLAMP_TO_EDGE_EXT` flags set where its
-/// texture wraps so (`glsl::link`'s wrap offsets); copied only where one does.
-fn with_wrap_flags<'c>(
-    mut data: Cow<'c, [u8]>,
-    textures: &[Option<(wgpu::TextureView, u64, SamplerState, bool)>],
-    offsets: &[u32],
-) -> Cow<'c, [u8]> {
-    for (t, &at) in textures.iter().zip(offsets) {
-        let Some((_, _, sampler, _)) = t else { continue };
-        for (axis, on) in sampler.mirror_clamp().into_iter().enumerate() {
-            let at = at as usize + 4 * axis;
-            if let Some(flag) = on.then(|| data.to_mut().get_mut(at..at + 4)).flatten() {
-                flag.copy_from_slice(&1.0f32.to_ne_bytes());
+/// The uniform block with each sampler's wrap flags and border colour (`glsl::link`'s wrap
+/// offsets) where its texture wraps by `GL_MIRROR_CLAMP_TO_EDGE_EXT` or
+/// `GL_CLAMP_TO_BORDER_EXT`; copied only where one does.
+fn with_sampler_params<'c>(mut data: Cow<'c, [u8]>, bound: &[Option<&Texture>], offsets: &[u32]) -> Cow<'c, [u8]> {
+    for (t, &at) in bound.iter().zip(offsets) {
+        let Some(t) = t else { continue };
+        let [ms, mt] = t.sampler.mirror_clamp();
+        let border = t.sampler.clamps_to_border();
+        if !(ms || mt || border) {
+            continue;
+        }
+        let float = t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float));
+        let color = if border { border_color(t.format, float, t.border) } else { [0.0; 4] };
+        let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
+        let values = [flag(ms), flag(mt), flag(border), 0.0, color[0], color[1], color[2], color[3]];
+        let at = at as usize;
+        if let Some(dst) = data.to_mut().get_mut(at..at + 32) {
+            for (d, v) in dst.chunks_exact_mut(4).zip(values) {
+                d.copy_from_slice(&v.to_ne_bytes());
             }
         }
     }
@@ -278,7 +285,7 @@ fn plan_draw<'c>(
             Err(e) => return Err(e),
         }
     };
-    let textures = program
+    let bound: Vec<Option<&Texture>> = program
         .info
         .samplers
         .iter()
@@ -291,13 +298,14 @@ fn plan_draw<'c>(
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];
             let t = ctx.objects.textures.get(&name)?;
-            if t.target != target.as_gl() || !t.complete() {
-                return None;
-            }
-            t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))
+            (t.target == target.as_gl() && t.complete() && t.gpu.is_some()).then_some(t)
         })
-        .collect::<Vec<_>>();
-    let uniforms = with_wrap_flags(exe.data, &textures, &program.info.wrap_offsets);
+        .collect();
+    let textures = bound
+        .iter()
+        .map(|t| t.and_then(|t| t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))))
+        .collect();
+    let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);
     // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
     if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
         return Err(GlError::InvalidOperation);

@@ -204,6 +204,10 @@ pub const CLAMP_TO_EDGE: u32 = 0x812F;
 pub const MIRRORED_REPEAT: u32 = 0x8370;
 /// `GL_MIRROR_CLAMP_TO_EDGE_EXT` (`GL_EXT_texture_mirror_clamp_to_edge`).
 pub const MIRROR_CLAMP_TO_EDGE_EXT: u32 = 0x8743;
+/// `GL_CLAMP_TO_BORDER_EXT` (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
+pub const CLAMP_TO_BORDER_EXT: u32 = 0x812D;
+/// `GL_TEXTURE_BORDER_COLOR_EXT`.
+pub const TEXTURE_BORDER_COLOR_EXT: u32 = 0x1004;
 pub const TEXTURE0: u32 = 0x84C0;
 
 // Shaders and programs.

@@ -294,6 +294,25 @@ pub fn absent_channels(f: u32) -> wgpu::ColorWrites {
     absent
 }
 
+/// The border colour (`GL_EXT_texture_border_clamp`) a texture of internal format `f` shows:
+/// `c` as a texel of that format (a colour channel it lacks 0, a lacking alpha 1, luminance
+/// and depth from red, an alpha image black), clamped to [0, 1] unless the image is `float`.
+pub fn border_color(f: u32, float: bool, c: [f32; 4]) -> [f32; 4] {
+    let [r, g, b, a] = if float { c } else { c.map(|v| v.clamp(0.0, 1.0)) };
+    match f {
+        LUMINANCE | LUMINANCE8_OES | DEPTH_COMPONENT | DEPTH_STENCIL_OES => [r, r, r, 1.0],
+        LUMINANCE_ALPHA | LUMINANCE8_ALPHA8_OES | LUMINANCE4_ALPHA4_OES => [r, r, r, a],
+        ALPHA | ALPHA8_OES => [0.0, 0.0, 0.0, a],
+        // ETC1 and the opaque DXT1 formats have no alpha.
+        0x8D64 | 0x83F0 | 0x8C4C => [r, g, b, 1.0],
+        _ => {
+            let bits = color_bits(f);
+            let keep = |i: usize, v: f32, absent: f32| if bits[i] == 0 { absent } else { v };
+            [keep(0, r, 0.0), keep(1, g, 0.0), keep(2, b, 0.0), keep(3, a, 1.0)]
+        }
+    }
+}
+
 /// Whether `f` is a format enum uploads know at all (`MESA_bgra`'s `BGR_EXT` included, which
 /// no type uploads on an ES 2.0 context, as on Mesa).
 fn known_format(f: u32) -> bool {

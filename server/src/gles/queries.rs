@@ -280,8 +280,13 @@ impl GlesExecutor {
                     if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
                 let dual = if self.gpu.dual_source() { " GL_EXT_blend_func_extended" } else { "" };
                 let timers = if self.has_timers() { " GL_EXT_disjoint_timer_query" } else { "" };
+                let border = if self.has_border_clamp() {
+                    " GL_EXT_texture_border_clamp GL_OES_texture_border_clamp"
+                } else {
+                    ""
+                };
                 format!(
-                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}",
+                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}{border}",
                     texture_extensions(self.gpu.features)
                 )
             }
@@ -290,6 +295,12 @@ impl GlesExecutor {
                 return None;
             }
         })
+    }
+
+    /// Whether the device clamps to a border (`GL_EXT_texture_border_clamp` and the OES
+    /// extension; the shader adds the application's colour).
+    pub(super) fn has_border_clamp(&self) -> bool {
+        self.gpu.features.contains(wgpu::Features::ADDRESS_MODE_CLAMP_TO_BORDER)
     }
 
     /// `GL_EXT_disjoint_timer_query`'s 64-bit form of `glGetIntegerv` (which, as on Mesa held

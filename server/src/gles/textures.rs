@@ -59,6 +59,11 @@ impl SamplerState {
         [self.wrap_s == MIRROR_CLAMP_TO_EDGE_EXT, self.wrap_t == MIRROR_CLAMP_TO_EDGE_EXT]
     }
 
+    /// Whether s or t wraps by `GL_CLAMP_TO_BORDER_EXT`.
+    pub fn clamps_to_border(&self) -> bool {
+        self.wrap_s == CLAMP_TO_BORDER_EXT || self.wrap_t == CLAMP_TO_BORDER_EXT
+    }
+
     /// Whether either filter interpolates between texels or levels.
     pub fn filters_linearly(&self) -> bool {
         self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
@@ -80,6 +85,9 @@ pub struct Texture {
     pub format: u32,
     /// Unique id for caches; changes when the image is recreated.
     pub uid: u64,
+    /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
+    /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
+    pub border: [f32; 4],
 }
 
 impl Texture {
@@ -110,8 +118,18 @@ impl Texture {
 /// `GL_REQUIRED_TEXTURE_IMAGE_UNITS_OES`: the units an external texture takes (always 1).
 const REQUIRED_TEXTURE_IMAGE_UNITS_OES: u32 = 0x8D68;
 
+/// Sets `GL_TEXTURE_BORDER_COLOR_EXT` of the texture bound to `target` (four values).
+fn set_border(ctx: &mut Context, target: u32, v: &[f32]) -> GlResult {
+    let target = TextureTarget::from_gl(target)?;
+    let [r, g, b, a] = *v else { return Err(GlError::InvalidValue) };
+    let name = ctx.bindings.texture(target);
+    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    t.border = [r, g, b, a];
+    Ok(())
+}
+
 /// Sets one sampling parameter of the texture bound to `target`.
-fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult {
+fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f32) -> GlResult {
     let target = TextureTarget::from_gl(target)?;
     // GL_OES_EGL_image_external: external textures have no mipmaps and only clamp.
     if target == TextureTarget::External {
@@ -158,6 +176,7 @@ fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult
         TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
         TEXTURE_WRAP_S | TEXTURE_WRAP_T => {
             matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT | MIRROR_CLAMP_TO_EDGE_EXT)
+                || (border && v == CLAMP_TO_BORDER_EXT)
         }
         _ => false,
     };
@@ -178,6 +197,11 @@ fn tex_parameter(ctx: &mut Context, target: u32, pname: u32, v: f32) -> GlResult
 /// answering nothing) for a bad target or name, or when nothing is bound.
 fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
     let bound = TextureTarget::from_gl(target).ok().map(|t| ctx.bindings.texture(t));
+    if pname == TEXTURE_BORDER_COLOR_EXT {
+        if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
+            return t.border.to_vec();
+        }
+    }
     let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
         TEXTURE_MIN_FILTER => Some(s.min as f32),
         TEXTURE_MAG_FILTER => Some(s.mag as f32),
@@ -252,11 +276,11 @@ impl GlesExecutor {
     }
 
     pub(super) fn glTexParameteri(&mut self, ctx: &mut Context, target: u32, pname: u32, param: i32) -> GlResult {
-        tex_parameter(ctx, target, pname, param as f32)
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, param as f32)
     }
 
     pub(super) fn glTexParameterf(&mut self, ctx: &mut Context, target: u32, pname: u32, param: f32) -> GlResult {
-        tex_parameter(ctx, target, pname, param)
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, param)
     }
 
     pub(super) fn glTexParameteriv(
@@ -266,8 +290,13 @@ impl GlesExecutor {
         pname: u32,
         params: Slice<'_, i32>,
     ) -> GlResult {
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            // Normalised as GL converts a signed integer colour (Mesa's arithmetic, in f32).
+            let v: Vec<f32> = params.iter().map(|i| (2.0 * i as f32 + 1.0) * (1.0 / 4_294_967_294.0)).collect();
+            return set_border(ctx, target, &v);
+        }
         let v = params.get(0).ok_or(GlError::InvalidValue)?;
-        tex_parameter(ctx, target, pname, v as f32)
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, v as f32)
     }
 
     pub(super) fn glTexParameterfv(
@@ -277,13 +306,21 @@ impl GlesExecutor {
         pname: u32,
         params: Slice<'_, f32>,
     ) -> GlResult {
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            return set_border(ctx, target, &params.to_vec());
+        }
         let v = params.get(0).ok_or(GlError::InvalidValue)?;
-        tex_parameter(ctx, target, pname, v)
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, v)
     }
 
     pub(super) fn glGetTexParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
+        let v = get_tex_parameter(ctx, target, pname).into_iter();
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            // A colour as normalised integers, clamped to [0, 1] first (as Mesa answers).
+            return v.map(|x| (f64::from(x.clamp(0.0, 1.0)) * 2_147_483_647.0) as i32).collect();
+        }
         // Rounded to the nearest integer, as GL converts a float state to an integer.
-        get_tex_parameter(ctx, target, pname).into_iter().map(|x| x.round() as i32).collect()
+        v.map(|x| x.round() as i32).collect()
     }
 
     pub(super) fn glGetTexParameterfv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {

@@ -33,7 +33,7 @@ pub enum GpuError {
 /// of RGBA32F (`OES_texture_float_linear`), and BC, ETC2 and ASTC block formats (compressed textures
 /// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
 /// 32float` for configs with stencil), timestamps (the composite's own device time), and
-/// depth clip control (`EXT_depth_clamp`).
+/// depth clip control (`EXT_depth_clamp`), and border clamping (`EXT_texture_border_clamp`).
 pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
     .union(wgpu::Features::TIMESTAMP_QUERY)
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
@@ -41,7 +41,8 @@ pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FIL
     .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2)
     .union(wgpu::Features::TEXTURE_COMPRESSION_ASTC)
     .union(wgpu::Features::DEPTH_CLIP_CONTROL)
-    .union(wgpu::Features::DUAL_SOURCE_BLENDING);
+    .union(wgpu::Features::DUAL_SOURCE_BLENDING)
+    .union(wgpu::Features::ADDRESS_MODE_CLAMP_TO_BORDER);
 
 /// The pipelines of `write_depth`, one per depth format.
 type DepthWriters = HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::RenderPipeline)>;

@@ -475,20 +475,20 @@ crate::entry_points! {
         })
     }
 
-    /// One value (every ES 2.0 texture parameter is a scalar).
+    /// One value, or four for `GL_TEXTURE_BORDER_COLOR_EXT`.
     fn glTexParameterfv(target: GLenum, pname: GLenum, params: *const GLfloat) {
         with_gl("glTexParameterfv", (), |gl| {
-            // SAFETY: `params` holds one value.
-            let v = unsafe { values(params, 1) };
+            // SAFETY: `params` holds as many values as `pname` takes.
+            let v = unsafe { values(params, tex_parameter_count(pname)) };
             gl.conn.glTexParameterfv(target, pname, Slice::new(v))
         })
     }
 
-    /// One value (every ES 2.0 texture parameter is a scalar).
+    /// One value, or four for `GL_TEXTURE_BORDER_COLOR_EXT`.
     fn glTexParameteriv(target: GLenum, pname: GLenum, params: *const GLint) {
         with_gl("glTexParameteriv", (), |gl| {
-            // SAFETY: `params` holds one value.
-            let v = unsafe { values(params, 1) };
+            // SAFETY: `params` holds as many values as `pname` takes.
+            let v = unsafe { values(params, tex_parameter_count(pname)) };
             gl.conn.glTexParameteriv(target, pname, Slice::new(v))
         })
     }
@@ -510,5 +510,14 @@ crate::entry_points! {
             // SAFETY: `pixels` has room for the rectangle as the pack state lays it out.
             unsafe { read_pixels(gl, [x, y, width, height], format, ty, pixels, None) }
         })
+    }
+}
+
+/// How many values `glTexParameter{f,i}v` read for `pname`.
+fn tex_parameter_count(pname: GLenum) -> i64 {
+    if pname == 0x1004 {
+        4 // GL_TEXTURE_BORDER_COLOR_EXT
+    } else {
+        1
     }
 }

@@ -190,7 +190,8 @@ fn sampler_arrays_are_one_binding_per_element() {
     .expect("sampler arrays compile");
     let vs = compile(Stage::Vertex, "void main() { gl_Position = vec4(0.0); }").expect("vs");
     let l = link(&vs, &fs, &HashMap::new(), 16).expect("sampler arrays link");
-    assert_eq!(l.samplers, vec![(Ty::Sampler2D, 1), (Ty::Sampler2D, 3)]);
+    // Each element: a texture, a sampler and a border sampler.
+    assert_eq!(l.samplers, vec![(Ty::Sampler2D, 1), (Ty::Sampler2D, 4)]);
     let u = l.uniforms.iter().find(|u| u.name == "array").expect("the array is one uniform");
     assert_eq!((u.len, u.is_array, u.sampler), (2, true, Some(0)));
     compile(Stage::Fragment, "uniform sampler2D a[2];\nvoid main() { gl_FragColor = texture2D(a[2], vec2(0.0)); }")

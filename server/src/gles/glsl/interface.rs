@@ -69,6 +69,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         frag_data: false,
         dual: false,
         has_main: false,
+        lookups: Default::default(),
         log: parsed.warnings.join("\n"),
         source: source.to_string(),
         facts,
@@ -201,9 +202,12 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             }
         }
     }
+    let params = sampler_params.keys().cloned().collect();
     samplers.extend(sampler_params);
     let mut rewrite = Rewrite {
         sampler_fns,
+        sampler_params: params,
+        lookups: Default::default(),
         samplers,
         sampler_arrays,
         bools: shader
@@ -231,6 +235,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
     shader.body.visit_mut(&mut rewrite);
     super::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
+    shader.lookups = std::mem::take(&mut rewrite.lookups);
     shader.frag_depth = rewrite.frag_depth;
     shader.instance_id = rewrite.instance_id;
     shader.frag_data = rewrite.frag_data || rewrite.secondary_data;

@@ -42,10 +42,13 @@ pub struct Linked {
     pub uniforms: Vec<UniformSlot>,
     /// Bytes of the uniform block (0 if none).
     pub block_size: u32,
-    /// Sampler uniforms: (type, bind-group binding of the texture; the sampler follows).
+    /// Sampler uniforms: (type, bind-group binding of the texture; the sampler and the border
+    /// sampler follow).
     pub samplers: Vec<(Ty, u32)>,
     /// Per sampler: the block offset of its wrap flags, a `vec4` whose x and y are 1.0 where
-    /// s and t wrap by `GL_MIRROR_CLAMP_TO_EDGE_EXT` (the draw writes them; see [`WRAP_FNS`]).
+    /// s and t wrap by `GL_MIRROR_CLAMP_TO_EDGE_EXT` and z where either wraps by
+    /// `GL_CLAMP_TO_BORDER_EXT`, followed by its border colour (the draw writes both; see
+    /// [`lookup_helpers`]).
     pub wrap_offsets: Vec<u32>,
     /// The vertex stage of `GL_POINTS` draws, as GLSL (parsed on first use by
     /// [`points_vertex`]): one instance per point, four vertices per instance, expanded to a
@@ -237,7 +240,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             // A sampler array is `len` consecutive samplers, one binding pair each.
             let first = samplers.len();
             for _ in 0..len.min(MAX_SAMPLERS as u32 + 1) {
-                samplers.push((u.ty, 1 + 2 * samplers.len() as u32));
+                samplers.push((u.ty, 1 + 3 * samplers.len() as u32));
             }
             (0, 1, 0, Some(first))
         } else {
@@ -264,12 +267,12 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     if samplers.len() > MAX_SAMPLERS {
         return Err(format!("error: more than {MAX_SAMPLERS} samplers declared"));
     }
-    // Each sampler's wrap flags, after the uniforms.
+    // Each sampler's wrap flags and border colour, after the uniforms.
     let mut wrap_offsets = Vec::with_capacity(samplers.len());
     for _ in &samplers {
         offset = offset.div_ceil(16) * 16;
         wrap_offsets.push(offset);
-        offset = offset.checked_add(16).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
+        offset = offset.checked_add(32).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
     }
     let block_size = offset.div_ceil(16) * 16;
 
@@ -316,7 +319,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             let _ = writeln!(common, "    {} {name}{arr};", u.ty.glsl(true));
         }
         for name in sampler_names(&uniforms) {
-            let _ = writeln!(common, "    vec4 {name}__w;");
+            let _ = writeln!(common, "    vec4 {name}__w;\n    vec4 {name}__c;");
         }
         common.push_str("};\n");
     }
@@ -326,9 +329,11 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     for ((ty, binding), name) in samplers.iter().zip(sampler_names(&uniforms)) {
         let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", ty.glsl(true));
         let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__s;", binding + 1);
+        let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__b;", binding + 2);
     }
 
     let mut vsrc = common.clone();
+    vsrc.push_str(&lookup_helpers(&vs.lookups));
     for (a, loc) in &attributes {
         let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
     }
@@ -391,6 +396,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     ));
 
     let mut fsrc = common;
+    fsrc.push_str(&lookup_helpers(&fs.lookups));
     let mut fs_copy = String::new();
     for v in &fs.varyings {
         let loc = locations.get(v.name.as_str()).copied().unwrap_or(0);
@@ -486,16 +492,69 @@ fn sampler_names(uniforms: &[UniformSlot]) -> Vec<String> {
     names
 }
 
-/// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` (the rewrite applies it to
-/// every 2D lookup, with the sampler's flags `w`): where a flag is set, the sampler clamps to
-/// the edge and the coordinate is its magnitude, which mirrors it once exactly, filtering
-/// included. A projective lookup is projected first, and its divisor becomes 1.
-pub(super) const WRAP_FNS: &str = "\
-vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }
-vec3 strata_wrap(vec3 c, vec4 w) {
-    return any(greaterThan(w.xy, vec2(0.5))) ? vec3(strata_wrap(c.xy / c.z, w), 1.0) : c;
+/// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` for a sampler's flags `w`:
+/// where x or y is set, the sampler clamps to the edge and the coordinate is its magnitude,
+/// which mirrors it once exactly, filtering included.
+pub(super) const WRAP_FNS: &str =
+    "vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }\n";
+
+/// The helpers the rewrite turns 2D lookups into (`Shader::lookups`), one per sampler uniform
+/// and function, and one per function for sampler parameters. Each wraps the coordinate
+/// (`WRAP_FNS`), samples, and where a wrap is `GL_CLAMP_TO_BORDER_EXT` (flag z) adds the
+/// border colour `c` weighted by how much of the filter fell outside the image: the sampler
+/// reads a transparent black border and the border sampler an opaque white one, so the
+/// difference of their alphas is that weight, exactly, for any filter. A uniform's helper
+/// branches on its flags (uniform control flow, so implicit derivatives stay defined), and a
+/// projective lookup with no flag set stays projective; a parameter's helper always samples
+/// twice and projects first.
+pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, String)>) -> String {
+    let mut out = String::new();
+    for (sampler, function) in lookups {
+        let base = function.replace("Proj", "");
+        let coords: &[(&str, &str)] = if function.contains("Proj") {
+            &[("vec3", "c.xy / c.z"), ("vec4", "c.xy / c.w")]
+        } else {
+            &[("vec2", "c")]
+        };
+        // The optional bias of the implicit-level functions, or the level of the Lod ones.
+        let extras: &[(&str, &str)] =
+            if function.contains("Lod") { &[(", float e", ", e")] } else { &[("", ""), (", float e", ", e")] };
+        for (ty, projected) in coords {
+            for (param, arg) in extras {
+                if sampler.is_empty() {
+                    let _ = writeln!(
+                        out,
+                        "vec4 strata_p_{function}(texture2D t, sampler s, sampler b, vec4 w, vec4 border, {ty} c{param}) {{\n\
+                         \x20   vec2 p = strata_wrap({projected}, w);\n\
+                         \x20   vec4 v = {base}(sampler2D(t, s), p{arg});\n\
+                         \x20   return v + border * ((({base}(sampler2D(t, b), p{arg})).a - v.a) * w.z);\n}}"
+                    );
+                    continue;
+                }
+                let (t, s, b, w, c) = (
+                    format!("{sampler}__t"),
+                    format!("{sampler}__s"),
+                    format!("{sampler}__b"),
+                    format!("{sampler}__w"),
+                    format!("{sampler}__c"),
+                );
+                let keep = if function.contains("Proj") {
+                    format!(
+                        "    if ({w}.x + {w}.y + {w}.z == 0.0) {{ return {function}(sampler2D({t}, {s}), c{arg}); }}\n"
+                    )
+                } else {
+                    String::new()
+                };
+                let _ = writeln!(
+                    out,
+                    "vec4 {sampler}__{function}({ty} c{param}) {{\n{keep}\
+                     \x20   vec2 p = strata_wrap({projected}, {w});\n\
+                     \x20   vec4 v = {base}(sampler2D({t}, {s}), p{arg});\n\
+                     \x20   if ({w}.z > 0.5) {{ v += {c} * ({base}(sampler2D({t}, {b}), p{arg}).a - v.a); }}\n\
+                     \x20   return v;\n}}"
+                );
+            }
+        }
+    }
+    out
 }
-vec4 strata_wrap(vec4 c, vec4 w) {
-    return any(greaterThan(w.xy, vec2(0.5))) ? vec4(strata_wrap(c.xy / c.w, w), c.z, 1.0) : c;
-}
-";

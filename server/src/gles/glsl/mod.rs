@@ -254,6 +254,9 @@ pub struct Shader {
     pub dual: bool,
     /// Whether it defines `main` (a program without one fails to link).
     pub has_main: bool,
+    /// The 2D lookups it makes of its sampler uniforms, by (sampler, GLSL 450 function), each
+    /// a call of a generated helper (`link::lookup_helpers`); `""` for a sampler parameter.
+    pub lookups: std::collections::BTreeSet<(String, String)>,
     /// The info log of a successful compile (warnings), empty if none.
     pub log: String,
     /// The source it was compiled from (what a program binary holds).
@@ -305,9 +308,9 @@ mod tests {
         assert_eq!((find("mvp").offset, find("k").offset, find("k").stride), (0, 64, 16));
         assert_eq!(find("flip").offset, 112);
         assert_eq!(find("tint").offset, 128);
-        // The sampler's wrap flags follow the uniforms.
+        // The sampler's wrap flags and border colour follow the uniforms.
         assert_eq!(l.wrap_offsets, vec![144]);
-        assert_eq!(l.block_size, 160);
+        assert_eq!(l.block_size, 176);
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "uv").map(|x| x.1), Some(0));
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "position").map(|x| x.1), Some(1));
         assert_eq!(l.samplers, vec![(Ty::Sampler2D, 1)]);

@@ -17,6 +17,10 @@ pub(super) struct Rewrite {
     pub(super) sampler_fns: HashMap<String, Vec<bool>>,
     /// Sampler uniforms and parameters, by name (an array's elements as `NAME__K`).
     pub(super) samplers: HashMap<String, Ty>,
+    /// The names of sampler parameters (the other samplers are uniforms).
+    pub(super) sampler_params: std::collections::HashSet<String>,
+    /// The 2D lookups made, by (sampler uniform, GLSL 450 function); `""` for a parameter's.
+    pub(super) lookups: std::collections::BTreeSet<(String, String)>,
     /// Sampler array uniforms: their lengths, by name.
     pub(super) sampler_arrays: HashMap<String, u32>,
     /// `mat2` uniforms (naga cannot lay out `matCx2` in std140): stored as `vec4[2]` per matrix;
@@ -183,6 +187,42 @@ pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
     }
 }
 
+/// The parts a sampler is passed to a function as (naga takes no combined samplers): its
+/// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, and its
+/// wrap flags and border colour (`link::lookup_helpers`).
+const SAMPLER_PARTS: [(Option<T>, &str); 5] = [
+    (None, "__t"),
+    (Some(T::Sampler), "__s"),
+    (Some(T::Sampler), "__b"),
+    (Some(T::Vec4), "__w"),
+    (Some(T::Vec4), "__c"),
+];
+
+impl Rewrite {
+    /// Makes a 2D lookup (`id`, already the GLSL 450 function) a call of its generated helper,
+    /// which applies the sampler's wrap flags and border colour: `NAME__FUNCTION(coordinate, …)`
+    /// for a sampler uniform, `strata_p_FUNCTION(parts…, coordinate, …)` for a parameter.
+    fn lookup_helper(&mut self, id: &mut ast::Identifier, args: &mut Vec<ast::Expr>) {
+        let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) else { return };
+        let sampler = v.0.to_string();
+        if self.samplers.get(&sampler).is_none_or(|t| *t == Ty::SamplerCube) {
+            return;
+        }
+        let function = id.0.to_string();
+        let name = if self.sampler_params.contains(&sampler) {
+            let parts = SAMPLER_PARTS.iter().map(|(_, suffix)| var(&format!("{sampler}{suffix}")));
+            args.splice(0..1, parts);
+            self.lookups.insert((String::new(), function.clone()));
+            format!("strata_p_{function}")
+        } else {
+            args.remove(0);
+            self.lookups.insert((sampler.clone(), function.clone()));
+            format!("{sampler}__{function}")
+        };
+        *id = ast::IdentifierData(name.into()).into();
+    }
+}
+
 impl VisitorMut for Rewrite {
     fn visit_full_specified_type(&mut self, t: &mut ast::FullySpecifiedType) -> Visit {
         strip_precision(&mut t.qualifier);
@@ -226,7 +266,9 @@ impl VisitorMut for Rewrite {
                 match split {
                     Some((t, name)) => {
                         let tex = if t == Ty::SamplerCube { T::TextureCube } else { T::Texture2D };
-                        for (ty, suffix) in [(tex, "__t"), (T::Sampler, "__s"), (T::Vec4, "__w")] {
+                        for (ty, suffix) in
+                            SAMPLER_PARTS.iter().map(|(t, sfx)| (t.clone().unwrap_or_else(|| tex.clone()), *sfx))
+                        {
                             let spec: ast::TypeSpecifier =
                                 ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
                             let ident: ast::ArrayedIdentifier = ast::ArrayedIdentifierData {
@@ -364,30 +406,14 @@ impl VisitorMut for Rewrite {
                             {
                                 match (&arg.content, is_sampler) {
                                     (ExprData::Variable(v), true) if self.samplers.contains_key(v.0.as_str()) => {
-                                        expanded.push(var(&format!("{}__t", v.0)));
-                                        expanded.push(var(&format!("{}__s", v.0)));
-                                        expanded.push(var(&format!("{}__w", v.0)));
+                                        for (_, suffix) in SAMPLER_PARTS {
+                                            expanded.push(var(&format!("{}{suffix}", v.0)));
+                                        }
                                     }
                                     _ => expanded.push(arg),
                                 }
                             }
                             *args = expanded;
-                        }
-                        // GL_EXT_texture_mirror_clamp_to_edge: a 2D lookup's coordinate passes
-                        // through the sampler's wrap (`link::WRAP_FNS`).
-                        let two_d = matches!(
-                            id.0.as_str(),
-                            "texture2D" | "texture2DProj" | "texture2DLod" | "texture2DProjLod"
-                        );
-                        if let (true, [first, coord, ..]) = (two_d, args.as_mut_slice()) {
-                            if let ExprData::Variable(v) = &first.content {
-                                if self.samplers.get(v.0.as_str()).is_some_and(|t| *t != Ty::SamplerCube) {
-                                    let w = var(&format!("{}__w", v.0));
-                                    let c = std::mem::replace(coord, ExprData::IntConst(0).into());
-                                    let f = FunIdentifierData::Expr(Box::new(var("strata_wrap"))).into();
-                                    *coord = ExprData::FunCall(f, vec![c, w]).into();
-                                }
-                            }
                         }
                         // A vertex shader has no derivatives: ES defines its implicit-LOD
                         // lookups as level 0, so they become explicit-LOD lookups.
@@ -406,6 +432,7 @@ impl VisitorMut for Rewrite {
                                 args.push(ExprData::FloatConst(0.0).into());
                             }
                             *id = ast::IdentifierData(r.into()).into();
+                            self.lookup_helper(id, args);
                         }
                     }
                 }

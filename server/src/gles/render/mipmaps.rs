@@ -50,13 +50,16 @@ impl Renderer {
             })
             .clone();
         drop(shared);
-        let linear = self.sampler(SamplerState {
-            min: LINEAR,
-            mag: LINEAR,
-            wrap_s: CLAMP_TO_EDGE,
-            wrap_t: CLAMP_TO_EDGE,
-            ..SamplerState::default()
-        });
+        let linear = self.sampler(
+            SamplerState {
+                min: LINEAR,
+                mag: LINEAR,
+                wrap_s: CLAMP_TO_EDGE,
+                wrap_t: CLAMP_TO_EDGE,
+                ..SamplerState::default()
+            },
+            false,
+        );
         let d = &self.gpu.device;
         let mut enc = d.create_command_encoder(&Default::default());
         for layer in 0..layers {

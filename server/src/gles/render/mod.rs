@@ -147,7 +147,7 @@ pub struct Renderer {
     gpu: Arc<Gpu>,
     pipelines: HashMap<PipelineKey, wgpu::RenderPipeline>,
     clear_pipelines: HashMap<ClearKey, wgpu::RenderPipeline>,
-    samplers: HashMap<SamplerState, wgpu::Sampler>,
+    samplers: HashMap<(SamplerState, bool), wgpu::Sampler>,
     /// Pipelines created because none matched.
     pub pipeline_misses: u64,
     /// Render passes submitted.

@@ -17,7 +17,7 @@ pub(super) enum Bind {
         program: Arc<LinkedProgram>,
         layout: wgpu::BindGroupLayout,
         uniform: Option<u32>,
-        textures: Vec<(wgpu::TextureView, u64, wgpu::Sampler, SamplerState)>,
+        textures: Vec<(wgpu::TextureView, u64, wgpu::Sampler, SamplerState, wgpu::Sampler)>,
     },
     /// A clear quad's parameters, at an offset into the ring.
     Clear(u32),
@@ -129,12 +129,12 @@ impl Renderer {
                     } else {
                         *state
                     };
-                    textures.push((view.clone(), *uid, self.sampler(state), state))
+                    textures.push((view.clone(), *uid, self.sampler(state, false), state, self.sampler(state, true)))
                 }
                 None => {
                     let view = if cube { self.fixed.black_cube.clone() } else { self.fixed.black_2d.clone() };
                     let s = SamplerState::default();
-                    textures.push((view, u64::MAX - u64::from(cube), self.sampler(s), s));
+                    textures.push((view, u64::MAX - u64::from(cube), self.sampler(s, false), s, self.sampler(s, true)));
                 }
             }
         }
@@ -281,6 +281,10 @@ impl Renderer {
                                 entries.push(wgpu::BindGroupEntry {
                                     binding: b + 1,
                                     resource: wgpu::BindingResource::Sampler(&t.2),
+                                });
+                                entries.push(wgpu::BindGroupEntry {
+                                    binding: b + 2,
+                                    resource: wgpu::BindingResource::Sampler(&t.4),
                                 });
                             }
                             let g = d.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -52,28 +52,31 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
             },
             count: None,
         });
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: b + 1,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Sampler(if depth {
-                wgpu::SamplerBindingType::NonFiltering
-            } else {
-                wgpu::SamplerBindingType::Filtering
-            }),
-            count: None,
-        });
+        // The sampler, and the border sampler.
+        for binding in [b + 1, b + 2] {
+            entries.push(wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Sampler(if depth {
+                    wgpu::SamplerBindingType::NonFiltering
+                } else {
+                    wgpu::SamplerBindingType::Filtering
+                }),
+                count: None,
+            });
+        }
     }
     entries
 }
 
 impl Renderer {
     /// The sampler for `s`, cached.
-    pub(super) fn sampler(&mut self, s: SamplerState) -> wgpu::Sampler {
-        if let Some(x) = self.samplers.get(&s) {
+    pub(super) fn sampler(&mut self, s: SamplerState, white: bool) -> wgpu::Sampler {
+        if let Some(x) = self.samplers.get(&(s, white)) {
             return x.clone();
         }
-        let x = self.gpu.device.create_sampler(&sampler_descriptor(s));
-        self.samplers.insert(s, x.clone());
+        let x = self.gpu.device.create_sampler(&sampler_descriptor(s, white));
+        self.samplers.insert((s, white), x.clone());
         x
     }
 
