@@ -281,6 +281,7 @@ mod derivatives;
 mod draw_buffers;
 mod frag_depth;
 mod framebuffer_ext;
+mod half_float_color;
 pub mod harness;
 mod instanced;
 mod max_level;
@@ -327,6 +328,7 @@ pub fn all() -> Vec<Case> {
     all.extend(draw_buffers::all());
     all.extend(blend_extended::all());
     all.extend(max_level::all());
+    all.extend(half_float_color::all());
     all.extend(border_clamp::all());
     all.extend(mesa_bgra::all());
     all.extend(occlusion::all());

@@ -74,6 +74,10 @@ impl GlesExecutor {
         if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
             return Err(GlError::InvalidValue);
         }
+        // A half-float read buffer (GL_EXT_color_buffer_half_float) copies into no 8-bit image.
+        if src.half_float() {
+            return Err(GlError::InvalidOperation);
+        }
         // A sized colour format (GL_OES_required_internalformat) copies as its unsized one where
         // its components are as wide as the framebuffer's (always 8 bits here); depth formats,
         // narrower ones and the sized formats of extensions not offered are

@@ -206,6 +206,17 @@ pub const MIRRORED_REPEAT: u32 = 0x8370;
 pub const MIRROR_CLAMP_TO_EDGE_EXT: u32 = 0x8743;
 /// `GL_CLAMP_TO_BORDER_EXT` (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
 pub const CLAMP_TO_BORDER_EXT: u32 = 0x812D;
+/// `GL_RGBA16F_EXT` (`GL_EXT_color_buffer_half_float` renderbuffers).
+pub const RGBA16F_EXT: u32 = 0x881A;
+/// `GL_RGB16F_EXT`.
+pub const RGB16F_EXT: u32 = 0x881B;
+/// `GL_RG16F_EXT`.
+pub const RG16F_EXT: u32 = 0x822F;
+/// `GL_R16F_EXT`.
+pub const R16F_EXT: u32 = 0x822D;
+/// `GL_HALF_FLOAT`: the type Mesa names as the implementation read type of a half-float
+/// colour buffer (the ES 3.0 enum, not `GL_HALF_FLOAT_OES`).
+pub const HALF_FLOAT: u32 = 0x140B;
 /// `GL_TEXTURE_BORDER_COLOR_EXT`.
 pub const TEXTURE_BORDER_COLOR_EXT: u32 = 0x1004;
 pub const TEXTURE0: u32 = 0x84C0;

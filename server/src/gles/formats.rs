@@ -52,10 +52,12 @@ impl Storage {
         matches!(self, Storage::Depth | Storage::DepthStencil)
     }
 
-    /// Whether a framebuffer can render into it as its colour attachment (ES 2.0 offers no
-    /// float colour buffers, and compressed images are never renderable).
-    pub fn color_renderable(self) -> bool {
-        self == Storage::Rgba8
+    /// Whether a framebuffer can render into it as its colour attachment, when its format is
+    /// `f` and its data came as `GL_HALF_FLOAT_OES` (`half`): 8-bit images, and half-float
+    /// RGBA, RGB, RG and RED ones (`GL_EXT_color_buffer_half_float`; not luminance or alpha,
+    /// nor 2_10_10_10 images, as on Mesa); compressed images never.
+    pub fn color_renderable(self, f: u32, half: bool) -> bool {
+        self == Storage::Rgba8 || (self == Storage::Half && half && matches!(f, RGBA | RGB | RG_EXT | RED_EXT))
     }
 
     /// Whether the image can be a render attachment in wgpu at all.
@@ -269,11 +271,30 @@ pub fn is_color_format(f: u32) -> bool {
 /// none (RGB and luminance have no alpha bits; `GL_EXT_texture_rg`'s RED and RG no blue).
 pub fn color_bits(f: u32) -> [i32; 4] {
     match f {
+        RGBA16F_EXT => [16; 4],
+        RGB16F_EXT => [16, 16, 16, 0],
+        RG16F_EXT => [16, 16, 0, 0],
+        R16F_EXT => [16, 0, 0, 0],
         RGB | LUMINANCE | RGB565 | RGB8_OES => [8, 8, 8, 0],
         RED_EXT | R8_EXT => [8, 0, 0, 0],
         RG_EXT | RG8_EXT => [8, 8, 0, 0],
         _ => [8; 4],
     }
+}
+
+/// The bits of a colour texture of format `f` stored as `storage`: half-float images hold 16
+/// per channel their format has.
+pub fn texture_color_bits(f: u32, storage: Option<Storage>) -> [i32; 4] {
+    let bits = color_bits(f);
+    match storage {
+        Some(Storage::Half) => bits.map(|b| if b == 0 { 0 } else { 16 }),
+        _ => bits,
+    }
+}
+
+/// Whether `f` is a half-float renderbuffer format (`GL_EXT_color_buffer_half_float`).
+pub fn is_half_renderbuffer(f: u32) -> bool {
+    matches!(f, RGBA16F_EXT | RGB16F_EXT | RG16F_EXT | R16F_EXT)
 }
 
 /// The channels a colour attachment of format `f` lacks (see [`color_bits`]); luminance is

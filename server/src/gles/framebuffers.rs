@@ -7,8 +7,8 @@ use super::context::{Context, MAX_DRAW_BUFFERS, MAX_TEXTURE};
 use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
-use super::formats::{absent_channels, color_bits};
-use super::render::{Target, COLOR_FORMAT};
+use super::formats::{absent_channels, color_bits, is_half_renderbuffer};
+use super::render::{Target, COLOR_FORMAT, HALF_FORMAT};
 use super::teximage::MAX_LEVEL;
 use super::GlesExecutor;
 use crate::quota::Kind;
@@ -102,6 +102,7 @@ impl Renderbuffer {
     /// Whether it holds colour: a colour format of its own, or an EGLImage's colour image.
     pub fn is_color(&self) -> bool {
         matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT)
+            || is_half_renderbuffer(self.format)
             || (super::formats::is_color_format(self.format) && self.gpu.is_some())
     }
 }
@@ -163,6 +164,7 @@ impl GlesExecutor {
         }
         let format = match internalformat {
             RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT => COLOR_FORMAT,
+            f if is_half_renderbuffer(f) => HALF_FORMAT,
             DEPTH_COMPONENT16 => wgpu::TextureFormat::Depth16Unorm,
             DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
             DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
@@ -182,6 +184,7 @@ impl GlesExecutor {
         let texel = match format {
             wgpu::TextureFormat::Stencil8 => 1,
             wgpu::TextureFormat::Depth16Unorm => 2,
+            HALF_FORMAT => 8,
             _ => 4,
         };
         let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
@@ -197,7 +200,7 @@ impl GlesExecutor {
         let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
         let absent = absent_channels(internalformat);
-        if !absent.is_empty() && format == COLOR_FORMAT && width > 0 && height > 0 {
+        if !absent.is_empty() && matches!(format, COLOR_FORMAT | HALF_FORMAT) && width > 0 && height > 0 {
             // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
             let color = (tex.clone(), view.clone());
@@ -411,7 +414,8 @@ impl GlesExecutor {
 /// their formats name (none before storage is given).
 fn renderbuffer_bits(format: u32) -> [i32; 6] {
     match format {
-        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT => {
+        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT | RGBA16F_EXT | RGB16F_EXT | RG16F_EXT
+        | R16F_EXT => {
             let [r, g, b, a] = color_bits(format);
             [r, g, b, a, 0, 0]
         }

@@ -49,6 +49,10 @@ enum ReadFormat {
     R8,
     /// `GL_RG_EXT`, `GL_UNSIGNED_BYTE` (`GL_EXT_texture_rg`): red and green.
     Rg8,
+    /// `GL_RGBA`, `GL_RG_EXT` or `GL_RED_EXT` as `GL_HALF_FLOAT`: the first this many channels
+    /// of a half-float colour buffer (`GL_EXT_color_buffer_half_float`), its implementation
+    /// read format.
+    Half(usize),
 }
 
 impl ReadFormat {
@@ -61,6 +65,9 @@ impl ReadFormat {
             (BGRA_EXT, UNSIGNED_SHORT_1_5_5_5_REV_EXT) => Ok(ReadFormat::Bgra1555Rev),
             (RED_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::R8),
             (RG_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Rg8),
+            (RGBA, HALF_FLOAT) => Ok(ReadFormat::Half(4)),
+            (RG_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(2)),
+            (RED_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(1)),
             _ => {
                 let format_known =
                     matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT);
@@ -84,6 +91,7 @@ impl ReadFormat {
             ReadFormat::Rgba8 | ReadFormat::Bgra8 => 4,
             ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev | ReadFormat::Rg8 => 2,
             ReadFormat::R8 => 1,
+            ReadFormat::Half(n) => 2 * n,
         }
     }
 
@@ -99,6 +107,8 @@ impl ReadFormat {
             ReadFormat::Bgra8 => out.copy_from_slice(&[p[2], p[1], p[0], p[3]]),
             ReadFormat::R8 => out.copy_from_slice(&p[..1]),
             ReadFormat::Rg8 => out.copy_from_slice(&p[..2]),
+            // Half-float pixels are written from the image's own bytes (`glReadPixels`).
+            ReadFormat::Half(_) => {}
             ReadFormat::Bgra4444Rev => {
                 let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
                 out.copy_from_slice(&v.to_ne_bytes());
@@ -151,6 +161,21 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
         };
+        // GL_HALF_FLOAT reads only the implementation read format of a half-float buffer.
+        if let Read::Color(ReadFormat::Half(n)) = how {
+            let absent = target.absent;
+            let channels = if absent.contains(wgpu::ColorWrites::GREEN) {
+                1
+            } else if absent.contains(wgpu::ColorWrites::BLUE) {
+                2
+            } else {
+                4
+            };
+            if !target.half_float() || n != channels {
+                ctx.record(GlError::InvalidOperation);
+                return Bytes(Vec::new());
+            }
+        }
         let bpp = match how {
             Read::Color(c) => c.bytes(),
             Read::Depth(d) => {
@@ -184,6 +209,16 @@ impl GlesExecutor {
             let rect = [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32];
             let rw = rect[2] as usize;
             match how {
+                Read::Color(ReadFormat::Half(_)) => {
+                    if let Some(px) = self.r.read_half(&target, rect) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            for (i, p) in px[r * rw * 8..(r + 1) * rw * 8].chunks_exact(8).enumerate() {
+                                out[dst + i * bpp..dst + (i + 1) * bpp].copy_from_slice(&p[..bpp]);
+                            }
+                        }
+                    }
+                }
                 Read::Color(how) => {
                     if let Some(px) = self.r.read_rgba(&target, rect) {
                         for r in 0..rect[3] as usize {

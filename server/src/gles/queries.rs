@@ -7,7 +7,7 @@ use super::context::{
 use super::conv::Capability;
 use super::enums::*;
 use super::error::GlError;
-use super::formats::{color_bits, offered_compressed};
+use super::formats::{color_bits, offered_compressed, texture_color_bits};
 use super::framebuffers::Attachment;
 use super::GlesExecutor;
 use crate::gpu::Gpu;
@@ -24,7 +24,7 @@ GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_rever
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
 GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness \
 GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buffer_access_behavior GL_NV_read_depth GL_NV_read_stencil GL_NV_read_depth_stencil GL_OES_depth_texture_cube_map \
-GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects GL_EXT_texture_mirror_clamp_to_edge";
+GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects GL_EXT_texture_mirror_clamp_to_edge GL_EXT_color_buffer_half_float";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -68,12 +68,17 @@ fn framebuffer_bits(ctx: &Context) -> [i32; 6] {
         let c = &ctx.config;
         return [8, 8, 8, c.rgba[3], c.depth, c.stencil];
     };
-    // Colour is stored as RGBA8 whatever the format; a format without alpha reads alpha 1.
+    // Colour is stored as RGBA8 (or RGBA16F) whatever the format; a format without alpha
+    // reads alpha 1.
     // The first colour attachment's, as Mesa answers.
     let first = fb.colors.iter().find(|a| **a != Attachment::None).copied().unwrap_or_default();
     let color = match first {
         Attachment::None => [0; 4],
-        Attachment::Texture { name, .. } => ctx.objects.textures.get(&name).map_or([0; 4], |t| color_bits(t.format)),
+        Attachment::Texture { name, .. } => ctx
+            .objects
+            .textures
+            .get(&name)
+            .map_or([0; 4], |t| texture_color_bits(t.format, t.gpu.as_ref().map(|i| i.storage))),
         Attachment::Renderbuffer(name) => match ctx.objects.renderbuffers.get(&name).map(|r| r.format) {
             Some(0) | None => [0; 4],
             Some(f) => color_bits(f),
@@ -209,13 +214,14 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         SUBPIXEL_BITS => i(8),
         // Every surface and framebuffer object is single-sampled.
         SAMPLE_BUFFERS | SAMPLES => i(0),
-        // RGBA, or for GL_EXT_texture_rg's framebuffers RED or RG, as Mesa answers.
+        // RGBA, or for GL_EXT_texture_rg's framebuffers RED or RG, as Mesa answers; half-float
+        // buffers (GL_EXT_color_buffer_half_float) read as GL_HALF_FLOAT.
         IMPLEMENTATION_COLOR_READ_FORMAT => u(match framebuffer_bits(ctx) {
-            [8, 0, 0, ..] => RED_EXT,
-            [8, 8, 0, ..] => RG_EXT,
+            [8 | 16, 0, 0, ..] => RED_EXT,
+            [8 | 16, 8 | 16, 0, ..] => RG_EXT,
             _ => RGBA,
         }),
-        IMPLEMENTATION_COLOR_READ_TYPE => u(UNSIGNED_BYTE),
+        IMPLEMENTATION_COLOR_READ_TYPE => u(if framebuffer_bits(ctx)[0] == 16 { HALF_FLOAT } else { UNSIGNED_BYTE }),
         NUM_COMPRESSED_TEXTURE_FORMATS => i(offered_compressed(gpu.features).len() as i32),
         COMPRESSED_TEXTURE_FORMATS => Ints(offered_compressed(gpu.features).into_iter().map(|f| f as i32).collect()),
         NUM_SHADER_BINARY_FORMATS => i(0),

@@ -40,9 +40,12 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
         Attachment::Texture { name, level, face } => {
             let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
-            // ES 2.0 renders only into 8-bit colour (no float colour buffers are offered), and
-            // never into compressed images.
-            if !img.storage.color_renderable() || Compressed::from_gl(t.format).is_some() {
+            // 8-bit and half-float colour (`GL_EXT_color_buffer_half_float`); as on Mesa, a
+            // float image is unsupported and a compressed one incomplete.
+            if img.storage == Storage::Float {
+                return Err(FRAMEBUFFER_UNSUPPORTED);
+            }
+            if !img.storage.color_renderable(t.format, t.half_float) || Compressed::from_gl(t.format).is_some() {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             // A level above 0 is attachable only while the texture's levels are complete (as
@@ -168,7 +171,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
     depth.as_ref().map(|d| d.2).hash(&mut h);
     let mut slots = slots.into_iter();
     let first = slots.next().flatten();
-    let mut more: Vec<_> = slots.map(|s| s.map(|c| (c.view, c.absent))).collect();
+    let mut more: Vec<_> = slots.map(|s| s.map(|c| (c.view, c.absent, c.texture.format()))).collect();
     while more.last().is_some_and(|m| m.is_none()) {
         more.pop();
     }

@@ -186,6 +186,7 @@ impl GlesExecutor {
         if level == 0 {
             t.ensure_image(gpu, &account, uid, w, h, storage)?;
             t.format = internal;
+            t.half_float = pixel_type == HALF_FLOAT_OES;
         } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
             // Uncompressed data for a level of a natively compressed image.
             t.decompress(gpu, flushed, &account, uid2)?;

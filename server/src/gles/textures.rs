@@ -85,6 +85,9 @@ pub struct Texture {
     pub format: u32,
     /// Unique id for caches; changes when the image is recreated.
     pub uid: u64,
+    /// Whether level 0 was specified as `GL_HALF_FLOAT_OES` (half-float images of other
+    /// types, 2_10_10_10, are not renderable).
+    pub half_float: bool,
     /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
     /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
     pub border: [f32; 4],

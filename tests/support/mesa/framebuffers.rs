@@ -91,8 +91,8 @@ impl Arms<'_> {
         let bpp = match *pixel_type {
             0x1401 => components,
             0x8363 | 0x8033 | 0x8034 | 0x8365 | 0x8366 => 2,
-            // SHORT, UNSIGNED_SHORT (depth: GL_NV_read_depth), HALF_FLOAT_OES.
-            0x1402 | 0x1403 | 0x8D61 => components * 2,
+            // SHORT, UNSIGNED_SHORT (depth: GL_NV_read_depth), HALF_FLOAT_OES, HALF_FLOAT.
+            0x1402 | 0x1403 | 0x8D61 | 0x140B => components * 2,
             _ => components * 4,
         };
         let mut align = 4i32;

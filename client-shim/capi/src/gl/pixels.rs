@@ -20,6 +20,7 @@ pub(super) fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
         // 5_6_5, 4_4_4_4, 5_5_5_1, and EXT_read_format_bgra's 4_4_4_4_REV and 1_5_5_5_REV.
         0x8363 | 0x8033 | 0x8034 | 0x8365 | 0x8366 => Some(2),
         0x84FA | 0x8368 => Some(4), // UNSIGNED_INT_24_8_OES, UNSIGNED_INT_2_10_10_10_REV_EXT
+        0x140B => Some(2 * components), // HALF_FLOAT: reads of half-float colour buffers
         _ => type_size(ty).map(|s| s * components),
     }
 }

@@ -3,7 +3,7 @@
 
 use super::passes::{offset_of, Bind, Recorded};
 use super::targets::stored;
-use super::{Renderer, Target, COLOR_FORMAT};
+use super::{Renderer, Target};
 
 /// Bytes of the clear quad's parameters: eight colours, then the depth (`shaders/clear.wgsl`).
 pub(super) const CLEAR_PARAMS: u64 = 144;
@@ -13,8 +13,8 @@ pub(super) const CLEAR_PARAMS: u64 = 144;
 pub(super) struct ClearKey {
     color: Option<wgpu::ColorWrites>,
     depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
-    /// Which colour slots have an image.
-    slots: Vec<bool>,
+    /// Which colour slots have an image, and its format.
+    slots: Vec<Option<wgpu::TextureFormat>>,
 }
 
 impl Renderer {
@@ -57,7 +57,7 @@ impl Renderer {
                     stencil.filter(|_| target.has_stencil()).map(|(_, m)| m),
                 )
             }),
-            slots: target.slots().iter().map(Option::is_some).collect(),
+            slots: target.slots().iter().map(|s| s.map(|s| s.2)).collect(),
         };
         let pipeline = self.clear_pipeline(&key);
         let mut params = [0u8; CLEAR_PARAMS as usize];
@@ -103,7 +103,7 @@ impl Renderer {
         let targets: Vec<Option<wgpu::ColorTargetState>> = key
             .slots
             .iter()
-            .map(|s| s.then_some(wgpu::ColorTargetState { format: COLOR_FORMAT, blend: None, write_mask }))
+            .map(|s| s.map(|format| wgpu::ColorTargetState { format, blend: None, write_mask }))
             .collect();
         let depth_stencil = key.depth.map(|(format, write, stencil)| {
             let face = wgpu::StencilFaceState {
@@ -139,7 +139,7 @@ impl Renderer {
                 module: &self.fixed.clear_module,
                 entry_point: Some("fs"),
                 compilation_options: Default::default(),
-                targets: if key.slots.iter().any(|s| *s) { &targets } else { &[] },
+                targets: if key.slots.iter().any(Option::is_some) { &targets } else { &[] },
             }),
             multiview_mask: None,
             cache: None,

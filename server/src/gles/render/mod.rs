@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 pub use pipelines::layout_entries;
-pub use targets::{Target, COLOR_FORMAT};
+pub use targets::{Target, COLOR_FORMAT, HALF_FORMAT};
 
 use super::context::ClipControl;
 use super::programs::LinkedProgram;

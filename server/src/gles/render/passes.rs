@@ -318,7 +318,7 @@ fn encode(
         .slots()
         .into_iter()
         .map(|s| {
-            s.map(|(view, absent)| {
+            s.map(|(view, absent, _)| {
                 let load = match pass.clear_color {
                     Some(c) => {
                         let [r, g, b, a] = stored(absent, c).map(f64::from);

@@ -4,7 +4,7 @@
 
 use super::super::conv::{front_face, sampler_descriptor};
 use super::super::glsl;
-use super::{DrawSpec, LinkedProgram, RasterState, Renderer, SamplerState, Target, COLOR_FORMAT};
+use super::{DrawSpec, LinkedProgram, RasterState, Renderer, SamplerState, Target};
 
 /// What selects a render pipeline.
 #[derive(Clone, PartialEq, Eq, Hash)]
@@ -13,8 +13,8 @@ pub(super) struct PipelineKey {
     depth_mask: u32,
     inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
     raster: RasterState,
-    /// Per colour slot, whether it has an image and the channels that image lacks.
-    colors: Vec<Option<wgpu::ColorWrites>>,
+    /// Per colour slot, whether it has an image, the channels that image lacks, and its format.
+    colors: Vec<Option<(wgpu::ColorWrites, wgpu::TextureFormat)>>,
     depth_format: Option<wgpu::TextureFormat>,
 }
 
@@ -115,7 +115,7 @@ impl Renderer {
             depth_mask,
             inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride)).collect(),
             raster: spec.raster.clone(),
-            colors: target.slots().iter().map(|s| s.map(|s| s.1)).collect(),
+            colors: target.slots().iter().map(|s| s.map(|s| (s.1, s.2))).collect(),
             depth_format: target.depth.as_ref().map(|d| d.1),
         };
         if let Some(p) = self.pipelines.get(&key) {
@@ -169,8 +169,8 @@ impl Renderer {
             .colors
             .iter()
             .map(|s| {
-                s.map(|absent| wgpu::ColorTargetState {
-                    format: COLOR_FORMAT,
+                s.map(|(absent, format)| wgpu::ColorTargetState {
+                    format,
                     blend: r.blend,
                     write_mask: r.write_mask - absent,
                 })

@@ -8,10 +8,28 @@ impl Renderer {
     /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom
     /// row first (GL order, which is also memory order here).
     pub fn read_rgba(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        if target.half_float() {
+            // Converted as GL converts a float to an 8-bit normalised value: clamped, rounded.
+            let half = self.read_half(target, rect)?;
+            let to_u8 = |h: &[u8]| {
+                let v = half::f16::from_bits(u16::from_ne_bytes([h[0], h[1]])).to_f32();
+                (v.clamp(0.0, 1.0) * 255.0).round() as u8
+            };
+            return Some(half.chunks_exact(2).map(to_u8).collect());
+        }
         self.flush();
         let (tex, _) = target.color.as_ref()?;
         let at = target.color_at;
         self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 4)
+    }
+
+    /// Reads `[x, y, w, h]` of a half-float colour image (`GL_EXT_color_buffer_half_float`)
+    /// as four half floats per pixel, rows bottom first.
+    pub fn read_half(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        self.flush();
+        let (tex, _) = target.color.as_ref()?;
+        let at = target.color_at;
+        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 8)
     }
 
     /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in

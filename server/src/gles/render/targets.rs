@@ -5,6 +5,10 @@ use super::super::images::Subresource;
 /// Colour format of every colour target and texture.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
+/// Format of half-float colour buffers (`GL_EXT_color_buffer_half_float`), whatever channels
+/// their GL format has.
+pub const HALF_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
 /// A render target: what framebuffer 0 or a framebuffer object resolves to.
 #[derive(Clone)]
 pub struct Target {
@@ -16,9 +20,10 @@ pub struct Target {
     /// The level and layer of the colour texture the view shows, which reads and copies
     /// address: (0, 0) but for a texture's level above 0, a cube face, or an EGLImage's.
     pub color_at: Subresource,
-    /// What fragment outputs 1, 2, … write (`GL_EXT_draw_buffers`): a view and the channels
-    /// its format lacks, `None` for an output that writes nothing; empty for one colour image.
-    pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites)>>,
+    /// What fragment outputs 1, 2, … write (`GL_EXT_draw_buffers`): a view, the channels its
+    /// format lacks and its format, `None` for an output that writes nothing; empty for one
+    /// colour image.
+    pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites, wgpu::TextureFormat)>>,
     /// Depth/stencil view and its format.
     pub depth: Option<(wgpu::TextureView, wgpu::TextureFormat)>,
     /// The depth/stencil image itself and its array layer (a cube face), which reads of depth
@@ -66,10 +71,17 @@ impl Target {
         stored(self.absent, c)
     }
 
-    /// Per colour slot (fragment output), the view it writes and the channels its image lacks.
-    pub fn slots(&self) -> Vec<Option<(&wgpu::TextureView, wgpu::ColorWrites)>> {
-        let first = self.color.as_ref().map(|(_, v)| (v, self.absent));
-        std::iter::once(first).chain(self.more.iter().map(|m| m.as_ref().map(|(v, a)| (v, *a)))).collect()
+    /// Per colour slot (fragment output), the view it writes, the channels its image lacks
+    /// and its format (RGBA8, or RGBA16F for `GL_EXT_color_buffer_half_float`).
+    pub fn slots(&self) -> Vec<Option<(&wgpu::TextureView, wgpu::ColorWrites, wgpu::TextureFormat)>> {
+        let first = self.color.as_ref().map(|(t, v)| (v, self.absent, t.format()));
+        std::iter::once(first).chain(self.more.iter().map(|m| m.as_ref().map(|(v, a, f)| (v, *a, *f)))).collect()
+    }
+
+    /// Whether the colour image (the read buffer, for reads) is half-float
+    /// (`GL_EXT_color_buffer_half_float`).
+    pub fn half_float(&self) -> bool {
+        self.color.as_ref().is_some_and(|(t, _)| t.format() == HALF_FORMAT)
     }
 
     /// Whether any slot has a colour image.
