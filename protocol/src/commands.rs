@@ -464,6 +464,9 @@ command_set! {
         /// length); nothing on error.
         glGetProgramPipelineivEXT [Context] => GetProgramPipelineivEXT { pipeline: GLuint, pname: GLenum } -> Vec<GLint>;
         glGetProgramPipelineInfoLogEXT [Context] => GetProgramPipelineInfoLogEXT { pipeline: GLuint } -> String;
+        /// `EGL_KHR_swap_buffers_with_damage`: `eglSwapBuffers`, the frame having changed only
+        /// within `rects` (x, y, width, height quadruples from the surface's bottom left).
+        eglSwapBuffersWithDamageKHR [NoContext] => SwapBuffersWithDamageKHR { display: EglHandle, surface: EglHandle, rects: Slice<'a, EGLint> } -> EglResult<()>;
     }
 }
 

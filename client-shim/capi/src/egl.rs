@@ -218,7 +218,7 @@ crate::entry_points! {
             EGL_CLIENT_APIS => c"OpenGL_ES",
             // The daemon answers them (`EGL_STRATA_surface_id` and `EGL_STRATA_surface_projection`: surface attributes the
             // library passes through, see docs/projection.md).
-            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_EXT_create_context_robustness EGL_KHR_no_config_context EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_reusable_sync EGL_KHR_wait_sync EGL_KHR_image_base EGL_KHR_gl_texture_2D_image EGL_KHR_gl_texture_cubemap_image EGL_KHR_gl_renderbuffer_image EGL_KHR_get_all_proc_addresses EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
+            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_EXT_create_context_robustness EGL_KHR_no_config_context EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_reusable_sync EGL_KHR_wait_sync EGL_KHR_image_base EGL_KHR_gl_texture_2D_image EGL_KHR_gl_texture_cubemap_image EGL_KHR_gl_renderbuffer_image EGL_EXT_buffer_age EGL_KHR_swap_buffers_with_damage EGL_KHR_get_all_proc_addresses EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();
@@ -486,6 +486,29 @@ crate::entry_points! {
             Ok(())
         })();
         crate::debug::sync_point("eglSwapBuffers");
+        boolean(r)
+    }
+
+    /// `EGL_KHR_swap_buffers_with_damage`: `eglSwapBuffers`, the frame having changed only
+    /// within the `n_rects` rectangles (x, y, width, height from the bottom left), which the
+    /// compositor alone redraws. None is the whole surface.
+    fn eglSwapBuffersWithDamageKHR(dpy: EGLDisplay, surface: EGLSurface, rects: *const EGLint, n_rects: EGLint) -> EGLBoolean {
+        let r = (|| {
+            if n_rects < 0 || (n_rects > 0 && rects.is_null()) {
+                return Err(EGL_BAD_PARAMETER);
+            }
+            let mut p = process();
+            initialized(&mut p, dpy)?;
+            let s = handle(surface);
+            let d = p.daemon_surface(s).ok_or(EGL_BAD_SURFACE)?;
+            let n = usize::try_from(n_rects).unwrap_or(0).saturating_mul(4);
+            // SAFETY: the application passes `n_rects` rectangles of four integers.
+            let list = if n == 0 { &[][..] } else { unsafe { std::slice::from_raw_parts(rects, n) } };
+            daemon(&mut p, |c, dd| c.eglSwapBuffersWithDamageKHR(dd, d, Slice::new(list)))?;
+            surface::follow_window(&mut p, s);
+            Ok(())
+        })();
+        crate::debug::sync_point("eglSwapBuffersWithDamageKHR");
         boolean(r)
     }
 

@@ -188,7 +188,13 @@ mod tests {
         offered_sections_resolve(
             "EGL/eglext.h",
             "EGLAPI",
-            &[("EGL_KHR_fence_sync", 4), ("EGL_KHR_reusable_sync", 1), ("EGL_KHR_wait_sync", 1), ("EGL_KHR_image", 2)],
+            &[
+                ("EGL_KHR_fence_sync", 4),
+                ("EGL_KHR_reusable_sync", 1),
+                ("EGL_KHR_wait_sync", 1),
+                ("EGL_KHR_image", 2),
+                ("EGL_KHR_swap_buffers_with_damage", 1),
+            ],
         );
     }
 

@@ -440,6 +440,13 @@ impl GlesExecutor {
             EGL_CONFIG_ID => Ok(s.config.id as i32),
             EGL_RENDER_BUFFER => Ok(EGL_BACK_BUFFER),
             EGL_SWAP_BEHAVIOR => Ok(EGL_BUFFER_DESTROYED),
+            // `EGL_EXT_buffer_age`: of the current draw surface only.
+            EGL_BUFFER_AGE_EXT => {
+                if self.current.map(|(_, s)| s) != Some(surface) {
+                    return Err(EGL_BAD_SURFACE);
+                }
+                Ok(s.frames.as_ref().map_or(0, |w| w.age().min(i32::MAX as u64) as i32))
+            }
             // `EGL_STRATA_surface_id`: the window surface's ID in the scene.
             surface_id::EGL_SURFACE_ID_STRATA if s.window => {
                 s.scene_id.and_then(|id| i32::try_from(id).ok()).ok_or(EGL_BAD_ATTRIBUTE)
@@ -470,7 +477,25 @@ impl GlesExecutor {
 
     pub(super) fn eglSwapBuffers(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {
         self.check_display(display)?;
-        self.swap(surface)
+        self.swap(surface, None)
+    }
+
+    /// `EGL_KHR_swap_buffers_with_damage`: a swap whose frame changed only within `rects`
+    /// (x, y, width, height quadruples, GL coordinates): the compositor redraws only what they
+    /// cover. No rectangles is the whole surface; a negative size is `EGL_BAD_PARAMETER`.
+    pub(super) fn eglSwapBuffersWithDamageKHR(
+        &mut self,
+        display: EglHandle,
+        surface: EglHandle,
+        rects: Slice<'_, i32>,
+    ) -> EglResult<()> {
+        self.check_display(display)?;
+        let rects = rects.to_vec();
+        if !rects.len().is_multiple_of(4) || rects.chunks_exact(4).any(|r| r[2] < 0 || r[3] < 0) {
+            return Err(EGL_BAD_PARAMETER);
+        }
+        let damage = (!rects.is_empty()).then(|| rects.chunks_exact(4).map(|r| [r[0], r[1], r[2], r[3]]).collect());
+        self.swap(surface, damage)
     }
 }
 

@@ -561,4 +561,6 @@ pub const EGL_CONTEXT_PRIORITY_LOW_IMG: i32 = 0x3103;
 pub const EGL_RENDER_BUFFER: i32 = 0x3086;
 pub const EGL_BACK_BUFFER: i32 = 0x3084;
 pub const EGL_SWAP_BEHAVIOR: i32 = 0x3093;
+/// `EGL_BUFFER_AGE_EXT` (`EGL_EXT_buffer_age`).
+pub const EGL_BUFFER_AGE_EXT: i32 = 0x313D;
 pub const EGL_BUFFER_DESTROYED: i32 = 0x3095;

@@ -86,6 +86,9 @@ pub(super) struct Buffer {
     pub(super) copy: Option<Arc<CopyPath>>,
     /// Its memory, held against the client's quota.
     pub(super) _reserved: crate::quota::Reservation,
+    /// The surface's swap count when this buffer was last swapped (`EGL_EXT_buffer_age`);
+    /// `None` before its first frame.
+    pub(super) swapped_at: Option<u64>,
 }
 
 /// A window surface's buffers; `target` of the surface is the back one's.
@@ -96,6 +99,24 @@ pub(super) struct Window {
     pub(super) back: usize,
     /// How its frames reach the compositor.
     pub(super) transfer: Transfer,
+    /// Frames swapped so far.
+    pub(super) swaps: u64,
+}
+
+impl Window {
+    /// Records that buffer `i` was swapped.
+    pub(super) fn swapped(&mut self, i: usize) {
+        if let Some(b) = self.buffers.get_mut(i) {
+            b.swapped_at = Some(self.swaps);
+        }
+        self.swaps += 1;
+    }
+
+    /// `EGL_BUFFER_AGE_EXT` of the back buffer: how many frames ago its contents were the
+    /// newest (1: the previous frame's), 0 for a buffer that holds no frame yet.
+    pub(super) fn age(&self) -> u64 {
+        self.buffers.get(self.back).and_then(|b| b.swapped_at).map_or(0, |at| self.swaps - at)
+    }
 }
 
 /// A buffer's copy through host memory: a readback buffer on the client's device (colour

@@ -244,7 +244,7 @@ impl GlesExecutor {
             match frames::shared_images(&self.gpu, comp, pick.as_deref(), (w, h), depth_format) {
                 Ok((images, views)) => {
                     let (target, _) = self.make_target(config, w, h, reversed, Some(images));
-                    return Ok((Buffer { target, copy: None, _reserved: reserved }, views));
+                    return Ok((Buffer { target, copy: None, _reserved: reserved, swapped_at: None }, views));
                 }
                 Err(e) => {
                     tracing::warn!("sharing a window surface's images failed ({e}); its frames are copied instead");
@@ -258,11 +258,17 @@ impl GlesExecutor {
         match (*transfer, comp) {
             (Transfer::Copy, Some(comp)) => {
                 let (path, views) = CopyPath::new(&self.gpu, &comp, (w, h), depth_view.as_ref());
-                Ok((Buffer { target, copy: Some(std::sync::Arc::new(path)), _reserved: reserved }, views))
+                Ok((
+                    Buffer { target, copy: Some(std::sync::Arc::new(path)), _reserved: reserved, swapped_at: None },
+                    views,
+                ))
             }
             _ => {
                 let color = target.color.as_ref().map(|(_, v)| v.clone()).ok_or(EGL_BAD_ALLOC)?;
-                Ok((Buffer { target, copy: None, _reserved: reserved }, Views::shown(color, depth_view)))
+                Ok((
+                    Buffer { target, copy: None, _reserved: reserved, swapped_at: None },
+                    Views::shown(color, depth_view),
+                ))
             }
         }
     }
@@ -277,7 +283,7 @@ impl GlesExecutor {
             buffers.push(b);
             views.push(v);
         }
-        Ok((Window { buffers, back: 0, transfer }, views))
+        Ok((Window { buffers, back: 0, transfer, swaps: 0 }, views))
     }
 
     /// Shows surface `id`'s buffers to the scene (the back one as such).
@@ -337,8 +343,10 @@ impl GlesExecutor {
     }
 
     /// `eglSwapBuffers`: the back buffer's frame is published once its work completes on this
-    /// client's device (the compositor then takes it), and a free buffer becomes the back one.
-    pub(super) fn swap(&mut self, surface: u32) -> Result<(), i32> {
+    /// client's device (the compositor then takes it), and a free buffer becomes the back one;
+    /// `damage`: what changed since the previous frame (`EGL_KHR_swap_buffers_with_damage`,
+    /// image GL coordinates; `None`: all of it).
+    pub(super) fn swap(&mut self, surface: u32, damage: Option<Vec<[i32; 4]>>) -> Result<(), i32> {
         self.r.flush();
         if !self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?.window {
             return Ok(());
@@ -347,6 +355,7 @@ impl GlesExecutor {
             // No compositor: the two buffers take turns.
             let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
             if let Some(win) = &mut s.frames {
+                win.swapped(win.back);
                 win.back = (win.back + 1) % win.buffers.len();
                 s.target = win.buffers[win.back].target.clone();
             }
@@ -355,6 +364,7 @@ impl GlesExecutor {
         let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
         let Some(win) = &mut s.frames else { return Ok(()) };
         let back = win.back;
+        win.swapped(back);
         let opaque = s.target.opaque();
         scene.submit(client, surface, back);
         let copy = win.buffers[back].copy.clone();
@@ -374,7 +384,7 @@ impl GlesExecutor {
                         return;
                     }
                 }
-                publish.complete(client, surface, back, opaque);
+                publish.complete(client, surface, back, opaque, damage.as_deref());
             }),
         );
         let next = self.next_back(&scene, client, surface)?;

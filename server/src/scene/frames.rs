@@ -27,8 +27,10 @@ impl Scene {
     }
 
     /// Publishes buffer `buffer`, whose work has completed on the client's device, as the
-    /// surface's newest frame; `opaque`: the colour buffer has no alpha.
-    pub fn complete(&self, client: u64, surface: u32, buffer: usize, opaque: bool) {
+    /// surface's newest frame; `opaque`: the colour buffer has no alpha; `damage`: the
+    /// rectangles the client says changed since its previous frame (image GL coordinates;
+    /// `None`: all of it).
+    pub fn complete(&self, client: u64, surface: u32, buffer: usize, opaque: bool, damage: Option<&[[i32; 4]]>) {
         let Some(mut g) = self.lock() else { return };
         let refreshes = g.refreshes;
         let Some(s) = g.surfaces.get_mut(&(client, surface)) else { return };
@@ -40,6 +42,7 @@ impl Scene {
         s.frames += 1;
         s.presented = Some((Instant::now(), refreshes));
         let old = s.rect;
+        let resized = s.resized.is_some();
         if let Some((w, h)) = s.resized.take() {
             s.image = [w, h];
             // A destination region keeps its size: the new image is scaled to it.
@@ -48,7 +51,11 @@ impl Scene {
                 s.rect[3] = h;
             }
         }
-        let r = Region::None.with(old).with(s.rect);
+        let r = match damage {
+            // Stated damage of a frame of the same size: only that part changed.
+            Some(d) if !resized => super::region::damage_in_output(s.rect, s.image, s.props.source, d),
+            _ => Region::None.with(old).with(s.rect),
+        };
         let high = s.priority == Priority::High;
         self.damaged_as(g, r, high);
     }

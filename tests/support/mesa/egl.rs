@@ -160,6 +160,16 @@ impl Arms<'_> {
         Err(unsupported("eglSwapBuffers (EGL: the reference draws on a context of its own)"))
     }
 
+    pub(super) fn eglSwapBuffersWithDamageKHR(
+        &mut self,
+        display: &EglHandle,
+        surface: &EglHandle,
+        rects: &Slice<'_, EGLint>,
+    ) -> Result<EglResult<()>, ClientError> {
+        let _ = (display, surface, rects);
+        Err(unsupported("eglSwapBuffersWithDamageKHR (EGL: the reference draws on a context of its own)"))
+    }
+
     pub(super) fn strataResizeSurface(
         &mut self,
         display: &EglHandle,
