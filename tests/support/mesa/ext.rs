@@ -49,7 +49,7 @@ impl MesaGl {
 }
 
 macro_rules! ext {
-    ($self:ident, $name:literal, fn($($t:ty),*) -> $r:ty, $($a:expr),*) => {{
+    ($self:ident, $name:expr, fn($($t:ty),*) -> $r:ty, $($a:expr),*) => {{
         let f = $self.ext($name)?;
         // SAFETY: the extension entry point of that name, with that C signature.
         let f: unsafe extern "C" fn($($t),*) -> $r = unsafe { std::mem::transmute::<Ptr, _>(f) };

@@ -6,23 +6,48 @@ use strata_protocol::wire::*;
 
 use super::{cstr, Arms, Ptr};
 
-/// A `glProgramUniform*vEXT` call: `values` as `count` elements of `n` components.
-macro_rules! program_uniform {
-    ($self:ident, $name:literal, $t:ty, $program:expr, $location:expr, $values:expr, $n:expr) => {{
-        let (p, v) = ($self.shader(*$program), $values.to_vec());
-        ext!($self, $name, fn(u32, i32, i32, *const $t) -> (), p, *$location, v.len() as i32 / $n, v.as_ptr());
-        Ok(())
-    }};
+/// The `glProgramUniform*vEXT` arms: `values` as `count` elements of `n` components.
+macro_rules! program_uniform_arms {
+    ($( $name:ident : $t:ty, $n:literal; )*) => {
+        impl Arms<'_> {
+            $( pub(super) fn $name(&mut self, program: &GLuint, location: &GLint, values: &Slice<'_, $t>) -> Result<(), ClientError> {
+                let (p, v) = (self.shader(*program), values.to_vec());
+                ext!(self, stringify!($name), fn(u32, i32, i32, *const $t) -> (), p, *location, v.len() as i32 / $n, v.as_ptr());
+                Ok(())
+            } )*
+        }
+    };
 }
 
-/// A `glProgramUniformMatrix*fvEXT` call: `values` as `count` matrices of `n` floats.
-macro_rules! program_matrices {
-    ($self:ident, $name:literal, $program:expr, $location:expr, $transpose:expr, $values:expr, $n:expr) => {{
-        let (p, v) = ($self.shader(*$program), $values.to_vec());
-        let (count, t) = (v.len() as i32 / $n, u8::from(*$transpose));
-        ext!($self, $name, fn(u32, i32, i32, u8, *const f32) -> (), p, *$location, count, t, v.as_ptr());
-        Ok(())
-    }};
+/// The `glProgramUniformMatrix*fvEXT` arms: `values` as `count` matrices of `n` floats.
+macro_rules! program_matrix_arms {
+    ($( $name:ident : $n:literal; )*) => {
+        impl Arms<'_> {
+            $( pub(super) fn $name(&mut self, program: &GLuint, location: &GLint, transpose: &bool, values: &Slice<'_, GLfloat>) -> Result<(), ClientError> {
+                let (p, v) = (self.shader(*program), values.to_vec());
+                let (count, t) = (v.len() as i32 / $n, u8::from(*transpose));
+                ext!(self, stringify!($name), fn(u32, i32, i32, u8, *const f32) -> (), p, *location, count, t, v.as_ptr());
+                Ok(())
+            } )*
+        }
+    };
+}
+
+program_uniform_arms! {
+    glProgramUniform1fvEXT: f32, 1;
+    glProgramUniform2fvEXT: f32, 2;
+    glProgramUniform3fvEXT: f32, 3;
+    glProgramUniform4fvEXT: f32, 4;
+    glProgramUniform1ivEXT: i32, 1;
+    glProgramUniform2ivEXT: i32, 2;
+    glProgramUniform3ivEXT: i32, 3;
+    glProgramUniform4ivEXT: i32, 4;
+}
+
+program_matrix_arms! {
+    glProgramUniformMatrix2fvEXT: 4;
+    glProgramUniformMatrix3fvEXT: 9;
+    glProgramUniformMatrix4fvEXT: 16;
 }
 
 impl Arms<'_> {
@@ -139,107 +164,5 @@ impl Arms<'_> {
         );
         buf.truncate(len.clamp(0, 4095) as usize);
         Ok(String::from_utf8_lossy(&buf).into_owned())
-    }
-
-    pub(super) fn glProgramUniform1fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform1fvEXT", f32, program, location, values, 1)
-    }
-
-    pub(super) fn glProgramUniform2fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform2fvEXT", f32, program, location, values, 2)
-    }
-
-    pub(super) fn glProgramUniform3fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform3fvEXT", f32, program, location, values, 3)
-    }
-
-    pub(super) fn glProgramUniform4fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform4fvEXT", f32, program, location, values, 4)
-    }
-
-    pub(super) fn glProgramUniform1ivEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLint>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform1ivEXT", i32, program, location, values, 1)
-    }
-
-    pub(super) fn glProgramUniform2ivEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLint>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform2ivEXT", i32, program, location, values, 2)
-    }
-
-    pub(super) fn glProgramUniform3ivEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLint>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform3ivEXT", i32, program, location, values, 3)
-    }
-
-    pub(super) fn glProgramUniform4ivEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        values: &Slice<'_, GLint>,
-    ) -> Result<(), ClientError> {
-        program_uniform!(self, "glProgramUniform4ivEXT", i32, program, location, values, 4)
-    }
-
-    pub(super) fn glProgramUniformMatrix2fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        transpose: &bool,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_matrices!(self, "glProgramUniformMatrix2fvEXT", program, location, transpose, values, 4)
-    }
-
-    pub(super) fn glProgramUniformMatrix3fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        transpose: &bool,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_matrices!(self, "glProgramUniformMatrix3fvEXT", program, location, transpose, values, 9)
-    }
-
-    pub(super) fn glProgramUniformMatrix4fvEXT(
-        &mut self,
-        program: &GLuint,
-        location: &GLint,
-        transpose: &bool,
-        values: &Slice<'_, GLfloat>,
-    ) -> Result<(), ClientError> {
-        program_matrices!(self, "glProgramUniformMatrix4fvEXT", program, location, transpose, values, 16)
     }
 }

@@ -13,44 +13,27 @@ fn refuse(name: &'static str) {
     })
 }
 
-crate::entry_points! {
-    /// Refused: integer textures are ES 3.0's.
-    fn glTexParameterIivEXT(_target: GLenum, _pname: GLenum, _params: *const GLint) {
-        refuse("glTexParameterIivEXT")
-    }
+/// The integer forms, each refused.
+macro_rules! refused {
+    ($( $name:ident($ptr:ty); )*) => {
+        crate::entry_points! {
+            $(
+                #[doc = concat!("`", stringify!($name), "`: refused (integer textures are ES 3.0's), writing nothing.")]
+                fn $name(_target: GLenum, _pname: GLenum, _params: $ptr) {
+                    refuse(stringify!($name))
+                }
+            )*
+        }
+    };
+}
 
-    /// Refused: integer textures are ES 3.0's.
-    fn glTexParameterIuivEXT(_target: GLenum, _pname: GLenum, _params: *const GLuint) {
-        refuse("glTexParameterIuivEXT")
-    }
-
-    /// Refused, writing nothing: integer textures are ES 3.0's.
-    fn glGetTexParameterIivEXT(_target: GLenum, _pname: GLenum, _params: *mut GLint) {
-        refuse("glGetTexParameterIivEXT")
-    }
-
-    /// Refused, writing nothing: integer textures are ES 3.0's.
-    fn glGetTexParameterIuivEXT(_target: GLenum, _pname: GLenum, _params: *mut GLuint) {
-        refuse("glGetTexParameterIuivEXT")
-    }
-
-    /// Refused: integer textures are ES 3.0's.
-    fn glTexParameterIivOES(_target: GLenum, _pname: GLenum, _params: *const GLint) {
-        refuse("glTexParameterIivOES")
-    }
-
-    /// Refused: integer textures are ES 3.0's.
-    fn glTexParameterIuivOES(_target: GLenum, _pname: GLenum, _params: *const GLuint) {
-        refuse("glTexParameterIuivOES")
-    }
-
-    /// Refused, writing nothing: integer textures are ES 3.0's.
-    fn glGetTexParameterIivOES(_target: GLenum, _pname: GLenum, _params: *mut GLint) {
-        refuse("glGetTexParameterIivOES")
-    }
-
-    /// Refused, writing nothing: integer textures are ES 3.0's.
-    fn glGetTexParameterIuivOES(_target: GLenum, _pname: GLenum, _params: *mut GLuint) {
-        refuse("glGetTexParameterIuivOES")
-    }
+refused! {
+    glTexParameterIivEXT(*const GLint);
+    glTexParameterIuivEXT(*const GLuint);
+    glGetTexParameterIivEXT(*mut GLint);
+    glGetTexParameterIuivEXT(*mut GLuint);
+    glTexParameterIivOES(*const GLint);
+    glTexParameterIuivOES(*const GLuint);
+    glGetTexParameterIivOES(*mut GLint);
+    glGetTexParameterIuivOES(*mut GLuint);
 }
