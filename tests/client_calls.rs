@@ -24,7 +24,9 @@
 //! - `no_config`: a context made with no config (`EGL_KHR_no_config_context`), which the
 //!   library passes on;
 //! - `separate`: program pipelines and their programs (`GL_EXT_separate_shader_objects`),
-//!   whose one-stage programs the library makes from source.
+//!   whose one-stage programs the library makes from source;
+//! - `border`: the border colour's four values, and the integer forms the library refuses
+//!   (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -41,6 +43,8 @@ const NONE: i32 = 0x3038;
 const ARRAY: u32 = 0x8892;
 const STATIC_DRAW: u32 = 0x88E4;
 
+#[path = "client_calls/border.rs"]
+mod border;
 #[path = "client_calls/draw_buffers.rs"]
 mod draw_buffers;
 #[path = "client_calls/egl_image.rs"]
@@ -217,6 +221,17 @@ api! {
     program_uniform1iv = "glProgramUniform1ivEXT": fn(u32, i32, i32, *const i32);
     program_uniform4fv = "glProgramUniform4fvEXT": fn(u32, i32, i32, *const f32);
     program_uniform_matrix2fv = "glProgramUniformMatrix2fvEXT": fn(u32, i32, i32, u8, *const f32);
+    tex_parameterfv = "glTexParameterfv": fn(u32, u32, *const f32);
+    tex_parameteriv = "glTexParameteriv": fn(u32, u32, *const i32);
+    get_tex_parameterfv = "glGetTexParameterfv": fn(u32, u32, *mut f32);
+    tex_parameter_iiv_ext = "glTexParameterIivEXT": fn(u32, u32, *const i32);
+    tex_parameter_iuiv_ext = "glTexParameterIuivEXT": fn(u32, u32, *const i32);
+    tex_parameter_iiv_oes = "glTexParameterIivOES": fn(u32, u32, *const i32);
+    tex_parameter_iuiv_oes = "glTexParameterIuivOES": fn(u32, u32, *const i32);
+    get_tex_parameter_iiv_ext = "glGetTexParameterIivEXT": fn(u32, u32, *mut i32);
+    get_tex_parameter_iuiv_ext = "glGetTexParameterIuivEXT": fn(u32, u32, *mut i32);
+    get_tex_parameter_iiv_oes = "glGetTexParameterIivOES": fn(u32, u32, *mut i32);
+    get_tex_parameter_iuiv_oes = "glGetTexParameterIuivOES": fn(u32, u32, *mut i32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -344,7 +359,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 13] = [
+    let sequences: [Sequence; 14] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -358,6 +373,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("pixel_buffer", pixel_buffer::sequence),
         ("timer_query", timer_query::sequence),
         ("separate", separate::sequence),
+        ("border", border::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {
