@@ -194,6 +194,19 @@ impl Context {
         }
     }
 
+    /// The linked program draws run, without its uniforms' values (see [`Context::executable`]).
+    pub fn draw_program(&self) -> Option<Arc<LinkedProgram>> {
+        let objects = &self.objects;
+        let own = |name: u32| objects.programs.get(&name).and_then(|p| p.linked.clone());
+        if self.bindings.program != 0 {
+            return own(self.bindings.program);
+        }
+        match objects.pipelines.get(&self.bindings.pipeline)?.ready.as_ref()? {
+            Ready::Own(name) => own(*name),
+            Ready::Combined(c) => Some(c.program.clone()),
+        }
+    }
+
     /// The program `glUniform*` writes: the one in use, else the bound pipeline's active
     /// program (0 for none).
     pub fn uniform_program(&self) -> u32 {

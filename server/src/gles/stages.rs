@@ -40,7 +40,7 @@ impl GlesExecutor {
         reversed: Option<ReversedZ>,
         points: bool,
     ) -> Result<Option<Stages>, String> {
-        let Some(program) = ctx.executable().map(|e| e.program) else {
+        let Some(program) = ctx.draw_program() else {
             return Ok(None);
         };
         let clip = ctx.raster.clip;
