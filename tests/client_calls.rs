@@ -26,7 +26,9 @@
 //! - `separate`: program pipelines and their programs (`GL_EXT_separate_shader_objects`),
 //!   whose one-stage programs the library makes from source;
 //! - `border`: the border colour's four values, and the integer forms the library refuses
-//!   (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
+//!   (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`);
+//! - `texture_3d`: 3D images, whose slices the library lays out by the unpack state
+//!   (`GL_OES_texture_3D`).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -69,6 +71,8 @@ mod robustness;
 mod separate;
 #[path = "client_calls/surfaceless.rs"]
 mod surfaceless;
+#[path = "client_calls/texture_3d.rs"]
+mod texture_3d;
 #[path = "client_calls/timer_query.rs"]
 mod timer_query;
 /// Declares [`Api`]: each entry point's field name, C name and prototype.
@@ -232,6 +236,11 @@ api! {
     get_tex_parameter_iuiv_ext = "glGetTexParameterIuivEXT": fn(u32, u32, *mut i32);
     get_tex_parameter_iiv_oes = "glGetTexParameterIivOES": fn(u32, u32, *mut i32);
     get_tex_parameter_iuiv_oes = "glGetTexParameterIuivOES": fn(u32, u32, *mut i32);
+    tex_image_3d = "glTexImage3DOES": fn(u32, i32, u32, i32, i32, i32, i32, u32, u32, *const c_void);
+    tex_sub_image_3d = "glTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
+    compressed_tex_image_3d = "glCompressedTexImage3DOES": fn(u32, i32, u32, i32, i32, i32, i32, i32, *const c_void);
+    copy_tex_sub_image_3d = "glCopyTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, i32);
+    framebuffer_texture_3d = "glFramebufferTexture3DOES": fn(u32, u32, u32, u32, i32, i32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -359,7 +368,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 14] = [
+    let sequences: [Sequence; 15] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -374,6 +383,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("timer_query", timer_query::sequence),
         ("separate", separate::sequence),
         ("border", border::sequence),
+        ("texture_3d", texture_3d::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -344,6 +344,18 @@ command_set! {
         glProgramUniformMatrix2fvEXT [Context] => ProgramUniformMatrix2fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
         glProgramUniformMatrix3fvEXT [Context] => ProgramUniformMatrix3fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
         glProgramUniformMatrix4fvEXT [Context] => ProgramUniformMatrix4fvEXT { program: GLuint, location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        /// `GL_OES_texture_3D`: a 3D image, its slices one after another (`None`: no data).
+        glTexImage3DOES [Context, Flush] => TexImage3DOES { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, pixel_type: GLenum, pixels: Option<Blob<'a>> };
+        /// A box of a 3D image.
+        glTexSubImage3DOES [Context, Flush] => TexSubImage3DOES { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, pixel_type: GLenum, pixels: Blob<'a> };
+        /// A rectangle of the read buffer copied into slice `zoffset` of a 3D image.
+        glCopyTexSubImage3DOES [Context, Flush] => CopyTexSubImage3DOES { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        /// A compressed 3D image (`GL_KHR_texture_compression_astc_sliced_3d`: ASTC slices).
+        glCompressedTexImage3DOES [Context, Flush] => CompressedTexImage3DOES { target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, data: Blob<'a> };
+        /// A box of a compressed 3D image, in whole blocks.
+        glCompressedTexSubImage3DOES [Context, Flush] => CompressedTexSubImage3DOES { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, data: Blob<'a> };
+        /// Slice `zoffset` of a 3D texture's `level` as a framebuffer attachment.
+        glFramebufferTexture3DOES [Context] => FramebufferTexture3DOES { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint, zoffset: GLint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -28,7 +28,7 @@ const QUAD: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
 
 impl Run {
     /// Draws the bound texture over the window and logs every third pixel of every third row.
-    fn textured(&mut self, what: &str) {
+    pub(super) fn textured(&mut self, what: &str) {
         let gl = self.gl;
         let mut px = [0u8; 16 * 16 * 4];
         // SAFETY: a context is current; no pack buffer is bound while the window is read; the

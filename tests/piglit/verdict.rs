@@ -79,6 +79,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_texture_border_clamp",
     "GL_OES_texture_border_clamp",
     "GL_EXT_color_buffer_half_float",
+    "GL_OES_texture_3D",
+    "GL_KHR_texture_compression_astc_sliced_3d",
     "GL_EXT_disjoint_timer_query",
     "EGL_KHR_image_base",
     "EGL_KHR_gl_texture_2D_image",

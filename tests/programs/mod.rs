@@ -298,6 +298,7 @@ mod read_depth;
 mod render_mipmap;
 mod s3tc_srgb;
 mod samplers;
+mod texture_3d;
 mod texture_rg;
 mod textures;
 mod type_2_10_10_10;
@@ -317,6 +318,7 @@ pub fn all() -> Vec<Case> {
     all.extend(multi_draw::all());
     all.extend(instanced::all());
     all.extend(texture_rg::all());
+    all.extend(texture_3d::all());
     all.extend(debug_label::all());
     all.extend(read_buffer::all());
     all.extend(render_mipmap::all());

@@ -77,6 +77,7 @@ mod programs;
 mod queries;
 mod scalars;
 mod state;
+mod texture3d;
 mod textures;
 mod vertices;
 

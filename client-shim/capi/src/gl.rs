@@ -512,6 +512,7 @@ gl_modules!(
     separate::arrays,
     separate::matrices,
     border,
+    texture3d,
     crate::image::targets,
 );
 
@@ -535,3 +536,6 @@ pub mod separate;
 
 /// Border colours' integer forms (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`).
 pub mod border;
+
+/// 3D textures (`GL_OES_texture_3D`).
+pub mod texture3d;

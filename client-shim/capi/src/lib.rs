@@ -179,6 +179,7 @@ mod tests {
                 ("GL_EXT_separate_shader_objects", 30),
                 ("GL_EXT_texture_border_clamp", 4),
                 ("GL_OES_texture_border_clamp", 4),
+                ("GL_OES_texture_3D", 6),
             ],
         );
     }
@@ -330,6 +331,8 @@ mod tests {
             "glProgramUniformMatrix4fvEXT",
             "glTexParameterIivEXT",
             "glGetTexParameterIuivOES",
+            "glTexImage3DOES",
+            "glFramebufferTexture3DOES",
         ];
         for &n in EXTENSION_ENTRY_POINTS {
             assert!(exported.contains(&n), "{n} is not exported");

@@ -67,6 +67,12 @@ pub fn image_bytes(width: u32, height: u32, layers: u32, mips: u32, storage: Sto
         * u64::from(layers)
 }
 
+/// The bytes a 3D image of `width`×`height`×`depth` with `mips` levels holds (each level
+/// halves the depth too).
+pub fn volume_bytes(width: u32, height: u32, depth: u32, mips: u32, storage: Storage) -> u64 {
+    (0..mips).map(|l| image_bytes(width >> l, height >> l, (depth >> l).max(1), 1, storage)).sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,5 +82,6 @@ mod tests {
         assert_eq!(image_bytes(4, 4, 1, 1, Storage::Rgba8), 64);
         assert_eq!(image_bytes(4, 4, 1, 3, Storage::Rgba8), 64 + 16 + 4);
         assert_eq!(image_bytes(4, 4, 6, 1, Storage::Float), 6 * 16 * 16);
+        assert_eq!(volume_bytes(4, 4, 2, 3, Storage::Rgba8), 4 * (32 + 4 + 1));
     }
 }

@@ -77,9 +77,9 @@ pub struct Bindings {
     pub pixel_unpack: u32,
     /// `GL_ACTIVE_TEXTURE` − `GL_TEXTURE0`.
     pub active_unit: usize,
-    /// Per texture unit: the 2D, the cube map and the external (`GL_OES_EGL_image_external`)
-    /// texture.
-    pub units: [[u32; 3]; MAX_UNITS],
+    /// Per texture unit: the 2D, the cube map, the external (`GL_OES_EGL_image_external`)
+    /// and the 3D (`GL_OES_texture_3D`) texture.
+    pub units: [[u32; 4]; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.
     pub program: u32,
     /// `GL_PROGRAM_PIPELINE_BINDING_EXT`: the pipeline that draws while no program is in use.

@@ -60,6 +60,8 @@ pub enum TextureTarget {
     /// `GL_TEXTURE_EXTERNAL_OES` (`GL_OES_EGL_image_external`): a 2D image from an EGLImage,
     /// sampled through `samplerExternalOES`.
     External,
+    /// `GL_TEXTURE_3D_OES` (`GL_OES_texture_3D`).
+    ThreeD,
 }
 
 impl TextureTarget {
@@ -69,6 +71,7 @@ impl TextureTarget {
             TEXTURE_2D => Ok(TextureTarget::TwoD),
             TEXTURE_CUBE_MAP => Ok(TextureTarget::CubeMap),
             super::egl_image::TEXTURE_EXTERNAL_OES => Ok(TextureTarget::External),
+            TEXTURE_3D_OES => Ok(TextureTarget::ThreeD),
             _ => Err(GlError::InvalidEnum),
         }
     }
@@ -79,6 +82,7 @@ impl TextureTarget {
             TextureTarget::TwoD => TEXTURE_2D,
             TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
             TextureTarget::External => super::egl_image::TEXTURE_EXTERNAL_OES,
+            TextureTarget::ThreeD => TEXTURE_3D_OES,
         }
     }
 
@@ -88,26 +92,29 @@ impl TextureTarget {
             TextureTarget::TwoD => 0,
             TextureTarget::CubeMap => 1,
             TextureTarget::External => 2,
+            TextureTarget::ThreeD => 3,
         }
     }
 }
 
-/// The image an upload or copy addresses: `GL_TEXTURE_2D` or one cube face.
+/// The image an upload or copy addresses: `GL_TEXTURE_2D`, one cube face, or a 3D image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ImageTarget {
-    /// Array layer: the cube face (0..6), 0 for 2D.
+    /// Array layer: the cube face (0..6), 0 for 2D and 3D.
     pub face: u32,
     /// Whether this is a cube face.
     pub cube: bool,
+    /// Whether this is a 3D image (`GL_OES_texture_3D`).
+    pub three_d: bool,
 }
 
 impl ImageTarget {
     /// Parses `GL_TEXTURE_2D` or `GL_TEXTURE_CUBE_MAP_*`; anything else is `GL_INVALID_ENUM`.
     pub fn from_gl(target: u32) -> GlResult<Self> {
         match target {
-            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false }),
+            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false, three_d: false }),
             t if (TEXTURE_CUBE_MAP_POSITIVE_X..TEXTURE_CUBE_MAP_POSITIVE_X + 6).contains(&t) => {
-                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true })
+                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true, three_d: false })
             }
             _ => Err(GlError::InvalidEnum),
         }
@@ -115,10 +122,10 @@ impl ImageTarget {
 
     /// The binding point whose texture holds this image.
     pub fn binding(self) -> TextureTarget {
-        if self.cube {
-            TextureTarget::CubeMap
-        } else {
-            TextureTarget::TwoD
+        match (self.cube, self.three_d) {
+            (true, _) => TextureTarget::CubeMap,
+            (_, true) => TextureTarget::ThreeD,
+            _ => TextureTarget::TwoD,
         }
     }
 }
@@ -577,7 +584,7 @@ pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescript
         label: None,
         address_mode_u: wrap(s.wrap_s),
         address_mode_v: wrap(s.wrap_t),
-        address_mode_w: wrap(s.wrap_t),
+        address_mode_w: wrap(s.wrap_r),
         mag_filter: filter(s.mag),
         min_filter: filter(s.min),
         mipmap_filter: mip,
@@ -588,7 +595,7 @@ pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescript
         // wgpu filters anisotropically only with every filter linear: GL's anisotropy with
         // another filter is left out.
         anisotropy_clamp: if all_linear { f32::from_bits(s.anisotropy).round().clamp(1.0, 16.0) as u16 } else { 1 },
-        border_color: s.clamps_to_border().then_some(if white {
+        border_color: s.clamps_to_border(true).then_some(if white {
             wgpu::SamplerBorderColor::OpaqueWhite
         } else {
             wgpu::SamplerBorderColor::TransparentBlack

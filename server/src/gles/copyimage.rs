@@ -27,7 +27,8 @@ impl GlesExecutor {
         height: i32,
         border: i32,
     ) -> GlResult {
-        self.copy_tex(ctx, flushed, target, level, Some(internalformat), 0, 0, x, y, width, height, border)
+        let image = ImageTarget::from_gl(target);
+        self.copy_tex(ctx, flushed, image, level, Some(internalformat), [0, 0, 0], x, y, width, height, border)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -44,21 +45,22 @@ impl GlesExecutor {
         width: i32,
         height: i32,
     ) -> GlResult {
-        self.copy_tex(ctx, flushed, target, level, None, xoffset, yoffset, x, y, width, height, 0)
+        let image = ImageTarget::from_gl(target);
+        self.copy_tex(ctx, flushed, image, level, None, [xoffset, yoffset, 0], x, y, width, height, 0)
     }
 
-    /// Copies a rectangle of the framebuffer's colour into a texture level; with `internal`
-    /// (`glCopyTexImage2D`) level 0 is (re)specified first.
+    /// Copies a rectangle of the framebuffer's colour into a texture level (at slice `zo` of a
+    /// 3D image, `glCopyTexSubImage3DOES`); with `internal` (`glCopyTexImage2D`) level 0 is
+    /// (re)specified first. `image` is the target parsed, or its error.
     #[allow(clippy::too_many_arguments)]
-    fn copy_tex(
+    pub(super) fn copy_tex(
         &mut self,
         ctx: &mut Context,
         _flushed: &Flushed,
-        target: u32,
+        image: GlResult<ImageTarget>,
         level: i32,
         internal: Option<u32>,
-        xo: i32,
-        yo: i32,
+        [xo, yo, zo]: [i32; 3],
         x: i32,
         y: i32,
         w: i32,
@@ -70,8 +72,9 @@ impl GlesExecutor {
         let uid = self.next_uid();
         let account = self.account.clone();
         let gpu = &self.gpu;
-        let image = ImageTarget::from_gl(target)?;
-        if level < 0 || w < 0 || h < 0 || border != 0 || level > MAX_LEVEL {
+        let image = image?;
+        let last = if image.three_d { super::texture3d::max_level(gpu) } else { MAX_LEVEL };
+        if level < 0 || w < 0 || h < 0 || border != 0 || level > last {
             return Err(GlError::InvalidValue);
         }
         // A half-float read buffer (GL_EXT_color_buffer_half_float) copies into no 8-bit image.
@@ -128,6 +131,9 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         super::teximage::validate_rect((lw, lh), xo, yo, w, h)?;
+        if zo < 0 || zo as u32 >= img.level_depth(level) {
+            return Err(GlError::InvalidValue);
+        }
         t.defined[image.face as usize] |= 1 << level;
         let rgb = t.format == RGB;
         let Some((src_tex, _)) = &src.color else { return Ok(()) };
@@ -139,7 +145,8 @@ impl GlesExecutor {
         }
         let dst = [(xo + sx0 - x) as u32, (yo + sy0 - y) as u32, (sx1 - sx0) as u32, (sy1 - sy0) as u32];
         let dst_tex = img.texture.clone();
-        let (from, to) = (src.color_at, img.at(image.face, level));
+        let (from, to) = (src.color_at, img.at(image.face + zo as u32, level));
+        let (view, slice) = img.attach_view(image.face + zo as u32, level);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         enc.copy_texture_to_texture(
             wgpu::TexelCopyTextureInfo {
@@ -160,10 +167,10 @@ impl GlesExecutor {
         self.r.lane.submit(&self.gpu, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.
-            let view = to.view(&dst_tex, wgpu::TextureAspect::All);
             let color = (dst_tex, view);
             let absent = wgpu::ColorWrites::ALPHA;
-            let level_target = Target::color_only((uid, 3), color, (lw, lh), absent);
+            let mut level_target = Target::color_only((uid, 3), color, (lw, lh), absent);
+            level_target.slices = vec![slice];
             let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }

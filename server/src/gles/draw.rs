@@ -214,15 +214,18 @@ fn raster_state(ctx: &Context, topology: wgpu::PrimitiveTopology, target: &Targe
 fn with_sampler_params<'c>(mut data: Cow<'c, [u8]>, bound: &[Option<&Texture>], offsets: &[u32]) -> Cow<'c, [u8]> {
     for (t, &at) in bound.iter().zip(offsets) {
         let Some(t) = t else { continue };
-        let [ms, mt] = t.sampler.mirror_clamp();
-        let border = t.sampler.clamps_to_border();
-        if !(ms || mt || border) {
+        // The r wrap counts only for 3D textures, whose lookup helpers read flag w.
+        let three_d = t.target == TEXTURE_3D_OES;
+        let [ms, mt, mr] = t.sampler.mirror_clamp();
+        let mr = mr && three_d;
+        let border = t.sampler.clamps_to_border(three_d);
+        if !(ms || mt || mr || border) {
             continue;
         }
         let float = t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float));
         let color = if border { border_color(t.format, float, t.border) } else { [0.0; 4] };
         let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
-        let values = [flag(ms), flag(mt), flag(border), 0.0, color[0], color[1], color[2], color[3]];
+        let values = [flag(ms), flag(mt), flag(border), flag(mr), color[0], color[1], color[2], color[3]];
         let at = at as usize;
         if let Some(dst) = data.to_mut().get_mut(at..at + 32) {
             for (d, v) in dst.chunks_exact_mut(4).zip(values) {
@@ -294,6 +297,7 @@ fn plan_draw<'c>(
             let target = match ty {
                 Ty::SamplerCube => TextureTarget::CubeMap,
                 Ty::SamplerExternal => TextureTarget::External,
+                Ty::Sampler3D => TextureTarget::ThreeD,
                 _ => TextureTarget::TwoD,
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];

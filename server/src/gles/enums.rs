@@ -193,6 +193,14 @@ pub const TEXTURE_MAG_FILTER: u32 = 0x2800;
 pub const TEXTURE_MIN_FILTER: u32 = 0x2801;
 pub const TEXTURE_WRAP_S: u32 = 0x2802;
 pub const TEXTURE_WRAP_T: u32 = 0x2803;
+/// `GL_OES_texture_3D`: the target, its binding, its size limit, the r wrap, the sampler
+/// type and the attached slice.
+pub const TEXTURE_3D_OES: u32 = 0x806F;
+pub const TEXTURE_BINDING_3D_OES: u32 = 0x806A;
+pub const MAX_3D_TEXTURE_SIZE_OES: u32 = 0x8073;
+pub const TEXTURE_WRAP_R_OES: u32 = 0x8072;
+pub const SAMPLER_3D_OES: u32 = 0x8B5F;
+pub const FRAMEBUFFER_ATTACHMENT_TEXTURE_3D_ZOFFSET_OES: u32 = 0x8CD4;
 pub const NEAREST: u32 = 0x2600;
 pub const LINEAR: u32 = 0x2601;
 pub const NEAREST_MIPMAP_NEAREST: u32 = 0x2700;

@@ -108,7 +108,7 @@ impl Renderbuffer {
 }
 
 /// Attaches `a` to `attachment` of the bound framebuffer object.
-fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
+pub(super) fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
     let bound = ctx.bindings.framebuffer;
     let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
     match attachment {
@@ -293,14 +293,17 @@ impl GlesExecutor {
         if target != FRAMEBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        let face = ImageTarget::from_gl(textarget)?.face;
+        let image = ImageTarget::from_gl(textarget)?;
         // GL_OES_fbo_render_mipmap: any level a texture can have.
         if !(0..=MAX_LEVEL).contains(&level) && texture != 0 {
             return Err(GlError::InvalidValue);
         }
-        if texture != 0 && !ctx.objects.textures.contains_key(&texture) {
+        // As Mesa: the texture must exist, and have the target named (a face for a cube map).
+        let expected = if image.cube { TEXTURE_CUBE_MAP } else { TEXTURE_2D };
+        if texture != 0 && ctx.objects.textures.get(&texture).is_none_or(|t| t.target != 0 && t.target != expected) {
             return Err(GlError::InvalidOperation);
         }
+        let face = image.face;
         let a = if texture == 0 {
             Attachment::None
         } else {
@@ -361,11 +364,18 @@ impl GlesExecutor {
             (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Texture { name, .. }) => name as i32,
             (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Renderbuffer(n)) => n as i32,
             (FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, Attachment::Texture { level, .. }) => level as i32,
-            (FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, Attachment::Texture { face, .. }) => {
-                if face == 0 {
-                    0
-                } else {
-                    (TEXTURE_CUBE_MAP_POSITIVE_X + face) as i32
+            // The face of a cube map, the slice of a 3D texture (`GL_OES_texture_3D`); 0 for
+            // other textures.
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, Attachment::Texture { name, face, .. }) => {
+                match ctx.objects.textures.get(&name).map(|t| t.target) {
+                    Some(TEXTURE_CUBE_MAP) => (TEXTURE_CUBE_MAP_POSITIVE_X + face) as i32,
+                    _ => 0,
+                }
+            }
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_3D_ZOFFSET_OES, Attachment::Texture { name, face, .. }) => {
+                match ctx.objects.textures.get(&name).map(|t| t.target) {
+                    Some(TEXTURE_3D_OES) => face as i32,
+                    _ => 0,
                 }
             }
             _ => {

@@ -23,6 +23,8 @@ pub struct TextureImage {
     pub width: u32,
     /// Level-0 height.
     pub height: u32,
+    /// Level-0 depth: the slices of a 3D image (`GL_OES_texture_3D`), 1 for others.
+    pub depth: u32,
     /// Mip levels allocated.
     pub mips: u32,
     /// Levels of GL's full mip chain for this size (completeness is judged against these).
@@ -84,21 +86,26 @@ pub struct Region {
 }
 
 impl TextureImage {
-    /// Allocates an image of `storage` for a texture of `target`, reserving its memory first.
+    /// Allocates an image of `storage` for a texture of `target` (`depth` slices for a 3D
+    /// one), reserving its memory first.
     fn new(
         gpu: &Gpu,
         account: &Arc<Account>,
         target: u32,
-        width: u32,
-        height: u32,
+        (width, height, depth): (u32, u32, u32),
         storage: Storage,
     ) -> GlResult<Self> {
-        let layers = if target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let levels = 32 - width.max(height).max(1).leading_zeros();
+        let three_d = target == TEXTURE_3D_OES;
+        let depth = if three_d { depth.max(1) } else { 1 };
+        let layers = if target == TEXTURE_CUBE_MAP { 6 } else { depth };
+        let levels = 32 - width.max(height).max(depth).max(1).leading_zeros();
         let mips = if storage.is_depth() { 1 } else { levels };
-        let reserved = account
-            .reserve(super::account::image_bytes(width, height, layers, mips, storage))
-            .map_err(|_| GlError::OutOfMemory)?;
+        let bytes = if three_d {
+            super::account::volume_bytes(width, height, depth, mips, storage)
+        } else {
+            super::account::image_bytes(width, height, layers, mips, storage)
+        };
+        let reserved = account.reserve(bytes).map_err(|_| GlError::OutOfMemory)?;
         let mut usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         if storage.attachable() {
             usage |= wgpu::TextureUsages::RENDER_ATTACHMENT;
@@ -110,12 +117,16 @@ impl TextureImage {
             size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: layers },
             mip_level_count: mips,
             sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+            dimension: if three_d { wgpu::TextureDimension::D3 } else { wgpu::TextureDimension::D2 },
             format: storage.wgpu(),
             usage,
             view_formats: &[],
         });
-        let dim = if layers == 6 { wgpu::TextureViewDimension::Cube } else { wgpu::TextureViewDimension::D2 };
+        let dim = match layers {
+            _ if three_d => wgpu::TextureViewDimension::D3,
+            6 => wgpu::TextureViewDimension::Cube,
+            _ => wgpu::TextureViewDimension::D2,
+        };
         let aspect = if storage.is_depth() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
         let view =
             texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), aspect, ..Default::default() });
@@ -128,6 +139,7 @@ impl TextureImage {
             view,
             width,
             height,
+            depth,
             mips,
             levels,
             storage,
@@ -154,6 +166,7 @@ impl TextureImage {
             view,
             width,
             height,
+            depth: 1,
             mips: 1,
             levels: 32 - width.max(height).max(1).leading_zeros(),
             storage,
@@ -177,6 +190,32 @@ impl TextureImage {
     /// Width and height of `level`.
     pub fn level_size(&self, level: u32) -> (u32, u32) {
         ((self.width >> level).max(1), (self.height >> level).max(1))
+    }
+
+    /// The slices of `level` (1 but for a 3D image).
+    pub fn level_depth(&self, level: u32) -> u32 {
+        (self.depth >> level).max(1)
+    }
+
+    /// Whether this is a 3D image (`GL_OES_texture_3D`).
+    pub fn three_d(&self) -> bool {
+        self.texture.dimension() == wgpu::TextureDimension::D3
+    }
+
+    /// A view for rendering into `level` of `face` (a 2D image's or cube face's), or into
+    /// slice `face` of a 3D image's level, with the slice the render pass must name.
+    pub fn attach_view(&self, face: u32, level: u32) -> (wgpu::TextureView, Option<u32>) {
+        let at = self.at(face, level);
+        if !self.three_d() {
+            return (at.view(&self.texture, wgpu::TextureAspect::All), None);
+        }
+        let view = self.texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D3),
+            base_mip_level: at.level,
+            mip_level_count: Some(1),
+            ..Default::default()
+        });
+        (view, Some(at.layer))
     }
 
     /// Writes tightly packed texels of the image's storage (RGBA8, RGBA16F or RGBA32F) into
@@ -245,19 +284,30 @@ impl Texture {
         height: u32,
         storage: Storage,
     ) -> GlResult {
+        self.ensure_volume(gpu, account, uid, (width, height, 1), storage)
+    }
+
+    /// [`Self::ensure_image`] of `depth` slices for a 3D texture (`GL_OES_texture_3D`).
+    pub fn ensure_volume(
+        &mut self,
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        uid: u64,
+        (width, height, depth): (u32, u32, u32),
+        storage: Storage,
+    ) -> GlResult {
+        let depth = if self.target == TEXTURE_3D_OES { depth } else { 1 };
         // An image an EGLImage shares is left to it: respecifying the texture orphans it.
-        if self
-            .gpu
-            .as_ref()
-            .is_some_and(|i| i.width == width && i.height == height && i.storage == storage && !i.shared())
-        {
+        if self.gpu.as_ref().is_some_and(|i| {
+            (i.width, i.height, i.depth) == (width, height, depth.max(1)) && i.storage == storage && !i.shared()
+        }) {
             return Ok(());
         }
         // The old image's memory is given back before the new one is reserved.
         self.gpu = None;
         self.defined = [0; 6];
         self.uid = uid;
-        self.gpu = Some(TextureImage::new(gpu, account, self.target, width, height, storage)?);
+        self.gpu = Some(TextureImage::new(gpu, account, self.target, (width, height, depth), storage)?);
         Ok(())
     }
 
@@ -266,7 +316,7 @@ impl Texture {
     pub fn decompress(&mut self, gpu: &Gpu, flushed: &Flushed, account: &Arc<Account>, uid: u64) -> GlResult {
         let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return Ok(()) };
         let Storage::Native(c) = old.storage else { return Ok(()) };
-        let img = TextureImage::new(gpu, account, self.target, old.width, old.height, Storage::Rgba8)?;
+        let img = TextureImage::new(gpu, account, self.target, (old.width, old.height, old.depth), Storage::Rgba8)?;
         for (&(face, level), blocks) in &old.blocks {
             let (width, height) = img.level_size(level);
             let region = Region { face, level, x: 0, y: 0, width, height };

@@ -53,6 +53,7 @@ mod stages;
 mod state;
 mod surface;
 mod teximage;
+mod texture3d;
 mod textures;
 mod timer;
 mod uniforms;

@@ -24,7 +24,7 @@ GL_OES_mapbuffer GL_EXT_map_buffer_range GL_NV_pack_subimage GL_ANGLE_pack_rever
 GL_EXT_texture_type_2_10_10_10_REV GL_APPLE_texture_max_level GL_OES_surfaceless_context \
 GL_MESA_bgra GL_EXT_occlusion_query_boolean GL_NV_conditional_render GL_EXT_robustness GL_KHR_robustness \
 GL_OES_EGL_sync GL_OES_get_program_binary GL_EXT_clip_control GL_KHR_robust_buffer_access_behavior GL_NV_read_depth GL_NV_read_stencil GL_NV_read_depth_stencil GL_OES_depth_texture_cube_map \
-GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects GL_EXT_texture_mirror_clamp_to_edge GL_EXT_color_buffer_half_float";
+GL_OES_EGL_image GL_OES_EGL_image_external GL_NV_pixel_buffer_object GL_EXT_separate_shader_objects GL_EXT_texture_mirror_clamp_to_edge GL_EXT_color_buffer_half_float GL_OES_texture_3D";
 
 /// The texture-format extensions a device with `features` supports: float and half-float
 /// textures (RGBA32F filtering only with `FLOAT32_FILTERABLE`), BGRA uploads, unpack
@@ -37,6 +37,8 @@ fn texture_extensions(features: wgpu::Features) -> String {
     }
     ext.extend(["GL_EXT_texture_format_BGRA8888", "GL_EXT_unpack_subimage", "GL_OES_compressed_ETC1_RGB8_texture"]);
     ext.extend(["GL_EXT_compressed_ETC1_RGB8_sub_texture", "GL_KHR_texture_compression_astc_ldr"]);
+    // ASTC slices of 3D images (GL_OES_texture_3D), decoded on upload.
+    ext.push("GL_KHR_texture_compression_astc_sliced_3d");
     if features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC) {
         // The S3TC formats, and the same formats under the names of their subsets.
         ext.extend([
@@ -169,6 +171,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         TEXTURE_BINDING_2D => u(bind.units[bind.active_unit][0]),
         TEXTURE_BINDING_CUBE_MAP => u(bind.units[bind.active_unit][1]),
         TEXTURE_BINDING_EXTERNAL_OES => u(bind.units[bind.active_unit][2]),
+        TEXTURE_BINDING_3D_OES => u(bind.units[bind.active_unit][3]),
+        MAX_3D_TEXTURE_SIZE_OES => i(super::texture3d::max_size(gpu) as i32),
         ACTIVE_TEXTURE => u(TEXTURE0 + bind.active_unit as u32),
         UNPACK_ALIGNMENT => i(ctx.pixel_store.unpack_alignment),
         PACK_ALIGNMENT => i(ctx.pixel_store.pack_alignment),

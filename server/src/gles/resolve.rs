@@ -27,8 +27,10 @@ struct ColorImage {
     absent: wgpu::ColorWrites,
     /// What identifies the image: uid, level, face.
     id: (u64, u32, u32),
-    /// The level and layer of `texture` the view shows.
+    /// The level and layer of `texture` the view shows (the slice, of a 3D image).
     at: Subresource,
+    /// The slice of a 3D image the render pass names (`GL_OES_texture_3D`).
+    slice: Option<u32>,
     /// Width and height.
     size: (u32, u32),
 }
@@ -49,17 +51,23 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             // A level above 0 is attachable only while the texture's levels are complete (as
-            // Mesa decides with GL_OES_fbo_render_mipmap).
-            if t.defined[face as usize] & (1 << level) == 0 || (level > 0 && !t.levels_complete()) {
+            // Mesa decides with GL_OES_fbo_render_mipmap). A 3D image's `face` is the slice,
+            // which must lie in the level.
+            let defined = if img.three_d() { 0 } else { face };
+            if t.defined[defined as usize] & (1 << level) == 0
+                || (level > 0 && !t.levels_complete())
+                || (img.three_d() && face >= img.level_depth(level))
+            {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            let at = img.at(face, level);
+            let (view, slice) = img.attach_view(face, level);
             ColorImage {
                 texture: img.texture.clone(),
-                view: at.view(&img.texture, wgpu::TextureAspect::All),
+                view,
                 absent: absent_channels(t.format),
                 id: (t.uid, level, face),
-                at,
+                at: img.at(face, level),
+                slice,
                 size: ((img.width >> level).max(1), (img.height >> level).max(1)),
             }
         }
@@ -75,6 +83,7 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
                 absent: absent_channels(rb.format),
                 id: (rb.uid, 0, 0),
                 at: rb.at,
+                slice: None,
                 size: (rb.width, rb.height),
             }
         }
@@ -169,6 +178,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
         s.as_ref().map(|c| c.id).hash(&mut h);
     }
     depth.as_ref().map(|d| d.2).hash(&mut h);
+    let slices = slots.iter().map(|s| s.as_ref().and_then(|c| c.slice)).collect();
     let mut slots = slots.into_iter();
     let first = slots.next().flatten();
     let mut more: Vec<_> = slots.map(|s| s.map(|c| (c.view, c.absent, c.texture.format()))).collect();
@@ -181,6 +191,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
         color_at: first.as_ref().map_or_else(Subresource::default, |c| c.at),
         color: first.map(|c| (c.texture, c.view)),
         more,
+        slices,
         depth_image: depth.as_ref().map(|d| d.5.clone()),
         depth: depth.map(|d| (d.0, d.1)),
         width,

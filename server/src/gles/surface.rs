@@ -203,6 +203,7 @@ impl GlesExecutor {
             color: Some((color, color_view)),
             color_at: Default::default(),
             more: Vec::new(),
+            slices: Vec::new(),
             depth,
             depth_image: depth_tex.clone().map(|t| (t, 0)),
             width: w,

@@ -96,7 +96,14 @@ pub fn sub_image<'a>(
 /// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image (ASTC's is
 /// the same for its footprints): the rectangle starts on a block boundary and covers whole
 /// blocks, except where it reaches the level's right or top edge.
-fn block_aligned(block: (u32, u32), level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> bool {
+pub(super) fn block_aligned(
+    block: (u32, u32),
+    level_size: (u32, u32),
+    x: i32,
+    y: i32,
+    width: i32,
+    height: i32,
+) -> bool {
     let (bw, bh) = (block.0 as i32, block.1 as i32);
     let edge = |o: i32, n: i32, b: i32, size: u32| n % b == 0 || i64::from(o) + i64::from(n) == i64::from(size);
     x % bw == 0 && y % bh == 0 && edge(x, width, bw, level_size.0) && edge(y, height, bh, level_size.1)
@@ -104,7 +111,7 @@ fn block_aligned(block: (u32, u32), level_size: (u32, u32), x: i32, y: i32, widt
 
 /// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
 /// has no alpha (RGB and luminance images read alpha as 1 whatever their colour).
-fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
+pub(super) fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
     let alpha: f32 = if matches!(format, RGB | LUMINANCE | RED_EXT | RG_EXT) { 1.0 } else { 0.0 };
     let rgba = [0.0, 0.0, 0.0, alpha];
     let texel: Vec<u8> = match storage {

@@ -23,6 +23,8 @@ pub struct SamplerState {
     pub wrap_s: u32,
     /// `TEXTURE_WRAP_T`.
     pub wrap_t: u32,
+    /// `TEXTURE_WRAP_R_OES` (`GL_OES_texture_3D`; every texture has it).
+    pub wrap_r: u32,
     /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
     /// from 1 to [`MAX_ANISOTROPY`].
     pub anisotropy: u32,
@@ -41,6 +43,7 @@ impl Default for SamplerState {
             mag: LINEAR,
             wrap_s: REPEAT,
             wrap_t: REPEAT,
+            wrap_r: REPEAT,
             anisotropy: 1.0f32.to_bits(),
             max_level: 1000,
         }
@@ -53,15 +56,18 @@ impl SamplerState {
         !matches!(self.min, NEAREST | LINEAR)
     }
 
-    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s and t: the sampler clamps to the edge and
-    /// the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
-    pub fn mirror_clamp(&self) -> [bool; 2] {
-        [self.wrap_s == MIRROR_CLAMP_TO_EDGE_EXT, self.wrap_t == MIRROR_CLAMP_TO_EDGE_EXT]
+    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s, t and r: the sampler clamps to the edge
+    /// and the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
+    pub fn mirror_clamp(&self) -> [bool; 3] {
+        [self.wrap_s, self.wrap_t, self.wrap_r].map(|w| w == MIRROR_CLAMP_TO_EDGE_EXT)
     }
 
-    /// Whether s or t wraps by `GL_CLAMP_TO_BORDER_EXT`.
-    pub fn clamps_to_border(&self) -> bool {
-        self.wrap_s == CLAMP_TO_BORDER_EXT || self.wrap_t == CLAMP_TO_BORDER_EXT
+    /// Whether s, t or r wraps by `GL_CLAMP_TO_BORDER_EXT` (r counts only for 3D textures,
+    /// `three_d`).
+    pub fn clamps_to_border(&self, three_d: bool) -> bool {
+        self.wrap_s == CLAMP_TO_BORDER_EXT
+            || self.wrap_t == CLAMP_TO_BORDER_EXT
+            || (three_d && self.wrap_r == CLAMP_TO_BORDER_EXT)
     }
 
     /// Whether either filter interpolates between texels or levels.
@@ -177,7 +183,7 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
                 | LINEAR_MIPMAP_LINEAR
         ),
         TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
-        TEXTURE_WRAP_S | TEXTURE_WRAP_T => {
+        TEXTURE_WRAP_S | TEXTURE_WRAP_T | TEXTURE_WRAP_R_OES => {
             matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT | MIRROR_CLAMP_TO_EDGE_EXT)
                 || (border && v == CLAMP_TO_BORDER_EXT)
         }
@@ -191,7 +197,8 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
         TEXTURE_MIN_FILTER => t.sampler.min = v,
         TEXTURE_MAG_FILTER => t.sampler.mag = v,
         TEXTURE_WRAP_S => t.sampler.wrap_s = v,
-        _ => t.sampler.wrap_t = v,
+        TEXTURE_WRAP_T => t.sampler.wrap_t = v,
+        _ => t.sampler.wrap_r = v,
     }
     Ok(())
 }
@@ -210,6 +217,7 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
         TEXTURE_MAG_FILTER => Some(s.mag as f32),
         TEXTURE_WRAP_S => Some(s.wrap_s as f32),
         TEXTURE_WRAP_T => Some(s.wrap_t as f32),
+        TEXTURE_WRAP_R_OES => Some(s.wrap_r as f32),
         TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
         TEXTURE_MAX_LEVEL_APPLE => Some(s.max_level as f32),
         // Every texture takes one unit (Mesa answers for every target).
@@ -351,7 +359,11 @@ impl GlesExecutor {
         for d in &mut t.defined[..layers] {
             *d = (1 << mips) - 1;
         }
-        self.r.generate_mipmaps(flushed, &tex, mips, layers as u32, format);
+        if t.target == TEXTURE_3D_OES {
+            self.r.generate_volume_mipmaps(flushed, &tex, mips, format);
+        } else {
+            self.r.generate_mipmaps(flushed, &tex, mips, layers as u32, format);
+        }
         Ok(())
     }
 }

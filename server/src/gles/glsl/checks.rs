@@ -15,6 +15,9 @@ use super::Stage;
 /// The derivative functions of `GL_OES_standard_derivatives`.
 const DERIVATIVES: [&str; 3] = ["dFdx", "dFdy", "fwidth"];
 
+/// The 3D lookups of `GL_OES_texture_3D`; the explicit-level ones only in vertex shaders.
+const LOOKUPS_3D: [&str; 4] = ["texture3D", "texture3DProj", "texture3DLod", "texture3DProjLod"];
+
 /// What the checks learnt that linking needs.
 #[derive(Debug, Clone, Default)]
 pub struct Facts {
@@ -45,6 +48,12 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
             };
             return Err(at(*span, &format!("`{name}' {why}")));
         }
+        // As on Mesa, a 3D lookup the shader has not enabled (or an explicit-level one in a
+        // fragment shader) is no function at all.
+        let lod = name.ends_with("Lod") && stage == Stage::Fragment;
+        if LOOKUPS_3D.contains(&name.as_str()) && (!parsed.enabled.texture_3d || lod) {
+            return Err(at(*span, &format!("no function with name '{name}'")));
+        }
     }
     // `GL_EXT_frag_depth`'s output exists only in fragment shaders that enable it.
     if let Some(span) = calls.frag_depth {
@@ -66,7 +75,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     }
     globals(&parsed.tu, &at)?;
     super::writes::check(stage, &parsed.tu, &at)?;
-    let precisions = precision::check(stage, &parsed.tu, &at)?;
+    let precisions = precision::check(stage, &parsed.tu, parsed.enabled.texture_3d, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {

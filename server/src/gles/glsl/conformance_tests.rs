@@ -50,7 +50,7 @@ fn extension_directives_follow_section_3_4() {
     // Only offered extensions are defined as macros.
     compile(
         Stage::Vertex,
-        "#ifdef GL_OES_texture_3D\n#error defined\n#endif\nvoid main() { gl_Position = vec4(0.0); }",
+        "#ifdef GL_OES_texture_buffer\n#error defined\n#endif\nvoid main() { gl_Position = vec4(0.0); }",
     )
     .expect("an extension Strata does not offer is not defined");
 }

@@ -493,28 +493,34 @@ fn sampler_names(uniforms: &[UniformSlot]) -> Vec<String> {
 }
 
 /// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` for a sampler's flags `w`:
-/// where x or y is set, the sampler clamps to the edge and the coordinate is its magnitude,
-/// which mirrors it once exactly, filtering included.
+/// where x or y (and for a 3D image, w) is set, the sampler clamps to the edge and the
+/// coordinate is its magnitude, which mirrors it once exactly, filtering included.
 pub(super) const WRAP_FNS: &str =
-    "vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }\n";
+    "vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }\n\
+     vec3 strata_wrap(vec3 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xyw, vec3(0.5))); }\n";
 
-/// The helpers the rewrite turns 2D lookups into (`Shader::lookups`), one per sampler uniform
-/// and function, and one per function for sampler parameters. Each wraps the coordinate
-/// (`WRAP_FNS`), samples, and where a wrap is `GL_CLAMP_TO_BORDER_EXT` (flag z) adds the
-/// border colour `c` weighted by how much of the filter fell outside the image: the sampler
-/// reads a transparent black border and the border sampler an opaque white one, so the
+/// The helpers the rewrite turns 2D and 3D lookups into (`Shader::lookups`), one per sampler
+/// uniform and function, and one per function for sampler parameters. Each wraps the
+/// coordinate (`WRAP_FNS`), samples, and where a wrap is `GL_CLAMP_TO_BORDER_EXT` (flag z)
+/// adds the border colour `c` weighted by how much of the filter fell outside the image: the
+/// sampler reads a transparent black border and the border sampler an opaque white one, so the
 /// difference of their alphas is that weight, exactly, for any filter. A uniform's helper
 /// branches on its flags (uniform control flow, so implicit derivatives stay defined), and a
 /// projective lookup with no flag set stays projective; a parameter's helper always samples
 /// twice and projects first.
-pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, String)>) -> String {
+pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, String, bool)>) -> String {
     let mut out = String::new();
-    for (sampler, function) in lookups {
+    for (sampler, function, three_d) in lookups {
         let base = function.replace("Proj", "");
-        let coords: &[(&str, &str)] = if function.contains("Proj") {
-            &[("vec3", "c.xy / c.z"), ("vec4", "c.xy / c.w")]
+        let (vec, texture, combined, prefix) = if *three_d {
+            ("vec3", "texture3D", "sampler3D", "strata_p3_")
         } else {
-            &[("vec2", "c")]
+            ("vec2", "texture2D", "sampler2D", "strata_p_")
+        };
+        let coords: &[(&str, &str)] = match (function.contains("Proj"), three_d) {
+            (true, false) => &[("vec3", "c.xy / c.z"), ("vec4", "c.xy / c.w")],
+            (true, true) => &[("vec4", "c.xyz / c.w")],
+            (false, _) => &[(vec, "c")],
         };
         // The optional bias of the implicit-level functions, or the level of the Lod ones.
         let extras: &[(&str, &str)] =
@@ -524,10 +530,10 @@ pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, Strin
                 if sampler.is_empty() {
                     let _ = writeln!(
                         out,
-                        "vec4 strata_p_{function}(texture2D t, sampler s, sampler b, vec4 w, vec4 border, {ty} c{param}) {{\n\
-                         \x20   vec2 p = strata_wrap({projected}, w);\n\
-                         \x20   vec4 v = {base}(sampler2D(t, s), p{arg});\n\
-                         \x20   return v + border * ((({base}(sampler2D(t, b), p{arg})).a - v.a) * w.z);\n}}"
+                        "vec4 {prefix}{function}({texture} t, sampler s, sampler b, vec4 w, vec4 border, {ty} c{param}) {{\n\
+                         \x20   {vec} p = strata_wrap({projected}, w);\n\
+                         \x20   vec4 v = {base}({combined}(t, s), p{arg});\n\
+                         \x20   return v + border * ((({base}({combined}(t, b), p{arg})).a - v.a) * w.z);\n}}"
                     );
                     continue;
                 }
@@ -540,7 +546,7 @@ pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, Strin
                 );
                 let keep = if function.contains("Proj") {
                     format!(
-                        "    if ({w}.x + {w}.y + {w}.z == 0.0) {{ return {function}(sampler2D({t}, {s}), c{arg}); }}\n"
+                        "    if ({w}.x + {w}.y + {w}.z + {w}.w == 0.0) {{ return {function}({combined}({t}, {s}), c{arg}); }}\n"
                     )
                 } else {
                     String::new()
@@ -548,9 +554,9 @@ pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, Strin
                 let _ = writeln!(
                     out,
                     "vec4 {sampler}__{function}({ty} c{param}) {{\n{keep}\
-                     \x20   vec2 p = strata_wrap({projected}, {w});\n\
-                     \x20   vec4 v = {base}(sampler2D({t}, {s}), p{arg});\n\
-                     \x20   if ({w}.z > 0.5) {{ v += {c} * ({base}(sampler2D({t}, {b}), p{arg}).a - v.a); }}\n\
+                     \x20   {vec} p = strata_wrap({projected}, {w});\n\
+                     \x20   vec4 v = {base}({combined}({t}, {s}), p{arg});\n\
+                     \x20   if ({w}.z > 0.5) {{ v += {c} * ({base}({combined}({t}, {b}), p{arg}).a - v.a); }}\n\
                      \x20   return v;\n}}"
                 );
             }

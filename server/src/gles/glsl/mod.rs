@@ -71,6 +71,8 @@ pub enum Ty {
     SamplerCube,
     /// `samplerExternalOES` (`GL_OES_EGL_image_external`), sampled as a 2D image.
     SamplerExternal,
+    /// `sampler3D` (`GL_OES_texture_3D`).
+    Sampler3D,
 }
 
 /// `GL_SAMPLER_EXTERNAL_OES`, the type `glGetActiveUniform` reports for `samplerExternalOES`.
@@ -96,6 +98,7 @@ impl Ty {
             T::Mat4 => Ty::Mat4,
             T::Sampler2D => Ty::Sampler2D,
             T::SamplerCube => Ty::SamplerCube,
+            T::Sampler3D => Ty::Sampler3D,
             // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
             T::Sampler2DRect => Ty::SamplerExternal,
             _ => return None,
@@ -123,6 +126,7 @@ impl Ty {
             Ty::Sampler2D => gl::SAMPLER_2D,
             Ty::SamplerCube => gl::SAMPLER_CUBE,
             Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
+            Ty::Sampler3D => gl::SAMPLER_3D_OES,
         }
     }
 
@@ -150,13 +154,14 @@ impl Ty {
             Ty::Mat4 => "mat4",
             Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
             Ty::SamplerCube => "textureCube",
+            Ty::Sampler3D => "texture3D",
         }
     }
 
     /// Scalars per element (a matrix counts all its entries).
     pub fn components(self) -> usize {
         match self {
-            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => 1,
+            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => 1,
             Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => 2,
             Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => 3,
             Ty::Vec4 | Ty::IVec4 | Ty::BVec4 | Ty::Mat2 => 4,
@@ -178,9 +183,8 @@ impl Ty {
     /// What a `glUniform*` call must match: float, int (and samplers), or bool (either).
     pub fn scalar(self) -> Scalar {
         match self {
-            Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => {
-                Scalar::Int
-            }
+            Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 => Scalar::Int,
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => Scalar::Int,
             Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
             _ => Scalar::Float,
         }
@@ -188,7 +192,7 @@ impl Ty {
 
     /// Whether this is a sampler.
     pub fn is_sampler(self) -> bool {
-        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal)
+        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D)
     }
 
     /// std140 (size, alignment) of one element that is not in an array.
@@ -201,7 +205,7 @@ impl Ty {
             Ty::Mat2 => (32, 16),
             Ty::Mat3 => (48, 16),
             Ty::Mat4 => (64, 16),
-            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal => (0, 1),
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => (0, 1),
         }
     }
 }
@@ -254,9 +258,10 @@ pub struct Shader {
     pub dual: bool,
     /// Whether it defines `main` (a program without one fails to link).
     pub has_main: bool,
-    /// The 2D lookups it makes of its sampler uniforms, by (sampler, GLSL 450 function), each
-    /// a call of a generated helper (`link::lookup_helpers`); `""` for a sampler parameter.
-    pub lookups: std::collections::BTreeSet<(String, String)>,
+    /// The 2D and 3D lookups it makes of its sampler uniforms, by (sampler, GLSL 450 function,
+    /// whether 3D), each a call of a generated helper (`link::lookup_helpers`); `""` for a
+    /// sampler parameter.
+    pub lookups: std::collections::BTreeSet<(String, String, bool)>,
     /// The info log of a successful compile (warnings), empty if none.
     pub log: String,
     /// The source it was compiled from (what a program binary holds).

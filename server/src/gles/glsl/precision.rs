@@ -18,7 +18,7 @@ fn is_float(t: &T) -> bool {
 
 /// Whether a type may carry a precision qualifier (§4.5.2).
 fn takes_precision(t: &T) -> bool {
-    is_float(t) || is_int(t) || matches!(t, T::Sampler2D | T::SamplerCube | T::Sampler2DRect)
+    is_float(t) || is_int(t) || matches!(t, T::Sampler2D | T::SamplerCube | T::Sampler2DRect | T::Sampler3D)
 }
 
 fn explicit(q: Option<&ast::TypeQualifier>) -> Option<P> {
@@ -31,9 +31,15 @@ fn explicit(q: Option<&ast::TypeQualifier>) -> Option<P> {
 struct Walk<'a> {
     /// Default float precision per open scope (innermost last).
     scopes: Vec<Option<P>>,
+    /// The depths of the open scopes with a `precision … sampler3D` statement: `sampler3D`
+    /// has no default precision (`GL_OES_texture_3D`).
+    sampler_3d: Vec<usize>,
     at: At<'a>,
     /// The stage checked.
     stage: Stage,
+    /// Whether the shader enables `GL_OES_texture_3D` (only then does a `precision`
+    /// statement take `sampler3D`, as on Mesa).
+    texture_3d: bool,
     /// Precision of each float or int uniform.
     uniforms: HashMap<String, P>,
     varyings: HashMap<String, P>,
@@ -54,6 +60,13 @@ fn is_uniform(q: Option<&ast::TypeQualifier>) -> bool {
 }
 
 impl Walk<'_> {
+    /// Closes the innermost scope, with the defaults it set.
+    fn pop_scope(&mut self) {
+        self.scopes.pop();
+        let depth = self.scopes.len();
+        self.sampler_3d.retain(|d| *d <= depth);
+    }
+
     fn default_float(&self) -> Option<P> {
         self.scopes.iter().rev().find_map(|p| p.clone())
     }
@@ -69,6 +82,9 @@ impl Walk<'_> {
         if explicit(q).is_some() && !takes_precision(&ty.ty.content) {
             return Err((self.at)(span, "precision qualifiers apply only to float, int and sampler types"));
         }
+        if ty.ty.content == T::Sampler3D && explicit(q).is_none() && self.sampler_3d.is_empty() {
+            return Err((self.at)(span, "No precision specified in this scope for type `sampler3D'"));
+        }
         if !is_float(&ty.ty.content) {
             return Ok(None);
         }
@@ -82,7 +98,8 @@ impl Walk<'_> {
         match &d.content {
             ast::DeclarationData::Precision(p, ty) => {
                 let t = &ty.ty.content;
-                if !matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube | T::Sampler2DRect)
+                let sampler_3d = *t == T::Sampler3D && self.texture_3d;
+                if !(matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube | T::Sampler2DRect) || sampler_3d)
                     || ty.array_specifier.is_some()
                 {
                     return Err((self.at)(
@@ -94,6 +111,9 @@ impl Walk<'_> {
                     if let Some(top) = self.scopes.last_mut() {
                         *top = Some(p.content.clone());
                     }
+                }
+                if *t == T::Sampler3D {
+                    self.sampler_3d.push(self.scopes.len());
                 }
             }
             ast::DeclarationData::InitDeclaratorList(list) => {
@@ -165,7 +185,7 @@ impl Walk<'_> {
                         self.statement(body)
                     }
                 };
-                self.scopes.pop();
+                self.pop_scope();
                 r?;
             }
             _ => {}
@@ -176,14 +196,14 @@ impl Walk<'_> {
     fn scoped(&mut self, s: &ast::Statement) -> Result<(), String> {
         self.scopes.push(None);
         let r = self.statement(s);
-        self.scopes.pop();
+        self.pop_scope();
         r
     }
 
     fn compound(&mut self, c: &ast::CompoundStatement) -> Result<(), String> {
         self.scopes.push(None);
         let r = c.statement_list.iter().try_for_each(|s| self.statement(s));
-        self.scopes.pop();
+        self.pop_scope();
         r
     }
 }
@@ -198,10 +218,23 @@ pub(super) struct Precisions {
 }
 
 /// Checks the precision rules of one shader; returns the precisions linking compares.
-pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Result<Precisions, String> {
+pub(super) fn check(
+    stage: Stage,
+    tu: &ast::TranslationUnit,
+    texture_3d: bool,
+    at: At<'_>,
+) -> Result<Precisions, String> {
     // The vertex language's default float precision is highp.
     let global = if stage == Stage::Vertex { Some(P::High) } else { None };
-    let mut w = Walk { scopes: vec![global], at, stage, uniforms: HashMap::new(), varyings: HashMap::new() };
+    let mut w = Walk {
+        scopes: vec![global],
+        sampler_3d: Vec::new(),
+        at,
+        stage,
+        texture_3d,
+        uniforms: HashMap::new(),
+        varyings: HashMap::new(),
+    };
     let mut prototypes: HashMap<String, Option<P>> = HashMap::new();
     for decl in &tu.0 {
         match &decl.content {

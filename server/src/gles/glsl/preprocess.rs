@@ -28,6 +28,10 @@ pub(super) const EXT_BLEND_FUNC_EXTENDED: &str = "GL_EXT_blend_func_extended";
 /// `samplerExternalOES`, sampled with `texture2D` and `texture2DProj`.
 pub(super) const OES_EGL_IMAGE_EXTERNAL: &str = "GL_OES_EGL_image_external";
 
+/// `sampler3D` lookups (`texture3D` and its forms) in shaders that enable it. As on Mesa, the
+/// macro is defined and the type known whether or not a shader enables it.
+pub(super) const OES_TEXTURE_3D: &str = "GL_OES_texture_3D";
+
 /// Program pipelines. GLSL ES 1.00 gains nothing from it: the directive is accepted and the
 /// macro defined.
 pub(super) const EXT_SEPARATE_SHADER_OBJECTS: &str = "GL_EXT_separate_shader_objects";
@@ -50,6 +54,8 @@ pub(super) struct Enabled {
     pub(super) blend_func_extended: bool,
     /// `GL_OES_EGL_image_external`.
     pub(super) image_external: bool,
+    /// `GL_OES_texture_3D`.
+    pub(super) texture_3d: bool,
 }
 
 /// The preprocessor's extension registry: only what Strata offers, so that only those
@@ -63,6 +69,7 @@ static REGISTRY: LazyLock<Registry> = LazyLock::new(|| {
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_BLEND_FUNC_EXTENDED), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(OES_EGL_IMAGE_EXTERNAL), vec![]));
     r.add(ExtensionSpec::new(ExtNameAtom::from(EXT_SEPARATE_SHADER_OBJECTS), vec![]));
+    r.add(ExtensionSpec::new(ExtNameAtom::from(OES_TEXTURE_3D), vec![]));
     r
 });
 
@@ -145,6 +152,10 @@ fn extension_directive(
     }
     if name == OES_EGL_IMAGE_EXTERNAL {
         enabled.image_external = behavior != "disable";
+        return Ok(());
+    }
+    if name == OES_TEXTURE_3D {
+        enabled.texture_3d = behavior != "disable";
         return Ok(());
     }
     let msg = format!("extension `{name}' unsupported in {} shader", stage_name(stage));

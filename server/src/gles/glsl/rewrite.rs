@@ -19,8 +19,9 @@ pub(super) struct Rewrite {
     pub(super) samplers: HashMap<String, Ty>,
     /// The names of sampler parameters (the other samplers are uniforms).
     pub(super) sampler_params: std::collections::HashSet<String>,
-    /// The 2D lookups made, by (sampler uniform, GLSL 450 function); `""` for a parameter's.
-    pub(super) lookups: std::collections::BTreeSet<(String, String)>,
+    /// The 2D and 3D lookups made, by (sampler uniform, GLSL 450 function, whether 3D); `""`
+    /// for a parameter's.
+    pub(super) lookups: std::collections::BTreeSet<(String, String, bool)>,
     /// Sampler array uniforms: their lengths, by name.
     pub(super) sampler_arrays: HashMap<String, u32>,
     /// `mat2` uniforms (naga cannot lay out `matCx2` in std140): stored as `vec4[2]` per matrix;
@@ -199,24 +200,24 @@ const SAMPLER_PARTS: [(Option<T>, &str); 5] = [
 ];
 
 impl Rewrite {
-    /// Makes a 2D lookup (`id`, already the GLSL 450 function) a call of its generated helper,
-    /// which applies the sampler's wrap flags and border colour: `NAME__FUNCTION(coordinate, …)`
-    /// for a sampler uniform, `strata_p_FUNCTION(parts…, coordinate, …)` for a parameter.
+    /// Makes a 2D or 3D lookup (`id`, already the GLSL 450 function) a call of its generated
+    /// helper, which applies the sampler's wrap flags and border colour:
+    /// `NAME__FUNCTION(coordinate, …)` for a sampler uniform, `strata_p_FUNCTION(parts…,
+    /// coordinate, …)` (`strata_p3_` for 3D) for a parameter.
     fn lookup_helper(&mut self, id: &mut ast::Identifier, args: &mut Vec<ast::Expr>) {
         let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) else { return };
         let sampler = v.0.to_string();
-        if self.samplers.get(&sampler).is_none_or(|t| *t == Ty::SamplerCube) {
-            return;
-        }
+        let Some(ty) = self.samplers.get(&sampler).copied().filter(|t| *t != Ty::SamplerCube) else { return };
+        let three_d = ty == Ty::Sampler3D;
         let function = id.0.to_string();
         let name = if self.sampler_params.contains(&sampler) {
             let parts = SAMPLER_PARTS.iter().map(|(_, suffix)| var(&format!("{sampler}{suffix}")));
             args.splice(0..1, parts);
-            self.lookups.insert((String::new(), function.clone()));
-            format!("strata_p_{function}")
+            self.lookups.insert((String::new(), function.clone(), three_d));
+            format!("strata_p{}_{function}", if three_d { "3" } else { "" })
         } else {
             args.remove(0);
-            self.lookups.insert((sampler.clone(), function.clone()));
+            self.lookups.insert((sampler.clone(), function.clone(), three_d));
             format!("{sampler}__{function}")
         };
         *id = ast::IdentifierData(name.into()).into();
@@ -265,7 +266,11 @@ impl VisitorMut for Rewrite {
                 };
                 match split {
                     Some((t, name)) => {
-                        let tex = if t == Ty::SamplerCube { T::TextureCube } else { T::Texture2D };
+                        let tex = match t {
+                            Ty::SamplerCube => T::TextureCube,
+                            Ty::Sampler3D => T::Texture3D,
+                            _ => T::Texture2D,
+                        };
                         for (ty, suffix) in
                             SAMPLER_PARTS.iter().map(|(t, sfx)| (t.clone().unwrap_or_else(|| tex.clone()), *sfx))
                         {
@@ -326,7 +331,11 @@ impl VisitorMut for Rewrite {
                     self.instance_id = true;
                     Some(var("strata_InstanceID"))
                 } else if let Some(ty) = self.samplers.get(name) {
-                    let t = if *ty == Ty::SamplerCube { T::SamplerCube } else { T::Sampler2D };
+                    let t = match ty {
+                        Ty::SamplerCube => T::SamplerCube,
+                        Ty::Sampler3D => T::Sampler3D,
+                        _ => T::Sampler2D,
+                    };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
                 } else if self.mat2s.get(name) == Some(&false) {
                     Some(mat2_of(name, None))
@@ -419,12 +428,12 @@ impl VisitorMut for Rewrite {
                         // lookups as level 0, so they become explicit-LOD lookups.
                         let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
                         let renamed = match id.0.as_str() {
-                            "texture2D" | "textureCube" if vertex_implicit => Some("textureLod"),
-                            "texture2DProj" if vertex_implicit => Some("textureProjLod"),
-                            "texture2D" | "textureCube" => Some("texture"),
-                            "texture2DProj" => Some("textureProj"),
-                            "texture2DLod" | "textureCubeLod" => Some("textureLod"),
-                            "texture2DProjLod" => Some("textureProjLod"),
+                            "texture2D" | "textureCube" | "texture3D" if vertex_implicit => Some("textureLod"),
+                            "texture2DProj" | "texture3DProj" if vertex_implicit => Some("textureProjLod"),
+                            "texture2D" | "textureCube" | "texture3D" => Some("texture"),
+                            "texture2DProj" | "texture3DProj" => Some("textureProj"),
+                            "texture2DLod" | "textureCubeLod" | "texture3DLod" => Some("textureLod"),
+                            "texture2DProjLod" | "texture3DProjLod" => Some("textureProjLod"),
                             _ => None,
                         };
                         if let Some(r) = renamed {

@@ -197,21 +197,71 @@ fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
     tex.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() })
 }
 
+/// A 1×1×1 opaque black 3D image, which incomplete 3D textures sample.
+fn black_volume(gpu: &Gpu) -> wgpu::TextureView {
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("incomplete 3d texture"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D3,
+        format: COLOR_FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    gpu.queue.write_texture(
+        tex.as_image_copy(),
+        &[0, 0, 0, 255],
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4), rows_per_image: None },
+        wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+    );
+    tex.create_view(&Default::default())
+}
+
+/// The bind group layout of the mipmap shaders: the level above, of `dim`, and a sampler.
+fn mip_layout(gpu: &Gpu, dim: wgpu::TextureViewDimension) -> wgpu::BindGroupLayout {
+    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("mipmap"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: dim,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
 /// The objects every client's renderer uses unchanged: the clear and mipmap shaders and
 /// layouts, and the black images incomplete textures sample. They are built once per device
 /// (not per client: creating them for every session would cost each session its own uploads).
 pub struct Fixed {
     black_2d: wgpu::TextureView,
     black_cube: wgpu::TextureView,
+    black_3d: wgpu::TextureView,
     clear_module: wgpu::ShaderModule,
     clear_bgl: wgpu::BindGroupLayout,
     clear_layout: wgpu::PipelineLayout,
     mip_module: wgpu::ShaderModule,
     mip_bgl: wgpu::BindGroupLayout,
+    mip3_module: wgpu::ShaderModule,
+    mip3_bgl: wgpu::BindGroupLayout,
     /// Clear pipelines by target and masks, compiled once for all clients.
     clear_pipelines: std::sync::Mutex<HashMap<ClearKey, wgpu::RenderPipeline>>,
-    /// Mipmap pipelines by format, compiled once for all clients.
-    mip_pipelines: std::sync::Mutex<HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>>,
+    /// Mipmap pipelines by format and whether they filter 3D images, compiled once for all
+    /// clients.
+    mip_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>>,
 }
 
 impl Fixed {
@@ -243,35 +293,23 @@ impl Fixed {
             label: Some("mipmap"),
             source: wgpu::ShaderSource::Wgsl(include_str!("../../../../shaders/mipmap.wgsl").into()),
         });
-        let mip_bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("mipmap"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
+        let mip_bgl = mip_layout(gpu, wgpu::TextureViewDimension::D2);
+        let mip3_module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mipmap 3d"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../../../shaders/mipmap3d.wgsl").into()),
         });
+        let mip3_bgl = mip_layout(gpu, wgpu::TextureViewDimension::D3);
         Fixed {
             black_2d: black(gpu, 1),
             black_cube: black(gpu, 6),
+            black_3d: black_volume(gpu),
             clear_module,
             clear_bgl,
             clear_layout,
             mip_module,
             mip_bgl,
+            mip3_module,
+            mip3_bgl,
             clear_pipelines: Default::default(),
             mip_pipelines: Default::default(),
         }

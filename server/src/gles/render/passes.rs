@@ -6,6 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::super::enums::*;
+use super::super::glsl::Ty;
 use super::occlusion::{Occlusion, PassQueries};
 use super::targets::stored;
 use super::{error_chain, DrawSpec, LinkedProgram, Renderer, SamplerState, Source, Target};
@@ -118,7 +119,7 @@ impl Renderer {
             (!spec.uniforms.is_empty()).then(|| offset_of(&mut self.staging, &spec.uniforms, self.align) as u32);
         let mut textures = Vec::with_capacity(spec.textures.len());
         for (i, t) in spec.textures.iter().enumerate() {
-            let cube = spec.program.info.samplers.get(i).is_some_and(|s| s.0 == super::super::glsl::Ty::SamplerCube);
+            let ty = spec.program.info.samplers.get(i).map(|s| s.0);
             match t {
                 Some((view, uid, state, unfilterable)) => {
                     // Images that cannot be filtered are read with a non-filtering sampler:
@@ -132,9 +133,13 @@ impl Renderer {
                     textures.push((view.clone(), *uid, self.sampler(state, false), state, self.sampler(state, true)))
                 }
                 None => {
-                    let view = if cube { self.fixed.black_cube.clone() } else { self.fixed.black_2d.clone() };
+                    let (view, uid) = match ty {
+                        Some(Ty::SamplerCube) => (self.fixed.black_cube.clone(), u64::MAX - 1),
+                        Some(Ty::Sampler3D) => (self.fixed.black_3d.clone(), u64::MAX - 2),
+                        _ => (self.fixed.black_2d.clone(), u64::MAX),
+                    };
                     let s = SamplerState::default();
-                    textures.push((view, u64::MAX - u64::from(cube), self.sampler(s, false), s, self.sampler(s, true)));
+                    textures.push((view, uid, self.sampler(s, false), s, self.sampler(s, true)));
                 }
             }
         }
@@ -317,7 +322,8 @@ fn encode(
     let colors: Vec<Option<wgpu::RenderPassColorAttachment<'_>>> = t
         .slots()
         .into_iter()
-        .map(|s| {
+        .enumerate()
+        .map(|(i, s)| {
             s.map(|(view, absent, _)| {
                 let load = match pass.clear_color {
                     Some(c) => {
@@ -328,7 +334,7 @@ fn encode(
                 };
                 wgpu::RenderPassColorAttachment {
                     view,
-                    depth_slice: None,
+                    depth_slice: t.slices.get(i).copied().flatten(),
                     resolve_target: None,
                     ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
                 }

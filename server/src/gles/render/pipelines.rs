@@ -43,10 +43,10 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
             visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
-                view_dimension: if *ty == glsl::Ty::SamplerCube {
-                    wgpu::TextureViewDimension::Cube
-                } else {
-                    wgpu::TextureViewDimension::D2
+                view_dimension: match ty {
+                    glsl::Ty::SamplerCube => wgpu::TextureViewDimension::Cube,
+                    glsl::Ty::Sampler3D => wgpu::TextureViewDimension::D3,
+                    _ => wgpu::TextureViewDimension::D2,
                 },
                 multisampled: false,
             },

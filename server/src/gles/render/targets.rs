@@ -24,6 +24,9 @@ pub struct Target {
     /// format lacks and its format, `None` for an output that writes nothing; empty for one
     /// colour image.
     pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites, wgpu::TextureFormat)>>,
+    /// Per colour slot, the slice of a 3D image its view shows (`GL_OES_texture_3D`), which
+    /// the render pass names; `None` (or no entry) for 2D images.
+    pub slices: Vec<Option<u32>>,
     /// Depth/stencil view and its format.
     pub depth: Option<(wgpu::TextureView, wgpu::TextureFormat)>,
     /// The depth/stencil image itself and its array layer (a cube face), which reads of depth
@@ -53,6 +56,7 @@ impl Target {
             color: Some((texture, view)),
             color_at: Subresource::default(),
             more: Vec::new(),
+            slices: Vec::new(),
             depth: None,
             depth_image: None,
             width,
