@@ -27,6 +27,7 @@
 //!   whose one-stage programs the library makes from source;
 //! - `border`: the border colour's four values, and the integer forms the library refuses
 //!   (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`);
+//! - `pixel_format_float`: the configs' component type (`EGL_EXT_pixel_format_float`);
 //! - `texture_3d`: 3D images, whose slices the library lays out by the unpack state
 //!   (`GL_OES_texture_3D`).
 //!
@@ -61,6 +62,8 @@ mod no_config;
 mod pack;
 #[path = "client_calls/pixel_buffer.rs"]
 mod pixel_buffer;
+#[path = "client_calls/pixel_format_float.rs"]
+mod pixel_format_float;
 #[path = "client_calls/program_binary.rs"]
 mod program_binary;
 #[path = "client_calls/robust_access.rs"]
@@ -368,7 +371,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 15] = [
+    let sequences: [Sequence; 16] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -384,6 +387,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("separate", separate::sequence),
         ("border", border::sequence),
         ("texture_3d", texture_3d::sequence),
+        ("pixel_format_float", pixel_format_float::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

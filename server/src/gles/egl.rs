@@ -57,6 +57,8 @@ impl Config {
             EGL_SURFACE_TYPE => EGL_WINDOW_BIT | EGL_PBUFFER_BIT,
             EGL_RENDERABLE_TYPE | EGL_CONFORMANT => EGL_OPENGL_ES2_BIT,
             EGL_COLOR_BUFFER_TYPE => EGL_RGB_BUFFER,
+            // EGL_EXT_pixel_format_float: every config is fixed-point, as Mesa's on X11 are.
+            EGL_COLOR_COMPONENT_TYPE_EXT => EGL_COLOR_COMPONENT_TYPE_FIXED_EXT,
             EGL_CONFIG_CAVEAT | EGL_TRANSPARENT_TYPE | EGL_NATIVE_VISUAL_TYPE => EGL_NONE,
             EGL_MAX_PBUFFER_WIDTH | EGL_MAX_PBUFFER_HEIGHT => 8192,
             EGL_MAX_PBUFFER_PIXELS => 8192 * 8192,
@@ -85,6 +87,15 @@ pub fn choose(attribs: &[i32]) -> Result<Vec<u32>, i32> {
     for pair in &mut it {
         match *pair {
             [EGL_NONE, ..] => break,
+            // A component type that is neither (nor EGL_DONT_CARE) is an error, as on Mesa.
+            [EGL_COLOR_COMPONENT_TYPE_EXT, v]
+                if !matches!(
+                    v,
+                    EGL_COLOR_COMPONENT_TYPE_FIXED_EXT | EGL_COLOR_COMPONENT_TYPE_FLOAT_EXT | EGL_DONT_CARE
+                ) =>
+            {
+                return Err(EGL_BAD_ATTRIBUTE)
+            }
             [a, v] => wanted.push((a, v)),
             _ => return Err(EGL_BAD_ATTRIBUTE),
         }
@@ -106,6 +117,7 @@ pub fn choose(attribs: &[i32]) -> Result<Vec<u32>, i32> {
                 | EGL_TRANSPARENT_GREEN_VALUE
                 | EGL_TRANSPARENT_BLUE_VALUE
                 | EGL_LEVEL
+                | EGL_COLOR_COMPONENT_TYPE_EXT
                 | EGL_NATIVE_VISUAL_TYPE => have == v,
                 EGL_NATIVE_VISUAL_ID | EGL_MAX_PBUFFER_WIDTH | EGL_MAX_PBUFFER_HEIGHT | EGL_MAX_PBUFFER_PIXELS => true,
                 _ => have >= v,

@@ -538,6 +538,12 @@ pub const EGL_PBUFFER_BIT: i32 = 0x0001;
 pub const EGL_WINDOW_BIT: i32 = 0x0004;
 pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
 pub const EGL_DONT_CARE: i32 = -1;
+/// `EGL_EXT_pixel_format_float`: the attribute and its two values.
+pub const EGL_COLOR_COMPONENT_TYPE_EXT: i32 = 0x3339;
+/// Fixed-point (normalised) colour components.
+pub const EGL_COLOR_COMPONENT_TYPE_FIXED_EXT: i32 = 0x333A;
+/// Floating-point colour components.
+pub const EGL_COLOR_COMPONENT_TYPE_FLOAT_EXT: i32 = 0x333B;
 pub const EGL_CONTEXT_CLIENT_VERSION: i32 = 0x3098;
 /// `EGL_KHR_create_context`: the minor version, the flags and their bits, the profile (desktop
 /// OpenGL's) and the reset notification strategy.

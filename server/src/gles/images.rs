@@ -197,6 +197,16 @@ impl TextureImage {
         (self.depth >> level).max(1)
     }
 
+    /// The faces of a 2D image (1) or a cube map (6); 1 for an EGLImage's sibling and for a 3D
+    /// image, whose slices are not layers.
+    pub fn layers(&self) -> u32 {
+        if self.three_d() || self.base != Subresource::default() {
+            1
+        } else {
+            self.texture.depth_or_array_layers()
+        }
+    }
+
     /// Whether this is a 3D image (`GL_OES_texture_3D`).
     pub fn three_d(&self) -> bool {
         self.texture.dimension() == wgpu::TextureDimension::D3

@@ -54,7 +54,11 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
             // Mesa decides with GL_OES_fbo_render_mipmap). A 3D image's `face` is the slice,
             // which must lie in the level.
             let defined = if img.three_d() { 0 } else { face };
-            if t.defined[defined as usize] & (1 << level) == 0
+            // A slice of a 3D texture whose name now holds another texture is no face of it.
+            let Some(levels) = t.defined.get(defined as usize).filter(|_| img.three_d() || face < img.layers()) else {
+                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+            };
+            if levels & (1 << level) == 0
                 || (level > 0 && !t.levels_complete())
                 || (img.three_d() && face >= img.level_depth(level))
             {
@@ -107,7 +111,7 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             // A cube face's depth (OES_depth_texture_cube_map) must be defined.
-            if t.defined[face as usize] & 1 == 0 {
+            if face >= img.layers() || t.defined[face as usize] & 1 == 0 {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
