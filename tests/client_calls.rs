@@ -27,6 +27,7 @@
 //!   whose one-stage programs the library makes from source;
 //! - `border`: the border colour's four values, and the integer forms the library refuses
 //!   (`GL_EXT_texture_border_clamp`, `GL_OES_texture_border_clamp`);
+//! - `colorspace`: sRGB and linear pbuffers (`EGL_KHR_gl_colorspace`);
 //! - `pixel_format_float`: the configs' component type (`EGL_EXT_pixel_format_float`);
 //! - `texture_3d`: 3D images, whose slices the library lays out by the unpack state
 //!   (`GL_OES_texture_3D`).
@@ -48,6 +49,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 
 #[path = "client_calls/border.rs"]
 mod border;
+#[path = "client_calls/colorspace.rs"]
+mod colorspace;
 #[path = "client_calls/draw_buffers.rs"]
 mod draw_buffers;
 #[path = "client_calls/egl_image.rs"]
@@ -239,6 +242,10 @@ api! {
     get_tex_parameter_iuiv_ext = "glGetTexParameterIuivEXT": fn(u32, u32, *mut i32);
     get_tex_parameter_iiv_oes = "glGetTexParameterIivOES": fn(u32, u32, *mut i32);
     get_tex_parameter_iuiv_oes = "glGetTexParameterIuivOES": fn(u32, u32, *mut i32);
+    egl_query_surface = "eglQuerySurface": fn(Ptr, Ptr, i32, *mut i32) -> u32;
+    blend_func = "glBlendFunc": fn(u32, u32);
+    copy_tex_image_2d = "glCopyTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, i32);
+    copy_tex_sub_image_2d = "glCopyTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, i32, i32);
     tex_image_3d = "glTexImage3DOES": fn(u32, i32, u32, i32, i32, i32, i32, u32, u32, *const c_void);
     tex_sub_image_3d = "glTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
     compressed_tex_image_3d = "glCompressedTexImage3DOES": fn(u32, i32, u32, i32, i32, i32, i32, i32, *const c_void);
@@ -371,7 +378,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 16] = [
+    let sequences: [Sequence; 17] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -388,6 +395,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("border", border::sequence),
         ("texture_3d", texture_3d::sequence),
         ("pixel_format_float", pixel_format_float::sequence),
+        ("colorspace", colorspace::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

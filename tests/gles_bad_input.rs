@@ -170,6 +170,7 @@ fn misuse(gl: Gl<'_>) -> Result<(), ClientError> {
     let mut check = |what: &str, got: u32, want: u32| assert_eq!(got, want, "{what}: got {got:#x}, expected {want:#x}");
     textures::misuse(gl, &mut check)?;
     textures::float_attachment(gl, &mut check)?;
+    textures::stale_slice_attachment(gl, &mut check)?;
     gl.glViewport(0, 0, W, H)?;
     Ok(())
 }

@@ -155,3 +155,48 @@ pub fn float_attachment(gl: Gl<'_>, check: &mut dyn FnMut(&str, u32, u32)) -> Re
     check("no error", gl.glGetError()?, 0);
     Ok(())
 }
+
+/// A slice of a 3D texture (`GL_OES_texture_3D`) attached to a framebuffer that is not bound
+/// while the texture is deleted: the name, made a 2D texture (and a cube map) again, is no
+/// longer what the attachment named, and the framebuffer is incomplete, not a face past the
+/// image's.
+pub fn stale_slice_attachment(gl: Gl<'_>, check: &mut dyn FnMut(&str, u32, u32)) -> Result<(), ClientError> {
+    const TEXTURE_3D: u32 = 0x806F;
+    const INCOMPLETE_ATTACHMENT: u32 = 0x8CD6;
+    const DEPTH_COMPONENT: u32 = 0x1902;
+    let n = &mut Names::starting_at(71_000);
+    let (t, fb) = (n.next(), n.next());
+    gl.glBindTexture(TEXTURE_3D, t)?;
+    gl.glTexImage3DOES(TEXTURE_3D, 0, RGBA, 4, 4, 8, 0, RGBA, UNSIGNED_BYTE, None)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    gl.glFramebufferTexture3DOES(FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_3D, t, 0, 7)?;
+    check("slice 7 attached", gl.glCheckFramebufferStatus(FRAMEBUFFER)?, FRAMEBUFFER_COMPLETE);
+    // The same slice as a second framebuffer's depth attachment, beside a colour texture.
+    let (colour, fb2) = (n.next(), n.next());
+    gl.glBindTexture(TEXTURE_2D, colour)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, UNSIGNED_BYTE, None)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb2)?;
+    gl.glFramebufferTexture2D(FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_2D, colour, 0)?;
+    gl.glFramebufferTexture3DOES(FRAMEBUFFER, DEPTH_ATTACHMENT, TEXTURE_3D, t, 0, 7)?;
+    gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    gl.glDeleteTextures(Slice::new(&[t]))?;
+    let images = [
+        (TEXTURE_2D, TEXTURE_2D, RGBA, UNSIGNED_BYTE),
+        (0x8513, 0x8515, RGBA, UNSIGNED_BYTE),
+        (TEXTURE_2D, TEXTURE_2D, DEPTH_COMPONENT, UNSIGNED_INT),
+    ];
+    for (target, image, format, ty) in images {
+        gl.glBindTexture(target, t)?;
+        gl.glTexImage2D(image, 0, format as i32, 4, 4, 0, format, ty, None)?;
+        for f in [fb, fb2] {
+            gl.glBindFramebuffer(FRAMEBUFFER, f)?;
+            check("the name holds another texture", gl.glCheckFramebufferStatus(FRAMEBUFFER)?, INCOMPLETE_ATTACHMENT);
+            gl.glClear(0x4000)?;
+            check("a clear of it", gl.glGetError()?, 0x0506);
+        }
+        gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+        gl.glDeleteTextures(Slice::new(&[t]))?;
+    }
+    check("no error", gl.glGetError()?, 0);
+    Ok(())
+}

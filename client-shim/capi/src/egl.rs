@@ -218,7 +218,7 @@ crate::entry_points! {
             EGL_CLIENT_APIS => c"OpenGL_ES",
             // The daemon answers them (`EGL_STRATA_surface_id` and `EGL_STRATA_surface_projection`: surface attributes the
             // library passes through, see docs/projection.md).
-            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_EXT_create_context_robustness EGL_KHR_no_config_context EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_reusable_sync EGL_KHR_wait_sync EGL_KHR_image_base EGL_KHR_gl_texture_2D_image EGL_KHR_gl_texture_cubemap_image EGL_KHR_gl_renderbuffer_image EGL_EXT_pixel_format_float EGL_EXT_buffer_age EGL_KHR_swap_buffers_with_damage EGL_KHR_get_all_proc_addresses EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
+            EGL_EXTENSIONS => c"EGL_KHR_create_context EGL_KHR_create_context_no_error EGL_EXT_create_context_robustness EGL_KHR_no_config_context EGL_KHR_context_flush_control EGL_KHR_surfaceless_context EGL_KHR_fence_sync EGL_KHR_reusable_sync EGL_KHR_wait_sync EGL_KHR_image_base EGL_KHR_gl_texture_2D_image EGL_KHR_gl_texture_cubemap_image EGL_KHR_gl_renderbuffer_image EGL_KHR_gl_colorspace EGL_EXT_pixel_format_float EGL_EXT_buffer_age EGL_KHR_swap_buffers_with_damage EGL_KHR_get_all_proc_addresses EGL_IMG_context_priority EGL_STRATA_surface_id EGL_STRATA_surface_projection",
             _ => {
                 state::set_egl_error(EGL_BAD_PARAMETER);
                 return std::ptr::null();

@@ -81,6 +81,11 @@ impl GlesExecutor {
         if src.half_float() {
             return Err(GlError::InvalidOperation);
         }
+        // As on Mesa: a new image copied from an sRGB surface (EGL_KHR_gl_colorspace) would
+        // need an sRGB internal format, which ES 2.0 has none of.
+        if internal.is_some() && src.srgb {
+            return Err(GlError::InvalidValue);
+        }
         // A sized colour format (GL_OES_required_internalformat) copies as its unsized one where
         // its components are as wide as the framebuffer's (always 8 bits here); depth formats,
         // narrower ones and the sized formats of extensions not offered are

@@ -159,6 +159,23 @@ fn declared_projection(call: &str, attribs: &[i32], first: bool) -> Result<Optio
     })
 }
 
+/// Whether a surface attribute list asks for sRGB colour (`EGL_KHR_gl_colorspace`): its
+/// `EGL_GL_COLORSPACE_KHR` is `EGL_GL_COLORSPACE_SRGB_KHR`; a value that is neither that nor
+/// `EGL_GL_COLORSPACE_LINEAR_KHR` is `EGL_BAD_ATTRIBUTE`.
+pub fn colorspace(attribs: &[i32]) -> Result<bool, i32> {
+    let mut srgb = false;
+    for pair in attribs.chunks(2) {
+        match *pair {
+            [EGL_NONE, ..] => break,
+            [EGL_GL_COLORSPACE_KHR, EGL_GL_COLORSPACE_SRGB_KHR] => srgb = true,
+            [EGL_GL_COLORSPACE_KHR, EGL_GL_COLORSPACE_LINEAR_KHR] => srgb = false,
+            [EGL_GL_COLORSPACE_KHR, _] => return Err(EGL_BAD_ATTRIBUTE),
+            _ => {}
+        }
+    }
+    Ok(srgb)
+}
+
 /// Reads `EGL_WIDTH`/`EGL_HEIGHT` from a pbuffer attribute list.
 pub fn pbuffer_size(attribs: &[i32]) -> Result<(i32, i32), i32> {
     let (mut w, mut h) = (0, 0);
@@ -259,7 +276,8 @@ impl GlesExecutor {
         let (w, h) = pbuffer_size(&attribs)?;
         // Not composited, so the layout's projection is not for it: it keeps its own.
         let projection = self.declared_projection("eglCreatePbufferSurface", &attribs)?;
-        self.make_surface(c, w, h, false, projection).map(|(id, _)| id)
+        let srgb = colorspace(&attribs)?;
+        self.make_surface(c, w, h, false, projection, srgb).map(|(id, _)| id)
     }
 
     /// The daemon's layout entry for this client, if any, overrides the placement asked for,
@@ -308,7 +326,8 @@ impl GlesExecutor {
                 tracing::debug!(%asked, %fixed, "the surface's projection is overridden by the daemon's layout");
             }
         }
-        let (id, views) = self.make_surface(c, width, height, true, projection)?;
+        let srgb = colorspace(&attribs)?;
+        let (id, views) = self.make_surface(c, width, height, true, projection, srgb)?;
         if let Some((scene, client, name)) = &self.scene {
             match scene.add(*client, id, name, [x, y, width, height], z, asked) {
                 Ok(scene_id) => {
@@ -452,6 +471,7 @@ impl GlesExecutor {
             EGL_CONFIG_ID => Ok(s.config.id as i32),
             EGL_RENDER_BUFFER => Ok(EGL_BACK_BUFFER),
             EGL_SWAP_BEHAVIOR => Ok(EGL_BUFFER_DESTROYED),
+            EGL_GL_COLORSPACE_KHR => Ok(if s.srgb { EGL_GL_COLORSPACE_SRGB_KHR } else { EGL_GL_COLORSPACE_LINEAR_KHR }),
             // `EGL_EXT_buffer_age`: of the current draw surface only.
             EGL_BUFFER_AGE_EXT => {
                 if self.current.map(|(_, s)| s) != Some(surface) {

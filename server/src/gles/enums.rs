@@ -538,6 +538,12 @@ pub const EGL_PBUFFER_BIT: i32 = 0x0001;
 pub const EGL_WINDOW_BIT: i32 = 0x0004;
 pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
 pub const EGL_DONT_CARE: i32 = -1;
+/// `EGL_KHR_gl_colorspace`: the surface attribute and its two values.
+pub const EGL_GL_COLORSPACE_KHR: i32 = 0x309D;
+/// sRGB-encoded colour.
+pub const EGL_GL_COLORSPACE_SRGB_KHR: i32 = 0x3089;
+/// Linear colour (the default).
+pub const EGL_GL_COLORSPACE_LINEAR_KHR: i32 = 0x308A;
 /// `EGL_EXT_pixel_format_float`: the attribute and its two values.
 pub const EGL_COLOR_COMPONENT_TYPE_EXT: i32 = 0x3339;
 /// Fixed-point (normalised) colour components.

@@ -135,6 +135,8 @@ pub struct Surface {
     _reserved: Option<crate::quota::Reservation>,
     /// A window surface's ID in the scene (`ctl`'s, and `EGL_SURFACE_ID_STRATA`'s answer).
     pub scene_id: Option<u64>,
+    /// `EGL_GL_COLORSPACE_SRGB_KHR` (`EGL_KHR_gl_colorspace`): draws store sRGB-encoded colour.
+    pub srgb: bool,
 }
 
 /// Bytes of the images of one `w`×`h` buffer with depth/stencil `format`: colour and
@@ -171,12 +173,16 @@ impl GlesExecutor {
     /// One colour (+ depth) render target of a surface, in `images` when given (else new
     /// ones), cleared to transparent black as Mesa's are (opaque black without alpha, which
     /// then stays 1; depth to the far plane: 0 when `reversed`); with its depth texture.
+    /// An `srgb` surface draws through an sRGB view of its colour image, which everything else
+    /// (reads, copies, the compositor) sees as the encoded bytes.
+    #[allow(clippy::too_many_arguments)]
     fn make_target(
         &mut self,
         config: Config,
         w: u32,
         h: u32,
         reversed: bool,
+        srgb: bool,
         images: Option<(wgpu::Texture, Option<wgpu::Texture>)>,
     ) -> (Target, Option<wgpu::Texture>) {
         let depth_format = self.depth_format(config);
@@ -184,7 +190,11 @@ impl GlesExecutor {
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST;
-        let new = |label, format, usage| self.gpu.texture_2d(label, format, (w, h), usage);
+        let new = |label, format, usage| {
+            let views: &[wgpu::TextureFormat] = if format == COLOR_FORMAT { &crate::gpu::SRGB_VIEW } else { &[] };
+            let desc = crate::gpu::descriptor_2d(label, format, (w, h), usage);
+            self.gpu.device.create_texture(&wgpu::TextureDescriptor { view_formats: views, ..desc })
+        };
         let (color, depth_tex) = match images {
             Some(images) => images,
             None => {
@@ -194,7 +204,10 @@ impl GlesExecutor {
                 (new("surface colour", COLOR_FORMAT, usage), depth_format.map(|f| new("surface depth", f, depth_usage)))
             }
         };
-        let color_view = color.create_view(&Default::default());
+        let color_view = color.create_view(&wgpu::TextureViewDescriptor {
+            format: srgb.then(|| color.format().add_srgb_suffix()),
+            ..Default::default()
+        });
         let depth = depth_tex.as_ref().map(|t| (t.create_view(&Default::default()), t.format()));
         let uid = self.next_uid();
         let absent = if config.rgba[3] == 0 { wgpu::ColorWrites::ALPHA } else { wgpu::ColorWrites::empty() };
@@ -204,6 +217,7 @@ impl GlesExecutor {
             color_at: Default::default(),
             more: Vec::new(),
             slices: Vec::new(),
+            srgb,
             depth,
             depth_image: depth_tex.clone().map(|t| (t, 0)),
             width: w,
@@ -228,12 +242,14 @@ impl GlesExecutor {
 
     /// One buffer of a `w`×`h` window surface, reserved against the quota, and the
     /// compositor's views of it.
+    #[allow(clippy::too_many_arguments)]
     fn make_buffer(
         &mut self,
         config: Config,
         w: u32,
         h: u32,
         reversed: bool,
+        srgb: bool,
         transfer: &mut Transfer,
     ) -> Result<(Buffer, Views), i32> {
         let depth_format = self.depth_format(config);
@@ -244,17 +260,17 @@ impl GlesExecutor {
             let pick = self.scene.as_ref().and_then(|(scene, _, _)| scene.pick_device());
             match frames::shared_images(&self.gpu, comp, pick.as_deref(), (w, h), depth_format) {
                 Ok((images, views)) => {
-                    let (target, _) = self.make_target(config, w, h, reversed, Some(images));
+                    let (target, _) = self.make_target(config, w, h, reversed, srgb, Some(images));
                     return Ok((Buffer { target, copy: None, _reserved: reserved, swapped_at: None }, views));
                 }
                 Err(e) => {
                     tracing::warn!("sharing a window surface's images failed ({e}); its frames are copied instead");
                     *transfer = Transfer::Copy;
-                    return self.make_buffer(config, w, h, reversed, transfer);
+                    return self.make_buffer(config, w, h, reversed, srgb, transfer);
                 }
             }
         }
-        let (target, depth_tex) = self.make_target(config, w, h, reversed, None);
+        let (target, depth_tex) = self.make_target(config, w, h, reversed, srgb, None);
         let depth_view = depth_tex.as_ref().map(frames::depth_view);
         match (*transfer, comp) {
             (Transfer::Copy, Some(comp)) => {
@@ -265,7 +281,9 @@ impl GlesExecutor {
                 ))
             }
             _ => {
-                let color = target.color.as_ref().map(|(_, v)| v.clone()).ok_or(EGL_BAD_ALLOC)?;
+                // The compositor reads the stored bytes (an sRGB surface's encoded colour).
+                let color =
+                    target.color.as_ref().map(|(t, _)| t.create_view(&Default::default())).ok_or(EGL_BAD_ALLOC)?;
                 Ok((
                     Buffer { target, copy: None, _reserved: reserved, swapped_at: None },
                     Views::shown(color, depth_view),
@@ -275,12 +293,18 @@ impl GlesExecutor {
     }
 
     /// A window surface's first two buffers (the first is the back buffer) and their views.
-    fn make_window(&mut self, config: Config, w: u32, h: u32, reversed: bool) -> Result<(Window, Vec<Views>), i32> {
+    fn make_window(
+        &mut self,
+        config: Config,
+        (w, h): (u32, u32),
+        reversed: bool,
+        srgb: bool,
+    ) -> Result<(Window, Vec<Views>), i32> {
         let mut transfer = self.transfer_for(config);
         let mut buffers = Vec::new();
         let mut views = Vec::new();
         for _ in 0..2 {
-            let (b, v) = self.make_buffer(config, w, h, reversed, &mut transfer)?;
+            let (b, v) = self.make_buffer(config, w, h, reversed, srgb, &mut transfer)?;
             buffers.push(b);
             views.push(v);
         }
@@ -307,6 +331,7 @@ impl GlesExecutor {
         height: i32,
         window: bool,
         projection: Option<Projection>,
+        srgb: bool,
     ) -> Result<(u32, Vec<Views>), i32> {
         if width < 0 || height < 0 {
             return Err(EGL_BAD_PARAMETER);
@@ -318,12 +343,12 @@ impl GlesExecutor {
         self.account.admit(crate::quota::Kind::Surface, self.surfaces.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
         let reversed = if config.depth > 0 { self.depth.reversed(projection.as_ref()) } else { None };
         let (target, frames, views, reserved) = if window {
-            let (win, views) = self.make_window(config, w, h, reversed.is_some())?;
+            let (win, views) = self.make_window(config, (w, h), reversed.is_some(), srgb)?;
             (win.buffers[0].target.clone(), Some(win), views, None)
         } else {
             let bytes = surface_bytes(self.depth_format(config), w, h);
             let reserved = self.account.reserve(bytes).map_err(|_| EGL_BAD_ALLOC)?;
-            let (target, _) = self.make_target(config, w, h, reversed.is_some(), None);
+            let (target, _) = self.make_target(config, w, h, reversed.is_some(), srgb, None);
             (target, None, Vec::new(), Some(reserved))
         };
         let id = self.next_handle;
@@ -338,6 +363,7 @@ impl GlesExecutor {
             reversed_stages: HashMap::new(),
             _reserved: reserved,
             scene_id: None,
+            srgb,
         };
         self.surfaces.insert(id, s);
         Ok((id, views))
@@ -412,8 +438,9 @@ impl GlesExecutor {
             Acquired::Grow => {
                 let s = self.surfaces.get(&surface).ok_or(EGL_BAD_SURFACE)?;
                 let (config, w, h, reversed) = (s.config, s.target.width, s.target.height, s.reversed.is_some());
+                let srgb = s.srgb;
                 let mut transfer = s.frames.as_ref().map_or(Transfer::Same, |f| f.transfer);
-                let (buffer, views) = self.make_buffer(config, w, h, reversed, &mut transfer)?;
+                let (buffer, views) = self.make_buffer(config, w, h, reversed, srgb, &mut transfer)?;
                 let i = scene.add_buffer(client, surface, views, true).ok_or(EGL_BAD_SURFACE)?;
                 let win = self.surfaces.get_mut(&surface).and_then(|s| s.frames.as_mut()).ok_or(EGL_BAD_SURFACE)?;
                 win.transfer = transfer;
@@ -457,11 +484,11 @@ impl GlesExecutor {
         if fixed || (s.target.width, s.target.height) == (w, h) {
             return Ok(());
         }
-        let (config, reversed) = (s.config, s.reversed.is_some());
+        let (config, reversed, srgb) = (s.config, s.reversed.is_some(), s.srgb);
         // Work recorded for the old images goes first. The new buffers are reserved before
         // the old ones are given back, which they are once replaced.
         self.r.flush();
-        let (win, views) = self.make_window(config, w, h, reversed)?;
+        let (win, views) = self.make_window(config, (w, h), reversed, srgb)?;
         let s = self.surfaces.get_mut(&surface).ok_or(EGL_BAD_SURFACE)?;
         s.target = win.buffers[0].target.clone();
         s.frames = Some(win);

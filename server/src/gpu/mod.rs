@@ -230,6 +230,10 @@ pub enum VertexInput {
     InstanceRect,
 }
 
+/// The view formats of surface colour images: an sRGB view, which `EGL_KHR_gl_colorspace`
+/// surfaces draw through.
+pub const SRGB_VIEW: [wgpu::TextureFormat; 1] = [wgpu::TextureFormat::Rgba8UnormSrgb];
+
 /// The descriptor of a single-level, single-sample 2D texture of `format` and `(width, height)`
 /// for `usage` (what [`Gpu::texture_2d`] creates, and what shared images are described as).
 pub fn descriptor_2d(

@@ -114,6 +114,7 @@ fn image_info<'a>(
     external: &'a mut vk::ExternalMemoryImageCreateInfo<'_>,
 ) -> vk::ImageCreateInfo<'a> {
     vk::ImageCreateInfo::default()
+        .flags(create_flags(format))
         .image_type(vk::ImageType::TYPE_2D)
         .format(vk_format)
         .extent(vk::Extent3D { width, height, depth: 1 })
@@ -127,8 +128,28 @@ fn image_info<'a>(
         .push_next(external)
 }
 
+/// The view formats a shared image of `format` is made for: an sRGB view of colour images,
+/// which `EGL_KHR_gl_colorspace` surfaces draw through.
+fn view_formats(format: wgpu::TextureFormat) -> &'static [wgpu::TextureFormat] {
+    if format == wgpu::TextureFormat::Rgba8Unorm {
+        &super::SRGB_VIEW
+    } else {
+        &[]
+    }
+}
+
+/// The Vulkan image flags matching [`view_formats`]: views of another format are allowed.
+fn create_flags(format: wgpu::TextureFormat) -> vk::ImageCreateFlags {
+    if view_formats(format).is_empty() {
+        vk::ImageCreateFlags::empty()
+    } else {
+        vk::ImageCreateFlags::MUTABLE_FORMAT
+    }
+}
+
 fn descriptor(label: &'static str, format: wgpu::TextureFormat, size: (u32, u32)) -> wgpu::TextureDescriptor<'static> {
-    super::descriptor_2d(label, format, size, shared_usage(format))
+    let desc = super::descriptor_2d(label, format, size, shared_usage(format));
+    wgpu::TextureDescriptor { view_formats: view_formats(format), ..desc }
 }
 
 const HANDLE: vk::ExternalMemoryHandleTypeFlags = vk::ExternalMemoryHandleTypeFlags::OPAQUE_FD;
@@ -171,6 +192,7 @@ impl Gpu {
             let vk_format = adapter.texture_format_as_raw(format);
             let mut ext_info = vk::PhysicalDeviceExternalImageFormatInfo::default().handle_type(HANDLE);
             let info = vk::PhysicalDeviceImageFormatInfo2::default()
+                .flags(create_flags(format))
                 .format(vk_format)
                 .ty(vk::ImageType::TYPE_2D)
                 .tiling(vk::ImageTiling::OPTIMAL)
@@ -317,7 +339,7 @@ impl Gpu {
             format: desc.format,
             usage: hal_usage(desc.format),
             memory_flags: wgpu::hal::MemoryFlags::empty(),
-            view_formats: Vec::new(),
+            view_formats: desc.view_formats.to_vec(),
         };
         // SAFETY: the caller's contract; wgpu-hal takes ownership of image and memory.
         unsafe {

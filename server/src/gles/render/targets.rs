@@ -24,6 +24,9 @@ pub struct Target {
     /// format lacks and its format, `None` for an output that writes nothing; empty for one
     /// colour image.
     pub more: Vec<Option<(wgpu::TextureView, wgpu::ColorWrites, wgpu::TextureFormat)>>,
+    /// Whether the colour view is the sRGB view of its image (`EGL_KHR_gl_colorspace`): the
+    /// first slot's format is then the image's with the sRGB suffix.
+    pub srgb: bool,
     /// Per colour slot, the slice of a 3D image its view shows (`GL_OES_texture_3D`), which
     /// the render pass names; `None` (or no entry) for 2D images.
     pub slices: Vec<Option<u32>>,
@@ -57,6 +60,7 @@ impl Target {
             color_at: Subresource::default(),
             more: Vec::new(),
             slices: Vec::new(),
+            srgb: false,
             depth: None,
             depth_image: None,
             width,
@@ -78,7 +82,8 @@ impl Target {
     /// Per colour slot (fragment output), the view it writes, the channels its image lacks
     /// and its format (RGBA8, or RGBA16F for `GL_EXT_color_buffer_half_float`).
     pub fn slots(&self) -> Vec<Option<(&wgpu::TextureView, wgpu::ColorWrites, wgpu::TextureFormat)>> {
-        let first = self.color.as_ref().map(|(t, v)| (v, self.absent, t.format()));
+        let format = |t: &wgpu::Texture| if self.srgb { t.format().add_srgb_suffix() } else { t.format() };
+        let first = self.color.as_ref().map(|(t, v)| (v, self.absent, format(t)));
         std::iter::once(first).chain(self.more.iter().map(|m| m.as_ref().map(|(v, a, f)| (v, *a, *f)))).collect()
     }
 
