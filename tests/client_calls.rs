@@ -243,6 +243,7 @@ api! {
     get_tex_parameter_iiv_oes = "glGetTexParameterIivOES": fn(u32, u32, *mut i32);
     get_tex_parameter_iuiv_oes = "glGetTexParameterIuivOES": fn(u32, u32, *mut i32);
     egl_query_surface = "eglQuerySurface": fn(Ptr, Ptr, i32, *mut i32) -> u32;
+    egl_swap_buffers = "eglSwapBuffers": fn(Ptr, Ptr) -> u32;
     blend_func = "glBlendFunc": fn(u32, u32);
     copy_tex_image_2d = "glCopyTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, i32);
     copy_tex_sub_image_2d = "glCopyTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, i32, i32);

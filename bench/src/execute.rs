@@ -1,6 +1,8 @@
 //! The execute benchmark: the glmark2 horse at 540×540 for a fixed number of frames, drawn
 //! (a) by a client streaming GLES2 through `stratad`, and (b) by plain wgpu code in this process
-//! using the very same shader (translated by Strata's GLSL ES front end) and mesh.
+//! using the very same shader (translated by Strata's GLSL ES front end) and mesh. Both sides
+//! are set up first and then take turns, round by round, so that each round compares them
+//! under the same load.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -13,6 +15,8 @@ use strata_protocol::{Blob, Slice, Text};
 use strata_server::gles::glsl;
 
 use crate::mesh::{self, Mesh};
+use indicatif::ProgressBar;
+
 use crate::transport::{bar, start_daemon_with};
 
 /// Options of `strata-bench execute`.
@@ -24,6 +28,10 @@ pub struct Args {
     /// Frames to time on each side (after warm-up).
     #[arg(long, default_value_t = 600)]
     frames: u32,
+    /// Rounds the frames are timed in, the two sides taking turns in each; the ratio is the
+    /// median of the rounds' ratios.
+    #[arg(long, default_value_t = 6)]
+    rounds: u32,
     /// Square framebuffer size.
     #[arg(long, default_value_t = 540)]
     size: u32,
@@ -67,178 +75,237 @@ fn matrices(f: u32, aspect: f32) -> ([f32; 16], [f32; 16]) {
     ((proj * mv).to_cols_array(), mv.inverse().transpose().to_cols_array())
 }
 
-/// Frames per second, the executor's counters, and the last frame (RGBA8, bottom row first).
-type StrataRun = (f64, strata_protocol::ExecStats, Vec<u8>);
-
-fn strata(mesh: &Mesh, args: &Args) -> Result<StrataRun> {
-    let threads = ["--client-rasterizer-threads".to_string(), args.client_rasterizer_threads.to_string()];
-    let daemon = start_daemon_with(strata_server::ExecutorKind::Gles, &threads, None)?;
-    let opts = ConnectOptions { socket: daemon.1.clone(), name: "execute-bench".into(), ..ConnectOptions::default() };
-    let mut gl = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
-    let size = args.size as i32;
-    let cur = egl_context(&mut gl, 24, 0, SurfaceKind::Pbuffer { width: size, height: size })?;
-    let (d, s) = (cur.display, cur.surface);
-    let p = link_program(&mut gl, (1, 2, 3), VS, FS, &["position", "normal"])?;
-    let mvp_loc = gl.glGetUniformLocation(p, Text::borrowed("ModelViewProjectionMatrix"))?;
-    let nm_loc = gl.glGetUniformLocation(p, Text::borrowed("NormalMatrix"))?;
-    let vbytes: &[u8] = bytemuck::cast_slice(&mesh.vertices);
-    let ibytes: &[u8] = bytemuck::cast_slice(&mesh.indices);
-    gl.glGenBuffers(Slice::new(&[10, 11]))?;
-    gl.glBindBuffer(0x8892, 10)?;
-    gl.glBufferData(0x8892, vbytes.len() as i64, Some(Blob::borrowed(vbytes)), 0x88E4)?;
-    gl.glBindBuffer(0x8893, 11)?;
-    gl.glBufferData(0x8893, ibytes.len() as i64, Some(Blob::borrowed(ibytes)), 0x88E4)?;
-    gl.glVertexAttribPointer(0, 3, 0x1406, false, 24, 0)?;
-    gl.glVertexAttribPointer(1, 3, 0x1406, false, 24, 12)?;
-    gl.glEnableVertexAttribArray(0)?;
-    gl.glEnableVertexAttribArray(1)?;
-    gl.glEnable(0x0B71)?;
-    gl.glClearColor(0.0, 0.0, 0.0, 1.0)?;
-    let count = mesh.indices.len() as i32;
-    let frame = |gl: &mut Connection, f: u32| -> Result<()> {
-        let (mvp, nm) = matrices(f, 1.0);
-        gl.glClear(0x4000 | 0x0100)?;
-        gl.glUniformMatrix4fv(mvp_loc, false, Slice::new(&mvp))?;
-        gl.glUniformMatrix4fv(nm_loc, false, Slice::new(&nm))?;
-        gl.glDrawElements(0x0004, count, 0x1405, 0)?;
-        gl.eglSwapBuffers(d, s)?.map_err(|e| anyhow::anyhow!("eglSwapBuffers failed with EGL error {e:#x}"))?;
-        Ok(())
-    };
-    for f in 0..10 {
-        frame(&mut gl, f)?;
-    }
-    gl.glFinish()?;
-    if gl.glGetError()? != 0 {
-        bail!("GL error during the Strata frames");
-    }
-    let pb = bar(u64::from(args.frames), "strata");
-    let start = Instant::now();
-    for f in 0..args.frames {
-        frame(&mut gl, f)?;
-        pb.set_position(u64::from(f));
-    }
-    gl.glFinish()?;
-    let secs = start.elapsed().as_secs_f64();
-    pb.finish();
-    let stats = gl.strataStats()?;
-    // The last frame again, read back for the image check.
-    frame(&mut gl, args.frames - 1)?;
-    let image = gl.glReadPixels(0, 0, size, size, 0x1908, 0x1401)?.0;
-    Ok((f64::from(args.frames) / secs, stats, image))
+/// The client side: a connection to a benchmark daemon, current on a pbuffer, with the
+/// horse's program and buffers bound.
+struct StrataSide {
+    gl: Connection,
+    /// Kept alive while the side is.
+    _daemon: crate::transport::DaemonProc,
+    locations: (i32, i32),
+    count: i32,
+    size: i32,
 }
 
-fn native(mesh: &Mesh, args: &Args) -> Result<(f64, Vec<u8>)> {
-    let vs = glsl::compile(glsl::Stage::Vertex, VS).map_err(|e| anyhow!("{e}"))?;
-    let fs = glsl::compile(glsl::Stage::Fragment, FS).map_err(|e| anyhow!("{e}"))?;
-    let mut bindings = HashMap::new();
-    bindings.insert("position".to_string(), 0);
-    bindings.insert("normal".to_string(), 1);
-    let linked = glsl::link(&vs, &fs, &bindings, 16).map_err(|e| anyhow!("{e}"))?;
-    let gpu = strata_server::gpu::Gpu::open()?;
-    let d = &gpu.device;
-    let square = (args.size, args.size);
-    let target =
-        |format, usage| gpu.texture_2d("execute target", format, square, usage).create_view(&Default::default());
-    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-    let color_tex = gpu.texture_2d("execute colour", wgpu::TextureFormat::Rgba8Unorm, square, usage);
-    let color = color_tex.create_view(&Default::default());
-    let depth = target(wgpu::TextureFormat::Depth24PlusStencil8, wgpu::TextureUsages::RENDER_ATTACHMENT);
-    let buffer = |bytes: &[u8], usage: wgpu::BufferUsages| {
-        let b = d.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: bytes.len() as u64,
-            usage: usage | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        gpu.queue.write_buffer(&b, 0, bytes);
-        b
-    };
-    let vbuf = buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
-    let ibuf = buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
-    let ubuf = buffer(&vec![0u8; linked.block_size as usize], wgpu::BufferUsages::UNIFORM);
-    let offset_of = |name: &str| {
-        linked
-            .uniforms
-            .iter()
-            .find(|u| u.name == name)
-            .map(|u| u.offset as u64)
-            .ok_or_else(|| anyhow!("no uniform {name}"))
-    };
-    let (mvp_off, nm_off) = (offset_of("ModelViewProjectionMatrix")?, offset_of("NormalMatrix")?);
-    let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: None,
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }],
-    });
-    let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &bgl,
-        entries: &[wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() }],
-    });
-    let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: None,
-        bind_group_layouts: &[Some(&bgl)],
-        immediate_size: 0,
-    });
-    let vmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: None,
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.vertex)),
-    });
-    let fmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: None,
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.fragment)),
-    });
-    let attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-    let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: None,
-        layout: Some(&layout),
-        vertex: wgpu::VertexState {
-            module: &vmod,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: 24,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &attrs,
-            })],
-        },
-        primitive: wgpu::PrimitiveState { front_face: wgpu::FrontFace::Cw, ..Default::default() },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth24PlusStencil8,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &fmod,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    let count = mesh.indices.len() as u32;
-    let frame = |f: u32| {
+impl StrataSide {
+    fn open(mesh: &Mesh, args: &Args) -> Result<StrataSide> {
+        let threads = ["--client-rasterizer-threads".to_string(), args.client_rasterizer_threads.to_string()];
+        let daemon = start_daemon_with(strata_server::ExecutorKind::Gles, &threads, None)?;
+        let opts =
+            ConnectOptions { socket: daemon.1.clone(), name: "execute-bench".into(), ..ConnectOptions::default() };
+        let mut gl = Connection::connect(&opts).context("connecting to the benchmark daemon")?;
+        let size = args.size as i32;
+        egl_context(&mut gl, 24, 0, SurfaceKind::Pbuffer { width: size, height: size })?;
+        let p = link_program(&mut gl, (1, 2, 3), VS, FS, &["position", "normal"])?;
+        let mvp_loc = gl.glGetUniformLocation(p, Text::borrowed("ModelViewProjectionMatrix"))?;
+        let nm_loc = gl.glGetUniformLocation(p, Text::borrowed("NormalMatrix"))?;
+        let vbytes: &[u8] = bytemuck::cast_slice(&mesh.vertices);
+        let ibytes: &[u8] = bytemuck::cast_slice(&mesh.indices);
+        gl.glGenBuffers(Slice::new(&[10, 11]))?;
+        gl.glBindBuffer(0x8892, 10)?;
+        gl.glBufferData(0x8892, vbytes.len() as i64, Some(Blob::borrowed(vbytes)), 0x88E4)?;
+        gl.glBindBuffer(0x8893, 11)?;
+        gl.glBufferData(0x8893, ibytes.len() as i64, Some(Blob::borrowed(ibytes)), 0x88E4)?;
+        gl.glVertexAttribPointer(0, 3, 0x1406, false, 24, 0)?;
+        gl.glVertexAttribPointer(1, 3, 0x1406, false, 24, 12)?;
+        gl.glEnableVertexAttribArray(0)?;
+        gl.glEnableVertexAttribArray(1)?;
+        gl.glEnable(0x0B71)?;
+        gl.glClearColor(0.0, 0.0, 0.0, 1.0)?;
+        let count = mesh.indices.len() as i32;
+        let locations = (mvp_loc, nm_loc);
+        let mut side = StrataSide { gl, _daemon: daemon, locations, count, size };
+        side.frames(0..10, None)?;
+        if side.gl.glGetError()? != 0 {
+            bail!("GL error during the Strata frames");
+        }
+        Ok(side)
+    }
+
+    fn frame(&mut self, f: u32) -> Result<()> {
+        let gl = &mut self.gl;
         let (mvp, nm) = matrices(f, 1.0);
-        gpu.queue.write_buffer(&ubuf, mvp_off, bytemuck::cast_slice(&mvp));
-        gpu.queue.write_buffer(&ubuf, nm_off, bytemuck::cast_slice(&nm));
-        let mut enc = d.create_command_encoder(&Default::default());
+        gl.glClear(0x4000 | 0x0100)?;
+        gl.glUniformMatrix4fv(self.locations.0, false, Slice::new(&mvp))?;
+        gl.glUniformMatrix4fv(self.locations.1, false, Slice::new(&nm))?;
+        gl.glDrawElements(0x0004, self.count, 0x1405, 0)?;
+        // eglSwapBuffers of the current pbuffer, as the drop-in library sends it: a flush,
+        // with no reply to wait for (a pbuffer's swap shows nothing).
+        gl.glFlush()?;
+        Ok(())
+    }
+
+    /// Draws frames `range` and waits for them: the seconds it took.
+    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
+        let start = Instant::now();
+        for f in range {
+            self.frame(f)?;
+            if let Some(pb) = pb {
+                pb.inc(1);
+            }
+        }
+        self.gl.glFinish()?;
+        Ok(start.elapsed().as_secs_f64())
+    }
+
+    /// The executor's counters, and frame `f` again, read back (RGBA8, bottom row first).
+    fn finish(mut self, f: u32) -> Result<(strata_protocol::ExecStats, Vec<u8>)> {
+        let stats = self.gl.strataStats()?;
+        self.frame(f)?;
+        let image = self.gl.glReadPixels(0, 0, self.size, self.size, 0x1908, 0x1401)?.0;
+        Ok((stats, image))
+    }
+}
+
+/// The baseline: the same shader (through Strata's GLSL ES front end) and mesh drawn by wgpu
+/// code in this process, on a device of its own.
+struct NativeSide {
+    gpu: std::sync::Arc<strata_server::gpu::Gpu>,
+    color_tex: wgpu::Texture,
+    color: wgpu::TextureView,
+    depth: wgpu::TextureView,
+    vbuf: wgpu::Buffer,
+    ibuf: wgpu::Buffer,
+    ubuf: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    pipeline: wgpu::RenderPipeline,
+    /// Where the two matrices lie in the uniform block.
+    offsets: (u64, u64),
+    count: u32,
+    size: u32,
+}
+
+impl NativeSide {
+    fn open(mesh: &Mesh, args: &Args) -> Result<NativeSide> {
+        let vs = glsl::compile(glsl::Stage::Vertex, VS).map_err(|e| anyhow!("{e}"))?;
+        let fs = glsl::compile(glsl::Stage::Fragment, FS).map_err(|e| anyhow!("{e}"))?;
+        let mut bindings = HashMap::new();
+        bindings.insert("position".to_string(), 0);
+        bindings.insert("normal".to_string(), 1);
+        let linked = glsl::link(&vs, &fs, &bindings, 16).map_err(|e| anyhow!("{e}"))?;
+        let gpu = strata_server::gpu::Gpu::open()?;
+        let d = &gpu.device;
+        let square = (args.size, args.size);
+        let target =
+            |format, usage| gpu.texture_2d("execute target", format, square, usage).create_view(&Default::default());
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let color_tex = gpu.texture_2d("execute colour", wgpu::TextureFormat::Rgba8Unorm, square, usage);
+        let color = color_tex.create_view(&Default::default());
+        let depth = target(wgpu::TextureFormat::Depth24PlusStencil8, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let buffer = |bytes: &[u8], usage: wgpu::BufferUsages| {
+            let b = d.create_buffer(&wgpu::BufferDescriptor {
+                label: None,
+                size: bytes.len() as u64,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            gpu.queue.write_buffer(&b, 0, bytes);
+            b
+        };
+        let vbuf = buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
+        let ibuf = buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
+        let ubuf = buffer(&vec![0u8; linked.block_size as usize], wgpu::BufferUsages::UNIFORM);
+        let offset_of = |name: &str| {
+            linked
+                .uniforms
+                .iter()
+                .find(|u| u.name == name)
+                .map(|u| u.offset as u64)
+                .ok_or_else(|| anyhow!("no uniform {name}"))
+        };
+        let (mvp_off, nm_off) = (offset_of("ModelViewProjectionMatrix")?, offset_of("NormalMatrix")?);
+        let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: None,
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &bgl,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() }],
+        });
+        let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: None,
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let vmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: None,
+            source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.vertex)),
+        });
+        let fmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: None,
+            source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.fragment)),
+        });
+        let attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: None,
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &vmod,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 24,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attrs,
+                })],
+            },
+            primitive: wgpu::PrimitiveState { front_face: wgpu::FrontFace::Cw, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: wgpu::TextureFormat::Depth24PlusStencil8,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &fmod,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let count = mesh.indices.len() as u32;
+        let offsets = (mvp_off, nm_off);
+        let side = NativeSide {
+            gpu,
+            color_tex,
+            color,
+            depth,
+            vbuf,
+            ibuf,
+            ubuf,
+            group,
+            pipeline,
+            offsets,
+            count,
+            size: args.size,
+        };
+        side.frames(0..10, None)?;
+        Ok(side)
+    }
+
+    fn frame(&self, f: u32) {
+        let (mvp, nm) = matrices(f, 1.0);
+        self.gpu.queue.write_buffer(&self.ubuf, self.offsets.0, bytemuck::cast_slice(&mvp));
+        self.gpu.queue.write_buffer(&self.ubuf, self.offsets.1, bytemuck::cast_slice(&nm));
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
             let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &color,
+                    view: &self.color,
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
@@ -247,7 +314,7 @@ fn native(mesh: &Mesh, args: &Args) -> Result<(f64, Vec<u8>)> {
                     },
                 })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth,
+                    view: &self.depth,
                     depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                     stencil_ops: None,
                 }),
@@ -255,33 +322,35 @@ fn native(mesh: &Mesh, args: &Args) -> Result<(f64, Vec<u8>)> {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            rp.set_pipeline(&pipeline);
-            rp.set_bind_group(0, &group, &[]);
-            rp.set_vertex_buffer(0, vbuf.slice(..));
-            rp.set_index_buffer(ibuf.slice(..), wgpu::IndexFormat::Uint32);
-            rp.draw_indexed(0..count, 0, 0..1);
+            rp.set_pipeline(&self.pipeline);
+            rp.set_bind_group(0, &self.group, &[]);
+            rp.set_vertex_buffer(0, self.vbuf.slice(..));
+            rp.set_index_buffer(self.ibuf.slice(..), wgpu::IndexFormat::Uint32);
+            rp.draw_indexed(0..self.count, 0, 0..1);
         }
-        gpu.queue.submit([enc.finish()]);
-    };
-    let wait = || d.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
-    for f in 0..10 {
-        frame(f);
+        self.gpu.queue.submit([enc.finish()]);
     }
-    wait()?;
-    let pb = bar(u64::from(args.frames), "native wgpu");
-    let start = Instant::now();
-    for f in 0..args.frames {
-        frame(f);
-        pb.set_position(u64::from(f));
+
+    /// Draws frames `range` and waits for them: the seconds it took.
+    fn frames(&self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
+        let start = Instant::now();
+        for f in range {
+            self.frame(f);
+            if let Some(pb) = pb {
+                pb.inc(1);
+            }
+        }
+        self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None })?;
+        Ok(start.elapsed().as_secs_f64())
     }
-    wait()?;
-    let secs = start.elapsed().as_secs_f64();
-    pb.finish();
-    frame(args.frames - 1);
-    let image = gpu
-        .read_rgba8(&color_tex, [0, 0, args.size, args.size])
-        .ok_or_else(|| anyhow!("reading the frame back failed"))?;
-    Ok((f64::from(args.frames) / secs, image))
+
+    /// Frame `f` again, read back (RGBA8, bottom row first).
+    fn image(&self, f: u32) -> Result<Vec<u8>> {
+        self.frame(f);
+        self.gpu
+            .read_rgba8(&self.color_tex, [0, 0, self.size, self.size])
+            .ok_or_else(|| anyhow!("reading the frame back failed"))
+    }
 }
 
 /// Fraction of pixels whose channels all agree within 2/255.
@@ -303,9 +372,41 @@ fn coverage(a: &[u8]) -> f64 {
 pub fn run(args: &Args) -> Result<()> {
     let mesh = mesh::glmark2_model("horse.3ds", 7000);
     let triangles = mesh.indices.len() / 3;
-    let (strata_fps, stats, strata_image) = strata(&mesh, args)?;
-    let (native_wgpu_fps, native_image) = native(&mesh, args)?;
-    let ratio = strata_fps / native_wgpu_fps;
+    if args.rounds == 0 || args.frames < args.rounds {
+        bail!("--rounds must be positive and at most --frames");
+    }
+    let mut strata = StrataSide::open(&mesh, args)?;
+    let native = NativeSide::open(&mesh, args)?;
+    // The frames in rounds, each side in turn (the order alternating), so that a change in
+    // the machine's load falls on both sides alike; each round's ratio compares the two
+    // sides under the same load.
+    let per = args.frames / args.rounds;
+    let (mut strata_secs, mut native_secs, mut ratios) = (0.0, 0.0, Vec::new());
+    let pb = bar(u64::from(per * args.rounds * 2), "execute");
+    for r in 0..args.rounds {
+        let frames = 10 + r * per..10 + (r + 1) * per;
+        let (a, b) = if r % 2 == 0 {
+            let a = strata.frames(frames.clone(), Some(&pb))?;
+            (a, native.frames(frames, Some(&pb))?)
+        } else {
+            let b = native.frames(frames.clone(), Some(&pb))?;
+            (strata.frames(frames, Some(&pb))?, b)
+        };
+        strata_secs += a;
+        native_secs += b;
+        // Frames per second through stratad over those of native wgpu.
+        ratios.push(b / a);
+    }
+    pb.finish();
+    let timed = f64::from(per * args.rounds);
+    let (strata_fps, native_wgpu_fps) = (timed / strata_secs, timed / native_secs);
+    let last = 10 + per * args.rounds - 1;
+    let (stats, strata_image) = strata.finish(last)?;
+    let native_image = native.image(last)?;
+    let ratio_of_totals = strata_fps / native_wgpu_fps;
+    let mut sorted = ratios.clone();
+    sorted.sort_by(f64::total_cmp);
+    let ratio = sorted[sorted.len() / 2];
     let image_agreement = agreement(&strata_image, &native_image);
     let covered = coverage(&native_image);
     if image_agreement < 0.99 || covered < 0.01 {
@@ -330,7 +431,12 @@ pub fn run(args: &Args) -> Result<()> {
     );
     println!("  through stratad:     {strata_fps:>8.1} fps");
     println!("  native wgpu:         {native_wgpu_fps:>8.1} fps");
-    println!("  ratio:               {ratio:>8.3}");
+    println!(
+        "  ratio:               {ratio:>8.3}  (median of {} rounds, {:.3} to {:.3}; of the totals {ratio_of_totals:.3})",
+        args.rounds,
+        sorted[0],
+        sorted[sorted.len() - 1]
+    );
     println!(
         "  pipeline cache misses: {} (render passes {}, draws {})",
         stats.pipeline_cache_misses, stats.render_passes, stats.draws
@@ -345,6 +451,9 @@ pub fn run(args: &Args) -> Result<()> {
             "strata_fps": strata_fps,
             "native_wgpu_fps": native_wgpu_fps,
             "ratio": ratio,
+            "round_ratios": ratios,
+            "ratio_of_totals": ratio_of_totals,
+            "rounds": args.rounds,
             "pipeline_cache_misses": stats.pipeline_cache_misses,
             "render_passes": stats.render_passes,
             "image_agreement": image_agreement,

@@ -1,7 +1,8 @@
 //! `EGL_KHR_gl_colorspace`: pbuffers asked for sRGB and linear colour, queried; an sRGB one
 //! cleared, drawn over with blending (which adds in linear terms), copied into a texture's
 //! image (a new image cannot be: ES 2.0 has no sRGB format for it) and read back as the
-//! encoded bytes it stores; and a colour space that is neither.
+//! encoded bytes it stores, also after a swap (which a pbuffer's shows nothing); and a colour
+//! space that is neither.
 
 use super::*;
 
@@ -60,6 +61,12 @@ pub fn sequence(r: &mut Run) {
             (gl.disable)(0x0BE2);
             (gl.read_pixels)(0, 0, 1, 1, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
             r.note(&format!("{what}: blended, read {px:?}"));
+            // A pbuffer's swap shows nothing and keeps the contents (the library answers it
+            // without waiting for the daemon).
+            let ok = (gl.egl_swap_buffers)(egl.display, s);
+            r.log.push(format!("{what}: swapped {ok}, error {:#x}", (gl.egl_get_error)()));
+            (gl.read_pixels)(0, 0, 1, 1, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
+            r.note(&format!("{what}: after the swap, read {px:?}"));
             // The stored bytes copied into a texture, then read through a framebuffer.
             let mut t = 0;
             (gl.gen_textures)(1, &mut t);

@@ -153,6 +153,22 @@ fn config_attrib(dpy: EGLDisplay, config: EGLConfig, attribute: EGLint, value: *
     Ok(())
 }
 
+/// `eglSwapBuffers` of pbuffer `s` (daemon surface `d`) while it is the daemon's current draw
+/// surface: a swap that shows nothing, sent as a flush with no reply to wait for (`true`);
+/// other surfaces take the daemon's swap (`false`).
+fn swap_pbuffer(p: &mut state::Process, s: u32, d: u32) -> Result<bool, EGLint> {
+    let pbuffer = p.surfaces.get(&s).is_some_and(|i| i.pbuffer);
+    if !pbuffer || p.daemon_current.is_none_or(|(_, draw, _)| draw != d) {
+        return Ok(false);
+    }
+    let Some(conn) = p.conn.as_mut() else { return Err(EGL_CONTEXT_LOST) };
+    if let Err(e) = conn.glFlush() {
+        p.lose(&e);
+        return Err(EGL_CONTEXT_LOST);
+    }
+    Ok(true)
+}
+
 fn unsupported(name: &str, error: EGLint) -> EGLint {
     state::log_once(&format!("{name} is not supported; it fails with EGL error {error:#x}"));
     error
@@ -301,7 +317,7 @@ crate::entry_points! {
             let d = initialized(&mut p, dpy)?;
             let config = handle(config);
             let s = daemon(&mut p, |c, dd| c.eglCreatePbufferSurface(dd, config, Slice::new(&a)))?;
-            Ok(p.add_surface(d, s, None))
+            Ok(p.add_surface(d, s, None, true))
         });
         handle_ptr(r)
     }
@@ -480,6 +496,9 @@ crate::entry_points! {
             initialized(&mut p, dpy)?;
             let s = handle(surface);
             let d = p.daemon_surface(s).ok_or(EGL_BAD_SURFACE)?;
+            if swap_pbuffer(&mut p, s, d)? {
+                return Ok(());
+            }
             daemon(&mut p, |c, dd| c.eglSwapBuffers(dd, d))?;
             // The next frame is drawn at the window's size.
             surface::follow_window(&mut p, s);

@@ -162,6 +162,8 @@ pub(crate) struct SurfaceInfo {
     pub daemon: u32,
     /// For a window surface sized from its X window: what following that window needs.
     pub window: Option<WindowInfo>,
+    /// Whether it is a pbuffer, whose swaps show nothing (and so need no reply).
+    pub pbuffer: bool,
 }
 
 /// What the shim remembers of a window surface to follow its window's size.
@@ -293,13 +295,13 @@ impl Process {
     }
 
     /// Registers a daemon surface; returns the application's handle for it.
-    pub fn add_surface(&mut self, display: usize, daemon: u32, window: Option<WindowInfo>) -> u32 {
+    pub fn add_surface(&mut self, display: usize, daemon: u32, window: Option<WindowInfo>, pbuffer: bool) -> u32 {
         let mut s = self.next_surface.max(1);
         while self.surfaces.contains_key(&s) {
             s = s.wrapping_add(1).max(1);
         }
         self.next_surface = s.wrapping_add(1);
-        self.surfaces.insert(s, SurfaceInfo { display, daemon, window });
+        self.surfaces.insert(s, SurfaceInfo { display, daemon, window, pbuffer });
         s
     }
 

@@ -104,7 +104,7 @@ pub(crate) fn create_window(dpy: EGLDisplay, config: u32, win: u64, attribs: Vec
     }
     // Only a surface sized from its X window follows that window.
     let window = from_x.map(|size| WindowInfo { native: win, size });
-    Ok(p.add_surface(d, s, window))
+    Ok(p.add_surface(d, s, window, false))
 }
 
 /// Makes `(context, draw, read)` (daemon handles) current on the daemon.
