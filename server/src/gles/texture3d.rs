@@ -112,6 +112,27 @@ fn write_slices(
     }
 }
 
+/// Marks `level` of `t`'s image defined where it is consistent with level 0: `same` format or
+/// storage, the size level 0 gives it, a level the image has; else undefined (the texture is
+/// then incomplete). Whether it is defined.
+fn define_level(t: &mut Texture, level: u32, [w, h, d]: [u32; 3], same: bool) -> bool {
+    let consistent = t.gpu.as_ref().is_some_and(|img| {
+        same && img.level_size(level) == (w.max(1), h.max(1)) && img.level_depth(level) == d.max(1) && level < img.mips
+    });
+    if consistent {
+        t.defined[0] |= 1 << level;
+    } else {
+        t.defined[0] &= !(1 << level);
+    }
+    consistent
+}
+
+/// Compressed `data` of `w`×`h` slices one after another, decoded slice by slice.
+fn decode_slices(c: Compressed, data: &Blob<'_>, w: u32, h: u32) -> Vec<u8> {
+    let slice = c.image_size(w, h).max(1);
+    data.as_bytes().chunks_exact(slice).flat_map(|s| c.decode_for(s, w, h)).collect()
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
@@ -166,17 +187,10 @@ impl GlesExecutor {
             t.format = internal;
             t.half_float = pixel_type == HALF_FLOAT_OES;
         }
-        let Some(img) = &t.gpu else { return Ok(()) };
-        let consistent = img.storage == storage
-            && img.level_size(level) == (w.max(1), h.max(1))
-            && img.level_depth(level) == d.max(1)
-            && level < img.mips;
-        if !consistent {
-            // A level inconsistent with level 0 leaves the texture incomplete.
-            t.defined[0] &= !(1 << level);
+        let same = t.gpu.as_ref().is_some_and(|img| img.storage == storage);
+        if !define_level(t, level, [w, h, d], same) {
             return Ok(());
         }
-        t.defined[0] |= 1 << level;
         let data = texels.unwrap_or_else(|| blank(w * h * d, format, storage));
         write_slices(t, gpu, flushed, level, [0, 0, 0], [w, h], &data);
         Ok(())
@@ -258,18 +272,11 @@ impl GlesExecutor {
             t.ensure_volume(gpu, &account, uid, (w, h, d), c.decoded_storage())?;
             t.format = internalformat;
         }
-        let Some(img) = &t.gpu else { return Ok(()) };
-        let consistent = t.format == internalformat
-            && img.level_size(level) == (w.max(1), h.max(1))
-            && img.level_depth(level) == d.max(1)
-            && level < img.mips;
-        if !consistent {
-            t.defined[0] &= !(1 << level);
+        let same = t.format == internalformat;
+        if !define_level(t, level, [w, h, d], same) {
             return Ok(());
         }
-        t.defined[0] |= 1 << level;
-        let texels: Vec<u8> = data.as_bytes().chunks_exact(slice.max(1)).flat_map(|s| c.decode_for(s, w, h)).collect();
-        write_slices(t, gpu, flushed, level, [0, 0, 0], [w, h], &texels);
+        write_slices(t, gpu, flushed, level, [0, 0, 0], [w, h], &decode_slices(c, &data, w, h));
         Ok(())
     }
 
@@ -304,9 +311,8 @@ impl GlesExecutor {
         if !block_aligned(c.block_size(), (size[0], size[1]), xoffset, yoffset, width, height) {
             return Err(GlError::InvalidOperation);
         }
-        let texels: Vec<u8> = data.as_bytes().chunks_exact(slice.max(1)).flat_map(|s| c.decode_for(s, w, h)).collect();
         let origin = [xoffset as u32, yoffset as u32, zoffset as u32];
-        write_slices(t, &self.gpu, flushed, level as u32, origin, [w, h], &texels);
+        write_slices(t, &self.gpu, flushed, level as u32, origin, [w, h], &decode_slices(c, &data, w, h));
         Ok(())
     }
 

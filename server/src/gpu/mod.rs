@@ -200,11 +200,23 @@ pub fn fullscreen_pass(
     pipeline: &wgpu::RenderPipeline,
     group: &wgpu::BindGroup,
 ) {
+    fullscreen_pass_at(enc, label, (target, None), pipeline, group);
+}
+
+/// [`fullscreen_pass`] into slice `slice` of a 3D `target` view, drawn as instance `slice`
+/// (the shader's way of knowing it); `None`: a 2D view, instance 0.
+pub fn fullscreen_pass_at(
+    enc: &mut wgpu::CommandEncoder,
+    label: &str,
+    (target, slice): (&wgpu::TextureView, Option<u32>),
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+) {
     let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
             view: target,
-            depth_slice: None,
+            depth_slice: slice,
             resolve_target: None,
             ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
         })],
@@ -215,7 +227,8 @@ pub fn fullscreen_pass(
     });
     rp.set_pipeline(pipeline);
     rp.set_bind_group(0, group, &[]);
-    rp.draw(0..3, 0..1);
+    let instance = slice.unwrap_or(0);
+    rp.draw(0..3, instance..instance + 1);
 }
 
 /// Non-filterable float textures, for [`texture_entry`].

@@ -122,22 +122,7 @@ impl Renderer {
             let (src, dst) = (view(level - 1), view(level));
             let group = self.mip_group(&self.fixed.mip3_bgl, &src, &linear);
             for slice in 0..(tex.depth_or_array_layers() >> level).max(1) {
-                let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("mipmap 3d"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &dst,
-                        depth_slice: Some(slice),
-                        resolve_target: None,
-                        ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                rp.set_pipeline(&pipeline);
-                rp.set_bind_group(0, &group, &[]);
-                rp.draw(0..3, slice..slice + 1);
+                crate::gpu::fullscreen_pass_at(&mut enc, "mipmap 3d", (&dst, Some(slice)), &pipeline, &group);
             }
         }
         self.lane.submit(&self.gpu, vec![enc.finish()]);
