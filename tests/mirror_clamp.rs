@@ -7,7 +7,8 @@
 //! other wraps likewise: a 4×4 texture drawn with coordinates from -2.5 to 2.5 (each side
 //! shows the image mirrored once and the edge clamped beyond it), nearest and linear, on s, t
 //! and both with every other wrap on the other axis; projective lookups; a sampler parameter
-//! from a sampler array indexed in a loop; a vertex-stage lookup; the parameter's errors.
+//! from a sampler array indexed in a loop; a vertex-stage lookup; the parameter's errors; and
+//! the r wrap of a 3D texture (`GL_OES_texture_3D`), through a uniform and a parameter.
 
 mod programs;
 mod support;
@@ -19,6 +20,8 @@ use strata_protocol::wire::{Blob, Slice, Text};
 use support::Daemon;
 
 const TEXTURE_2D: u32 = 0x0DE1;
+const TEXTURE_3D: u32 = 0x806F;
+const WRAP_R: u32 = 0x8072;
 const WRAP_S: u32 = 0x2802;
 const WRAP_T: u32 = 0x2803;
 const MIN_FILTER: u32 = 0x2801;
@@ -219,5 +222,78 @@ fn mirror_clamp_to_edge_wraps_as_the_extension_defines() {
     gl.glBindTexture(0x8D65, n.next()).expect("bind");
     gl.glTexParameteri(0x8D65, WRAP_S, MIRROR_CLAMP).expect("parameter");
     assert_eq!(gl.glGetError().expect("error"), 0x0500, "an external texture");
+    daemon.assert_running();
+}
+
+/// Texel (x, y, z) of the 4×4×4 image.
+fn texel3(x: usize, y: usize, z: usize) -> [f64; 4] {
+    [(x * 80) as f64, (y * 80) as f64, (z * 80) as f64, (255 - (x + y) * 20) as f64]
+}
+
+/// GL's sample of the 3D image at (s, t, r) with wraps `w`, filtered as `linear` says.
+fn sample3(w: [i32; 3], c: [f64; 3], linear: bool) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (a, x) in axis(w[0], c[0], linear) {
+        for (b, y) in axis(w[1], c[1], linear) {
+            for (e, z) in axis(w[2], c[2], linear) {
+                for (o, v) in out.iter_mut().zip(texel3(x, y, z)) {
+                    *o += a * b * e * v;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// r runs against s and t: r = 0.45 (s − t) + 0.55, from about -1.6 to 2.7 over the square,
+/// never on a texel boundary.
+const FS_3D: &str = "#extension GL_OES_texture_3D : enable
+    precision highp float; uniform lowp sampler3D s; varying vec2 t;
+    void main() { gl_FragColor = texture3D(s, vec3(t, (t.x - t.y) * 0.45 + 0.55)); }";
+/// The same through a function's sampler parameter.
+const FS_3D_PARAM: &str = "#extension GL_OES_texture_3D : enable
+    precision highp float; uniform lowp sampler3D s; varying vec2 t;
+    vec4 look(lowp sampler3D x, vec3 c) { return texture3D(x, c); }
+    void main() { gl_FragColor = look(s, vec3(t, (t.x - t.y) * 0.45 + 0.55)); }";
+
+/// `GL_OES_texture_3D`'s r wrap takes the mirror too: a 4×4×4 image sampled with r running
+/// across the square, nearest and linear, each axis mirrored and clamped in turn, through a
+/// sampler uniform and a sampler parameter.
+#[test]
+fn mirror_clamp_to_edge_wraps_r_of_3d_textures() {
+    let mut daemon = Daemon::start("mirror-clamp-3d", &[]);
+    let mut c = strata_context(&daemon.socket, "mirror-clamp-3d").expect("context");
+    let gl = &mut c;
+    let mut n = Names::default();
+    let tex = n.next();
+    gl.glGenTextures(Slice::new(&[tex])).expect("gen");
+    gl.glBindTexture(TEXTURE_3D, tex).expect("bind");
+    let data: Vec<u8> = (0..64).flat_map(|i| texel3(i % 4, i / 4 % 4, i / 16).map(|v| v as u8)).collect();
+    gl.glTexImage3DOES(TEXTURE_3D, 0, RGBA, 4, 4, 4, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&data)))
+        .expect("upload");
+    let at = |x: usize, y: usize| [coord(x), coord(y), (coord(x) - coord(y)) * 0.45 + 0.55];
+    let mut worst: f64 = 0.0;
+    for fs in [FS_3D, FS_3D_PARAM] {
+        program(gl, &mut n, VS_TEX, fs, &["pos", "uv"]).expect("program");
+        for (filter, tol) in [(NEAREST, 0.0), (LINEAR, 2.0)] {
+            for wraps in [
+                [CLAMP, CLAMP, MIRROR_CLAMP],
+                [MIRROR_CLAMP, REPEAT, MIRROR_CLAMP],
+                [REPEAT, MIRROR_CLAMP, CLAMP],
+                [MIRROR_CLAMP, MIRROR_CLAMP, MIRRORED_REPEAT],
+            ] {
+                for (p, v) in [(MIN_FILTER, filter), (MAG_FILTER, filter), (WRAP_S, wraps[0]), (WRAP_T, wraps[1])] {
+                    gl.glTexParameteri(TEXTURE_3D, p, v).expect("parameter");
+                }
+                gl.glTexParameteri(TEXTURE_3D, WRAP_R, wraps[2]).expect("parameter");
+                assert_eq!(gl.glGetError().expect("error"), 0, "the parameters");
+                let got = draw(gl, &mut n);
+                let what = format!("filter {filter:#x}, wraps {wraps:x?}");
+                worst = worst.max(check(&what, &got, tol, |x, y| sample3(wraps, at(x, y), filter == LINEAR)));
+            }
+        }
+    }
+    eprintln!("3D lookups: worst difference {worst}");
+    assert_eq!(gl.glGetTexParameteriv(TEXTURE_3D, WRAP_R).expect("get"), vec![MIRRORED_REPEAT]);
     daemon.assert_running();
 }
