@@ -221,3 +221,30 @@ fn program_pipelines_are_limited_per_context() {
     assert!(draws(&mut gl, [40, 80, 120]));
     daemon.assert_running();
 }
+
+/// A 3D image (`GL_OES_texture_3D`) holds every slice of every level against the quota: a
+/// 128×128×64 RGBA8 image with its mip chain (about 4.6 MiB) fits in 8 MiB, a second does not,
+/// and the first still draws into a slice.
+#[test]
+fn three_d_images_count_every_slice() {
+    const TEXTURE_3D: u32 = 0x806F;
+    let mut daemon = Daemon::start("quota-3d", &["--quota-gpu-bytes", "8M"]);
+    let (mut gl, _) = connect(&daemon.socket, "volumes");
+    let volume = |gl: &mut Connection, name: u32| {
+        gl.glBindTexture(TEXTURE_3D, name).expect("io");
+        gl.glTexImage3DOES(TEXTURE_3D, 0, GL_RGBA, 128, 128, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, None).expect("io");
+        error(gl)
+    };
+    assert_eq!(volume(&mut gl, 1), GL_NO_ERROR);
+    let s = support::stats(&daemon.socket);
+    let c = s.clients.iter().find(|c| c.name == "volumes").expect("listed");
+    let levels: u64 = (0..8).map(|l| (128u64 >> l).max(1).pow(2) * (64u64 >> l).max(1) * 4).sum();
+    assert!(c.gpu_bytes >= levels && c.gpu_bytes < levels + (1 << 20), "holds {} bytes for {levels}", c.gpu_bytes);
+    assert_eq!(volume(&mut gl, 2), GL_OUT_OF_MEMORY, "a second is beyond 8 MiB");
+    gl.glBindFramebuffer(0x8D40, 3).expect("io");
+    gl.glFramebufferTexture3DOES(0x8D40, 0x8CE0, TEXTURE_3D, 1, 0, 63).expect("io");
+    assert_eq!(gl.glCheckFramebufferStatus(0x8D40).expect("io"), 0x8CD5, "the last slice of the first");
+    gl.glBindFramebuffer(0x8D40, 0).expect("io");
+    assert!(draws(&mut gl, [40, 80, 120]));
+    daemon.assert_running();
+}
