@@ -237,6 +237,21 @@ fn texture_3d_targets(gl: Gl<'_>, n: &mut Names) -> R {
         marks.push(gl.glGetError()?);
         gl.glCompressedTexImage3DOES(TEXTURE_3D, 0, ETC1, 4, 4, 1, 0, Blob::borrowed(&[0; 8]))?;
         marks.push(gl.glGetError()?);
+        // A box too large for any data (its size overflows what a length can hold).
+        let huge = i32::MAX;
+        gl.glCompressedTexSubImage3DOES(
+            TEXTURE_3D,
+            0,
+            0,
+            0,
+            0,
+            huge,
+            huge,
+            huge,
+            ASTC_4X4,
+            Blob::borrowed(&blocks[..16]),
+        )?;
+        marks.push(gl.glGetError()?);
         gl.glCompressedTexImage3DOES(TEXTURE_2D, 0, ASTC_4X4, 4, 4, 1, 0, Blob::borrowed(&blocks[..16]))?;
         marks.push(gl.glGetError()?);
     }

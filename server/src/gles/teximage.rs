@@ -111,7 +111,7 @@ pub(super) fn block_aligned(
 
 /// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
 /// has no alpha (RGB and luminance images read alpha as 1 whatever their colour).
-pub(super) fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
+pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
     let alpha: f32 = if matches!(format, RGB | LUMINANCE | RED_EXT | RG_EXT) { 1.0 } else { 0.0 };
     let rgba = [0.0, 0.0, 0.0, alpha];
     let texel: Vec<u8> = match storage {
@@ -119,7 +119,7 @@ pub(super) fn blank(texels: u32, format: u32, storage: Storage) -> Vec<u8> {
         Storage::Float => rgba.iter().flat_map(|v| v.to_ne_bytes()).collect(),
         _ => vec![0, 0, 0, (alpha * 255.0) as u8],
     };
-    texel.repeat(texels as usize)
+    texel.repeat(texels)
 }
 
 #[allow(non_snake_case)]
@@ -209,7 +209,7 @@ impl GlesExecutor {
         let region = Region { face, level, x: 0, y: 0, width: w, height: h };
         match texels {
             Some(data) => img.write(gpu, flushed, region, &data),
-            None => img.write(gpu, flushed, region, &blank(w * h, format, storage)),
+            None => img.write(gpu, flushed, region, &blank(w as usize * h as usize, format, storage)),
         }
         Ok(())
     }

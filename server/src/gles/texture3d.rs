@@ -191,7 +191,7 @@ impl GlesExecutor {
         if !define_level(t, level, [w, h, d], same) {
             return Ok(());
         }
-        let data = texels.unwrap_or_else(|| blank(w * h * d, format, storage));
+        let data = texels.unwrap_or_else(|| blank(w as usize * h as usize * d as usize, format, storage));
         write_slices(t, gpu, flushed, level, [0, 0, 0], [w, h], &data);
         Ok(())
     }
@@ -261,7 +261,7 @@ impl GlesExecutor {
         validate_volume(&self.gpu, level, [width, height, depth], border)?;
         let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
         let slice = c.image_size(w, h);
-        if data.len() != slice * d as usize {
+        if slice.checked_mul(d as usize) != Some(data.len()) {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
@@ -302,7 +302,7 @@ impl GlesExecutor {
         let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidOperation)?;
         let (w, h, d) = (width.max(0) as u32, height.max(0) as u32, depth.max(0) as u32);
         let slice = c.image_size(w, h);
-        if data.len() != slice * d as usize {
+        if slice.checked_mul(d as usize) != Some(data.len()) {
             return Err(GlError::InvalidValue);
         }
         let fits = |t: &Texture| if t.format == format { Ok(()) } else { Err(GlError::InvalidOperation) };
