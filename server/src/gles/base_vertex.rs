@@ -6,10 +6,10 @@
 use strata_protocol::Blob;
 
 use super::context::Context;
-use super::conv::{IndexType, Primitive};
 use super::enums::UNSIGNED_INT;
 use super::error::{GlError, GlResult};
 use super::indices::{index_values, Indices};
+use super::typed::{IndexType, Primitive};
 use super::GlesExecutor;
 
 #[allow(non_snake_case)]

@@ -5,10 +5,10 @@
 use strata_protocol::{Blob, Slice};
 
 use super::context::Context;
-use super::conv::BufferTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
+use super::typed::BufferTarget;
 use super::GlesExecutor;
 use crate::quota::Kind;
 

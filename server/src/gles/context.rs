@@ -4,9 +4,8 @@
 use std::collections::HashMap;
 
 use super::buffers::Buffer;
-use super::conv::{BufferTarget, Capability, TextureTarget};
 use super::debug::DebugState;
-use super::egl::Config;
+use super::egl_config::Config;
 use super::enums::*;
 use super::error::{ErrorFlag, GlError};
 use super::framebuffers::{Framebuffer, Renderbuffer};
@@ -14,6 +13,7 @@ use super::names::Names;
 use super::programs::Program;
 use super::shaders::ShaderObj;
 use super::textures::Texture;
+use super::typed::{BufferTarget, Capability, TextureTarget};
 use super::vao::VertexArray;
 use super::vertex::Attrib;
 

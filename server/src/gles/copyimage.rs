@@ -2,13 +2,13 @@
 //! (into 8-bit colour images only: float, depth and compressed images are not copy targets).
 
 use super::context::Context;
-use super::conv::ImageTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{sized_color_base, Compressed, Storage};
 use super::render::Target;
 use super::teximage::{image_texture, validate_size, MAX_LEVEL};
+use super::typed::ImageTarget;
 use super::GlesExecutor;
 
 #[allow(non_snake_case)]

@@ -10,7 +10,7 @@ use strata_protocol::Blob;
 use super::context::{Context, StencilFace};
 use super::conv::{
     blend_component, clip_rect, color_writes, compare, component, float_format, native_format, reads_src1, stencil_op,
-    type_size, viewport, IndexType, Mirror, Primitive, TextureTarget,
+    type_size, viewport, Mirror,
 };
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -21,6 +21,7 @@ use super::programs::LinkedProgram;
 use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
 use super::surface::ReversedZ;
 use super::textures::Texture;
+use super::typed::{IndexType, Primitive, TextureTarget};
 use super::GlesExecutor;
 
 /// The most bytes of converted vertex data one attribute of one draw may need.

@@ -189,8 +189,8 @@ impl GlesExecutor {
         image: EglHandle,
     ) -> GlResult {
         let slot = match target {
-            TEXTURE_2D => super::conv::TextureTarget::TwoD,
-            TEXTURE_EXTERNAL_OES => super::conv::TextureTarget::External,
+            TEXTURE_2D => super::typed::TextureTarget::TwoD,
+            TEXTURE_EXTERNAL_OES => super::typed::TextureTarget::External,
             _ => return Err(GlError::InvalidEnum),
         };
         let img = self.images.get(&image).ok_or(GlError::InvalidValue)?;

@@ -4,12 +4,12 @@
 use strata_protocol::Slice;
 
 use super::context::{Context, MAX_DRAW_BUFFERS, MAX_TEXTURE};
-use super::conv::ImageTarget;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{absent_channels, color_bits, is_half_renderbuffer};
 use super::render::{Target, COLOR_FORMAT, HALF_FORMAT};
 use super::teximage::MAX_LEVEL;
+use super::typed::ImageTarget;
 use super::GlesExecutor;
 use crate::quota::Kind;
 

@@ -3,10 +3,10 @@
 //! buffer itself, or a list generated per pass for loops, fans, byte indices and client data.
 
 use super::context::Context;
-use super::conv::{IndexType, Primitive};
 use super::draw::MAX_CONVERTED;
 use super::error::{GlError, GlResult};
 use super::render::Source;
+use super::typed::{IndexType, Primitive};
 
 /// Where a draw's indices come from.
 #[derive(Clone, Copy)]

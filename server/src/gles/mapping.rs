@@ -8,9 +8,9 @@ use strata_protocol::{Blob, Bytes};
 
 use super::buffers::Buffer;
 use super::context::Context;
-use super::conv::BufferTarget;
 use super::dispatch::Flushed;
 use super::error::{GlError, GlResult};
+use super::typed::BufferTarget;
 use super::GlesExecutor;
 
 /// `GL_MAP_READ_BIT_EXT`.

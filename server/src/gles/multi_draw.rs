@@ -7,9 +7,9 @@
 use strata_protocol::Slice;
 
 use super::context::Context;
-use super::conv::{IndexType, Primitive};
 use super::error::{GlError, GlResult};
 use super::indices::Indices;
+use super::typed::{IndexType, Primitive};
 use super::GlesExecutor;
 
 /// The first `drawcount` entries of each array, validated: `GL_INVALID_VALUE` for a negative

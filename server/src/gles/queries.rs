@@ -4,11 +4,11 @@
 use super::context::{
     Context, MAX_ATTRIBS, MAX_DRAW_BUFFERS as MAX_DRAW_BUFFERS_COUNT, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS,
 };
-use super::conv::Capability;
 use super::enums::*;
 use super::error::GlError;
 use super::formats::{color_bits, offered_compressed, texture_color_bits};
 use super::framebuffers::Attachment;
+use super::typed::Capability;
 use super::GlesExecutor;
 use crate::gpu::Gpu;
 

@@ -2,9 +2,10 @@
 //! culling, blending, stencil, polygon offset, line width, hints and pixel store.
 
 use super::context::{ClipControl, Context, StencilFace, MAX_TEXTURE};
-use super::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op, Capability};
+use super::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op};
 use super::enums::*;
 use super::error::{GlError, GlResult};
+use super::typed::Capability;
 use super::GlesExecutor;
 
 /// A `clampf` parameter as GL stores it: clamped to [0, 1] (NaN becomes 0).

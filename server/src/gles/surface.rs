@@ -9,7 +9,7 @@ use strata_protocol::wire::EglHandle;
 use strata_protocol::EglResult;
 
 use super::context::MAX_TEXTURE;
-use super::egl::Config;
+use super::egl_config::Config;
 use super::enums::*;
 use super::frames::{self, Buffer, CopyPath, Transfer, Window};
 use super::render::{Target, COLOR_FORMAT};

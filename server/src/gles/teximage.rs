@@ -6,13 +6,13 @@
 use strata_protocol::Blob;
 
 use super::context::{Context, MAX_TEXTURE};
-use super::conv::ImageTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
 use super::images::{Region, TextureImage};
 use super::textures::Texture;
+use super::typed::ImageTarget;
 use super::unpack::{depth_stencil_values, to_storage, Unpack};
 use super::GlesExecutor;
 

@@ -8,7 +8,6 @@
 use strata_protocol::Blob;
 
 use super::context::Context;
-use super::conv::{ImageTarget, TextureTarget};
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
@@ -17,6 +16,7 @@ use super::framebuffers::Attachment;
 use super::images::Region;
 use super::teximage::{blank, block_aligned};
 use super::textures::Texture;
+use super::typed::{ImageTarget, TextureTarget};
 use super::unpack::{to_storage, Unpack};
 use super::GlesExecutor;
 use crate::gpu::Gpu;

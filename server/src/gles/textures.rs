@@ -4,12 +4,12 @@
 use strata_protocol::Slice;
 
 use super::context::Context;
-use super::conv::TextureTarget;
 use super::dispatch::Flushed;
 use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
 use super::images::TextureImage;
+use super::typed::TextureTarget;
 use super::GlesExecutor;
 
 /// Sampling state of a texture (ES 2.0 keeps it in the texture object).

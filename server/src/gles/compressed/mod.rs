@@ -13,11 +13,11 @@ pub mod s3tc;
 use crate::gles::context::Context;
 use strata_protocol::Blob;
 
-use super::conv::ImageTarget;
 use super::error::{GlError, GlResult};
 use super::formats::{Compressed, Storage};
 use super::images::Region;
 use super::teximage::{image_texture, sub_image, validate_size, SubImage};
+use super::typed::ImageTarget;
 use super::GlesExecutor;
 use crate::gles::dispatch::Flushed;
 

@@ -1,0 +1,261 @@
+//! GL enums parsed once at the boundary into typed values: binding points, image targets,
+//! capabilities, primitives and index types. Anything else is the GL error the parse gives.
+
+use super::enums::*;
+use super::error::{GlError, GlResult};
+
+/// A buffer binding point (`glBindBuffer`, `glBufferData`, …).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BufferTarget {
+    /// `GL_ARRAY_BUFFER`.
+    Array,
+    /// `GL_ELEMENT_ARRAY_BUFFER`.
+    ElementArray,
+    /// `GL_PIXEL_PACK_BUFFER_NV` (`GL_NV_pixel_buffer_object`): where `glReadPixels` writes;
+    /// the library does the writing, so the daemon only keeps the buffer.
+    PixelPack,
+    /// `GL_PIXEL_UNPACK_BUFFER_NV`: what uploads read; the library reads it.
+    PixelUnpack,
+}
+
+impl BufferTarget {
+    /// Parses a buffer target; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            ARRAY_BUFFER => Ok(BufferTarget::Array),
+            ELEMENT_ARRAY_BUFFER => Ok(BufferTarget::ElementArray),
+            PIXEL_PACK_BUFFER_NV => Ok(BufferTarget::PixelPack),
+            PIXEL_UNPACK_BUFFER_NV => Ok(BufferTarget::PixelUnpack),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+}
+
+/// A texture binding point of a texture unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureTarget {
+    /// `GL_TEXTURE_2D`.
+    TwoD,
+    /// `GL_TEXTURE_CUBE_MAP`.
+    CubeMap,
+    /// `GL_TEXTURE_EXTERNAL_OES` (`GL_OES_EGL_image_external`): a 2D image from an EGLImage,
+    /// sampled through `samplerExternalOES`.
+    External,
+    /// `GL_TEXTURE_3D_OES` (`GL_OES_texture_3D`).
+    ThreeD,
+}
+
+impl TextureTarget {
+    /// Parses a texture target; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            TEXTURE_2D => Ok(TextureTarget::TwoD),
+            TEXTURE_CUBE_MAP => Ok(TextureTarget::CubeMap),
+            super::egl_image::TEXTURE_EXTERNAL_OES => Ok(TextureTarget::External),
+            TEXTURE_3D_OES => Ok(TextureTarget::ThreeD),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// The GL enum, as a texture object remembers its target.
+    pub fn as_gl(self) -> u32 {
+        match self {
+            TextureTarget::TwoD => TEXTURE_2D,
+            TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
+            TextureTarget::External => super::egl_image::TEXTURE_EXTERNAL_OES,
+            TextureTarget::ThreeD => TEXTURE_3D_OES,
+        }
+    }
+
+    /// Index of this binding point in a texture unit.
+    pub fn slot(self) -> usize {
+        match self {
+            TextureTarget::TwoD => 0,
+            TextureTarget::CubeMap => 1,
+            TextureTarget::External => 2,
+            TextureTarget::ThreeD => 3,
+        }
+    }
+}
+
+/// The image an upload or copy addresses: `GL_TEXTURE_2D`, one cube face, or a 3D image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ImageTarget {
+    /// Array layer: the cube face (0..6), 0 for 2D and 3D.
+    pub face: u32,
+    /// Whether this is a cube face.
+    pub cube: bool,
+    /// Whether this is a 3D image (`GL_OES_texture_3D`).
+    pub three_d: bool,
+}
+
+impl ImageTarget {
+    /// Parses `GL_TEXTURE_2D` or `GL_TEXTURE_CUBE_MAP_*`; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32) -> GlResult<Self> {
+        match target {
+            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false, three_d: false }),
+            t if (TEXTURE_CUBE_MAP_POSITIVE_X..TEXTURE_CUBE_MAP_POSITIVE_X + 6).contains(&t) => {
+                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true, three_d: false })
+            }
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// The binding point whose texture holds this image.
+    pub fn binding(self) -> TextureTarget {
+        match (self.cube, self.three_d) {
+            (true, _) => TextureTarget::CubeMap,
+            (_, true) => TextureTarget::ThreeD,
+            _ => TextureTarget::TwoD,
+        }
+    }
+}
+
+/// A capability of `glEnable`/`glDisable`/`glIsEnabled`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Capability {
+    /// `GL_CULL_FACE`.
+    CullFace,
+    /// `GL_BLEND`.
+    Blend,
+    /// `GL_DEPTH_TEST`.
+    DepthTest,
+    /// `GL_SCISSOR_TEST`.
+    ScissorTest,
+    /// `GL_STENCIL_TEST`.
+    StencilTest,
+    /// `GL_POLYGON_OFFSET_FILL`.
+    PolygonOffsetFill,
+    /// `GL_DITHER`.
+    Dither,
+    /// `GL_SAMPLE_COVERAGE`.
+    SampleCoverage,
+    /// `GL_SAMPLE_ALPHA_TO_COVERAGE`.
+    SampleAlphaToCoverage,
+    /// `GL_DEBUG_OUTPUT_KHR`.
+    DebugOutput,
+    /// `GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR`.
+    DebugOutputSynchronous,
+    /// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`, where the device has
+    /// `wgpu::Features::DEPTH_CLIP_CONTROL`).
+    DepthClamp,
+}
+
+impl Capability {
+    /// Parses a capability the device with `features` has; anything else is `GL_INVALID_ENUM`.
+    pub fn on(cap: u32, features: wgpu::Features) -> GlResult<Self> {
+        match Capability::from_gl(cap)? {
+            Capability::DepthClamp if !features.contains(wgpu::Features::DEPTH_CLIP_CONTROL) => {
+                Err(GlError::InvalidEnum)
+            }
+            c => Ok(c),
+        }
+    }
+
+    /// Parses a capability; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(cap: u32) -> GlResult<Self> {
+        Ok(match cap {
+            CULL_FACE => Capability::CullFace,
+            BLEND => Capability::Blend,
+            DEPTH_TEST => Capability::DepthTest,
+            SCISSOR_TEST => Capability::ScissorTest,
+            STENCIL_TEST => Capability::StencilTest,
+            POLYGON_OFFSET_FILL => Capability::PolygonOffsetFill,
+            DITHER => Capability::Dither,
+            SAMPLE_COVERAGE => Capability::SampleCoverage,
+            SAMPLE_ALPHA_TO_COVERAGE => Capability::SampleAlphaToCoverage,
+            DEBUG_OUTPUT => Capability::DebugOutput,
+            DEBUG_OUTPUT_SYNCHRONOUS => Capability::DebugOutputSynchronous,
+            DEPTH_CLAMP_EXT => Capability::DepthClamp,
+            _ => return Err(GlError::InvalidEnum),
+        })
+    }
+}
+
+/// A draw call's primitive mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Primitive {
+    /// `GL_POINTS`.
+    Points,
+    /// `GL_LINES`.
+    Lines,
+    /// `GL_LINE_LOOP`, drawn as a strip of generated indices.
+    LineLoop,
+    /// `GL_LINE_STRIP`.
+    LineStrip,
+    /// `GL_TRIANGLES`.
+    Triangles,
+    /// `GL_TRIANGLE_STRIP`.
+    TriangleStrip,
+    /// `GL_TRIANGLE_FAN`, drawn as a list of generated indices.
+    TriangleFan,
+}
+
+impl Primitive {
+    /// Parses a primitive mode; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(mode: u32) -> GlResult<Self> {
+        Ok(match mode {
+            POINTS => Primitive::Points,
+            LINES => Primitive::Lines,
+            LINE_LOOP => Primitive::LineLoop,
+            LINE_STRIP => Primitive::LineStrip,
+            TRIANGLES => Primitive::Triangles,
+            TRIANGLE_STRIP => Primitive::TriangleStrip,
+            TRIANGLE_FAN => Primitive::TriangleFan,
+            _ => return Err(GlError::InvalidEnum),
+        })
+    }
+
+    /// The wgpu topology the primitive is drawn with.
+    pub fn topology(self) -> wgpu::PrimitiveTopology {
+        match self {
+            Primitive::Points => wgpu::PrimitiveTopology::PointList,
+            Primitive::Lines => wgpu::PrimitiveTopology::LineList,
+            Primitive::LineStrip | Primitive::LineLoop => wgpu::PrimitiveTopology::LineStrip,
+            Primitive::Triangles | Primitive::TriangleFan => wgpu::PrimitiveTopology::TriangleList,
+            Primitive::TriangleStrip => wgpu::PrimitiveTopology::TriangleStrip,
+        }
+    }
+
+    /// Whether wgpu has no such primitive, so the draw uses generated indices.
+    pub fn generates_indices(self) -> bool {
+        matches!(self, Primitive::LineLoop | Primitive::TriangleFan)
+    }
+
+    /// Whether this is a strip (whose indexed form restarts at the format's maximum in wgpu).
+    pub fn is_strip(self) -> bool {
+        matches!(self, Primitive::LineStrip | Primitive::TriangleStrip)
+    }
+}
+
+/// The type of a draw's indices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IndexType {
+    /// `GL_UNSIGNED_BYTE`.
+    U8,
+    /// `GL_UNSIGNED_SHORT`.
+    U16,
+    /// `GL_UNSIGNED_INT` (`OES_element_index_uint`).
+    U32,
+}
+
+impl IndexType {
+    /// Parses an index type; anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(ty: u32) -> GlResult<Self> {
+        match ty {
+            UNSIGNED_BYTE => Ok(IndexType::U8),
+            UNSIGNED_SHORT => Ok(IndexType::U16),
+            UNSIGNED_INT => Ok(IndexType::U32),
+            _ => Err(GlError::InvalidEnum),
+        }
+    }
+
+    /// Bytes per index.
+    pub fn size(self) -> u64 {
+        match self {
+            IndexType::U8 => 1,
+            IndexType::U16 => 2,
+            IndexType::U32 => 4,
+        }
+    }
+}
