@@ -60,7 +60,7 @@ fn freed_memory_is_kept_for_the_next_draw() {
         eprintln!("skipped: the thresholds are glibc's");
         return;
     }
-    strata_server::gpu::settle_environment();
+    strata_device::settle_environment();
     // A round writes 1,024 pages: with glibc's defaults the heap's top goes back to the system
     // after every round, and every page faults in again.
     let pages = (BLOCKS * BLOCK).div_ceil(4096) as f64;

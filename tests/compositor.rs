@@ -4,9 +4,9 @@
 
 use std::sync::Arc;
 
-use strata_server::compositor::reference::{self, upload, RefLayer, Uploaded};
-use strata_server::compositor::{Compositor, Layer, Lighting, NormalSource};
-use strata_server::gpu::Gpu;
+use strata_compositor::reference::{self, upload, RefLayer, Uploaded};
+use strata_compositor::{Compositor, Layer, Lighting, NormalSource};
+use strata_device::Gpu;
 
 #[path = "compositor/cells.rs"]
 mod cells;

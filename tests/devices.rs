@@ -75,8 +75,8 @@ fn kernel_takes_slices() -> bool {
     std::thread::spawn(|| {
         // SAFETY: gettid has no preconditions.
         let tid = unsafe { libc::gettid() };
-        strata_server::gpu::set_thread_slice(0, Some(strata_server::gpu::HIGH_SLICE))
-            && slice(std::process::id(), tid) == Some(strata_server::gpu::HIGH_SLICE.as_nanos() as u64)
+        strata_device::set_thread_slice(0, Some(strata_device::HIGH_SLICE))
+            && slice(std::process::id(), tid) == Some(strata_device::HIGH_SLICE.as_nanos() as u64)
     })
     .join()
     .unwrap_or(false)
@@ -186,7 +186,7 @@ fn a_class_sets_the_nice_value_of_its_device_threads() {
         eprintln!("SKIPPED the slice checks: this kernel does not take a thread's own slice");
         return;
     }
-    let short = strata_server::gpu::HIGH_SLICE.as_nanos() as u64;
+    let short = strata_device::HIGH_SLICE.as_nanos() as u64;
     let compositor = threads_named(pid, "compositor");
     assert_eq!(compositor.len(), 1, "one compositor thread");
     let ic_threads: Vec<i32> = device_threads(&socket, "ic").iter().filter(driver).map(|t| t.tid).collect();

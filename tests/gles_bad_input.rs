@@ -320,7 +320,7 @@ fn gl_misuse_records_errors_while_another_client_draws_correctly() {
     done.store(true, Ordering::Release);
     let rounds = bystander.join().expect("bystander");
     assert!(rounds >= 3);
-    daemon.wait_log("name=misuse role=app}: strata_server::gles::state: GPU validation error charged to this client");
+    daemon.wait_log("name=misuse role=app}: strata_gles::state: GPU validation error charged to this client");
     assert!(!daemon.log_text().contains("panicked"), "daemon panicked:\n{}", daemon.log_text());
 }
 

@@ -8,7 +8,7 @@ mod support;
 
 use strata_client::{Calls, ClientError};
 use strata_protocol::Text;
-use strata_server::gles::glsl;
+use strata_gles::glsl;
 use support::mesa::MesaGl;
 
 const DIR: &str = "/usr/share/glmark2/shaders";

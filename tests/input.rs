@@ -19,8 +19,8 @@ use strata_protocol::events::Event;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_protocol::input::{Action, Device, InputEvent, InputOutcome, InputRequest, Phase};
 use strata_protocol::{Blob, Slice, Text};
-use strata_server::compositor::reference::{self, RefLayer};
-use strata_server::compositor::Props;
+use strata_compositor::reference::{self, RefLayer};
+use strata_compositor::Props;
 use support::Daemon;
 
 /// The output: 256×128 pixels, named `main`.

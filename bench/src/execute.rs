@@ -12,7 +12,7 @@ use glam::{Mat4, Vec3};
 use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::{Blob, Slice, Text};
-use strata_server::gles::glsl;
+use strata_gles::glsl;
 
 use crate::mesh::{self, Mesh};
 use indicatif::ProgressBar;
@@ -159,7 +159,7 @@ impl StrataSide {
 /// The baseline: the same shader (through Strata's GLSL ES front end) and mesh drawn by wgpu
 /// code in this process, on a device of its own.
 struct NativeSide {
-    gpu: std::sync::Arc<strata_server::gpu::Gpu>,
+    gpu: std::sync::Arc<strata_device::Gpu>,
     color_tex: wgpu::Texture,
     color: wgpu::TextureView,
     depth: wgpu::TextureView,
@@ -182,7 +182,7 @@ impl NativeSide {
         bindings.insert("position".to_string(), 0);
         bindings.insert("normal".to_string(), 1);
         let linked = glsl::link(&vs, &fs, &bindings, 16).map_err(|e| anyhow!("{e}"))?;
-        let gpu = strata_server::gpu::Gpu::open()?;
+        let gpu = strata_device::Gpu::open()?;
         let d = &gpu.device;
         let square = (args.size, args.size);
         let target =
@@ -198,7 +198,7 @@ impl NativeSide {
                 usage: usage | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
-            gpu.queue.write_buffer(&b, 0, bytes);
+            gpu.write_buffer(&b, 0, bytes);
             b
         };
         let vbuf = buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
@@ -298,8 +298,8 @@ impl NativeSide {
 
     fn frame(&self, f: u32) {
         let (mvp, nm) = matrices(f, 1.0);
-        self.gpu.queue.write_buffer(&self.ubuf, self.offsets.0, bytemuck::cast_slice(&mvp));
-        self.gpu.queue.write_buffer(&self.ubuf, self.offsets.1, bytemuck::cast_slice(&nm));
+        self.gpu.write_buffer(&self.ubuf, self.offsets.0, bytemuck::cast_slice(&mvp));
+        self.gpu.write_buffer(&self.ubuf, self.offsets.1, bytemuck::cast_slice(&nm));
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
             let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -328,7 +328,7 @@ impl NativeSide {
             rp.set_index_buffer(self.ibuf.slice(..), wgpu::IndexFormat::Uint32);
             rp.draw_indexed(0..self.count, 0, 0..1);
         }
-        self.gpu.queue.submit([enc.finish()]);
+        self.gpu.submit(vec![enc.finish()]);
     }
 
     /// Draws frames `range` and waits for them: the seconds it took.

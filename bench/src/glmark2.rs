@@ -46,8 +46,8 @@ pub struct Args {
     #[arg(long)]
     no_native_curve: bool,
     /// The daemon's compositor (2d: the baseline of the thesis' Table 5.4).
-    #[arg(long, value_enum, default_value_t = strata_server::compositor::Mode::ThreeD)]
-    compositor: strata_server::compositor::Mode,
+    #[arg(long, value_enum, default_value_t = strata_compositor::Mode::ThreeD)]
+    compositor: strata_compositor::Mode,
     /// Instance i of a concurrent run sits at z = i · STEP (0: all at one z, the same-z curve;
     /// 1: one z each, as in the thesis' Tables 5.3 and 5.4).
     #[arg(long, default_value_t = 0.0)]

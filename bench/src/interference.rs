@@ -246,7 +246,7 @@ impl Bench<'_> {
             return Command::new(program);
         }
         let mut cmd = Command::new("nice");
-        cmd.args(["-n", &strata_server::gpu::nice_for(class).to_string()]).arg(program);
+        cmd.args(["-n", &strata_device::nice_for(class).to_string()]).arg(program);
         cmd
     }
 

@@ -107,8 +107,8 @@ pub fn run(args: &Args) -> Result<()> {
     if args.role == Role::Ic {
         // As the instrument cluster's own process would: the high class's short slice, so that
         // its thread preempts longer-slice work sooner when its swap returns.
-        let slice = strata_server::gpu::slice_for(strata_protocol::control::Priority::High);
-        strata_server::gpu::set_thread_slice(0, slice);
+        let slice = strata_device::slice_for(strata_protocol::control::Priority::High);
+        strata_device::set_thread_slice(0, slice);
     }
     let (name, default_window, interval) = match args.role {
         Role::Ic => ("ic", "0,0,320x320", 1),

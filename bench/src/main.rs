@@ -54,10 +54,10 @@ enum Cmd {
         executor: strata_server::ExecutorKind,
         /// An output, as for `stratad serve --output` (repeatable).
         #[arg(long = "output")]
-        outputs: Vec<strata_server::root::OutputSpec>,
+        outputs: Vec<strata_compositor::root::OutputSpec>,
         /// The compositor, as for `stratad serve --compositor`.
-        #[arg(long, value_enum, default_value_t = strata_server::compositor::Mode::ThreeD)]
-        compositor: strata_server::compositor::Mode,
+        #[arg(long, value_enum, default_value_t = strata_compositor::Mode::ThreeD)]
+        compositor: strata_compositor::Mode,
         /// Textures per compositor pass, as for `stratad serve --max-textures`.
         #[arg(long)]
         max_textures: Option<u32>,
@@ -65,8 +65,8 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = strata_server::DeviceMode::PerClient)]
         devices: strata_server::DeviceMode,
         /// How frames reach the compositor, as for `stratad serve --frame-transfer`.
-        #[arg(long, value_enum, default_value_t = strata_server::gles::TransferMode::Auto)]
-        frame_transfer: strata_server::gles::TransferMode,
+        #[arg(long, value_enum, default_value_t = strata_gles::TransferMode::Auto)]
+        frame_transfer: strata_gles::TransferMode,
         /// As for `stratad serve --client-rasterizer-threads`.
         #[arg(long, default_value_t = 1)]
         client_rasterizer_threads: u32,
@@ -107,7 +107,7 @@ enum Cmd {
 
 fn main() -> Result<()> {
     // Before any thread starts (see `settle_environment`).
-    strata_server::gpu::settle_environment();
+    strata_device::settle_environment();
     let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into());
     tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).init();
     match Cli::parse().command {

@@ -1,6 +1,6 @@
 //! Precision knobs, each measured from both sides in one run: per setting, the composite's
 //! speed (median ms of GPU-completed composites of a fixed scene) and its error against the f64
-//! reference compositor (`strata_server::compositor::reference`).
+//! reference compositor (`strata_compositor::reference`).
 //!
 //! The scene: two (or three) full-output surfaces at one z, each showing a plane of its own eye
 //! space under its own declared perspective projection (different near and far planes, so raw
@@ -36,9 +36,9 @@ use std::sync::Arc;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use strata_protocol::projection::{Projection, ProjectionKind};
-use strata_server::compositor::reference::{self, RefLayer};
-use strata_server::compositor::{Compositor, Intermediate, Layer, Lighting, NormalSource};
-use strata_server::gpu::Gpu;
+use strata_compositor::reference::{self, RefLayer};
+use strata_compositor::{Compositor, Intermediate, Layer, Lighting, NormalSource};
+use strata_device::Gpu;
 
 use crate::composite::texture;
 use report::Row;
@@ -414,7 +414,7 @@ fn measure(
     for i in 0..s.surfaces {
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let c = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
-        gpu.queue.write_texture(
+        gpu.write_texture(
             c.as_image_copy(),
             &im.colour[i],
             wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * 4), rows_per_image: None },
@@ -422,7 +422,7 @@ fn measure(
         );
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
         let d = texture(gpu, w, h, s.storage.format(), usage);
-        gpu.write_depth(&d, w, h, &im.stored[i]);
+        strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &im.stored[i]);
         views.push((c.create_view(&Default::default()), d.create_view(&Default::default())));
     }
     let rect = [0, 0, w as i32, h as i32];
@@ -450,7 +450,7 @@ fn measure(
     let ms = crate::composite::try_median_ms(frames, || {
         comp.composite(&layers, &light, &out, BACKGROUND, None)?;
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-        Ok::<_, strata_server::compositor::CompositorError>(())
+        Ok::<_, strata_compositor::CompositorError>(())
     })?;
     let (passes, chained) = (comp.last_passes, comp.last_stats.chained);
     let got = gpu.read_rgba8(&out, [0, 0, w, h]).context("reading the composite back")?;

@@ -427,11 +427,11 @@ pub fn run(args: &Args) -> Result<()> {
 /// Figures 5.6 and 5.7: the two crossing triangles composited by the GPU compositor with the
 /// far and the near light, as PNGs in `dir`.
 fn lit_triangles(dir: &std::path::Path) -> Result<Vec<PathBuf>> {
-    use strata_server::compositor::figures::{far_light, near_light, two_triangles};
-    use strata_server::compositor::reference::upload;
-    use strata_server::compositor::{Compositor, Layer};
+    use strata_compositor::figures::{far_light, near_light, two_triangles};
+    use strata_compositor::reference::upload;
+    use strata_compositor::{Compositor, Layer};
     let (w, h) = (960u32, 540u32);
-    let gpu = strata_server::gpu::Gpu::open().context("opening the GPU for figures 5.6 and 5.7")?;
+    let gpu = strata_device::Gpu::open().context("opening the GPU for figures 5.6 and 5.7")?;
     let mut comp = Compositor::new(gpu.clone(), None).context("creating the compositor")?;
     let layers = two_triangles(w, h);
     let up: Vec<_> = layers.iter().map(|l| upload(&gpu, l)).collect();

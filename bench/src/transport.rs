@@ -28,7 +28,7 @@ pub struct Args {
 
 /// Runs the daemon half with `opts` until killed, with `outputs` (none: the daemon's default
 /// output).
-pub fn daemon(mut opts: strata_server::ServeOptions, outputs: Vec<strata_server::root::OutputSpec>) -> Result<()> {
+pub fn daemon(mut opts: strata_server::ServeOptions, outputs: Vec<strata_compositor::root::OutputSpec>) -> Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
     if !outputs.is_empty() {
         opts.outputs = outputs;

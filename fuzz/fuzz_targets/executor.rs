@@ -25,10 +25,10 @@ use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use strata_fuzz::{on_session_thread, tolerate_caught_third_party_panics};
 use strata_protocol::{Blob, Command, Slice, Text};
-use strata_server::executor::Executor;
-use strata_server::gles::enums::*;
-use strata_server::gles::GlesExecutor;
-use strata_server::gpu::Gpu;
+use strata_gles::execute::Executor;
+use strata_gles::enums::*;
+use strata_gles::GlesExecutor;
+use strata_device::Gpu;
 
 /// Commands after the prologue.
 const MAX_COMMANDS: usize = 64;

@@ -11,7 +11,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use strata_fuzz::{on_session_thread, tolerate_caught_third_party_panics};
-use strata_server::gles::glsl::{compile, Stage};
+use strata_gles::glsl::{compile, Stage};
 
 fuzz_target!(|data: &[u8]| {
     let Some((&stage, source)) = data.split_first() else { return };

@@ -129,7 +129,7 @@ pub struct Identity<'a> {
 
 impl Identity<'_> {
     /// The client's limits: its quota entry's over `base`.
-    pub fn limits(&self, base: crate::quota::Limits) -> crate::quota::Limits {
+    pub fn limits(&self, base: strata_device::account::Limits) -> strata_device::account::Limits {
         self.quota.map_or(base, |q| q.apply(base))
     }
 }

@@ -11,6 +11,7 @@ use std::path::Path;
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
+pub use strata_scene::presets::{LayerEntry, SurfaceEntry};
 use strata_protocol::projection::{Projection, ProjectionError};
 
 /// One layout entry.
@@ -134,86 +135,6 @@ pub struct Config {
     /// The lighting at start (wins over `--lighting` and `--normals`).
     #[serde(default)]
     pub lighting: Option<strata_protocol::control::Lighting>,
-}
-
-fn yes() -> bool {
-    true
-}
-
-fn one() -> f32 {
-    1.0
-}
-
-/// A surface's placement and properties in the configuration (`[[surface]]`), by stable ID.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct SurfaceEntry {
-    /// Its stable ID.
-    pub id: u64,
-    /// Left edge and top edge in the output space, and depth layer (each where given).
-    #[serde(default)]
-    pub x: Option<i32>,
-    /// Top edge.
-    #[serde(default)]
-    pub y: Option<i32>,
-    /// Depth layer.
-    #[serde(default)]
-    pub z: Option<f32>,
-    /// Shown (default true).
-    #[serde(default = "yes")]
-    pub visible: bool,
-    /// Opacity in [0, 1] (default 1).
-    #[serde(default = "one")]
-    pub opacity: f32,
-    /// The part of its image shown: x, y (from the image's top), width, height.
-    #[serde(default)]
-    pub source: Option<[i32; 4]>,
-    /// Where it shows, scaled: x, y, width, height.
-    #[serde(default)]
-    pub destination: Option<[i32; 4]>,
-    /// Its normal for per-surface lighting.
-    #[serde(default)]
-    pub normal: Option<[f32; 3]>,
-    /// Whether it accepts input (default true).
-    #[serde(default = "yes")]
-    pub input: bool,
-}
-
-/// A layer in the configuration (`[[layer]]`).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct LayerEntry {
-    /// Its name.
-    pub name: String,
-    /// Whether its members may show (default true).
-    #[serde(default = "yes")]
-    pub visible: bool,
-    /// Multiplies its members' opacity (default 1).
-    #[serde(default = "one")]
-    pub opacity: f32,
-    /// Its members' stable surface IDs.
-    #[serde(default)]
-    pub surfaces: Vec<u64>,
-}
-
-impl SurfaceEntry {
-    /// The property changes it makes to its surface.
-    pub fn changes(&self) -> Vec<strata_protocol::properties::Change> {
-        use strata_protocol::properties::Change;
-        let surface = self.id;
-        let mut v = vec![
-            Change::Visibility { surface, visible: self.visible },
-            Change::Opacity { surface, opacity: self.opacity },
-            Change::InputAcceptance { surface, accepts: self.input },
-        ];
-        if let Some(region) = self.source {
-            v.push(Change::SourceRegion { surface, region });
-        }
-        if let Some(region) = self.destination {
-            v.push(Change::DestinationRegion { surface, region });
-        }
-        v
-    }
 }
 
 /// A layout or configuration that cannot be used.
@@ -390,7 +311,7 @@ impl Config {
             strata_protocol::control::LightChange::from(*l).validate().map_err(|e| invalid("lighting".into(), e))?;
         }
         for o in &config.output {
-            o.parse::<crate::root::OutputSpec>().map_err(|e| invalid("output".into(), e.to_string()))?;
+            o.parse::<strata_compositor::root::OutputSpec>().map_err(|e| invalid("output".into(), e.to_string()))?;
         }
         let mut seen = std::collections::HashMap::new();
         for e in &config.layout {

@@ -9,10 +9,10 @@ use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::handshake::VertexWire;
 use strata_protocol::handshake::{control_socket_for, default_control_socket_path, default_socket_path};
-use strata_server::compositor::{Intermediate, Lighting, Mode, NormalSource};
-use strata_server::gles::{DepthFormat, DepthOptions, TransferMode};
+use strata_compositor::{Intermediate, Lighting, Mode, NormalSource};
+use strata_gles::{DepthFormat, DepthOptions, TransferMode};
 use strata_server::layout::{Config, LayoutEntry};
-use strata_server::root::OutputSpec;
+use strata_compositor::root::OutputSpec;
 use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
@@ -291,7 +291,7 @@ fn init_logging() {
 
 fn main() -> Result<()> {
     // Before any thread starts (see `settle_environment`).
-    strata_server::gpu::settle_environment();
+    strata_device::settle_environment();
     init_logging();
     match Cli::parse().command {
         Cmd::Serve {
@@ -351,13 +351,13 @@ fn main() -> Result<()> {
                 std::time::Duration::try_from_secs_f64(v / 1000.0)
                     .map_err(|_| anyhow::anyhow!("--{name} {v} must be a number of milliseconds, 0 or more"))
             };
-            let bands = strata_server::root::BandOptions {
+            let bands = strata_compositor::root::BandOptions {
                 above: ms("band-above-ms", band_above_ms)?,
                 target: ms("band-ms", band_ms)?,
             };
             if let Some(m) = max_textures {
                 if m < 4 {
-                    bail!("{}", strata_server::compositor::CompositorError::TooFewTextures(m));
+                    bail!("{}", strata_compositor::CompositorError::TooFewTextures(m));
                 }
             }
             let group = |g: Option<String>, what: &str| -> Result<Option<u32>> {

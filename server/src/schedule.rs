@@ -4,20 +4,9 @@
 //! inherit it from the thread that opens the device, and the queue's global priority where a
 //! GPU offers one (`gpu::open`). Nothing is cut into slices or held back in the daemon: a
 //! low-priority client's work runs whole, on what the others leave.
-//!
-//! A [`Lane`] is one client's class and its own submissions: the newest, the one of its
-//! previous frame, and where its frames waited.
+//! Each client's submissions go through its `strata_device::Lane`.
 
-use std::sync::atomic::{AtomicU64, AtomicU8, Ordering};
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
-
-use strata_protocol::control::{Priority, Waits};
-use tracing::warn;
-
-/// The longest any wait for the device lasts before it is given up on (a wedged device must
-/// not wedge the daemon's threads).
-const GPU_WAIT_LIMIT: Duration = Duration::from_secs(5);
+use strata_protocol::control::Priority;
 
 /// `stratad serve`'s priority options.
 #[derive(Debug, Clone, clap::Args)]
@@ -26,104 +15,4 @@ pub struct ScheduleArgs {
     /// for one: high, normal or low.
     #[arg(long, default_value = "normal")]
     pub default_priority: Priority,
-}
-
-#[derive(Default)]
-struct Counters {
-    swap_us: AtomicU64,
-    gpu_us: AtomicU64,
-}
-
-/// One client's class, its newest submission, and where its frames waited.
-pub struct Lane {
-    class: AtomicU8,
-    /// The client's newest submission.
-    last: Mutex<Option<wgpu::SubmissionIndex>>,
-    /// Its newest submission at its previous swap.
-    frame: Mutex<Option<wgpu::SubmissionIndex>>,
-    counters: Counters,
-}
-
-impl std::fmt::Debug for Lane {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Lane").field("class", &self.class()).field("waits", &self.waits()).finish()
-    }
-}
-
-fn micros(d: Duration) -> u64 {
-    d.as_micros().min(u128::from(u64::MAX)) as u64
-}
-
-impl Lane {
-    /// A lane in `class`.
-    pub fn new(class: Priority) -> std::sync::Arc<Lane> {
-        std::sync::Arc::new(Lane {
-            class: AtomicU8::new(class as u8),
-            last: Mutex::new(None),
-            frame: Mutex::new(None),
-            counters: Counters::default(),
-        })
-    }
-
-    /// The client's class.
-    pub fn class(&self) -> Priority {
-        match self.class.load(Ordering::Relaxed) {
-            0 => Priority::High,
-            2 => Priority::Low,
-            _ => Priority::Normal,
-        }
-    }
-
-    /// Moves the client to `class` (what its EGL context asked for, when the configuration
-    /// does not say).
-    pub fn set_class(&self, class: Priority) {
-        self.class.store(class as u8, Ordering::Relaxed);
-    }
-
-    /// Submits `bufs` on `gpu`'s queue.
-    pub fn submit(&self, gpu: &crate::gpu::Gpu, bufs: Vec<wgpu::CommandBuffer>) {
-        let index = gpu.queue.submit(bufs);
-        if let Ok(mut l) = self.last.lock() {
-            *l = Some(index);
-        }
-    }
-
-    /// Waits until `index` has completed, counting the time as device wait.
-    fn wait_for(&self, gpu: &crate::gpu::Gpu, index: wgpu::SubmissionIndex) {
-        let start = Instant::now();
-        let poll = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(GPU_WAIT_LIMIT) };
-        if let Err(e) = gpu.device.poll(poll) {
-            warn!("waiting for the device: {e}");
-        }
-        self.counters.gpu_us.fetch_add(micros(start.elapsed()), Ordering::Relaxed);
-    }
-
-    /// Waits for everything this client has submitted (readbacks, `glFinish`).
-    pub fn wait_idle(&self, gpu: &crate::gpu::Gpu) {
-        let last = self.last.lock().ok().and_then(|l| l.clone());
-        if let Some(index) = last {
-            self.wait_for(gpu, index);
-        }
-    }
-
-    /// At a swap: waits for the previous frame's work to complete, so that the client has at
-    /// most one frame in flight on its device, and remembers this frame's.
-    pub fn frame_boundary(&self, gpu: &crate::gpu::Gpu) {
-        let now = self.last.lock().ok().and_then(|l| l.clone());
-        let previous = self.frame.lock().ok().and_then(|mut f| std::mem::replace(&mut *f, now));
-        if let Some(index) = previous {
-            self.wait_for(gpu, index);
-        }
-    }
-
-    /// Counts time spent blocked in a swap.
-    pub fn add_swap_wait(&self, d: Duration) {
-        self.counters.swap_us.fetch_add(micros(d), Ordering::Relaxed);
-    }
-
-    /// Where this client's frames have waited so far.
-    pub fn waits(&self) -> Waits {
-        let c = &self.counters;
-        Waits { swap_us: c.swap_us.load(Ordering::Relaxed), gpu_us: c.gpu_us.load(Ordering::Relaxed) }
-    }
 }

@@ -9,7 +9,7 @@ use strata_protocol::ring::{Message, Reader, RingError, Writer};
 use strata_protocol::tally::Tally;
 use strata_protocol::{Command, Reply, StreamTally};
 
-use crate::executor::{ExecError, Executor};
+use strata_gles::execute::{ExecError, Executor};
 
 /// Why a session's decoder stopped.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -66,7 +66,7 @@ pub struct Session {
     /// Where the bytes decoded are also counted for others to read (`ctl list`).
     counter: Option<Arc<AtomicU64>>,
     /// The client's quota: the largest command it may send.
-    account: Option<Arc<crate::quota::Account>>,
+    account: Option<Arc<strata_device::account::Account>>,
 }
 
 impl Session {
@@ -98,7 +98,7 @@ impl Session {
     }
 
     /// Refuses commands larger than `account` allows, as `GL_OUT_OF_MEMORY`.
-    pub fn with_account(mut self, account: Arc<crate::quota::Account>) -> Self {
+    pub fn with_account(mut self, account: Arc<strata_device::account::Account>) -> Self {
         self.account = Some(account);
         self
     }

@@ -6,10 +6,10 @@ use std::collections::{BTreeMap, HashMap};
 
 use strata_protocol::control::{ClientStats, DaemonStats, DeviceStats, DeviceThread};
 
-use crate::gpu::Gpu;
+use strata_device::Gpu;
 use crate::listener::ClientInfo;
-use crate::quota::{Kind, Pool};
-use crate::scene::Scene;
+use strata_device::account::{Kind, Pool};
+use strata_scene::Scene;
 
 /// The process's resident, peak resident and anonymous resident memory, bytes (from
 /// `/proc/self/status`).

@@ -5,7 +5,7 @@
 
 use super::*;
 use strata_protocol::projection::Projection;
-use strata_server::compositor::{Intermediate, Mode};
+use strata_compositor::{Intermediate, Mode};
 
 /// Lighting off, on (per-surface normals) and on (normals from depth).
 fn lightings() -> [(&'static str, Lighting); 3] {

@@ -6,11 +6,11 @@
 use std::sync::Arc;
 
 use strata_protocol::{Calls, Command, Reply};
-use strata_server::compositor::reference::{self, upload, RefLayer, Uploaded};
-use strata_server::compositor::{Compositor, Layer, Lighting, Mode, NormalSource};
-use strata_server::executor::Executor;
-use strata_server::gles::GlesExecutor;
-use strata_server::gpu::Gpu;
+use strata_compositor::reference::{self, upload, RefLayer, Uploaded};
+use strata_compositor::{Compositor, Layer, Lighting, Mode, NormalSource};
+use strata_gles::execute::Executor;
+use strata_gles::GlesExecutor;
+use strata_device::Gpu;
 
 use super::{check, gpu, output, surface, BACKGROUND, OUT_H, OUT_W};
 
@@ -148,7 +148,7 @@ impl Calls for Client {
 fn a_surface_without_alpha_is_opaque() {
     let Some(gpu) = gpu() else { return };
     use strata_protocol::Slice;
-    let scene = Arc::new(strata_server::scene::Scene::new(2, Lighting::default()));
+    let scene = Arc::new(strata_scene::Scene::new(2, Lighting::default()));
     let mut c = Client(GlesExecutor::new(gpu.clone()).with_scene(scene.clone(), 1, "alpha"));
     let d = c.eglGetDisplay(0).expect("display");
     c.eglInitialize(d).expect("call").expect("initialise");
@@ -179,7 +179,7 @@ fn a_surface_without_alpha_is_opaque() {
     }
     let out = output(&gpu);
     let ((img, opaque, culled), _, _) = scene
-        .compose(strata_server::scene::Part::All, |surfaces, _, _| {
+        .compose(strata_scene::Part::All, |surfaces, _, _| {
             let layers: Vec<Layer<'_>> = surfaces
                 .iter()
                 .map(|s| Layer {

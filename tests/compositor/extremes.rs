@@ -219,7 +219,7 @@ fn read_depth(gpu: &Gpu, tex: &wgpu::Texture) -> Vec<f32> {
         },
         wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
-    gpu.queue.submit([enc.finish()]);
+    gpu.submit(vec![enc.finish()]);
     let slice = buf.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -302,7 +302,7 @@ fn nan_and_infinite_depth_texels_read_as_the_far_plane_and_clamped() {
     let usage =
         wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let tex = texture(&gpu, w as u32, h as u32, wgpu::TextureFormat::Depth32Float, usage);
-    gpu.write_depth(&tex, w as u32, h as u32, &odd);
+    strata_scene::depth::Depth::of(&gpu).write(&tex, w as u32, h as u32, &odd);
     let stored = read_depth(&gpu, &tex);
     let shown: Vec<String> = stored[..10].iter().map(|v| format!("{v:?}")).collect();
     eprintln!("Depth32Float holds, for {:?}: [{}]", (0..10).map(special).collect::<Vec<_>>(), shown.join(", "));

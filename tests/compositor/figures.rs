@@ -2,7 +2,7 @@
 //! checked against the f64 reference.
 
 use super::*;
-use strata_server::compositor::figures::{far_light, near_light, two_triangles};
+use strata_compositor::figures::{far_light, near_light, two_triangles};
 
 /// The RGBA of pixel (x, y), top row first.
 fn at(img: &[u8], x: u32, y: u32) -> [u8; 4] {

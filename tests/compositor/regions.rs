@@ -5,7 +5,7 @@
 //! that the reference's own convention is anchored.
 
 use super::*;
-use strata_server::compositor::{Props, Source};
+use strata_compositor::{Props, Source};
 
 /// `l` showing `region` of its image over `dest`, at `opacity`.
 fn placed(mut l: RefLayer, dest: [i32; 4], region: [i32; 4], opacity: f32) -> RefLayer {

@@ -6,8 +6,8 @@ use std::process::Command;
 
 use strata_protocol::control::SurfaceRow;
 use strata_protocol::properties::LayerRow;
-use strata_server::compositor::reference::{self, RefLayer};
-use strata_server::compositor::{Lighting, Props, Source};
+use strata_compositor::reference::{self, RefLayer};
+use strata_compositor::{Lighting, Props, Source};
 
 use super::windows::Client;
 use super::{Daemon, TempDir};

@@ -3,7 +3,7 @@
 //! chaining, no lighting, no blending). What a composite takes beyond it is what its lighting,
 //! chaining and planning add.
 
-use strata_server::gpu::{texture_entry, Gpu, UNFILTERED};
+use strata_device::{texture_entry, Gpu, UNFILTERED};
 
 /// The floor pass for `k` surfaces, or `None` when the device cannot sample their `2k`
 /// textures in one pass.
@@ -59,7 +59,7 @@ impl Floor {
             &entries,
             &[Some(target)],
             None,
-            strata_server::gpu::VertexInput::None,
+            strata_device::VertexInput::None,
         );
         Some(Floor { layout, pipeline })
     }
@@ -87,8 +87,8 @@ impl Floor {
             entries: &entries,
         });
         let mut enc = gpu.device.create_command_encoder(&Default::default());
-        strata_server::gpu::fullscreen_pass(&mut enc, "composite floor", out, &self.pipeline, &group);
-        gpu.queue.submit([enc.finish()]);
+        strata_device::fullscreen_pass(&mut enc, "composite floor", out, &self.pipeline, &group);
+        gpu.submit(vec![enc.finish()]);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     }
 }

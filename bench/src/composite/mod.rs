@@ -22,8 +22,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use strata_server::compositor::{Compositor, CompositorError, Layer, Lighting, NormalSource};
-use strata_server::gpu::Gpu;
+use strata_compositor::{Compositor, CompositorError, Layer, Lighting, NormalSource};
+use strata_device::Gpu;
 
 use crate::plot::{line_plot, Series};
 
@@ -93,7 +93,7 @@ fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
     }
     let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
     let c = texture(gpu, w, h, wgpu::TextureFormat::Rgba8Unorm, usage);
-    gpu.queue.write_texture(
+    gpu.write_texture(
         c.as_image_copy(),
         &rgba,
         wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * 4), rows_per_image: None },
@@ -101,7 +101,7 @@ fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
     );
     let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let d = texture(gpu, w, h, wgpu::TextureFormat::Depth32Float, usage);
-    gpu.write_depth(&d, w, h, &depth);
+    strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &depth);
     Surface { color: c.create_view(&Default::default()), depth: d.create_view(&Default::default()) }
 }
 
@@ -174,7 +174,7 @@ fn device_copy_ms(gpu: &Gpu, w: u32, h: u32, frames: u32) -> f64 {
             let (src, dst) = if i % 2 == 0 { (&a, &b) } else { (&b, &a) };
             enc.copy_texture_to_texture(src.as_image_copy(), dst.as_image_copy(), a.size());
         }
-        gpu.queue.submit([enc.finish()]);
+        gpu.submit(vec![enc.finish()]);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     }) / f64::from(PER_SUBMIT)
 }

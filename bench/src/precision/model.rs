@@ -11,9 +11,9 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result};
 use strata_protocol::projection::Projection;
-use strata_server::compositor::reference::{self, RefLayer};
-use strata_server::compositor::{Compositor, Layer, Lighting};
-use strata_server::gpu::Gpu;
+use strata_compositor::reference::{self, RefLayer};
+use strata_compositor::{Compositor, Layer, Lighting};
+use strata_device::Gpu;
 
 use super::report::Row;
 use super::{exact_winners, images, inv_eye, projection, quantile, shown, BACKGROUND, DEFAULT, NORMALS};
@@ -69,7 +69,7 @@ fn measure(
         let d = with_depth.then(|| {
             let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
             let d = texture(gpu, w, h, s.storage.format(), usage);
-            gpu.write_depth(&d, w, h, &im.stored[i]);
+            strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &im.stored[i]);
             d.create_view(&Default::default())
         });
         views.push((c.create_view(&Default::default()), d));
@@ -114,7 +114,7 @@ fn measure(
     let ms = crate::composite::try_median_ms(frames, || {
         comp.composite(&layers, &light, &out, BACKGROUND, None)?;
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-        Ok::<_, strata_server::compositor::CompositorError>(())
+        Ok::<_, strata_compositor::CompositorError>(())
     })?;
     let (passes, chained) = (comp.last_passes, comp.last_stats.chained);
     let got = gpu.read_rgba8(&out, [0, 0, w, h]).context("reading the composite back")?;
@@ -240,7 +240,7 @@ fn diff(a: &[u8], b: &[u8]) -> (u8, u64) {
 
 /// Uploads RGBA8 `rgba` (rows bottom first) into `t`.
 fn write_rgba(gpu: &Gpu, t: &wgpu::Texture, rgba: &[u8]) {
-    gpu.queue.write_texture(
+    gpu.write_texture(
         t.as_image_copy(),
         rgba,
         wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(t.width() * 4), rows_per_image: None },

@@ -268,7 +268,7 @@ pub fn start(
     std::thread::Builder::new()
         .name("libinput".into())
         .spawn(move || {
-            crate::gpu::set_thread_class(strata_protocol::control::Priority::High);
+            strata_device::set_thread_class(strata_protocol::control::Priority::High);
             let opened = open(&args).and_then(|li| Ok((li, Translator::new(&args.input_layout)?)));
             let (mut li, mut t) = match opened {
                 Ok(v) => {

@@ -8,7 +8,6 @@
 
 pub mod libinput;
 pub mod queue;
-pub mod window;
 
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -19,8 +18,8 @@ use tracing::debug;
 
 pub use queue::{EventQueue, Overflow, MAX_QUEUED};
 
-use crate::root::Root;
-use crate::scene::Scene;
+use strata_compositor::root::Root;
+use strata_scene::Scene;
 
 /// A point held down: the surface it went down on, and where it last was (output space).
 #[derive(Debug, Clone, Copy)]

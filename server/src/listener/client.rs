@@ -15,9 +15,9 @@ use tokio::sync::oneshot;
 use tracing::{info, warn};
 
 use super::{recv, timed, ClientInfo, DeviceMode, Shared};
-use crate::executor::Drain;
-use crate::gles::GlesExecutor;
-use crate::gpu::Gpu;
+use crate::drain::Drain;
+use strata_gles::{GlesExecutor, Placement};
+use strata_device::Gpu;
 use crate::session::{Session, SessionEnd};
 
 /// Returns the allocator's free pages to the system (glibc keeps them in its heaps otherwise).
@@ -50,7 +50,7 @@ impl Drop for DeviceSlot {
 /// What a session thread builds its GLES executor from.
 struct ExecutorPlan {
     compositor: Arc<Gpu>,
-    lane: Arc<crate::schedule::Lane>,
+    lane: Arc<strata_device::Lane>,
     layout: Option<crate::layout::LayoutEntry>,
     class: Priority,
     fixed: bool,
@@ -86,7 +86,7 @@ pub(super) async fn run_client(
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
     let limits = identity.limits(opts.limits);
-    let account = crate::quota::Account::new(&hello.name, limits, shared.pool.clone());
+    let account = strata_device::account::Account::new(&hello.name, limits, shared.pool.clone());
     let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
     let msg = ServerMessage::Welcome {
         client_id: id,
@@ -136,7 +136,7 @@ pub(super) async fn run_client(
             }
             Some(ExecutorPlan {
                 compositor: gpu.clone(),
-                lane: crate::schedule::Lane::new(class),
+                lane: strata_device::Lane::new(class),
                 layout: layout.cloned(),
                 class,
                 fixed: fixed.is_some(),
@@ -175,14 +175,14 @@ pub(super) async fn run_client(
             let _span = span.enter();
             let _keep = segment;
             // The device's place (`--max-client-devices`) is held for the whole session.
-            let (executor, _slot): (Box<dyn crate::executor::Executor>, Option<DeviceSlot>) = match plan {
+            let (executor, _slot): (Box<dyn strata_gles::execute::Executor>, Option<DeviceSlot>) = match plan {
                 Some(p) => {
                     let class = p.class;
                     // The session's decoding, and the driver threads of a device opened here,
                     // run at the class's nice value. A low-priority device's driver threads are
                     // also in the idle class (`Gpu::open_with`); the session itself is not, as it
                     // takes the scene's lock, which the compositor waits for.
-                    crate::gpu::set_thread_class(class);
+                    strata_device::set_thread_class(class);
                     let own = match devices {
                         DeviceMode::Shared => None,
                         DeviceMode::PerClient => match DeviceSlot::take(&client_devices, max_client_devices) {
@@ -193,7 +193,7 @@ pub(super) async fn run_client(
                                 );
                                 None
                             }
-                            Some(slot) => match Gpu::open_with(crate::gpu::DeviceOptions {
+                            Some(slot) => match Gpu::open_with(strata_device::DeviceOptions {
                                 priority: class,
                                 global_priority,
                                 label: "client",
@@ -217,11 +217,16 @@ pub(super) async fn run_client(
                     let executor = GlesExecutor::new(gpu)
                         .with_lane(p.lane)
                         .with_scene(scene, id, &name)
-                        .with_layout(p.layout)
+                        .with_placement(p.layout.as_ref().map(|l| Placement {
+                            x: l.x,
+                            y: l.y,
+                            z: l.z,
+                            size: l.width.zip(l.height),
+                        }))
                         .with_account(account.clone())
                         .with_priority(class, p.fixed, p.deadline)
                         .with_projection(p.projection)
-                        .with_surface_ids(p.surface_ids)
+                        .with_surface_ids(p.surface_ids.0.iter().map(|&i| u64::from(i)).collect())
                         .with_depth(depth)
                         .with_frame_transfer(frame_transfer);
                     (Box::new(executor), slot)

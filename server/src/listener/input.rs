@@ -57,15 +57,15 @@ pub(super) async fn ask(shared: &Arc<Shared>, req: InputRequest) -> ControlReply
 fn set_input_priority(realtime: u8) -> Option<String> {
     use strata_protocol::control::Priority;
     if realtime > 0 {
-        match crate::gpu::set_thread_realtime(i32::from(realtime)) {
+        match strata_device::set_thread_realtime(i32::from(realtime)) {
             Ok(()) => return None,
             Err(e) => {
-                crate::gpu::set_thread_class(Priority::High);
+                strata_device::set_thread_class(Priority::High);
                 return Some(e.to_string());
             }
         }
     }
-    crate::gpu::set_thread_class(Priority::High);
+    strata_device::set_thread_class(Priority::High);
     None
 }
 
@@ -74,13 +74,13 @@ fn set_input_priority(realtime: u8) -> Option<String> {
 /// from a thread at input routing's priority, which the driver's threads inherit, with no
 /// rasterizer threads of its own (a pick is one texel a surface). `None` where it is not
 /// wanted or does not open (picks then read on the compositor's device).
-pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<crate::gpu::Gpu>> {
+pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<strata_device::Gpu>> {
     use crate::input::libinput::PickDevice;
     if opts.input.input_pick != PickDevice::Own || opts.devices != super::DeviceMode::PerClient {
         return None;
     }
     let realtime = opts.input.input_realtime;
-    let dev = crate::gpu::DeviceOptions {
+    let dev = strata_device::DeviceOptions {
         priority: strata_protocol::control::Priority::High,
         global_priority: opts.global_priority,
         label: "input",
@@ -88,7 +88,7 @@ pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<crate::
     };
     let opened = std::thread::Builder::new().name("open-input".into()).spawn(move || {
         set_input_priority(realtime);
-        crate::gpu::Gpu::open_with(dev)
+        strata_device::Gpu::open_with(dev)
     });
     match opened.map(|t| t.join()) {
         Ok(Ok(Ok(gpu))) => Some(gpu),

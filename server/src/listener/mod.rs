@@ -15,7 +15,7 @@ use tokio::net::UnixStream;
 use tokio::sync::watch;
 use tracing::{debug, info, warn, Instrument};
 
-use crate::gpu::Gpu;
+use strata_device::Gpu;
 use crate::session::SessionEnd;
 
 mod client;
@@ -48,20 +48,20 @@ pub struct ServeOptions {
     /// Sampled textures per compositor pass (`None`: the device's limit).
     pub max_textures: Option<u32>,
     /// How the compositor combines surfaces (3D, or the 2D baseline).
-    pub compositor: crate::compositor::Mode,
+    pub compositor: strata_compositor::Mode,
     /// The colour format of chained compositor passes' intermediates.
-    pub intermediate: crate::compositor::Intermediate,
+    pub intermediate: strata_compositor::Intermediate,
     /// How surfaces' depth is stored: format and reversed-Z (`--depth-format`, `--reversed-z`).
-    pub depth: crate::gles::DepthOptions,
+    pub depth: strata_gles::DepthOptions,
     /// How render clients send `GL_FLOAT` client-side vertex arrays (told in the welcome).
     pub vertex_wire: strata_protocol::handshake::VertexWire,
     /// Whether the compositor leaves out surfaces under opaque nearer groups (the image is the
     /// same either way).
     pub cull: bool,
     /// Uniform lighting of composited output (initially; `stratad ctl light` changes it).
-    pub lighting: crate::compositor::Lighting,
+    pub lighting: strata_compositor::Lighting,
     /// The outputs the compositor draws.
-    pub outputs: Vec<crate::root::OutputSpec>,
+    pub outputs: Vec<strata_compositor::root::OutputSpec>,
     /// Most composites per second.
     pub refresh_hz: f64,
     /// Frames a window surface may have swapped but not yet shown before its swap blocks.
@@ -73,7 +73,7 @@ pub struct ServeOptions {
     /// Layers created at start (the configuration's `[[layer]]`).
     pub layers: Vec<crate::layout::LayerEntry>,
     /// Each client's limits, unless a quota entry names it.
-    pub limits: crate::quota::Limits,
+    pub limits: strata_device::account::Limits,
     /// Per-client limits by client name (first match wins).
     pub quotas: Vec<crate::quota::QuotaEntry>,
     /// GPU memory all clients together may hold.
@@ -83,7 +83,7 @@ pub struct ServeOptions {
     /// Whether each client renders on a device of its own or all share the compositor's.
     pub devices: DeviceMode,
     /// How window surfaces' frames reach the compositor's device.
-    pub frame_transfer: crate::gles::TransferMode,
+    pub frame_transfer: strata_gles::TransferMode,
     /// Whether devices ask for a queue global priority by class where the adapter offers it.
     pub global_priority: bool,
     /// Whether `ctl` may destroy a client's device (`ControlRequest::LoseDevice`; tests).
@@ -95,7 +95,7 @@ pub struct ServeOptions {
     /// beyond it share the compositor's device.
     pub max_client_devices: Option<usize>,
     /// When the compositor draws a lower-priority change band by band between refreshes.
-    pub bands: crate::root::BandOptions,
+    pub bands: strata_compositor::root::BandOptions,
     /// Real input devices (`--input libinput`).
     pub input: crate::input::libinput::InputArgs,
 }
@@ -135,28 +135,28 @@ impl Default for ServeOptions {
             reply_ring: 1 << 20,
             executor: ExecutorKind::Gles,
             max_textures: None,
-            compositor: crate::compositor::Mode::ThreeD,
-            intermediate: crate::compositor::Intermediate::Rgba8,
-            depth: crate::gles::DepthOptions::default(),
+            compositor: strata_compositor::Mode::ThreeD,
+            intermediate: strata_compositor::Intermediate::Rgba8,
+            depth: strata_gles::DepthOptions::default(),
             vertex_wire: strata_protocol::handshake::VertexWire::Float,
             cull: true,
-            lighting: crate::compositor::Lighting::default(),
-            outputs: vec![crate::root::OutputSpec::default()],
+            lighting: strata_compositor::Lighting::default(),
+            outputs: vec![strata_compositor::root::OutputSpec::default()],
             refresh_hz: 60.0,
             frames_in_flight: 2,
             layout: Vec::new(),
             surfaces: Vec::new(),
             layers: Vec::new(),
-            limits: crate::quota::Limits::default(),
+            limits: strata_device::account::Limits::default(),
             quotas: Vec::new(),
-            total_gpu_bytes: crate::quota::default_total(),
+            total_gpu_bytes: strata_device::account::default_total(),
             default_class: Priority::Normal,
             devices: DeviceMode::PerClient,
-            frame_transfer: crate::gles::TransferMode::Auto,
+            frame_transfer: strata_gles::TransferMode::Auto,
             global_priority: true,
             fault_injection: false,
             client_rasterizer_threads: Some(1),
-            bands: crate::root::BandOptions::default(),
+            bands: strata_compositor::root::BandOptions::default(),
             max_client_devices: None,
             input: crate::input::libinput::InputArgs::default(),
         }
@@ -174,13 +174,13 @@ pub enum ServerError {
     NotASocket(PathBuf),
     /// No GPU device could be opened.
     #[error(transparent)]
-    Gpu(#[from] crate::gpu::GpuError),
+    Gpu(#[from] strata_device::GpuError),
     /// The socket the service manager passed cannot be served on.
     #[error(transparent)]
     Activation(#[from] crate::systemd::ActivationError),
     /// The compositor or an output cannot run as configured.
     #[error(transparent)]
-    Root(#[from] crate::root::RootError),
+    Root(#[from] strata_compositor::root::RootError),
     /// No outputs, or two with one name.
     #[error("{0}")]
     Outputs(String),
@@ -213,9 +213,9 @@ pub struct ClientInfo {
     /// Role from the hello.
     pub role: String,
     /// Its quota and what it holds.
-    pub account: Arc<crate::quota::Account>,
+    pub account: Arc<strata_device::account::Account>,
     /// Its way onto the GPU queue: class, and where its frames waited.
-    pub lane: Option<Arc<crate::schedule::Lane>>,
+    pub lane: Option<Arc<strata_device::Lane>>,
     /// The device it renders on, once its session has opened it.
     pub device: Arc<std::sync::OnceLock<Arc<Gpu>>>,
     /// Input events on their way to its socket.
@@ -225,11 +225,11 @@ pub struct ClientInfo {
 struct Shared {
     opts: ServeOptions,
     gpu: Option<Arc<Gpu>>,
-    scene: Arc<crate::scene::Scene>,
-    root: Option<Arc<crate::root::Root>>,
+    scene: Arc<strata_scene::Scene>,
+    root: Option<Arc<strata_compositor::root::Root>>,
     next_id: AtomicU64,
     clients: Mutex<HashMap<u64, ClientInfo>>,
-    pool: Arc<crate::quota::Pool>,
+    pool: Arc<strata_device::account::Pool>,
     /// Grabs and keyboard focus.
     input: crate::input::Router,
     /// The input routing thread's queue.
@@ -248,7 +248,7 @@ struct Shared {
 /// driver's threads of that device inherit it (and the caller's own thread keeps its own).
 fn open_compositor_device(global_priority: bool) -> Result<Arc<Gpu>, ServerError> {
     use strata_protocol::control::Priority;
-    let opts = crate::gpu::DeviceOptions {
+    let opts = strata_device::DeviceOptions {
         priority: Priority::High,
         global_priority,
         label: "compositor",
@@ -257,7 +257,7 @@ fn open_compositor_device(global_priority: bool) -> Result<Arc<Gpu>, ServerError
     let opened = std::thread::Builder::new()
         .name("open-compositor".into())
         .spawn(move || {
-            crate::gpu::set_thread_class(Priority::High);
+            strata_device::set_thread_class(Priority::High);
             Gpu::open_with(opts)
         })
         .map_err(io_err("starting the thread that opens the compositor's device"))?
@@ -304,7 +304,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
             return Err(ServerError::Outputs(format!("two outputs are named {:?}", o.name)));
         }
     }
-    let scene = Arc::new(crate::scene::Scene::new(opts.frames_in_flight, opts.lighting));
+    let scene = Arc::new(strata_scene::Scene::new(opts.frames_in_flight, opts.lighting));
     scene.reserve_ids(opts.layout.iter().flat_map(|e| e.id.0.iter().map(|&id| u64::from(id))));
     scene.configure(&opts.surfaces, &opts.layers);
     if let Some(gpu) = &gpu {
@@ -317,7 +317,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         Some(gpu) => {
             let (outputs, m, inter) = (&opts.outputs, opts.max_textures, opts.intermediate);
             let (mode, cull) = (opts.compositor, opts.cull);
-            let root = crate::root::Root::new(gpu.clone(), scene.clone(), outputs, m, mode, inter, cull)?;
+            let root = strata_compositor::root::Root::new(gpu.clone(), scene.clone(), outputs, m, mode, inter, cull)?;
             Some(Arc::new(root.with_bands(opts.bands)))
         }
         None => None,
@@ -325,21 +325,22 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     // Socket activation: the service manager's sockets, else those at `--socket` and
     // `--control-socket`.
     let doors = doors::open(&opts)?;
-    let watchdog = crate::systemd::watchdog_period();
+    let watchdog = crate::systemd::watchdog_period()
+        .map(|period| strata_compositor::root::Watchdog { period, ping: crate::systemd::watchdog_ping });
     let compositor_thread = match &root {
         Some(r) => Some(r.spawn(opts.refresh_hz, watchdog).map_err(io_err("starting the compositor thread"))?),
         None => None,
     };
     let (at, control_at) = (doors.client_path.clone(), doors.control_path.clone());
     let activated = doors.activated.0;
-    let watchdog_ms = watchdog.map(|w| w.as_millis() as u64);
+    let watchdog_ms = watchdog.map(|w| w.period.as_millis() as u64);
     let (stop_tx, stop_rx) = watch::channel(false);
     let (to_router, routed) = std::sync::mpsc::channel();
     let shared = Arc::new(Shared {
         gpu,
         scene,
         root,
-        pool: crate::quota::Pool::new(opts.total_gpu_bytes),
+        pool: strata_device::account::Pool::new(opts.total_gpu_bytes),
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
         input: Default::default(),

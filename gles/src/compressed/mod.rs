@@ -1,0 +1,174 @@
+//! Compressed texture images: `glCompressedTexImage2D` and `glCompressedTexSubImage2D` for
+//! `EXT_texture_compression_s3tc` (and its sRGB forms, `EXT_texture_compression_s3tc_srgb`),
+//! `OES_compressed_ETC1_RGB8_texture` (with `EXT_compressed_ETC1_RGB8_sub_texture`) and
+//! `KHR_texture_compression_astc_ldr` (in its linear and sRGB forms). Where
+//! the device has the block format (and the image's size is a whole number of blocks, as wgpu
+//! requires) the blocks are uploaded as they are; otherwise they are decoded here, to RGBA8,
+//! or for the sRGB forms to linear RGBA16F.
+
+pub mod astc;
+pub mod etc1;
+pub mod s3tc;
+
+use crate::context::Context;
+use strata_protocol::Blob;
+
+use super::error::{GlError, GlResult};
+use super::formats::{Compressed, Storage};
+use super::images::Region;
+use super::teximage::{image_texture, sub_image, validate_size, SubImage};
+use super::typed::ImageTarget;
+use super::GlesExecutor;
+use crate::dispatch::Flushed;
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glCompressedTexImage2D(
+        &mut self,
+        ctx: &mut Context,
+        flushed: &Flushed,
+        target: u32,
+        level: i32,
+        internalformat: u32,
+        width: i32,
+        height: i32,
+        border: i32,
+        data: Blob<'_>,
+    ) -> GlResult {
+        let image = ImageTarget::from_gl(target)?;
+        let c = Compressed::offered_gl(internalformat, self.gpu.features).ok_or(GlError::InvalidEnum)?;
+        validate_size(image, level, width, height, border)?;
+        let (w, h, level) = (width as u32, height as u32, level as u32);
+        if data.len() != c.image_size(w, h) {
+            return Err(GlError::InvalidValue);
+        }
+        let uid = self.next_uid();
+        let account = self.account.clone();
+        let gpu = &self.gpu;
+        let name = image_texture(ctx, image);
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        if level == 0 {
+            let (bw, bh) = c.block_size();
+            let whole_blocks = w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
+            let native = whole_blocks && c.native_on(gpu.features).is_some();
+            t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { c.decoded_storage() })?;
+            t.format = internalformat;
+        }
+        let face = image.face;
+        let format = t.format;
+        let Some(img) = &mut t.gpu else { return Ok(()) };
+        if format != internalformat || img.level_size(level) != (w.max(1), h.max(1)) || level >= img.mips {
+            // A level inconsistent with level 0 leaves the texture incomplete.
+            t.defined[face as usize] &= !(1 << level);
+            return Ok(());
+        }
+        let region = Region { face, level, x: 0, y: 0, width: w, height: h };
+        match img.storage {
+            Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
+            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
+        }
+        t.defined[face as usize] |= 1 << level;
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glCompressedTexSubImage2D(
+        &mut self,
+        ctx: &mut Context,
+        flushed: &Flushed,
+        target: u32,
+        level: i32,
+        xoffset: i32,
+        yoffset: i32,
+        width: i32,
+        height: i32,
+        format: u32,
+        data: Blob<'_>,
+    ) -> GlResult {
+        let image = ImageTarget::from_gl(target)?;
+        // As on Mesa, a format that is not an offered compressed one cannot match the image,
+        // whatever the level and the rectangle.
+        let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidOperation)?;
+        let gpu = &self.gpu;
+        // An image is updated only by data of its own format (ETC1's too, by
+        // `EXT_compressed_ETC1_RGB8_sub_texture`).
+        let fits = |t: &super::textures::Texture, _: &_| {
+            if t.format == format {
+                Ok(())
+            } else {
+                Err(GlError::InvalidOperation)
+            }
+        };
+        // As on Mesa, data of the wrong size for the rectangle in the format named is refused
+        // before the texture is looked at.
+        if width >= 0 && height >= 0 && data.len() != c.image_size(width as u32, height as u32) {
+            return Err(GlError::InvalidValue);
+        }
+        let SubImage { texture: t, region, .. } =
+            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
+        let Some(img) = &mut t.gpu else { return Ok(()) };
+        let (w, h) = (region.width, region.height);
+        match img.storage {
+            Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
+            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::enums::ETC1_RGB8_OES;
+    use super::*;
+
+    /// The levels of a KTX 1 file (little-endian): its internal format, level-0 size, and
+    /// each level's bytes.
+    pub(in crate::compressed) fn ktx_levels(file: &[u8]) -> (u32, u32, u32, Vec<Vec<u8>>) {
+        let word = |i: usize| u32::from_le_bytes(file[12 + 4 * i..16 + 4 * i].try_into().expect("word"));
+        assert_eq!(word(0), 0x0403_0201, "little-endian KTX");
+        let (internal, width, height, levels, kv) = (word(4), word(6), word(7), word(11), word(12));
+        let mut at = 64 + kv as usize;
+        let mut out = Vec::new();
+        for _ in 0..levels {
+            let size = u32::from_le_bytes(file[at..at + 4].try_into().expect("size")) as usize;
+            out.push(file[at + 4..at + 4 + size].to_vec());
+            at += 4 + size.div_ceil(4) * 4;
+        }
+        (internal, width, height, out)
+    }
+
+    /// piglit's ETC1 mip chain and its decompressed RGB reference (produced by an independent
+    /// ETC1 decoder), as Debian's piglit package installs them.
+    #[test]
+    fn etc1_matches_piglit_reference_images() {
+        let dir = "/usr/lib/x86_64-linux-gnu/piglit/tests/spec/oes_compressed_etc1_rgb8_texture";
+        let (Ok(etc), Ok(rgb)) = (
+            std::fs::read(format!("{dir}/waffles-compressed-etc1-64x32-miptree.ktx")),
+            std::fs::read(format!("{dir}/waffles-decompressed-rgb-64x32-miptree.ktx")),
+        ) else {
+            assert!(std::env::var_os("STRATA_REQUIRE_ORACLES").is_none(), "piglit's ETC1 images are missing");
+            eprintln!("SKIPPED: piglit's ETC1 images are not installed (tools/install-deps installs piglit)");
+            return;
+        };
+        let (internal, mut w, mut h, blocks) = ktx_levels(&etc);
+        let (_, _, _, reference) = ktx_levels(&rgb);
+        assert_eq!(internal, ETC1_RGB8_OES);
+        assert_eq!(blocks.len(), 7);
+        for (level, (b, r)) in blocks.iter().zip(&reference).enumerate() {
+            let decoded = Compressed::Etc1.decode(b, w, h);
+            // Reference rows are RGB, padded to 4 bytes.
+            let row = (w as usize * 3).div_ceil(4) * 4;
+            for y in 0..h as usize {
+                for x in 0..w as usize {
+                    let want = &r[y * row + x * 3..][..3];
+                    let got = &decoded[(y * w as usize + x) * 4..][..4];
+                    assert_eq!(&got[..3], want, "level {level} texel ({x}, {y})");
+                    assert_eq!(got[3], 255);
+                }
+            }
+            w = (w / 2).max(1);
+            h = (h / 2).max(1);
+        }
+    }
+}

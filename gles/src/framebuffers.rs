@@ -1,0 +1,438 @@
+//! Framebuffer and renderbuffer objects: names, bindings, storage, attachments, completeness,
+//! and the render target the current framebuffer resolves to.
+
+use strata_protocol::Slice;
+
+use super::context::{Context, MAX_DRAW_BUFFERS, MAX_TEXTURE};
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{absent_channels, color_bits, is_half_renderbuffer};
+use super::render::{Target, COLOR_FORMAT, HALF_FORMAT};
+use super::teximage::MAX_LEVEL;
+use super::typed::ImageTarget;
+use super::GlesExecutor;
+use strata_device::account::Kind;
+
+/// Where one attachment of a framebuffer object comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Attachment {
+    /// Nothing attached.
+    #[default]
+    None,
+    /// A texture level (cube maps: face 0..6).
+    Texture {
+        /// Texture name.
+        name: u32,
+        /// Mip level.
+        level: u32,
+        /// Cube face, 0 for 2D.
+        face: u32,
+    },
+    /// A renderbuffer.
+    Renderbuffer(u32),
+}
+
+/// A framebuffer object.
+#[derive(Clone)]
+pub struct Framebuffer {
+    /// `COLOR_ATTACHMENT0` … `COLOR_ATTACHMENT7` (`GL_NV_fbo_color_attachments`).
+    pub colors: [Attachment; MAX_DRAW_BUFFERS],
+    /// `DEPTH_ATTACHMENT`.
+    pub depth: Attachment,
+    /// `STENCIL_ATTACHMENT`.
+    pub stencil: Attachment,
+    /// `glDrawBuffersEXT`: per fragment output, `GL_NONE` or the colour attachment it writes.
+    pub draw_buffers: [u32; MAX_DRAW_BUFFERS],
+    /// `glReadBufferNV`: the colour attachment reads use, or `GL_NONE`.
+    pub read: u32,
+}
+
+impl Default for Framebuffer {
+    fn default() -> Self {
+        let mut draw_buffers = [NONE; MAX_DRAW_BUFFERS];
+        draw_buffers[0] = COLOR_ATTACHMENT0;
+        Framebuffer {
+            colors: Default::default(),
+            depth: Attachment::None,
+            stencil: Attachment::None,
+            draw_buffers,
+            read: COLOR_ATTACHMENT0,
+        }
+    }
+}
+
+/// The colour attachment `attachment` names among the first `named` (the enums a call knows):
+/// `None` for another enum, `Err` for one past the attachments Strata has.
+pub(super) fn color_slot(attachment: u32, named: u32) -> Option<Result<usize, GlError>> {
+    let i = attachment.checked_sub(COLOR_ATTACHMENT0).filter(|i| *i < named)?;
+    Some(if (i as usize) < MAX_DRAW_BUFFERS { Ok(i as usize) } else { Err(GlError::InvalidOperation) })
+}
+
+/// What a target is resolved for: draws and clears write the draw buffers, reads and copies
+/// read the read buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Purpose {
+    /// The draw buffers.
+    Draw,
+    /// The read buffer.
+    Read,
+}
+
+/// A renderbuffer.
+#[derive(Default)]
+pub struct Renderbuffer {
+    /// Internal format enum, 0 until storage is allocated.
+    pub format: u32,
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// The GPU image.
+    pub gpu: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// Unique id for caches.
+    pub uid: u64,
+    /// The image's memory, held against the client's quota (shared with the EGLImages made
+    /// from it and their siblings).
+    pub reserved: Option<std::sync::Arc<strata_device::account::Reservation>>,
+    /// The level and layer of the texture the view shows: (0, 0) but for an EGLImage sibling.
+    pub at: super::images::Subresource,
+}
+
+impl Renderbuffer {
+    /// Whether it holds colour: a colour format of its own, or an EGLImage's colour image.
+    pub fn is_color(&self) -> bool {
+        matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT)
+            || is_half_renderbuffer(self.format)
+            || (super::formats::is_color_format(self.format) && self.gpu.is_some())
+    }
+}
+
+/// Attaches `a` to `attachment` of the bound framebuffer object.
+pub(super) fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
+    let bound = ctx.bindings.framebuffer;
+    let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
+    match attachment {
+        DEPTH_ATTACHMENT => fb.depth = a,
+        STENCIL_ATTACHMENT => fb.stencil = a,
+        _ => fb.colors[color_slot(attachment, 16).ok_or(GlError::InvalidEnum)??] = a,
+    }
+    Ok(())
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh(names.iter()))?;
+        ctx.objects.renderbuffers.generate(names.iter());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.renderbuffers.delete(names.iter()) {
+            ctx.objects.forget_label(RENDERBUFFER, n);
+            if ctx.bindings.renderbuffer == n {
+                ctx.bindings.renderbuffer = 0;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindRenderbuffer(&mut self, ctx: &mut Context, target: u32, renderbuffer: u32) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh([renderbuffer]))?;
+        ctx.objects.renderbuffers.bind(renderbuffer);
+        ctx.bindings.renderbuffer = renderbuffer;
+        Ok(())
+    }
+
+    pub(super) fn glIsRenderbuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.renderbuffers.is(name)
+    }
+
+    pub(super) fn glRenderbufferStorage(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        internalformat: u32,
+        width: i32,
+        height: i32,
+    ) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let format = match internalformat {
+            RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT => COLOR_FORMAT,
+            f if is_half_renderbuffer(f) => HALF_FORMAT,
+            DEPTH_COMPONENT16 => wgpu::TextureFormat::Depth16Unorm,
+            DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
+            DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
+            STENCIL_INDEX8 => wgpu::TextureFormat::Stencil8,
+            _ => return Err(GlError::InvalidEnum),
+        };
+        if width < 0 || height < 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
+            return Err(GlError::InvalidValue);
+        }
+        let uid = self.next_uid();
+        let name = ctx.bindings.renderbuffer;
+        let Some(rb) = ctx.objects.renderbuffers.get_mut(&name).filter(|_| name != 0) else {
+            return Err(GlError::InvalidOperation);
+        };
+        // The old image's memory is given back before the new one's is reserved.
+        *rb = Renderbuffer::default();
+        let texel = match format {
+            wgpu::TextureFormat::Stencil8 => 1,
+            wgpu::TextureFormat::Depth16Unorm => 2,
+            HALF_FORMAT => 8,
+            _ => 4,
+        };
+        let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
+        let reserved = Some(self.reserve(bytes)?);
+        let gpu = &self.gpu;
+        let size = ((width as u32).max(1), (height as u32).max(1));
+        // Sampled too: depth reads (GL_NV_read_depth) pass through the depth reader.
+        // Written to as well: a texture made from it through an EGLImage takes uploads.
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::TEXTURE_BINDING;
+        let tex = gpu.texture_2d("renderbuffer", format, size, usage);
+        let view = tex.create_view(&Default::default());
+        let absent = absent_channels(internalformat);
+        if !absent.is_empty() && matches!(format, COLOR_FORMAT | HALF_FORMAT) && width > 0 && height > 0 {
+            // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
+            let (w, h) = (width as u32, height as u32);
+            let color = (tex.clone(), view.clone());
+            let t = Target::color_only((uid, 2), color, (w, h), absent);
+            self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
+        }
+        let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        *rb = Renderbuffer {
+            format: internalformat,
+            width: width as u32,
+            height: height as u32,
+            gpu: Some((tex, view)),
+            uid,
+            reserved: reserved.map(std::sync::Arc::new),
+            at: Default::default(),
+        };
+        Ok(())
+    }
+
+    pub(super) fn glGetRenderbufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {
+        let rb = ctx.objects.renderbuffers.get(&ctx.bindings.renderbuffer);
+        let v = match (target, pname, rb) {
+            (RENDERBUFFER, RENDERBUFFER_WIDTH, Some(rb)) => Ok(rb.width as i32),
+            (RENDERBUFFER, RENDERBUFFER_HEIGHT, Some(rb)) => Ok(rb.height as i32),
+            (RENDERBUFFER, RENDERBUFFER_INTERNAL_FORMAT, Some(rb)) => {
+                Ok(if rb.format == 0 { RGBA4 as i32 } else { rb.format as i32 })
+            }
+            (RENDERBUFFER, RENDERBUFFER_RED_SIZE..=RENDERBUFFER_STENCIL_SIZE, Some(rb)) => {
+                Ok(renderbuffer_bits(rb.format)[(pname - RENDERBUFFER_RED_SIZE) as usize])
+            }
+            (RENDERBUFFER, _, None) => Err(GlError::InvalidOperation),
+            _ => Err(GlError::InvalidEnum),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            0
+        })
+    }
+
+    pub(super) fn glGenFramebuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Framebuffer, ctx.objects.framebuffers.fresh(names.iter()))?;
+        ctx.objects.framebuffers.generate(names.iter());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteFramebuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.framebuffers.delete(names.iter()) {
+            ctx.objects.forget_label(FRAMEBUFFER, n);
+            if ctx.bindings.framebuffer == n {
+                ctx.bindings.framebuffer = 0;
+            }
+            if ctx.bindings.read_framebuffer == n {
+                ctx.bindings.read_framebuffer = 0;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindFramebuffer(&mut self, ctx: &mut Context, target: u32, framebuffer: u32) -> GlResult {
+        let (draw, read) = match target {
+            FRAMEBUFFER => (true, true),
+            DRAW_FRAMEBUFFER => (true, false),
+            READ_FRAMEBUFFER => (false, true),
+            _ => return Err(GlError::InvalidEnum),
+        };
+        self.admit(ctx, Kind::Framebuffer, ctx.objects.framebuffers.fresh([framebuffer]))?;
+        ctx.objects.framebuffers.bind(framebuffer);
+        if draw {
+            ctx.bindings.framebuffer = framebuffer;
+        }
+        if read {
+            ctx.bindings.read_framebuffer = framebuffer;
+        }
+        Ok(())
+    }
+
+    pub(super) fn glIsFramebuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.framebuffers.is(name)
+    }
+
+    pub(super) fn glFramebufferTexture2D(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachment: u32,
+        textarget: u32,
+        texture: u32,
+        level: i32,
+    ) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let image = ImageTarget::from_gl(textarget)?;
+        // GL_OES_fbo_render_mipmap: any level a texture can have.
+        if !(0..=MAX_LEVEL).contains(&level) && texture != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        // As Mesa: the texture must exist, and have the target named (a face for a cube map).
+        let expected = if image.cube { TEXTURE_CUBE_MAP } else { TEXTURE_2D };
+        if texture != 0 && ctx.objects.textures.get(&texture).is_none_or(|t| t.target != 0 && t.target != expected) {
+            return Err(GlError::InvalidOperation);
+        }
+        let face = image.face;
+        let a = if texture == 0 {
+            Attachment::None
+        } else {
+            Attachment::Texture { name: texture, level: level as u32, face }
+        };
+        set_attachment(ctx, attachment, a)
+    }
+
+    pub(super) fn glFramebufferRenderbuffer(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachment: u32,
+        renderbuffertarget: u32,
+        renderbuffer: u32,
+    ) -> GlResult {
+        if target != FRAMEBUFFER || renderbuffertarget != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        if renderbuffer != 0 && !ctx.objects.renderbuffers.contains_key(&renderbuffer) {
+            return Err(GlError::InvalidOperation);
+        }
+        let a = if renderbuffer == 0 { Attachment::None } else { Attachment::Renderbuffer(renderbuffer) };
+        set_attachment(ctx, attachment, a)
+    }
+
+    pub(super) fn glGetFramebufferAttachmentParameteriv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachment: u32,
+        pname: u32,
+    ) -> i32 {
+        let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
+        let a = match (target, fb, attachment) {
+            (FRAMEBUFFER, Some(fb), _) if color_slot(attachment, 16).is_some() => match color_slot(attachment, 16) {
+                Some(Ok(i)) => fb.colors[i],
+                _ => {
+                    ctx.record(GlError::InvalidOperation);
+                    return 0;
+                }
+            },
+            (FRAMEBUFFER, Some(fb), DEPTH_ATTACHMENT) => fb.depth,
+            (FRAMEBUFFER, Some(fb), STENCIL_ATTACHMENT) => fb.stencil,
+            (FRAMEBUFFER, None, _) => {
+                ctx.record(GlError::InvalidOperation);
+                return 0;
+            }
+            _ => {
+                ctx.record(GlError::InvalidEnum);
+                return 0;
+            }
+        };
+        match (pname, a) {
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::None) => NONE as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::Texture { .. }) => TEXTURE as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, Attachment::Renderbuffer(_)) => RENDERBUFFER as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Texture { name, .. }) => name as i32,
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::Renderbuffer(n)) => n as i32,
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, Attachment::Texture { level, .. }) => level as i32,
+            // The face of a cube map, the slice of a 3D texture (`GL_OES_texture_3D`); 0 for
+            // other textures.
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE, Attachment::Texture { name, face, .. }) => {
+                match ctx.objects.textures.get(&name).map(|t| t.target) {
+                    Some(TEXTURE_CUBE_MAP) => (TEXTURE_CUBE_MAP_POSITIVE_X + face) as i32,
+                    _ => 0,
+                }
+            }
+            (FRAMEBUFFER_ATTACHMENT_TEXTURE_3D_ZOFFSET_OES, Attachment::Texture { name, face, .. }) => {
+                match ctx.objects.textures.get(&name).map(|t| t.target) {
+                    Some(TEXTURE_3D_OES) => face as i32,
+                    _ => 0,
+                }
+            }
+            _ => {
+                ctx.record(GlError::InvalidEnum);
+                0
+            }
+        }
+    }
+
+    pub(super) fn glCheckFramebufferStatus(&mut self, ctx: &mut Context, target: u32) -> u32 {
+        if target != FRAMEBUFFER {
+            ctx.record(GlError::InvalidEnum);
+            return 0;
+        }
+        match self.draw_target(ctx) {
+            Ok(_) => FRAMEBUFFER_COMPLETE,
+            Err(status) => status,
+        }
+    }
+
+    /// `EXT_discard_framebuffer`. Validated as the extension specifies; the contents are kept,
+    /// which the extension allows (a discard only makes them undefined).
+    pub(super) fn glDiscardFramebufferEXT(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachments: Slice<'_, u32>,
+    ) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let valid: [u32; 3] = if ctx.bindings.framebuffer == 0 {
+            [COLOR_EXT, DEPTH_EXT, STENCIL_EXT]
+        } else {
+            [COLOR_ATTACHMENT0, DEPTH_ATTACHMENT, STENCIL_ATTACHMENT]
+        };
+        if attachments.iter().any(|a| !valid.contains(&a)) {
+            return Err(GlError::InvalidEnum);
+        }
+        Ok(())
+    }
+}
+
+/// Red, green, blue, alpha, depth and stencil bits a renderbuffer of `format` stores: colour is
+/// stored as RGBA8 whatever the format (a format without alpha has none), depth and stencil as
+/// their formats name (none before storage is given).
+fn renderbuffer_bits(format: u32) -> [i32; 6] {
+    match format {
+        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT | RGBA16F_EXT | RGB16F_EXT | RG16F_EXT
+        | R16F_EXT => {
+            let [r, g, b, a] = color_bits(format);
+            [r, g, b, a, 0, 0]
+        }
+        DEPTH_COMPONENT16 => [0, 0, 0, 0, 16, 0],
+        DEPTH_COMPONENT24_OES => [0, 0, 0, 0, 24, 0],
+        DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],
+        STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
+        _ => [0; 6],
+    }
+}

@@ -1,0 +1,107 @@
+//! Constant folding of integral constant expressions (GLSL ES 1.00 §4.3.3), as array sizes
+//! need: literals, `const` globals, the built-in constants (with the values Strata reports
+//! through `glGetIntegerv`), arithmetic, comparisons, logic, `?:` and the comma operator.
+
+use std::collections::HashMap;
+
+use glsl_lang::ast::{self, BinaryOpData as B, ExprData, UnaryOpData as U};
+
+use crate::context::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_UNITS};
+
+/// A folded constant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Val {
+    /// An `int`.
+    Int(i64),
+    /// A `bool`.
+    Bool(bool),
+    /// A `float`.
+    Float(f64),
+}
+
+/// The built-in constants of GLSL ES 1.00 §7.4, as Strata reports the matching limits.
+pub(super) fn builtin(name: &str) -> Option<i64> {
+    Some(match name {
+        "gl_MaxVertexAttribs" => MAX_ATTRIBS as i64,
+        "gl_MaxVertexUniformVectors" | "gl_MaxFragmentUniformVectors" => 256,
+        "gl_MaxVaryingVectors" => 15,
+        "gl_MaxVertexTextureImageUnits" | "gl_MaxCombinedTextureImageUnits" | "gl_MaxTextureImageUnits" => {
+            MAX_UNITS as i64
+        }
+        "gl_MaxDrawBuffers" => MAX_DRAW_BUFFERS as i64,
+        "gl_MaxDualSourceDrawBuffersEXT" => 1,
+        _ => return None,
+    })
+}
+
+/// Folds `e`; `None` if it is not a constant expression this folder understands.
+pub(super) fn fold(e: &ast::Expr, consts: &HashMap<String, Val>) -> Option<Val> {
+    Some(match &e.content {
+        ExprData::IntConst(n) => Val::Int(i64::from(*n)),
+        ExprData::UIntConst(n) => Val::Int(i64::from(*n)),
+        ExprData::BoolConst(b) => Val::Bool(*b),
+        ExprData::FloatConst(f) => Val::Float(f64::from(*f)),
+        ExprData::Variable(id) => match consts.get(id.0.as_str()) {
+            Some(v) => *v,
+            None => Val::Int(builtin(id.0.as_str())?),
+        },
+        ExprData::Comma(a, b) => {
+            fold(a, consts)?;
+            fold(b, consts)?
+        }
+        ExprData::Ternary(c, a, b) => match fold(c, consts)? {
+            Val::Bool(true) => fold(a, consts)?,
+            Val::Bool(false) => fold(b, consts)?,
+            _ => return None,
+        },
+        ExprData::Unary(op, a) => match (&op.content, fold(a, consts)?) {
+            (U::Minus, Val::Int(n)) => Val::Int(n.checked_neg()?),
+            (U::Minus, Val::Float(f)) => Val::Float(-f),
+            (U::Add, v) => v,
+            (U::Not, Val::Bool(b)) => Val::Bool(!b),
+            _ => return None,
+        },
+        ExprData::Binary(op, a, b) => binary(&op.content, fold(a, consts)?, fold(b, consts)?)?,
+        _ => return None,
+    })
+}
+
+fn binary(op: &B, a: Val, b: Val) -> Option<Val> {
+    Some(match (a, b) {
+        (Val::Int(x), Val::Int(y)) => match op {
+            B::Add => Val::Int(x.checked_add(y)?),
+            B::Sub => Val::Int(x.checked_sub(y)?),
+            B::Mult => Val::Int(x.checked_mul(y)?),
+            B::Div => Val::Int(x.checked_div(y)?),
+            B::Equal => Val::Bool(x == y),
+            B::NonEqual => Val::Bool(x != y),
+            B::Lt => Val::Bool(x < y),
+            B::Gt => Val::Bool(x > y),
+            B::Lte => Val::Bool(x <= y),
+            B::Gte => Val::Bool(x >= y),
+            _ => return None,
+        },
+        (Val::Float(x), Val::Float(y)) => match op {
+            B::Add => Val::Float(x + y),
+            B::Sub => Val::Float(x - y),
+            B::Mult => Val::Float(x * y),
+            B::Div => Val::Float(x / y),
+            B::Equal => Val::Bool(x == y),
+            B::NonEqual => Val::Bool(x != y),
+            B::Lt => Val::Bool(x < y),
+            B::Gt => Val::Bool(x > y),
+            B::Lte => Val::Bool(x <= y),
+            B::Gte => Val::Bool(x >= y),
+            _ => return None,
+        },
+        (Val::Bool(x), Val::Bool(y)) => match op {
+            B::And => Val::Bool(x && y),
+            B::Or => Val::Bool(x || y),
+            B::Xor => Val::Bool(x ^ y),
+            B::Equal => Val::Bool(x == y),
+            B::NonEqual => Val::Bool(x != y),
+            _ => return None,
+        },
+        _ => return None,
+    })
+}

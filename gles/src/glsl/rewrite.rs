@@ -1,0 +1,458 @@
+//! The AST rewrite from GLSL ES 1.00 to Vulkan-flavoured GLSL 450 that naga accepts: the
+//! fragment output, split texture/sampler bindings, lookups renamed, precision dropped, `main`
+//! renamed so that a generated `main` can wrap it, booleans and `mat2`s read from the block,
+//! `gl_PointSize`/`gl_PointCoord` replaced by the variables of the point-quad expansion.
+
+use std::collections::HashMap;
+
+use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
+use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
+
+use super::{Stage, Ty};
+use crate::context::MAX_DRAW_BUFFERS;
+
+/// The AST rewrite applied to every function body and remaining global.
+pub(super) struct Rewrite {
+    /// Functions with sampler parameters: which positions are samplers.
+    pub(super) sampler_fns: HashMap<String, Vec<bool>>,
+    /// Sampler uniforms and parameters, by name (an array's elements as `NAME__K`).
+    pub(super) samplers: HashMap<String, Ty>,
+    /// The names of sampler parameters (the other samplers are uniforms).
+    pub(super) sampler_params: std::collections::HashSet<String>,
+    /// The 2D and 3D lookups made, by (sampler uniform, GLSL 450 function, whether 3D); `""`
+    /// for a parameter's.
+    pub(super) lookups: std::collections::BTreeSet<(String, String, bool)>,
+    /// Sampler array uniforms: their lengths, by name.
+    pub(super) sampler_arrays: HashMap<String, u32>,
+    /// `mat2` uniforms (naga cannot lay out `matCx2` in std140): stored as `vec4[2]` per matrix;
+    /// the flag says whether it is an array.
+    pub(super) mat2s: HashMap<String, bool>,
+    /// Boolean uniforms, stored as integers in the block.
+    pub(super) bools: HashMap<String, Ty>,
+    /// The first error found.
+    pub(super) error: Option<String>,
+    /// The stage rewritten.
+    pub(super) stage: Stage,
+    /// Whether the (fragment) shader reads `gl_PointCoord`.
+    pub(super) point_coord: bool,
+    /// Whether the (fragment) shader writes `gl_FragDepthEXT`.
+    pub(super) frag_depth: bool,
+    /// Whether the (vertex) shader reads `gl_InstanceIDEXT`.
+    pub(super) instance_id: bool,
+    /// Whether the (fragment) shader uses `gl_FragColor`.
+    pub(super) frag_color: bool,
+    /// Whether the (fragment) shader uses `gl_FragData` (`GL_EXT_draw_buffers`).
+    pub(super) frag_data: bool,
+    /// Whether the (fragment) shader uses `gl_SecondaryFragColorEXT` (`GL_EXT_blend_func_extended`).
+    pub(super) secondary_color: bool,
+    /// Whether the (fragment) shader uses `gl_SecondaryFragDataEXT`.
+    pub(super) secondary_data: bool,
+}
+
+/// Removes precision qualifiers, dropping the qualifier altogether if nothing else remains
+/// (an empty qualifier list is not valid GLSL, and the transpiler rejects it).
+fn strip_precision(q: &mut Option<ast::TypeQualifier>) {
+    if let Some(tq) = q {
+        tq.qualifiers.retain(|s| !matches!(s.content, TypeQualifierSpecData::Precision(_)));
+        if tq.qualifiers.is_empty() {
+            *q = None;
+        }
+    }
+}
+
+fn var(name: &str) -> ast::Expr {
+    ExprData::Variable(ast::IdentifierData(name.into()).into()).into()
+}
+
+/// `mat2(strata_m2_NAME[i].xy, strata_m2_NAME[i + 1].xy)` where `i` is `2 * index` or 0.
+fn mat2_of(name: &str, index: Option<&ast::Expr>) -> ast::Expr {
+    let column = |k: i32| -> ast::Expr {
+        let i: ast::Expr = match index {
+            Some(idx) => {
+                let twice: ast::Expr = ExprData::Binary(
+                    ast::BinaryOpData::Mult.into(),
+                    Box::new(ExprData::IntConst(2).into()),
+                    Box::new(idx.clone()),
+                )
+                .into();
+                ExprData::Binary(ast::BinaryOpData::Add.into(), Box::new(twice), Box::new(ExprData::IntConst(k).into()))
+                    .into()
+            }
+            None => ExprData::IntConst(k).into(),
+        };
+        let elem: ast::Expr = ExprData::Bracket(Box::new(var(&format!("strata_m2_{name}"))), Box::new(i)).into();
+        ExprData::Dot(Box::new(elem), ast::IdentifierData("xy".into()).into()).into()
+    };
+    ctor(T::Mat2, vec![column(0), column(1)])
+}
+
+/// The name of element `k` of sampler array `name`: each element is a sampler of its own.
+pub(super) fn sampler_element(name: &str, k: u32) -> String {
+    format!("{name}__{k}")
+}
+
+/// The first argument of a call that indexes a sampler array: its position, the array's name
+/// and length, and the index.
+fn sampler_array_arg(arrays: &HashMap<String, u32>, args: &[ast::Expr]) -> Option<(usize, String, u32, ast::Expr)> {
+    args.iter().enumerate().find_map(|(i, a)| match &a.content {
+        ExprData::Bracket(base, index) => match &base.content {
+            ExprData::Variable(id) => {
+                arrays.get(id.0.as_str()).map(|&len| (i, id.0.to_string(), len, (**index).clone()))
+            }
+            _ => None,
+        },
+        _ => None,
+    })
+}
+
+fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
+    let spec: ast::TypeSpecifier = ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
+    ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec)).into(), args).into()
+}
+
+/// `+(a, b)` for a sequence `(a, b)`: the transpiler writes a sequence without parentheses, which
+/// in an argument or initializer would read as two; a unary plus makes it keep them.
+fn keep_sequence(e: &mut ast::Expr) {
+    if matches!(e.content, ExprData::Comma(..)) {
+        let seq = std::mem::replace(e, ExprData::IntConst(0).into());
+        *e = ExprData::Unary(ast::UnaryOpData::Add.into(), Box::new(seq)).into();
+    }
+}
+
+/// Whether an expression calls a function (a constructor is no call).
+fn calls_function(e: &ast::Expr) -> bool {
+    struct Finder(bool);
+    impl glsl_lang::visitor::Visitor for Finder {
+        fn visit_expr(&mut self, e: &ast::Expr) -> Visit {
+            if let ExprData::FunCall(f, _) = &e.content {
+                self.0 |= matches!(f.content, FunIdentifierData::Expr(_));
+            }
+            Visit::Children
+        }
+    }
+    let mut f = Finder(false);
+    e.visit(&mut f);
+    f.0
+}
+
+/// Global initialisers that call functions (GLSL ES 1.00 §5.10 allows built-in calls in constant
+/// expressions; naga evaluates none at global scope) become assignments at the start of `main`,
+/// before any of the shader's code runs; `const` goes, as the compile already checked writes.
+pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
+    let mut hoisted: Vec<ast::Statement> = Vec::new();
+    for decl in &mut tu.0 {
+        let ast::ExternalDeclarationData::Declaration(d) = &mut decl.content else { continue };
+        let ast::DeclarationData::InitDeclaratorList(list) = &mut d.content else { continue };
+        let mut take = |name: &str, init: &mut Option<ast::Initializer>| {
+            let Some(ast::InitializerData::Simple(e)) = init.as_deref() else { return false };
+            if !calls_function(e) {
+                return false;
+            }
+            let mut value: ast::Expr = (**e).clone();
+            keep_sequence(&mut value);
+            let assign: ast::Expr =
+                ExprData::Assignment(Box::new(var(name)), ast::AssignmentOpData::Equal.into(), Box::new(value)).into();
+            hoisted.push(ast::StatementData::Expression(ast::ExprStatementData(Some(assign)).into()).into());
+            *init = None;
+            true
+        };
+        let mut any = false;
+        if let Some(name) = list.head.name.clone() {
+            any |= take(name.0.as_str(), &mut list.head.initializer);
+        }
+        for t in &mut list.tail {
+            let name = t.ident.ident.0.to_string();
+            any |= take(&name, &mut t.initializer);
+        }
+        if any {
+            if let Some(q) = &mut list.head.ty.qualifier {
+                q.qualifiers.retain(|s| {
+                    !matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Const)
+                });
+                if q.qualifiers.is_empty() {
+                    list.head.ty.qualifier = None;
+                }
+            }
+        }
+    }
+    if hoisted.is_empty() {
+        return;
+    }
+    for decl in &mut tu.0 {
+        if let ast::ExternalDeclarationData::FunctionDefinition(f) = &mut decl.content {
+            if f.prototype.name.0 == "main" || f.prototype.name.0 == "strata_main" {
+                let body = &mut f.statement.statement_list;
+                body.splice(0..0, hoisted.iter().cloned());
+            }
+        }
+    }
+}
+
+/// The parts a sampler is passed to a function as (naga takes no combined samplers): its
+/// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, and its
+/// wrap flags and border colour (`link::lookup_helpers`).
+const SAMPLER_PARTS: [(Option<T>, &str); 5] = [
+    (None, "__t"),
+    (Some(T::Sampler), "__s"),
+    (Some(T::Sampler), "__b"),
+    (Some(T::Vec4), "__w"),
+    (Some(T::Vec4), "__c"),
+];
+
+impl Rewrite {
+    /// Makes a 2D or 3D lookup (`id`, already the GLSL 450 function) a call of its generated
+    /// helper, which applies the sampler's wrap flags and border colour:
+    /// `NAME__FUNCTION(coordinate, …)` for a sampler uniform, `strata_p_FUNCTION(parts…,
+    /// coordinate, …)` (`strata_p3_` for 3D) for a parameter.
+    fn lookup_helper(&mut self, id: &mut ast::Identifier, args: &mut Vec<ast::Expr>) {
+        let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) else { return };
+        let sampler = v.0.to_string();
+        let Some(ty) = self.samplers.get(&sampler).copied().filter(|t| *t != Ty::SamplerCube) else { return };
+        let three_d = ty == Ty::Sampler3D;
+        let function = id.0.to_string();
+        let name = if self.sampler_params.contains(&sampler) {
+            let parts = SAMPLER_PARTS.iter().map(|(_, suffix)| var(&format!("{sampler}{suffix}")));
+            args.splice(0..1, parts);
+            self.lookups.insert((String::new(), function.clone(), three_d));
+            format!("strata_p{}_{function}", if three_d { "3" } else { "" })
+        } else {
+            args.remove(0);
+            self.lookups.insert((sampler.clone(), function.clone(), three_d));
+            format!("{sampler}__{function}")
+        };
+        *id = ast::IdentifierData(name.into()).into();
+    }
+}
+
+impl VisitorMut for Rewrite {
+    fn visit_full_specified_type(&mut self, t: &mut ast::FullySpecifiedType) -> Visit {
+        strip_precision(&mut t.qualifier);
+        Visit::Children
+    }
+
+    fn visit_struct_field_specifier(&mut self, f: &mut ast::StructFieldSpecifier) -> Visit {
+        // GLSL ES 1.00 §4.1.8: members may carry precision qualifiers.
+        strip_precision(&mut f.qualifier);
+        Visit::Children
+    }
+
+    fn visit_initializer(&mut self, i: &mut ast::Initializer) -> Visit {
+        if let ast::InitializerData::Simple(e) = &mut i.content {
+            keep_sequence(e.as_mut());
+        }
+        Visit::Children
+    }
+
+    fn visit_function_parameter_declaration(&mut self, p: &mut ast::FunctionParameterDeclaration) -> Visit {
+        match &mut p.content {
+            ast::FunctionParameterDeclarationData::Named(q, _)
+            | ast::FunctionParameterDeclarationData::Unnamed(q, _) => strip_precision(q),
+        }
+        Visit::Children
+    }
+
+    fn visit_function_prototype(&mut self, p: &mut ast::FunctionPrototype) -> Visit {
+        if p.name.0 == "main" {
+            p.name = ast::IdentifierData("strata_main".into()).into();
+        }
+        if self.sampler_fns.contains_key(p.name.0.as_str()) {
+            let mut params = Vec::with_capacity(p.parameters.len() + 2);
+            for param in std::mem::take(&mut p.parameters) {
+                let split = match &param.content {
+                    ast::FunctionParameterDeclarationData::Named(_, d) => Ty::from_spec(&d.ty.ty.content)
+                        .filter(|t| t.is_sampler())
+                        .map(|t| (t, d.ident.ident.0.to_string())),
+                    _ => None,
+                };
+                match split {
+                    Some((t, name)) => {
+                        let tex = match t {
+                            Ty::SamplerCube => T::TextureCube,
+                            Ty::Sampler3D => T::Texture3D,
+                            _ => T::Texture2D,
+                        };
+                        for (ty, suffix) in
+                            SAMPLER_PARTS.iter().map(|(t, sfx)| (t.clone().unwrap_or_else(|| tex.clone()), *sfx))
+                        {
+                            let spec: ast::TypeSpecifier =
+                                ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
+                            let ident: ast::ArrayedIdentifier = ast::ArrayedIdentifierData {
+                                ident: ast::IdentifierData(format!("{name}{suffix}").into()).into(),
+                                array_spec: None,
+                            }
+                            .into();
+                            let decl: ast::FunctionParameterDeclarator =
+                                ast::FunctionParameterDeclaratorData { ty: spec, ident }.into();
+                            params.push(ast::FunctionParameterDeclarationData::Named(None, decl).into());
+                        }
+                    }
+                    None => params.push(param),
+                }
+            }
+            p.parameters = params;
+        }
+        Visit::Children
+    }
+
+    fn visit_expr(&mut self, e: &mut ast::Expr) -> Visit {
+        let replacement = match &mut e.content {
+            ExprData::Variable(id) => {
+                let name = id.0.as_str();
+                if name == "gl_FragColor" && self.stage == Stage::Fragment {
+                    self.frag_color = true;
+                    Some(var("strata_FragColor"))
+                } else if name == "gl_SecondaryFragColorEXT" && self.stage == Stage::Fragment {
+                    // The second colour of dual-source blending, written out by the generated
+                    // `main` (`link`).
+                    self.secondary_color = true;
+                    Some(var("strata_SecondaryFragColor"))
+                } else if name == "gl_SecondaryFragDataEXT" && self.stage == Stage::Fragment {
+                    self.secondary_data = true;
+                    Some(var("strata_SecondaryFragData"))
+                } else if name == "gl_FragData" && self.stage == Stage::Fragment {
+                    // One colour per draw buffer, written out by the generated `main` (`link`).
+                    self.frag_data = true;
+                    Some(var("strata_FragData"))
+                } else if let Some(v) = super::consts::builtin(name) {
+                    // The built-in constants (§7.4), which naga does not know.
+                    Some(ExprData::IntConst(v as i32).into())
+                } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
+                    // Points are drawn as quads whose size the generated `main` reads from this.
+                    Some(var("strata_PointSize"))
+                } else if name == "gl_PointCoord" && self.stage == Stage::Fragment {
+                    self.point_coord = true;
+                    Some(var("strata_PointCoord"))
+                } else if name == super::checks::FRAG_DEPTH && self.stage == Stage::Fragment {
+                    // Clamped and written out by the generated `main` (`link`).
+                    self.frag_depth = true;
+                    Some(var("strata_FragDepth"))
+                } else if name == super::checks::INSTANCE_ID && self.stage == Stage::Vertex {
+                    // Set by the generated `main` (`link`).
+                    self.instance_id = true;
+                    Some(var("strata_InstanceID"))
+                } else if let Some(ty) = self.samplers.get(name) {
+                    let t = match ty {
+                        Ty::SamplerCube => T::SamplerCube,
+                        Ty::Sampler3D => T::Sampler3D,
+                        _ => T::Sampler2D,
+                    };
+                    Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
+                } else if self.mat2s.get(name) == Some(&false) {
+                    Some(mat2_of(name, None))
+                } else if let Some(ty) = self.bools.get(name) {
+                    let t = match ty {
+                        Ty::BVec2 => T::BVec2,
+                        Ty::BVec3 => T::BVec3,
+                        Ty::BVec4 => T::BVec4,
+                        _ => T::Bool,
+                    };
+                    Some(ctor(t, vec![var(&format!("strata_b_{name}"))]))
+                } else {
+                    None
+                }
+            }
+            ExprData::Bracket(base, index) => match (&base.content, &index.content) {
+                (ExprData::Variable(id), ExprData::IntConst(k))
+                    if id.0 == "gl_FragData" || id.0 == "gl_SecondaryFragDataEXT" =>
+                {
+                    let len = if id.0 == "gl_FragData" { MAX_DRAW_BUFFERS as i32 } else { 1 };
+                    if *k < 0 || *k >= len {
+                        self.error.get_or_insert(format!("0: array index must be < {len}"));
+                    }
+                    None
+                }
+                (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()) == Some(&true) => {
+                    let mut idx = (**index).clone();
+                    idx.visit_mut(self);
+                    Some(mat2_of(id.0.as_str(), Some(&idx)))
+                }
+                _ => None,
+            },
+            ExprData::FunCall(fun, args) => {
+                args.iter_mut().for_each(keep_sequence);
+                // A sampler array element (GLSL ES 1.00 Appendix A: indexed by a constant or a
+                // loop index) is one of the array's samplers: a constant index names it, any
+                // other index selects the whole call over the elements.
+                if let Some((at, name, len, index)) = sampler_array_arg(&self.sampler_arrays, args) {
+                    if let ExprData::IntConst(k) = index.content {
+                        if k < 0 || k as u32 >= len {
+                            self.error.get_or_insert_with(|| {
+                                format!("0: array index {k} out of range for sampler array '{name}'")
+                            });
+                            return Visit::Parent;
+                        }
+                        args[at] = var(&sampler_element(&name, k as u32));
+                    } else {
+                        let call_with = |k: u32| {
+                            let mut c = ExprData::FunCall(fun.clone(), args.clone());
+                            if let ExprData::FunCall(_, a) = &mut c {
+                                a[at] = var(&sampler_element(&name, k));
+                            }
+                            ast::Expr::from(c)
+                        };
+                        let mut chain = call_with(len - 1);
+                        for k in (0..len - 1).rev() {
+                            let test: ast::Expr = ExprData::Binary(
+                                ast::BinaryOpData::Equal.into(),
+                                Box::new(index.clone()),
+                                Box::new(ExprData::IntConst(k as i32).into()),
+                            )
+                            .into();
+                            chain = ExprData::Ternary(Box::new(test), Box::new(call_with(k)), Box::new(chain)).into();
+                        }
+                        chain.visit_mut(self);
+                        *e = chain;
+                        return Visit::Parent;
+                    }
+                }
+                if let FunIdentifierData::Expr(f) = &mut fun.content {
+                    if let ExprData::Variable(id) = &mut f.content {
+                        if let Some(flags) = self.sampler_fns.get(id.0.as_str()) {
+                            // Pass a sampler argument as its texture and sampler halves.
+                            let mut expanded = Vec::with_capacity(args.len() + 2);
+                            for (arg, is_sampler) in
+                                std::mem::take(args).into_iter().zip(flags.iter().chain(std::iter::repeat(&false)))
+                            {
+                                match (&arg.content, is_sampler) {
+                                    (ExprData::Variable(v), true) if self.samplers.contains_key(v.0.as_str()) => {
+                                        for (_, suffix) in SAMPLER_PARTS {
+                                            expanded.push(var(&format!("{}{suffix}", v.0)));
+                                        }
+                                    }
+                                    _ => expanded.push(arg),
+                                }
+                            }
+                            *args = expanded;
+                        }
+                        // A vertex shader has no derivatives: ES defines its implicit-LOD
+                        // lookups as level 0, so they become explicit-LOD lookups.
+                        let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
+                        let renamed = match id.0.as_str() {
+                            "texture2D" | "textureCube" | "texture3D" if vertex_implicit => Some("textureLod"),
+                            "texture2DProj" | "texture3DProj" if vertex_implicit => Some("textureProjLod"),
+                            "texture2D" | "textureCube" | "texture3D" => Some("texture"),
+                            "texture2DProj" | "texture3DProj" => Some("textureProj"),
+                            "texture2DLod" | "textureCubeLod" | "texture3DLod" => Some("textureLod"),
+                            "texture2DProjLod" | "texture3DProjLod" => Some("textureProjLod"),
+                            _ => None,
+                        };
+                        if let Some(r) = renamed {
+                            if vertex_implicit && r.ends_with("Lod") {
+                                args.push(ExprData::FloatConst(0.0).into());
+                            }
+                            *id = ast::IdentifierData(r.into()).into();
+                            self.lookup_helper(id, args);
+                        }
+                    }
+                }
+                None
+            }
+            _ => None,
+        };
+        if let Some(r) = replacement {
+            *e = r;
+            return Visit::Parent;
+        }
+        Visit::Children
+    }
+}

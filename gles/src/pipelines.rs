@@ -1,0 +1,464 @@
+//! `GL_EXT_separate_shader_objects`: program pipeline objects, whose stages come from
+//! separable programs, validated as Mesa validates them; and the executable draws run. While
+//! no program is in use, a bound pipeline draws: where one program serves both stages (or only
+//! one stage is filled), its own executable; otherwise the vertex stage of one program and the
+//! fragment stage of another, linked again into one executable that is kept until either
+//! program is relinked. Each program keeps its own uniform values; the executable's block is
+//! filled from both at each draw, the fragment stage's uniforms renamed where the names clash.
+
+use std::borrow::Cow;
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
+
+use strata_protocol::{Slice, Text};
+
+use super::context::{Context, Objects};
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::glsl::{self, Stage};
+use super::programs::{create_gpu_program, link_shaders, LinkedProgram, LinkedStages, Program};
+use super::GlesExecutor;
+
+/// Program pipelines one context may hold: each may keep a linked executable, so a client
+/// that asks for more is told `GL_OUT_OF_MEMORY` (applications use a handful).
+pub const MAX_PIPELINES: u64 = 4096;
+/// `GL_VERTEX_SHADER_BIT_EXT`.
+const VERTEX_SHADER_BIT: u32 = 0x1;
+/// `GL_FRAGMENT_SHADER_BIT_EXT`.
+const FRAGMENT_SHADER_BIT: u32 = 0x2;
+/// `GL_ALL_SHADER_BITS_EXT`.
+const ALL_SHADER_BITS: u32 = u32::MAX;
+/// `GL_ACTIVE_PROGRAM_EXT`.
+const ACTIVE_PROGRAM: u32 = 0x8259;
+
+/// A program pipeline object.
+#[derive(Default)]
+pub struct Pipeline {
+    /// The program whose vertex stage it runs (0: none).
+    pub vertex: u32,
+    /// The program whose fragment stage it runs (0: none).
+    pub fragment: u32,
+    /// The program `glUniform*` writes while it draws (`GL_ACTIVE_PROGRAM_EXT`).
+    pub active: u32,
+    /// Whether it has been bound or given stages (`glIsProgramPipelineEXT` is false before).
+    pub ever_bound: bool,
+    /// `GL_VALIDATE_STATUS` of the last `glValidateProgramPipelineEXT`.
+    pub validated: bool,
+    /// Its info log.
+    pub log: String,
+    /// What it draws with, as of the last draw.
+    ready: Option<Ready>,
+}
+
+impl Pipeline {
+    /// Whether it refers to `program` (a stage's or the active program).
+    pub fn uses(&self, program: u32) -> bool {
+        program != 0 && (self.vertex == program || self.fragment == program || self.active == program)
+    }
+}
+
+/// What a pipeline draws with.
+enum Ready {
+    /// One program's own executable.
+    Own(u32),
+    /// Two programs' stages linked together.
+    Combined(Combined),
+}
+
+/// The vertex stage of one program and the fragment stage of another, linked together.
+struct Combined {
+    /// The two programs' executables' ids it was linked from.
+    key: (u64, u64),
+    /// The executable.
+    program: Arc<LinkedProgram>,
+    /// Where each of its uniforms' values live: the stage whose program holds them, and the
+    /// uniform's index in that program.
+    sources: Vec<(Stage, usize)>,
+}
+
+/// The executable a draw runs, with its uniforms' values and samplers' units.
+pub struct Executable<'c> {
+    /// The linked program.
+    pub program: Arc<LinkedProgram>,
+    /// Its uniform block.
+    pub data: Cow<'c, [u8]>,
+    /// The texture unit of each of its samplers.
+    pub units: Cow<'c, [u32]>,
+}
+
+impl Combined {
+    /// The block and units from the two programs' values.
+    fn feed(&self, vertex: &Program, fragment: &Program) -> Option<(Vec<u8>, Vec<u32>)> {
+        let info = &self.program.info;
+        let mut data = vec![0; info.block_size as usize];
+        let mut units = vec![0; info.samplers.len()];
+        for (u, &(stage, index)) in info.uniforms.iter().zip(&self.sources) {
+            let from = if stage == Stage::Vertex { vertex } else { fragment };
+            let src = from.linked.as_ref()?.info.uniforms.get(index)?;
+            match (u.sampler, src.sampler) {
+                (Some(d), Some(s)) => {
+                    let n = u.len as usize;
+                    units.get_mut(d..d + n)?.copy_from_slice(from.units.get(s..s + n)?);
+                }
+                _ => {
+                    let n = (u.stride * u.len) as usize;
+                    let (d, s) = (u.offset as usize, src.offset as usize);
+                    data.get_mut(d..d + n)?.copy_from_slice(from.data.get(s..s + n)?);
+                }
+            }
+        }
+        Some((data, units))
+    }
+}
+
+/// The linked program `name`, if it has an executable.
+fn linked(objects: &Objects, name: u32) -> Option<&Arc<LinkedProgram>> {
+    objects.programs.get(&name).and_then(|p| p.linked.as_ref())
+}
+
+/// Checks that `pl`'s stages can draw together; the error is the info log (empty where
+/// Mesa's is: interfaces that differ).
+fn validate(objects: &Objects, pl: &Pipeline) -> Result<(), String> {
+    for (name, bits) in [(pl.vertex, VERTEX_SHADER_BIT), (pl.fragment, FRAGMENT_SHADER_BIT)] {
+        let Some(l) = linked(objects, name) else { continue };
+        let serves = bits | if pl.vertex == pl.fragment { VERTEX_SHADER_BIT | FRAGMENT_SHADER_BIT } else { 0 };
+        if l.stages.bits & !serves != 0 {
+            return Err(format!("Program {name} is active for some, but not all, of the stages it was linked with\n"));
+        }
+    }
+    if pl.vertex != pl.fragment {
+        let stage = |name, f: fn(&LinkedStages) -> &Option<glsl::Shader>| {
+            linked(objects, name).and_then(|l| f(&l.stages).as_ref())
+        };
+        if let (Some(vs), Some(fs)) = (stage(pl.vertex, |s| &s.vertex), stage(pl.fragment, |s| &s.fragment)) {
+            if !glsl::interfaces_match(vs, fs) {
+                return Err(String::new());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Links the vertex stage of `vp` with the fragment stage of `fp` (`id`: the executable's).
+fn combine(gpu: &strata_device::Gpu, vp: &LinkedProgram, fp: &LinkedProgram, id: u64) -> Result<Combined, String> {
+    let (Some(vs), Some(fs)) = (&vp.stages.vertex, &fp.stages.fragment) else {
+        return Err("a stage has no code".into());
+    };
+    let taken: HashSet<String> = vs.uniforms.iter().map(|u| u.name.clone()).collect();
+    let fs = glsl::rename_uniforms(fs, &taken);
+    // The vertex program's attribute locations, so that its queries answer for the pipeline.
+    let bindings: HashMap<String, u32> = vp.info.attributes.iter().map(|(a, loc)| (a.name.clone(), *loc)).collect();
+    let (info, recipe) = link_shaders(vs, &fs, &bindings)?;
+    let program = create_gpu_program(gpu, (info, recipe, LinkedStages::default()), id)?;
+    let index = |l: &LinkedProgram, name: &str| l.info.uniforms.iter().position(|u| u.name == name);
+    let mut sources = Vec::new();
+    for u in &program.info.uniforms {
+        let source = match index(vp, &u.name) {
+            Some(i) if taken.contains(&u.name) => (Stage::Vertex, i),
+            _ => fp
+                .info
+                .uniforms
+                .iter()
+                .position(|f| glsl::fragment_uniform_name(&f.name, &taken) == u.name)
+                .map(|i| (Stage::Fragment, i))
+                .ok_or_else(|| format!("uniform `{}' has no source", u.name))?,
+        };
+        sources.push(source);
+    }
+    Ok(Combined { key: (vp.id, fp.id), program: Arc::new(program), sources })
+}
+
+impl Context {
+    /// The executable draws run: the program in use, else the bound pipeline's as its last
+    /// [`GlesExecutor::prepare_pipeline`] left it; `None` if there is none.
+    pub fn executable(&self) -> Option<Executable<'_>> {
+        let objects = &self.objects;
+        let own = |name: u32| {
+            let p = objects.programs.get(&name)?;
+            Some(Executable {
+                program: p.linked.clone()?,
+                data: Cow::Borrowed(&p.data),
+                units: Cow::Borrowed(&p.units),
+            })
+        };
+        if self.bindings.program != 0 {
+            return own(self.bindings.program);
+        }
+        let pl = objects.pipelines.get(&self.bindings.pipeline)?;
+        match pl.ready.as_ref()? {
+            Ready::Own(name) => own(*name),
+            Ready::Combined(c) => {
+                let (data, units) = c.feed(objects.programs.get(&pl.vertex)?, objects.programs.get(&pl.fragment)?)?;
+                Some(Executable { program: c.program.clone(), data: Cow::Owned(data), units: Cow::Owned(units) })
+            }
+        }
+    }
+
+    /// The linked program draws run, without its uniforms' values (see [`Context::executable`]).
+    pub fn draw_program(&self) -> Option<Arc<LinkedProgram>> {
+        let objects = &self.objects;
+        let own = |name: u32| objects.programs.get(&name).and_then(|p| p.linked.clone());
+        if self.bindings.program != 0 {
+            return own(self.bindings.program);
+        }
+        match objects.pipelines.get(&self.bindings.pipeline)?.ready.as_ref()? {
+            Ready::Own(name) => own(*name),
+            Ready::Combined(c) => Some(c.program.clone()),
+        }
+    }
+
+    /// The program `glUniform*` writes: the one in use, else the bound pipeline's active
+    /// program (0 for none).
+    pub fn uniform_program(&self) -> u32 {
+        match self.bindings.program {
+            0 => self.objects.pipelines.get(&self.bindings.pipeline).map_or(0, |pl| pl.active),
+            p => p,
+        }
+    }
+}
+
+/// Frees `program` if it was deleted while in use and nothing uses it now.
+pub(super) fn release_if_unused(ctx: &mut Context, program: u32) {
+    let objects = &ctx.objects;
+    let pending = objects.programs.get(&program).is_some_and(|p| p.delete_pending);
+    if pending && ctx.bindings.program != program && !objects.pipelines.values().any(|pl| pl.uses(program)) {
+        super::programs::remove_program(&mut ctx.objects, program);
+    }
+}
+
+/// The pipeline `name` for a command that needs one: never generated is `GL_INVALID_OPERATION`.
+fn pipeline(ctx: &mut Context, name: u32) -> GlResult<&mut Pipeline> {
+    ctx.objects.pipelines.get_mut(&name).ok_or(GlError::InvalidOperation)
+}
+
+/// A linked program for a pipeline command: 0 is none; a bad name is GL's usual error; an
+/// unlinked program is `GL_INVALID_OPERATION`.
+fn pipeline_program(objects: &Objects, program: u32) -> GlResult<Option<&Arc<LinkedProgram>>> {
+    if program == 0 {
+        return Ok(None);
+    }
+    let p = objects.programs.get(&program).ok_or_else(|| objects.shader_or_program_error(program))?;
+    match &p.linked {
+        Some(l) if p.link_ok => Ok(Some(l)),
+        _ => Err(GlError::InvalidOperation),
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// Before a draw with no program in use: validates the bound pipeline (`GL_INVALID_OPERATION`
+    /// if it cannot draw) and links its two programs' stages together where it needs that.
+    pub(super) fn prepare_pipeline(&mut self, ctx: &mut Context) -> GlResult {
+        if ctx.bindings.program != 0 || ctx.bindings.pipeline == 0 {
+            return Ok(());
+        }
+        let objects = &ctx.objects;
+        let Some(pl) = objects.pipelines.get(&ctx.bindings.pipeline) else { return Ok(()) };
+        validate(objects, pl).map_err(|_| GlError::InvalidOperation)?;
+        let ready = match (linked(objects, pl.vertex), linked(objects, pl.fragment)) {
+            // As on Mesa, a pipeline with no stages cannot draw.
+            (None, None) => return Err(GlError::InvalidOperation),
+            (Some(_), None) => Some(Ready::Own(pl.vertex)),
+            (None, Some(_)) => Some(Ready::Own(pl.fragment)),
+            (Some(_), Some(_)) if pl.vertex == pl.fragment => Some(Ready::Own(pl.vertex)),
+            (Some(v), Some(f)) => match &pl.ready {
+                Some(Ready::Combined(c)) if c.key == (v.id, f.id) => return Ok(()),
+                _ => {
+                    let (v, f) = (v.clone(), f.clone());
+                    let id = self.next_uid();
+                    match combine(&self.gpu, &v, &f, id) {
+                        Ok(c) => Some(Ready::Combined(c)),
+                        Err(e) => {
+                            tracing::warn!("a program pipeline's stages failed to link together: {e}");
+                            return Err(GlError::InvalidOperation);
+                        }
+                    }
+                }
+            },
+        };
+        if let Some(pl) = ctx.objects.pipelines.get_mut(&ctx.bindings.pipeline) {
+            pl.ready = ready;
+        }
+        Ok(())
+    }
+
+    pub(super) fn glGenProgramPipelinesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        let pipelines = &mut ctx.objects.pipelines;
+        if pipelines.len() as u64 + pipelines.fresh(names.iter()) > MAX_PIPELINES {
+            return Err(GlError::OutOfMemory);
+        }
+        pipelines.generate(names.iter());
+        Ok(())
+    }
+
+    /// Deleting the bound pipeline unbinds it; unknown names and 0 are ignored.
+    pub(super) fn glDeleteProgramPipelinesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in names.iter() {
+            if n != 0 && ctx.bindings.pipeline == n {
+                ctx.bindings.pipeline = 0;
+            }
+            if let Some(pl) = ctx.objects.pipelines.remove(&n) {
+                for program in [pl.vertex, pl.fragment, pl.active] {
+                    release_if_unused(ctx, program);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindProgramPipelineEXT(&mut self, ctx: &mut Context, name: u32) -> GlResult {
+        if name != 0 {
+            pipeline(ctx, name)?.ever_bound = true;
+        }
+        ctx.bindings.pipeline = name;
+        Ok(())
+    }
+
+    pub(super) fn glIsProgramPipelineEXT(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.pipelines.get(&name).is_some_and(|pl| pl.ever_bound)
+    }
+
+    pub(super) fn glUseProgramStagesEXT(
+        &mut self,
+        ctx: &mut Context,
+        name: u32,
+        stages: u32,
+        program: u32,
+    ) -> GlResult {
+        pipeline(ctx, name)?;
+        if stages != ALL_SHADER_BITS && stages & !(VERTEX_SHADER_BIT | FRAGMENT_SHADER_BIT) != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        let has = match pipeline_program(&ctx.objects, program)? {
+            Some(l) if !l.stages.separable => return Err(GlError::InvalidOperation),
+            Some(l) => l.stages.bits,
+            None => 0,
+        };
+        let pl = pipeline(ctx, name)?;
+        pl.ever_bound = true;
+        // As on Mesa, new stages are not validated yet.
+        pl.validated = false;
+        pl.log.clear();
+        let mut replaced = Vec::new();
+        for (bit, slot) in [(VERTEX_SHADER_BIT, &mut pl.vertex), (FRAGMENT_SHADER_BIT, &mut pl.fragment)] {
+            if stages & bit != 0 {
+                replaced.push(std::mem::replace(slot, if has & bit != 0 { program } else { 0 }));
+            }
+        }
+        for old in replaced {
+            release_if_unused(ctx, old);
+        }
+        Ok(())
+    }
+
+    pub(super) fn glActiveShaderProgramEXT(&mut self, ctx: &mut Context, name: u32, program: u32) -> GlResult {
+        pipeline(ctx, name)?;
+        pipeline_program(&ctx.objects, program)?;
+        let pl = pipeline(ctx, name)?;
+        pl.ever_bound = true;
+        let old = std::mem::replace(&mut pl.active, program);
+        release_if_unused(ctx, old);
+        Ok(())
+    }
+
+    pub(super) fn glValidateProgramPipelineEXT(&mut self, ctx: &mut Context, name: u32) -> GlResult {
+        pipeline(ctx, name)?;
+        let result = ctx.objects.pipelines.get(&name).map(|pl| validate(&ctx.objects, pl));
+        let pl = pipeline(ctx, name)?;
+        pl.ever_bound = true;
+        match result {
+            Some(Err(log)) => {
+                pl.validated = false;
+                pl.log = log;
+            }
+            _ => {
+                pl.validated = true;
+                pl.log.clear();
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glGetProgramPipelineivEXT(&mut self, ctx: &mut Context, name: u32, pname: u32) -> Vec<i32> {
+        let v = match ctx.objects.pipelines.get(&name) {
+            None => Err(GlError::InvalidOperation),
+            Some(pl) => match pname {
+                ACTIVE_PROGRAM => Ok(pl.active as i32),
+                VERTEX_SHADER => Ok(pl.vertex as i32),
+                FRAGMENT_SHADER => Ok(pl.fragment as i32),
+                VALIDATE_STATUS => Ok(i32::from(pl.validated)),
+                INFO_LOG_LENGTH => Ok(if pl.log.is_empty() { 0 } else { pl.log.len() as i32 + 1 }),
+                _ => Err(GlError::InvalidEnum),
+            },
+        };
+        v.map(|v| vec![v]).unwrap_or_else(|e| {
+            ctx.record(e);
+            vec![]
+        })
+    }
+
+    pub(super) fn glGetProgramPipelineInfoLogEXT(&mut self, ctx: &mut Context, name: u32) -> String {
+        match ctx.objects.pipelines.get(&name) {
+            Some(pl) => pl.log.clone(),
+            None => {
+                // As on Mesa: unlike the other pipeline calls, `GL_INVALID_VALUE`.
+                ctx.record(GlError::InvalidValue);
+                String::new()
+            }
+        }
+    }
+
+    pub(super) fn glProgramParameteriEXT(
+        &mut self,
+        ctx: &mut Context,
+        program: u32,
+        pname: u32,
+        value: i32,
+    ) -> GlResult {
+        let objects = &mut ctx.objects;
+        let error = objects.shader_or_program_error(program);
+        let p = objects.programs.get_mut(&program).ok_or(error)?;
+        if pname != PROGRAM_SEPARABLE_EXT {
+            return Err(GlError::InvalidEnum);
+        }
+        if !matches!(value, 0 | 1) {
+            return Err(GlError::InvalidValue);
+        }
+        p.separable = value == 1;
+        Ok(())
+    }
+
+    /// A program of one stage made from `source`: separable, linked if the source compiles,
+    /// else unlinked with the compile's log.
+    pub(super) fn glCreateShaderProgramvEXT(
+        &mut self,
+        ctx: &mut Context,
+        shader_type: u32,
+        name: u32,
+        source: Text<'_>,
+    ) -> GlResult {
+        let stage = match shader_type {
+            VERTEX_SHADER => Stage::Vertex,
+            FRAGMENT_SHADER => Stage::Fragment,
+            _ => return Err(GlError::InvalidEnum),
+        };
+        self.glCreateProgram(ctx, name)?;
+        let id = self.next_uid();
+        let compiled = glsl::compile(stage, source.as_str());
+        let compiled_ok = compiled.is_ok();
+        let result = compiled.and_then(|s| {
+            let (info, recipe) = super::programs::link_one(&s, &HashMap::new())?;
+            let stages = match stage {
+                Stage::Vertex => LinkedStages::new(true, Some(s), None),
+                Stage::Fragment => LinkedStages::new(true, None, Some(s)),
+            };
+            create_gpu_program(&self.gpu, (info, recipe, stages), id)
+        });
+        if let Some(p) = ctx.objects.programs.get_mut(&name) {
+            // As on Mesa, only a program whose source compiled is made separable.
+            p.separable = compiled_ok;
+            p.install(result);
+        }
+        Ok(())
+    }
+}

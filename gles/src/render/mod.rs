@@ -1,0 +1,344 @@
+//! Turning validated GL draws into wgpu work, for one client: render targets, the pipeline
+//! cache, one render pass per target for as long as the target stays the same, a per-pass ring
+//! for uniforms and generated vertex data, clears, mipmap generation and readback.
+//!
+//! | module | concept |
+//! |---|---|
+//! | `targets` | what framebuffer 0 or a framebuffer object resolves to |
+//! | `pipelines` | bind group layouts, samplers and the render pipeline cache |
+//! | `passes` | recording draws into the open pass, and submitting it |
+//! | `clears` | clears as load operations or as masked, scissored quads |
+//! | `mipmaps` | `glGenerateMipmap` as a chain of box-filter passes |
+//! | `readback` | reads, depth uploads and waiting for the GPU |
+
+mod clears;
+mod mipmaps;
+pub mod occlusion;
+mod passes;
+mod pipelines;
+mod readback;
+mod targets;
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+pub use pipelines::layout_entries;
+pub use targets::{Target, COLOR_FORMAT, HALF_FORMAT};
+
+use super::context::ClipControl;
+use super::programs::LinkedProgram;
+use super::textures::SamplerState;
+use strata_device::Gpu;
+use clears::ClearKey;
+use occlusion::Occlusion;
+use passes::Pass;
+use pipelines::PipelineKey;
+
+/// An error with all its sources, for logs (wgpu's top-level text is only "Validation Error").
+pub fn error_chain(e: &wgpu::Error) -> String {
+    let mut s = match e {
+        wgpu::Error::Validation { description, .. } => description.clone(),
+        other => other.to_string(),
+    };
+    let mut src = std::error::Error::source(e);
+    while let Some(x) = src {
+        s.push_str(": ");
+        s.push_str(&x.to_string());
+        src = x.source();
+    }
+    s
+}
+
+/// Where a draw's vertex or index bytes come from.
+#[derive(Clone)]
+pub enum Source {
+    /// A client buffer object's GPU copy, at a byte offset.
+    Buffer(wgpu::Buffer, u64),
+    /// Bytes generated for this draw (converted attributes, constants, widened indices).
+    Bytes(Vec<u8>),
+}
+
+/// One vertex input of a draw.
+#[derive(Clone)]
+pub struct VertexInput {
+    /// Shader location.
+    pub location: u32,
+    /// Element format.
+    pub format: wgpu::VertexFormat,
+    /// Byte stride (0 for a constant).
+    pub stride: u64,
+    /// The bytes.
+    pub source: Source,
+}
+
+/// Fixed-function state that selects a pipeline.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct RasterState {
+    /// Primitive topology.
+    pub topology: wgpu::PrimitiveTopology,
+    /// Index format of an indexed strip (wgpu requires it; restart can never trigger, see draw).
+    pub strip_index: Option<wgpu::IndexFormat>,
+    /// GL front face is CCW.
+    pub front_ccw: bool,
+    /// Face culled, if culling is on.
+    pub cull: Option<wgpu::Face>,
+    /// Depth test function (`None`: test off), and depth writes.
+    pub depth: Option<(wgpu::CompareFunction, bool)>,
+    /// Stencil state if the test is on.
+    pub stencil: Option<wgpu::StencilState>,
+    /// Polygon offset (factor bits, units, clamp bits).
+    pub bias: Option<(u32, i32, u32)>,
+    /// Blend state if blending is on.
+    pub blend: Option<wgpu::BlendState>,
+    /// Colour write mask.
+    pub write_mask: wgpu::ColorWrites,
+    /// `GL_POINTS` drawn as squares: four vertices per instance, one instance per point,
+    /// every vertex input stepped per instance.
+    pub points: bool,
+    /// Reversed-Z framebuffer 0 (near and far bits): the vertex stage is its reversed-Z
+    /// variant, so pipelines differ.
+    pub reversed_z: Option<(u32, u32)>,
+    /// `GL_DEPTH_CLAMP_EXT`: depth is clamped to the depth range instead of clipped (wgpu's
+    /// unclipped depth, which is Vulkan's depth clamp).
+    pub unclipped_depth: bool,
+    /// `GL_EXT_clip_control`: the vertex stage is its variant, and with the upper-left origin
+    /// the winding as wgpu sees it is GL's reversed.
+    pub clip: ClipControl,
+}
+
+/// Everything a validated draw needs.
+pub struct DrawSpec<'a> {
+    /// The program.
+    pub program: Arc<LinkedProgram>,
+    /// Its vertex module for this draw (the points variant for `GL_POINTS`).
+    pub vs: wgpu::ShaderModule,
+    /// Its fragment module for this draw when not the program's (the reversed-Z variant of a
+    /// stage reading `gl_FragCoord`).
+    pub fs: Option<wgpu::ShaderModule>,
+    /// Uniform block bytes.
+    pub uniforms: std::borrow::Cow<'a, [u8]>,
+    /// Per sampler: texture view, its uid, sampling state, and whether the image cannot be
+    /// filtered (depth, or float without `FLOAT32_FILTERABLE`) (`None`: incomplete, sample black).
+    pub textures: Vec<Option<(wgpu::TextureView, u64, SamplerState, bool)>>,
+    /// Vertex inputs.
+    pub inputs: Vec<VertexInput>,
+    /// Indices, if indexed.
+    pub index: Option<(Source, wgpu::IndexFormat)>,
+    /// Vertices or indices to draw.
+    pub count: u32,
+    /// First vertex (non-indexed).
+    pub first: u32,
+    /// First instance and instance count (points: one instance per point; else 0 and 1).
+    pub instances: (u32, u32),
+    /// Fixed-function state.
+    pub raster: RasterState,
+    /// Viewport x, y, w, h, near, far.
+    pub viewport: [f32; 6],
+    /// Scissor rectangle, already clipped to the target.
+    pub scissor: [u32; 4],
+    /// Stencil reference.
+    pub stencil_ref: u32,
+    /// Blend constant.
+    pub blend_color: [f64; 4],
+}
+
+/// The renderer of one client: its caches and the open pass.
+pub struct Renderer {
+    gpu: Arc<Gpu>,
+    pipelines: HashMap<PipelineKey, wgpu::RenderPipeline>,
+    clear_pipelines: HashMap<ClearKey, wgpu::RenderPipeline>,
+    samplers: HashMap<(SamplerState, bool), wgpu::Sampler>,
+    /// Pipelines created because none matched.
+    pub pipeline_misses: u64,
+    /// Render passes submitted.
+    pub passes: u64,
+    /// Draws recorded.
+    pub draws: u64,
+    /// GPU validation errors caught since the executor last charged them to its client.
+    pub errors: Vec<String>,
+    pass: Option<Pass>,
+    staging: Vec<u8>,
+    ring: Option<(wgpu::Buffer, u64)>,
+    align: u64,
+    fixed: Arc<Fixed>,
+    layouts: HashMap<(u64, u32), (wgpu::BindGroupLayout, wgpu::PipelineLayout)>,
+    /// The client's way onto the queue.
+    pub lane: Arc<strata_device::Lane>,
+    /// The occlusion query the current context has active: draws recorded count for it.
+    pub occlusion: Option<Arc<Occlusion>>,
+}
+
+/// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.
+fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("incomplete texture"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: layers },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: COLOR_FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for layer in 0..layers {
+        gpu.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &tex,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+                aspect: wgpu::TextureAspect::All,
+            },
+            &[0, 0, 0, 255],
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4), rows_per_image: None },
+            wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        );
+    }
+    let dim = if layers == 6 { wgpu::TextureViewDimension::Cube } else { wgpu::TextureViewDimension::D2 };
+    tex.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() })
+}
+
+/// A 1×1×1 opaque black 3D image, which incomplete 3D textures sample.
+fn black_volume(gpu: &Gpu) -> wgpu::TextureView {
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("incomplete 3d texture"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D3,
+        format: COLOR_FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    gpu.write_texture(
+        tex.as_image_copy(),
+        &[0, 0, 0, 255],
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4), rows_per_image: None },
+        wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+    );
+    tex.create_view(&Default::default())
+}
+
+/// The bind group layout of the mipmap shaders: the level above, of `dim`, and a sampler.
+fn mip_layout(gpu: &Gpu, dim: wgpu::TextureViewDimension) -> wgpu::BindGroupLayout {
+    gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("mipmap"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: dim,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The objects every client's renderer uses unchanged: the clear and mipmap shaders and
+/// layouts, and the black images incomplete textures sample. They are built once per device
+/// (not per client: creating them for every session would cost each session its own uploads).
+pub struct Fixed {
+    black_2d: wgpu::TextureView,
+    black_cube: wgpu::TextureView,
+    black_3d: wgpu::TextureView,
+    clear_module: wgpu::ShaderModule,
+    clear_bgl: wgpu::BindGroupLayout,
+    clear_layout: wgpu::PipelineLayout,
+    mip_module: wgpu::ShaderModule,
+    mip_bgl: wgpu::BindGroupLayout,
+    mip3_module: wgpu::ShaderModule,
+    mip3_bgl: wgpu::BindGroupLayout,
+    /// Clear pipelines by target and masks, compiled once for all clients.
+    clear_pipelines: std::sync::Mutex<HashMap<ClearKey, wgpu::RenderPipeline>>,
+    /// Mipmap pipelines by format and whether they filter 3D images, compiled once for all
+    /// clients.
+    mip_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>>,
+}
+
+impl Fixed {
+    fn new(gpu: &Gpu) -> Self {
+        let d = &gpu.device;
+        let clear_module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("clear"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/clear.wgsl").into()),
+        });
+        let clear_bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("clear"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let clear_layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("clear"),
+            bind_group_layouts: &[Some(&clear_bgl)],
+            immediate_size: 0,
+        });
+        let mip_module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mipmap"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/mipmap.wgsl").into()),
+        });
+        let mip_bgl = mip_layout(gpu, wgpu::TextureViewDimension::D2);
+        let mip3_module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mipmap 3d"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/mipmap3d.wgsl").into()),
+        });
+        let mip3_bgl = mip_layout(gpu, wgpu::TextureViewDimension::D3);
+        Fixed {
+            black_2d: black(gpu, 1),
+            black_cube: black(gpu, 6),
+            black_3d: black_volume(gpu),
+            clear_module,
+            clear_bgl,
+            clear_layout,
+            mip_module,
+            mip_bgl,
+            mip3_module,
+            mip3_bgl,
+            clear_pipelines: Default::default(),
+            mip_pipelines: Default::default(),
+        }
+    }
+}
+
+impl Renderer {
+    /// A renderer drawing with `gpu`.
+    pub fn new(gpu: Arc<Gpu>) -> Self {
+        let fixed = gpu.shared(Fixed::new);
+        let align = u64::from(gpu.limits.min_uniform_buffer_offset_alignment).max(16);
+        let lane = strata_device::Lane::new(strata_protocol::control::Priority::Normal);
+        Renderer {
+            lane,
+            gpu,
+            pipelines: HashMap::new(),
+            clear_pipelines: HashMap::new(),
+            samplers: HashMap::new(),
+            pipeline_misses: 0,
+            passes: 0,
+            draws: 0,
+            errors: Vec::new(),
+            pass: None,
+            staging: Vec::new(),
+            ring: None,
+            align,
+            fixed,
+            layouts: HashMap::new(),
+            occlusion: None,
+        }
+    }
+}

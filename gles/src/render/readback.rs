@@ -1,0 +1,110 @@
+//! Readback, depth uploads, and waiting for the GPU. Reads and waits first submit the open
+//! pass; a depth upload runs in a `[Flush]` command, after it.
+
+use super::super::dispatch::Flushed;
+use super::{Renderer, Target};
+
+impl Renderer {
+    /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom
+    /// row first (GL order, which is also memory order here).
+    pub fn read_rgba(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        if target.half_float() {
+            // Converted as GL converts a float to an 8-bit normalised value: clamped, rounded.
+            let half = self.read_half(target, rect)?;
+            let to_u8 = |h: &[u8]| {
+                let v = half::f16::from_bits(u16::from_ne_bytes([h[0], h[1]])).to_f32();
+                (v.clamp(0.0, 1.0) * 255.0).round() as u8
+            };
+            return Some(half.chunks_exact(2).map(to_u8).collect());
+        }
+        self.flush();
+        let (tex, _) = target.color.as_ref()?;
+        let at = target.color_at;
+        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 4)
+    }
+
+    /// Reads `[x, y, w, h]` of a half-float colour image (`GL_EXT_color_buffer_half_float`)
+    /// as four half floats per pixel, rows bottom first.
+    pub fn read_half(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        self.flush();
+        let (tex, _) = target.color.as_ref()?;
+        let at = target.color_at;
+        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 8)
+    }
+
+    /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in
+    /// [0, 1] as stored) and, with `stencil`, its stencil; rows bottom first. `None` without
+    /// the image or the aspect.
+    pub fn read_depth_stencil(
+        &mut self,
+        target: &Target,
+        rect: [u32; 4],
+        stencil: bool,
+    ) -> Option<(Vec<f32>, Vec<u8>)> {
+        self.flush();
+        let (tex, layer) = target.depth_image.as_ref()?;
+        let layer = *layer;
+        let format = tex.format();
+        let depths = if format.has_depth_aspect() {
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+            let size = (target.width, target.height);
+            let out = self.gpu.texture_2d("depth read", wgpu::TextureFormat::R32Float, size, usage);
+            let (bgl, pipeline) = strata_scene::depth::Depth::of(&self.gpu).reader();
+            let aspect = wgpu::TextureAspect::DepthOnly;
+            let src = tex.create_view(&wgpu::TextureViewDescriptor {
+                aspect,
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: layer,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("depth read"),
+                layout: &bgl,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&src) }],
+            });
+            let dst = out.create_view(&Default::default());
+            let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+            strata_device::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
+            self.lane.submit(&self.gpu, vec![enc.finish()]);
+            let bytes = self.gpu.read_texels(&out, (0, 0), rect, wgpu::TextureAspect::All, 4)?;
+            bytes.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect()
+        } else {
+            Vec::new()
+        };
+        let stencils = match stencil && format.has_stencil_aspect() {
+            true => {
+                // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
+                let (tw, th) = (tex.width(), tex.height());
+                let all = self.gpu.read_texels(tex, (layer, 0), [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
+                let [x, y, w, h] = rect;
+                (y..y + h).flat_map(|r| all[(r * tw + x) as usize..(r * tw + x + w) as usize].to_vec()).collect()
+            }
+            false => Vec::new(),
+        };
+        Some((depths, stencils))
+    }
+
+    /// Waits until the GPU has finished everything this client submitted.
+    pub fn finish(&mut self) {
+        self.flush();
+        self.lane.wait_idle(&self.gpu);
+    }
+
+    /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
+    /// rectangle `[x, y, w, h]` of array layer `layer` (a cube face) of a `size` depth or
+    /// depth-stencil texture.
+    #[allow(clippy::too_many_arguments)]
+    pub fn upload_depth(
+        &mut self,
+        _: &Flushed,
+        tex: &wgpu::Texture,
+        layer: u32,
+        size: (u32, u32),
+        rect: [u32; 4],
+        depths: &[f32],
+        stencil: Option<&[u8]>,
+    ) {
+        strata_scene::depth::Depth::of(&self.gpu).write_region(tex, layer, size, rect, depths, stencil);
+    }
+}

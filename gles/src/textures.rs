@@ -1,0 +1,369 @@
+//! Texture objects: names, units and bindings, sampling parameters, their GPU images and
+//! mipmap generation. Image specification (uploads and copies) is in `teximage`.
+
+use strata_protocol::Slice;
+
+use super::context::Context;
+use super::dispatch::Flushed;
+use super::enums::*;
+use super::error::{GlError, GlResult};
+use super::formats::{Compressed, Storage};
+use super::images::TextureImage;
+use super::typed::TextureTarget;
+use super::GlesExecutor;
+
+/// Sampling state of a texture (ES 2.0 keeps it in the texture object).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SamplerState {
+    /// `TEXTURE_MIN_FILTER`.
+    pub min: u32,
+    /// `TEXTURE_MAG_FILTER`.
+    pub mag: u32,
+    /// `TEXTURE_WRAP_S`.
+    pub wrap_s: u32,
+    /// `TEXTURE_WRAP_T`.
+    pub wrap_t: u32,
+    /// `TEXTURE_WRAP_R_OES` (`GL_OES_texture_3D`; every texture has it).
+    pub wrap_r: u32,
+    /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
+    /// from 1 to [`MAX_ANISOTROPY`].
+    pub anisotropy: u32,
+    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`): the last level sampled, and
+    /// the last a mipmapped texture needs.
+    pub max_level: u32,
+}
+
+/// `GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT`: wgpu's largest anisotropy clamp (and Mesa's value).
+pub const MAX_ANISOTROPY: f32 = 16.0;
+
+impl Default for SamplerState {
+    fn default() -> Self {
+        SamplerState {
+            min: NEAREST_MIPMAP_LINEAR,
+            mag: LINEAR,
+            wrap_s: REPEAT,
+            wrap_t: REPEAT,
+            wrap_r: REPEAT,
+            anisotropy: 1.0f32.to_bits(),
+            max_level: 1000,
+        }
+    }
+}
+
+impl SamplerState {
+    /// Whether the minification filter reads mipmaps.
+    pub fn uses_mipmaps(&self) -> bool {
+        !matches!(self.min, NEAREST | LINEAR)
+    }
+
+    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s, t and r: the sampler clamps to the edge
+    /// and the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
+    pub fn mirror_clamp(&self) -> [bool; 3] {
+        [self.wrap_s, self.wrap_t, self.wrap_r].map(|w| w == MIRROR_CLAMP_TO_EDGE_EXT)
+    }
+
+    /// Whether s, t or r wraps by `GL_CLAMP_TO_BORDER_EXT` (r counts only for 3D textures,
+    /// `three_d`).
+    pub fn clamps_to_border(&self, three_d: bool) -> bool {
+        self.wrap_s == CLAMP_TO_BORDER_EXT
+            || self.wrap_t == CLAMP_TO_BORDER_EXT
+            || (three_d && self.wrap_r == CLAMP_TO_BORDER_EXT)
+    }
+
+    /// Whether either filter interpolates between texels or levels.
+    pub fn filters_linearly(&self) -> bool {
+        self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
+    }
+}
+
+/// A texture object.
+#[derive(Default)]
+pub struct Texture {
+    /// `TEXTURE_2D` or `TEXTURE_CUBE_MAP` once bound, 0 before.
+    pub target: u32,
+    /// Sampling state.
+    pub sampler: SamplerState,
+    /// The GPU image, its views, base size, mip count and storage.
+    pub gpu: Option<TextureImage>,
+    /// Per face: bitmask of the levels that have been specified.
+    pub defined: [u32; 6],
+    /// Internal format of level 0 (`RGBA`, `LUMINANCE`, `BGRA_EXT`, a compressed format, …).
+    pub format: u32,
+    /// Unique id for caches; changes when the image is recreated.
+    pub uid: u64,
+    /// Whether level 0 was specified as `GL_HALF_FLOAT_OES` (half-float images of other
+    /// types, 2_10_10_10, are not renderable).
+    pub half_float: bool,
+    /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
+    /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
+    pub border: [f32; 4],
+}
+
+impl Texture {
+    /// Whether every level of every face is defined, consistently with level 0 (the mipmap
+    /// completeness of GL ES 2.0 §3.7.10, whatever the filter).
+    pub fn levels_complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let all = ((1u64 << img.levels) - 1) as u32;
+        self.defined[..faces].iter().all(|d| d & all == all)
+    }
+
+    /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
+    /// image the device cannot filter is incomplete with a linear filter
+    /// (`OES_texture_float_linear` not offered).
+    pub fn complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        if img.storage == Storage::Float && !img.filterable && self.sampler.filters_linearly() {
+            return false;
+        }
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let levels = img.levels.min(self.sampler.max_level.saturating_add(1));
+        let need = if self.sampler.uses_mipmaps() { ((1u64 << levels) - 1) as u32 } else { 1 };
+        self.defined[..faces].iter().all(|d| d & need == need)
+    }
+}
+
+/// `GL_REQUIRED_TEXTURE_IMAGE_UNITS_OES`: the units an external texture takes (always 1).
+const REQUIRED_TEXTURE_IMAGE_UNITS_OES: u32 = 0x8D68;
+
+/// Sets `GL_TEXTURE_BORDER_COLOR_EXT` of the texture bound to `target` (four values).
+fn set_border(ctx: &mut Context, target: u32, v: &[f32]) -> GlResult {
+    let target = TextureTarget::from_gl(target)?;
+    let [r, g, b, a] = *v else { return Err(GlError::InvalidValue) };
+    let name = ctx.bindings.texture(target);
+    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    t.border = [r, g, b, a];
+    Ok(())
+}
+
+/// Sets one sampling parameter of the texture bound to `target`.
+fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f32) -> GlResult {
+    let target = TextureTarget::from_gl(target)?;
+    // GL_OES_EGL_image_external: external textures have no mipmaps and only clamp.
+    if target == TextureTarget::External {
+        let ok = match pname {
+            TEXTURE_MIN_FILTER => matches!(v as u32, NEAREST | LINEAR),
+            TEXTURE_WRAP_S | TEXTURE_WRAP_T => v as u32 == CLAMP_TO_EDGE,
+            _ => true,
+        };
+        if !ok {
+            return Err(GlError::InvalidEnum);
+        }
+    }
+    let name = ctx.bindings.texture(target);
+    if pname == TEXTURE_MAX_ANISOTROPY_EXT {
+        // Below 1 is an error; above the largest is that, as Mesa stores it.
+        if v.is_nan() || v < 1.0 {
+            return Err(GlError::InvalidValue);
+        }
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.sampler.anisotropy = v.min(MAX_ANISOTROPY).to_bits();
+        return Ok(());
+    }
+    if pname == TEXTURE_MAX_LEVEL_APPLE {
+        // Rounded as Mesa rounds a float; a negative level is an error.
+        let level = v.round();
+        if level.is_nan() || level < 0.0 {
+            return Err(GlError::InvalidValue);
+        }
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.sampler.max_level = level as u32;
+        return Ok(());
+    }
+    let v = v as u32;
+    let ok = match pname {
+        TEXTURE_MIN_FILTER => matches!(
+            v,
+            NEAREST
+                | LINEAR
+                | NEAREST_MIPMAP_NEAREST
+                | LINEAR_MIPMAP_NEAREST
+                | NEAREST_MIPMAP_LINEAR
+                | LINEAR_MIPMAP_LINEAR
+        ),
+        TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
+        TEXTURE_WRAP_S | TEXTURE_WRAP_T | TEXTURE_WRAP_R_OES => {
+            matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT | MIRROR_CLAMP_TO_EDGE_EXT)
+                || (border && v == CLAMP_TO_BORDER_EXT)
+        }
+        _ => false,
+    };
+    if !ok {
+        return Err(GlError::InvalidEnum);
+    }
+    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    match pname {
+        TEXTURE_MIN_FILTER => t.sampler.min = v,
+        TEXTURE_MAG_FILTER => t.sampler.mag = v,
+        TEXTURE_WRAP_S => t.sampler.wrap_s = v,
+        TEXTURE_WRAP_T => t.sampler.wrap_t = v,
+        _ => t.sampler.wrap_r = v,
+    }
+    Ok(())
+}
+
+/// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
+/// answering nothing) for a bad target or name, or when nothing is bound.
+fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
+    let bound = TextureTarget::from_gl(target).ok().map(|t| ctx.bindings.texture(t));
+    if pname == TEXTURE_BORDER_COLOR_EXT {
+        if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
+            return t.border.to_vec();
+        }
+    }
+    let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
+        TEXTURE_MIN_FILTER => Some(s.min as f32),
+        TEXTURE_MAG_FILTER => Some(s.mag as f32),
+        TEXTURE_WRAP_S => Some(s.wrap_s as f32),
+        TEXTURE_WRAP_T => Some(s.wrap_t as f32),
+        TEXTURE_WRAP_R_OES => Some(s.wrap_r as f32),
+        TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
+        TEXTURE_MAX_LEVEL_APPLE => Some(s.max_level as f32),
+        // Every texture takes one unit (Mesa answers for every target).
+        REQUIRED_TEXTURE_IMAGE_UNITS_OES => Some(1.0),
+        _ => None,
+    });
+    match v {
+        Some(v) => vec![v],
+        None => {
+            ctx.record(GlError::InvalidEnum);
+            vec![]
+        }
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenTextures(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, strata_device::account::Kind::Texture, ctx.objects.textures.fresh(names.iter()))?;
+        ctx.objects.textures.generate(names.iter());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteTextures(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.textures.delete(names.iter()) {
+            ctx.objects.forget_label(TEXTURE, n);
+            for s in ctx.bindings.units.iter_mut().flatten() {
+                if *s == n {
+                    *s = 0;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glActiveTexture(&mut self, ctx: &mut Context, texture: u32) -> GlResult {
+        let unit = texture.wrapping_sub(TEXTURE0) as usize;
+        let bindings = &mut ctx.bindings;
+        if unit >= bindings.units.len() {
+            return Err(GlError::InvalidEnum);
+        }
+        bindings.active_unit = unit;
+        Ok(())
+    }
+
+    pub(super) fn glBindTexture(&mut self, ctx: &mut Context, target: u32, texture: u32) -> GlResult {
+        let target = TextureTarget::from_gl(target)?;
+        self.admit(ctx, strata_device::account::Kind::Texture, ctx.objects.textures.fresh([texture]))?;
+        if let Some(t) = ctx.objects.textures.bind(texture) {
+            // A texture takes the target it is first bound to, and keeps it.
+            if t.target == 0 {
+                t.target = target.as_gl();
+                if target == TextureTarget::External {
+                    // GL_OES_EGL_image_external's initial state.
+                    (t.sampler.min, t.sampler.wrap_s, t.sampler.wrap_t) = (LINEAR, CLAMP_TO_EDGE, CLAMP_TO_EDGE);
+                }
+            } else if t.target != target.as_gl() {
+                return Err(GlError::InvalidOperation);
+            }
+        }
+        ctx.bindings.units[ctx.bindings.active_unit][target.slot()] = texture;
+        Ok(())
+    }
+
+    pub(super) fn glIsTexture(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.textures.get(&name).is_some_and(|t| t.target != 0)
+    }
+
+    pub(super) fn glTexParameteri(&mut self, ctx: &mut Context, target: u32, pname: u32, param: i32) -> GlResult {
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, param as f32)
+    }
+
+    pub(super) fn glTexParameterf(&mut self, ctx: &mut Context, target: u32, pname: u32, param: f32) -> GlResult {
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, param)
+    }
+
+    pub(super) fn glTexParameteriv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        pname: u32,
+        params: Slice<'_, i32>,
+    ) -> GlResult {
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            // Normalised as GL converts a signed integer colour (Mesa's arithmetic, in f32).
+            let v: Vec<f32> = params.iter().map(|i| (2.0 * i as f32 + 1.0) * (1.0 / 4_294_967_294.0)).collect();
+            return set_border(ctx, target, &v);
+        }
+        let v = params.get(0).ok_or(GlError::InvalidValue)?;
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, v as f32)
+    }
+
+    pub(super) fn glTexParameterfv(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        pname: u32,
+        params: Slice<'_, f32>,
+    ) -> GlResult {
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            return set_border(ctx, target, &params.to_vec());
+        }
+        let v = params.get(0).ok_or(GlError::InvalidValue)?;
+        tex_parameter(ctx, self.has_border_clamp(), target, pname, v)
+    }
+
+    pub(super) fn glGetTexParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
+        let v = get_tex_parameter(ctx, target, pname).into_iter();
+        if pname == TEXTURE_BORDER_COLOR_EXT {
+            // A colour as normalised integers, clamped to [0, 1] first (as Mesa answers).
+            return v.map(|x| (f64::from(x.clamp(0.0, 1.0)) * 2_147_483_647.0) as i32).collect();
+        }
+        // Rounded to the nearest integer, as GL converts a float state to an integer.
+        v.map(|x| x.round() as i32).collect()
+    }
+
+    pub(super) fn glGetTexParameterfv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
+        get_tex_parameter(ctx, target, pname)
+    }
+
+    pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, flushed: &Flushed, target: u32) -> GlResult {
+        let target = TextureTarget::from_gl(target)?;
+        if target == TextureTarget::External {
+            return Err(GlError::InvalidEnum);
+        }
+        let name = ctx.bindings.texture(target);
+        let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+        // Depth and compressed images have no mipmaps to generate; nor do images that cannot
+        // be filtered (ES 3.0 §3.8.10 spells out the rule ES 2.0 leaves implicit).
+        if img.storage.is_depth() || Compressed::from_gl(t.format).is_some() || !img.filterable {
+            return Err(GlError::InvalidOperation);
+        }
+        if t.defined[..layers].iter().any(|d| d & 1 == 0) {
+            return Err(GlError::InvalidOperation);
+        }
+        let (tex, mips, format) = (img.texture.clone(), img.mips, img.storage.wgpu());
+        for d in &mut t.defined[..layers] {
+            *d = (1 << mips) - 1;
+        }
+        if t.target == TEXTURE_3D_OES {
+            self.r.generate_volume_mipmaps(flushed, &tex, mips, format);
+        } else {
+            self.r.generate_mipmaps(flushed, &tex, mips, layers as u32, format);
+        }
+        Ok(())
+    }
+}
