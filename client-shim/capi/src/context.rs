@@ -9,7 +9,8 @@
 use strata_protocol::{Calls, Slice};
 
 use crate::display::{daemon, initialized};
-use crate::state::{self, process, ContextInfo, Current, GlState, Process};
+use crate::gl_state::GlState;
+use crate::state::{self, process, ContextInfo, Current, Process};
 use crate::surface;
 use crate::types::*;
 

@@ -11,10 +11,11 @@
 
 use strata_client::{ClientError, ConnectOptions, Connection};
 use strata_protocol::handshake::Placement;
+use strata_protocol::window::WindowPlacement;
 use strata_protocol::{Calls, EglResult};
 
+use crate::input;
 use crate::state::{self, process, DisplayInfo, Process};
-use crate::surface;
 use crate::types::*;
 
 /// Runs a daemon call on the process's connection, mapping transport failures to EGL errors.
@@ -76,6 +77,13 @@ pub(crate) fn platform_display(platform: EGLenum, native: *mut std::ffi::c_void)
     get_display(native as usize)
 }
 
+/// The placement `STRATA_WINDOW` states, if it is set and valid: the connection's, and each
+/// window surface's.
+pub(crate) fn explicit_placement() -> Option<WindowPlacement> {
+    let s = std::env::var(strata_protocol::window::ENV).ok()?;
+    s.parse().map_err(|e| state::log_once(&format!("ignoring {e}"))).ok()
+}
+
 /// How the shim introduces itself: the socket from `STRATA_SOCKET` (read at each connection),
 /// the name from `STRATA_NAME` and the placement from `STRATA_WINDOW`.
 fn connect_options() -> ConnectOptions {
@@ -85,7 +93,7 @@ fn connect_options() -> ConnectOptions {
     if let Some(name) = std::env::var("STRATA_NAME").ok().filter(|n| !n.is_empty()) {
         opts.name = name;
     }
-    opts.placement = surface::explicit_placement().map(|p| Placement {
+    opts.placement = explicit_placement().map(|p| Placement {
         x: p.x,
         y: p.y,
         z: p.z,
@@ -111,7 +119,7 @@ fn connect(p: &mut Process) -> Result<(), EGLint> {
     // Input events for the application's windows are read, and sent on as X11 events, by a
     // thread of their own.
     if let Some(reader) = conn.take_input_reader() {
-        crate::input::start(reader);
+        input::start(reader);
     }
     let (contexts, surfaces) = p.install_connection(conn, dd);
     if reconnect {

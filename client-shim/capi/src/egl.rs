@@ -4,7 +4,8 @@
 //! `eglInitialize` connects to `stratad`, and connects again after it went away (see
 //! [`crate::display`]). Configs are the daemon's handles; contexts and surfaces are the shim's,
 //! each backed by a daemon object (see [`crate::context`] and [`crate::surface`]). Each thread
-//! has its own current context and EGL error.
+//! has its own current context and EGL error. `eglGetProcAddress` is in `registry.rs`, beside
+//! the list of entry points it answers from.
 
 use std::ffi::{c_char, c_void, CStr};
 
@@ -12,8 +13,10 @@ use strata_protocol::{Calls, Slice};
 
 use crate::context::{create_context, destroy_context, make_current, query_context, release_current};
 use crate::display::{daemon, get_display, initialize, initialized, platform_display, terminate};
-use crate::state::{self, process};
+use crate::gl::debug_callback::sync_point;
+use crate::state::{self, answer, process};
 use crate::surface::{self, window_id, x_display};
+use crate::sync::glFinish;
 use crate::types::*;
 use crate::x11;
 
@@ -32,20 +35,6 @@ const CLIENT_EXTENSIONS: &CStr =
 
 /// Longest attribute list read from the application (pairs), against unterminated lists.
 const MAX_ATTRIBS: usize = 256;
-
-/// Sets the thread's EGL error from `r` (`EGL_SUCCESS` for a value); the value, or `fail`.
-pub(crate) fn answer<T>(r: Result<T, EGLint>, fail: T) -> T {
-    match r {
-        Ok(v) => {
-            state::set_egl_error(EGL_SUCCESS);
-            v
-        }
-        Err(e) => {
-            state::set_egl_error(e);
-            fail
-        }
-    }
-}
 
 /// Sets the thread's EGL error from `r` and converts it to an `EGLBoolean`.
 fn boolean(r: Result<(), EGLint>) -> EGLBoolean {
@@ -177,13 +166,13 @@ fn unsupported(name: &str, error: EGLint) -> EGLint {
 fn wait_client() -> EGLBoolean {
     if state::current().is_some() {
         // SAFETY: glFinish takes no arguments.
-        unsafe { crate::sync::glFinish() };
+        unsafe { glFinish() };
     }
     state::set_egl_error(EGL_SUCCESS);
     EGL_TRUE
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Returns and clears the calling thread's EGL error.
     fn eglGetError() -> EGLint {
         state::take_egl_error()
@@ -504,7 +493,7 @@ crate::entry_points! {
             surface::follow_window(&mut p, s);
             Ok(())
         })();
-        crate::debug::sync_point("eglSwapBuffers");
+        sync_point("eglSwapBuffers");
         boolean(r)
     }
 
@@ -527,7 +516,7 @@ crate::entry_points! {
             surface::follow_window(&mut p, s);
             Ok(())
         })();
-        crate::debug::sync_point("eglSwapBuffersWithDamageKHR");
+        sync_point("eglSwapBuffersWithDamageKHR");
         boolean(r)
     }
 
@@ -557,24 +546,6 @@ crate::entry_points! {
         state::set_api(EGL_OPENGL_ES_API);
         let _ = r;
         boolean(Ok(()))
-    }
-
-    /// The address of any EGL or GLES 2.0 entry point the shim exports (and `GL_OES_mapbuffer`).
-    fn eglGetProcAddress(name: *const c_char) -> EglProc {
-        if name.is_null() {
-            return None;
-        }
-        // SAFETY: the application passes a NUL-terminated name.
-        let name = unsafe { CStr::from_ptr(name) };
-        match crate::proc_address(name.to_bytes()) {
-            // SAFETY: a non-null address of one of the shim's own `extern "C"` functions; the
-            // caller casts it back to the right prototype, as eglGetProcAddress specifies.
-            Some(f) => Some(unsafe { std::mem::transmute::<*const c_void, unsafe extern "C" fn()>(f) }),
-            None => {
-                tracing::debug!("strata-egl: eglGetProcAddress({name:?}): no such entry point");
-                None
-            }
-        }
     }
 }
 

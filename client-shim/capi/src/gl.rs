@@ -1,9 +1,10 @@
-//! The GLES 2.0 entry points and those of the extensions.
+//! What every GL entry point runs on: `with_gl`, which runs a call against the calling
+//! thread's current context (with no current context every call does nothing, as GL
+//! specifies), and the functions that marshal pointers: arrays and strings in and out,
+//! client-side vertex and index arrays, and interned strings.
 //!
-//! Calls that map one-to-one onto a protocol command are generated from the table in
-//! [`simple`]; the ones below marshal pointers: arrays and strings in and out, client-side
-//! vertex and index arrays, buffer shadows for mapping, and client-allocated object names.
-//! With no current context every call does nothing, as GL specifies.
+//! The entry points themselves are in the modules below, one per family or extension, which
+//! the registry lists; this file uses none of them.
 
 use std::collections::HashMap;
 use std::ffi::{c_void, CStr, CString};
@@ -11,10 +12,13 @@ use std::sync::{LazyLock, Mutex};
 
 use strata_client::vertex_wire::{self, VertexWire};
 use strata_client::{ClientError, Connection};
-use strata_protocol::{Blob, Calls, Slice, Text};
+use strata_protocol::{Blob, Calls};
 
-use crate::state::{self, process, ClientArray, GlState};
+use crate::gl_state::{ClientArray, GlState, Mapping, MAX_ATTRIBS};
+use crate::state::{self, process};
+use crate::surface::ensure_bound;
 use crate::types::*;
+use debug_callback::Delivery;
 
 /// What a GL entry point works with: the connection and the current context's client state.
 pub(crate) struct Gl<'a> {
@@ -26,7 +30,7 @@ pub(crate) struct Gl<'a> {
     pub next_name: &'a mut u32,
     /// The process's mapped buffers, by name (names are the process's, so one table serves
     /// every share group).
-    pub maps: &'a mut HashMap<u32, mapping::Mapping>,
+    pub maps: &'a mut HashMap<u32, Mapping>,
 }
 
 impl Gl<'_> {
@@ -72,8 +76,8 @@ show_plain!(i32, f32, u8);
 
 /// Runs a GL call against the calling thread's current context. Without one, or once the
 /// daemon is gone, it returns `default` (and the latter records `GL_CONTEXT_LOST`). Debug
-/// messages fetched for the application's callback after the call (see `debug`) are delivered
-/// once the library's lock is released. With `STRATA_CHECK_ERRORS`, an error it raises is
+/// messages fetched for the application's callback after the call (see [`debug_callback`]) are
+/// delivered once the library's lock is released. With `STRATA_CHECK_ERRORS`, an error it raises is
 /// logged with the call's arguments.
 pub(crate) fn with_gl<'a, R>(
     call: impl Into<Call<'a>>,
@@ -95,7 +99,7 @@ fn with_gl_locked<R>(
     args: &dyn Fn() -> String,
     default: R,
     f: impl FnOnce(&mut Gl<'_>) -> Result<R, ClientError>,
-    delivery: &mut Option<crate::debug::Delivery>,
+    delivery: &mut Option<Delivery>,
 ) -> R {
     let Some(cur) = state::current() else { return default };
     let mut guard = process();
@@ -108,7 +112,7 @@ fn with_gl_locked<R>(
         return default;
     }
     // Another thread's context may be current on the daemon: switch back to ours.
-    if let Err(e) = crate::surface::ensure_bound(p, &cur) {
+    if let Err(e) = ensure_bound(p, &cur) {
         if !p.lost {
             tracing::warn!("strata-egl: {name}: re-binding the thread's context failed with EGL error {e:#x}");
         }
@@ -129,7 +133,7 @@ fn with_gl_locked<R>(
         }
     }
     if result.is_ok() {
-        match crate::debug::pull(conn, &ctx.gl, name) {
+        match debug_callback::pull(conn, &ctx.gl, name) {
             Ok(d) => *delivery = d,
             Err(e) => result = Err(e),
         }
@@ -152,154 +156,6 @@ fn with_gl_locked<R>(
 fn check_errors() -> bool {
     static ON: LazyLock<bool> = LazyLock::new(|| std::env::var_os("STRATA_CHECK_ERRORS").is_some_and(|v| v == "1"));
     *ON
-}
-
-/// Converts a C argument to the protocol's type.
-trait Wire {
-    type Out;
-    fn wire(self) -> Self::Out;
-}
-
-macro_rules! wire_identity {
-    ($($t:ty),*) => { $( impl Wire for $t { type Out = $t; fn wire(self) -> $t { self } } )* };
-}
-wire_identity!(u32, i32, f32);
-
-impl Wire for GLboolean {
-    type Out = bool;
-    fn wire(self) -> bool {
-        self != 0
-    }
-}
-
-/// Converts a protocol result to the C return type.
-trait ToC<C> {
-    fn to_c(self) -> C;
-}
-
-impl ToC<()> for () {
-    fn to_c(self) {}
-}
-
-impl ToC<GLenum> for GLenum {
-    fn to_c(self) -> GLenum {
-        self
-    }
-}
-
-impl ToC<GLboolean> for bool {
-    fn to_c(self) -> GLboolean {
-        self as GLboolean
-    }
-}
-
-/// Generates entry points that map one-to-one onto a `Calls` method of the same name.
-macro_rules! simple_calls {
-    ($( fn $name:ident ( $( $arg:ident : $ty:ty ),* ) $( -> $ret:ty )? ; )*) => {
-        crate::entry_points! {
-            $(
-                #[doc = concat!("`", stringify!($name), "`, forwarded to the daemon as it is.")]
-                fn $name( $( $arg : $ty ),* ) $( -> $ret )? {
-                    let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl(Call { name: stringify!($name), args: &args }, crate::Fallback::fallback(), |gl| {
-                        Ok(ToC::to_c(gl.conn.$name( $( Wire::wire($arg) ),* )?))
-                    })
-                }
-            )*
-        }
-    };
-}
-
-/// The entry points that carry only scalars: one line each, generated.
-pub mod simple {
-    use super::*;
-
-    simple_calls! {
-        fn glActiveTexture(texture: GLenum);
-        fn glAttachShader(program: GLuint, shader: GLuint);
-        fn glBindFramebuffer(target: GLenum, framebuffer: GLuint);
-        fn glBindRenderbuffer(target: GLenum, renderbuffer: GLuint);
-        fn glBindTexture(target: GLenum, texture: GLuint);
-        fn glBlendColor(red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat);
-        fn glBlendEquation(mode: GLenum);
-        fn glBlendEquationSeparate(mode_rgb: GLenum, mode_alpha: GLenum);
-        fn glBlendFunc(sfactor: GLenum, dfactor: GLenum);
-        fn glBlendFuncSeparate(src_rgb: GLenum, dst_rgb: GLenum, src_alpha: GLenum, dst_alpha: GLenum);
-        fn glClear(mask: GLbitfield);
-        fn glClearColor(red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat);
-        fn glClearDepthf(depth: GLfloat);
-        fn glClearStencil(s: GLint);
-        fn glColorMask(red: GLboolean, green: GLboolean, blue: GLboolean, alpha: GLboolean);
-        fn glCompileShader(shader: GLuint);
-        fn glCopyTexImage2D(target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint);
-        fn glCopyTexSubImage2D(target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei);
-        fn glCullFace(mode: GLenum);
-        fn glDeleteProgram(program: GLuint);
-        fn glDeleteShader(shader: GLuint);
-        fn glDepthFunc(func: GLenum);
-        fn glDepthMask(flag: GLboolean);
-        fn glDepthRangef(near: GLfloat, far: GLfloat);
-        fn glDetachShader(program: GLuint, shader: GLuint);
-        fn glFlush();
-        fn glFramebufferRenderbuffer(target: GLenum, attachment: GLenum, renderbuffertarget: GLenum, renderbuffer: GLuint);
-        fn glFramebufferTexture2D(target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint);
-        fn glFrontFace(mode: GLenum);
-        fn glGenerateMipmap(target: GLenum);
-        fn glHint(target: GLenum, mode: GLenum);
-        fn glLineWidth(width: GLfloat);
-        fn glLinkProgram(program: GLuint);
-        fn glPolygonOffset(factor: GLfloat, units: GLfloat);
-        fn glPolygonOffsetClampEXT(factor: GLfloat, units: GLfloat, clamp: GLfloat);
-        fn glClipControlEXT(origin: GLenum, depth: GLenum);
-        fn glMaxShaderCompilerThreadsKHR(count: GLuint);
-        fn glReadBufferNV(mode: GLenum);
-        fn glReleaseShaderCompiler();
-        fn glRenderbufferStorage(target: GLenum, internalformat: GLenum, width: GLsizei, height: GLsizei);
-        fn glSampleCoverage(value: GLfloat, invert: GLboolean);
-        fn glScissor(x: GLint, y: GLint, width: GLsizei, height: GLsizei);
-        fn glStencilFunc(func: GLenum, reference: GLint, mask: GLuint);
-        fn glStencilFuncSeparate(face: GLenum, func: GLenum, reference: GLint, mask: GLuint);
-        fn glStencilMask(mask: GLuint);
-        fn glStencilMaskSeparate(face: GLenum, mask: GLuint);
-        fn glStencilOp(fail: GLenum, zfail: GLenum, zpass: GLenum);
-        fn glStencilOpSeparate(face: GLenum, fail: GLenum, zfail: GLenum, zpass: GLenum);
-        fn glTexParameterf(target: GLenum, pname: GLenum, param: GLfloat);
-        fn glTexParameteri(target: GLenum, pname: GLenum, param: GLint);
-        fn glUniform1f(location: GLint, x: GLfloat);
-        fn glUniform1i(location: GLint, x: GLint);
-        fn glUniform2f(location: GLint, x: GLfloat, y: GLfloat);
-        fn glUniform2i(location: GLint, x: GLint, y: GLint);
-        fn glUniform3f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat);
-        fn glUniform3i(location: GLint, x: GLint, y: GLint, z: GLint);
-        fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
-        fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
-        fn glBeginConditionalRenderNV(id: GLuint, mode: GLenum);
-        fn glEndConditionalRenderNV();
-        fn glBeginQueryEXT(target: GLenum, id: GLuint);
-        fn glEndQueryEXT(target: GLenum);
-        fn glQueryCounterEXT(id: GLuint, target: GLenum);
-        fn glBindProgramPipelineEXT(pipeline: GLuint);
-        fn glUseProgramStagesEXT(pipeline: GLuint, stages: GLbitfield, program: GLuint);
-        fn glActiveShaderProgramEXT(pipeline: GLuint, program: GLuint);
-        fn glProgramParameteriEXT(program: GLuint, pname: GLenum, value: GLint);
-        fn glValidateProgramPipelineEXT(pipeline: GLuint);
-        fn glUseProgram(program: GLuint);
-        fn glValidateProgram(program: GLuint);
-        fn glVertexAttrib1f(index: GLuint, x: GLfloat);
-        fn glVertexAttrib2f(index: GLuint, x: GLfloat, y: GLfloat);
-        fn glVertexAttrib3f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat);
-        fn glVertexAttrib4f(index: GLuint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
-        fn glCheckFramebufferStatus(target: GLenum) -> GLenum;
-        fn glIsBuffer(name: GLuint) -> GLboolean;
-        fn glIsEnabled(cap: GLenum) -> GLboolean;
-        fn glIsFramebuffer(name: GLuint) -> GLboolean;
-        fn glIsProgram(name: GLuint) -> GLboolean;
-        fn glIsRenderbuffer(name: GLuint) -> GLboolean;
-        fn glIsShader(name: GLuint) -> GLboolean;
-        fn glIsTexture(name: GLuint) -> GLboolean;
-        fn glIsQueryEXT(id: GLuint) -> GLboolean;
-        fn glIsProgramPipelineEXT(pipeline: GLuint) -> GLboolean;
-    }
 }
 
 /// Bytes of one component of a vertex attribute or index type.
@@ -422,7 +278,7 @@ fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64) -> Result<(), ClientError>
     if vertices == 0 {
         return Ok(());
     }
-    for i in 0..state::MAX_ATTRIBS {
+    for i in 0..MAX_ATTRIBS {
         let a = gl.st.attribs[i];
         let (true, Some(ClientArray { ptr, size, ty, stride })) = (a.enabled, a.client) else { continue };
         let Some(component) = type_size(ty) else { continue };
@@ -465,56 +321,20 @@ fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
     max.map_or(0, |m| u64::from(m) + 1)
 }
 
-mod families;
-mod pixel_buffer;
+/// Delivering `GL_KHR_debug` messages to the application's callback.
+pub(crate) mod debug_callback;
+
+/// Pixel sizes and row layouts of uploads and reads.
 mod pixels;
-pub use families::{active, attrib, delete, get_arrays, get_int, get_strings, matrix, names, uniforms};
-use pixels::{read_pixels, tex_image_bytes};
 
-/// The GL entry-point modules, listed once: [`lookup`] searches them in order, and the tests
-/// check every name they export.
-macro_rules! gl_modules {
-    ($($($seg:ident)::+),* $(,)?) => {
-        /// The names of every GL entry point, by module.
-        #[cfg(test)]
-        pub(crate) const MODULE_NAMES: &[&[&str]] = &[$($($seg)::+::NAMES),*];
+/// Pixel pack and unpack buffers (`GL_NV_pixel_buffer_object`).
+mod pixel_buffer;
 
-        /// The address of a GL entry point, by name.
-        pub(crate) fn lookup(name: &[u8]) -> Option<*const c_void> {
-            None$(.or_else(|| $($seg)::+::lookup(name)))*
-        }
-    };
-}
+/// The entry points that carry only scalars: one line each, generated.
+pub mod simple;
 
-gl_modules!(
-    simple,
-    uniforms,
-    matrix,
-    attrib,
-    names,
-    delete,
-    get_int,
-    get_arrays,
-    get_strings,
-    active,
-    hand,
-    draws,
-    mapping,
-    robustness,
-    crate::vao,
-    crate::debug,
-    crate::discard,
-    crate::draw_buffers,
-    crate::blend_extended,
-    program_binary,
-    separate,
-    separate::scalars,
-    separate::arrays,
-    separate::matrices,
-    border,
-    texture3d,
-    crate::image::targets,
-);
+/// The generated families of entry points that marshal pointers the same way.
+pub mod families;
 
 /// The hand-written entry points: everything that marshals pointers or keeps client state.
 pub mod hand;
@@ -528,6 +348,21 @@ pub mod mapping;
 /// The reset status and bounded reads (`GL_EXT_robustness`, `GL_KHR_robustness`).
 pub mod robustness;
 
+/// Vertex array objects (`GL_OES_vertex_array_object`).
+pub mod vao;
+
+/// Debug output, groups and labels (`GL_KHR_debug`, `GL_EXT_debug_label`).
+pub mod debug;
+
+/// Discarding framebuffer contents (`GL_EXT_discard_framebuffer`).
+pub mod discard;
+
+/// Several draw buffers (`GL_EXT_draw_buffers`, `GL_NV_draw_buffers`).
+pub mod draw_buffers;
+
+/// Fragment outputs' indices (`GL_EXT_blend_func_extended`).
+pub mod blend_extended;
+
 /// Program binaries (`GL_OES_get_program_binary`).
 pub mod program_binary;
 
@@ -539,3 +374,6 @@ pub mod border;
 
 /// 3D textures (`GL_OES_texture_3D`).
 pub mod texture3d;
+
+/// Textures and renderbuffers of EGLImages (`GL_OES_EGL_image`).
+pub mod egl_image;

@@ -16,10 +16,15 @@
 //! for that thread, through the interface glvnd's libEGL uses for its vendors (ABI version 1), and
 //! releasing the context releases it. A thread with a GLX context current through glvnd is left
 //! alone.
+//!
+//! The table answers libGLdispatch from the lookup `eglGetProcAddress` answers from. That lookup
+//! lists every entry point, those that make a context current (and so come here) among them, so
+//! this module cannot name it: the registry installs it ([`install_lookup`]) as the library is
+//! loaded.
 
 use std::cell::Cell;
 use std::ffi::{c_char, c_int, c_void, CStr};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 /// The libGLdispatch interface version this code speaks (`GLDISPATCH_ABI_VERSION`).
 const ABI_VERSION: c_int = 1;
@@ -54,6 +59,18 @@ enum Found {
 
 static DISPATCH: Mutex<Found> = Mutex::new(Found::NotYet);
 
+/// The address of one of the library's entry points, by name.
+pub(crate) type Lookup = fn(&[u8]) -> Option<*const c_void>;
+
+/// The lookup the library's dispatch table answers with (see [`install_lookup`]).
+static LOOKUP: OnceLock<Lookup> = OnceLock::new();
+
+/// Sets the lookup the library's dispatch table answers libGLdispatch with; until it is set,
+/// libGLdispatch is not used.
+pub(crate) fn install_lookup(lookup: Lookup) {
+    let _ = LOOKUP.set(lookup);
+}
+
 thread_local! {
     /// This thread's state while the library's table is current in libGLdispatch.
     static MINE: Cell<*mut ThreadState> = const { Cell::new(std::ptr::null_mut()) };
@@ -66,7 +83,7 @@ unsafe extern "C" fn proc_address(name: *const c_char, _param: *mut c_void) -> *
     }
     // SAFETY: libGLdispatch passes NUL-terminated entry point names.
     let name = unsafe { CStr::from_ptr(name) };
-    crate::proc_address(name.to_bytes()).map_or(std::ptr::null_mut(), |p| p.cast_mut())
+    LOOKUP.get().and_then(|lookup| lookup(name.to_bytes())).map_or(std::ptr::null_mut(), |p| p.cast_mut())
 }
 
 /// Frees a thread state after libGLdispatch released it for a thread that ended.
@@ -126,10 +143,12 @@ fn connect() -> Option<Found> {
     }
 }
 
-/// libGLdispatch, if the process has loaded it (looked for again until it has).
+/// libGLdispatch, if the process has loaded it (looked for again until it has, and until the
+/// lookup is installed).
 fn dispatch() -> Option<Dispatch> {
     let mut found = DISPATCH.lock().unwrap_or_else(|p| p.into_inner());
     if let Found::NotYet = *found {
+        LOOKUP.get()?;
         match connect() {
             Some(f) => *found = f,
             None => return None,
@@ -169,5 +188,22 @@ pub(crate) fn follow_current(current: bool) {
             let _ = MINE.try_with(|m| m.set(std::ptr::null_mut()));
             drop(Box::from_raw(state));
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_answers_with_every_entry_point_as_soon_as_the_library_is_loaded() {
+        assert!(LOOKUP.get().is_some(), "the lookup is installed before any entry point runs");
+        for name in [c"glClear", c"glFinish", c"glEGLImageTargetTexture2DOES", c"eglMakeCurrent"] {
+            // SAFETY: a NUL-terminated name.
+            let p = unsafe { proc_address(name.as_ptr(), std::ptr::null_mut()) };
+            assert!(!p.is_null(), "{name:?}");
+        }
+        // SAFETY: as above.
+        assert!(unsafe { proc_address(c"glNoSuchCall".as_ptr(), std::ptr::null_mut()) }.is_null());
     }
 }

@@ -1,15 +1,15 @@
 //! EGLImages (`EGL_KHR_image_base`, with `EGL_KHR_gl_texture_2D_image`,
-//! `EGL_KHR_gl_texture_cubemap_image` and `EGL_KHR_gl_renderbuffer_image`) and the GL calls
-//! that make textures and renderbuffers of them (`GL_OES_EGL_image`,
-//! `GL_OES_EGL_image_external`). The daemon keeps the images; an `EGLImageKHR` is its handle.
+//! `EGL_KHR_gl_texture_cubemap_image` and `EGL_KHR_gl_renderbuffer_image`). The daemon keeps
+//! the images; an `EGLImageKHR` is its handle. The GL calls that make textures and
+//! renderbuffers of them (`GL_OES_EGL_image`, `GL_OES_EGL_image_external`) are in
+//! `gl/egl_image.rs`.
 
 use std::ffi::c_void;
 
 use strata_protocol::{Calls, Slice};
 
 use crate::display::{daemon, initialized};
-use crate::egl::answer;
-use crate::state::process;
+use crate::state::{answer, process};
 use crate::types::*;
 
 /// `EGLImageKHR`.
@@ -39,7 +39,7 @@ unsafe fn attribs(list: *const EGLint) -> Result<Vec<EGLint>, EGLint> {
 }
 
 /// A handle the application passed, as the daemon's number (an impossible one if it is none).
-fn handle(p: *mut c_void) -> u32 {
+pub(crate) fn handle(p: *mut c_void) -> u32 {
     u32::try_from(p as usize).unwrap_or(u32::MAX)
 }
 
@@ -60,7 +60,7 @@ fn create(
     daemon(&mut p, |c, dd| c.eglCreateImageKHR(dd, d_ctx, target as EGLint, name, Slice::new(&a)))
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// An EGLImage of a level (and face) of a texture, or of a renderbuffer, of `ctx`.
     fn eglCreateImageKHR(dpy: EGLDisplay, ctx: EGLContext, target: EGLenum, buffer: EGLClientBuffer, attrib_list: *const EGLint) -> EGLImageKHR {
         answer(create(dpy, ctx, target, buffer, attrib_list).map(|h| h as usize as EGLImageKHR), std::ptr::null_mut())
@@ -73,32 +73,5 @@ crate::entry_points! {
             initialized(&mut p, dpy).and_then(|_| daemon(&mut p, |c, dd| c.eglDestroyImageKHR(dd, handle(image))))
         };
         answer(r.map(|()| EGL_TRUE), EGL_FALSE)
-    }
-}
-
-/// The GL calls of `GL_OES_EGL_image`, among the GL entry points (`glXGetProcAddress` answers
-/// them too).
-pub mod targets {
-    use std::ffi::c_void;
-
-    use strata_protocol::Calls;
-
-    use super::handle;
-    use crate::gl::with_gl;
-    use crate::types::*;
-
-    crate::entry_points! {
-        /// The texture bound to `target` (`GL_TEXTURE_2D`, `GL_TEXTURE_EXTERNAL_OES`) takes the
-        /// image's contents, shared with it.
-        fn glEGLImageTargetTexture2DOES(target: GLenum, image: *mut c_void) {
-            with_gl("glEGLImageTargetTexture2DOES", (), |gl| gl.conn.glEGLImageTargetTexture2DOES(target, handle(image)))
-        }
-
-        /// The bound renderbuffer takes the image's contents, shared with it.
-        fn glEGLImageTargetRenderbufferStorageOES(target: GLenum, image: *mut c_void) {
-            with_gl("glEGLImageTargetRenderbufferStorageOES", (), |gl| {
-                gl.conn.glEGLImageTargetRenderbufferStorageOES(target, handle(image))
-            })
-        }
     }
 }

@@ -1,129 +1,17 @@
-//! The shim's state: one daemon connection per process (behind a mutex), the EGL objects and
-//! the client-side GL state the C ABI needs, and each thread's current context and EGL error.
+//! The shim's state: one daemon connection per process (behind a mutex), the EGL objects (each
+//! context holding its client-side GL state, see [`crate::gl_state`]), and each thread's current
+//! context and EGL error.
 
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
-use std::sync::{LazyLock, Mutex, MutexGuard, Once};
+use std::sync::{LazyLock, Mutex, MutexGuard};
 use std::thread::ThreadId;
 
 use strata_client::{ClientError, Connection};
 
+use crate::gl_state::{GlState, Mapping};
+use crate::glvnd;
 use crate::types::*;
-
-/// Vertex attribute slots the shim tracks (the daemon's `GL_MAX_VERTEX_ATTRIBS`).
-pub(crate) const MAX_ATTRIBS: usize = 16;
-
-/// A client-side vertex array: where the application's bytes are and how to walk them.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ClientArray {
-    /// The application's pointer.
-    pub ptr: usize,
-    /// Components per vertex.
-    pub size: i32,
-    /// Component type.
-    pub ty: GLenum,
-    /// Byte stride (0 = tightly packed).
-    pub stride: i32,
-}
-
-/// What the shim remembers about one vertex attribute.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Attrib {
-    /// `glEnableVertexAttribArray`.
-    pub enabled: bool,
-    /// Set when the last `glVertexAttribPointer` had no array buffer bound.
-    pub client: Option<ClientArray>,
-}
-
-/// The pack state `glReadPixels` lays its rows out by in the application's memory.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Pack {
-    /// `GL_PACK_ALIGNMENT`.
-    pub alignment: usize,
-    /// `GL_PACK_ROW_LENGTH_NV`, `GL_PACK_SKIP_ROWS_NV`, `GL_PACK_SKIP_PIXELS_NV`
-    /// (`NV_pack_subimage`).
-    pub rows: [usize; 3],
-    /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE`: the top row first.
-    pub reverse: bool,
-}
-
-/// The client-side part of one GL context.
-#[derive(Debug)]
-pub(crate) struct GlState {
-    /// An error the shim raised itself; `glGetError` reports it before the daemon's.
-    pub error: GLenum,
-    /// `GL_ARRAY_BUFFER` binding.
-    pub array_buffer: u32,
-    /// `GL_ELEMENT_ARRAY_BUFFER` binding (of the bound vertex array object).
-    pub element_buffer: u32,
-    /// Vertex attributes (of the bound vertex array object).
-    pub attribs: [Attrib; MAX_ATTRIBS],
-    /// `GL_VERTEX_ARRAY_BINDING_OES`.
-    pub vertex_array: u32,
-    /// The vertex array objects not bound, with their state (see `vao`).
-    pub vertex_arrays: HashMap<u32, crate::vao::VertexArray>,
-    /// `GL_KHR_debug` state the library keeps: the callback and the two enables.
-    pub debug: crate::debug::DebugClient,
-    /// `GL_UNPACK_ALIGNMENT`.
-    pub unpack_alignment: usize,
-    /// `GL_UNPACK_ROW_LENGTH_EXT`, `GL_UNPACK_SKIP_ROWS_EXT`, `GL_UNPACK_SKIP_PIXELS_EXT`
-    /// (`EXT_unpack_subimage`): where an upload's rows lie in the application's memory.
-    pub unpack_rows: [usize; 3],
-    /// Where `glReadPixels` puts its rows: see [`Pack`].
-    pub pack: Pack,
-    /// A copy of every buffer's contents: index ranges of client-array draws read it, uploads
-    /// from an unpack buffer read it, and reads into a pack buffer write it.
-    pub buffers: HashMap<u32, Vec<u8>>,
-    /// `GL_PIXEL_PACK_BUFFER_BINDING_NV` (`GL_NV_pixel_buffer_object`).
-    pub pack_buffer: u32,
-    /// `GL_PIXEL_UNPACK_BUFFER_BINDING_NV`.
-    pub unpack_buffer: u32,
-}
-
-impl Default for GlState {
-    fn default() -> Self {
-        GlState {
-            error: GL_NO_ERROR,
-            array_buffer: 0,
-            element_buffer: 0,
-            attribs: [Attrib::default(); MAX_ATTRIBS],
-            vertex_array: 0,
-            vertex_arrays: HashMap::new(),
-            debug: crate::debug::DebugClient::default(),
-            unpack_alignment: 4,
-            unpack_rows: [0; 3],
-            pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
-            buffers: HashMap::new(),
-            pack_buffer: 0,
-            unpack_buffer: 0,
-        }
-    }
-}
-
-impl GlState {
-    /// Records an error unless one is already pending (the first error wins).
-    pub fn err(&mut self, e: GLenum) {
-        if self.error == GL_NO_ERROR {
-            self.error = e;
-        }
-    }
-
-    /// Returns and clears the pending error.
-    pub fn take_error(&mut self) -> GLenum {
-        std::mem::replace(&mut self.error, GL_NO_ERROR)
-    }
-
-    /// The buffer bound to `target`, if `target` is a buffer target.
-    pub fn bound(&self, target: GLenum) -> Option<u32> {
-        match target {
-            GL_ARRAY_BUFFER => Some(self.array_buffer),
-            GL_ELEMENT_ARRAY_BUFFER => Some(self.element_buffer),
-            0x88EB => Some(self.pack_buffer),
-            0x88EC => Some(self.unpack_buffer),
-            _ => None,
-        }
-    }
-}
 
 /// An EGL display as the application sees it.
 #[derive(Debug)]
@@ -199,7 +87,7 @@ pub(crate) struct Process {
     /// The next GL object name (names are allocated by the client).
     pub next_name: u32,
     /// Mapped buffers, by name: the memory handed to the application.
-    pub maps: HashMap<u32, crate::gl::mapping::Mapping>,
+    pub maps: HashMap<u32, Mapping>,
 }
 
 static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
@@ -356,6 +244,20 @@ pub(crate) fn set_egl_error(e: EGLint) {
     let _ = THREAD.try_with(|t| t.borrow_mut().error = e);
 }
 
+/// Sets the thread's EGL error from `r` (`EGL_SUCCESS` for a value); the value, or `fail`.
+pub(crate) fn answer<T>(r: Result<T, EGLint>, fail: T) -> T {
+    match r {
+        Ok(v) => {
+            set_egl_error(EGL_SUCCESS);
+            v
+        }
+        Err(e) => {
+            set_egl_error(e);
+            fail
+        }
+    }
+}
+
 /// Returns and clears this thread's EGL error.
 pub(crate) fn take_egl_error() -> EGLint {
     THREAD.try_with(|t| std::mem::replace(&mut t.borrow_mut().error, EGL_SUCCESS)).unwrap_or(EGL_SUCCESS)
@@ -369,7 +271,7 @@ pub(crate) fn current() -> Option<Current> {
 /// Changes this thread's current binding (and tells glvnd's dispatch, when the process has it).
 pub(crate) fn set_current(c: Option<Current>) {
     let _ = THREAD.try_with(|t| t.borrow_mut().current = c);
-    crate::glvnd::follow_current(c.is_some());
+    glvnd::follow_current(c.is_some());
 }
 
 /// This thread's bound API.
@@ -389,20 +291,4 @@ pub(crate) fn log_once(what: &str) {
     if seen.insert(what.to_string()) {
         tracing::warn!("strata-egl: {what}");
     }
-}
-
-/// Installs a stderr logger (level from `STRATA_LOG`, default `warn`) unless the process has one.
-pub(crate) fn init_logging() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        let filter = tracing_subscriber::EnvFilter::try_from_env("STRATA_LOG")
-            .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
-        let _ = tracing_subscriber::fmt()
-            .with_writer(std::io::stderr)
-            .with_env_filter(filter)
-            .with_ansi(false)
-            .without_time()
-            .with_target(false)
-            .try_init();
-    });
 }

@@ -12,25 +12,18 @@
 
 use std::ffi::c_ulong;
 
+use strata_protocol::window::WindowPlacement;
 use strata_protocol::{Calls, Slice};
 
-use crate::display::{daemon, initialized};
+use crate::display::{daemon, explicit_placement, initialized};
 use crate::state::{self, Current, Process, WindowInfo};
 use crate::types::*;
 use crate::x11;
-
-pub(crate) use strata_protocol::window::WindowPlacement;
 
 /// A native window id as the protocol carries it (`c_ulong` is 32 bits on some targets).
 #[allow(clippy::useless_conversion)]
 pub(crate) fn window_id(w: EGLNativeWindowType) -> u64 {
     u64::from(w)
-}
-
-/// The placement `STRATA_WINDOW` states, if it is set and valid.
-pub(crate) fn explicit_placement() -> Option<WindowPlacement> {
-    let s = std::env::var(strata_protocol::window::ENV).ok()?;
-    s.parse().map_err(|e| state::log_once(&format!("ignoring {e}"))).ok()
 }
 
 /// Where a window surface goes: `STRATA_WINDOW`, else the origin at z 0 (the daemon's layout

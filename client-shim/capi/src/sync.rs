@@ -20,9 +20,9 @@ use std::time::{Duration, Instant};
 use strata_protocol::Calls;
 
 use crate::display::initialized;
-use crate::egl::answer;
-use crate::gl::with_gl;
-use crate::state::{self, process};
+use crate::gl::simple::glFlush;
+use crate::gl::{with_gl, Call};
+use crate::state::{self, answer, process};
 use crate::types::*;
 
 /// `EGLSyncKHR`.
@@ -141,7 +141,7 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
                 return Err(EGL_BAD_MATCH);
             }
             // SAFETY: glFlush takes no arguments.
-            unsafe { crate::gl::simple::glFlush() };
+            unsafe { glFlush() };
             Kind::Fence(FINISHES.load(Ordering::SeqCst))
         }
         EGL_SYNC_REUSABLE_KHR => Kind::Reusable(false),
@@ -156,11 +156,11 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
     }))
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Waits for every command of the process (`glFinish`); completes the fences before it.
     fn glFinish() {
         let args = String::new;
-        with_gl(crate::gl::Call { name: "glFinish", args: &args }, (), |gl| {
+        with_gl(Call { name: "glFinish", args: &args }, (), |gl| {
             gl.conn.glFinish()?;
             FINISHES.fetch_add(1, Ordering::SeqCst);
             Ok(())

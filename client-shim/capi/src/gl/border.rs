@@ -3,7 +3,8 @@
 //! `GL_INVALID_OPERATION`, as on Mesa held to ES 2.0. The border colour itself travels through
 //! `glTexParameterfv`/`iv`.
 
-use super::*;
+use super::with_gl;
+use crate::types::*;
 
 /// Records `GL_INVALID_OPERATION` for the call `name`.
 fn refuse(name: &'static str) {
@@ -16,7 +17,7 @@ fn refuse(name: &'static str) {
 /// The integer forms, each refused.
 macro_rules! refused {
     ($( $name:ident($ptr:ty); )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: refused (integer textures are ES 3.0's), writing nothing.")]
                 fn $name(_target: GLenum, _pname: GLenum, _params: $ptr) {

@@ -5,7 +5,13 @@
 //! array is in a buffer, and draw by draw where client arrays must be sent for each.
 //! `GL_EXT_draw_instanced`'s draws send what the single draw sends.
 
-use super::*;
+use std::ffi::c_void;
+
+use strata_client::ClientError;
+use strata_protocol::{Blob, Calls, Slice};
+
+use super::{bytes, send_client_arrays, type_size, uses_client_arrays, vertex_count, with_gl, Gl};
+use crate::types::*;
 
 /// What an element draw adds to `glDrawElements`.
 #[derive(Clone, Copy)]
@@ -133,7 +139,7 @@ fn multi_draw_elements(
     Ok(())
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Indices from the bound element buffer, or a client-side index array sent along, each
     /// plus `basevertex`.
     fn glDrawElementsBaseVertexOES(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void, basevertex: GLint) {

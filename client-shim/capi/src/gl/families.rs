@@ -3,12 +3,15 @@
 //! queries that write integers, arrays, strings or active-variable descriptions into the
 //! application's memory. Each family is one macro; each module lists its members.
 
-use super::*;
+use strata_protocol::{Calls, Slice};
+
+use super::{copy_string, put, values, with_gl, write_out, Call, ShowArg};
+use crate::types::*;
 
 /// `glUniform*v`: `count` elements of `n` values each.
 macro_rules! uniform_v {
     ($( $name:ident : $t:ty , $n:literal ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies `count` × ", stringify!($n), " values.")]
                 fn $name(location: GLint, count: GLsizei, value: *const $t) {
@@ -30,7 +33,7 @@ macro_rules! uniform_v {
 /// `glUniformMatrix*fv`: `count` matrices of `n` floats.
 macro_rules! uniform_matrix {
     ($( $name:ident , $n:literal ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies `count` matrices of ", stringify!($n), " floats.")]
                 fn $name(location: GLint, count: GLsizei, transpose: GLboolean, value: *const GLfloat) {
@@ -52,7 +55,7 @@ macro_rules! uniform_matrix {
 /// `glVertexAttrib*fv`: `n` floats.
 macro_rules! vertex_attrib_v {
     ($( $name:ident , $n:literal ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies ", stringify!($n), " floats.")]
                 fn $name(index: GLuint, value: *const GLfloat) {
@@ -74,7 +77,7 @@ macro_rules! vertex_attrib_v {
 /// `glGen*`: client-allocated names, written to the application's array and sent.
 macro_rules! gen_names {
     ($( $name:ident ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: names are allocated here and sent to the daemon.")]
                 fn $name(n: GLsizei, names: *mut GLuint) {
@@ -100,7 +103,7 @@ macro_rules! gen_names {
 /// `glDelete*` for textures, framebuffers and renderbuffers.
 macro_rules! delete_names {
     ($( $name:ident ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies `n` names.")]
                 fn $name(n: GLsizei, names: *const GLuint) {
@@ -122,12 +125,12 @@ macro_rules! delete_names {
 /// Parameter queries that return one integer.
 macro_rules! get_one_int {
     ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: writes one integer.")]
                 fn $name( $( $arg : $ty, )* params: *mut GLint) {
                     let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl(crate::gl::Call { name: stringify!($name), args: &args }, (), |gl| {
+                    with_gl(Call { name: stringify!($name), args: &args }, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: `params` points at one GLint.
                         unsafe { put(params, v) };
@@ -142,12 +145,12 @@ macro_rules! get_one_int {
 /// Queries that return an array, written to the caller's.
 macro_rules! get_array {
     ($( $name:ident ( $( $arg:ident : $ty:ty ),* ) -> $t:ty ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: writes the values the daemon returns.")]
                 fn $name( $( $arg : $ty, )* params: *mut $t) {
                     let args = || -> String { Vec::<String>::from([$( ShowArg::show(&$arg) ),*]).join(", ") };
-                    with_gl(crate::gl::Call { name: stringify!($name), args: &args }, (), |gl| {
+                    with_gl(Call { name: stringify!($name), args: &args }, (), |gl| {
                         let v = gl.conn.$name( $( $arg ),* )?;
                         // SAFETY: the caller's array has room for what the query returns.
                         unsafe { write_out(params, &v) };
@@ -162,7 +165,7 @@ macro_rules! get_array {
 /// Info logs and sources, copied into the caller's buffer.
 macro_rules! get_string {
     ($( $name:ident ( $obj:ident ) ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies the text, NUL-terminated and truncated.")]
                 fn $name($obj: GLuint, buf_size: GLsizei, length: *mut GLsizei, out: *mut GLchar) {
@@ -185,7 +188,7 @@ macro_rules! get_string {
 /// `glGetActiveAttrib` / `glGetActiveUniform`.
 macro_rules! get_active {
     ($( $name:ident ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: size, type and name of one active variable.")]
                 fn $name(

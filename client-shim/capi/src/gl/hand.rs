@@ -2,9 +2,23 @@
 //! (arrays and strings in and out, client-side vertex and index arrays, buffer shadows,
 //! client-allocated object names).
 
-use super::*;
+use std::ffi::{c_void, CStr};
 
-crate::entry_points! {
+use strata_protocol::{Blob, Calls, Slice, Text};
+
+use super::draws::{self, draw_elements};
+use super::pixel_buffer::{self, PIXEL_PACK_BUFFER_NV, PIXEL_UNPACK_BUFFER_NV};
+use super::pixels::{read_pixels, tex_image_bytes};
+use super::{
+    bytes, c_name, intern, put, send_client_arrays, sized_bytes, uses_client_arrays, values, with_gl, write_out, Call,
+    ShowArg,
+};
+use crate::gl_state::ClientArray;
+use crate::state::{self, process};
+use crate::surface::follow_current_window;
+use crate::types::*;
+
+crate::entry::entry_points! {
     /// The shim's own error first (including `GL_CONTEXT_LOST`), then the daemon's.
     fn glGetError() -> GLenum {
         let Some(cur) = state::current() else { return GL_NO_ERROR };
@@ -24,7 +38,7 @@ crate::entry_points! {
     /// before they set a viewport for the new size.
     fn glViewport(x: GLint, y: GLint, width: GLsizei, height: GLsizei) {
         if state::current().is_some() {
-            crate::surface::follow_current_window(&mut process());
+            follow_current_window(&mut process());
         }
         with_gl("glViewport", (), |gl| gl.conn.glViewport(x, y, width, height))
     }
@@ -251,8 +265,8 @@ crate::entry_points! {
             match target {
                 GL_ARRAY_BUFFER => gl.st.array_buffer = buffer,
                 GL_ELEMENT_ARRAY_BUFFER => gl.st.element_buffer = buffer,
-                super::pixel_buffer::PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
-                super::pixel_buffer::PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
+                PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
+                PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)
@@ -347,7 +361,7 @@ crate::entry_points! {
 
     /// Indices from the bound element buffer, or a client-side index array sent along.
     fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void) {
-        with_gl("glDrawElements", (), |gl| super::draws::draw_elements(gl, mode, count, ty, indices, super::draws::Extra::None))
+        with_gl("glDrawElements", (), |gl| draw_elements(gl, mode, count, ty, indices, draws::Extra::None))
     }
 
     /// Tracks the unpack state (upload sizes depend on it).
@@ -386,7 +400,7 @@ crate::entry_points! {
         pixels: *const c_void,
     ) {
         with_gl("glTexImage2D", (), |gl| {
-            if let Some(from) = super::pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
+            if let Some(from) = pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
                 let Some(d) = from else { return Ok(()) };
                 let data = Some(Blob::borrowed(&d));
                 return gl.conn.glTexImage2D(target, level, internalformat, width, height, border, format, ty, data);
@@ -409,7 +423,7 @@ crate::entry_points! {
         pixels: *const c_void,
     ) {
         with_gl("glTexSubImage2D", (), |gl| {
-            if let Some(from) = super::pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
+            if let Some(from) = pixel_buffer::unpack_pixels(gl, pixels, [width, height], format, ty) {
                 let Some(d) = from else { return Ok(()) };
                 let data = Blob::borrowed(&d);
                 return gl.conn.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, ty, data);
@@ -431,7 +445,7 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexImage2D", (), |gl| {
-            if let Some(from) = super::pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
+            if let Some(from) = pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
                 let Some(d) = from else { return Ok(()) };
                 let d = Blob::borrowed(&d);
                 return gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, d);
@@ -455,7 +469,7 @@ crate::entry_points! {
         data: *const c_void,
     ) {
         with_gl("glCompressedTexSubImage2D", (), |gl| {
-            if let Some(from) = super::pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
+            if let Some(from) = pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
                 let Some(d) = from else { return Ok(()) };
                 let d = Blob::borrowed(&d);
                 return gl.conn.glCompressedTexSubImage2D(target, level, xoffset, yoffset, width, height, format, d);
@@ -504,7 +518,7 @@ crate::entry_points! {
         pixels: *mut c_void,
     ) {
         with_gl("glReadPixels", (), |gl| {
-            if super::pixel_buffer::pack(gl, [x, y, width, height], format, ty, pixels)? {
+            if pixel_buffer::pack(gl, [x, y, width, height], format, ty, pixels)? {
                 return Ok(());
             }
             // SAFETY: `pixels` has room for the rectangle as the pack state lays it out.

@@ -4,72 +4,16 @@
 //! `GL_MAP_FLUSH_EXPLICIT_BIT_EXT`) or at `glUnmapBufferOES`: the span from the first to the
 //! last byte that differs from what the daemon answered, or the whole range where the map
 //! invalidated it (its old bytes are not fetched, so a byte written unchanged cannot be told
-//! from one not written).
+//! from one not written). That memory, and what the daemon answered, is a `Mapping` (in
+//! `gl_state.rs`), which the process keeps by buffer name.
 
-use super::*;
+use std::ffi::c_void;
 
-/// `GL_MAP_WRITE_BIT_EXT`.
-const MAP_WRITE: u32 = 0x2;
-/// `GL_MAP_FLUSH_EXPLICIT_BIT_EXT`.
-const MAP_FLUSH_EXPLICIT: u32 = 0x10;
-/// The alignment of a mapping's pointer less its offset, as on Mesa (`GL_MIN_MAP_BUFFER_ALIGNMENT`).
-const ALIGN: usize = 64;
+use strata_protocol::{Blob, Calls};
 
-/// A mapped buffer as the library holds it.
-pub(crate) struct Mapping {
-    /// The memory handed out is `mem[start..start + length]`.
-    mem: Vec<u8>,
-    /// Where the handed-out memory starts in `mem`: its address less the mapped offset is a
-    /// multiple of [`ALIGN`].
-    start: usize,
-    /// The mapped bytes.
-    length: usize,
-    /// The mapped range's first byte in the buffer.
-    offset: usize,
-    /// The bytes as the daemon answered them; `None` where the map invalidated them.
-    before: Option<Vec<u8>>,
-    /// The map's `GL_MAP_*_BIT_EXT` flags.
-    access: u32,
-}
-
-impl Mapping {
-    /// Memory for `length` bytes at `offset` holding `answered` (empty: invalidated).
-    fn new(offset: usize, length: usize, access: u32, answered: Vec<u8>) -> Mapping {
-        let mut mem = vec![0u8; length + ALIGN];
-        let base = mem.as_ptr() as usize % ALIGN;
-        let start = (offset % ALIGN + ALIGN - base) % ALIGN;
-        let before = (answered.len() == length).then(|| {
-            mem[start..start + length].copy_from_slice(&answered);
-            answered
-        });
-        Mapping { mem, start, length, offset, before, access }
-    }
-
-    /// The pointer handed to the application.
-    fn ptr(&mut self) -> *mut c_void {
-        self.mem[self.start..].as_mut_ptr().cast()
-    }
-
-    /// The mapped bytes as the application left them.
-    fn bytes(&self) -> &[u8] {
-        &self.mem[self.start..self.start + self.length]
-    }
-
-    /// What `glUnmapBufferOES` writes back: the buffer offset and the bytes changed (none for a
-    /// map that only reads, or whose writes were flushed explicitly).
-    fn written(&self) -> (usize, &[u8]) {
-        if self.access & MAP_WRITE == 0 || self.access & MAP_FLUSH_EXPLICIT != 0 {
-            return (0, &[]);
-        }
-        let now = self.bytes();
-        let Some(before) = &self.before else { return (self.offset, now) };
-        let differs = |(a, b): (&u8, &u8)| a != b;
-        match (now.iter().zip(before).position(differs), now.iter().zip(before).rposition(differs)) {
-            (Some(first), Some(last)) => (self.offset + first, &now[first..=last]),
-            _ => (0, &[]),
-        }
-    }
-}
+use super::{put, with_gl, Gl};
+use crate::gl_state::{GlState, Mapping, MAP_FLUSH_EXPLICIT, MAP_WRITE};
+use crate::types::*;
 
 /// Copies `bytes` written at `offset` into the context's shadow of buffer `name`.
 fn shadow_write(st: &mut GlState, name: u32, offset: usize, bytes: &[u8]) {
@@ -89,7 +33,7 @@ fn hand_out(gl: &mut Gl<'_>, target: GLenum, m: Mapping) -> *mut c_void {
     }
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// `GL_OES_mapbuffer`: the whole buffer, to write.
     fn glMapBufferOES(target: GLenum, access: GLenum) -> *mut c_void {
         with_gl("glMapBufferOES", std::ptr::null_mut(), |gl| {
@@ -154,31 +98,5 @@ crate::entry_points! {
             unsafe { put(params, ptr) };
             Ok(())
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The handed-out pointer less the offset is aligned, and only the bytes that changed go
-    /// back: none for an unchanged or read-only map, all for an invalidated one.
-    #[test]
-    fn mappings_align_and_send_back_what_changed() {
-        for offset in [0, 1, 63, 64, 100] {
-            let mut m = Mapping::new(offset, 8, MAP_WRITE, vec![7; 8]);
-            assert_eq!((m.ptr() as usize).wrapping_sub(offset) % ALIGN, 0, "offset {offset}");
-            assert_eq!(m.written(), (0, &[][..]));
-            m.mem[m.start + 2] = 1;
-            m.mem[m.start + 5] = 2;
-            assert_eq!(m.written(), (offset + 2, &[1, 7, 7, 2][..]));
-        }
-        let mut read = Mapping::new(0, 4, 0x1, vec![1; 4]);
-        read.mem[read.start] = 9;
-        assert_eq!(read.written(), (0, &[][..]));
-        let invalidated = Mapping::new(4, 3, MAP_WRITE | 0x4, Vec::new());
-        assert_eq!(invalidated.written(), (4, &[0, 0, 0][..]));
-        let explicit = Mapping::new(0, 2, MAP_WRITE | MAP_FLUSH_EXPLICIT, vec![0; 2]);
-        assert_eq!(explicit.written(), (0, &[][..]));
     }
 }

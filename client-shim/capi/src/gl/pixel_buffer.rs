@@ -5,8 +5,14 @@
 //! does, shadow included. As on Mesa, a range past the buffer's end, an offset that is not a
 //! multiple of the type's size, or a mapped buffer is `GL_INVALID_OPERATION`.
 
-use super::pixels::{packed_rows, pixel_size};
-use super::*;
+use std::ffi::c_void;
+
+use strata_client::ClientError;
+use strata_protocol::{Blob, Calls};
+
+use super::pixels::{packed_rows, pixel_size, upload_size};
+use super::{type_size, Gl};
+use crate::types::*;
 
 /// Bytes of one element of `ty` (a packed type's whole pixel): what an offset must be a
 /// multiple of.
@@ -57,7 +63,7 @@ pub(super) fn unpack_pixels(
         return None;
     }
     let Some(bpp) = pixel_size(format, ty) else { return Some(Some(Vec::new())) };
-    let len = super::pixels::upload_size(width, height, bpp, gl.st.unpack_alignment, gl.st.unpack_rows);
+    let len = upload_size(width, height, bpp, gl.st.unpack_alignment, gl.st.unpack_rows);
     unpack(gl, ptr, len, element_size(ty))
 }
 

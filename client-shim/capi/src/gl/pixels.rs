@@ -2,7 +2,14 @@
 //! how many bytes an upload reads under the unpack state, and where `glReadPixels` puts each
 //! row under the pack state.
 
-use super::*;
+use std::ffi::c_void;
+
+use strata_client::ClientError;
+use strata_protocol::Calls;
+
+use super::{bytes, type_size, write_out, Gl};
+use crate::gl_state::{GlState, Pack};
+use crate::types::*;
 
 /// Bytes per pixel of an upload in `format`/`ty`, if the combination is known.
 pub(super) fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
@@ -33,7 +40,7 @@ pub(super) fn packed_rows(
     width: usize,
     height: usize,
     bpp: usize,
-    pack: state::Pack,
+    pack: Pack,
 ) -> impl Iterator<Item = (usize, &[u8])> {
     let a = pack.alignment.max(1);
     let [row_length, skip_rows, skip_pixels] = pack.rows;
@@ -156,13 +163,13 @@ mod tests {
     #[test]
     fn read_rows_follow_the_pack_state() {
         let data: Vec<u8> = (0..21).collect();
-        let pack = state::Pack { alignment: 4, rows: [5, 1, 2], reverse: false };
+        let pack = Pack { alignment: 4, rows: [5, 1, 2], reverse: false };
         let rows: Vec<_> = packed_rows(&data, 3, 2, 3, pack).collect();
         // Stride: 5 × 3 = 15, aligned to 16; start: 16 + 2 × 3.
         assert_eq!(rows, vec![(22, &data[0..9]), (38, &data[12..21])]);
-        let rows: Vec<_> = packed_rows(&data, 3, 2, 3, state::Pack { reverse: true, ..pack }).collect();
+        let rows: Vec<_> = packed_rows(&data, 3, 2, 3, Pack { reverse: true, ..pack }).collect();
         assert_eq!(rows, vec![(38, &data[0..9]), (22, &data[12..21])]);
-        let tight = state::Pack { alignment: 1, rows: [0; 3], reverse: false };
+        let tight = Pack { alignment: 1, rows: [0; 3], reverse: false };
         let rows: Vec<_> = packed_rows(&data[..18], 3, 2, 3, tight).collect();
         assert_eq!(rows, vec![(0, &data[0..9]), (9, &data[9..18])]);
     }

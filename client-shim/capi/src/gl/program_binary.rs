@@ -1,9 +1,14 @@
 //! `GL_OES_get_program_binary`: the daemon makes and checks program binaries; the library
 //! copies them between the application's memory and the wire.
 
-use super::*;
+use std::ffi::c_void;
 
-crate::entry_points! {
+use strata_protocol::{Blob, Calls};
+
+use super::{bytes, put, with_gl, write_out};
+use crate::types::*;
+
+crate::entry::entry_points! {
     /// The binary of a linked program, if `buf_size` bytes hold it. As on Mesa, `length` is
     /// set to 0 before any error but a bad name or a negative size.
     fn glGetProgramBinaryOES(program: GLuint, buf_size: GLsizei, length: *mut GLsizei, binary_format: *mut GLenum, binary: *mut c_void) {

@@ -3,7 +3,14 @@
 //! size. Each bounded read is validated by the daemon as the unbounded one is; a read the buffer
 //! cannot hold is then `GL_INVALID_OPERATION` and writes nothing, as on Mesa.
 
-use super::*;
+use std::ffi::c_void;
+
+use strata_protocol::Calls;
+
+use super::pixels::read_pixels;
+use super::{with_gl, write_out, Gl};
+use crate::state::{self, process};
+use crate::types::*;
 
 /// `GL_UNKNOWN_CONTEXT_RESET_EXT`.
 const UNKNOWN_CONTEXT_RESET: GLenum = 0x8255;
@@ -86,7 +93,7 @@ impl From<GLint> for Bits<GLuint> {
     }
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// `GL_EXT_robustness`: the reset status (an unknown reset once the daemon is gone).
     fn glGetGraphicsResetStatusEXT() -> GLenum {
         reset_status()

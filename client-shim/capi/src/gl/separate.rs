@@ -1,12 +1,17 @@
 //! `GL_EXT_separate_shader_objects`: one-stage programs from source, and uniforms written to
 //! a named program. The scalar forms travel as one-element arrays, which GL defines them as.
 
-use super::*;
+use std::ffi::CStr;
+
+use strata_protocol::{Calls, Slice, Text};
+
+use super::{values, with_gl};
+use crate::types::*;
 
 /// `glProgramUniform{1,2,3,4}{f,i}EXT`: sent as the `v` form with one element.
 macro_rules! program_uniform {
     ($( $name:ident => $v:ident, $t:ty, ( $( $c:ident ),+ ); )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: one element of `", stringify!($v), "`.")]
                 fn $name(program: GLuint, location: GLint, $( $c: $t ),+) {
@@ -20,7 +25,7 @@ macro_rules! program_uniform {
 /// `glProgramUniform{1,2,3,4}{f,i}vEXT`: `count` × `n` values.
 macro_rules! program_uniform_v {
     ($( $name:ident : $t:ty , $n:literal ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies `count` × ", stringify!($n), " values.")]
                 fn $name(program: GLuint, location: GLint, count: GLsizei, value: *const $t) {
@@ -42,7 +47,7 @@ macro_rules! program_uniform_v {
 /// `glProgramUniformMatrix{2,3,4}fvEXT`: `count` matrices of `n` floats.
 macro_rules! program_uniform_matrix {
     ($( $name:ident , $n:literal ; )*) => {
-        crate::entry_points! {
+        crate::entry::entry_points! {
             $(
                 #[doc = concat!("`", stringify!($name), "`: copies `count` matrices of ", stringify!($n), " floats.")]
                 fn $name(program: GLuint, location: GLint, count: GLsizei, transpose: GLboolean, value: *const GLfloat) {
@@ -101,7 +106,7 @@ pub mod matrices {
     }
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// A separable program of one stage, compiled from the `count` NUL-terminated `strings`
     /// and linked; its name is allocated here (0 for an invalid type or count).
     fn glCreateShaderProgramvEXT(shader_type: GLenum, count: GLsizei, strings: *const *const GLchar) -> GLuint {

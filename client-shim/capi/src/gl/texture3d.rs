@@ -1,7 +1,14 @@
 //! `GL_OES_texture_3D`: 3D images travel as their slices one after another, which the unpack
 //! state lays out as one image of `height` × `depth` rows (ES 2.0 has no image height).
 
-use super::*;
+use std::ffi::c_void;
+
+use strata_protocol::{Blob, Calls};
+
+use super::pixel_buffer::{unpack, unpack_pixels};
+use super::pixels::tex_image_bytes;
+use super::{sized_bytes, with_gl, Gl};
+use crate::types::*;
 
 /// The rows an upload of `height` rows per slice and `depth` slices reads: none where a size
 /// is not positive or beyond any 3D image (the daemon refuses such sizes before reading).
@@ -23,7 +30,7 @@ fn volume_bytes(
     pixels: *const c_void,
 ) -> Option<Vec<u8>> {
     let rows = rows(width, height, depth);
-    if let Some(from) = super::pixel_buffer::unpack_pixels(gl, pixels, [width, rows], format, ty) {
+    if let Some(from) = unpack_pixels(gl, pixels, [width, rows], format, ty) {
         return from;
     }
     if rows == 0 {
@@ -37,14 +44,14 @@ fn volume_bytes(
 /// # Safety
 /// `data` holds `image_size` bytes.
 unsafe fn compressed(gl: &mut Gl<'_>, data: *const c_void, image_size: GLsizei) -> Option<Vec<u8>> {
-    if let Some(from) = super::pixel_buffer::unpack(gl, data, image_size.max(0) as usize, 1) {
+    if let Some(from) = unpack(gl, data, image_size.max(0) as usize, 1) {
         return from;
     }
     // SAFETY: see the function's contract.
     unsafe { sized_bytes(gl.st, data, image_size as isize) }.map(<[u8]>::to_vec)
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Copies the slices an upload of this size, format and alignment reads.
     fn glTexImage3DOES(
         target: GLenum,

@@ -3,14 +3,14 @@
 //! context each is `GL_INVALID_OPERATION` and the queries answer 0, as on Mesa. The blend
 //! factors and the built-ins are the daemon's.
 
-use crate::gl::with_gl;
+use super::{with_gl, Call};
 use crate::types::*;
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Binds a fragment output's colour number and index: none on ES 2.0.
     fn glBindFragDataLocationIndexedEXT(program: GLuint, color: GLuint, index: GLuint, _name: *const GLchar) {
         let args = || format!("{program}, {color}, {index}");
-        with_gl(crate::gl::Call { name: "glBindFragDataLocationIndexedEXT", args: &args }, (), |gl| {
+        with_gl(Call { name: "glBindFragDataLocationIndexedEXT", args: &args }, (), |gl| {
             gl.st.err(GL_INVALID_OPERATION);
             Ok(())
         })
@@ -19,7 +19,7 @@ crate::entry_points! {
     /// Binds a fragment output's colour number: none on ES 2.0.
     fn glBindFragDataLocationEXT(program: GLuint, color: GLuint, _name: *const GLchar) {
         let args = || format!("{program}, {color}");
-        with_gl(crate::gl::Call { name: "glBindFragDataLocationEXT", args: &args }, (), |gl| {
+        with_gl(Call { name: "glBindFragDataLocationEXT", args: &args }, (), |gl| {
             gl.st.err(GL_INVALID_OPERATION);
             Ok(())
         })
@@ -28,7 +28,7 @@ crate::entry_points! {
     /// A fragment output's index: none on ES 2.0.
     fn glGetFragDataIndexEXT(program: GLuint, _name: *const GLchar) -> GLint {
         let args = || format!("{program}");
-        with_gl(crate::gl::Call { name: "glGetFragDataIndexEXT", args: &args }, 0, |gl| {
+        with_gl(Call { name: "glGetFragDataIndexEXT", args: &args }, 0, |gl| {
             gl.st.err(GL_INVALID_OPERATION);
             Ok(0)
         })
@@ -37,7 +37,7 @@ crate::entry_points! {
     /// A program resource's index (an ES 3.1 interface): none on ES 2.0.
     fn glGetProgramResourceLocationIndexEXT(program: GLuint, interface: GLenum, _name: *const GLchar) -> GLint {
         let args = || format!("{program}, {interface:#x}");
-        with_gl(crate::gl::Call { name: "glGetProgramResourceLocationIndexEXT", args: &args }, 0, |gl| {
+        with_gl(Call { name: "glGetProgramResourceLocationIndexEXT", args: &args }, 0, |gl| {
             gl.st.err(GL_INVALID_OPERATION);
             Ok(0)
         })

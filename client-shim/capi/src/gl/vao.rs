@@ -1,29 +1,20 @@
-//! `GL_OES_vertex_array_object`: the four entry points, and the client-side state that follows
-//! the bound vertex array.
+//! `GL_OES_vertex_array_object`: the four entry points, and binding, which switches the
+//! client-side state along with the bound vertex array.
 //!
 //! The library keeps per vertex array what it needs at draw time: which attributes are enabled,
 //! which of them are client-side arrays (only the default vertex array can have those: the
-//! extension refuses a client pointer while another is bound), and the element array buffer
-//! binding (client-side index arrays are allowed with any vertex array). As in the daemon, the
-//! bound vertex array's state is `GlState::attribs` / `element_buffer`, the others wait in
-//! `GlState::vertex_arrays`, and binding exchanges them. Names are allocated here, like every
-//! other object name; a name that was not generated (or was deleted) leaves the state as it is,
-//! and the daemon records the `GL_INVALID_OPERATION`.
+//! extension refuses a client pointer while another is bound), and the element array buffer binding
+//! (client-side index arrays are allowed with any vertex array). As in the daemon, the bound vertex
+//! array's state is `GlState::attribs` / `element_buffer`, the others wait in
+//! `GlState::vertex_arrays` (each a `VertexArray`), and binding exchanges them. Names are allocated
+//! here, like every other object name; a name that was not generated (or was deleted) leaves the
+//! state as it is, and the daemon records the `GL_INVALID_OPERATION`.
 
 use strata_protocol::{Calls, Slice};
 
-use crate::gl::with_gl;
-use crate::state::{Attrib, GlState, MAX_ATTRIBS};
+use super::with_gl;
+use crate::gl_state::{GlState, VertexArray};
 use crate::types::*;
-
-/// A vertex array object that is not bound: its client-side state.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct VertexArray {
-    /// Enables and client arrays.
-    attribs: [Attrib; MAX_ATTRIBS],
-    /// `GL_ELEMENT_ARRAY_BUFFER` binding.
-    element_buffer: u32,
-}
 
 /// Makes `array` the bound vertex array if the library knows it; whether it did.
 pub(crate) fn bind(st: &mut GlState, array: u32) -> bool {
@@ -51,7 +42,7 @@ unsafe fn names<'a>(ptr: *const GLuint, n: GLsizei) -> &'a [GLuint] {
     }
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// Names allocated here, as for every object.
     fn glGenVertexArraysOES(n: GLsizei, arrays: *mut GLuint) {
         with_gl("glGenVertexArraysOES", (), |gl| {

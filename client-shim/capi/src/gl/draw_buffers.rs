@@ -5,7 +5,7 @@ use strata_client::ClientError;
 use strata_protocol::commands::MAX_DRAW_BUFFERS;
 use strata_protocol::{Calls, Slice};
 
-use crate::gl::{values, with_gl, Gl};
+use super::{values, with_gl, Call, Gl};
 use crate::types::*;
 
 /// A count outside `0..=GL_MAX_DRAW_BUFFERS_EXT` is `GL_INVALID_VALUE` here, before the list
@@ -20,16 +20,16 @@ fn draw_buffers(gl: &mut Gl<'_>, n: GLsizei, bufs: *const GLenum) -> Result<(), 
     gl.conn.glDrawBuffersEXT(Slice::new(list))
 }
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// `GL_EXT_draw_buffers`: what each fragment output writes.
     fn glDrawBuffersEXT(n: GLsizei, bufs: *const GLenum) {
         let args = || format!("{n}");
-        with_gl(crate::gl::Call { name: "glDrawBuffersEXT", args: &args }, (), |gl| draw_buffers(gl, n, bufs))
+        with_gl(Call { name: "glDrawBuffersEXT", args: &args }, (), |gl| draw_buffers(gl, n, bufs))
     }
 
     /// `GL_NV_draw_buffers`: the same call.
     fn glDrawBuffersNV(n: GLsizei, bufs: *const GLenum) {
         let args = || format!("{n}");
-        with_gl(crate::gl::Call { name: "glDrawBuffersNV", args: &args }, (), |gl| draw_buffers(gl, n, bufs))
+        with_gl(Call { name: "glDrawBuffersNV", args: &args }, (), |gl| draw_buffers(gl, n, bufs))
     }
 }

@@ -3,14 +3,14 @@
 
 use strata_protocol::{Calls, Slice};
 
-use crate::gl::{values, with_gl, ShowArg};
+use super::{values, with_gl, Call, ShowArg};
 use crate::types::*;
 
-crate::entry_points! {
+crate::entry::entry_points! {
     /// A negative count is `GL_INVALID_VALUE` here; the rest is validated by the daemon.
     fn glDiscardFramebufferEXT(target: GLenum, num_attachments: GLsizei, attachments: *const GLenum) {
         let args = || format!("{}, {num_attachments}", target.show());
-        with_gl(crate::gl::Call { name: "glDiscardFramebufferEXT", args: &args }, (), |gl| {
+        with_gl(Call { name: "glDiscardFramebufferEXT", args: &args }, (), |gl| {
             if num_attachments < 0 {
                 gl.st.err(GL_INVALID_VALUE);
                 return Ok(());
