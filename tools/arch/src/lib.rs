@@ -62,10 +62,7 @@ pub fn crate_circles(repo_root: &Path, name: &str, root: &CrateRoot) -> Result<C
 
 /// The circles of the crates in a directory (a `src` directory or a package directory).
 pub fn circles_in(dir: &Path) -> Result<Vec<CrateCircles>, ArchError> {
-    workspace::crates_in(dir)?
-        .iter()
-        .map(|root| crate_circles(Path::new(""), &dir.display().to_string(), root))
-        .collect()
+    workspace::crates_in(dir)?.iter().map(|root| crate_circles(Path::new(""), "", root)).collect()
 }
 
 /// The number of lines of a text.

@@ -1,5 +1,6 @@
 //! `strata-arch`: checks the workspace's structure and prints what is wrong.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -53,6 +54,14 @@ fn find_repo() -> Result<PathBuf> {
     bail!("no workspace Cargo.toml in {} or above; pass --repo", cwd.display())
 }
 
+/// Writes `text` to standard output; a closed pipe (`| head`) ends the output quietly.
+fn emit(text: &str) -> Result<()> {
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.context("writing to standard output"),
+    }
+}
+
 /// Runs `check` and prints the report.
 fn check(repo: Option<PathBuf>) -> Result<ExitCode> {
     let repo = match repo {
@@ -60,33 +69,35 @@ fn check(repo: Option<PathBuf>) -> Result<ExitCode> {
         None => find_repo()?,
     };
     let report = strata_arch::check(&repo).with_context(|| format!("checking {}", repo.display()))?;
-    print!("{report}");
+    emit(&report.to_string())?;
     Ok(if report.has_problems() { ExitCode::FAILURE } else { ExitCode::SUCCESS })
 }
 
 /// Prints the circles of each directory's crates.
 fn circles(dirs: &[PathBuf]) -> Result<ExitCode> {
     let mut any = false;
+    let mut text = String::new();
     for dir in dirs {
         for c in strata_arch::circles_in(dir).with_context(|| format!("reading {}", dir.display()))? {
             any |= !c.circles.is_empty();
-            let mut text = String::new();
             strata_arch::report::write_circles(&mut text, &c)?;
-            print!("{text}");
         }
     }
+    emit(&text)?;
     Ok(if any { ExitCode::FAILURE } else { ExitCode::SUCCESS })
 }
 
 /// Prints every edge of a directory's crates.
 fn graph(dir: &Path) -> Result<ExitCode> {
+    let mut text = String::new();
     for root in crates_in(dir)? {
         let g = strata_arch::crate_graph(&root.root).with_context(|| format!("reading {}", root.root.display()))?;
-        println!("# {} ({} files, {} edges)", root.root.display(), g.files.len(), g.edges.len());
+        text += &format!("# {} ({} files, {} edges)\n", root.root.display(), g.files.len(), g.edges.len());
         for e in &g.edges {
-            println!("{} -> {}: {}", slash_path(&e.from), slash_path(&e.to), e.names.join(", "));
+            text += &format!("{} -> {}: {}\n", slash_path(&e.from), slash_path(&e.to), e.names.join(", "));
         }
     }
+    emit(&text)?;
     Ok(ExitCode::SUCCESS)
 }
 

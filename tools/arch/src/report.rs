@@ -14,7 +14,7 @@ pub const MAX_LINES: usize = 600;
 /// The import circles of one crate.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CrateCircles {
-    /// The package name, or the directory given on the command line.
+    /// The package name; empty for a directory given on the command line.
     pub name: String,
     /// Library or binary.
     pub kind: CrateKind,
@@ -73,7 +73,11 @@ fn crate_label(c: &CrateCircles) -> String {
         CrateKind::Lib => "lib",
         CrateKind::Bin => "bin",
     };
-    format!("{} ({}, {kind})", slash_path(&c.base), c.name)
+    if c.name.is_empty() {
+        format!("{} ({kind})", slash_path(&c.base))
+    } else {
+        format!("{} ({}, {kind})", slash_path(&c.base), c.name)
+    }
 }
 
 /// Writes one crate's circles, each with its files and the edges inside it.

@@ -190,7 +190,7 @@ fn paths_into_other_crates_and_local_variables_are_not_edges() {
     let tree = TempTree::with(
         "external",
         &[
-            ("src/lib.rs", "mod a;\nmod b;\npub use std::fmt::Write;\n"),
+            ("src/lib.rs", "mod a;\nmod b;\npub use a::size;\npub use std::fmt::Write;\n"),
             ("src/a.rs", "pub fn size() -> usize { 1 }\n"),
             (
                 "src/b.rs",
