@@ -7,8 +7,8 @@
 mod support;
 
 use strata_client::{Calls, ClientError};
-use strata_protocol::Text;
 use strata_gles::glsl;
+use strata_protocol::Text;
 use support::mesa::MesaGl;
 
 const DIR: &str = "/usr/share/glmark2/shaders";

@@ -15,12 +15,12 @@ use std::time::Duration;
 
 use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
+use strata_compositor::reference::{self, RefLayer};
+use strata_compositor::Props;
 use strata_protocol::events::Event;
 use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_protocol::input::{Action, Device, InputEvent, InputOutcome, InputRequest, Phase};
 use strata_protocol::{Blob, Slice, Text};
-use strata_compositor::reference::{self, RefLayer};
-use strata_compositor::Props;
 use support::Daemon;
 
 /// The output: 256×128 pixels, named `main`.

@@ -10,8 +10,8 @@ use std::time::{Duration, Instant};
 
 use strata_client::setup::{egl_context, Current, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection, ControlConnection};
-use strata_protocol::handshake::{ControlReply, ControlRequest};
 use strata_compositor::{reference, Lighting};
+use strata_protocol::handshake::{ControlReply, ControlRequest};
 use support::Daemon;
 
 const GL_COLOR_BUFFER_BIT: u32 = 0x4000;

@@ -7,8 +7,8 @@
 mod support;
 
 use strata_client::{Calls, ClientError};
-use strata_protocol::Text;
 use strata_gles::glsl;
+use strata_protocol::Text;
 use support::mesa::MesaGl;
 
 /// A fragment shader body that needs nothing from any extension.

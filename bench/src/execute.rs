@@ -11,8 +11,8 @@ use anyhow::{anyhow, bail, Context, Result};
 use glam::{Mat4, Vec3};
 use strata_client::setup::{egl_context, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection};
-use strata_protocol::{Blob, Slice, Text};
 use strata_gles::glsl;
+use strata_protocol::{Blob, Slice, Text};
 
 use crate::mesh::{self, Mesh};
 use indicatif::ProgressBar;
@@ -328,7 +328,7 @@ impl NativeSide {
             rp.set_index_buffer(self.ibuf.slice(..), wgpu::IndexFormat::Uint32);
             rp.draw_indexed(0..self.count, 0, 0..1);
         }
-        self.gpu.submit(vec![enc.finish()]);
+        self.gpu.submit(&self.gpu.lane, vec![enc.finish()]);
     }
 
     /// Draws frames `range` and waits for them: the seconds it took.

@@ -35,10 +35,10 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use strata_protocol::projection::{Projection, ProjectionKind};
 use strata_compositor::reference::{self, RefLayer};
 use strata_compositor::{Compositor, Intermediate, Layer, Lighting, NormalSource};
 use strata_device::Gpu;
+use strata_protocol::projection::{Projection, ProjectionKind};
 
 use crate::composite::texture;
 use report::Row;

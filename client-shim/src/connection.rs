@@ -9,17 +9,18 @@ use std::os::unix::net::UnixStream;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use strata_protocol::codec::{self, CodecError, MAX_MESSAGE_LEN};
+use strata_protocol::codec::{self, MAX_MESSAGE_LEN};
 use strata_protocol::handshake::{
     self, ClientMessage, HandshakeError, Hello, Placement, Purpose, ServerMessage, VertexWire, PROTOCOL_VERSION,
 };
 use strata_protocol::input::InputEvent;
 
+use crate::error::ClientError;
 use crate::input::InputReader;
-use strata_protocol::ring::{Reader, RingError, Writer};
-use strata_protocol::segment::{Segment, SegmentError};
+use strata_protocol::ring::{Reader, Writer};
+use strata_protocol::segment::Segment;
 use strata_protocol::tally::Tally;
-use strata_protocol::{Calls, Command, Reply, ReplyMismatch, StreamTally};
+use strata_protocol::{Calls, Command, Reply, StreamTally};
 
 /// How a client introduces itself.
 #[derive(Debug, Clone)]
@@ -56,40 +57,6 @@ impl Default for ConnectOptions {
             version: PROTOCOL_VERSION,
         }
     }
-}
-
-/// A client-side failure.
-#[derive(Debug, thiserror::Error)]
-pub enum ClientError {
-    /// Could not reach the daemon.
-    #[error("cannot connect to stratad at {socket}: {source}")]
-    Connect {
-        /// The socket tried.
-        socket: PathBuf,
-        /// The OS error.
-        source: std::io::Error,
-    },
-    /// The handshake failed or was refused.
-    #[error(transparent)]
-    Handshake(#[from] HandshakeError),
-    /// The segment could not be mapped.
-    #[error(transparent)]
-    Segment(#[from] SegmentError),
-    /// The ring failed; `PeerGone` means the daemon went away.
-    #[error(transparent)]
-    Ring(#[from] RingError),
-    /// Encoding or decoding failed.
-    #[error(transparent)]
-    Codec(#[from] CodecError),
-    /// A reply did not match its call.
-    #[error(transparent)]
-    Mismatch(#[from] ReplyMismatch),
-    /// The daemon does not implement the call.
-    #[error("unsupported by stratad: {0}")]
-    Unsupported(String),
-    /// The daemon sent something out of place in the handshake.
-    #[error("unexpected handshake message: {0}")]
-    Unexpected(String),
 }
 
 /// A live connection to `stratad`.

@@ -4,11 +4,13 @@
 
 pub mod connection;
 pub mod control;
+pub mod error;
 pub mod input;
 pub mod setup;
 pub mod vertex_wire;
 pub mod workload;
 
-pub use connection::{ClientError, ConnectOptions, Connection};
+pub use connection::{ConnectOptions, Connection};
 pub use control::ControlConnection;
+pub use error::ClientError;
 pub use strata_protocol::Calls;

@@ -55,9 +55,9 @@ pub mod window;
 
 use std::sync::Arc;
 
-use strata_device::Gpu;
 use encode::Builder;
 use resources::Resources;
+use strata_device::Gpu;
 
 pub use strata_protocol::control::{Lighting, NormalSource};
 
@@ -485,7 +485,7 @@ impl Compositor {
         if let (Some(t), true) = (&mut self.timing, n > 0) {
             t.resolve(&mut enc);
         }
-        self.last_submission = Some(self.gpu.submit(vec![enc.finish()]));
+        self.last_submission = Some(self.gpu.submit(&self.gpu.lane, vec![enc.finish()]));
         Ok(())
     }
 }

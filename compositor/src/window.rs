@@ -201,7 +201,7 @@ impl WindowOutput {
             rp.set_bind_group(0, &bind, &[]);
             rp.draw(0..3, 0..1);
         }
-        gpu.submit(vec![enc.finish()]);
+        gpu.submit(&gpu.lane, vec![enc.finish()]);
         self.window.pre_present_notify();
         gpu.present(frame);
     }

@@ -1,6 +1,6 @@
 //! A GPU device and its queue: the compositor's, and one per client (each on an instance of its
-//! own). Its queue is reached only through [`Lane`] for submissions and through the methods
-//! below for writes, so every submission goes through one door.
+//! own). Its queue is reached only through [`Gpu::submit`], which names the submission's
+//! [`Lane`], and through the methods below for writes: every submission goes through one door.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -47,7 +47,7 @@ pub struct Gpu {
     pub features: wgpu::Features,
     /// The device.
     pub device: wgpu::Device,
-    /// Its queue: submissions go through a [`Lane`] ([`Lane::submit`]), writes through
+    /// Its queue: submissions go through [`Gpu::submit`], writes through
     /// [`Gpu::write_buffer`] and [`Gpu::write_texture`].
     pub(crate) queue: wgpu::Queue,
     /// The device's own lane: work of the device's owner that no client's lane carries
@@ -99,9 +99,12 @@ impl Gpu {
         }
     }
 
-    /// Submits `bufs` through the device's own lane (see [`Gpu::lane`]).
-    pub fn submit(&self, bufs: Vec<wgpu::CommandBuffer>) -> wgpu::SubmissionIndex {
-        self.lane.submit(self, bufs)
+    /// Submits `bufs` on the queue as `lane`'s work: the one place any work reaches a queue.
+    /// Returns the submission's index.
+    pub fn submit(&self, lane: &Lane, bufs: Vec<wgpu::CommandBuffer>) -> wgpu::SubmissionIndex {
+        let index = self.queue.submit(bufs);
+        lane.submitted(index.clone());
+        index
     }
 
     /// Writes `data` into `buffer` at `offset` on the queue (before the next submission).

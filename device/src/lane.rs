@@ -1,6 +1,7 @@
 //! A [`Lane`]: one client's class and its own submissions (the newest, the one of its previous
-//! frame) and where its frames waited. [`Lane::submit`] is the one door through which any work
-//! reaches a device's queue (each device also has a lane of its own, [`crate::Gpu::lane`]).
+//! frame) and where its frames waited. Every submission names its lane at the one door through
+//! which work reaches a queue, [`crate::Gpu::submit`] (each device also has a lane of its own,
+//! `Gpu::lane`, for the work of the device's owner).
 
 use std::sync::atomic::{AtomicU64, AtomicU8, Ordering};
 use std::sync::Mutex;
@@ -8,8 +9,6 @@ use std::time::{Duration, Instant};
 
 use strata_protocol::control::{Priority, Waits};
 use tracing::warn;
-
-use crate::gpu::Gpu;
 
 /// The longest any wait for the device lasts before it is given up on (a wedged device must
 /// not wedge the daemon's threads).
@@ -67,41 +66,38 @@ impl Lane {
         self.class.store(class as u8, Ordering::Relaxed);
     }
 
-    /// Submits `bufs` on `gpu`'s queue: the one place any work reaches a queue. Returns the
-    /// submission's index.
-    pub fn submit(&self, gpu: &Gpu, bufs: Vec<wgpu::CommandBuffer>) -> wgpu::SubmissionIndex {
-        let index = gpu.queue.submit(bufs);
+    /// Records `index` as the lane's newest submission ([`crate::Gpu::submit`] does).
+    pub(crate) fn submitted(&self, index: wgpu::SubmissionIndex) {
         if let Ok(mut l) = self.last.lock() {
-            *l = Some(index.clone());
+            *l = Some(index);
         }
-        index
     }
 
     /// Waits until `index` has completed, counting the time as device wait.
-    fn wait_for(&self, gpu: &Gpu, index: wgpu::SubmissionIndex) {
+    fn wait_for(&self, device: &wgpu::Device, index: wgpu::SubmissionIndex) {
         let start = Instant::now();
         let poll = wgpu::PollType::Wait { submission_index: Some(index), timeout: Some(GPU_WAIT_LIMIT) };
-        if let Err(e) = gpu.device.poll(poll) {
+        if let Err(e) = device.poll(poll) {
             warn!("waiting for the device: {e}");
         }
         self.counters.gpu_us.fetch_add(micros(start.elapsed()), Ordering::Relaxed);
     }
 
-    /// Waits for everything this client has submitted (readbacks, `glFinish`).
-    pub fn wait_idle(&self, gpu: &Gpu) {
+    /// Waits for everything this client has submitted on `device` (readbacks, `glFinish`).
+    pub fn wait_idle(&self, device: &wgpu::Device) {
         let last = self.last.lock().ok().and_then(|l| l.clone());
         if let Some(index) = last {
-            self.wait_for(gpu, index);
+            self.wait_for(device, index);
         }
     }
 
     /// At a swap: waits for the previous frame's work to complete, so that the client has at
     /// most one frame in flight on its device, and remembers this frame's.
-    pub fn frame_boundary(&self, gpu: &Gpu) {
+    pub fn frame_boundary(&self, device: &wgpu::Device) {
         let now = self.last.lock().ok().and_then(|l| l.clone());
         let previous = self.frame.lock().ok().and_then(|mut f| std::mem::replace(&mut *f, now));
         if let Some(index) = previous {
-            self.wait_for(gpu, index);
+            self.wait_for(device, index);
         }
     }
 

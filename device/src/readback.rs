@@ -1,18 +1,20 @@
 //! Reading a texture's texels back to host memory, waiting for the device.
 
 use crate::gpu::Gpu;
+use crate::lane::Lane;
 
 impl Gpu {
     /// Reads `[x, y, w, h]` of an RGBA8 texture as tightly packed rows in memory order.
     pub fn read_rgba8(&self, tex: &wgpu::Texture, rect: [u32; 4]) -> Option<Vec<u8>> {
-        self.read_texels(tex, (0, 0), rect, wgpu::TextureAspect::All, 4)
+        self.read_texels(&self.lane, tex, (0, 0), rect, wgpu::TextureAspect::All, 4)
     }
 
     /// Reads `[x, y, w, h]` of `aspect` of array layer `layer`, mip level `level`, of a texture
     /// whose texels there take `bpp` bytes (the stencil aspect: 1), as tightly packed rows in
-    /// memory order.
+    /// memory order; the copy is `lane`'s work.
     pub fn read_texels(
         &self,
+        lane: &Lane,
         tex: &wgpu::Texture,
         (layer, level): (u32, u32),
         rect: [u32; 4],
@@ -44,7 +46,7 @@ impl Gpu {
             },
             wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
         );
-        self.submit(vec![enc.finish()]);
+        self.submit(lane, vec![enc.finish()]);
         let slice = buf.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {

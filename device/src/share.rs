@@ -385,13 +385,15 @@ mod tests {
             occlusion_query_set: None,
             multiview_mask: None,
         }));
-        let index = gpu.submit(vec![enc.finish()]);
+        let index = gpu.submit(&gpu.lane, vec![enc.finish()]);
         gpu.device.poll(wgpu::PollType::Wait { submission_index: Some(index), timeout: None }).expect("poll");
     }
 
     /// The depth values of `tex` (a `Depth32Float` image) as `gpu` reads them.
     fn read_depth(gpu: &Gpu, tex: &wgpu::Texture, (w, h): (u32, u32)) -> Vec<f32> {
-        let bytes = gpu.read_texels(tex, (0, 0), [0, 0, w, h], wgpu::TextureAspect::DepthOnly, 4).expect("read back");
+        let bytes = gpu
+            .read_texels(&gpu.lane, tex, (0, 0), [0, 0, w, h], wgpu::TextureAspect::DepthOnly, 4)
+            .expect("read back");
         bytemuck::cast_slice::<u8, f32>(&bytes).to_vec()
     }
 

@@ -169,7 +169,7 @@ impl GlesExecutor {
             wgpu::Extent3d { width: (sx1 - sx0) as u32, height: (sy1 - sy0) as u32, depth_or_array_layers: 1 },
         );
         // The pending pass, whose draws the copy may read, went before this command (`Flushed`).
-        self.r.lane.submit(&self.gpu, vec![enc.finish()]);
+        self.gpu.submit(&self.r.lane, vec![enc.finish()]);
         if rgb {
             // The copy brought the framebuffer's alpha along; an RGB image reads alpha as 1.
             let color = (dst_tex, view);

@@ -237,7 +237,9 @@ impl GlesExecutor {
         // EGL_KHR_no_config_context: EGL_NO_CONFIG_KHR takes each surface's config.
         let c = if config == 0 { CONFIGS[0] } else { Config::get(config).ok_or(EGL_BAD_CONFIG)? };
         let asked = super::context_attribs::parse(&attribs.to_vec())?;
-        self.account.admit(strata_device::account::Kind::Context, self.contexts.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
+        self.account
+            .admit(strata_device::account::Kind::Context, self.contexts.len() as u64, 1)
+            .map_err(|_| EGL_BAD_ALLOC)?;
         let id = self.next_handle;
         self.next_handle += 1;
         let mut ctx = Context::new(c);

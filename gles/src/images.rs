@@ -10,8 +10,8 @@ use super::enums::*;
 use super::error::{GlError, GlResult};
 use super::formats::Storage;
 use super::textures::Texture;
-use strata_device::Gpu;
 use strata_device::account::{Account, Reservation};
+use strata_device::Gpu;
 
 /// A texture's GPU image.
 pub struct TextureImage {

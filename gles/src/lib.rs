@@ -67,13 +67,13 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 pub mod execute;
-pub use strata_scene::transfer::TransferMode;
 pub use render::Fixed as RendererFixed;
+pub use strata_scene::transfer::TransferMode;
 pub use surface::{DepthFormat, DepthOptions, Surface};
 
-use strata_device::Gpu;
 use context::Context;
 use render::Renderer;
+use strata_device::Gpu;
 
 /// Where the daemon's configuration puts a client's window surfaces, whatever they ask for.
 #[derive(Debug, Clone, Copy, PartialEq)]

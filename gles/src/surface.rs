@@ -347,7 +347,9 @@ impl GlesExecutor {
             return Err(if window { EGL_BAD_NATIVE_WINDOW } else { EGL_BAD_PARAMETER });
         }
         let (w, h) = ((width as u32).max(1), (height as u32).max(1));
-        self.account.admit(strata_device::account::Kind::Surface, self.surfaces.len() as u64, 1).map_err(|_| EGL_BAD_ALLOC)?;
+        self.account
+            .admit(strata_device::account::Kind::Surface, self.surfaces.len() as u64, 1)
+            .map_err(|_| EGL_BAD_ALLOC)?;
         let reversed = if config.depth > 0 { self.depth.reversed(projection.as_ref()) } else { None };
         let (target, frames, views, reserved) = if window {
             let (win, views) = self.make_window(config, (w, h), reversed.is_some(), srgb)?;
@@ -415,7 +417,7 @@ impl GlesExecutor {
         producer.throttle();
         self.r.lane.add_swap_wait(start.elapsed());
         // At most one frame of this client in flight on its device.
-        self.r.lane.frame_boundary(&self.gpu);
+        self.r.lane.frame_boundary(&self.gpu.device);
         Ok(())
     }
 

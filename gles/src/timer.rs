@@ -148,7 +148,7 @@ impl GlesExecutor {
     fn stamp(&mut self, timer: &mut Timer, index: u32) {
         let cmd = timer.write(&self.gpu, index);
         self.r.flush();
-        self.r.lane.submit(&self.gpu, vec![cmd]);
+        self.gpu.submit(&self.r.lane, vec![cmd]);
         if index + 1 == timer.count {
             timer.request();
         }

@@ -49,4 +49,3 @@ impl Window {
         self.buffers.get(self.back).and_then(|b| b.swapped_at).map_or(0, |at| self.swaps - at)
     }
 }
-

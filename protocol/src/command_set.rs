@@ -166,11 +166,21 @@ macro_rules! command_set {
             }
         }
 
+        /// A reply that does not answer the call it was read for.
+        #[derive(Debug, thiserror::Error)]
+        #[error("reply mismatch: expected the answer to {}, got {got:?}", expected.name())]
+        pub struct ReplyMismatch {
+            /// The call that was waiting.
+            pub expected: Opcode,
+            /// What arrived instead.
+            pub got: Reply,
+        }
+
         /// Typed EGL/GLES methods, one per command, over a transport that can send and call.
         #[allow(non_snake_case, clippy::too_many_arguments, clippy::extra_unused_lifetimes, clippy::needless_lifetimes)]
         pub trait Calls {
             /// The transport's error type.
-            type Error: From<crate::ReplyMismatch>;
+            type Error: From<ReplyMismatch>;
             /// Queues a fire-and-forget command.
             fn send(&mut self, cmd: &Command<'_>) -> Result<(), Self::Error>;
             /// Sends a synchronous command and waits for its reply.
@@ -187,7 +197,7 @@ macro_rules! command_set {
                 fn $sgl<'a>(&mut self, $( $sf: $sty ),*) -> Result<$ret, Self::Error> {
                     match self.call(&Command::$sv { $( $sf ),* })? {
                         Reply::$sv(v) => Ok(v),
-                        other => Err(crate::ReplyMismatch { expected: Opcode::$sv, got: other }.into()),
+                        other => Err(ReplyMismatch { expected: Opcode::$sv, got: other }.into()),
                     }
                 }
             )*

@@ -23,16 +23,7 @@ pub mod wire;
 
 pub use command_set::Attribute;
 pub use commands::{
-    ActiveVariable, Bytes, Calls, Command, DebugMessage, EglResult, ExecStats, Opcode, Reply, StreamTally,
+    ActiveVariable, Bytes, Calls, Command, DebugMessage, EglResult, ExecStats, Opcode, Reply, ReplyMismatch,
+    StreamTally,
 };
 pub use wire::{Blob, Slice, Text};
-
-/// A reply that does not answer the call it was read for.
-#[derive(Debug, thiserror::Error)]
-#[error("reply mismatch: expected the answer to {}, got {got:?}", expected.name())]
-pub struct ReplyMismatch {
-    /// The call that was waiting.
-    pub expected: Opcode,
-    /// What arrived instead.
-    pub got: Reply,
-}

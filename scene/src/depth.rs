@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use strata_device::{texture_entry, Gpu, VertexInput, UNFILTERED};
+use strata_device::{texture_entry, Gpu, Lane, VertexInput, UNFILTERED};
 
 /// One device's depth pipelines (`Depth::of`).
 #[derive(Default)]
@@ -21,13 +21,19 @@ pub struct Depth {
 impl Depth {
     /// `gpu`'s depth pipelines.
     pub fn of(gpu: &Gpu) -> DepthOn<'_> {
-        DepthOn { gpu, depth: gpu.shared(|_| Depth::default()) }
+        Depth::for_lane(gpu, &gpu.lane)
+    }
+
+    /// `gpu`'s depth pipelines, their writes submitted as `lane`'s work.
+    pub fn for_lane<'a>(gpu: &'a Gpu, lane: &'a Lane) -> DepthOn<'a> {
+        DepthOn { gpu, lane, depth: gpu.shared(|_| Depth::default()) }
     }
 }
 
 /// [`Depth`] together with its device, for one use.
 pub struct DepthOn<'a> {
     gpu: &'a Gpu,
+    lane: &'a Lane,
     depth: Arc<Depth>,
 }
 
@@ -35,7 +41,8 @@ impl DepthOn<'_> {
     /// The pipeline drawing a full-screen triangle that writes the depth image bound at 0
     /// into an R32Float target, and its bind group layout.
     pub fn reader(&self) -> (wgpu::BindGroupLayout, wgpu::RenderPipeline) {
-        self.depth.reader
+        self.depth
+            .reader
             .get_or_init(|| {
                 self.gpu.pipeline(
                     "depth read",
@@ -156,7 +163,7 @@ impl DepthOn<'_> {
             rp.set_scissor_rect(x, y, w, h);
             rp.draw(0..3, 0..1);
         }
-        gpu.submit(vec![enc.finish()]);
+        gpu.submit(self.lane, vec![enc.finish()]);
         if let Some(s) = stencil.filter(|_| format.has_stencil_aspect()) {
             gpu.write_texture(
                 wgpu::TexelCopyTextureInfo {

@@ -72,7 +72,7 @@ impl Producer {
             path
         });
         // Marks the end of everything this frame submitted.
-        let index = lane.submit(gpu, Vec::new());
+        let index = gpu.submit(lane, Vec::new());
         let comp = self.scene.compositor();
         let (scene, client, surface) = (self.scene.clone(), self.client, self.surface);
         waiter.after(
@@ -256,7 +256,6 @@ impl Scene {
         self.done(frames, Buffers::release);
     }
 
-
     /// Runs `f` on window surface `id`'s newest complete frame (its colour view), which stays
     /// read meanwhile so that its client does not draw into it; `None` if there is no such
     /// surface or it has not swapped yet. The caller makes sure no composite is in flight
@@ -279,7 +278,6 @@ impl Scene {
         self.changed.notify_all();
         Some(r)
     }
-
 
     /// Runs `f` on the surfaces shown (in stacking order; their layers' opacity multiplied
     /// into `props.opacity`), the lighting and the region changed since the last composite

@@ -15,8 +15,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 use strata_device::Gpu;
+use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
 
 use crate::ids::{IdTaken, Ids};
 use crate::layers::Layers;

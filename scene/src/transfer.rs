@@ -102,12 +102,7 @@ pub fn depth_view(t: &wgpu::Texture) -> wgpu::TextureView {
 impl CopyPath {
     /// The copy path of a buffer of `size` whose depth the client's `depth` view shows; the
     /// compositor's images and their views.
-    pub fn new(
-        client: &Gpu,
-        comp: &Gpu,
-        size: (u32, u32),
-        depth: Option<&wgpu::TextureView>,
-    ) -> (CopyPath, Views) {
+    pub fn new(client: &Gpu, comp: &Gpu, size: (u32, u32), depth: Option<&wgpu::TextureView>) -> (CopyPath, Views) {
         let row = u64::from(padded_row(size.0));
         let rows = u64::from(size.1) * if depth.is_some() { 2 } else { 1 };
         let readback = client.device.create_buffer(&wgpu::BufferDescriptor {
@@ -172,7 +167,7 @@ impl CopyPath {
             strata_device::fullscreen_pass(&mut enc, "frame depth read", v, &pipeline, group);
             copy(&mut enc, t, u64::from(row) * u64::from(h));
         }
-        lane.submit(gpu, vec![enc.finish()]);
+        gpu.submit(lane, vec![enc.finish()]);
         let mapped = self.mapped.clone();
         mapped.store(false, Ordering::Release);
         self.readback.slice(..).map_async(wgpu::MapMode::Read, move |r| mapped.store(r.is_ok(), Ordering::Release));
@@ -252,4 +247,3 @@ pub fn shared_images(
     let shown = Images { color: color_in.create_view(&Default::default()), depth: depth_in.as_ref().map(depth_view) };
     Ok(((color, depth), Views { shown, pick }))
 }
-

@@ -11,8 +11,8 @@ use std::path::Path;
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
-pub use strata_scene::presets::{LayerEntry, SurfaceEntry};
 use strata_protocol::projection::{Projection, ProjectionError};
+pub use strata_scene::presets::{LayerEntry, SurfaceEntry};
 
 /// One layout entry.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -180,7 +180,7 @@ pub enum LayoutError {
         /// The entry's client.
         client: String,
         /// What is wrong.
-        source: crate::identity::IdentityError,
+        source: crate::credentials::IdentityError,
     },
     /// A `--layout` argument does not parse.
     #[error("--layout {0:?} is not CLIENT=X,Y,Z[,WxH]")]
@@ -189,8 +189,8 @@ pub enum LayoutError {
 
 impl LayoutEntry {
     /// The credentials a client needs to get this entry.
-    pub fn requirement(&self) -> crate::identity::Requirement {
-        crate::identity::Requirement { uid: self.uid, gid: self.gid }
+    pub fn requirement(&self) -> crate::credentials::Requirement {
+        crate::credentials::Requirement { uid: self.uid, gid: self.gid }
     }
 
     /// Whether the entry's placement wins over one the client states.
@@ -281,11 +281,11 @@ impl Config {
         };
         let mut config = config;
         for e in &mut config.layout {
-            crate::identity::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
+            crate::credentials::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
                 .map_err(|source| LayoutError::Identity { section: "[[layout]]", client: e.client.clone(), source })?;
         }
         for e in &mut config.quota {
-            crate::identity::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
+            crate::credentials::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
                 .map_err(|source| LayoutError::Identity { section: "[[quota]]", client: e.client.clone(), source })?;
         }
         for e in &config.layout {

@@ -7,12 +7,12 @@ use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection};
-use strata_protocol::handshake::VertexWire;
-use strata_protocol::handshake::{control_socket_for, default_control_socket_path, default_socket_path};
+use strata_compositor::root::OutputSpec;
 use strata_compositor::{Intermediate, Lighting, Mode, NormalSource};
 use strata_gles::{DepthFormat, DepthOptions, TransferMode};
+use strata_protocol::handshake::VertexWire;
+use strata_protocol::handshake::{control_socket_for, default_control_socket_path, default_socket_path};
 use strata_server::layout::{Config, LayoutEntry};
-use strata_compositor::root::OutputSpec;
 use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
@@ -361,7 +361,7 @@ fn main() -> Result<()> {
                 }
             }
             let group = |g: Option<String>, what: &str| -> Result<Option<u32>> {
-                g.map(|g| g.parse().or_else(|_| strata_server::identity::group_id(&g)))
+                g.map(|g| g.parse().or_else(|_| strata_server::credentials::group_id(&g)))
                     .transpose()
                     .with_context(|| format!("--{what}"))
             };

@@ -102,8 +102,8 @@ pub struct QuotaEntry {
 
 impl QuotaEntry {
     /// The credentials a client needs to get this entry.
-    pub fn requirement(&self) -> crate::identity::Requirement {
-        crate::identity::Requirement { uid: self.uid, gid: self.gid }
+    pub fn requirement(&self) -> crate::credentials::Requirement {
+        crate::credentials::Requirement { uid: self.uid, gid: self.gid }
     }
 
     /// `base` with this entry's values in place.

@@ -6,9 +6,9 @@ use std::collections::{BTreeMap, HashMap};
 
 use strata_protocol::control::{ClientStats, DaemonStats, DeviceStats, DeviceThread};
 
-use strata_device::Gpu;
 use crate::listener::ClientInfo;
 use strata_device::account::{Kind, Pool};
+use strata_device::Gpu;
 use strata_scene::Scene;
 
 /// The process's resident, peak resident and anonymous resident memory, bytes (from

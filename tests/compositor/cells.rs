@@ -4,8 +4,8 @@
 //! 2D baseline, and an RGBA16F intermediate.
 
 use super::*;
-use strata_protocol::projection::Projection;
 use strata_compositor::{Intermediate, Mode};
+use strata_protocol::projection::Projection;
 
 /// Lighting off, on (per-surface normals) and on (normals from depth).
 fn lightings() -> [(&'static str, Lighting); 3] {

@@ -5,12 +5,12 @@
 
 use std::sync::Arc;
 
-use strata_protocol::{Calls, Command, Reply};
 use strata_compositor::reference::{self, upload, RefLayer, Uploaded};
 use strata_compositor::{Compositor, Layer, Lighting, Mode, NormalSource};
+use strata_device::Gpu;
 use strata_gles::execute::Executor;
 use strata_gles::GlesExecutor;
-use strata_device::Gpu;
+use strata_protocol::{Calls, Command, Reply};
 
 use super::{check, gpu, output, surface, BACKGROUND, OUT_H, OUT_W};
 

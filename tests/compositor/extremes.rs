@@ -219,7 +219,7 @@ fn read_depth(gpu: &Gpu, tex: &wgpu::Texture) -> Vec<f32> {
         },
         wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
-    gpu.submit(vec![enc.finish()]);
+    gpu.submit(&gpu.lane, vec![enc.finish()]);
     let slice = buf.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {

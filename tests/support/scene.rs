@@ -4,10 +4,10 @@
 use std::path::Path;
 use std::process::Command;
 
-use strata_protocol::control::SurfaceRow;
-use strata_protocol::properties::LayerRow;
 use strata_compositor::reference::{self, RefLayer};
 use strata_compositor::{Lighting, Props, Source};
+use strata_protocol::control::SurfaceRow;
+use strata_protocol::properties::LayerRow;
 
 use super::windows::Client;
 use super::{Daemon, TempDir};

@@ -88,7 +88,7 @@ impl Floor {
         });
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         strata_device::fullscreen_pass(&mut enc, "composite floor", out, &self.pipeline, &group);
-        gpu.submit(vec![enc.finish()]);
+        gpu.submit(&gpu.lane, vec![enc.finish()]);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     }
 }

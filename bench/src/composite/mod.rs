@@ -174,7 +174,7 @@ fn device_copy_ms(gpu: &Gpu, w: u32, h: u32, frames: u32) -> f64 {
             let (src, dst) = if i % 2 == 0 { (&a, &b) } else { (&b, &a) };
             enc.copy_texture_to_texture(src.as_image_copy(), dst.as_image_copy(), a.size());
         }
-        gpu.submit(vec![enc.finish()]);
+        gpu.submit(&gpu.lane, vec![enc.finish()]);
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
     }) / f64::from(PER_SUBMIT)
 }

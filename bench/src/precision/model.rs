@@ -10,10 +10,10 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
-use strata_protocol::projection::Projection;
 use strata_compositor::reference::{self, RefLayer};
 use strata_compositor::{Compositor, Layer, Lighting};
 use strata_device::Gpu;
+use strata_protocol::projection::Projection;
 
 use super::report::Row;
 use super::{exact_winners, images, inv_eye, projection, quantile, shown, BACKGROUND, DEFAULT, NORMALS};

@@ -228,7 +228,7 @@ impl Root {
             );
             copied.push((job.output, job.region));
         }
-        inner.compositor.last_submission = Some(self.gpu.submit(vec![encoder.finish()]));
+        inner.compositor.last_submission = Some(self.gpu.submit(&self.gpu.lane, vec![encoder.finish()]));
         for &(i, r) in &copied {
             if let Some(out) = inner.outputs.get_mut(i) {
                 out.composites += 1;

@@ -13,10 +13,10 @@ use strata_protocol::projection::Projection;
 use tracing::{info, warn};
 
 use crate::{Compositor, CompositorError, Intermediate, Layer, Mode, Props};
-use strata_device::Gpu;
-use strata_scene::{Part, Region, Scene, Shown, Work};
 pub use bands::BandOptions;
 use bands::{Banded, Cost, Job, KeptLayer};
+use strata_device::Gpu;
+use strata_scene::{Part, Region, Scene, Shown, Work};
 
 mod bands;
 mod pick;

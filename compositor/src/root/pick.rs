@@ -157,7 +157,7 @@ impl DevicePicker {
         }
         enc.copy_buffer_to_buffer(&results, 0, &readback, 0, size);
         let submitted = std::time::Instant::now();
-        let index = gpu.submit(vec![enc.finish()]);
+        let index = gpu.submit(&gpu.lane, vec![enc.finish()]);
         let slice = readback.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {

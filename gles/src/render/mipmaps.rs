@@ -94,7 +94,7 @@ impl Renderer {
                 strata_device::fullscreen_pass(&mut enc, "mipmap", &dst, &pipeline, &group);
             }
         }
-        self.lane.submit(&self.gpu, vec![enc.finish()]);
+        self.gpu.submit(&self.lane, vec![enc.finish()]);
     }
 
     /// Fills levels 1.. of a (filterable, renderable) `format` 3D texture from level 0, each
@@ -125,7 +125,7 @@ impl Renderer {
                 strata_device::fullscreen_pass_at(&mut enc, "mipmap 3d", (&dst, Some(slice)), &pipeline, &group);
             }
         }
-        self.lane.submit(&self.gpu, vec![enc.finish()]);
+        self.gpu.submit(&self.lane, vec![enc.finish()]);
     }
 
     /// The bind group of a mipmap draw reading `src` through `smp`.

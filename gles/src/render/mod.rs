@@ -28,11 +28,11 @@ pub use targets::{Target, COLOR_FORMAT, HALF_FORMAT};
 use super::context::ClipControl;
 use super::programs::LinkedProgram;
 use super::textures::SamplerState;
-use strata_device::Gpu;
 use clears::ClearKey;
 use occlusion::Occlusion;
 use passes::Pass;
 use pipelines::PipelineKey;
+use strata_device::Gpu;
 
 /// An error with all its sources, for logs (wgpu's top-level text is only "Validation Error").
 pub fn error_chain(e: &wgpu::Error) -> String {

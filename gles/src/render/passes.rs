@@ -194,7 +194,7 @@ impl Renderer {
         if let Some(q) = &queries {
             q.resolve(&mut enc);
         }
-        self.lane.submit(&self.gpu, vec![enc.finish()]);
+        self.gpu.submit(&self.lane, vec![enc.finish()]);
         if let Some(q) = queries {
             q.read_back();
         }

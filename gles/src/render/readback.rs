@@ -20,7 +20,7 @@ impl Renderer {
         self.flush();
         let (tex, _) = target.color.as_ref()?;
         let at = target.color_at;
-        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 4)
+        self.gpu.read_texels(&self.lane, tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 4)
     }
 
     /// Reads `[x, y, w, h]` of a half-float colour image (`GL_EXT_color_buffer_half_float`)
@@ -29,7 +29,7 @@ impl Renderer {
         self.flush();
         let (tex, _) = target.color.as_ref()?;
         let at = target.color_at;
-        self.gpu.read_texels(tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 8)
+        self.gpu.read_texels(&self.lane, tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 8)
     }
 
     /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in
@@ -66,8 +66,8 @@ impl Renderer {
             let dst = out.create_view(&Default::default());
             let mut enc = self.gpu.device.create_command_encoder(&Default::default());
             strata_device::fullscreen_pass(&mut enc, "depth read", &dst, &pipeline, &group);
-            self.lane.submit(&self.gpu, vec![enc.finish()]);
-            let bytes = self.gpu.read_texels(&out, (0, 0), rect, wgpu::TextureAspect::All, 4)?;
+            self.gpu.submit(&self.lane, vec![enc.finish()]);
+            let bytes = self.gpu.read_texels(&self.lane, &out, (0, 0), rect, wgpu::TextureAspect::All, 4)?;
             bytes.chunks_exact(4).map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]])).collect()
         } else {
             Vec::new()
@@ -76,7 +76,14 @@ impl Renderer {
             true => {
                 // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
                 let (tw, th) = (tex.width(), tex.height());
-                let all = self.gpu.read_texels(tex, (layer, 0), [0, 0, tw, th], wgpu::TextureAspect::StencilOnly, 1)?;
+                let all = self.gpu.read_texels(
+                    &self.lane,
+                    tex,
+                    (layer, 0),
+                    [0, 0, tw, th],
+                    wgpu::TextureAspect::StencilOnly,
+                    1,
+                )?;
                 let [x, y, w, h] = rect;
                 (y..y + h).flat_map(|r| all[(r * tw + x) as usize..(r * tw + x + w) as usize].to_vec()).collect()
             }
@@ -88,7 +95,7 @@ impl Renderer {
     /// Waits until the GPU has finished everything this client submitted.
     pub fn finish(&mut self) {
         self.flush();
-        self.lane.wait_idle(&self.gpu);
+        self.lane.wait_idle(&self.gpu.device);
     }
 
     /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
@@ -105,6 +112,7 @@ impl Renderer {
         depths: &[f32],
         stencil: Option<&[u8]>,
     ) {
-        strata_scene::depth::Depth::of(&self.gpu).write_region(tex, layer, size, rect, depths, stencil);
+        strata_scene::depth::Depth::for_lane(&self.gpu, &self.lane)
+            .write_region(tex, layer, size, rect, depths, stencil);
     }
 }

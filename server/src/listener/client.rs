@@ -14,11 +14,13 @@ use tokio::net::UnixStream;
 use tokio::sync::oneshot;
 use tracing::{info, warn};
 
-use super::{recv, timed, ClientInfo, DeviceMode, Shared};
+use super::greeting::{recv, timed};
+use super::options::DeviceMode;
+use super::shared::{ClientInfo, Shared};
 use crate::drain::Drain;
-use strata_gles::{GlesExecutor, Placement};
-use strata_device::Gpu;
 use crate::session::{Session, SessionEnd};
+use strata_device::Gpu;
+use strata_gles::{GlesExecutor, Placement};
 
 /// Returns the allocator's free pages to the system (glibc keeps them in its heaps otherwise).
 fn release_free_memory() {

@@ -13,7 +13,8 @@ use tokio::net::unix::{OwnedReadHalf, OwnedWriteHalf};
 use tokio::net::UnixStream;
 use tracing::{debug, info, warn};
 
-use super::{timed, Shared};
+use super::greeting::timed;
+use super::shared::Shared;
 
 /// Reads one line into `buf` (after what it holds): its length, 0 at the end of the stream;
 /// an error for a line longer than `limit`.

@@ -13,7 +13,7 @@ use tokio::io::{AsyncWriteExt, Interest};
 use tokio::net::{UnixListener, UnixStream};
 use tracing::info;
 
-use super::{io_err, ServeOptions, ServerError};
+use super::options::{io_err, ServeOptions, ServerError};
 
 /// Which socket a connection came through.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

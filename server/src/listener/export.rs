@@ -5,7 +5,7 @@
 
 use crate::layout::{Config, LayerEntry, SurfaceEntry};
 
-use super::Shared;
+use super::shared::Shared;
 
 /// The scene as a configuration.
 pub(super) fn export(shared: &Shared) -> serde_json::Value {

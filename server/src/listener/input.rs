@@ -11,11 +11,8 @@ use strata_protocol::input::{InputOutcome, InputRequest};
 use tokio::sync::oneshot;
 use tracing::{debug, info, warn};
 
-use super::Shared;
+use super::shared::Shared;
 use crate::input::libinput::{self, LibinputError, Source};
-
-/// One request for the routing thread: what, when it arrived, and where the answer goes.
-pub(super) type Routed = (InputRequest, Instant, Option<oneshot::Sender<ControlReply>>);
 
 /// Routes an input request that arrived at `arrived`: where its events went, or why none did.
 pub(super) fn route(shared: &Shared, req: &InputRequest, arrived: Instant) -> ControlReply {
@@ -74,9 +71,9 @@ fn set_input_priority(realtime: u8) -> Option<String> {
 /// from a thread at input routing's priority, which the driver's threads inherit, with no
 /// rasterizer threads of its own (a pick is one texel a surface). `None` where it is not
 /// wanted or does not open (picks then read on the compositor's device).
-pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<strata_device::Gpu>> {
+pub(super) fn open_pick_device(opts: &super::options::ServeOptions) -> Option<Arc<strata_device::Gpu>> {
     use crate::input::libinput::PickDevice;
-    if opts.input.input_pick != PickDevice::Own || opts.devices != super::DeviceMode::PerClient {
+    if opts.input.input_pick != PickDevice::Own || opts.devices != super::options::DeviceMode::PerClient {
         return None;
     }
     let realtime = opts.input.input_realtime;
@@ -107,7 +104,7 @@ pub(super) fn open_pick_device(opts: &super::ServeOptions) -> Option<Arc<strata_
 /// `window` input on to it; both end with the daemon.
 pub(super) fn start(
     shared: Weak<Shared>,
-    requests: mpsc::Receiver<Routed>,
+    requests: mpsc::Receiver<crate::listener::shared::Routed>,
     window: Option<mpsc::Receiver<InputRequest>>,
 ) {
     let to_router = shared.upgrade().and_then(|s| s.router.lock().ok().and_then(|r| r.clone()));

@@ -15,7 +15,7 @@ use tokio::net::unix::{OwnedReadHalf, OwnedWriteHalf};
 use tokio::sync::broadcast::error::RecvError;
 use tracing::{debug, warn};
 
-use super::Shared;
+use super::shared::Shared;
 
 /// Longest a watcher may leave a line unread before it is dropped.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(1);
