@@ -4,9 +4,9 @@
 use std::ops::Range;
 
 use crate::inputs::{PassInputs, Texture};
+use crate::kind::{Geom, PassKind};
 use crate::plan::{chunks, GroupPlan, Rect};
 use crate::resources::{block_size, Resources, PARAMS_SIZE};
-use crate::shader::{Geom, PassKind};
 use crate::{Layer, Lighting, NormalSource};
 
 /// The largest side of an intermediate: chained cells are processed in tiles of at most this

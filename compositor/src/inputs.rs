@@ -5,7 +5,7 @@
 
 use std::fmt::Write;
 
-use crate::shader::PassKind;
+use crate::kind::PassKind;
 use strata_device::{texture_entry, UNFILTERED};
 
 /// What one binding of a pass holds.

@@ -7,7 +7,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::inputs::{PassInputs, Uniform};
-use crate::shader::{Composer, Geom, PassKind, FILL};
+use crate::kind::{Geom, PassKind};
+use crate::shader::{Composer, FILL};
 use crate::CompositorError;
 use strata_device::Gpu;
 

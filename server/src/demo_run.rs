@@ -8,7 +8,8 @@ use anyhow::{bail, Context, Result};
 use strata_client::ControlConnection;
 use strata_protocol::handshake::{control_socket_for, ControlReply, ControlRequest};
 
-use crate::{save_png, Projections, Scene};
+use crate::args::{Projections, Scene};
+use crate::png::save_png;
 
 /// Runs the demo: `frames` per client, the screenshot written to `out`.
 pub(crate) fn demo(

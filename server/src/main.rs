@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use strata_client::workload::Workload;
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_compositor::root::OutputSpec;
-use strata_compositor::{Intermediate, Lighting, Mode, NormalSource};
+use strata_compositor::{Intermediate, Lighting, Mode};
 use strata_gles::{DepthFormat, DepthOptions, TransferMode};
 use strata_protocol::handshake::VertexWire;
 use strata_protocol::handshake::{control_socket_for, default_control_socket_path, default_socket_path};
@@ -16,9 +16,13 @@ use strata_server::layout::{Config, LayoutEntry};
 use strata_server::{serve, DeviceMode, ExecutorKind, ServeOptions};
 use tracing::info;
 
+use args::{Normals, Projections, Scene, Switch};
+
+mod args;
 mod ctl;
 mod demo_run;
 mod launch;
+mod png;
 #[cfg(test)]
 mod readme_commands;
 
@@ -238,45 +242,6 @@ enum Cmd {
         #[arg(long = "daemon-arg", allow_hyphen_values = true)]
         daemon_args: Vec<String>,
     },
-}
-
-/// The demo's scene.
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Scene {
-    /// An instrument cluster's dial and a head unit's map, tilted through each other, lit.
-    Dial,
-    /// Two planes under different perspective projections, meeting along a known line, unlit.
-    Planes,
-}
-
-/// Whether the planes' clients declare their projections.
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Projections {
-    /// Through EGL_STRATA_surface_projection.
-    Declared,
-    /// Not at all: depth compared raw.
-    Raw,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum Switch {
-    On,
-    Off,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-pub(crate) enum Normals {
-    PerSurface,
-    FromDepth,
-}
-
-impl From<Normals> for NormalSource {
-    fn from(n: Normals) -> Self {
-        match n {
-            Normals::PerSurface => NormalSource::PerSurface,
-            Normals::FromDepth => NormalSource::FromDepth,
-        }
-    }
 }
 
 fn init_logging() {
@@ -510,11 +475,5 @@ fn check(t: strata_protocol::StreamTally, name: &str) -> Result<()> {
             t.crc32
         );
     }
-    Ok(())
-}
-
-pub(crate) fn save_png(path: &std::path::Path, width: u32, height: u32, rgba: Vec<u8>) -> Result<()> {
-    let img = image::RgbaImage::from_raw(width, height, rgba).context("screenshot has the wrong size")?;
-    img.save(path).with_context(|| format!("writing {}", path.display()))?;
     Ok(())
 }

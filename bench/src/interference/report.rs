@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 
-use super::{Args, Phase, Report, Verdict, DEADLINE_MS, OUTPUT};
+use super::measures::{Args, Phase, Report, Verdict, DEADLINE_MS, OUTPUT};
 use crate::interference_client::plot_cdf;
 
 /// Ratios to the IC alone, the per-load verdicts, the table, the JSON and the plot.

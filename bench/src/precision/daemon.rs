@@ -29,7 +29,7 @@ use strata_protocol::projection::{Projection, ProjectionKind};
 use strata_protocol::{Blob, Slice, Text};
 
 use super::report::Row;
-use super::{exact_winners, inv_eye, shown, PLANES};
+use super::scene::{exact_winners, inv_eye, shown, PLANES};
 use crate::glmark2::stratad_binary;
 use crate::stratad::Stratad;
 

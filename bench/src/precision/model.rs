@@ -16,7 +16,7 @@ use strata_device::Gpu;
 use strata_protocol::projection::Projection;
 
 use super::report::Row;
-use super::{exact_winners, images, inv_eye, projection, quantile, shown, BACKGROUND, DEFAULT, NORMALS};
+use super::scene::{exact_winners, images, inv_eye, projection, quantile, shown, BACKGROUND, DEFAULT, NORMALS};
 use crate::composite::texture;
 
 /// The nearer opaque surface's colour.

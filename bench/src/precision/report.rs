@@ -5,7 +5,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use plotters::prelude::*;
 
-use super::BAND;
+use super::scene::BAND;
 
 /// One measured row.
 #[derive(serde::Serialize)]

@@ -18,7 +18,7 @@ use anyhow::{Context, Result};
 use strata_client::vertex_wire::{quantise, VertexWire};
 
 use super::report::Row;
-use super::{exact_winners, inv_eye, quantile, DEFAULT};
+use super::scene::{exact_winners, inv_eye, quantile, DEFAULT};
 use crate::glmark2::{finish, prepare, stratad_binary};
 use crate::stratad::Stratad;
 

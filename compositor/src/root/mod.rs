@@ -4,7 +4,6 @@
 //! or a swap waits for a refresh, composites at most once per refresh period, and counts the
 //! refresh so paced swaps can proceed.
 
-use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -12,190 +11,25 @@ use strata_protocol::control::{OutputRow, Priority};
 use strata_protocol::projection::Projection;
 use tracing::{info, warn};
 
-use crate::{Compositor, CompositorError, Intermediate, Layer, Mode, Props};
-pub use bands::BandOptions;
+use crate::{Compositor, Intermediate, Layer, Mode, Props};
 use bands::{Banded, Cost, Job, KeptLayer};
 use strata_device::Gpu;
 use strata_scene::{Part, Region, Scene, Shown, Work};
 
 mod bands;
+mod draw_bands;
+mod outputs;
 mod pick;
+mod picking;
+mod state;
 
+pub use bands::BandOptions;
+pub use outputs::{BadOutputSpec, OutputKind, OutputSpec, DEFAULT_OUTPUT};
 pub use pick::Target;
+pub use state::{Root, RootError, Watchdog};
 
-/// Default output: the width and height of a typical automotive centre display.
-pub const DEFAULT_OUTPUT: (u32, u32) = (1920, 720);
-
-/// Where an output's image goes besides the daemon's memory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum OutputKind {
-    /// Off-screen only (screenshots).
-    Headless,
-    /// Also shown in a desktop window; failing to open one is an error.
-    Window,
-    /// A window when a display exists and one opens, else headless.
-    Auto,
-}
-
-/// One output: a name and the rectangle of the global output space it shows.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct OutputSpec {
-    /// Name used by `stratad ctl screenshot`.
-    pub name: String,
-    /// Headless, window, or whichever the environment allows.
-    pub kind: OutputKind,
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Left edge in the output space.
-    pub x: i32,
-    /// Top edge in the output space.
-    pub y: i32,
-}
-
-impl Default for OutputSpec {
-    fn default() -> Self {
-        OutputSpec {
-            name: "main".into(),
-            kind: OutputKind::Auto,
-            width: DEFAULT_OUTPUT.0,
-            height: DEFAULT_OUTPUT.1,
-            x: 0,
-            y: 0,
-        }
-    }
-}
-
-/// An output specification that does not parse.
-#[derive(Debug, thiserror::Error)]
-#[error("output {0:?} is not [window:|headless:]NAME=WxH[+X+Y] with sizes 1..=8192 (e.g. main=1920x720+0+0)")]
-pub struct BadOutputSpec(String);
-
-impl FromStr for OutputSpec {
-    type Err = BadOutputSpec;
-
-    /// Parses `[window:|headless:]NAME=WxH[+X+Y]` (or `WxH`, named `main`); headless unless
-    /// `window:` is given.
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = || BadOutputSpec(s.to_string());
-        let (kind, rest) = if let Some(r) = s.strip_prefix("window:") {
-            (OutputKind::Window, r)
-        } else {
-            (OutputKind::Headless, s.strip_prefix("headless:").unwrap_or(s))
-        };
-        let (name, geom) = match rest.split_once('=') {
-            Some((n, g)) if !n.is_empty() => (n.to_string(), g),
-            Some(_) => return Err(bad()),
-            None => ("main".to_string(), rest),
-        };
-        let mut parts = geom.split('+');
-        let size = parts.next().ok_or_else(bad)?;
-        let (w, h) = size.split_once('x').ok_or_else(bad)?;
-        let width: u32 = w.parse().map_err(|_| bad())?;
-        let height: u32 = h.parse().map_err(|_| bad())?;
-        let x: i32 = parts.next().map(str::parse).transpose().map_err(|_| bad())?.unwrap_or(0);
-        let y: i32 = parts.next().map(str::parse).transpose().map_err(|_| bad())?.unwrap_or(0);
-        if parts.next().is_some() || !(1..=8192).contains(&width) || !(1..=8192).contains(&height) {
-            return Err(bad());
-        }
-        Ok(OutputSpec { name, kind, width, height, x, y })
-    }
-}
-
-struct Output {
-    spec: OutputSpec,
-    texture: wgpu::Texture,
-    window: Option<crate::window::WindowOutput>,
-    composites: u64,
-    /// Of those, the ones drawn band by band.
-    banded: u64,
-    passes: u64,
-    /// The part the last composite redrew (output pixels).
-    region: [i32; 4],
-    /// Whether the last composite reached the window (if any).
-    presented: bool,
-    /// The composites' own device time so far.
-    device: Duration,
-    /// Time they waited on the queue.
-    queue: Duration,
-    /// Time spent planning, encoding and submitting them.
-    encode: Duration,
-    /// Where banded composites are drawn before they are copied in (made when first needed).
-    staging: Option<wgpu::Texture>,
-}
-
-impl Output {
-    /// The output's staging image, made on first use.
-    fn staging(&mut self, gpu: &Gpu) -> &wgpu::Texture {
-        let (w, h) = (self.spec.width, self.spec.height);
-        self.staging.get_or_insert_with(|| output_texture(gpu, "output staging", w, h))
-    }
-}
-
-/// An output-sized image the compositor draws into and copies from and to.
-fn output_texture(gpu: &Gpu, label: &str, width: u32, height: u32) -> wgpu::Texture {
-    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
-        | wgpu::TextureUsages::COPY_SRC
-        | wgpu::TextureUsages::COPY_DST
-        | wgpu::TextureUsages::TEXTURE_BINDING;
-    gpu.texture_2d(label, wgpu::TextureFormat::Rgba8Unorm, (width, height), usage)
-}
-
-struct Inner {
-    compositor: Compositor,
-    outputs: Vec<Output>,
-    /// The damage count the outputs reflect (`None`: never composited).
-    composited: Option<u64>,
-    /// A composite in progress band by band over several refreshes.
-    bands: Option<Banded>,
-    /// The compositor's time per pixel, which decides what is banded and how.
-    cost: Cost,
-}
-
-/// A service manager's watchdog the compositor loop keeps alive.
-#[derive(Debug, Clone, Copy)]
-pub struct Watchdog {
-    /// How often it must hear from the loop.
-    pub period: Duration,
-    /// Tells it the loop is alive.
-    pub ping: fn(),
-}
-
-/// The compositor thread's state, shared with control requests (screenshots, listings).
-pub struct Root {
-    gpu: Arc<Gpu>,
-    scene: Arc<Scene>,
-    inner: Mutex<Inner>,
-    /// When changes are drawn band by band.
-    bands: BandOptions,
-    /// Fault injection: the compositor thread is stuck, as in a composite that never returns.
-    wedged: std::sync::atomic::AtomicBool,
-    /// Input routing's reads of the surfaces under a point (made when first needed).
-    picker: Mutex<Option<pick::Picker>>,
-    /// Each output's name and rectangle in the output space, fixed at start; read without the
-    /// compositor's lock, so that input routing never waits for a composite.
-    places: Vec<(String, [i32; 4])>,
-    /// The output windows' input, until the daemon takes it to route it.
-    window_input: Mutex<Option<std::sync::mpsc::Receiver<strata_protocol::input::InputRequest>>>,
-}
-
-/// Why the root surface could not start.
-#[derive(Debug, thiserror::Error)]
-pub enum RootError {
-    /// The compositor cannot run as configured.
-    #[error(transparent)]
-    Compositor(#[from] CompositorError),
-    /// A window output could not open.
-    #[error(transparent)]
-    Window(#[from] crate::window::WindowError),
-}
-
-/// The longest the compositor waits for one composite (a wedged device must not wedge it).
-const COMPOSITE_WAIT_LIMIT: Duration = Duration::from_secs(5);
-
-/// Background of every output: opaque black.
-const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+use outputs::{output_texture, Output};
+use state::{Inner, BACKGROUND, COMPOSITE_WAIT_LIMIT};
 
 impl Root {
     /// Creates the outputs, composited in `mode` (chained passes through `intermediate`, surfaces

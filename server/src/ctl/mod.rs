@@ -12,7 +12,8 @@ use strata_protocol::input::{Action, Device, InputRequest};
 
 use strata_protocol::properties::{Batch, Change};
 
-use crate::{save_png, Normals};
+use crate::args::Normals;
+use crate::png::save_png;
 
 mod print;
 
