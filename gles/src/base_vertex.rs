@@ -5,12 +5,12 @@
 
 use strata_protocol::Blob;
 
-use super::context::Context;
-use super::enums::UNSIGNED_INT;
-use super::error::{GlError, GlResult};
-use super::indices::{index_values, Indices};
-use super::typed::{IndexType, Primitive};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::UNSIGNED_INT;
+use crate::error::{GlError, GlResult};
+use crate::indices::{index_values, Indices};
+use crate::typed::{IndexType, Primitive};
+use crate::GlesExecutor;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {

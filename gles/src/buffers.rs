@@ -4,54 +4,14 @@
 
 use strata_protocol::{Blob, Slice};
 
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::typed::BufferTarget;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::objects::buffer::{write_words, Buffer};
+use crate::typed::BufferTarget;
+use crate::GlesExecutor;
 use strata_device::account::Kind;
-
-/// A buffer object: a CPU shadow (used to validate draws and convert formats) plus its GPU copy.
-#[derive(Default)]
-pub struct Buffer {
-    /// The contents as the client last wrote them.
-    pub data: Vec<u8>,
-    /// The GPU copy (size rounded up to 4 bytes).
-    pub gpu: Option<wgpu::Buffer>,
-    /// `GL_BUFFER_USAGE`.
-    pub usage: u32,
-    /// Bumped on every write, so derived data (widened indices, converted attributes) can be cached.
-    pub generation: u64,
-    /// The memory of the shadow and the GPU copy, held against the client's quota.
-    pub _reserved: Option<strata_device::account::Reservation>,
-    /// The mapped range, while the buffer is mapped (`GL_OES_mapbuffer`, `GL_EXT_map_buffer_range`).
-    pub map: Option<super::mapping::Mapping>,
-}
-
-impl Buffer {
-    /// Writes `bytes` at `off` (already checked to lie within the buffer) into the shadow and
-    /// the GPU copy.
-    pub(super) fn write(&mut self, gpu: &strata_device::Gpu, flushed: &Flushed, off: usize, bytes: &[u8]) {
-        self.data[off..off + bytes.len()].copy_from_slice(bytes);
-        self.generation += 1;
-        if let Some(g) = &self.gpu {
-            // wgpu writes whole 4-byte words; widen the range using the shadow.
-            let start = off / 4 * 4;
-            let stop = ((off + bytes.len()).div_ceil(4) * 4).min(g.size() as usize);
-            let mut words = self.data[start..stop.min(self.data.len())].to_vec();
-            words.resize(stop - start, 0);
-            if !words.is_empty() {
-                write_words(gpu, flushed, g, start as u64, &words);
-            }
-        }
-    }
-}
-
-/// Writes whole 4-byte `words` into `buffer` at `offset`, after the pending pass.
-fn write_words(gpu: &strata_device::Gpu, _: &Flushed, buffer: &wgpu::Buffer, offset: u64, words: &[u8]) {
-    gpu.write_buffer(buffer, offset, words);
-}
 
 /// Checks `glBufferData`; the name of the buffer it replaces.
 fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blob<'_>>, usage: u32) -> GlResult<u32> {
@@ -192,7 +152,7 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidOperation);
             return 0;
         };
-        if let Some(v) = super::mapping::parameter(b, pname) {
+        if let Some(v) = crate::mapping::parameter(b, pname) {
             return v;
         }
         match pname {

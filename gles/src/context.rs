@@ -3,31 +3,21 @@
 
 use std::collections::HashMap;
 
-use super::buffers::Buffer;
-use super::debug::DebugState;
-use super::egl_config::Config;
-use super::enums::*;
-use super::error::{ErrorFlag, GlError};
-use super::framebuffers::{Framebuffer, Renderbuffer};
-use super::names::Names;
-use super::programs::Program;
-use super::shaders::ShaderObj;
-use super::textures::Texture;
-use super::typed::{BufferTarget, Capability, TextureTarget};
-use super::vao::VertexArray;
-use super::vertex::Attrib;
-
-/// `GL_MAX_VERTEX_ATTRIBS`.
-pub const MAX_ATTRIBS: usize = 16;
-/// Texture units (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
-pub const MAX_UNITS: usize = 16;
-/// Colour attachments and draw buffers (`GL_EXT_draw_buffers`).
-pub const MAX_DRAW_BUFFERS: usize = strata_protocol::commands::MAX_DRAW_BUFFERS as usize;
-/// Largest texture, renderbuffer, viewport and surface dimension.
-pub const MAX_TEXTURE: u32 = 8192;
-/// Largest point size (`GL_ALIASED_POINT_SIZE_RANGE`): points are drawn as squares of two
-/// triangles, so any size rasterises; this bounds what a shader can ask for.
-pub const MAX_POINT_SIZE: f32 = 1024.0;
+use crate::egl_config::Config;
+use crate::enums::*;
+use crate::error::{ErrorFlag, GlError};
+use crate::limits::{MAX_ATTRIBS, MAX_UNITS};
+use crate::names::Names;
+use crate::objects::buffer::Buffer;
+use crate::objects::debug::DebugState;
+use crate::objects::framebuffer::{Framebuffer, Renderbuffer};
+use crate::objects::program::Program;
+use crate::objects::program::ShaderObj;
+use crate::objects::texture::Texture;
+use crate::objects::vertex_array::Attrib;
+use crate::objects::vertex_array::VertexArray;
+use crate::typed::ClipControl;
+use crate::typed::{BufferTarget, Capability, TextureTarget};
 
 /// The context's name tables.
 #[derive(Default)]
@@ -47,7 +37,7 @@ pub struct Objects {
     /// Vertex array objects other than the bound one, whose state is in `Context::attribs`.
     pub vertex_arrays: Names<VertexArray>,
     /// Program pipeline objects (`GL_EXT_separate_shader_objects`).
-    pub pipelines: Names<super::pipelines::Pipeline>,
+    pub pipelines: Names<crate::objects::pipeline::Pipeline>,
     /// `GL_KHR_debug` object labels by (namespace, name).
     pub labels: HashMap<(u32, u32), Vec<u8>>,
 }
@@ -111,15 +101,6 @@ impl Bindings {
     pub fn texture(&self, target: TextureTarget) -> u32 {
         self.units[self.active_unit][target.slot()]
     }
-}
-
-/// `GL_EXT_clip_control`'s state: the window origin and the clip depth range.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-pub struct ClipControl {
-    /// `GL_UPPER_LEFT_EXT` (else `GL_LOWER_LEFT_EXT`): clip y points down the window.
-    pub upper_left: bool,
-    /// `GL_ZERO_TO_ONE_EXT` (else `GL_NEGATIVE_ONE_TO_ONE_EXT`): clip z ranges over [0, w].
-    pub zero_to_one: bool,
 }
 
 /// Rasterisation: viewport, scissor, culling, polygon offset, lines, multisample coverage.
@@ -330,11 +311,11 @@ pub struct Context {
     /// Name tables.
     pub objects: Objects,
     /// Query objects (`GL_EXT_occlusion_query_boolean`; a context's own, never shared).
-    pub queries: super::names::Names<super::occlusion::Query>,
+    pub queries: crate::names::Names<crate::objects::query::Query>,
     /// The `GL_TIME_ELAPSED_EXT` query active, if any (`GL_EXT_disjoint_timer_query`).
     pub active_timer: Option<u32>,
     /// The occlusion query active, if any.
-    pub active_query: Option<super::occlusion::Active>,
+    pub active_query: Option<crate::objects::query::Active>,
     /// While a conditional render is active (`GL_NV_conditional_render`): whether its query
     /// passed a sample, so that draws and clears are done.
     pub conditional: Option<bool>,

@@ -7,7 +7,7 @@
 use strata_protocol::control::Priority;
 use strata_protocol::EglResult;
 
-use super::enums::*;
+use crate::enums::*;
 
 /// What an `eglCreateContext` attribute list asks for.
 #[derive(Debug, Default, PartialEq)]

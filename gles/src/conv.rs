@@ -17,10 +17,10 @@
 //! - **Texture origin.** GL's first uploaded row is the bottom row (t = 0), which is memory
 //!   row 0: uploads, render-to-texture and `glReadPixels` need no flips.
 
-use super::context::MAX_TEXTURE;
-use super::enums::*;
-use super::render::Target;
-use super::textures::SamplerState;
+use crate::enums::*;
+use crate::limits::MAX_TEXTURE;
+use crate::objects::texture::SamplerState;
+use crate::render::Target;
 
 /// Whether `f` is one of the eight comparison functions.
 pub fn valid_func(f: u32) -> bool {

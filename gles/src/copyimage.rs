@@ -1,15 +1,16 @@
 //! Texture images copied from the framebuffer: `glCopyTexImage2D` and `glCopyTexSubImage2D`
 //! (into 8-bit colour images only: float, depth and compressed images are not copy targets).
 
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{sized_color_base, Compressed, Storage};
-use super::render::Target;
-use super::teximage::{image_texture, validate_size, MAX_LEVEL};
-use super::typed::ImageTarget;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::{sized_color_base, Compressed, Storage};
+use crate::limits::MAX_LEVEL;
+use crate::render::Target;
+use crate::teximage::{image_texture, validate_size};
+use crate::typed::ImageTarget;
+use crate::GlesExecutor;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
@@ -68,12 +69,12 @@ impl GlesExecutor {
         border: i32,
     ) -> GlResult {
         let src = self.read_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
-        super::read_buffer::read_selected(ctx)?;
+        crate::read_buffer::read_selected(ctx)?;
         let uid = self.next_uid();
         let account = self.account.clone();
         let gpu = &self.gpu;
         let image = image?;
-        let last = if image.three_d { super::texture3d::max_level(gpu) } else { MAX_LEVEL };
+        let last = if image.three_d { crate::limits::max_3d_level(gpu) } else { MAX_LEVEL };
         if level < 0 || w < 0 || h < 0 || border != 0 || level > last {
             return Err(GlError::InvalidValue);
         }
@@ -135,7 +136,7 @@ impl GlesExecutor {
         if internal.is_some() && (lw, lh) != (w as u32, h as u32) {
             return Err(GlError::InvalidValue);
         }
-        super::teximage::validate_rect((lw, lh), xo, yo, w, h)?;
+        crate::teximage::validate_rect((lw, lh), xo, yo, w, h)?;
         if zo < 0 || zo as u32 >= img.level_depth(level) {
             return Err(GlError::InvalidValue);
         }

@@ -21,10 +21,11 @@ use strata_protocol::wire::*;
 use strata_protocol::Opcode;
 use tracing::warn;
 
-use super::context::Context;
-use super::error::{GlError, GlResult};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::error::{GlError, GlResult};
 use crate::execute::{ExecError, Executor};
+use crate::flushed::Flushed;
+use crate::GlesExecutor;
 
 /// One handler's call, as its attributes say: a `[Context]` command's handler is handed the
 /// current context (`None` when there is none), a `[Context, Flush]` command's also the proof
@@ -51,11 +52,6 @@ macro_rules! handler_call {
         ))
     };
 }
-
-/// Proof that the pending pass was submitted before the command that holds it: whatever writes
-/// a buffer or texture that a recorded draw may read takes one, so that the write cannot land
-/// before that draw. Only the dispatch of a command the table marks `[Flush]` makes one.
-pub struct Flushed(());
 
 /// Generates `GlesExecutor::dispatch` from the command table.
 macro_rules! gles_dispatch {
@@ -139,7 +135,7 @@ impl GlesExecutor {
         if self.r.pending() {
             self.r.flush();
         }
-        Flushed(())
+        Flushed::after_flush()
     }
 
     /// Records `e` in the current context, if there is one.
@@ -159,7 +155,7 @@ impl GlesExecutor {
     /// `GL_OUT_OF_MEMORY` (after which GL leaves the state undefined, as a lost GPU would).
     fn charge(&mut self, extra: Option<wgpu::Error>) {
         let mut errors = std::mem::take(&mut self.r.errors);
-        errors.extend(extra.map(|e| super::render::error_chain(&e)));
+        errors.extend(extra.map(|e| crate::error::error_chain(&e)));
         for e in errors {
             // The log target is the one operators' filters (and the misuse test) match.
             warn!(target: "strata_server::gles::state", "GPU validation error charged to this client: {e}");

@@ -7,25 +7,23 @@ use std::borrow::Cow;
 
 use strata_protocol::Blob;
 
-use super::context::{Context, StencilFace};
-use super::conv::{
+use crate::context::{Context, StencilFace};
+use crate::conv::{
     blend_component, clip_rect, color_writes, compare, component, float_format, native_format, reads_src1, stencil_op,
     type_size, viewport, Mirror,
 };
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{border_color, Storage};
-use super::glsl::Ty;
-use super::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
-use super::programs::LinkedProgram;
-use super::render::{DrawSpec, RasterState, Source, Target, VertexInput};
-use super::surface::ReversedZ;
-use super::textures::Texture;
-use super::typed::{IndexType, Primitive, TextureTarget};
-use super::GlesExecutor;
-
-/// The most bytes of converted vertex data one attribute of one draw may need.
-pub(super) const MAX_CONVERTED: usize = 256 << 20;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::formats::{border_color, Storage};
+use crate::glsl::Ty;
+use crate::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
+use crate::limits::MAX_CONVERTED;
+use crate::objects::program::LinkedProgram;
+use crate::objects::surface::ReversedZ;
+use crate::objects::texture::Texture;
+use crate::render::{DrawSpec, RasterState, Source, Target, VertexInput};
+use crate::typed::{IndexType, Primitive, TextureTarget};
+use crate::GlesExecutor;
 
 /// Validates the program's vertex inputs against their arrays for `vertex_count` vertices and
 /// plans each: the buffer as wgpu reads it, or converted to float in the per-pass ring. With

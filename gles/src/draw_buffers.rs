@@ -3,10 +3,12 @@
 //! `GL_NONE`; a framebuffer object's output `i` writes `GL_COLOR_ATTACHMENTi` or nothing.
 //! Validated in Mesa's order, which was probed: the count, then each buffer in turn.
 
-use super::context::{Context, MAX_DRAW_BUFFERS};
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::GlesExecutor;
+use crate::context::Context;
+
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::limits::MAX_DRAW_BUFFERS;
+use crate::GlesExecutor;
 
 /// `GL_DRAW_BUFFERi_EXT`: what fragment output `i` writes.
 pub(super) fn draw_buffer(ctx: &Context, i: usize) -> u32 {

@@ -9,10 +9,10 @@ use strata_protocol::surface_id;
 use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
-use super::context::Context;
-use super::egl_config::{choose, Config, CONFIGS};
-use super::enums::*;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::egl_config::{choose, Config, CONFIGS};
+use crate::enums::*;
+use crate::GlesExecutor;
 
 /// The projection a surface attribute list declares (`EGL_STRATA_surface_projection`), if
 /// any; an invalid declaration is `EGL_BAD_ATTRIBUTE`, logged with what is wrong with it: at
@@ -236,7 +236,7 @@ impl GlesExecutor {
         self.check_display(display)?;
         // EGL_KHR_no_config_context: EGL_NO_CONFIG_KHR takes each surface's config.
         let c = if config == 0 { CONFIGS[0] } else { Config::get(config).ok_or(EGL_BAD_CONFIG)? };
-        let asked = super::context_attribs::parse(&attribs.to_vec())?;
+        let asked = crate::context_attribs::parse(&attribs.to_vec())?;
         self.account
             .admit(strata_device::account::Kind::Context, self.contexts.len() as u64, 1)
             .map_err(|_| EGL_BAD_ALLOC)?;

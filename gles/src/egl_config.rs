@@ -1,7 +1,7 @@
 //! The EGL configs the daemon offers, their attributes, and their matching as
 //! `eglChooseConfig` specifies it (EGL 1.4 §3.4.1).
 
-use super::enums::*;
+use crate::enums::*;
 
 /// One framebuffer configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -13,21 +13,20 @@
 //! one and leaves the others the old (orphaning, `ensure_image`); deleting the source leaves
 //! the image whole.
 
-use std::sync::Arc;
-
 use strata_protocol::wire::EglHandle;
 use strata_protocol::{EglResult, Slice};
 
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{is_color_format, Storage};
-use super::framebuffers::Renderbuffer;
-use super::images::{Subresource, TextureImage};
-use super::render::COLOR_FORMAT;
-use super::GlesExecutor;
-use strata_device::account::Reservation;
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::COLOR_FORMAT;
+use crate::formats::{is_color_format, Storage};
+use crate::limits::MAX_IMAGES;
+use crate::objects::egl_image::EglImage;
+use crate::objects::framebuffer::Renderbuffer;
+use crate::objects::image::TextureImage;
+use crate::GlesExecutor;
 
 const EGL_GL_TEXTURE_2D_KHR: i32 = 0x30B1;
 const EGL_GL_TEXTURE_CUBE_MAP_POSITIVE_X_KHR: i32 = 0x30B3;
@@ -35,31 +34,6 @@ const EGL_GL_TEXTURE_CUBE_MAP_NEGATIVE_Z_KHR: i32 = 0x30B8;
 const EGL_GL_RENDERBUFFER_KHR: i32 = 0x30B9;
 const EGL_GL_TEXTURE_LEVEL_KHR: i32 = 0x30BC;
 const EGL_IMAGE_PRESERVED_KHR: i32 = 0x30D2;
-/// EGLImages one client may hold at once.
-const MAX_IMAGES: usize = 65_536;
-/// `GL_TEXTURE_EXTERNAL_OES`.
-pub const TEXTURE_EXTERNAL_OES: u32 = 0x8D65;
-
-/// An EGLImage: one level of one layer of a colour image.
-pub struct EglImage {
-    /// The wgpu texture it lies in.
-    texture: wgpu::Texture,
-    /// Which level and layer.
-    at: Subresource,
-    /// Width and height.
-    size: (u32, u32),
-    /// How the texels are kept (RGBA8, RGBA16F or RGBA32F).
-    storage: Storage,
-    /// Whether it can be filtered linearly.
-    filterable: bool,
-    /// The GL format of the source (`RGBA`, `RGB565`, …), which siblings take.
-    format: u32,
-    /// The memory, held until the last sibling and the image are gone.
-    reserved: Arc<Reservation>,
-    /// Whether it is a cube map's face, which (as on Mesa) a renderbuffer takes and a texture
-    /// does not.
-    face: bool,
-}
 
 /// The unsized format a texture made from a renderbuffer's image has: the sized renderbuffer
 /// formats' base formats, as ES 2.0 textures have no sized formats.
@@ -189,8 +163,8 @@ impl GlesExecutor {
         image: EglHandle,
     ) -> GlResult {
         let slot = match target {
-            TEXTURE_2D => super::typed::TextureTarget::TwoD,
-            TEXTURE_EXTERNAL_OES => super::typed::TextureTarget::External,
+            TEXTURE_2D => crate::typed::TextureTarget::TwoD,
+            TEXTURE_EXTERNAL_OES => crate::typed::TextureTarget::External,
             _ => return Err(GlError::InvalidEnum),
         };
         let img = self.images.get(&image).ok_or(GlError::InvalidValue)?;

@@ -584,3 +584,15 @@ pub const EGL_SWAP_BEHAVIOR: i32 = 0x3093;
 /// `EGL_BUFFER_AGE_EXT` (`EGL_EXT_buffer_age`).
 pub const EGL_BUFFER_AGE_EXT: i32 = 0x313D;
 pub const EGL_BUFFER_DESTROYED: i32 = 0x3095;
+
+// Query and texture targets of extensions.
+/// `GL_TIME_ELAPSED_EXT`.
+pub const TIME_ELAPSED: u32 = 0x88BF;
+/// `GL_TIMESTAMP_EXT`.
+pub const TIMESTAMP: u32 = 0x8E28;
+/// `GL_QUERY_COUNTER_BITS_EXT`.
+pub const QUERY_COUNTER_BITS: u32 = 0x8864;
+/// `GL_GPU_DISJOINT_EXT`.
+pub const GPU_DISJOINT: u32 = 0x8FBB;
+/// `GL_TEXTURE_EXTERNAL_OES`.
+pub const TEXTURE_EXTERNAL_OES: u32 = 0x8D65;

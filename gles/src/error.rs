@@ -1,7 +1,7 @@
 //! GL errors: the codes a call records instead of acting (ES 2.0 §2.5), and the rule that the
 //! first recorded error stays until `glGetError` reads it.
 
-use super::enums::*;
+use crate::enums::*;
 
 /// An error a GL call records; the call then changes nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -80,4 +80,19 @@ mod tests {
         flag.record(GlError::OutOfMemory);
         assert_eq!(flag.take(), OUT_OF_MEMORY);
     }
+}
+
+/// An error with all its sources, for logs (wgpu's top-level text is only "Validation Error").
+pub fn error_chain(e: &wgpu::Error) -> String {
+    let mut s = match e {
+        wgpu::Error::Validation { description, .. } => description.clone(),
+        other => other.to_string(),
+    };
+    let mut src = std::error::Error::source(e);
+    while let Some(x) = src {
+        s.push_str(": ");
+        s.push_str(&x.to_string());
+        src = x.source();
+    }
+    s
 }

@@ -2,10 +2,16 @@
 //! on the GPU, and the compressed formats offered (S3TC, ETC1 and ASTC LDR, sampled natively
 //! where the device has the block format, else decoded on upload).
 
-use super::compressed::{astc, astc::Astc, etc1, s3tc::S3tc};
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::render::COLOR_FORMAT;
+use crate::compressed::{astc, astc::Astc, etc1, s3tc::S3tc};
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+
+/// Colour format of every colour target and texture.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// Format of half-float colour buffers (`GL_EXT_color_buffer_half_float`), whatever channels
+/// their GL format has.
+pub const HALF_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// How a texture's texels are kept on the GPU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -224,7 +230,7 @@ impl Compressed {
         for (i, block) in data.chunks_exact(self.block_bytes()).take(across * down as usize).enumerate() {
             let texels = match self {
                 Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => {
-                    super::compressed::s3tc::decode_block(d, block).to_vec()
+                    crate::compressed::s3tc::decode_block(d, block).to_vec()
                 }
                 Compressed::Etc1 => etc1::decode_block(block).to_vec(),
                 Compressed::Astc(a) | Compressed::AstcSrgb(a) => a.decode_block(block),

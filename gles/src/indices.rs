@@ -2,11 +2,11 @@
 //! reading what lies past the index data as 0), and what wgpu reads for them: the element
 //! buffer itself, or a list generated per pass for loops, fans, byte indices and client data.
 
-use super::context::Context;
-use super::draw::MAX_CONVERTED;
-use super::error::{GlError, GlResult};
-use super::render::Source;
-use super::typed::{IndexType, Primitive};
+use crate::context::Context;
+use crate::error::{GlError, GlResult};
+use crate::limits::MAX_CONVERTED;
+use crate::render::Source;
+use crate::typed::{IndexType, Primitive};
 
 /// Where a draw's indices come from.
 #[derive(Clone, Copy)]

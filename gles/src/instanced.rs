@@ -5,10 +5,10 @@
 
 use strata_protocol::Blob;
 
-use super::context::Context;
-use super::error::{GlError, GlResult};
-use super::indices::Indices;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::error::{GlError, GlResult};
+use crate::indices::Indices;
+use crate::GlesExecutor;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {

@@ -10,15 +10,15 @@
 //! Labels live beside the objects, in `Objects::labels`, keyed by the label namespace and the
 //! name; deleting an object forgets its label, so a name that is used again starts unlabelled.
 
-use super::context::Context;
+use crate::context::Context;
 use strata_protocol::commands::MAX_LABEL_LENGTH;
 use strata_protocol::{Blob, Bytes};
 
-use super::context::Objects;
-use super::debug::message_text;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::GlesExecutor;
+use crate::context::Objects;
+use crate::debug::message_text;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::GlesExecutor;
 
 /// Checks that `identifier` is a label namespace of this context (`GL_INVALID_ENUM`) and that
 /// `name` is an object in it (`GL_INVALID_VALUE`).

@@ -28,16 +28,19 @@ mod egl_config;
 mod egl_image;
 pub mod enums;
 mod error;
+mod flushed;
 mod formats;
 mod framebuffers;
 pub mod glsl;
-mod images;
 mod indices;
 mod instanced;
 mod labels;
+pub mod limits;
+mod linking;
 mod mapping;
 mod multi_draw;
 mod names;
+mod objects;
 mod occlusion;
 mod pipelines;
 mod pixels;
@@ -67,9 +70,9 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 pub mod execute;
+pub use objects::surface::{DepthFormat, DepthOptions, Surface};
 pub use render::Fixed as RendererFixed;
 pub use strata_scene::transfer::TransferMode;
-pub use surface::{DepthFormat, DepthOptions, Surface};
 
 use context::Context;
 use render::Renderer;
@@ -97,7 +100,7 @@ pub struct GlesExecutor {
     contexts: HashMap<u32, Context>,
     /// The client's EGLImages, by handle (handles share `next_handle` with contexts and
     /// surfaces).
-    images: HashMap<u32, egl_image::EglImage>,
+    images: HashMap<u32, objects::egl_image::EglImage>,
     next_handle: u32,
     /// The current (context, surface).
     current: Option<(u32, u32)>,

@@ -6,12 +6,14 @@
 
 use strata_protocol::{Blob, Bytes};
 
-use super::buffers::Buffer;
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::error::{GlError, GlResult};
-use super::typed::BufferTarget;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::limits::MAX_MAP;
+use crate::objects::buffer::Buffer;
+use crate::objects::buffer::Mapping;
+use crate::typed::BufferTarget;
+use crate::GlesExecutor;
 
 /// `GL_MAP_READ_BIT_EXT`.
 const READ: u32 = 0x1;
@@ -44,19 +46,6 @@ const BUFFER_ACCESS_FLAGS: u32 = 0x911F;
 const BUFFER_MAP_LENGTH: u32 = 0x9120;
 /// `GL_BUFFER_MAP_OFFSET`.
 const BUFFER_MAP_OFFSET: u32 = 0x9121;
-/// The most a map answers: the mapped bytes travel in one reply.
-const MAX_MAP: usize = strata_protocol::codec::MAX_MESSAGE_LEN / 2;
-
-/// A buffer's mapped range and the access it was mapped with.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Mapping {
-    /// First mapped byte.
-    pub offset: usize,
-    /// Mapped bytes.
-    pub length: usize,
-    /// `GL_MAP_*_BIT_EXT` flags (`GL_MAP_WRITE_BIT_EXT` for `glMapBufferOES`).
-    pub access: u32,
-}
 
 /// The mapping queries of `glGetBufferParameteriv`; `None` for any other `pname`.
 pub(super) fn parameter(b: &Buffer, pname: u32) -> Option<i32> {

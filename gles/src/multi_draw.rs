@@ -6,11 +6,11 @@
 
 use strata_protocol::Slice;
 
-use super::context::Context;
-use super::error::{GlError, GlResult};
-use super::indices::Indices;
-use super::typed::{IndexType, Primitive};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::error::{GlError, GlResult};
+use crate::indices::Indices;
+use crate::typed::{IndexType, Primitive};
+use crate::GlesExecutor;
 
 /// The first `drawcount` entries of each array, validated: `GL_INVALID_VALUE` for a negative
 /// draw count, a negative count, or an array shorter than the draw count.

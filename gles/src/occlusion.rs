@@ -4,15 +4,15 @@
 //! that the draws recorded meanwhile count for; the answer waits only for the passes those
 //! draws went into.
 
-use std::sync::Arc;
-
 use strata_protocol::Slice;
 
-use super::context::Context;
-use super::error::{GlError, GlResult};
-use super::render::occlusion::Occlusion;
-use super::timer::{QUERY_COUNTER_BITS, TIMESTAMP, TIME_ELAPSED};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::{QUERY_COUNTER_BITS, TIMESTAMP, TIME_ELAPSED};
+use crate::error::{GlError, GlResult};
+use crate::limits::MAX_QUERIES;
+use crate::objects::query::Active;
+use crate::render::occlusion::Occlusion;
+use crate::GlesExecutor;
 
 /// `GL_ANY_SAMPLES_PASSED_EXT`.
 const ANY_SAMPLES_PASSED: u32 = 0x8C2F;
@@ -24,32 +24,8 @@ const CURRENT_QUERY: u32 = 0x8865;
 const QUERY_RESULT: u32 = 0x8866;
 /// `GL_QUERY_RESULT_AVAILABLE_EXT`.
 const QUERY_RESULT_AVAILABLE: u32 = 0x8867;
-/// Query objects one context may hold: each may hold device query sets, so a client that
-/// asks for more is told `GL_OUT_OF_MEMORY` (applications use tens).
-pub const MAX_QUERIES: u64 = 16_384;
 /// `GL_QUERY_WAIT_NV` … `GL_QUERY_BY_REGION_NO_WAIT_NV`: conditional render modes.
 const CONDITIONAL_MODES: std::ops::RangeInclusive<u32> = 0x8E13..=0x8E16;
-
-/// A query object: a name from `glGenQueriesEXT`, which becomes a query of one target when it
-/// is first begun.
-#[derive(Default)]
-pub struct Query {
-    /// Its target once begun (0 before).
-    pub target: u32,
-    /// Its last begin/end.
-    pub last: Option<Arc<Occlusion>>,
-    /// A timer query's timestamps (`GL_EXT_disjoint_timer_query`).
-    pub timer: Option<super::timer::Timer>,
-}
-
-/// The occlusion query a context has active: its name and target.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Active {
-    /// The query's name.
-    pub name: u32,
-    /// `GL_ANY_SAMPLES_PASSED_EXT` or `GL_ANY_SAMPLES_PASSED_CONSERVATIVE_EXT`.
-    pub target: u32,
-}
 
 /// Checks an occlusion query target.
 fn target(t: u32) -> GlResult<u32> {

@@ -12,16 +12,18 @@ use std::sync::Arc;
 
 use strata_protocol::{Slice, Text};
 
-use super::context::{Context, Objects};
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::glsl::{self, Stage};
-use super::programs::{create_gpu_program, link_shaders, LinkedProgram, LinkedStages, Program};
-use super::GlesExecutor;
+use crate::context::{Context, Objects};
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::glsl::{self, Stage};
+use crate::limits::MAX_PIPELINES;
+use crate::linking::link_shaders;
+use crate::linking::release_if_unused;
+use crate::objects::pipeline::Pipeline;
+use crate::objects::pipeline::{Combined, Ready};
+use crate::objects::program::{create_gpu_program, LinkedProgram, LinkedStages};
+use crate::GlesExecutor;
 
-/// Program pipelines one context may hold: each may keep a linked executable, so a client
-/// that asks for more is told `GL_OUT_OF_MEMORY` (applications use a handful).
-pub const MAX_PIPELINES: u64 = 4096;
 /// `GL_VERTEX_SHADER_BIT_EXT`.
 const VERTEX_SHADER_BIT: u32 = 0x1;
 /// `GL_FRAGMENT_SHADER_BIT_EXT`.
@@ -31,51 +33,6 @@ const ALL_SHADER_BITS: u32 = u32::MAX;
 /// `GL_ACTIVE_PROGRAM_EXT`.
 const ACTIVE_PROGRAM: u32 = 0x8259;
 
-/// A program pipeline object.
-#[derive(Default)]
-pub struct Pipeline {
-    /// The program whose vertex stage it runs (0: none).
-    pub vertex: u32,
-    /// The program whose fragment stage it runs (0: none).
-    pub fragment: u32,
-    /// The program `glUniform*` writes while it draws (`GL_ACTIVE_PROGRAM_EXT`).
-    pub active: u32,
-    /// Whether it has been bound or given stages (`glIsProgramPipelineEXT` is false before).
-    pub ever_bound: bool,
-    /// `GL_VALIDATE_STATUS` of the last `glValidateProgramPipelineEXT`.
-    pub validated: bool,
-    /// Its info log.
-    pub log: String,
-    /// What it draws with, as of the last draw.
-    ready: Option<Ready>,
-}
-
-impl Pipeline {
-    /// Whether it refers to `program` (a stage's or the active program).
-    pub fn uses(&self, program: u32) -> bool {
-        program != 0 && (self.vertex == program || self.fragment == program || self.active == program)
-    }
-}
-
-/// What a pipeline draws with.
-enum Ready {
-    /// One program's own executable.
-    Own(u32),
-    /// Two programs' stages linked together.
-    Combined(Combined),
-}
-
-/// The vertex stage of one program and the fragment stage of another, linked together.
-struct Combined {
-    /// The two programs' executables' ids it was linked from.
-    key: (u64, u64),
-    /// The executable.
-    program: Arc<LinkedProgram>,
-    /// Where each of its uniforms' values live: the stage whose program holds them, and the
-    /// uniform's index in that program.
-    sources: Vec<(Stage, usize)>,
-}
-
 /// The executable a draw runs, with its uniforms' values and samplers' units.
 pub struct Executable<'c> {
     /// The linked program.
@@ -84,31 +41,6 @@ pub struct Executable<'c> {
     pub data: Cow<'c, [u8]>,
     /// The texture unit of each of its samplers.
     pub units: Cow<'c, [u32]>,
-}
-
-impl Combined {
-    /// The block and units from the two programs' values.
-    fn feed(&self, vertex: &Program, fragment: &Program) -> Option<(Vec<u8>, Vec<u32>)> {
-        let info = &self.program.info;
-        let mut data = vec![0; info.block_size as usize];
-        let mut units = vec![0; info.samplers.len()];
-        for (u, &(stage, index)) in info.uniforms.iter().zip(&self.sources) {
-            let from = if stage == Stage::Vertex { vertex } else { fragment };
-            let src = from.linked.as_ref()?.info.uniforms.get(index)?;
-            match (u.sampler, src.sampler) {
-                (Some(d), Some(s)) => {
-                    let n = u.len as usize;
-                    units.get_mut(d..d + n)?.copy_from_slice(from.units.get(s..s + n)?);
-                }
-                _ => {
-                    let n = (u.stride * u.len) as usize;
-                    let (d, s) = (u.offset as usize, src.offset as usize);
-                    data.get_mut(d..d + n)?.copy_from_slice(from.data.get(s..s + n)?);
-                }
-            }
-        }
-        Some((data, units))
-    }
 }
 
 /// The linked program `name`, if it has an executable.
@@ -214,15 +146,6 @@ impl Context {
             0 => self.objects.pipelines.get(&self.bindings.pipeline).map_or(0, |pl| pl.active),
             p => p,
         }
-    }
-}
-
-/// Frees `program` if it was deleted while in use and nothing uses it now.
-pub(super) fn release_if_unused(ctx: &mut Context, program: u32) {
-    let objects = &ctx.objects;
-    let pending = objects.programs.get(&program).is_some_and(|p| p.delete_pending);
-    if pending && ctx.bindings.program != program && !objects.pipelines.values().any(|pl| pl.uses(program)) {
-        super::programs::remove_program(&mut ctx.objects, program);
     }
 }
 
@@ -447,7 +370,7 @@ impl GlesExecutor {
         let compiled = glsl::compile(stage, source.as_str());
         let compiled_ok = compiled.is_ok();
         let result = compiled.and_then(|s| {
-            let (info, recipe) = super::programs::link_one(&s, &HashMap::new())?;
+            let (info, recipe) = crate::linking::link_one(&s, &HashMap::new())?;
             let stages = match stage {
                 Stage::Vertex => LinkedStages::new(true, Some(s), None),
                 Stage::Fragment => LinkedStages::new(true, None, Some(s)),

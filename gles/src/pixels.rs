@@ -2,17 +2,15 @@
 //! `unpack`), as RGBA bytes, or with `GL_EXT_read_format_bgra` as BGRA bytes and the two
 //! reversed 16-bit BGRA packings.
 
-use super::context::Context;
+use crate::context::Context;
 use strata_protocol::Bytes;
 
-use super::conv::{type_size, Mirror};
-use super::enums::*;
-use super::error::GlError;
-use super::read_depth::{depth_bits, DepthRead};
-use super::GlesExecutor;
-
-/// The largest `glReadPixels` reply: half the protocol's message limit.
-const MAX_READ_BYTES: usize = strata_protocol::codec::MAX_MESSAGE_LEN / 2;
+use crate::conv::{type_size, Mirror};
+use crate::enums::*;
+use crate::error::GlError;
+use crate::limits::MAX_READ_BYTES;
+use crate::read_depth::{depth_bits, DepthRead};
+use crate::GlesExecutor;
 
 /// Bytes a `width`×`height` image of `bpp`-byte pixels occupies with `alignment` row padding
 /// (the last row unpadded).
@@ -150,7 +148,7 @@ impl GlesExecutor {
             }
         };
         let selected = match how {
-            Read::Color(_) => super::read_buffer::read_selected(ctx),
+            Read::Color(_) => crate::read_buffer::read_selected(ctx),
             Read::Depth(_) => Ok(()),
         };
         if let Err(e) = selected {

@@ -8,14 +8,17 @@
 
 use std::collections::HashMap;
 
-use serde::{Deserialize, Serialize};
 use strata_protocol::{Blob, Bytes};
 
-use super::context::{Context, MAX_ATTRIBS};
-use super::error::{GlError, GlResult};
-use super::glsl::{self, Stage};
-use super::programs::{create_gpu_program, link_either, LinkResult, LinkedStages, Program};
-use super::GlesExecutor;
+use crate::context::Context;
+
+use crate::error::{GlError, GlResult};
+use crate::glsl::{self, Stage};
+use crate::limits::MAX_ATTRIBS;
+use crate::linking::link_either;
+use crate::objects::program::Recipe;
+use crate::objects::program::{create_gpu_program, LinkResult, LinkedStages, Program};
+use crate::GlesExecutor;
 
 /// `GL_PROGRAM_BINARY_FORMATS_OES`' one entry: Strata's program binary format.
 pub const PROGRAM_BINARY_FORMAT: u32 = 0x5354_5241;
@@ -27,30 +30,6 @@ const VERSION: u32 = 1;
 const HEADER: usize = 16;
 /// The most a binary's payload may claim to hold.
 const LIMIT: usize = 64 << 20;
-
-/// What a program was linked from: enough to link it again.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Recipe {
-    /// The vertex shader's source.
-    pub vertex: String,
-    /// The fragment shader's source.
-    pub fragment: String,
-    /// `glBindAttribLocation` requests in force at the link, by name.
-    pub bindings: Vec<(String, u32)>,
-}
-
-impl Recipe {
-    /// The recipe of a link of `s` alone (the other stage's source empty) with `bindings`.
-    pub fn new(s: &glsl::Shader, bindings: &HashMap<String, u32>) -> Recipe {
-        let mut listed: Vec<(String, u32)> = bindings.iter().map(|(k, v)| (k.clone(), *v)).collect();
-        listed.sort();
-        let (vertex, fragment) = match s.stage {
-            Stage::Vertex => (s.source.clone(), String::new()),
-            Stage::Fragment => (String::new(), s.source.clone()),
-        };
-        Recipe { vertex, fragment, bindings: listed }
-    }
-}
 
 /// Why a binary was refused.
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]

@@ -1,15 +1,15 @@
 //! State queries: `glGetError`, `glGetString`, and `glGetIntegerv`/`glGetFloatv`/`glGetBooleanv`
 //! over one table of state values with GL's conversions between the three types.
 
-use super::context::{
-    Context, MAX_ATTRIBS, MAX_DRAW_BUFFERS as MAX_DRAW_BUFFERS_COUNT, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS,
-};
-use super::enums::*;
-use super::error::GlError;
-use super::formats::{color_bits, offered_compressed, texture_color_bits};
-use super::framebuffers::Attachment;
-use super::typed::Capability;
-use super::GlesExecutor;
+use crate::context::Context;
+
+use crate::enums::*;
+use crate::error::GlError;
+use crate::formats::{color_bits, offered_compressed, texture_color_bits};
+use crate::limits::{MAX_ATTRIBS, MAX_DRAW_BUFFERS as MAX_DRAW_BUFFERS_COUNT, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS};
+use crate::objects::framebuffer::Attachment;
+use crate::typed::Capability;
+use crate::GlesExecutor;
 use strata_device::Gpu;
 
 /// Extensions advertised in `GL_EXTENSIONS`: only what the executor implements.
@@ -161,7 +161,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         STENCIL_BACK_WRITEMASK => u(back.write),
         ARRAY_BUFFER_BINDING => u(bind.array_buffer),
         // GL_EXT_disjoint_timer_query: the device's clock never jumps.
-        super::timer::GPU_DISJOINT if gpu.features.contains(wgpu::Features::TIMESTAMP_QUERY) => b(false),
+        crate::enums::GPU_DISJOINT if gpu.features.contains(wgpu::Features::TIMESTAMP_QUERY) => b(false),
         ELEMENT_ARRAY_BUFFER_BINDING => u(bind.element_buffer),
         PIXEL_PACK_BUFFER_BINDING_NV => u(bind.pixel_pack),
         PIXEL_UNPACK_BUFFER_BINDING_NV => u(bind.pixel_unpack),
@@ -172,7 +172,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         TEXTURE_BINDING_CUBE_MAP => u(bind.units[bind.active_unit][1]),
         TEXTURE_BINDING_EXTERNAL_OES => u(bind.units[bind.active_unit][2]),
         TEXTURE_BINDING_3D_OES => u(bind.units[bind.active_unit][3]),
-        MAX_3D_TEXTURE_SIZE_OES => i(super::texture3d::max_size(gpu) as i32),
+        MAX_3D_TEXTURE_SIZE_OES => i(crate::limits::max_3d_size(gpu) as i32),
         ACTIVE_TEXTURE => u(TEXTURE0 + bind.active_unit as u32),
         UNPACK_ALIGNMENT => i(ctx.pixel_store.unpack_alignment),
         PACK_ALIGNMENT => i(ctx.pixel_store.pack_alignment),
@@ -186,11 +186,11 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         GENERATE_MIPMAP_HINT => u(ctx.mipmap_hint),
         // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
-        READ_BUFFER_NV => u(super::read_buffer::read_buffer(ctx)),
+        READ_BUFFER_NV => u(crate::read_buffer::read_buffer(ctx)),
         MAX_DRAW_BUFFERS | MAX_COLOR_ATTACHMENTS => u(MAX_DRAW_BUFFERS_COUNT as u32),
         MAX_DUAL_SOURCE_DRAW_BUFFERS_EXT if gpu.dual_source() => i(1),
-        DRAW_BUFFER0..=DRAW_BUFFER7 => u(super::draw_buffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
-        MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(super::textures::MAX_ANISOTROPY),
+        DRAW_BUFFER0..=DRAW_BUFFER7 => u(crate::draw_buffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
+        MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(crate::limits::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
         CONTEXT_RELEASE_BEHAVIOR_KHR => u(if ctx.release_none { 0 } else { CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR }),
         // EXT_robustness / KHR_robustness: never a robust-access context; the strategy asked.
@@ -205,7 +205,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         MAX_VIEWPORT_DIMS => Ints(vec![MAX_TEXTURE as i32; 2]),
         MAX_VERTEX_ATTRIBS => i(MAX_ATTRIBS as i32),
         MAX_VERTEX_UNIFORM_VECTORS | MAX_FRAGMENT_UNIFORM_VECTORS => i(256),
-        MAX_VARYING_VECTORS => i(super::glsl::MAX_VARYING_VECTORS as i32),
+        MAX_VARYING_VECTORS => i(crate::limits::MAX_VARYING_VECTORS as i32),
         MAX_COMBINED_TEXTURE_IMAGE_UNITS | MAX_TEXTURE_IMAGE_UNITS | MAX_VERTEX_TEXTURE_IMAGE_UNITS => {
             i(MAX_UNITS as i32)
         }
@@ -233,7 +233,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         NUM_PROGRAM_BINARY_FORMATS_OES => i(1),
         CLIP_ORIGIN_EXT => u(if raster.clip.upper_left { UPPER_LEFT_EXT } else { LOWER_LEFT_EXT }),
         CLIP_DEPTH_MODE_EXT => u(if raster.clip.zero_to_one { ZERO_TO_ONE_EXT } else { NEGATIVE_ONE_TO_ONE_EXT }),
-        PROGRAM_BINARY_FORMATS_OES => u(super::program_binary::PROGRAM_BINARY_FORMAT),
+        PROGRAM_BINARY_FORMATS_OES => u(crate::program_binary::PROGRAM_BINARY_FORMAT),
         // Not ES 2.0 state (desktop GL and ES 1.x), answered anyway as Mesa does: piglit's
         // shader_runner asks for it unconditionally. No user clip planes.
         MAX_CLIP_PLANES => i(0),
@@ -244,8 +244,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         VERTEX_ARRAY_BINDING_OES => i(bind.vertex_array as i32),
         MAX_LABEL_LENGTH => i(strata_protocol::commands::MAX_LABEL_LENGTH),
         MAX_DEBUG_MESSAGE_LENGTH => i(strata_protocol::commands::MAX_DEBUG_MESSAGE_LENGTH),
-        MAX_DEBUG_LOGGED_MESSAGES => i(super::debug::MAX_LOGGED as i32),
-        MAX_DEBUG_GROUP_STACK_DEPTH => i(super::debug::MAX_GROUP_DEPTH as i32),
+        MAX_DEBUG_LOGGED_MESSAGES => i(crate::limits::MAX_LOGGED as i32),
+        MAX_DEBUG_GROUP_STACK_DEPTH => i(crate::limits::MAX_GROUP_DEPTH as i32),
         DEBUG_LOGGED_MESSAGES => i(ctx.debug.logged() as i32),
         DEBUG_NEXT_LOGGED_MESSAGE_LENGTH => i(ctx.debug.next_length() as i32),
         DEBUG_GROUP_STACK_DEPTH => i(ctx.debug.depth() as i32),

@@ -4,11 +4,11 @@
 //! each of which keeps its own. It applies to the framebuffer bound for reading. Reading with `GL_NONE` selected, or from an attachment with
 //! no image, is `GL_INVALID_OPERATION`, as on Mesa.
 
-use super::context::Context;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::framebuffers::{color_slot, Attachment};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::objects::framebuffer::{color_slot, Attachment};
+use crate::GlesExecutor;
 
 /// `GL_READ_BUFFER_NV`: the colour buffer reads use, or `GL_NONE`.
 pub(super) fn read_buffer(ctx: &Context) -> u32 {

@@ -5,9 +5,9 @@
 //! Depth is converted from the stored value as Mesa converts it: to the buffer's own bits (16
 //! for `GL_DEPTH_COMPONENT16`, else 24), then widened by repeating the bits.
 
-use super::conv::type_size;
-use super::enums::*;
-use super::error::GlError;
+use crate::conv::type_size;
+use crate::enums::*;
+use crate::error::GlError;
 
 /// `GL_STENCIL_INDEX_OES`.
 pub const STENCIL_INDEX_OES: u32 = 0x1901;

@@ -5,13 +5,13 @@
 
 use std::hash::{Hash, Hasher};
 
-use super::context::Context;
-use super::enums::*;
-use super::formats::{absent_channels, Compressed, Storage};
-use super::framebuffers::{Attachment, Purpose};
-use super::images::Subresource;
-use super::render::Target;
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::*;
+use crate::formats::{absent_channels, Compressed, Storage};
+use crate::objects::framebuffer::{Attachment, Purpose};
+use crate::objects::image::Subresource;
+use crate::render::Target;
+use crate::GlesExecutor;
 
 /// A resolved depth/stencil attachment: view, format, image uid, width, height.
 type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, (wgpu::Texture, u32));

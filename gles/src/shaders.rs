@@ -2,27 +2,12 @@
 
 use strata_protocol::{Blob, Slice, Text};
 
-use super::context::Context;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::glsl::{self, Stage};
-use super::GlesExecutor;
-
-/// A shader object.
-pub struct ShaderObj {
-    /// Vertex or fragment.
-    pub stage: Stage,
-    /// The source as last set.
-    pub source: String,
-    /// The compiled interface, after a successful compile.
-    pub compiled: Option<glsl::Shader>,
-    /// Whether the last compile succeeded.
-    pub compiled_ok: bool,
-    /// The info log of the last compile.
-    pub log: String,
-    /// Deleted while attached: freed when detached.
-    pub delete_pending: bool,
-}
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::glsl::{self, Stage};
+use crate::objects::program::ShaderObj;
+use crate::GlesExecutor;
 
 /// `f` of shader `name`, or `default` after recording the error GL gives for a bad name.
 fn with_shader<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&ShaderObj) -> T) -> T {

@@ -2,17 +2,15 @@
 //! selects (a reversed-Z surface's depth, `GL_EXT_clip_control`'s origin and depth range, the
 //! points stage), each created on first use and kept.
 
-use super::context::{ClipControl, Context};
-use super::glsl::ClipZ;
-use super::programs::{shader_module, LinkedProgram};
-use super::surface::ReversedZ;
-use super::GlesExecutor;
+use crate::context::Context;
 
-/// A draw's vertex stage and, when not the program's own, its fragment stage.
-pub(super) type Stages = (wgpu::ShaderModule, Option<wgpu::ShaderModule>);
-
-/// Reversed-Z stages one surface keeps (by linked program) before it forgets them all.
-const MAX_REVERSED_STAGES: usize = 64;
+use crate::glsl::ClipZ;
+use crate::limits::MAX_REVERSED_STAGES;
+use crate::objects::program::Stages;
+use crate::objects::program::{shader_module, LinkedProgram};
+use crate::objects::surface::ReversedZ;
+use crate::typed::ClipControl;
+use crate::GlesExecutor;
 
 impl GlesExecutor {
     /// The reversed-Z constants of the draw framebuffer when it is a reversed-Z surface's

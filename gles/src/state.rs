@@ -1,12 +1,16 @@
 //! Fixed-function state: capabilities, viewport and scissor, clear values, write masks, depth,
 //! culling, blending, stencil, polygon offset, line width, hints and pixel store.
 
-use super::context::{ClipControl, Context, StencilFace, MAX_TEXTURE};
-use super::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op};
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::typed::Capability;
-use super::GlesExecutor;
+use crate::context::{Context, StencilFace};
+
+use crate::typed::ClipControl;
+
+use crate::conv::{blend_factor, blend_op, reads_src1, valid_func, valid_stencil_op};
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::limits::MAX_TEXTURE;
+use crate::typed::Capability;
+use crate::GlesExecutor;
 
 /// A `clampf` parameter as GL stores it: clamped to [0, 1] (NaN becomes 0).
 fn clampf(x: f32) -> f32 {

@@ -5,19 +5,19 @@
 
 use strata_protocol::Blob;
 
-use super::context::{Context, MAX_TEXTURE};
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
-use super::images::{Region, TextureImage};
-use super::textures::Texture;
-use super::typed::ImageTarget;
-use super::unpack::{depth_stencil_values, to_storage, Unpack};
-use super::GlesExecutor;
+use crate::context::Context;
 
-/// The largest mip level an image may be specified at (log2 of the maximum size).
-pub const MAX_LEVEL: i32 = 13;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
+use crate::limits::MAX_LEVEL;
+use crate::limits::MAX_TEXTURE;
+use crate::objects::image::{Region, TextureImage};
+use crate::objects::texture::Texture;
+use crate::typed::ImageTarget;
+use crate::unpack::{depth_stencil_values, to_storage, Unpack};
+use crate::GlesExecutor;
 
 /// The texture name an image of `target` goes to: the one bound to its binding point.
 pub fn image_texture(ctx: &Context, target: ImageTarget) -> u32 {

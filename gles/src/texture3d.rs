@@ -7,37 +7,27 @@
 
 use strata_protocol::Blob;
 
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed};
-use super::framebuffers::Attachment;
-use super::images::Region;
-use super::teximage::{blank, block_aligned};
-use super::textures::Texture;
-use super::typed::{ImageTarget, TextureTarget};
-use super::unpack::{to_storage, Unpack};
-use super::GlesExecutor;
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed};
+use crate::objects::framebuffer::Attachment;
+use crate::objects::image::Region;
+use crate::objects::texture::Texture;
+use crate::teximage::{blank, block_aligned};
+use crate::typed::{ImageTarget, TextureTarget};
+use crate::unpack::{to_storage, Unpack};
+use crate::GlesExecutor;
 use strata_device::Gpu;
-
-/// `GL_MAX_3D_TEXTURE_SIZE_OES`: Mesa's 2048, or less where the device allows less.
-pub fn max_size(gpu: &Gpu) -> u32 {
-    2048.min(gpu.limits.max_texture_dimension_3d)
-}
-
-/// The last level a 3D image may have (log2 of [`max_size`]).
-pub(super) fn max_level(gpu: &Gpu) -> i32 {
-    31 - max_size(gpu).max(1).leading_zeros() as i32
-}
 
 /// Checks a new 3D level's number and size as Mesa does: `GL_INVALID_VALUE` for a level past
 /// the last, a negative size, one beyond the largest that level may have, or a border.
 fn validate_volume(gpu: &Gpu, level: i32, size: [i32; 3], border: i32) -> GlResult {
-    if !(0..=max_level(gpu)).contains(&level) || border != 0 {
+    if !(0..=crate::limits::max_3d_level(gpu)).contains(&level) || border != 0 {
         return Err(GlError::InvalidValue);
     }
-    let most = (max_size(gpu) >> level) as i32;
+    let most = (crate::limits::max_3d_size(gpu) >> level) as i32;
     if size.iter().any(|&n| !(0..=most).contains(&n)) {
         return Err(GlError::InvalidValue);
     }
@@ -74,7 +64,7 @@ fn sub_volume<'a>(
     b: [i32; 6],
     fits: impl FnOnce(&Texture) -> GlResult,
 ) -> GlResult<(&'a mut Texture, [u32; 3])> {
-    if !(0..=max_level(gpu)).contains(&level) {
+    if !(0..=crate::limits::max_3d_level(gpu)).contains(&level) {
         return Err(GlError::InvalidValue);
     }
     let t = bound(ctx)?;
@@ -353,17 +343,19 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         if texture == 0 {
-            return super::framebuffers::set_attachment(ctx, attachment, Attachment::None);
+            return crate::framebuffers::set_attachment(ctx, attachment, Attachment::None);
         }
         let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
         // As Mesa: the target named must be 3D, and the texture's.
         if textarget != TEXTURE_3D_OES || t.target != TEXTURE_3D_OES {
             return Err(GlError::InvalidOperation);
         }
-        if !(0..max_size(&self.gpu) as i32).contains(&zoffset) || !(0..=max_level(&self.gpu)).contains(&level) {
+        if !(0..crate::limits::max_3d_size(&self.gpu) as i32).contains(&zoffset)
+            || !(0..=crate::limits::max_3d_level(&self.gpu)).contains(&level)
+        {
             return Err(GlError::InvalidValue);
         }
         let a = Attachment::Texture { name: texture, level: level as u32, face: zoffset as u32 };
-        super::framebuffers::set_attachment(ctx, attachment, a)
+        crate::framebuffers::set_attachment(ctx, attachment, a)
     }
 }

@@ -3,126 +3,14 @@
 
 use strata_protocol::Slice;
 
-use super::context::Context;
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::{Compressed, Storage};
-use super::images::TextureImage;
-use super::typed::TextureTarget;
-use super::GlesExecutor;
-
-/// Sampling state of a texture (ES 2.0 keeps it in the texture object).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct SamplerState {
-    /// `TEXTURE_MIN_FILTER`.
-    pub min: u32,
-    /// `TEXTURE_MAG_FILTER`.
-    pub mag: u32,
-    /// `TEXTURE_WRAP_S`.
-    pub wrap_s: u32,
-    /// `TEXTURE_WRAP_T`.
-    pub wrap_t: u32,
-    /// `TEXTURE_WRAP_R_OES` (`GL_OES_texture_3D`; every texture has it).
-    pub wrap_r: u32,
-    /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
-    /// from 1 to [`MAX_ANISOTROPY`].
-    pub anisotropy: u32,
-    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`): the last level sampled, and
-    /// the last a mipmapped texture needs.
-    pub max_level: u32,
-}
-
-/// `GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT`: wgpu's largest anisotropy clamp (and Mesa's value).
-pub const MAX_ANISOTROPY: f32 = 16.0;
-
-impl Default for SamplerState {
-    fn default() -> Self {
-        SamplerState {
-            min: NEAREST_MIPMAP_LINEAR,
-            mag: LINEAR,
-            wrap_s: REPEAT,
-            wrap_t: REPEAT,
-            wrap_r: REPEAT,
-            anisotropy: 1.0f32.to_bits(),
-            max_level: 1000,
-        }
-    }
-}
-
-impl SamplerState {
-    /// Whether the minification filter reads mipmaps.
-    pub fn uses_mipmaps(&self) -> bool {
-        !matches!(self.min, NEAREST | LINEAR)
-    }
-
-    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s, t and r: the sampler clamps to the edge
-    /// and the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
-    pub fn mirror_clamp(&self) -> [bool; 3] {
-        [self.wrap_s, self.wrap_t, self.wrap_r].map(|w| w == MIRROR_CLAMP_TO_EDGE_EXT)
-    }
-
-    /// Whether s, t or r wraps by `GL_CLAMP_TO_BORDER_EXT` (r counts only for 3D textures,
-    /// `three_d`).
-    pub fn clamps_to_border(&self, three_d: bool) -> bool {
-        self.wrap_s == CLAMP_TO_BORDER_EXT
-            || self.wrap_t == CLAMP_TO_BORDER_EXT
-            || (three_d && self.wrap_r == CLAMP_TO_BORDER_EXT)
-    }
-
-    /// Whether either filter interpolates between texels or levels.
-    pub fn filters_linearly(&self) -> bool {
-        self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
-    }
-}
-
-/// A texture object.
-#[derive(Default)]
-pub struct Texture {
-    /// `TEXTURE_2D` or `TEXTURE_CUBE_MAP` once bound, 0 before.
-    pub target: u32,
-    /// Sampling state.
-    pub sampler: SamplerState,
-    /// The GPU image, its views, base size, mip count and storage.
-    pub gpu: Option<TextureImage>,
-    /// Per face: bitmask of the levels that have been specified.
-    pub defined: [u32; 6],
-    /// Internal format of level 0 (`RGBA`, `LUMINANCE`, `BGRA_EXT`, a compressed format, …).
-    pub format: u32,
-    /// Unique id for caches; changes when the image is recreated.
-    pub uid: u64,
-    /// Whether level 0 was specified as `GL_HALF_FLOAT_OES` (half-float images of other
-    /// types, 2_10_10_10, are not renderable).
-    pub half_float: bool,
-    /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
-    /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
-    pub border: [f32; 4],
-}
-
-impl Texture {
-    /// Whether every level of every face is defined, consistently with level 0 (the mipmap
-    /// completeness of GL ES 2.0 §3.7.10, whatever the filter).
-    pub fn levels_complete(&self) -> bool {
-        let Some(img) = &self.gpu else { return false };
-        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let all = ((1u64 << img.levels) - 1) as u32;
-        self.defined[..faces].iter().all(|d| d & all == all)
-    }
-
-    /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
-    /// image the device cannot filter is incomplete with a linear filter
-    /// (`OES_texture_float_linear` not offered).
-    pub fn complete(&self) -> bool {
-        let Some(img) = &self.gpu else { return false };
-        if img.storage == Storage::Float && !img.filterable && self.sampler.filters_linearly() {
-            return false;
-        }
-        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let levels = img.levels.min(self.sampler.max_level.saturating_add(1));
-        let need = if self.sampler.uses_mipmaps() { ((1u64 << levels) - 1) as u32 } else { 1 };
-        self.defined[..faces].iter().all(|d| d & need == need)
-    }
-}
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::Compressed;
+use crate::limits::MAX_ANISOTROPY;
+use crate::typed::TextureTarget;
+use crate::GlesExecutor;
 
 /// `GL_REQUIRED_TEXTURE_IMAGE_UNITS_OES`: the units an external texture takes (always 1).
 const REQUIRED_TEXTURE_IMAGE_UNITS_OES: u32 = 0x8D68;

@@ -1,8 +1,8 @@
 //! GL enums parsed once at the boundary into typed values: binding points, image targets,
 //! capabilities, primitives and index types. Anything else is the GL error the parse gives.
 
-use super::enums::*;
-use super::error::{GlError, GlResult};
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
 
 /// A buffer binding point (`glBindBuffer`, `glBufferData`, …).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -51,7 +51,7 @@ impl TextureTarget {
         match target {
             TEXTURE_2D => Ok(TextureTarget::TwoD),
             TEXTURE_CUBE_MAP => Ok(TextureTarget::CubeMap),
-            super::egl_image::TEXTURE_EXTERNAL_OES => Ok(TextureTarget::External),
+            crate::enums::TEXTURE_EXTERNAL_OES => Ok(TextureTarget::External),
             TEXTURE_3D_OES => Ok(TextureTarget::ThreeD),
             _ => Err(GlError::InvalidEnum),
         }
@@ -62,7 +62,7 @@ impl TextureTarget {
         match self {
             TextureTarget::TwoD => TEXTURE_2D,
             TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
-            TextureTarget::External => super::egl_image::TEXTURE_EXTERNAL_OES,
+            TextureTarget::External => crate::enums::TEXTURE_EXTERNAL_OES,
             TextureTarget::ThreeD => TEXTURE_3D_OES,
         }
     }
@@ -258,4 +258,13 @@ impl IndexType {
             IndexType::U32 => 4,
         }
     }
+}
+
+/// `GL_EXT_clip_control`'s state: the window origin and the clip depth range.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct ClipControl {
+    /// `GL_UPPER_LEFT_EXT` (else `GL_LOWER_LEFT_EXT`): clip y points down the window.
+    pub upper_left: bool,
+    /// `GL_ZERO_TO_ONE_EXT` (else `GL_NEGATIVE_ONE_TO_ONE_EXT`): clip z ranges over [0, w].
+    pub zero_to_one: bool,
 }

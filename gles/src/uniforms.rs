@@ -3,11 +3,14 @@
 
 use strata_protocol::{ActiveVariable, Slice, Text};
 
-use super::context::{Context, MAX_UNITS};
-use super::error::{GlError, GlResult};
-use super::glsl::Scalar;
-use super::programs::{linked_for_query, LinkedProgram};
-use super::GlesExecutor;
+use crate::context::Context;
+
+use crate::error::{GlError, GlResult};
+use crate::glsl::Scalar;
+use crate::limits::MAX_UNITS;
+use crate::linking::linked_for_query;
+use crate::objects::program::LinkedProgram;
+use crate::GlesExecutor;
 
 /// The values of one `glUniform*` call.
 enum Vals<'a> {

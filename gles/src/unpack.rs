@@ -5,9 +5,9 @@
 
 use half::f16;
 
-use super::context::PixelStore;
-use super::enums::*;
-use super::formats::Storage;
+use crate::context::PixelStore;
+use crate::enums::*;
+use crate::formats::Storage;
 
 /// Where the rows of an upload lie in the client's bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -9,29 +9,12 @@
 
 use strata_protocol::Slice;
 
-use super::context::{Context, MAX_ATTRIBS};
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::vertex::Attrib;
-use super::GlesExecutor;
+use crate::context::Context;
 
-/// A vertex array object that is not bound.
-pub struct VertexArray {
-    /// Its attribute arrays (their `current` fields mean nothing here).
-    attribs: Vec<Attrib>,
-    /// `GL_ELEMENT_ARRAY_BUFFER_BINDING`.
-    element_buffer: u32,
-    /// Whether it has been bound: a generated name becomes a vertex array object only then
-    /// (`glIsVertexArrayOES` is false before).
-    ever_bound: bool,
-}
-
-impl Default for VertexArray {
-    /// A generated name's initial state.
-    fn default() -> Self {
-        VertexArray { attribs: vec![Attrib::default(); MAX_ATTRIBS], element_buffer: 0, ever_bound: false }
-    }
-}
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::objects::vertex_array::VertexArray;
+use crate::GlesExecutor;
 
 /// Exchanges the context's vertex array state with `vao`'s, keeping the current values.
 fn exchange(ctx: &mut Context, vao: &mut VertexArray) {

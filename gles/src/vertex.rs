@@ -3,64 +3,14 @@
 
 use strata_protocol::{Blob, Slice};
 
-use super::context::{Context, MAX_ATTRIBS};
-use super::conv::type_size;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::GlesExecutor;
+use crate::context::Context;
 
-/// One generic vertex attribute: its array and its current value.
-#[derive(Clone)]
-pub struct Attrib {
-    /// `VERTEX_ATTRIB_ARRAY_ENABLED`.
-    pub enabled: bool,
-    /// Components per vertex (1–4).
-    pub size: i32,
-    /// Component type.
-    pub ty: u32,
-    /// Whether integers are normalised.
-    pub normalized: bool,
-    /// Byte stride (0: tightly packed).
-    pub stride: i32,
-    /// Byte offset into the buffer (the pointer).
-    pub offset: u64,
-    /// The array buffer bound when the pointer was set; 0 for a client-side array.
-    pub buffer: u32,
-    /// The current value, used while the array is disabled.
-    pub current: [f32; 4],
-    /// A client-side array's bytes for the next draw (`buffer` is 0).
-    pub client: Option<Vec<u8>>,
-    /// The type and stride the application set, while `client` holds an array the client
-    /// converted for the wire (`ty` and `stride` then describe those bytes, tightly packed).
-    pub declared: Option<(u32, i32)>,
-}
-
-impl Default for Attrib {
-    fn default() -> Self {
-        Attrib {
-            enabled: false,
-            size: 4,
-            ty: FLOAT,
-            normalized: false,
-            stride: 0,
-            offset: 0,
-            buffer: 0,
-            current: [0.0, 0.0, 0.0, 1.0],
-            client: None,
-            declared: None,
-        }
-    }
-}
-
-impl Attrib {
-    /// Puts back the type and stride the application set, if a wire array stood in for them.
-    fn restore_declared(&mut self) {
-        if let Some((ty, stride)) = self.declared.take() {
-            self.ty = ty;
-            self.stride = stride;
-        }
-    }
-}
+use crate::conv::type_size;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::limits::MAX_ATTRIBS;
+use crate::objects::vertex_array::Attrib;
+use crate::GlesExecutor;
 
 /// The component types a client may convert a `GL_FLOAT` array to for the wire.
 fn wire_type(ty: u32) -> bool {

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use strata_device::account::Reservation;
 use strata_scene::transfer::{CopyPath, Transfer};
 
-use super::render::Target;
+use crate::render::Target;
 
 /// One buffer of a window surface.
 pub(super) struct Buffer {

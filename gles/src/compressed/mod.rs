@@ -13,13 +13,13 @@ pub mod s3tc;
 use crate::context::Context;
 use strata_protocol::Blob;
 
-use super::error::{GlError, GlResult};
-use super::formats::{Compressed, Storage};
-use super::images::Region;
-use super::teximage::{image_texture, sub_image, validate_size, SubImage};
-use super::typed::ImageTarget;
-use super::GlesExecutor;
-use crate::dispatch::Flushed;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::{Compressed, Storage};
+use crate::objects::image::Region;
+use crate::teximage::{image_texture, sub_image, validate_size, SubImage};
+use crate::typed::ImageTarget;
+use crate::GlesExecutor;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
@@ -93,7 +93,7 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         // An image is updated only by data of its own format (ETC1's too, by
         // `EXT_compressed_ETC1_RGB8_sub_texture`).
-        let fits = |t: &super::textures::Texture, _: &_| {
+        let fits = |t: &crate::objects::texture::Texture, _: &_| {
             if t.format == format {
                 Ok(())
             } else {

@@ -8,9 +8,9 @@ use std::collections::{HashMap, HashSet};
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{Host, Visit, Visitor};
 
-use super::precision;
-use super::preprocess::{error_at, line_col, Parsed};
-use super::Stage;
+use crate::glsl::precision;
+use crate::glsl::preprocess::{error_at, line_col, Parsed};
+use crate::glsl::Stage;
 
 /// The derivative functions of `GL_OES_standard_derivatives`.
 const DERIVATIVES: [&str; 3] = ["dFdx", "dFdy", "fwidth"];
@@ -74,7 +74,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
         }
     }
     globals(&parsed.tu, &at)?;
-    super::writes::check(stage, &parsed.tu, &at)?;
+    crate::glsl::writes::check(stage, &parsed.tu, &at)?;
     let precisions = precision::check(stage, &parsed.tu, parsed.enabled.texture_3d, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {

@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use super::{compile, link, Stage, Ty};
+use crate::glsl::{compile, link, Stage, Ty};
 
 fn frag_err(src: &str) -> String {
     compile(Stage::Fragment, src).expect_err("must not compile")

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glsl_lang::ast::{self, BinaryOpData as B, ExprData, UnaryOpData as U};
 
-use crate::context::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_UNITS};
+use crate::limits::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_UNITS};
 
 /// A folded constant.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,15 +6,12 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, TypeQualifierSpecData};
 use glsl_lang::visitor::HostMut;
 
-use super::checks;
-use super::consts::{fold, Val};
-use super::preprocess::parse;
-use super::rewrite::Rewrite;
-use super::{Scalar, Shader, Stage, Ty, Var};
-
-/// The longest varying array: more than all varying vectors together (checked at link), so
-/// that no valid shader is refused, and small enough that its slots are cheap to list.
-const MAX_VARYING_ARRAY: u32 = 256;
+use crate::glsl::checks;
+use crate::glsl::consts::{fold, Val};
+use crate::glsl::preprocess::parse;
+use crate::glsl::rewrite::Rewrite;
+use crate::glsl::{Scalar, Shader, Stage, Ty, Var};
+use crate::limits::MAX_VARYING_ARRAY;
 
 /// The length of an interface variable's array specifier, `None` if it is no array.
 fn array_len(spec: Option<&ast::ArraySpecifier>, consts: &HashMap<String, Val>) -> Result<Option<u32>, String> {
@@ -195,7 +192,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         match u.array {
             Some(len) => {
                 sampler_arrays.insert(u.name.clone(), len);
-                samplers.extend((0..len).map(|k| (super::rewrite::sampler_element(&u.name, k), u.ty)));
+                samplers.extend((0..len).map(|k| (crate::glsl::rewrite::sampler_element(&u.name, k), u.ty)));
             }
             None => {
                 samplers.insert(u.name.clone(), u.ty);
@@ -233,7 +230,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         secondary_data: false,
     };
     shader.body.visit_mut(&mut rewrite);
-    super::rewrite::hoist_global_initializers(&mut shader.body);
+    crate::glsl::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;
     shader.lookups = std::mem::take(&mut rewrite.lookups);
     shader.frag_depth = rewrite.frag_depth;

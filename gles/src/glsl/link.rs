@@ -6,9 +6,10 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use super::super::context::{MAX_DRAW_BUFFERS, MAX_POINT_SIZE};
-use super::translate::{naga_module, transpile, Body, Placed};
-use super::{Scalar, Shader, Stage, Ty, Var};
+use crate::glsl::translate::{naga_module, transpile, Body, Placed};
+use crate::glsl::{Scalar, Shader, Stage, Ty, Var};
+use crate::limits::{MAX_BLOCK, MAX_SAMPLERS, MAX_VARYING_VECTORS};
+use crate::limits::{MAX_DRAW_BUFFERS, MAX_POINT_SIZE};
 
 /// A uniform's place in the program's block (or, for samplers, its binding).
 #[derive(Debug, Clone)]
@@ -66,16 +67,6 @@ pub struct Linked {
     /// one output is location 0's two blend sources.
     pub dual: bool,
 }
-
-/// The largest uniform block: wgpu's guaranteed uniform binding size (64 KiB, 4096 vectors,
-/// far above the 512 that `MAX_VERTEX_UNIFORM_VECTORS` + `MAX_FRAGMENT_UNIFORM_VECTORS` allow).
-const MAX_BLOCK: u32 = 64 << 10;
-
-/// Varying vectors a program may use: `GL_MAX_VARYING_VECTORS`.
-pub const MAX_VARYING_VECTORS: u32 = 15;
-
-/// Samplers a program may declare (sampler sets are kept as 32-bit masks: depth-texture layouts).
-const MAX_SAMPLERS: usize = 32;
 
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]
 /// (`variants::FLIP_Y` and `variants::FORWARD_Z`, which the stage's variants replace).
@@ -137,7 +128,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         .map_err(|e| format!("vertex shader:\n{e}"))?;
     let fragment = naga_module(Stage::Fragment, &g.fsrc, &placed(g.fs_first_line, &g.fs_body))
         .map_err(|e| format!("fragment shader:\n{e}"))?;
-    let reversed_fragment_source = super::variants::reversed_fragment_source(&g.fsrc, g.fs_first_line);
+    let reversed_fragment_source = crate::glsl::variants::reversed_fragment_source(&g.fsrc, g.fs_first_line);
     let Generated {
         vsrc: vertex_source,
         attributes,
@@ -169,7 +160,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
 /// the same varyings and nothing else): the errors only naga finds, such as types, fail the
 /// compile with the shader's line. What only a real link can judge is left to the link.
 pub(super) fn check_stage(s: Shader) -> Result<Shader, String> {
-    let Ok(other) = super::separate::stand_in(&s) else { return Ok(s) };
+    let Ok(other) = crate::glsl::separate::stand_in(&s) else { return Ok(s) };
     let (vs, fs) = if s.stage == Stage::Vertex { (&s, &other) } else { (&other, &s) };
     let Ok(g) = generate(vs, fs, &HashMap::new(), 1024) else { return Ok(s) };
     let (src, placed) = match s.stage {
@@ -486,7 +477,7 @@ fn sampler_names(uniforms: &[UniformSlot]) -> Vec<String> {
     let mut names = Vec::new();
     for u in uniforms.iter().filter(|u| u.ty.is_sampler()) {
         for k in 0..u.len {
-            names.push(if u.is_array { super::rewrite::sampler_element(&u.name, k) } else { u.name.clone() });
+            names.push(if u.is_array { crate::glsl::rewrite::sampler_element(&u.name, k) } else { u.name.clone() });
         }
     }
     names

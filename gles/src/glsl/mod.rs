@@ -33,11 +33,11 @@ mod writes;
 
 use glsl_lang::ast::{self, TypeSpecifierNonArrayData as T};
 
-pub use link::{link, points_vertex, Linked, UniformSlot, MAX_VARYING_VECTORS};
+pub use link::{link, points_vertex, Linked, UniformSlot};
 pub use separate::{fragment_uniform_name, interfaces_match, link_alone, rename_uniforms};
 pub use variants::ClipZ;
 
-use super::enums as gl;
+use crate::enums as gl;
 
 /// A shader stage.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

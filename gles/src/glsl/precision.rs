@@ -6,8 +6,8 @@ use std::collections::HashMap;
 
 use glsl_lang::ast::{self, PrecisionQualifierData as P, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 
-use super::checks::signature;
-use super::Stage;
+use crate::glsl::checks::signature;
+use crate::glsl::Stage;
 
 /// Reports an error at a span.
 type At<'a> = &'a dyn Fn(Option<ast::NodeSpan>, &str) -> String;

@@ -8,8 +8,8 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
 
-use super::{Stage, Ty};
-use crate::context::MAX_DRAW_BUFFERS;
+use crate::glsl::{Stage, Ty};
+use crate::limits::MAX_DRAW_BUFFERS;
 
 /// The AST rewrite applied to every function body and remaining global.
 pub(super) struct Rewrite {
@@ -313,7 +313,7 @@ impl VisitorMut for Rewrite {
                     // One colour per draw buffer, written out by the generated `main` (`link`).
                     self.frag_data = true;
                     Some(var("strata_FragData"))
-                } else if let Some(v) = super::consts::builtin(name) {
+                } else if let Some(v) = crate::glsl::consts::builtin(name) {
                     // The built-in constants (§7.4), which naga does not know.
                     Some(ExprData::IntConst(v as i32).into())
                 } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
@@ -322,11 +322,11 @@ impl VisitorMut for Rewrite {
                 } else if name == "gl_PointCoord" && self.stage == Stage::Fragment {
                     self.point_coord = true;
                     Some(var("strata_PointCoord"))
-                } else if name == super::checks::FRAG_DEPTH && self.stage == Stage::Fragment {
+                } else if name == crate::glsl::checks::FRAG_DEPTH && self.stage == Stage::Fragment {
                     // Clamped and written out by the generated `main` (`link`).
                     self.frag_depth = true;
                     Some(var("strata_FragDepth"))
-                } else if name == super::checks::INSTANCE_ID && self.stage == Stage::Vertex {
+                } else if name == crate::glsl::checks::INSTANCE_ID && self.stage == Stage::Vertex {
                     // Set by the generated `main` (`link`).
                     self.instance_id = true;
                     Some(var("strata_InstanceID"))

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use glsl_lang::ast::{self, ExprData};
 use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
-use super::{Linked, Shader, Stage};
+use crate::glsl::{Linked, Shader, Stage};
 
 /// The prefix a fragment stage's uniform gets where the vertex stage of another program
 /// declares one of the same name.
@@ -24,7 +24,7 @@ pub(super) fn stand_in(s: &Shader) -> Result<Shader, String> {
         Stage::Fragment => {
             let mut src = String::new();
             for v in &s.varyings {
-                let _ = writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, super::link::array_suffix(v));
+                let _ = writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, crate::glsl::link::array_suffix(v));
             }
             for (frag, vert) in [("gl_FragCoord", "gl_Position"), ("gl_PointCoord", "gl_PointSize")] {
                 if s.facts.invariants.contains(frag) {
@@ -36,14 +36,14 @@ pub(super) fn stand_in(s: &Shader) -> Result<Shader, String> {
         }
     };
     let other = if s.stage == Stage::Vertex { Stage::Fragment } else { Stage::Vertex };
-    super::interface::compile_inner(other, &source)
+    crate::glsl::interface::compile_inner(other, &source)
 }
 
 /// Links a one-stage (separable) program: `s` against its stand-in. The error is the info log.
 pub fn link_alone(s: &Shader, bindings: &HashMap<String, u32>, max_attribs: u32) -> Result<Linked, String> {
     let other = stand_in(s).map_err(|e| format!("error: internal error: the stand-in stage failed: {e}"))?;
     let (vs, fs) = if s.stage == Stage::Vertex { (s, &other) } else { (&other, s) };
-    super::link(vs, fs, bindings, max_attribs)
+    crate::glsl::link(vs, fs, bindings, max_attribs)
 }
 
 /// Whether a vertex stage feeds a fragment stage of another program: every varying the

@@ -8,8 +8,8 @@ use glsl_lang::transpiler::glsl::{
 };
 use tracing::debug;
 
-use super::preprocess::error_at;
-use super::{Shader, Stage};
+use crate::glsl::preprocess::error_at;
+use crate::glsl::{Shader, Stage};
 
 /// A shader's generated code: the text and the source line of each of its lines.
 pub(super) struct Body {

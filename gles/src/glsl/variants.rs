@@ -3,9 +3,9 @@
 //! and a reversed-Z surface's depth. The shader's own code is never touched: the generated
 //! steps come last, so each is found as its last occurrence.
 
-use super::link::{Linked, CONVENTIONS, FRAG_DEPTH_OUT};
-use super::translate::{naga_module, Body, Placed};
-use super::Stage;
+use crate::glsl::link::{Linked, CONVENTIONS, FRAG_DEPTH_OUT};
+use crate::glsl::translate::{naga_module, Body, Placed};
+use crate::glsl::Stage;
 
 /// The y step of the conventions: GL's window origin is the lower left, wgpu's the upper left.
 const FLIP_Y: &str = "    gl_Position.y = -gl_Position.y;\n";

@@ -15,7 +15,7 @@ use glsl_lang::ast::{
 };
 use glsl_lang::visitor::{Host, Visit, Visitor};
 
-use super::Stage;
+use crate::glsl::Stage;
 
 /// Where an error is, as the info log writes it.
 type At<'a> = &'a dyn Fn(Option<ast::NodeSpan>, &str) -> String;

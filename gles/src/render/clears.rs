@@ -1,21 +1,11 @@
 //! Clears: a clear of the whole target before any draw becomes the pass's load operations;
 //! any other clear is a quad that honours the scissor and the write masks.
 
-use super::passes::{offset_of, Bind, Recorded};
-use super::targets::stored;
-use super::{Renderer, Target};
-
-/// Bytes of the clear quad's parameters: eight colours, then the depth (`shaders/clear.wgsl`).
-pub(super) const CLEAR_PARAMS: u64 = 144;
-
-/// What selects a clear pipeline.
-#[derive(Clone, PartialEq, Eq, Hash)]
-pub(super) struct ClearKey {
-    color: Option<wgpu::ColorWrites>,
-    depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
-    /// Which colour slots have an image, and its format.
-    slots: Vec<Option<wgpu::TextureFormat>>,
-}
+use crate::render::keys::ClearKey;
+use crate::render::pass::CLEAR_PARAMS;
+use crate::render::pass::{offset_of, Bind, Recorded};
+use crate::render::targets::stored;
+use crate::render::{Renderer, Target};
 
 impl Renderer {
     /// `glClear` of the target's colour slots to `color` (as each image stores it: see

@@ -1,9 +1,9 @@
 //! Mipmap generation: each level drawn from the one above with a 2×2 box filter (2×2×2 for the
 //! slices of a 3D image, `GL_OES_texture_3D`).
 
-use super::super::dispatch::Flushed;
-use super::super::enums::*;
-use super::{Renderer, SamplerState};
+use crate::enums::*;
+use crate::flushed::Flushed;
+use crate::render::{Renderer, SamplerState};
 
 impl Renderer {
     /// The mipmap pipeline for `format`, of 3D images with `three_d`, compiled once for all

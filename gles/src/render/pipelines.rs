@@ -2,72 +2,10 @@
 //! sampler cache, and the render pipeline cache keyed by program, vertex layout, fixed-function
 //! state and target formats.
 
-use super::super::conv::{front_face, sampler_descriptor};
-use super::super::glsl;
-use super::{DrawSpec, LinkedProgram, RasterState, Renderer, SamplerState, Target};
-
-/// What selects a render pipeline.
-#[derive(Clone, PartialEq, Eq, Hash)]
-pub(super) struct PipelineKey {
-    program: u64,
-    depth_mask: u32,
-    inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
-    raster: RasterState,
-    /// Per colour slot, whether it has an image, the channels that image lacks, and its format.
-    colors: Vec<Option<(wgpu::ColorWrites, wgpu::TextureFormat)>>,
-    depth_format: Option<wgpu::TextureFormat>,
-}
-
-/// A program's bind group layout entries: the uniform block at 0, then a texture and a sampler
-/// per sampler uniform. Samplers in `depth_mask` take images that cannot be filtered (depth,
-/// and float ones without `FLOAT32_FILTERABLE`), which bind as unfilterable float with a
-/// non-filtering sampler.
-pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
-    let mut entries = Vec::new();
-    if info.block_size > 0 {
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: true,
-                min_binding_size: wgpu::BufferSize::new(u64::from(info.block_size)),
-            },
-            count: None,
-        });
-    }
-    for (i, (ty, b)) in info.samplers.iter().enumerate() {
-        let depth = depth_mask & (1 << i) != 0;
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: *b,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
-                view_dimension: match ty {
-                    glsl::Ty::SamplerCube => wgpu::TextureViewDimension::Cube,
-                    glsl::Ty::Sampler3D => wgpu::TextureViewDimension::D3,
-                    _ => wgpu::TextureViewDimension::D2,
-                },
-                multisampled: false,
-            },
-            count: None,
-        });
-        // The sampler, and the border sampler.
-        for binding in [b + 1, b + 2] {
-            entries.push(wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Sampler(if depth {
-                    wgpu::SamplerBindingType::NonFiltering
-                } else {
-                    wgpu::SamplerBindingType::Filtering
-                }),
-                count: None,
-            });
-        }
-    }
-    entries
-}
+use crate::conv::{front_face, sampler_descriptor};
+use crate::objects::program::layout_entries;
+use crate::render::keys::PipelineKey;
+use crate::render::{DrawSpec, LinkedProgram, Renderer, SamplerState, Target};
 
 impl Renderer {
     /// The sampler for `s`, cached.

@@ -1,8 +1,8 @@
 //! Readback, depth uploads, and waiting for the GPU. Reads and waits first submit the open
 //! pass; a depth upload runs in a `[Flush]` command, after it.
 
-use super::super::dispatch::Flushed;
-use super::{Renderer, Target};
+use crate::flushed::Flushed;
+use crate::render::{Renderer, Target};
 
 impl Renderer {
     /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom

@@ -1,13 +1,7 @@
 //! Render targets: the images a draw, clear or read addresses.
 
-use super::super::images::Subresource;
-
-/// Colour format of every colour target and texture.
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-
-/// Format of half-float colour buffers (`GL_EXT_color_buffer_half_float`), whatever channels
-/// their GL format has.
-pub const HALF_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+use crate::formats::HALF_FORMAT;
+use crate::objects::image::Subresource;
 
 /// A render target: what framebuffer 0 or a framebuffer object resolves to.
 #[derive(Clone)]

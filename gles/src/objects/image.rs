@@ -5,11 +5,10 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::dispatch::Flushed;
-use super::enums::*;
-use super::error::{GlError, GlResult};
-use super::formats::Storage;
-use super::textures::Texture;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::formats::Storage;
 use strata_device::account::{Account, Reservation};
 use strata_device::Gpu;
 
@@ -88,7 +87,7 @@ pub struct Region {
 impl TextureImage {
     /// Allocates an image of `storage` for a texture of `target` (`depth` slices for a 3D
     /// one), reserving its memory first.
-    fn new(
+    pub(crate) fn new(
         gpu: &Gpu,
         account: &Arc<Account>,
         target: u32,
@@ -101,9 +100,9 @@ impl TextureImage {
         let levels = 32 - width.max(height).max(depth).max(1).leading_zeros();
         let mips = if storage.is_depth() { 1 } else { levels };
         let bytes = if three_d {
-            super::account::volume_bytes(width, height, depth, mips, storage)
+            crate::objects::image::volume_bytes(width, height, depth, mips, storage)
         } else {
-            super::account::image_bytes(width, height, layers, mips, storage)
+            crate::objects::image::image_bytes(width, height, layers, mips, storage)
         };
         let reserved = account.reserve(bytes).map_err(|_| GlError::OutOfMemory)?;
         let mut usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
@@ -281,59 +280,36 @@ impl TextureImage {
     }
 }
 
-impl Texture {
-    /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain
-    /// (one level for depth), unless it already has one of that size and storage; a new image
-    /// has no level defined. Beyond the client's quota the texture is left without an image.
-    pub fn ensure_image(
-        &mut self,
-        gpu: &Gpu,
-        account: &Arc<Account>,
-        uid: u64,
-        width: u32,
-        height: u32,
-        storage: Storage,
-    ) -> GlResult {
-        self.ensure_volume(gpu, account, uid, (width, height, 1), storage)
-    }
+/// Bytes of a texture image of `width`×`height` with `layers` faces and `mips` levels.
+pub fn image_bytes(width: u32, height: u32, layers: u32, mips: u32, storage: Storage) -> u64 {
+    (0..mips)
+        .map(|l| {
+            let (w, h) = ((width >> l).max(1) as u64, (height >> l).max(1) as u64);
+            match storage {
+                // Native blocks are kept on the device and, for decoding later, in the daemon.
+                Storage::Native(c) => 2 * c.image_size(w as u32, h as u32) as u64,
+                s => w * h * u64::from(s.texel_bytes()),
+            }
+        })
+        .sum::<u64>()
+        * u64::from(layers)
+}
 
-    /// [`Self::ensure_image`] of `depth` slices for a 3D texture (`GL_OES_texture_3D`).
-    pub fn ensure_volume(
-        &mut self,
-        gpu: &Gpu,
-        account: &Arc<Account>,
-        uid: u64,
-        (width, height, depth): (u32, u32, u32),
-        storage: Storage,
-    ) -> GlResult {
-        let depth = if self.target == TEXTURE_3D_OES { depth } else { 1 };
-        // An image an EGLImage shares is left to it: respecifying the texture orphans it.
-        if self.gpu.as_ref().is_some_and(|i| {
-            (i.width, i.height, i.depth) == (width, height, depth.max(1)) && i.storage == storage && !i.shared()
-        }) {
-            return Ok(());
-        }
-        // The old image's memory is given back before the new one is reserved.
-        self.gpu = None;
-        self.defined = [0; 6];
-        self.uid = uid;
-        self.gpu = Some(TextureImage::new(gpu, account, self.target, (width, height, depth), storage)?);
-        Ok(())
-    }
+/// The bytes a 3D image of `width`×`height`×`depth` with `mips` levels holds (each level
+/// halves the depth too).
+pub fn volume_bytes(width: u32, height: u32, depth: u32, mips: u32, storage: Storage) -> u64 {
+    (0..mips).map(|l| image_bytes(width >> l, height >> l, (depth >> l).max(1), 1, storage)).sum()
+}
 
-    /// Turns a natively compressed image into an RGBA8 one holding the decoded levels, so that
-    /// uncompressed data can be written to it; other images are left as they are.
-    pub fn decompress(&mut self, gpu: &Gpu, flushed: &Flushed, account: &Arc<Account>, uid: u64) -> GlResult {
-        let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return Ok(()) };
-        let Storage::Native(c) = old.storage else { return Ok(()) };
-        let img = TextureImage::new(gpu, account, self.target, (old.width, old.height, old.depth), Storage::Rgba8)?;
-        for (&(face, level), blocks) in &old.blocks {
-            let (width, height) = img.level_size(level);
-            let region = Region { face, level, x: 0, y: 0, width, height };
-            img.write(gpu, flushed, region, &c.decode(blocks, width, height));
-        }
-        self.gpu = Some(img);
-        self.uid = uid;
-        Ok(())
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    pub(crate) fn image_bytes_count_every_level_and_face() {
+        assert_eq!(image_bytes(4, 4, 1, 1, Storage::Rgba8), 64);
+        assert_eq!(image_bytes(4, 4, 1, 3, Storage::Rgba8), 64 + 16 + 4);
+        assert_eq!(image_bytes(4, 4, 6, 1, Storage::Float), 6 * 16 * 16);
+        assert_eq!(volume_bytes(4, 4, 2, 3, Storage::Rgba8), 4 * (32 + 4 + 1));
     }
 }

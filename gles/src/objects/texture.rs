@@ -1,0 +1,179 @@
+//! A texture object: its parameters, its levels defined so far, and its image.
+
+use std::sync::Arc;
+
+use strata_device::account::Account;
+use strata_device::Gpu;
+
+use crate::enums::*;
+use crate::error::GlResult;
+use crate::flushed::Flushed;
+use crate::formats::Storage;
+use crate::objects::image::Region;
+use crate::objects::image::TextureImage;
+
+/// Sampling state of a texture (ES 2.0 keeps it in the texture object).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SamplerState {
+    /// `TEXTURE_MIN_FILTER`.
+    pub min: u32,
+    /// `TEXTURE_MAG_FILTER`.
+    pub mag: u32,
+    /// `TEXTURE_WRAP_S`.
+    pub wrap_s: u32,
+    /// `TEXTURE_WRAP_T`.
+    pub wrap_t: u32,
+    /// `TEXTURE_WRAP_R_OES` (`GL_OES_texture_3D`; every texture has it).
+    pub wrap_r: u32,
+    /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
+    /// from 1 to [`MAX_ANISOTROPY`].
+    pub anisotropy: u32,
+    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`): the last level sampled, and
+    /// the last a mipmapped texture needs.
+    pub max_level: u32,
+}
+
+impl Default for SamplerState {
+    fn default() -> Self {
+        SamplerState {
+            min: NEAREST_MIPMAP_LINEAR,
+            mag: LINEAR,
+            wrap_s: REPEAT,
+            wrap_t: REPEAT,
+            wrap_r: REPEAT,
+            anisotropy: 1.0f32.to_bits(),
+            max_level: 1000,
+        }
+    }
+}
+
+impl SamplerState {
+    /// Whether the minification filter reads mipmaps.
+    pub fn uses_mipmaps(&self) -> bool {
+        !matches!(self.min, NEAREST | LINEAR)
+    }
+
+    /// Whether `GL_MIRROR_CLAMP_TO_EDGE_EXT` wraps s, t and r: the sampler clamps to the edge
+    /// and the shader mirrors the coordinate (`glsl::link`'s `strata_wrap`).
+    pub fn mirror_clamp(&self) -> [bool; 3] {
+        [self.wrap_s, self.wrap_t, self.wrap_r].map(|w| w == MIRROR_CLAMP_TO_EDGE_EXT)
+    }
+
+    /// Whether s, t or r wraps by `GL_CLAMP_TO_BORDER_EXT` (r counts only for 3D textures,
+    /// `three_d`).
+    pub fn clamps_to_border(&self, three_d: bool) -> bool {
+        self.wrap_s == CLAMP_TO_BORDER_EXT
+            || self.wrap_t == CLAMP_TO_BORDER_EXT
+            || (three_d && self.wrap_r == CLAMP_TO_BORDER_EXT)
+    }
+
+    /// Whether either filter interpolates between texels or levels.
+    pub fn filters_linearly(&self) -> bool {
+        self.mag == LINEAR || !matches!(self.min, NEAREST | NEAREST_MIPMAP_NEAREST)
+    }
+}
+
+/// A texture object.
+#[derive(Default)]
+pub struct Texture {
+    /// `TEXTURE_2D` or `TEXTURE_CUBE_MAP` once bound, 0 before.
+    pub target: u32,
+    /// Sampling state.
+    pub sampler: SamplerState,
+    /// The GPU image, its views, base size, mip count and storage.
+    pub gpu: Option<TextureImage>,
+    /// Per face: bitmask of the levels that have been specified.
+    pub defined: [u32; 6],
+    /// Internal format of level 0 (`RGBA`, `LUMINANCE`, `BGRA_EXT`, a compressed format, …).
+    pub format: u32,
+    /// Unique id for caches; changes when the image is recreated.
+    pub uid: u64,
+    /// Whether level 0 was specified as `GL_HALF_FLOAT_OES` (half-float images of other
+    /// types, 2_10_10_10, are not renderable).
+    pub half_float: bool,
+    /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
+    /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
+    pub border: [f32; 4],
+}
+
+impl Texture {
+    /// Whether every level of every face is defined, consistently with level 0 (the mipmap
+    /// completeness of GL ES 2.0 §3.7.10, whatever the filter).
+    pub fn levels_complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let all = ((1u64 << img.levels) - 1) as u32;
+        self.defined[..faces].iter().all(|d| d & all == all)
+    }
+
+    /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
+    /// image the device cannot filter is incomplete with a linear filter
+    /// (`OES_texture_float_linear` not offered).
+    pub fn complete(&self) -> bool {
+        let Some(img) = &self.gpu else { return false };
+        if img.storage == Storage::Float && !img.filterable && self.sampler.filters_linearly() {
+            return false;
+        }
+        let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
+        let levels = img.levels.min(self.sampler.max_level.saturating_add(1));
+        let need = if self.sampler.uses_mipmaps() { ((1u64 << levels) - 1) as u32 } else { 1 };
+        self.defined[..faces].iter().all(|d| d & need == need)
+    }
+}
+
+impl Texture {
+    /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain
+    /// (one level for depth), unless it already has one of that size and storage; a new image
+    /// has no level defined. Beyond the client's quota the texture is left without an image.
+    pub fn ensure_image(
+        &mut self,
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        uid: u64,
+        width: u32,
+        height: u32,
+        storage: Storage,
+    ) -> GlResult {
+        self.ensure_volume(gpu, account, uid, (width, height, 1), storage)
+    }
+
+    /// [`Self::ensure_image`] of `depth` slices for a 3D texture (`GL_OES_texture_3D`).
+    pub fn ensure_volume(
+        &mut self,
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        uid: u64,
+        (width, height, depth): (u32, u32, u32),
+        storage: Storage,
+    ) -> GlResult {
+        let depth = if self.target == TEXTURE_3D_OES { depth } else { 1 };
+        // An image an EGLImage shares is left to it: respecifying the texture orphans it.
+        if self.gpu.as_ref().is_some_and(|i| {
+            (i.width, i.height, i.depth) == (width, height, depth.max(1)) && i.storage == storage && !i.shared()
+        }) {
+            return Ok(());
+        }
+        // The old image's memory is given back before the new one is reserved.
+        self.gpu = None;
+        self.defined = [0; 6];
+        self.uid = uid;
+        self.gpu = Some(TextureImage::new(gpu, account, self.target, (width, height, depth), storage)?);
+        Ok(())
+    }
+
+    /// Turns a natively compressed image into an RGBA8 one holding the decoded levels, so that
+    /// uncompressed data can be written to it; other images are left as they are.
+    pub fn decompress(&mut self, gpu: &Gpu, flushed: &Flushed, account: &Arc<Account>, uid: u64) -> GlResult {
+        let Some(old) = self.gpu.take_if(|i| matches!(i.storage, Storage::Native(_))) else { return Ok(()) };
+        let Storage::Native(c) = old.storage else { return Ok(()) };
+        let img = TextureImage::new(gpu, account, self.target, (old.width, old.height, old.depth), Storage::Rgba8)?;
+        for (&(face, level), blocks) in &old.blocks {
+            let (width, height) = img.level_size(level);
+            let region = Region { face, level, x: 0, y: 0, width, height };
+            img.write(gpu, flushed, region, &c.decode(blocks, width, height));
+        }
+        self.gpu = Some(img);
+        self.uid = uid;
+        Ok(())
+    }
+}
