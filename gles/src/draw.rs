@@ -15,7 +15,7 @@ use crate::conv::{
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{border_color, Storage};
-use crate::glsl::Ty;
+use crate::glsl::types::Ty;
 use crate::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
 use crate::limits::MAX_CONVERTED;
 use crate::objects::program::LinkedProgram;

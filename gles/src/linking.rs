@@ -6,7 +6,8 @@ use std::collections::HashMap;
 use crate::context::{Context, Objects};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::glsl::{self, Stage};
+use crate::glsl;
+use crate::glsl::types::Stage;
 use crate::limits::MAX_ATTRIBS;
 use crate::objects::program::{LinkResult, LinkedProgram, LinkedStages, Program, Recipe, ShaderObj};
 

@@ -13,7 +13,8 @@ use strata_protocol::{Blob, Bytes};
 use crate::context::Context;
 
 use crate::error::{GlError, GlResult};
-use crate::glsl::{self, Stage};
+use crate::glsl;
+use crate::glsl::types::Stage;
 use crate::limits::MAX_ATTRIBS;
 use crate::linking::link_either;
 use crate::objects::program::Recipe;

@@ -5,7 +5,8 @@ use strata_protocol::{Blob, Slice, Text};
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::glsl::{self, Stage};
+use crate::glsl;
+use crate::glsl::types::Stage;
 use crate::objects::program::ShaderObj;
 use crate::GlesExecutor;
 

@@ -6,7 +6,7 @@ use strata_protocol::{ActiveVariable, Slice, Text};
 use crate::context::Context;
 
 use crate::error::{GlError, GlResult};
-use crate::glsl::Scalar;
+use crate::glsl::types::Scalar;
 use crate::limits::MAX_UNITS;
 use crate::linking::linked_for_query;
 use crate::objects::program::LinkedProgram;

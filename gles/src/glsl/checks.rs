@@ -9,27 +9,16 @@ use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, T
 use glsl_lang::visitor::{Host, Visit, Visitor};
 
 use crate::glsl::precision;
+use crate::glsl::precision::signature;
 use crate::glsl::preprocess::{error_at, line_col, Parsed};
-use crate::glsl::Stage;
+use crate::glsl::types::Facts;
+use crate::glsl::types::Stage;
 
 /// The derivative functions of `GL_OES_standard_derivatives`.
 const DERIVATIVES: [&str; 3] = ["dFdx", "dFdy", "fwidth"];
 
 /// The 3D lookups of `GL_OES_texture_3D`; the explicit-level ones only in vertex shaders.
 const LOOKUPS_3D: [&str; 4] = ["texture3D", "texture3DProj", "texture3DLod", "texture3DProjLod"];
-
-/// What the checks learnt that linking needs.
-#[derive(Debug, Clone, Default)]
-pub struct Facts {
-    /// Precision of each float or int uniform.
-    pub uniform_precisions: HashMap<String, ast::PrecisionQualifierData>,
-    /// Precision of each varying.
-    pub varying_precisions: HashMap<String, ast::PrecisionQualifierData>,
-    /// Every variable name the shader's functions read or write.
-    pub used: HashSet<String>,
-    /// Built-in variables declared `invariant`.
-    pub invariants: HashSet<String>,
-}
 
 /// Checks `parsed` against the rules above; the error is the info log.
 pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
@@ -143,20 +132,6 @@ pub(super) fn is_const(q: Option<&ast::TypeQualifier>) -> bool {
     q.is_some_and(|q| {
         q.qualifiers.iter().any(|s| matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Const))
     })
-}
-
-/// A function's signature for redeclaration checks: its name and parameter types.
-pub(super) fn signature(p: &ast::FunctionPrototype) -> String {
-    let mut s = p.name.0.to_string();
-    for param in &p.parameters {
-        let ty = match &param.content {
-            ast::FunctionParameterDeclarationData::Named(_, d) => &d.ty,
-            ast::FunctionParameterDeclarationData::Unnamed(_, t) => t,
-        };
-        s.push('|');
-        let _ = glsl_lang::transpiler::glsl::show_type_specifier(&mut s, ty, &mut Default::default());
-    }
-    s
 }
 
 /// The first variable in `e` that is not a constant (a global declared `const`, or a

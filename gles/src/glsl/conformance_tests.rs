@@ -2,7 +2,9 @@
 
 use std::collections::HashMap;
 
-use crate::glsl::{compile, link, Stage, Ty};
+use crate::glsl::{compile, link};
+
+use crate::glsl::types::{Stage, Ty};
 
 fn frag_err(src: &str) -> String {
     compile(Stage::Fragment, src).expect_err("must not compile")

@@ -10,7 +10,7 @@ use crate::glsl::checks;
 use crate::glsl::consts::{fold, Val};
 use crate::glsl::preprocess::parse;
 use crate::glsl::rewrite::Rewrite;
-use crate::glsl::{Scalar, Shader, Stage, Ty, Var};
+use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::MAX_VARYING_ARRAY;
 
 /// The length of an interface variable's array specifier, `None` if it is no array.

@@ -6,89 +6,11 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
+use crate::glsl::linked::{array_suffix, Linked, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT};
 use crate::glsl::translate::{naga_module, transpile, Body, Placed};
-use crate::glsl::{Scalar, Shader, Stage, Ty, Var};
+use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::{MAX_BLOCK, MAX_SAMPLERS, MAX_VARYING_VECTORS};
 use crate::limits::{MAX_DRAW_BUFFERS, MAX_POINT_SIZE};
-
-/// A uniform's place in the program's block (or, for samplers, its binding).
-#[derive(Debug, Clone)]
-pub struct UniformSlot {
-    /// The name as declared.
-    pub name: String,
-    /// Its type.
-    pub ty: Ty,
-    /// Array length (1 for non-arrays).
-    pub len: u32,
-    /// Whether declared as an array.
-    pub is_array: bool,
-    /// Byte offset of element 0 in the block.
-    pub offset: u32,
-    /// Bytes between array elements (std140).
-    pub stride: u32,
-    /// For samplers: index into the program's sampler list.
-    pub sampler: Option<usize>,
-}
-
-/// A linked program: naga modules and everything needed to feed them.
-#[derive(Debug)]
-pub struct Linked {
-    /// Vertex stage module.
-    pub vertex: naga::Module,
-    /// Fragment stage module.
-    pub fragment: naga::Module,
-    /// Attributes with their locations.
-    pub attributes: Vec<(Var, u32)>,
-    /// Every uniform (samplers included), in declaration order.
-    pub uniforms: Vec<UniformSlot>,
-    /// Bytes of the uniform block (0 if none).
-    pub block_size: u32,
-    /// Sampler uniforms: (type, bind-group binding of the texture; the sampler and the border
-    /// sampler follow).
-    pub samplers: Vec<(Ty, u32)>,
-    /// Per sampler: the block offset of its wrap flags, a `vec4` whose x and y are 1.0 where
-    /// s and t wrap by `GL_MIRROR_CLAMP_TO_EDGE_EXT` and z where either wraps by
-    /// `GL_CLAMP_TO_BORDER_EXT`, followed by its border colour (the draw writes both; see
-    /// [`lookup_helpers`]).
-    pub wrap_offsets: Vec<u32>,
-    /// The vertex stage of `GL_POINTS` draws, as GLSL (parsed on first use by
-    /// [`points_vertex`]): one instance per point, four vertices per instance, expanded to a
-    /// square of `gl_PointSize` pixels with `gl_PointCoord` for the fragment stage.
-    pub points_source: String,
-    /// The vertex stage as GLSL, for its reversed-Z variants ([`Linked::reversed_vertex`]).
-    pub vertex_source: String,
-    /// The fragment stage's reversed-Z variant as GLSL, when it reads `gl_FragCoord` or
-    /// writes `gl_FragDepthEXT` ([`Linked::reversed_fragment`]).
-    pub reversed_fragment_source: Option<String>,
-    /// The vertex input location of the points stage's `strata_point` parameter:
-    /// (1 / viewport width, 1 / viewport height, 0, 0), constant over the draw.
-    pub point_input: u32,
-    /// Whether the fragment stage writes a second colour (`GL_EXT_blend_func_extended`): its
-    /// one output is location 0's two blend sources.
-    pub dual: bool,
-}
-
-/// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]
-/// (`variants::FLIP_Y` and `variants::FORWARD_Z`, which the stage's variants replace).
-pub(super) const CONVENTIONS: &str =
-    "    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
-
-/// The generated fragment `main`'s last step where the shader writes `gl_FragDepthEXT`
-/// (`GL_EXT_frag_depth`): the value, clamped to [0, 1] as GL stores it, is the fragment's depth.
-pub(super) const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDepth, 0.0, 1.0);\n";
-
-/// Parses and validates the points vertex stage of a linked program (`Linked::points_source`).
-pub fn points_vertex(linked: &Linked) -> Result<naga::Module, String> {
-    let none = Body { text: String::new(), lines: Vec::new() };
-    std::panic::catch_unwind(|| {
-        naga_module(Stage::Vertex, &linked.points_source, &Placed { first_line: usize::MAX, body: &none })
-    })
-    .unwrap_or_else(|_| Err("internal error: translating the points stage failed".into()))
-}
-
-pub(super) fn array_suffix(v: &Var) -> String {
-    v.array.map_or(String::new(), |n| format!("[{n}]"))
-}
 
 /// The vectors a matrix or array varying crosses stages as: (name suffix, access from the
 /// variable, GLSL type), one per location.
@@ -112,6 +34,15 @@ fn varying_slots(v: &Var) -> Vec<(String, String, &'static str)> {
         }
     }
     slots
+}
+
+/// Parses and validates the points vertex stage of a linked program (`Linked::points_source`).
+pub fn points_vertex(linked: &Linked) -> Result<naga::Module, String> {
+    let none = Body { text: String::new(), lines: Vec::new() };
+    std::panic::catch_unwind(|| {
+        naga_module(Stage::Vertex, &linked.points_source, &Placed { first_line: usize::MAX, body: &none })
+    })
+    .unwrap_or_else(|_| Err("internal error: translating the points stage failed".into()))
 }
 
 /// Links a vertex and a fragment shader. `bindings` are `glBindAttribLocation` requests;
@@ -156,12 +87,11 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
     })
 }
 
-/// A compiled shader translated once against a stand-in for the other stage (which declares
-/// the same varyings and nothing else): the errors only naga finds, such as types, fail the
+/// A compiled shader translated once against `other`, a stand-in for the other stage (which
+/// declares the same varyings and nothing else): the errors only naga finds, such as types, fail the
 /// compile with the shader's line. What only a real link can judge is left to the link.
-pub(super) fn check_stage(s: Shader) -> Result<Shader, String> {
-    let Ok(other) = crate::glsl::separate::stand_in(&s) else { return Ok(s) };
-    let (vs, fs) = if s.stage == Stage::Vertex { (&s, &other) } else { (&other, &s) };
+pub(super) fn check_stage(s: Shader, other: &Shader) -> Result<Shader, String> {
+    let (vs, fs) = if s.stage == Stage::Vertex { (&s, other) } else { (other, &s) };
     let Ok(g) = generate(vs, fs, &HashMap::new(), 1024) else { return Ok(s) };
     let (src, placed) = match s.stage {
         Stage::Vertex => (&g.vsrc, Placed { first_line: g.vs_first_line, body: &g.vs_body }),

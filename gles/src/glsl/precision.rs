@@ -6,8 +6,7 @@ use std::collections::HashMap;
 
 use glsl_lang::ast::{self, PrecisionQualifierData as P, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 
-use crate::glsl::checks::signature;
-use crate::glsl::Stage;
+use crate::glsl::types::Stage;
 
 /// Reports an error at a span.
 type At<'a> = &'a dyn Fn(Option<ast::NodeSpan>, &str) -> String;
@@ -209,7 +208,7 @@ impl Walk<'_> {
 }
 
 /// The precisions linking compares across stages.
-pub(super) struct Precisions {
+pub(crate) struct Precisions {
     /// Of each float or int uniform (a uniform both stages use must have the same precision
     /// in both).
     pub(super) uniforms: HashMap<String, P>,
@@ -218,7 +217,7 @@ pub(super) struct Precisions {
 }
 
 /// Checks the precision rules of one shader; returns the precisions linking compares.
-pub(super) fn check(
+pub(crate) fn check(
     stage: Stage,
     tu: &ast::TranslationUnit,
     texture_3d: bool,
@@ -262,4 +261,18 @@ pub(super) fn check(
         }
     }
     Ok(Precisions { uniforms: w.uniforms, varyings: w.varyings })
+}
+
+/// A function's signature for redeclaration checks: its name and parameter types.
+pub(crate) fn signature(p: &ast::FunctionPrototype) -> String {
+    let mut s = p.name.0.to_string();
+    for param in &p.parameters {
+        let ty = match &param.content {
+            ast::FunctionParameterDeclarationData::Named(_, d) => &d.ty,
+            ast::FunctionParameterDeclarationData::Unnamed(_, t) => t,
+        };
+        s.push('|');
+        let _ = glsl_lang::transpiler::glsl::show_type_specifier(&mut s, ty, &mut Default::default());
+    }
+    s
 }

@@ -11,7 +11,7 @@ use glsl_lang_pp::exts::{names::ExtNameAtom, ExtensionSpec, Registry};
 use glsl_lang_pp::processor::nodes::{Define, DefineObject};
 use glsl_lang_pp::processor::ProcessorState;
 
-use crate::glsl::Stage;
+use crate::glsl::types::Stage;
 
 /// The shading-language extensions Strata offers; each is defined as a macro (value 1).
 pub(super) const OES_STANDARD_DERIVATIVES: &str = "GL_OES_standard_derivatives";

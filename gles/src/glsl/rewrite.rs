@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
 
-use crate::glsl::{Stage, Ty};
+use crate::glsl::types::{Stage, Ty};
 use crate::limits::MAX_DRAW_BUFFERS;
 
 /// The AST rewrite applied to every function body and remaining global.

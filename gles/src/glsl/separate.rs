@@ -9,7 +9,9 @@ use std::fmt::Write as _;
 use glsl_lang::ast::{self, ExprData};
 use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
-use crate::glsl::{Linked, Shader, Stage};
+use crate::glsl::Linked;
+
+use crate::glsl::types::{Shader, Stage};
 
 /// The prefix a fragment stage's uniform gets where the vertex stage of another program
 /// declares one of the same name.
@@ -24,7 +26,8 @@ pub(super) fn stand_in(s: &Shader) -> Result<Shader, String> {
         Stage::Fragment => {
             let mut src = String::new();
             for v in &s.varyings {
-                let _ = writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, crate::glsl::link::array_suffix(v));
+                let _ =
+                    writeln!(src, "varying {} {}{};", v.ty.glsl(false), v.name, crate::glsl::linked::array_suffix(v));
             }
             for (frag, vert) in [("gl_FragCoord", "gl_Position"), ("gl_PointCoord", "gl_PointSize")] {
                 if s.facts.invariants.contains(frag) {

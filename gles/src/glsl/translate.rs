@@ -9,7 +9,7 @@ use glsl_lang::transpiler::glsl::{
 use tracing::debug;
 
 use crate::glsl::preprocess::error_at;
-use crate::glsl::{Shader, Stage};
+use crate::glsl::types::{Shader, Stage};
 
 /// A shader's generated code: the text and the source line of each of its lines.
 pub(super) struct Body {

@@ -3,9 +3,9 @@
 //! and a reversed-Z surface's depth. The shader's own code is never touched: the generated
 //! steps come last, so each is found as its last occurrence.
 
-use crate::glsl::link::{Linked, CONVENTIONS, FRAG_DEPTH_OUT};
+use crate::glsl::linked::{Linked, CONVENTIONS, FRAG_DEPTH_OUT};
 use crate::glsl::translate::{naga_module, Body, Placed};
-use crate::glsl::Stage;
+use crate::glsl::types::Stage;
 
 /// The y step of the conventions: GL's window origin is the lower left, wgpu's the upper left.
 const FLIP_Y: &str = "    gl_Position.y = -gl_Position.y;\n";

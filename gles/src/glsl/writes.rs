@@ -15,7 +15,7 @@ use glsl_lang::ast::{
 };
 use glsl_lang::visitor::{Host, Visit, Visitor};
 
-use crate::glsl::Stage;
+use crate::glsl::types::Stage;
 
 /// Where an error is, as the info log writes it.
 type At<'a> = &'a dyn Fn(Option<ast::NodeSpan>, &str) -> String;

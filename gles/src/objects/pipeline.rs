@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use crate::glsl::Stage;
+use crate::glsl::types::Stage;
 use crate::objects::program::{LinkedProgram, Program};
 
 /// A program pipeline object.

@@ -9,7 +9,8 @@ use serde::{Deserialize, Serialize};
 use strata_device::Gpu;
 
 use crate::error::error_chain;
-use crate::glsl::{self, Stage};
+use crate::glsl;
+use crate::glsl::types::Stage;
 use crate::typed::ClipControl;
 
 /// A shader object.

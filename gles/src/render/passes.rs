@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use crate::enums::*;
 use crate::error::error_chain;
-use crate::glsl::Ty;
+use crate::glsl::types::Ty;
 use crate::render::occlusion::{Occlusion, PassQueries};
 use crate::render::pass::{offset_of, Bind, Pass, Recorded};
 use crate::render::targets::stored;

@@ -1,0 +1,75 @@
+//! A linked program's interface as the linker leaves it (uniform slots, attributes, samplers,
+//! the translated stages), and the conventions every generated stage follows.
+
+use crate::glsl::types::{Ty, Var};
+
+/// A uniform's place in the program's block (or, for samplers, its binding).
+#[derive(Debug, Clone)]
+pub struct UniformSlot {
+    /// The name as declared.
+    pub name: String,
+    /// Its type.
+    pub ty: Ty,
+    /// Array length (1 for non-arrays).
+    pub len: u32,
+    /// Whether declared as an array.
+    pub is_array: bool,
+    /// Byte offset of element 0 in the block.
+    pub offset: u32,
+    /// Bytes between array elements (std140).
+    pub stride: u32,
+    /// For samplers: index into the program's sampler list.
+    pub sampler: Option<usize>,
+}
+
+/// A linked program: naga modules and everything needed to feed them.
+#[derive(Debug)]
+pub struct Linked {
+    /// Vertex stage module.
+    pub vertex: naga::Module,
+    /// Fragment stage module.
+    pub fragment: naga::Module,
+    /// Attributes with their locations.
+    pub attributes: Vec<(Var, u32)>,
+    /// Every uniform (samplers included), in declaration order.
+    pub uniforms: Vec<UniformSlot>,
+    /// Bytes of the uniform block (0 if none).
+    pub block_size: u32,
+    /// Sampler uniforms: (type, bind-group binding of the texture; the sampler and the border
+    /// sampler follow).
+    pub samplers: Vec<(Ty, u32)>,
+    /// Per sampler: the block offset of its wrap flags, a `vec4` whose x and y are 1.0 where
+    /// s and t wrap by `GL_MIRROR_CLAMP_TO_EDGE_EXT` and z where either wraps by
+    /// `GL_CLAMP_TO_BORDER_EXT`, followed by its border colour (the draw writes both; see
+    /// [`lookup_helpers`]).
+    pub wrap_offsets: Vec<u32>,
+    /// The vertex stage of `GL_POINTS` draws, as GLSL (parsed on first use by
+    /// [`points_vertex`]): one instance per point, four vertices per instance, expanded to a
+    /// square of `gl_PointSize` pixels with `gl_PointCoord` for the fragment stage.
+    pub points_source: String,
+    /// The vertex stage as GLSL, for its reversed-Z variants ([`Linked::reversed_vertex`]).
+    pub vertex_source: String,
+    /// The fragment stage's reversed-Z variant as GLSL, when it reads `gl_FragCoord` or
+    /// writes `gl_FragDepthEXT` ([`Linked::reversed_fragment`]).
+    pub reversed_fragment_source: Option<String>,
+    /// The vertex input location of the points stage's `strata_point` parameter:
+    /// (1 / viewport width, 1 / viewport height, 0, 0), constant over the draw.
+    pub point_input: u32,
+    /// Whether the fragment stage writes a second colour (`GL_EXT_blend_func_extended`): its
+    /// one output is location 0's two blend sources.
+    pub dual: bool,
+}
+
+/// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]
+/// (`variants::FLIP_Y` and `variants::FORWARD_Z`, which the stage's variants replace).
+pub(crate) const CONVENTIONS: &str =
+    "    gl_Position.y = -gl_Position.y;\n    gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;\n";
+
+/// The generated fragment `main`'s last step where the shader writes `gl_FragDepthEXT`
+/// (`GL_EXT_frag_depth`): the value, clamped to [0, 1] as GL stores it, is the fragment's depth.
+pub(crate) const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDepth, 0.0, 1.0);\n";
+
+/// The declarator suffix of a variable: `[n]` for an array of n, else nothing.
+pub(crate) fn array_suffix(v: &Var) -> String {
+    v.array.map_or(String::new(), |n| format!("[{n}]"))
+}

@@ -1,0 +1,261 @@
+//! The GLSL ES front end's vocabulary: shader stages, the types of variables and uniforms,
+//! and a compiled shader's interface and what its checks learnt.
+
+use std::collections::{HashMap, HashSet};
+
+use glsl_lang::ast::{self, TypeSpecifierNonArrayData as T};
+
+use crate::enums as gl;
+
+/// A shader stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// Vertex shader.
+    Vertex,
+    /// Fragment shader.
+    Fragment,
+}
+
+/// The GLSL ES 1.00 types an interface variable can have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[allow(missing_docs)]
+pub enum Ty {
+    Float,
+    Vec2,
+    Vec3,
+    Vec4,
+    Int,
+    IVec2,
+    IVec3,
+    IVec4,
+    Bool,
+    BVec2,
+    BVec3,
+    BVec4,
+    Mat2,
+    Mat3,
+    Mat4,
+    Sampler2D,
+    SamplerCube,
+    /// `samplerExternalOES` (`GL_OES_EGL_image_external`), sampled as a 2D image.
+    SamplerExternal,
+    /// `sampler3D` (`GL_OES_texture_3D`).
+    Sampler3D,
+}
+
+/// `GL_SAMPLER_EXTERNAL_OES`, the type `glGetActiveUniform` reports for `samplerExternalOES`.
+pub(crate) const SAMPLER_EXTERNAL_OES: u32 = 0x8D66;
+
+impl Ty {
+    pub(crate) fn from_spec(t: &T) -> Option<Ty> {
+        Some(match t {
+            T::Float => Ty::Float,
+            T::Vec2 => Ty::Vec2,
+            T::Vec3 => Ty::Vec3,
+            T::Vec4 => Ty::Vec4,
+            T::Int => Ty::Int,
+            T::IVec2 => Ty::IVec2,
+            T::IVec3 => Ty::IVec3,
+            T::IVec4 => Ty::IVec4,
+            T::Bool => Ty::Bool,
+            T::BVec2 => Ty::BVec2,
+            T::BVec3 => Ty::BVec3,
+            T::BVec4 => Ty::BVec4,
+            T::Mat2 => Ty::Mat2,
+            T::Mat3 => Ty::Mat3,
+            T::Mat4 => Ty::Mat4,
+            T::Sampler2D => Ty::Sampler2D,
+            T::SamplerCube => Ty::SamplerCube,
+            T::Sampler3D => Ty::Sampler3D,
+            // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
+            T::Sampler2DRect => Ty::SamplerExternal,
+            _ => return None,
+        })
+    }
+
+    /// The GL enum `glGetActiveUniform` reports.
+    pub fn gl_enum(self) -> u32 {
+        match self {
+            Ty::Float => gl::FLOAT,
+            Ty::Vec2 => gl::FLOAT_VEC2,
+            Ty::Vec3 => gl::FLOAT_VEC3,
+            Ty::Vec4 => gl::FLOAT_VEC4,
+            Ty::Int => gl::INT,
+            Ty::IVec2 => gl::INT_VEC2,
+            Ty::IVec3 => gl::INT_VEC3,
+            Ty::IVec4 => gl::INT_VEC4,
+            Ty::Bool => gl::BOOL,
+            Ty::BVec2 => gl::BOOL_VEC2,
+            Ty::BVec3 => gl::BOOL_VEC3,
+            Ty::BVec4 => gl::BOOL_VEC4,
+            Ty::Mat2 => gl::FLOAT_MAT2,
+            Ty::Mat3 => gl::FLOAT_MAT3,
+            Ty::Mat4 => gl::FLOAT_MAT4,
+            Ty::Sampler2D => gl::SAMPLER_2D,
+            Ty::SamplerCube => gl::SAMPLER_CUBE,
+            Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
+            Ty::Sampler3D => gl::SAMPLER_3D_OES,
+        }
+    }
+
+    /// GLSL spelling; booleans live in the block as integers.
+    pub(crate) fn glsl(self, in_block: bool) -> &'static str {
+        match self {
+            Ty::Float => "float",
+            Ty::Vec2 => "vec2",
+            Ty::Vec3 => "vec3",
+            Ty::Vec4 => "vec4",
+            Ty::Int => "int",
+            Ty::IVec2 => "ivec2",
+            Ty::IVec3 => "ivec3",
+            Ty::IVec4 => "ivec4",
+            Ty::Bool if in_block => "int",
+            Ty::BVec2 if in_block => "ivec2",
+            Ty::BVec3 if in_block => "ivec3",
+            Ty::BVec4 if in_block => "ivec4",
+            Ty::Bool => "bool",
+            Ty::BVec2 => "bvec2",
+            Ty::BVec3 => "bvec3",
+            Ty::BVec4 => "bvec4",
+            Ty::Mat2 => "mat2",
+            Ty::Mat3 => "mat3",
+            Ty::Mat4 => "mat4",
+            Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
+            Ty::SamplerCube => "textureCube",
+            Ty::Sampler3D => "texture3D",
+        }
+    }
+
+    /// Scalars per element (a matrix counts all its entries).
+    pub fn components(self) -> usize {
+        match self {
+            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => 1,
+            Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => 2,
+            Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => 3,
+            Ty::Vec4 | Ty::IVec4 | Ty::BVec4 | Ty::Mat2 => 4,
+            Ty::Mat3 => 9,
+            Ty::Mat4 => 16,
+        }
+    }
+
+    /// Matrix columns (0 for non-matrices).
+    pub fn columns(self) -> usize {
+        match self {
+            Ty::Mat2 => 2,
+            Ty::Mat3 => 3,
+            Ty::Mat4 => 4,
+            _ => 0,
+        }
+    }
+
+    /// What a `glUniform*` call must match: float, int (and samplers), or bool (either).
+    pub fn scalar(self) -> Scalar {
+        match self {
+            Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 => Scalar::Int,
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => Scalar::Int,
+            Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
+            _ => Scalar::Float,
+        }
+    }
+
+    /// Whether this is a sampler.
+    pub fn is_sampler(self) -> bool {
+        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D)
+    }
+
+    /// std140 (size, alignment) of one element that is not in an array.
+    pub(crate) fn std140(self) -> (u32, u32) {
+        match self {
+            Ty::Float | Ty::Int | Ty::Bool => (4, 4),
+            Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => (8, 8),
+            Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => (12, 16),
+            Ty::Vec4 | Ty::IVec4 | Ty::BVec4 => (16, 16),
+            Ty::Mat2 => (32, 16),
+            Ty::Mat3 => (48, 16),
+            Ty::Mat4 => (64, 16),
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => (0, 1),
+        }
+    }
+}
+
+/// The scalar kind of a uniform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scalar {
+    /// Float, vectors and matrices of float.
+    Float,
+    /// Int and sampler.
+    Int,
+    /// Bool (set with either float or int calls).
+    Bool,
+}
+
+/// A global interface variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Var {
+    /// Its name.
+    pub name: String,
+    /// Its type.
+    pub ty: Ty,
+    /// Array length, if an array.
+    pub array: Option<u32>,
+}
+
+/// A successfully compiled shader, kept for linking.
+#[derive(Debug, Clone)]
+pub struct Shader {
+    /// The stage.
+    pub stage: Stage,
+    pub(crate) body: ast::TranslationUnit,
+    /// `attribute` variables.
+    pub attributes: Vec<Var>,
+    /// `varying` variables.
+    pub varyings: Vec<Var>,
+    /// `uniform` variables (samplers included).
+    pub uniforms: Vec<Var>,
+    /// Whether it reads `gl_PointCoord` (fragment shaders).
+    pub point_coord: bool,
+    /// Whether it writes `gl_FragDepthEXT` (fragment shaders, `GL_EXT_frag_depth`).
+    pub frag_depth: bool,
+    /// Whether it reads `gl_InstanceIDEXT` (vertex shaders, `GL_EXT_draw_instanced`).
+    pub instance_id: bool,
+    /// Whether it uses `gl_FragData` (fragment shaders, `GL_EXT_draw_buffers`), or
+    /// `gl_SecondaryFragDataEXT`.
+    pub frag_data: bool,
+    /// Whether it writes a second colour for dual-source blending (fragment shaders,
+    /// `GL_EXT_blend_func_extended`).
+    pub dual: bool,
+    /// Whether it defines `main` (a program without one fails to link).
+    pub has_main: bool,
+    /// The 2D and 3D lookups it makes of its sampler uniforms, by (sampler, GLSL 450 function,
+    /// whether 3D), each a call of a generated helper (`link::lookup_helpers`); `""` for a
+    /// sampler parameter.
+    pub lookups: std::collections::BTreeSet<(String, String, bool)>,
+    /// The info log of a successful compile (warnings), empty if none.
+    pub log: String,
+    /// The source it was compiled from (what a program binary holds).
+    pub source: String,
+    /// What linking checks across stages.
+    pub facts: Facts,
+    /// Byte offset of each source line's start, to name the line of an error found later.
+    pub(crate) line_starts: Vec<usize>,
+}
+
+impl Shader {
+    /// The 1-based source line of byte `offset`.
+    pub(crate) fn line_of(&self, offset: usize) -> u32 {
+        self.line_starts.partition_point(|&s| s <= offset).max(1) as u32
+    }
+}
+
+/// What the checks learnt that linking needs.
+#[derive(Debug, Clone, Default)]
+pub struct Facts {
+    /// Precision of each float or int uniform.
+    pub uniform_precisions: HashMap<String, ast::PrecisionQualifierData>,
+    /// Precision of each varying.
+    pub varying_precisions: HashMap<String, ast::PrecisionQualifierData>,
+    /// Every variable name the shader's functions read or write.
+    pub used: HashSet<String>,
+    /// Built-in variables declared `invariant`.
+    pub invariants: HashSet<String>,
+}
