@@ -6,50 +6,13 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::{sized_color_base, Compressed, Storage};
-use crate::limits::MAX_LEVEL;
 use crate::render::Target;
-use crate::teximage::{image_texture, validate_size};
+use crate::teximage::{image_texture, validate_box, validate_size};
 use crate::typed::ImageTarget;
 use crate::GlesExecutor;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn glCopyTexImage2D(
-        &mut self,
-        ctx: &mut Context,
-        flushed: &Flushed,
-        target: u32,
-        level: i32,
-        internalformat: u32,
-        x: i32,
-        y: i32,
-        width: i32,
-        height: i32,
-        border: i32,
-    ) -> GlResult {
-        let image = ImageTarget::from_gl(target);
-        self.copy_tex(ctx, flushed, image, level, Some(internalformat), [0, 0, 0], x, y, width, height, border)
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn glCopyTexSubImage2D(
-        &mut self,
-        ctx: &mut Context,
-        flushed: &Flushed,
-        target: u32,
-        level: i32,
-        xoffset: i32,
-        yoffset: i32,
-        x: i32,
-        y: i32,
-        width: i32,
-        height: i32,
-    ) -> GlResult {
-        let image = ImageTarget::from_gl(target);
-        self.copy_tex(ctx, flushed, image, level, None, [xoffset, yoffset, 0], x, y, width, height, 0)
-    }
-
     /// Copies a rectangle of the framebuffer's colour into a texture level (at slice `zo` of a
     /// 3D image, `glCopyTexSubImage3DOES`); with `internal` (`glCopyTexImage2D`) level 0 is
     /// (re)specified first. `image` is the target parsed, or its error.
@@ -74,7 +37,7 @@ impl GlesExecutor {
         let account = self.account.clone();
         let gpu = &self.gpu;
         let image = image?;
-        let last = if image.three_d { crate::limits::max_3d_level(gpu) } else { MAX_LEVEL };
+        let last = crate::teximage::max_level(gpu, image);
         if level < 0 || w < 0 || h < 0 || border != 0 || level > last {
             return Err(GlError::InvalidValue);
         }
@@ -111,7 +74,7 @@ impl GlesExecutor {
             if !matches!(f, RGBA | RGB | LUMINANCE | LUMINANCE_ALPHA | ALPHA) {
                 return Err(GlError::InvalidEnum);
             }
-            validate_size(image, level, w, h, border)?;
+            validate_size(gpu, image, level, [w, h, 1], border)?;
         }
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
@@ -136,10 +99,7 @@ impl GlesExecutor {
         if internal.is_some() && (lw, lh) != (w as u32, h as u32) {
             return Err(GlError::InvalidValue);
         }
-        crate::teximage::validate_rect((lw, lh), xo, yo, w, h)?;
-        if zo < 0 || zo as u32 >= img.level_depth(level) {
-            return Err(GlError::InvalidValue);
-        }
+        validate_box([lw, lh, img.level_depth(level)], [xo, yo, zo], [w, h, 1])?;
         t.defined[image.face as usize] |= 1 << level;
         let rgb = t.format == RGB;
         let Some((src_tex, _)) = &src.color else { return Ok(()) };

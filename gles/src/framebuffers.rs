@@ -9,10 +9,11 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{absent_channels, color_bits, is_half_renderbuffer};
 use crate::formats::{COLOR_FORMAT, HALF_FORMAT};
-use crate::limits::MAX_LEVEL;
+use crate::limits::max_3d_size;
 use crate::limits::MAX_TEXTURE;
 use crate::objects::framebuffer::{color_slot, Attachment, Renderbuffer};
 use crate::render::Target;
+use crate::teximage::{max_level, volume_target};
 use crate::typed::ImageTarget;
 use crate::GlesExecutor;
 use strata_device::account::Kind;
@@ -191,7 +192,12 @@ impl GlesExecutor {
         ctx.objects.framebuffers.is(name)
     }
 
-    pub(super) fn glFramebufferTexture2D(
+    /// Attaches level `level` of `texture` (0: detaches) at `attachment` of the bound
+    /// framebuffer: a 2D image or the cube face `textarget` names (`layer: None`), or slice
+    /// `layer` of a 3D image. The checks are Mesa's, in its order: the texture, the target named
+    /// against the texture's, the slice, the level.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn framebuffer_texture(
         &mut self,
         ctx: &mut Context,
         target: u32,
@@ -199,27 +205,37 @@ impl GlesExecutor {
         textarget: u32,
         texture: u32,
         level: i32,
+        layer: Option<i32>,
     ) -> GlResult {
         if target != FRAMEBUFFER {
             return Err(GlError::InvalidEnum);
         }
-        let image = ImageTarget::from_gl(textarget)?;
-        // GL_OES_fbo_render_mipmap: any level a texture can have.
-        if !(0..=MAX_LEVEL).contains(&level) && texture != 0 {
-            return Err(GlError::InvalidValue);
+        if texture == 0 {
+            return set_attachment(ctx, attachment, Attachment::None);
         }
-        // As Mesa: the texture must exist, and have the target named (a face for a cube map).
-        let expected = if image.cube { TEXTURE_CUBE_MAP } else { TEXTURE_2D };
-        if texture != 0 && ctx.objects.textures.get(&texture).is_none_or(|t| t.target != 0 && t.target != expected) {
+        let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
+        // The target named: a 2D image or a cube face (anything else is GL_INVALID_ENUM), or for a
+        // slice GL_TEXTURE_3D_OES; it must be the texture's (a face for a cube map), though a
+        // name never bound takes a 2D image or a face.
+        let image = match layer {
+            None => ImageTarget::from_gl(textarget)?,
+            Some(_) => volume_target(textarget).map_err(|_| GlError::InvalidOperation)?,
+        };
+        let expected = match (image.three_d, image.cube) {
+            (true, _) => TEXTURE_3D_OES,
+            (_, true) => TEXTURE_CUBE_MAP,
+            _ => TEXTURE_2D,
+        };
+        if t.target != expected && (image.three_d || t.target != 0) {
             return Err(GlError::InvalidOperation);
         }
-        let face = image.face;
-        let a = if texture == 0 {
-            Attachment::None
-        } else {
-            Attachment::Texture { name: texture, level: level as u32, face }
-        };
-        set_attachment(ctx, attachment, a)
+        let layer = layer.unwrap_or(0);
+        // GL_OES_fbo_render_mipmap: any level a texture can have.
+        if !(0..max_3d_size(&self.gpu) as i32).contains(&layer) || !(0..=max_level(&self.gpu, image)).contains(&level) {
+            return Err(GlError::InvalidValue);
+        }
+        let face = image.face + layer as u32;
+        set_attachment(ctx, attachment, Attachment::Texture { name: texture, level: level as u32, face })
     }
 
     pub(super) fn glFramebufferRenderbuffer(

@@ -18,7 +18,7 @@ use crate::render::Target;
 use crate::formats::COLOR_FORMAT;
 use crate::objects::surface::surface_bytes;
 use crate::objects::surface::Surface;
-use crate::window::{Buffer, Window};
+use crate::objects::window::{Buffer, Window};
 use crate::GlesExecutor;
 
 /// Most buffers a window surface has: the back buffer, the newest frame, and one whose work

@@ -1,18 +1,22 @@
-//! Texture image specification from client data: `glTexImage2D` and `glTexSubImage2D` for
-//! colour (8-bit, packed, BGRA, float and half-float), depth (`OES_depth_texture`) and
-//! depth-stencil (`OES_packed_depth_stencil`) images. Compressed uploads are in `compressed`,
-//! copies from the framebuffer in `copyimage`.
+//! Texture images specified from client data, for every shape of image, as Mesa's
+//! `teximage.c` serves every dimension: `glTexImage2D`/`glTexImage3DOES` and
+//! `glTexSubImage2D`/`glTexSubImage3DOES`, for colour (8-bit, packed, BGRA, float and
+//! half-float), depth (`OES_depth_texture`) and depth-stencil (`OES_packed_depth_stencil`)
+//! images. The entry points name the shape (an [`ImageTarget`]: a 2D image, a cube face or a 3D
+//! image; next, a 2D array's layers) and a size with a depth (1 for a 2D image), and share one
+//! path: the checks, the image's (re)specification and its layers written one by one (a 3D
+//! image's slice `z` is the layer a cube map's face is). Compressed uploads are in
+//! `compressed`, copies from the framebuffer in `copyimage`, attachments in `framebuffers`.
 
+use strata_device::Gpu;
 use strata_protocol::Blob;
 
 use crate::context::Context;
-
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
-use crate::limits::MAX_LEVEL;
-use crate::limits::MAX_TEXTURE;
+use crate::limits::{max_3d_level, max_3d_size, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::{Region, TextureImage};
 use crate::objects::texture::Texture;
 use crate::typed::ImageTarget;
@@ -24,56 +28,71 @@ pub fn image_texture(ctx: &Context, target: ImageTarget) -> u32 {
     ctx.bindings.texture(target.binding())
 }
 
-/// Checks a new image's level and size: `GL_INVALID_VALUE` for a level outside 0..=13, a
-/// negative or too large size, a border, or a non-square cube face.
-pub fn validate_size(image: ImageTarget, level: i32, width: i32, height: i32, border: i32) -> GlResult {
-    if !(0..=MAX_LEVEL).contains(&level)
-        || width < 0
-        || height < 0
-        || border != 0
-        || width as u32 > MAX_TEXTURE
-        || height as u32 > MAX_TEXTURE
-        || (image.cube && width != height)
-    {
+/// The last level an image of `image`'s shape may have: log2 of the largest image (for a 3D
+/// image, of the largest 3D image the device allows).
+pub fn max_level(gpu: &Gpu, image: ImageTarget) -> i32 {
+    if image.three_d {
+        max_3d_level(gpu)
+    } else {
+        MAX_LEVEL
+    }
+}
+
+/// Checks a new image's level and size as Mesa does: `GL_INVALID_VALUE` for a level past the
+/// shape's last, a negative size, one beyond the largest (for a 3D image, the largest that
+/// level may have), a border, or a non-square cube face.
+pub fn validate_size(gpu: &Gpu, image: ImageTarget, level: i32, size: [i32; 3], border: i32) -> GlResult {
+    if !(0..=max_level(gpu, image)).contains(&level) || border != 0 {
+        return Err(GlError::InvalidValue);
+    }
+    let most = if image.three_d { (max_3d_size(gpu) >> level) as i32 } else { MAX_TEXTURE as i32 };
+    if size.iter().any(|&n| !(0..=most).contains(&n)) || (image.cube && size[0] != size[1]) {
         return Err(GlError::InvalidValue);
     }
     Ok(())
 }
 
-/// Checks a sub-image rectangle against its level: `GL_INVALID_VALUE` if it does not fit.
-pub fn validate_rect(level_size: (u32, u32), x: i32, y: i32, width: i32, height: i32) -> GlResult {
-    let (lw, lh) = (i64::from(level_size.0), i64::from(level_size.1));
-    let (x, y, w, h) = (i64::from(x), i64::from(y), i64::from(width), i64::from(height));
-    if x < 0 || y < 0 || w < 0 || h < 0 || x + w > lw || y + h > lh {
-        return Err(GlError::InvalidValue);
+/// Checks a sub-image box at `origin` of `extent` against a level of `size` (width, height and
+/// slices): `GL_INVALID_VALUE` if it does not fit.
+pub fn validate_box(size: [u32; 3], origin: [i32; 3], extent: [i32; 3]) -> GlResult {
+    let fits = (0..3).all(|i| {
+        let (o, n) = (i64::from(origin[i]), i64::from(extent[i]));
+        o >= 0 && n >= 0 && o + n <= i64::from(size[i])
+    });
+    if fits {
+        Ok(())
+    } else {
+        Err(GlError::InvalidValue)
     }
-    Ok(())
 }
 
 /// The part of a texture image that a sub-image upload writes, once checked.
 pub struct SubImage<'a> {
     /// The texture bound for the image's target.
     pub texture: &'a mut Texture,
-    /// Where the data goes.
+    /// Where the data's first layer goes.
     pub region: Region,
+    /// How many layers (a 3D image's slices) it writes, from `region`'s on.
+    pub layers: u32,
     /// The size of the level written.
     pub size: (u32, u32),
 }
 
-/// The checks `glTexSubImage2D` and `glCompressedTexSubImage2D` share, in GL's order: a level
-/// outside 0..=13 is `GL_INVALID_VALUE`; no texture bound or an undefined image is
+/// The checks `glTexSubImage*` and `glCompressedTexSubImage*` share, in Mesa's order: a level
+/// past the shape's last is `GL_INVALID_VALUE`; no texture bound or an undefined image is
 /// `GL_INVALID_OPERATION`; then data that `format_fits` refuses for the texture is the error it
-/// gives; a rectangle outside the
-/// level is `GL_INVALID_VALUE`; and on a compressed image, a rectangle that is not whole blocks
-/// (`EXT_texture_compression_s3tc`) is `GL_INVALID_OPERATION`.
+/// gives; a box outside the level is `GL_INVALID_VALUE`; and on a compressed image, a rectangle
+/// that is not whole blocks (`EXT_texture_compression_s3tc`) is `GL_INVALID_OPERATION`.
 pub fn sub_image<'a>(
+    gpu: &Gpu,
     ctx: &'a mut Context,
     image: ImageTarget,
     level: i32,
-    [x, y, width, height]: [i32; 4],
+    origin: [i32; 3],
+    extent: [i32; 3],
     format_fits: impl FnOnce(&Texture, &TextureImage) -> GlResult,
 ) -> GlResult<SubImage<'a>> {
-    if !(0..=MAX_LEVEL).contains(&level) {
+    if !(0..=max_level(gpu, image)).contains(&level) {
         return Err(GlError::InvalidValue);
     }
     let name = image_texture(ctx, image);
@@ -85,12 +104,15 @@ pub fn sub_image<'a>(
     }
     format_fits(texture, img)?;
     let size = img.level_size(level);
-    validate_rect(size, x, y, width, height)?;
+    validate_box([size.0, size.1, img.level_depth(level)], origin, extent)?;
+    let [x, y, z] = origin;
+    let [width, height, layers] = extent;
     if Compressed::from_gl(texture.format).is_some_and(|c| !block_aligned(c.block_size(), size, x, y, width, height)) {
         return Err(GlError::InvalidOperation);
     }
-    let region = Region { face, level, x: x as u32, y: y as u32, width: width as u32, height: height as u32 };
-    Ok(SubImage { texture, region, size })
+    let (width, height) = (width as u32, height as u32);
+    let region = Region { face: face + z as u32, level, x: x as u32, y: y as u32, width, height };
+    Ok(SubImage { texture, region, layers: layers as u32, size })
 }
 
 /// `EXT_texture_compression_s3tc`'s rule for updating part of a compressed image (ASTC's is
@@ -109,6 +131,33 @@ pub(super) fn block_aligned(
     x % bw == 0 && y % bh == 0 && edge(x, width, bw, level_size.0) && edge(y, height, bh, level_size.1)
 }
 
+/// Whether `level` of texture `t`'s image, just (re)specified as `size` (width, height, slices)
+/// in `same` format or storage as level 0, is consistent with level 0: if so it is marked
+/// defined at `layer`, else undefined there (the texture is then incomplete).
+pub(super) fn define_level(t: &mut Texture, layer: u32, level: u32, [w, h, d]: [u32; 3], same: bool) -> bool {
+    let consistent = t.gpu.as_ref().is_some_and(|img| {
+        same && img.level_size(level) == (w.max(1), h.max(1)) && img.level_depth(level) == d.max(1) && level < img.mips
+    });
+    if consistent {
+        t.defined[layer as usize] |= 1 << level;
+    } else {
+        t.defined[layer as usize] &= !(1 << level);
+    }
+    consistent
+}
+
+/// Writes `layers` layers of `data` (tightly packed, one after another) into `img` from
+/// `region`'s layer on, each the size of `region`.
+pub(super) fn write_layers(img: &TextureImage, gpu: &Gpu, flushed: &Flushed, region: Region, layers: u32, data: &[u8]) {
+    let bytes = (region.width * region.height * img.storage.texel_bytes()) as usize;
+    if bytes == 0 {
+        return;
+    }
+    for (k, layer) in data.chunks_exact(bytes).take(layers as usize).enumerate() {
+        img.write(gpu, flushed, Region { face: region.face + k as u32, ..region }, layer);
+    }
+}
+
 /// `texels` texels of an image specified without data: zero, but with alpha 1 where the format
 /// has no alpha (RGB and luminance images read alpha as 1 whatever their colour).
 pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
@@ -122,95 +171,91 @@ pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
     texel.repeat(texels)
 }
 
+/// A 3D image's target: `GL_TEXTURE_3D_OES` (anything else is `GL_INVALID_ENUM`).
+pub(super) fn volume_target(target: u32) -> GlResult<ImageTarget> {
+    if target == TEXTURE_3D_OES {
+        Ok(ImageTarget { face: 0, cube: false, three_d: true })
+    } else {
+        Err(GlError::InvalidEnum)
+    }
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    /// (Re)specifies level `level` of `image` as `size` (width, height, layers) from `pixels`
+    /// (none: blank), in the order of Mesa's checks.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn glTexImage2D(
+    pub(crate) fn tex_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
-        target: u32,
+        image: ImageTarget,
         level: i32,
-        internalformat: i32,
-        width: i32,
-        height: i32,
+        internalformat: u32,
+        [width, height, depth]: [i32; 3],
         border: i32,
         format: u32,
         pixel_type: u32,
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
-        let image = ImageTarget::from_gl(target)?;
         let storage = upload_storage(format, pixel_type);
         // Unknown enums first, then an internal format that is none, then the pairing.
-        if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat as u32) {
+        if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat) {
             return Err(GlError::InvalidValue);
         }
         let storage = storage?;
         // A sized internal format (GL_OES_required_internalformat) stores as its unsized one.
-        let internal = match sized_fits(internalformat as u32, format, pixel_type) {
+        let internal = match sized_fits(internalformat, format, pixel_type) {
             Some(true) => format,
             Some(false) => return Err(GlError::InvalidOperation),
-            None => internalformat as u32,
+            None => internalformat,
         };
         if storage.is_depth() {
-            // Depth formats have no mipmaps (OES_depth_texture); cube faces take them too
-            // (OES_depth_texture_cube_map).
-            if internal != format || level != 0 {
+            // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
+            // images and cube faces (OES_depth_texture_cube_map) only.
+            if image.three_d || internal != format || level != 0 {
                 return Err(GlError::InvalidOperation);
             }
-            validate_size(image, level, width, height, border)?;
+            validate_size(&self.gpu, image, level, [width, height, depth], border)?;
             let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            return self.depth_tex_image(
-                ctx,
-                flushed,
-                image,
-                width as u32,
-                height as u32,
-                format,
-                pixel_type,
-                storage,
-                pixels,
-            );
+            let size = (width as u32, height as u32);
+            return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
         }
         if !internal_accepts(internal, format, self.gpu.features) {
             return Err(GlError::InvalidOperation);
         }
-        validate_size(image, level, width, height, border)?;
+        validate_size(&self.gpu, image, level, [width, height, depth], border)?;
         let (uid, uid2) = (self.next_uid(), self.next_uid());
         let account = self.account.clone();
         let gpu = &self.gpu;
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        let (w, h, level) = (width as u32, height as u32, level as u32);
+        let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
+        // Layers are read one after another: ES 2.0 has no image height to unpack them by.
         let texels = match &pixels {
             Some(p) => Some(
-                to_storage(p.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, storage)
+                to_storage(p.as_bytes(), w as usize, (h * d) as usize, format, pixel_type, unpack, storage)
                     .ok_or(GlError::InvalidOperation)?,
             ),
             None => None,
         };
         if level == 0 {
-            t.ensure_image(gpu, &account, uid, w, h, storage)?;
+            t.ensure_volume(gpu, &account, uid, (w, h, d), storage)?;
             t.format = internal;
             t.half_float = pixel_type == HALF_FLOAT_OES;
         } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
             // Uncompressed data for a level of a natively compressed image.
             t.decompress(gpu, flushed, &account, uid2)?;
         }
-        let face = image.face;
-        let Some(img) = &t.gpu else { return Ok(()) };
-        if img.storage != storage || img.level_size(level) != (w.max(1), h.max(1)) || level >= img.mips {
-            // A level inconsistent with level 0 leaves the texture incomplete.
-            t.defined[face as usize] &= !(1 << level);
+        let same = t.gpu.as_ref().is_some_and(|img| img.storage == storage);
+        if !define_level(t, image.face, level, [w, h, d], same) {
             return Ok(());
         }
-        t.defined[face as usize] |= 1 << level;
-        let region = Region { face, level, x: 0, y: 0, width: w, height: h };
-        match texels {
-            Some(data) => img.write(gpu, flushed, region, &data),
-            None => img.write(gpu, flushed, region, &blank(w as usize * h as usize, format, storage)),
-        }
+        let Some(img) = &t.gpu else { return Ok(()) };
+        let region = Region { face: image.face, level, x: 0, y: 0, width: w, height: h };
+        let data = texels.unwrap_or_else(|| blank(w as usize * h as usize * d as usize, format, storage));
+        write_layers(img, gpu, flushed, region, d, &data);
         Ok(())
     }
 
@@ -222,8 +267,7 @@ impl GlesExecutor {
         ctx: &mut Context,
         flushed: &Flushed,
         image: ImageTarget,
-        w: u32,
-        h: u32,
+        (w, h): (u32, u32),
         format: u32,
         ty: u32,
         storage: Storage,
@@ -257,22 +301,20 @@ impl GlesExecutor {
         Ok(())
     }
 
+    /// Writes `pixels` into the box at `origin` of `extent` of level `level` of `image`.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn glTexSubImage2D(
+    pub(crate) fn tex_sub_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
-        target: u32,
+        image: ImageTarget,
         level: i32,
-        xoffset: i32,
-        yoffset: i32,
-        width: i32,
-        height: i32,
+        origin: [i32; 3],
+        extent: [i32; 3],
         format: u32,
         pixel_type: u32,
         pixels: Blob<'_>,
     ) -> GlResult {
-        let image = ImageTarget::from_gl(target)?;
         let storage = upload_storage(format, pixel_type)?;
         let uid = self.next_uid();
         let account = self.account.clone();
@@ -297,15 +339,15 @@ impl GlesExecutor {
                 Err(GlError::InvalidOperation)
             }
         };
-        let SubImage { texture: t, region, size } =
-            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
+        let SubImage { texture: t, region, layers, size } = sub_image(gpu, ctx, image, level, origin, extent, fits)?;
         let (w, h) = (region.width, region.height);
-        if pixels.is_empty() || w == 0 || h == 0 {
+        if pixels.is_empty() || w == 0 || h == 0 || layers == 0 {
             // No data (a null pointer): nothing to write.
             return Ok(());
         }
         let Some(img) = &t.gpu else { return Ok(()) };
         if storage.is_depth() {
+            // Only 2D images and cube faces hold depth (`fits` refuses depth data for others).
             let (depths, stencil) = depth_stencil_values(pixels.as_bytes(), w as usize, h as usize, pixel_type, unpack)
                 .ok_or(GlError::InvalidOperation)?;
             let texture = img.texture.clone();
@@ -315,11 +357,12 @@ impl GlesExecutor {
             return Ok(());
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };
-        let data = to_storage(pixels.as_bytes(), w as usize, h as usize, format, pixel_type, unpack, target_storage)
+        let rows = (h * layers) as usize;
+        let data = to_storage(pixels.as_bytes(), w as usize, rows, format, pixel_type, unpack, target_storage)
             .ok_or(GlError::InvalidOperation)?;
         t.decompress(gpu, flushed, &account, uid)?;
         if let Some(img) = &t.gpu {
-            img.write(gpu, flushed, region, &data);
+            write_layers(img, gpu, flushed, region, layers, &data);
         }
         Ok(())
     }

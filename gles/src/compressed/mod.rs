@@ -1,46 +1,64 @@
-//! Compressed texture images: `glCompressedTexImage2D` and `glCompressedTexSubImage2D` for
+//! Compressed texture images, for every shape of image (`teximage`'s one path):
+//! `glCompressedTexImage2D`/`3DOES` and `glCompressedTexSubImage2D`/`3DOES` for
 //! `EXT_texture_compression_s3tc` (and its sRGB forms, `EXT_texture_compression_s3tc_srgb`),
 //! `OES_compressed_ETC1_RGB8_texture` (with `EXT_compressed_ETC1_RGB8_sub_texture`) and
-//! `KHR_texture_compression_astc_ldr` (in its linear and sRGB forms). Where
-//! the device has the block format (and the image's size is a whole number of blocks, as wgpu
-//! requires) the blocks are uploaded as they are; otherwise they are decoded here, to RGBA8,
-//! or for the sRGB forms to linear RGBA16F.
+//! `KHR_texture_compression_astc_ldr` (in its linear and sRGB forms; 3D images by
+//! `KHR_texture_compression_astc_sliced_3d`, slice after slice). Where the device has the block
+//! format (and a 2D image's size is a whole number of blocks, as wgpu requires) the blocks are
+//! uploaded as they are; otherwise they are decoded here, to RGBA8, or for the sRGB forms to
+//! linear RGBA16F.
 
 pub mod astc;
 pub mod etc1;
 pub mod s3tc;
 
-use crate::context::Context;
 use strata_protocol::Blob;
 
+use crate::context::Context;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::{Compressed, Storage};
 use crate::objects::image::Region;
-use crate::teximage::{image_texture, sub_image, validate_size, SubImage};
+use crate::objects::texture::Texture;
+use crate::teximage::{define_level, image_texture, sub_image, validate_size, write_layers, SubImage};
 use crate::typed::ImageTarget;
 use crate::GlesExecutor;
 
+/// Compressed `data` of `layers` layers of `w`×`h` texels one after another, decoded layer by
+/// layer.
+fn decode_layers(c: Compressed, data: &[u8], w: u32, h: u32, layers: u32) -> Vec<u8> {
+    let layer = c.image_size(w, h).max(1);
+    data.chunks_exact(layer).take(layers as usize).flat_map(|l| c.decode_for(l, w, h)).collect()
+}
+
+/// Whether `data` holds exactly `layers` layers of `w`×`h` texels in `c`.
+fn sized(c: Compressed, data: &Blob<'_>, w: u32, h: u32, layers: u32) -> bool {
+    c.image_size(w, h).checked_mul(layers as usize) == Some(data.len())
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
+    /// (Re)specifies level `level` of `image` as `size` (width, height, layers) of compressed
+    /// `data`.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn glCompressedTexImage2D(
+    pub(crate) fn compressed_tex_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
-        target: u32,
+        image: ImageTarget,
         level: i32,
         internalformat: u32,
-        width: i32,
-        height: i32,
+        [width, height, depth]: [i32; 3],
         border: i32,
         data: Blob<'_>,
     ) -> GlResult {
-        let image = ImageTarget::from_gl(target)?;
-        let c = Compressed::offered_gl(internalformat, self.gpu.features).ok_or(GlError::InvalidEnum)?;
-        validate_size(image, level, width, height, border)?;
-        let (w, h, level) = (width as u32, height as u32, level as u32);
-        if data.len() != c.image_size(w, h) {
+        // Only ASTC has 3D images (GL_KHR_texture_compression_astc_sliced_3d).
+        let c = Compressed::offered_gl(internalformat, self.gpu.features)
+            .filter(|c| !image.three_d || matches!(c, Compressed::Astc(_) | Compressed::AstcSrgb(_)))
+            .ok_or(GlError::InvalidEnum)?;
+        validate_size(&self.gpu, image, level, [width, height, depth], border)?;
+        let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
+        if !sized(c, &data, w, h, d) {
             return Err(GlError::InvalidValue);
         }
         let uid = self.next_uid();
@@ -49,69 +67,62 @@ impl GlesExecutor {
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         if level == 0 {
+            // Blocks go up as they are only into a 2D image of whole blocks.
             let (bw, bh) = c.block_size();
-            let whole_blocks = w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
+            let whole_blocks = !image.three_d && w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
             let native = whole_blocks && c.native_on(gpu.features).is_some();
-            t.ensure_image(gpu, &account, uid, w, h, if native { Storage::Native(c) } else { c.decoded_storage() })?;
+            let storage = if native { Storage::Native(c) } else { c.decoded_storage() };
+            t.ensure_volume(gpu, &account, uid, (w, h, d), storage)?;
             t.format = internalformat;
         }
-        let face = image.face;
-        let format = t.format;
-        let Some(img) = &mut t.gpu else { return Ok(()) };
-        if format != internalformat || img.level_size(level) != (w.max(1), h.max(1)) || level >= img.mips {
-            // A level inconsistent with level 0 leaves the texture incomplete.
-            t.defined[face as usize] &= !(1 << level);
+        let same = t.format == internalformat;
+        if !define_level(t, image.face, level, [w, h, d], same) {
             return Ok(());
         }
-        let region = Region { face, level, x: 0, y: 0, width: w, height: h };
+        let Some(img) = &mut t.gpu else { return Ok(()) };
+        let region = Region { face: image.face, level, x: 0, y: 0, width: w, height: h };
         match img.storage {
             Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
-            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
+            _ => write_layers(img, gpu, flushed, region, d, &decode_layers(c, data.as_bytes(), w, h, d)),
         }
-        t.defined[face as usize] |= 1 << level;
         Ok(())
     }
 
+    /// Writes compressed `data` into the box at `origin` of `extent` of level `level` of
+    /// `image`.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn glCompressedTexSubImage2D(
+    pub(crate) fn compressed_tex_sub_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
-        target: u32,
+        image: ImageTarget,
         level: i32,
-        xoffset: i32,
-        yoffset: i32,
-        width: i32,
-        height: i32,
+        origin: [i32; 3],
+        extent: [i32; 3],
         format: u32,
         data: Blob<'_>,
     ) -> GlResult {
-        let image = ImageTarget::from_gl(target)?;
         // As on Mesa, a format that is not an offered compressed one cannot match the image,
         // whatever the level and the rectangle.
         let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidOperation)?;
         let gpu = &self.gpu;
         // An image is updated only by data of its own format (ETC1's too, by
         // `EXT_compressed_ETC1_RGB8_sub_texture`).
-        let fits = |t: &crate::objects::texture::Texture, _: &_| {
-            if t.format == format {
-                Ok(())
-            } else {
-                Err(GlError::InvalidOperation)
-            }
-        };
-        // As on Mesa, data of the wrong size for the rectangle in the format named is refused
-        // before the texture is looked at.
-        if width >= 0 && height >= 0 && data.len() != c.image_size(width as u32, height as u32) {
+        let fits = |t: &Texture, _: &_| if t.format == format { Ok(()) } else { Err(GlError::InvalidOperation) };
+        // As on Mesa, data of the wrong size for the box in the format named is refused before
+        // the texture is looked at. A 3D box's negative size counts as none; a 2D box with a
+        // negative width or height is left to the box's own check.
+        let [w, h, d] = extent.map(|n| n.max(0) as u32);
+        let checked = image.three_d || (extent[0] >= 0 && extent[1] >= 0);
+        if checked && !sized(c, &data, w, h, d) {
             return Err(GlError::InvalidValue);
         }
-        let SubImage { texture: t, region, .. } =
-            sub_image(ctx, image, level, [xoffset, yoffset, width, height], fits)?;
+        let SubImage { texture: t, region, layers, .. } = sub_image(gpu, ctx, image, level, origin, extent, fits)?;
         let Some(img) = &mut t.gpu else { return Ok(()) };
         let (w, h) = (region.width, region.height);
         match img.storage {
             Storage::Native(_) => img.write_blocks(gpu, flushed, region, data.as_bytes()),
-            _ => img.write(gpu, flushed, region, &c.decode_for(data.as_bytes(), w, h)),
+            _ => write_layers(img, gpu, flushed, region, layers, &decode_layers(c, data.as_bytes(), w, h, layers)),
         }
         Ok(())
     }

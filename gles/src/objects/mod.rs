@@ -13,3 +13,4 @@ pub mod query;
 pub mod surface;
 pub mod texture;
 pub mod vertex_array;
+pub mod window;

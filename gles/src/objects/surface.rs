@@ -7,8 +7,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use strata_protocol::projection::{Projection, ProjectionKind};
 
 use crate::egl_config::Config;
+use crate::objects::window::Window;
 use crate::render::Target;
-use crate::window::Window;
 
 /// The depth image format of surfaces whose config has depth (`stratad serve --depth-format`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]

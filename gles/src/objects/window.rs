@@ -10,33 +10,33 @@ use strata_scene::transfer::{CopyPath, Transfer};
 use crate::render::Target;
 
 /// One buffer of a window surface.
-pub(super) struct Buffer {
+pub(crate) struct Buffer {
     /// What the client draws into.
-    pub(super) target: Target,
+    pub(crate) target: Target,
     /// How frames drawn into it are copied, for `Transfer::Copy`.
-    pub(super) copy: Option<Arc<CopyPath>>,
+    pub(crate) copy: Option<Arc<CopyPath>>,
     /// Its memory, held against the client's quota.
-    pub(super) _reserved: Reservation,
+    pub(crate) _reserved: Reservation,
     /// The surface's swap count when this buffer was last swapped (`EGL_EXT_buffer_age`);
     /// `None` before its first frame.
-    pub(super) swapped_at: Option<u64>,
+    pub(crate) swapped_at: Option<u64>,
 }
 
 /// A window surface's buffers; `target` of the surface is the back one's.
-pub(super) struct Window {
+pub(crate) struct Window {
     /// The buffers, by the index the scene knows them by.
-    pub(super) buffers: Vec<Buffer>,
+    pub(crate) buffers: Vec<Buffer>,
     /// The back buffer.
-    pub(super) back: usize,
+    pub(crate) back: usize,
     /// How its frames reach the compositor.
-    pub(super) transfer: Transfer,
+    pub(crate) transfer: Transfer,
     /// Frames swapped so far.
-    pub(super) swaps: u64,
+    pub(crate) swaps: u64,
 }
 
 impl Window {
     /// Records that buffer `i` was swapped.
-    pub(super) fn swapped(&mut self, i: usize) {
+    pub(crate) fn swapped(&mut self, i: usize) {
         if let Some(b) = self.buffers.get_mut(i) {
             b.swapped_at = Some(self.swaps);
         }
@@ -45,7 +45,7 @@ impl Window {
 
     /// `EGL_BUFFER_AGE_EXT` of the back buffer: how many frames ago its contents were the
     /// newest (1: the previous frame's), 0 for a buffer that holds no frame yet.
-    pub(super) fn age(&self) -> u64 {
+    pub(crate) fn age(&self) -> u64 {
         self.buffers.get(self.back).and_then(|b| b.swapped_at).map_or(0, |at| self.swaps - at)
     }
 }
