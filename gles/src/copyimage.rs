@@ -32,7 +32,7 @@ impl GlesExecutor {
         border: i32,
     ) -> GlResult {
         let src = self.read_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
-        crate::read_buffer::read_selected(ctx)?;
+        crate::framebuffers::read_selected(ctx)?;
         let uid = self.next_uid();
         let account = self.account.clone();
         let gpu = &self.gpu;

@@ -1,15 +1,24 @@
 //! Framebuffer and renderbuffer objects: names, bindings, storage, attachments, completeness,
 //! and the render target the current framebuffer resolves to.
-
-use strata_protocol::Slice;
+//!
+//! `GL_EXT_draw_buffers` / `GL_NV_draw_buffers`: `glDrawBuffersEXT` selects, per fragment
+//! output, the colour buffer it writes. The default framebuffer has one output, `GL_BACK` or
+//! `GL_NONE`; a framebuffer object's output `i` writes `GL_COLOR_ATTACHMENTi` or nothing.
+//! Validated in Mesa's order, which was probed: the count, then each buffer in turn.
+//!
+//! `GL_NV_read_buffer`: `glReadBufferNV` selects the colour buffer that `glReadPixels` and the
+//! texture copies read: `GL_BACK` or `GL_NONE` for the default framebuffer, and one of the
+//! colour attachments (`GL_NV_fbo_color_attachments`) or `GL_NONE` for a framebuffer object,
+//! each of which keeps its own. It applies to the framebuffer bound for reading. Reading with `GL_NONE` selected, or from an attachment with
+//! no image, is `GL_INVALID_OPERATION`, as on Mesa.
 
 use crate::context::Context;
-
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{absent_channels, color_bits, is_half_renderbuffer};
 use crate::formats::{COLOR_FORMAT, HALF_FORMAT};
 use crate::limits::max_3d_size;
+use crate::limits::MAX_DRAW_BUFFERS;
 use crate::limits::MAX_TEXTURE;
 use crate::objects::framebuffer::{color_slot, Attachment, Renderbuffer};
 use crate::render::Target;
@@ -17,6 +26,7 @@ use crate::teximage::{max_level, volume_target};
 use crate::typed::ImageTarget;
 use crate::GlesExecutor;
 use strata_device::account::Kind;
+use strata_protocol::Slice;
 
 /// Attaches `a` to `attachment` of the bound framebuffer object.
 pub(super) fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
@@ -360,5 +370,98 @@ fn renderbuffer_bits(format: u32) -> [i32; 6] {
         DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],
         STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
         _ => [0; 6],
+    }
+}
+
+/// `GL_DRAW_BUFFERi_EXT`: what fragment output `i` writes.
+pub(super) fn draw_buffer(ctx: &Context, i: usize) -> u32 {
+    let bound = ctx.bindings.framebuffer;
+    match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
+        Some(fb) => fb.draw_buffers.get(i).copied().unwrap_or(NONE),
+        None if i == 0 && !ctx.draw_none => BACK,
+        None => NONE,
+    }
+}
+
+/// Whether `buffer` is an enum a draw buffer can name at all (Mesa answers
+/// `GL_INVALID_OPERATION` for these when they do not fit, `GL_INVALID_ENUM` for the rest).
+fn known(buffer: u32) -> bool {
+    buffer == BACK || (COLOR_ATTACHMENT0..COLOR_ATTACHMENT0 + 32).contains(&buffer)
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glDrawBuffersEXT(&mut self, ctx: &mut Context, buffers: strata_protocol::Slice<'_, u32>) -> GlResult {
+        let bufs: Vec<u32> = buffers.iter().collect();
+        if bufs.len() > MAX_DRAW_BUFFERS {
+            return Err(GlError::InvalidValue);
+        }
+        let bound = ctx.bindings.framebuffer;
+        let Some(fb) = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0) else {
+            // The default framebuffer: exactly one buffer, the back buffer or none.
+            ctx.draw_none = match bufs.as_slice() {
+                [BACK] => false,
+                [NONE] => true,
+                _ => return Err(GlError::InvalidOperation),
+            };
+            return Ok(());
+        };
+        for (i, b) in bufs.iter().enumerate() {
+            if *b == NONE || *b == COLOR_ATTACHMENT0 + i as u32 {
+                continue;
+            }
+            return Err(if known(*b) { GlError::InvalidOperation } else { GlError::InvalidEnum });
+        }
+        fb.draw_buffers = [NONE; MAX_DRAW_BUFFERS];
+        fb.draw_buffers[..bufs.len()].copy_from_slice(&bufs);
+        Ok(())
+    }
+}
+
+/// `GL_READ_BUFFER_NV`: the colour buffer reads use, or `GL_NONE`.
+pub(super) fn read_buffer(ctx: &Context) -> u32 {
+    let bound = ctx.bindings.read_framebuffer;
+    match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
+        Some(fb) => fb.read,
+        None if ctx.read_none => NONE,
+        None => BACK,
+    }
+}
+
+/// `GL_INVALID_OPERATION` where reads have no colour buffer selected, or the selected
+/// attachment has no image.
+pub(super) fn read_selected(ctx: &Context) -> GlResult {
+    let bound = ctx.bindings.read_framebuffer;
+    let attached = match ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) {
+        Some(fb) => fb
+            .read
+            .checked_sub(COLOR_ATTACHMENT0)
+            .and_then(|i| fb.colors.get(i as usize))
+            .is_some_and(|a| *a != Attachment::None),
+        None => !ctx.read_none,
+    };
+    if !attached {
+        return Err(GlError::InvalidOperation);
+    }
+    Ok(())
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glReadBufferNV(&mut self, ctx: &mut Context, mode: u32) -> GlResult {
+        let bound = ctx.bindings.read_framebuffer;
+        let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0);
+        match (mode, fb) {
+            (NONE, Some(fb)) => fb.read = NONE,
+            (NONE, None) => ctx.read_none = true,
+            (BACK, None) => ctx.read_none = false,
+            // The other framebuffer's buffers, and attachments past the ones Strata has.
+            (BACK, Some(_)) => return Err(GlError::InvalidOperation),
+            (_, fb) => match (color_slot(mode, 32).ok_or(GlError::InvalidEnum)??, fb) {
+                (_, Some(fb)) => fb.read = mode,
+                (_, None) => return Err(GlError::InvalidOperation),
+            },
+        }
+        Ok(())
     }
 }

@@ -6,8 +6,7 @@
 //! program is relinked. Each program keeps its own uniform values; the executable's block is
 //! filled from both at each draw, the fragment stage's uniforms renamed where the names clash.
 
-use std::borrow::Cow;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use strata_protocol::{Slice, Text};
@@ -18,10 +17,8 @@ use crate::error::{GlError, GlResult};
 use crate::glsl;
 use crate::glsl::types::Stage;
 use crate::limits::MAX_PIPELINES;
-use crate::linking::link_shaders;
 use crate::linking::release_if_unused;
 use crate::objects::pipeline::Pipeline;
-use crate::objects::pipeline::{Combined, Ready};
 use crate::objects::program::{create_gpu_program, LinkedProgram, LinkedStages};
 use crate::GlesExecutor;
 
@@ -34,24 +31,14 @@ const ALL_SHADER_BITS: u32 = u32::MAX;
 /// `GL_ACTIVE_PROGRAM_EXT`.
 const ACTIVE_PROGRAM: u32 = 0x8259;
 
-/// The executable a draw runs, with its uniforms' values and samplers' units.
-pub struct Executable<'c> {
-    /// The linked program.
-    pub program: Arc<LinkedProgram>,
-    /// Its uniform block.
-    pub data: Cow<'c, [u8]>,
-    /// The texture unit of each of its samplers.
-    pub units: Cow<'c, [u32]>,
-}
-
 /// The linked program `name`, if it has an executable.
-fn linked(objects: &Objects, name: u32) -> Option<&Arc<LinkedProgram>> {
+pub(crate) fn linked(objects: &Objects, name: u32) -> Option<&Arc<LinkedProgram>> {
     objects.programs.get(&name).and_then(|p| p.linked.as_ref())
 }
 
 /// Checks that `pl`'s stages can draw together; the error is the info log (empty where
 /// Mesa's is: interfaces that differ).
-fn validate(objects: &Objects, pl: &Pipeline) -> Result<(), String> {
+pub(crate) fn validate(objects: &Objects, pl: &Pipeline) -> Result<(), String> {
     for (name, bits) in [(pl.vertex, VERTEX_SHADER_BIT), (pl.fragment, FRAGMENT_SHADER_BIT)] {
         let Some(l) = linked(objects, name) else { continue };
         let serves = bits | if pl.vertex == pl.fragment { VERTEX_SHADER_BIT | FRAGMENT_SHADER_BIT } else { 0 };
@@ -70,84 +57,6 @@ fn validate(objects: &Objects, pl: &Pipeline) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// Links the vertex stage of `vp` with the fragment stage of `fp` (`id`: the executable's).
-fn combine(gpu: &strata_device::Gpu, vp: &LinkedProgram, fp: &LinkedProgram, id: u64) -> Result<Combined, String> {
-    let (Some(vs), Some(fs)) = (&vp.stages.vertex, &fp.stages.fragment) else {
-        return Err("a stage has no code".into());
-    };
-    let taken: HashSet<String> = vs.uniforms.iter().map(|u| u.name.clone()).collect();
-    let fs = glsl::rename_uniforms(fs, &taken);
-    // The vertex program's attribute locations, so that its queries answer for the pipeline.
-    let bindings: HashMap<String, u32> = vp.info.attributes.iter().map(|(a, loc)| (a.name.clone(), *loc)).collect();
-    let (info, recipe) = link_shaders(vs, &fs, &bindings)?;
-    let program = create_gpu_program(gpu, (info, recipe, LinkedStages::default()), id)?;
-    let index = |l: &LinkedProgram, name: &str| l.info.uniforms.iter().position(|u| u.name == name);
-    let mut sources = Vec::new();
-    for u in &program.info.uniforms {
-        let source = match index(vp, &u.name) {
-            Some(i) if taken.contains(&u.name) => (Stage::Vertex, i),
-            _ => fp
-                .info
-                .uniforms
-                .iter()
-                .position(|f| glsl::fragment_uniform_name(&f.name, &taken) == u.name)
-                .map(|i| (Stage::Fragment, i))
-                .ok_or_else(|| format!("uniform `{}' has no source", u.name))?,
-        };
-        sources.push(source);
-    }
-    Ok(Combined { key: (vp.id, fp.id), program: Arc::new(program), sources })
-}
-
-impl Context {
-    /// The executable draws run: the program in use, else the bound pipeline's as its last
-    /// [`GlesExecutor::prepare_pipeline`] left it; `None` if there is none.
-    pub fn executable(&self) -> Option<Executable<'_>> {
-        let objects = &self.objects;
-        let own = |name: u32| {
-            let p = objects.programs.get(&name)?;
-            Some(Executable {
-                program: p.linked.clone()?,
-                data: Cow::Borrowed(&p.data),
-                units: Cow::Borrowed(&p.units),
-            })
-        };
-        if self.bindings.program != 0 {
-            return own(self.bindings.program);
-        }
-        let pl = objects.pipelines.get(&self.bindings.pipeline)?;
-        match pl.ready.as_ref()? {
-            Ready::Own(name) => own(*name),
-            Ready::Combined(c) => {
-                let (data, units) = c.feed(objects.programs.get(&pl.vertex)?, objects.programs.get(&pl.fragment)?)?;
-                Some(Executable { program: c.program.clone(), data: Cow::Owned(data), units: Cow::Owned(units) })
-            }
-        }
-    }
-
-    /// The linked program draws run, without its uniforms' values (see [`Context::executable`]).
-    pub fn draw_program(&self) -> Option<Arc<LinkedProgram>> {
-        let objects = &self.objects;
-        let own = |name: u32| objects.programs.get(&name).and_then(|p| p.linked.clone());
-        if self.bindings.program != 0 {
-            return own(self.bindings.program);
-        }
-        match objects.pipelines.get(&self.bindings.pipeline)?.ready.as_ref()? {
-            Ready::Own(name) => own(*name),
-            Ready::Combined(c) => Some(c.program.clone()),
-        }
-    }
-
-    /// The program `glUniform*` writes: the one in use, else the bound pipeline's active
-    /// program (0 for none).
-    pub fn uniform_program(&self) -> u32 {
-        match self.bindings.program {
-            0 => self.objects.pipelines.get(&self.bindings.pipeline).map_or(0, |pl| pl.active),
-            p => p,
-        }
-    }
 }
 
 /// The pipeline `name` for a command that needs one: never generated is `GL_INVALID_OPERATION`.
@@ -170,42 +79,6 @@ fn pipeline_program(objects: &Objects, program: u32) -> GlResult<Option<&Arc<Lin
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    /// Before a draw with no program in use: validates the bound pipeline (`GL_INVALID_OPERATION`
-    /// if it cannot draw) and links its two programs' stages together where it needs that.
-    pub(super) fn prepare_pipeline(&mut self, ctx: &mut Context) -> GlResult {
-        if ctx.bindings.program != 0 || ctx.bindings.pipeline == 0 {
-            return Ok(());
-        }
-        let objects = &ctx.objects;
-        let Some(pl) = objects.pipelines.get(&ctx.bindings.pipeline) else { return Ok(()) };
-        validate(objects, pl).map_err(|_| GlError::InvalidOperation)?;
-        let ready = match (linked(objects, pl.vertex), linked(objects, pl.fragment)) {
-            // As on Mesa, a pipeline with no stages cannot draw.
-            (None, None) => return Err(GlError::InvalidOperation),
-            (Some(_), None) => Some(Ready::Own(pl.vertex)),
-            (None, Some(_)) => Some(Ready::Own(pl.fragment)),
-            (Some(_), Some(_)) if pl.vertex == pl.fragment => Some(Ready::Own(pl.vertex)),
-            (Some(v), Some(f)) => match &pl.ready {
-                Some(Ready::Combined(c)) if c.key == (v.id, f.id) => return Ok(()),
-                _ => {
-                    let (v, f) = (v.clone(), f.clone());
-                    let id = self.next_uid();
-                    match combine(&self.gpu, &v, &f, id) {
-                        Ok(c) => Some(Ready::Combined(c)),
-                        Err(e) => {
-                            tracing::warn!("a program pipeline's stages failed to link together: {e}");
-                            return Err(GlError::InvalidOperation);
-                        }
-                    }
-                }
-            },
-        };
-        if let Some(pl) = ctx.objects.pipelines.get_mut(&ctx.bindings.pipeline) {
-            pl.ready = ready;
-        }
-        Ok(())
-    }
-
     pub(super) fn glGenProgramPipelinesEXT(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
         let pipelines = &mut ctx.objects.pipelines;
         if pipelines.len() as u64 + pipelines.fresh(names.iter()) > MAX_PIPELINES {

@@ -1,16 +1,29 @@
 //! Program objects: creation, attachment, attribute bindings, linking (through `glsl`, then
 //! wgpu shader modules and layouts), use, deletion and queries.
-
-use strata_protocol::{ActiveVariable, Text};
+//!
+//! `GL_OES_get_program_binary`. A program's binary holds what it was linked from: both
+//! stages' sources and the attribute bindings in force, framed by a magic number, a format
+//! version and a CRC-32. Loading one compiles and links those again, so a binary stays good
+//! across daemon builds until the format changes. A binary that is corrupt, truncated, of
+//! another format version or another implementation fails the link with a log that says
+//! why; it never reaches the GPU unchecked, since its contents are validated as
+//! `glShaderSource` and `glBindAttribLocation` validate theirs.
 
 use crate::context::Context;
-
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
+use crate::glsl;
+use crate::glsl::types::Stage;
 use crate::limits::MAX_ATTRIBS;
+use crate::linking::link_either;
 use crate::linking::{link_stages, linked_for_query, release_shaders};
+use crate::objects::program::Recipe;
 use crate::objects::program::{create_gpu_program, Program};
+use crate::objects::program::{LinkResult, LinkedStages};
 use crate::GlesExecutor;
+use std::collections::HashMap;
+use strata_protocol::{ActiveVariable, Text};
+use strata_protocol::{Blob, Bytes};
 
 /// `f` of program `name`, or `default` after recording the error GL gives for a bad name.
 fn with_program<T>(ctx: &mut Context, name: u32, default: T, f: impl FnOnce(&Program) -> T) -> T {
@@ -155,7 +168,7 @@ impl GlesExecutor {
                     VALIDATE_STATUS => Ok(i32::from(p.validated)),
                     INFO_LOG_LENGTH => Ok(if p.log.is_empty() { 0 } else { p.log.len() as i32 + 1 }),
                     ATTACHED_SHADERS => Ok(p.attached.len() as i32),
-                    PROGRAM_BINARY_LENGTH_OES => Ok(crate::program_binary::length(p)),
+                    PROGRAM_BINARY_LENGTH_OES => Ok(crate::programs::length(p)),
                     ACTIVE_ATTRIBUTES => Ok(linked.map_or(0, |l| l.info.attributes.len() as i32)),
                     ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
                     ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked
@@ -207,5 +220,237 @@ impl GlesExecutor {
             Ok(ActiveVariable { size: 1, ty: a.ty.gl_enum(), name: a.name.clone() })
         });
         v.map_err(|e| ctx.record(e)).ok()
+    }
+}
+
+/// `GL_PROGRAM_BINARY_FORMATS_OES`' one entry: Strata's program binary format.
+pub const PROGRAM_BINARY_FORMAT: u32 = 0x5354_5241;
+/// The first bytes of every binary.
+const MAGIC: &[u8; 8] = b"STRATApb";
+/// The layout of what follows the header; a binary of another version is refused.
+const VERSION: u32 = 1;
+/// Magic, version and CRC-32.
+const HEADER: usize = 16;
+/// The most a binary's payload may claim to hold.
+const LIMIT: usize = 64 << 20;
+
+/// Why a binary was refused.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum BinaryError {
+    /// Too short to hold a header, or not begun by Strata's magic number.
+    #[error("the binary is not a Strata program binary")]
+    Foreign,
+    /// Made by a build whose binary format differs.
+    #[error("the binary's format version is {0}, and this daemon reads version {VERSION}: link the program from its sources")]
+    Version(u32),
+    /// The checksum does not match the contents.
+    #[error("the binary is corrupt: its checksum does not match its contents")]
+    Checksum,
+    /// The contents do not decode, or hold what the GL calls would refuse.
+    #[error("the binary is malformed: {0}")]
+    Malformed(String),
+}
+
+/// `recipe`'s binary.
+pub fn encode(recipe: &Recipe) -> Vec<u8> {
+    let payload = bincode::serde::encode_to_vec(recipe, bincode::config::standard()).unwrap_or_default();
+    let mut out = Vec::with_capacity(HEADER + payload.len());
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&crc32fast::hash(&payload).to_le_bytes());
+    out.extend_from_slice(&payload);
+    out
+}
+
+/// The recipe `bytes` holds, checked as the GL calls that make one check their input.
+pub fn decode(bytes: &[u8]) -> Result<Recipe, BinaryError> {
+    if bytes.len() < HEADER || &bytes[..8] != MAGIC {
+        return Err(BinaryError::Foreign);
+    }
+    let word = |at: usize| u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    if word(8) != VERSION {
+        return Err(BinaryError::Version(word(8)));
+    }
+    let payload = &bytes[HEADER..];
+    if crc32fast::hash(payload) != word(12) {
+        return Err(BinaryError::Checksum);
+    }
+    let config = bincode::config::standard().with_limit::<LIMIT>();
+    let (recipe, used): (Recipe, usize) =
+        bincode::serde::decode_from_slice(payload, config).map_err(|e| BinaryError::Malformed(e.to_string()))?;
+    if used != payload.len() {
+        return Err(BinaryError::Malformed(format!("{} bytes follow the program", payload.len() - used)));
+    }
+    for (name, index) in &recipe.bindings {
+        if *index as usize >= MAX_ATTRIBS || name.starts_with("gl_") {
+            return Err(BinaryError::Malformed(format!("attribute `{name}` is bound to {index}")));
+        }
+    }
+    Ok(recipe)
+}
+
+/// The length of `p`'s binary (`GL_PROGRAM_BINARY_LENGTH_OES`): 0 unless its last link succeeded.
+pub fn length(p: &Program) -> i32 {
+    match (&p.linked, p.link_ok) {
+        (Some(l), true) => encode(&l.recipe).len() as i32,
+        _ => 0,
+    }
+}
+
+/// Compiles and links what `bytes` holds (a one-stage binary as a separable program's
+/// stage, which `separable` must allow): the program info log on failure.
+fn relink(bytes: &[u8], separable: bool) -> Result<LinkResult, String> {
+    let recipe = decode(bytes).map_err(|e| format!("error: {e}"))?;
+    let compile = |stage: Stage, source: &str, what: &str| {
+        if source.is_empty() {
+            return Ok(None);
+        }
+        glsl::compile(stage, source)
+            .map(Some)
+            .map_err(|log| format!("error: the binary's {what} shader does not compile:\n{log}"))
+    };
+    let vertex = compile(Stage::Vertex, &recipe.vertex, "vertex")?;
+    let fragment = compile(Stage::Fragment, &recipe.fragment, "fragment")?;
+    let bindings: HashMap<String, u32> = recipe.bindings.iter().cloned().collect();
+    let (info, recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &bindings, separable)?;
+    Ok((info, recipe, LinkedStages::new(separable, vertex, fragment)))
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// Links `program` from a binary. As on Mesa, the program's link status is false from
+    /// the start, so a length or format error leaves it unlinked too.
+    pub(super) fn glProgramBinaryOES(
+        &mut self,
+        ctx: &mut Context,
+        program: u32,
+        binary_format: u32,
+        length: i32,
+        binary: Blob<'_>,
+    ) -> GlResult {
+        let id = self.next_uid();
+        let objects = &mut ctx.objects;
+        let Some(p) = objects.programs.get_mut(&program) else { return Err(objects.shader_or_program_error(program)) };
+        p.link_ok = false;
+        p.log.clear();
+        if length < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        if binary_format != PROGRAM_BINARY_FORMAT {
+            return Err(GlError::InvalidEnum);
+        }
+        let bytes = binary.as_bytes();
+        let bytes = &bytes[..bytes.len().min(length as usize)];
+        let result = relink(bytes, p.separable).and_then(|linked| create_gpu_program(&self.gpu, linked, id));
+        p.install(result);
+        Ok(())
+    }
+
+    /// The binary of `program`'s last link; see the command's reply.
+    pub(super) fn glGetProgramBinaryOES(
+        &mut self,
+        ctx: &mut Context,
+        program: u32,
+        buf_size: i32,
+    ) -> Option<Option<(u32, Bytes)>> {
+        let Some(p) = ctx.objects.programs.get(&program) else {
+            let e = ctx.objects.shader_or_program_error(program);
+            ctx.record(e);
+            return None;
+        };
+        if buf_size < 0 {
+            ctx.record(GlError::InvalidValue);
+            return None;
+        }
+        let binary = p.linked.as_ref().filter(|_| p.link_ok).map(|l| encode(&l.recipe));
+        match binary {
+            Some(b) if b.len() <= buf_size as usize => Some(Some((PROGRAM_BINARY_FORMAT, Bytes(b)))),
+            _ => {
+                ctx.record(GlError::InvalidOperation);
+                Some(None)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn recipe() -> Recipe {
+        Recipe {
+            vertex: "attribute vec4 p; void main() { gl_Position = p; }".into(),
+            fragment: "void main() { gl_FragColor = vec4(1.0); }".into(),
+            bindings: vec![("p".into(), 3)],
+        }
+    }
+
+    /// `bytes` with the checksum recomputed over what follows the header.
+    fn resealed(mut bytes: Vec<u8>) -> Vec<u8> {
+        let crc = crc32fast::hash(&bytes[HEADER..]).to_le_bytes();
+        bytes[12..16].copy_from_slice(&crc);
+        bytes
+    }
+
+    #[test]
+    fn a_binary_decodes_to_what_it_was_made_from() {
+        assert_eq!(decode(&encode(&recipe())), Ok(recipe()));
+    }
+
+    #[test]
+    fn every_damaged_binary_is_refused_with_its_reason() {
+        let good = encode(&recipe());
+        assert_eq!(decode(&good[..HEADER - 1]), Err(BinaryError::Foreign));
+        assert_eq!(decode(b"MESA binary, whatever it holds"), Err(BinaryError::Foreign));
+        let mut other = good.clone();
+        other[8] = 2;
+        assert_eq!(decode(&other), Err(BinaryError::Version(2)));
+        for at in [HEADER, good.len() / 2, good.len() - 1] {
+            let mut flipped = good.clone();
+            flipped[at] ^= 0x10;
+            assert_eq!(decode(&flipped), Err(BinaryError::Checksum), "byte {at} flipped");
+        }
+        assert_eq!(decode(&good[..good.len() - 3]), Err(BinaryError::Checksum));
+        // Well sealed, yet not what the GL calls accept.
+        let mut trailing = good.clone();
+        trailing.push(0);
+        assert!(matches!(decode(&resealed(trailing)), Err(BinaryError::Malformed(_))));
+        for (name, index) in [("p", MAX_ATTRIBS as u32), ("gl_Vertex", 0)] {
+            let bad = Recipe { bindings: vec![(name.into(), index)], ..recipe() };
+            assert!(matches!(decode(&encode(&bad)), Err(BinaryError::Malformed(_))), "{name} at {index}");
+        }
+        // A length prefix that claims more than the limit allows fails without allocating it.
+        let mut huge = good[..HEADER].to_vec();
+        huge.extend_from_slice(&[0xFD, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x7F]);
+        assert!(matches!(decode(&resealed(huge)), Err(BinaryError::Malformed(_))));
+    }
+
+    proptest::proptest! {
+        /// Any payload behind a good header is decoded or refused, never a panic, and what
+        /// decodes links or fails with a log.
+        #[test]
+        fn any_sealed_payload_is_decoded_or_refused(payload in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400)) {
+            let mut bytes = encode(&recipe())[..HEADER].to_vec();
+            bytes.extend_from_slice(&payload);
+            let bytes = resealed(bytes);
+            if decode(&bytes).is_ok() {
+                let _ = relink(&bytes, false);
+            }
+        }
+
+        /// Recipes with arbitrary sources and bindings survive the round trip.
+        #[test]
+        fn any_recipe_round_trips(vertex in ".*", fragment in ".*", index in 0..MAX_ATTRIBS as u32) {
+            let r = Recipe { vertex, fragment, bindings: vec![("a".into(), index)] };
+            proptest::prop_assert_eq!(decode(&encode(&r)), Ok(r));
+        }
+    }
+
+    #[test]
+    fn a_binary_whose_sources_fail_fails_the_link_with_the_compile_log() {
+        let bad = Recipe { fragment: "void main() { gl_FragColor = oops; }".into(), ..recipe() };
+        let log = relink(&encode(&bad), false).err().unwrap_or_default();
+        assert!(log.contains("fragment shader does not compile"), "{log}");
+        assert!(relink(&encode(&recipe()), false).is_ok());
     }
 }

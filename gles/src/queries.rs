@@ -186,10 +186,10 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         GENERATE_MIPMAP_HINT => u(ctx.mipmap_hint),
         // 0xFFFFFFFF (the implementation's choice) reads as -1, as on Mesa.
         MAX_SHADER_COMPILER_THREADS_KHR => u(ctx.compiler_threads),
-        READ_BUFFER_NV => u(crate::read_buffer::read_buffer(ctx)),
+        READ_BUFFER_NV => u(crate::framebuffers::read_buffer(ctx)),
         MAX_DRAW_BUFFERS | MAX_COLOR_ATTACHMENTS => u(MAX_DRAW_BUFFERS_COUNT as u32),
         MAX_DUAL_SOURCE_DRAW_BUFFERS_EXT if gpu.dual_source() => i(1),
-        DRAW_BUFFER0..=DRAW_BUFFER7 => u(crate::draw_buffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
+        DRAW_BUFFER0..=DRAW_BUFFER7 => u(crate::framebuffers::draw_buffer(ctx, (pname - DRAW_BUFFER0) as usize)),
         MAX_TEXTURE_MAX_ANISOTROPY_EXT => f(crate::limits::MAX_ANISOTROPY),
         // GL_KHR_context_flush_control: GL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR, or none.
         CONTEXT_RELEASE_BEHAVIOR_KHR => u(if ctx.release_none { 0 } else { CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR }),
@@ -233,7 +233,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         NUM_PROGRAM_BINARY_FORMATS_OES => i(1),
         CLIP_ORIGIN_EXT => u(if raster.clip.upper_left { UPPER_LEFT_EXT } else { LOWER_LEFT_EXT }),
         CLIP_DEPTH_MODE_EXT => u(if raster.clip.zero_to_one { ZERO_TO_ONE_EXT } else { NEGATIVE_ONE_TO_ONE_EXT }),
-        PROGRAM_BINARY_FORMATS_OES => u(crate::program_binary::PROGRAM_BINARY_FORMAT),
+        PROGRAM_BINARY_FORMATS_OES => u(crate::programs::PROGRAM_BINARY_FORMAT),
         // Not ES 2.0 state (desktop GL and ES 1.x), answered anyway as Mesa does: piglit's
         // shader_runner asks for it unconditionally. No user clip planes.
         MAX_CLIP_PLANES => i(0),

@@ -1,0 +1,283 @@
+//! A draw's plan: validated against `&Context` into a [`DrawSpec`] (the vertex inputs,
+//! converted where wgpu lacks a format, every read checked against the CPU shadows of the
+//! buffers involved; points as squares of two triangles; the samplers' textures and their wrap
+//! parameters; the viewport and scissor), which the renderer then lowers onto its open pass.
+
+use std::borrow::Cow;
+
+use crate::context::Context;
+use crate::conv::{clip_rect, component, float_format, native_format, reads_src1, type_size, viewport, Mirror};
+use crate::draw_state::{bound_textures, raster_state};
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::formats::{border_color, Storage};
+use crate::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
+use crate::limits::MAX_CONVERTED;
+use crate::objects::program::LinkedProgram;
+use crate::objects::surface::ReversedZ;
+use crate::objects::texture::Texture;
+use crate::render::{DrawSpec, Source, Target, VertexInput};
+use crate::typed::{IndexType, Primitive};
+
+/// Validates the program's vertex inputs against their arrays for `vertex_count` vertices and
+/// plans each: the buffer as wgpu reads it, or converted to float in the per-pass ring. With
+/// `order` (indexed points), each array is gathered in that order and converted. With `robust`
+/// what lies past an array reads as zeros (a vec4 of 2 components as (0, 0, 0, 1)), as on
+/// Mesa, where it is otherwise `GL_INVALID_OPERATION`.
+pub(crate) fn plan_inputs(
+    ctx: &Context,
+    program: &LinkedProgram,
+    vertex_count: u64,
+    order: Option<&[u32]>,
+    robust: bool,
+) -> GlResult<Vec<VertexInput>> {
+    let mut inputs = Vec::with_capacity(program.info.attributes.len());
+    for (_, loc) in &program.info.attributes {
+        let a = &ctx.attribs[*loc as usize];
+        if !a.enabled {
+            inputs.push(VertexInput {
+                location: *loc,
+                format: wgpu::VertexFormat::Float32x4,
+                stride: 0,
+                source: Source::Bytes(bytemuck::cast_slice(&a.current).to_vec()),
+            });
+            continue;
+        }
+        // A buffer object's shadow, or the client array sent for this draw (offset 0).
+        let (data, gpu, offset): (&[u8], Option<&wgpu::Buffer>, u64) = if a.buffer == 0 {
+            let bytes = a.client.as_ref().ok_or(GlError::InvalidOperation)?;
+            (bytes, None, 0)
+        } else {
+            let buf = ctx.objects.buffers.get(&a.buffer).ok_or(GlError::InvalidOperation)?;
+            (&buf.data, buf.gpu.as_ref(), a.offset)
+        };
+        let elem = type_size(a.ty).unwrap_or(4) * a.size as usize;
+        let stride = if a.stride == 0 { elem } else { a.stride as usize };
+        // The pointer and the stride are the client's: a sum past u64 reads past any buffer.
+        let need = vertex_count
+            .saturating_sub(1)
+            .checked_mul(stride as u64)
+            .and_then(|x| x.checked_add(offset))
+            .and_then(|x| x.checked_add(elem as u64));
+        let within = need.filter(|&n| n <= data.len() as u64);
+        if within.is_none() && !robust {
+            return Err(GlError::InvalidOperation);
+        }
+        let (need, offset) = (within.unwrap_or(0) as usize, offset as usize);
+        match native_format(a.ty, a.size, a.normalized) {
+            Some(fmt)
+                if within.is_some() && order.is_none() && offset.is_multiple_of(4) && stride.is_multiple_of(4) =>
+            {
+                let source = match gpu {
+                    Some(g) => Source::Buffer(g.clone(), offset as u64),
+                    None => Source::Bytes(data[..need].to_vec()),
+                };
+                inputs.push(VertexInput { location: *loc, format: fmt, stride: stride as u64, source });
+            }
+            _ => {
+                let ts = type_size(a.ty).unwrap_or(4);
+                let rows = order.map_or(vertex_count as usize, <[u32]>::len);
+                // Overlapping elements (a stride below their size) can ask for more floats
+                // than the buffer has bytes; beyond a bound that is an allocation failure.
+                let bytes = rows.checked_mul(a.size as usize * 4).filter(|&b| b <= MAX_CONVERTED);
+                let mut out = Vec::with_capacity(bytes.ok_or(GlError::OutOfMemory)?);
+                let mut convert = |v: usize| {
+                    let base = v.checked_mul(stride).and_then(|x| x.checked_add(offset));
+                    match base.filter(|b| b.checked_add(elem).is_some_and(|end| end <= data.len())) {
+                        Some(base) => {
+                            for c in 0..a.size as usize {
+                                let at = base + c * ts;
+                                out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
+                            }
+                        }
+                        // Past the array: zeros, the components it lacks filled as for any.
+                        None => out.extend(std::iter::repeat_n(0u8, a.size as usize * 4)),
+                    }
+                };
+                match order {
+                    Some(o) => o.iter().for_each(|&v| convert(v as usize)),
+                    None => (0..vertex_count as usize).for_each(&mut convert),
+                }
+                inputs.push(VertexInput {
+                    location: *loc,
+                    format: float_format(a.size),
+                    stride: a.size as u64 * 4,
+                    source: Source::Bytes(out),
+                });
+            }
+        }
+    }
+    Ok(inputs)
+}
+
+/// Plans a `GL_POINTS` draw: one instance per point (in index order for indexed draws, whose
+/// arrays are gathered), four vertices each, which the program's points vertex stage expands
+/// to a square; `strata_point` carries the viewport's pixel size and the instance's number
+/// (`gl_InstanceIDEXT`).
+pub(crate) fn plan_points(
+    ctx: &Context,
+    program: &LinkedProgram,
+    count: u32,
+    indices: Option<(IndexType, Indices<'_>)>,
+    first: u32,
+    instance: u32,
+) -> GlResult<(Vec<VertexInput>, (u32, u32))> {
+    let order = match indices {
+        Some((ty, i)) => Some(index_values(ctx, ty, i, count)?.0),
+        None => None,
+    };
+    let (vertex_count, instances) = match &order {
+        Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, count)),
+        None => (u64::from(first) + u64::from(count), (first, count)),
+    };
+    let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref(), ctx.robust)?;
+    let [_, _, w, h] = ctx.raster.viewport;
+    let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, instance as f32, 0.0];
+    inputs.push(VertexInput {
+        location: program.info.point_input,
+        format: wgpu::VertexFormat::Float32x4,
+        stride: 0,
+        source: Source::Bytes(bytemuck::cast_slice(&point).to_vec()),
+    });
+    Ok((inputs, instances))
+}
+
+/// The uniform block with each sampler's wrap flags and border colour (`glsl::link`'s wrap
+/// offsets) where its texture wraps by `GL_MIRROR_CLAMP_TO_EDGE_EXT` or
+/// `GL_CLAMP_TO_BORDER_EXT`; copied only where one does.
+pub(crate) fn with_sampler_params<'c>(
+    mut data: Cow<'c, [u8]>,
+    bound: &[Option<&Texture>],
+    offsets: &[u32],
+) -> Cow<'c, [u8]> {
+    for (t, &at) in bound.iter().zip(offsets) {
+        let Some(t) = t else { continue };
+        // The r wrap counts only for 3D textures, whose lookup helpers read flag w.
+        let three_d = t.target == TEXTURE_3D_OES;
+        let [ms, mt, mr] = t.sampler.mirror_clamp();
+        let mr = mr && three_d;
+        let border = t.sampler.clamps_to_border(three_d);
+        if !(ms || mt || mr || border) {
+            continue;
+        }
+        let float = t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float));
+        let color = if border { border_color(t.format, float, t.border) } else { [0.0; 4] };
+        let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
+        let values = [flag(ms), flag(mt), flag(border), flag(mr), color[0], color[1], color[2], color[3]];
+        let at = at as usize;
+        if let Some(dst) = data.to_mut().get_mut(at..at + 32) {
+            for (d, v) in dst.chunks_exact_mut(4).zip(values) {
+                d.copy_from_slice(&v.to_ne_bytes());
+            }
+        }
+    }
+    data
+}
+
+/// Which instances one planned draw covers: points draw each instance on its own (`instance`);
+/// other primitives draw all `instances` at once.
+#[derive(Clone, Copy)]
+pub(crate) struct Instancing {
+    pub(crate) instance: u32,
+    pub(crate) instances: u32,
+}
+
+/// Validates a draw of the current program into `target` (a reversed-Z framebuffer 0 with
+/// `reversed`); `None` if it draws nothing.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn plan_draw<'c>(
+    ctx: &'c Context,
+    target: &Target,
+    reversed: Option<ReversedZ>,
+    prim: Primitive,
+    count: u32,
+    indices: Option<(IndexType, Indices<'_>)>,
+    first: u32,
+    shape: Instancing,
+) -> GlResult<Option<DrawSpec<'c>>> {
+    let Some(exe) = ctx.executable() else { return Ok(None) };
+    let program = exe.program.clone();
+    if count == 0 {
+        return Ok(None);
+    }
+    let (inputs, index, count, first, instances) = if prim == Primitive::Points {
+        let (inputs, instances) = plan_points(ctx, &program, count, indices, first, shape.instance)?;
+        (inputs, None, 4, 0, instances)
+    } else {
+        let planned = plan_indices(ctx, prim, count, indices, first)
+            .and_then(|plan| Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false)?, plan)));
+        match planned {
+            Ok((inputs, IndexPlan { index, count, .. })) => {
+                if count == 0 {
+                    return Ok(None);
+                }
+                (inputs, index, count, first, (0, shape.instances))
+            }
+            // Robust access, with an array too short for the draw: each vertex the draw reads
+            // is gathered, what lies past an array as zeros, and drawn unindexed.
+            Err(GlError::InvalidOperation) if ctx.robust => {
+                let order = robust_order(ctx, prim, count, indices, first)?;
+                if order.is_empty() {
+                    return Ok(None);
+                }
+                let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true)?;
+                (inputs, None, order.len() as u32, 0, (0, shape.instances))
+            }
+            Err(e) => return Err(e),
+        }
+    };
+    let bound = bound_textures(ctx, &program, &exe.units);
+    let textures = bound
+        .iter()
+        .map(|t| t.and_then(|t| t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))))
+        .collect();
+    let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);
+    // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
+    if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
+        return Err(GlError::InvalidOperation);
+    }
+    let topology = prim.topology();
+    let mut raster = raster_state(ctx, topology, target, program.info.dual);
+    if matches!(topology, wgpu::PrimitiveTopology::LineStrip | wgpu::PrimitiveTopology::TriangleStrip) {
+        raster.strip_index = index.as_ref().map(|i| i.1);
+    }
+    if prim == Primitive::Points {
+        // A square of two triangles per point, never culled or offset (both were decided
+        // for a point topology above), and front-facing as GL's points are.
+        raster.topology = wgpu::PrimitiveTopology::TriangleStrip;
+        raster.front_ccw = true;
+        raster.points = true;
+    }
+    let mut depth_range = ctx.depth_stencil.depth_range;
+    if let Some(r) = reversed {
+        raster.depth = raster.depth.map(|(f, write)| (Mirror::compare(f), write));
+        raster.bias = raster.bias.map(Mirror::bias);
+        raster.reversed_z = Some((r.near.to_bits(), r.far.to_bits()));
+        depth_range = Mirror::range(depth_range);
+    }
+    let Some(viewport) = viewport(ctx.raster.viewport, depth_range) else {
+        return Ok(None);
+    };
+    let scissor = if ctx.raster.scissor_test {
+        clip_rect(ctx.raster.scissor, target)
+    } else {
+        [0, 0, target.width, target.height]
+    };
+    Ok(Some(DrawSpec {
+        vs: program.vs.clone(),
+        fs: None,
+        program,
+        uniforms,
+        textures,
+        inputs,
+        index,
+        count,
+        first,
+        instances,
+        raster,
+        viewport,
+        scissor,
+        stencil_ref: ctx.depth_stencil.stencil[0].reference.clamp(0, 255) as u32,
+        blend_color: ctx.blend.color.map(|c| f64::from(c.clamp(0.0, 1.0))),
+    }))
+}
