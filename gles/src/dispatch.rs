@@ -158,7 +158,7 @@ impl GlesExecutor {
         errors.extend(extra.map(|e| crate::error::error_chain(&e)));
         for e in errors {
             // The log target is the one operators' filters (and the misuse test) match.
-            warn!(target: "strata_server::gles::state", "GPU validation error charged to this client: {e}");
+            warn!(target: "strata_gles::state", "GPU validation error charged to this client: {e}");
             self.record(GlError::OutOfMemory);
         }
     }

@@ -99,7 +99,7 @@ pub(super) fn naga_module(stage: Stage, src: &str, placed: &Placed<'_>) -> Resul
     };
     let mut fe = naga::front::glsl::Frontend::default();
     let module = fe.parse(&naga::front::glsl::Options::from(naga_stage), src).map_err(|e| {
-        debug!(target: "strata_server::gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
+        debug!(target: "strata_gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
         let lines: Vec<String> = e
             .errors
             .iter()
@@ -110,7 +110,7 @@ pub(super) fn naga_module(stage: Stage, src: &str, placed: &Placed<'_>) -> Resul
     naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::DUAL_SOURCE_BLENDING)
         .validate(&module)
         .map_err(|e| {
-            debug!(target: "strata_server::gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
+            debug!(target: "strata_gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
             // The innermost span: the expression or statement, not the enclosing function.
             let offset = e.spans().filter_map(|(span, _)| span.to_range()).min_by_key(|r| r.len()).map(|r| r.start);
             let mut msg = e.as_inner().to_string();
