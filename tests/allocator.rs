@@ -1,4 +1,4 @@
-//! The daemon's allocator settings (`gpu::settle_environment`): memory freed on a worker
+//! The daemon's allocator settings (`strata_device::settle_environment`): memory freed on a worker
 //! thread is kept for the next allocation rather than given back and faulted in again. The
 //! pattern is lavapipe's per draw: one thread allocating, writing and freeing a few
 //! megabyte-sized blocks over and over (glmark2's bunny: 1,265,664-byte blocks).

@@ -103,7 +103,7 @@ fn measure(
         );
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
         let d = texture(gpu, w, h, s.storage.format(), usage);
-        strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &im.stored[i]);
+        strata_scene::depth::Depth::of(gpu).write(&d, w, h, &im.stored[i]);
         views.push((c.create_view(&Default::default()), d.create_view(&Default::default())));
     }
     let rect = [0, 0, w as i32, h as i32];

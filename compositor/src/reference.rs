@@ -278,7 +278,7 @@ pub fn upload(gpu: &Gpu, l: &RefLayer) -> Uploaded {
             wgpu::TextureFormat::Depth32Float,
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        strata_scene::depth::Depth::of(&gpu).write(&t, size.width, size.height, d);
+        strata_scene::depth::Depth::of(gpu).write(&t, size.width, size.height, d);
         t.create_view(&Default::default())
     });
     Uploaded { color: c.create_view(&Default::default()), depth }

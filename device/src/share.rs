@@ -3,7 +3,7 @@
 //! compositor's device imports that memory into an image of its own. Both images are created
 //! with identical parameters, so the two devices read and write the same bytes; nothing is
 //! copied. Where a device cannot export or import an image of the format, [`Gpu::exportable`]
-//! says so and the caller copies frames through host memory instead (`frames::Transfer`).
+//! says so and the caller copies frames through host memory instead (`strata_scene::transfer::Transfer`).
 
 use std::os::fd::{FromRawFd, IntoRawFd, OwnedFd};
 

@@ -1,7 +1,7 @@
 //! What this client holds, checked against its quota: object counts come from the contexts'
 //! name tables and surfaces; GPU memory is reserved when an image or buffer is allocated and
 //! given back when it is dropped. A refusal is `GL_OUT_OF_MEMORY` (or `EGL_BAD_ALLOC`) for this
-//! client alone; see [`crate::quota`].
+//! client alone; see `strata_device::account`.
 
 use crate::context::Context;
 use strata_device::account::{Kind, Reservation};

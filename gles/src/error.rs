@@ -65,6 +65,21 @@ impl ErrorFlag {
     }
 }
 
+/// An error with all its sources, for logs (wgpu's top-level text is only "Validation Error").
+pub fn error_chain(e: &wgpu::Error) -> String {
+    let mut s = match e {
+        wgpu::Error::Validation { description, .. } => description.clone(),
+        other => other.to_string(),
+    };
+    let mut src = std::error::Error::source(e);
+    while let Some(x) = src {
+        s.push_str(": ");
+        s.push_str(&x.to_string());
+        src = x.source();
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -80,19 +95,4 @@ mod tests {
         flag.record(GlError::OutOfMemory);
         assert_eq!(flag.take(), OUT_OF_MEMORY);
     }
-}
-
-/// An error with all its sources, for logs (wgpu's top-level text is only "Validation Error").
-pub fn error_chain(e: &wgpu::Error) -> String {
-    let mut s = match e {
-        wgpu::Error::Validation { description, .. } => description.clone(),
-        other => other.to_string(),
-    };
-    let mut src = std::error::Error::source(e);
-    while let Some(x) = src {
-        s.push_str(": ");
-        s.push_str(&x.to_string());
-        src = x.source();
-    }
-    s
 }

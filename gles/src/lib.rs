@@ -60,7 +60,6 @@ use std::sync::Arc;
 
 pub mod execute;
 pub use objects::surface::{DepthFormat, DepthOptions, Surface};
-pub use render::Fixed as RendererFixed;
 pub use strata_scene::transfer::TransferMode;
 
 use context::Context;

@@ -2,7 +2,7 @@
 //! platform's job: the class decides the nice value (and, for `low`, the idle scheduling
 //! policy) of the client's session thread and of the driver threads of its device, which
 //! inherit it from the thread that opens the device, and the queue's global priority where a
-//! GPU offers one (`gpu::open`). Nothing is cut into slices or held back in the daemon: a
+//! GPU offers one (`strata_device::DeviceOptions`). Nothing is cut into slices or held back in the daemon: a
 //! low-priority client's work runs whole, on what the others leave.
 //! Each client's submissions go through its `strata_device::Lane`.
 

@@ -101,7 +101,7 @@ fn make_surface(gpu: &Gpu, i: usize, w: u32, h: u32) -> Surface {
     );
     let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let d = texture(gpu, w, h, wgpu::TextureFormat::Depth32Float, usage);
-    strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &depth);
+    strata_scene::depth::Depth::of(gpu).write(&d, w, h, &depth);
     Surface { color: c.create_view(&Default::default()), depth: d.create_view(&Default::default()) }
 }
 

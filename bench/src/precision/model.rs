@@ -69,7 +69,7 @@ fn measure(
         let d = with_depth.then(|| {
             let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
             let d = texture(gpu, w, h, s.storage.format(), usage);
-            strata_scene::depth::Depth::of(&gpu).write(&d, w, h, &im.stored[i]);
+            strata_scene::depth::Depth::of(gpu).write(&d, w, h, &im.stored[i]);
             d.create_view(&Default::default())
         });
         views.push((c.create_view(&Default::default()), d));

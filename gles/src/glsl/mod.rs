@@ -55,6 +55,9 @@ pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
 }
 
 #[cfg(test)]
+mod conformance_tests;
+
+#[cfg(test)]
 mod tests {
     use std::collections::HashMap;
 
@@ -119,6 +122,3 @@ mod tests {
         assert!(e.contains("'main'"), "the shader's own names: {e}");
     }
 }
-
-#[cfg(test)]
-mod conformance_tests;
