@@ -30,7 +30,8 @@
 //! - `colorspace`: sRGB and linear pbuffers (`EGL_KHR_gl_colorspace`);
 //! - `pixel_format_float`: the configs' component type (`EGL_EXT_pixel_format_float`);
 //! - `texture_3d`: 3D images, whose slices the library lays out by the unpack state
-//!   (`GL_OES_texture_3D`).
+//!   (`GL_OES_texture_3D`);
+//! - `image_shapes`: the one image path's order of checks for every shape, two faults a call.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -57,6 +58,8 @@ mod draw_buffers;
 mod egl_image;
 #[path = "client_calls/fence_sync.rs"]
 mod fence_sync;
+#[path = "client_calls/image_shapes.rs"]
+mod image_shapes;
 #[path = "client_calls/mapping.rs"]
 mod mapping;
 #[path = "client_calls/no_config.rs"]
@@ -252,6 +255,8 @@ api! {
     compressed_tex_image_3d = "glCompressedTexImage3DOES": fn(u32, i32, u32, i32, i32, i32, i32, i32, *const c_void);
     copy_tex_sub_image_3d = "glCopyTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, i32);
     framebuffer_texture_3d = "glFramebufferTexture3DOES": fn(u32, u32, u32, u32, i32, i32);
+    compressed_tex_sub_image_2d = "glCompressedTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, u32, i32, *const c_void);
+    compressed_tex_sub_image_3d = "glCompressedTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, u32, i32, *const c_void);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -379,7 +384,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 17] = [
+    let sequences: [Sequence; 18] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -395,6 +400,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("separate", separate::sequence),
         ("border", border::sequence),
         ("texture_3d", texture_3d::sequence),
+        ("image_shapes", image_shapes::sequence),
         ("pixel_format_float", pixel_format_float::sequence),
         ("colorspace", colorspace::sequence),
     ];

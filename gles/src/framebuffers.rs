@@ -204,8 +204,8 @@ impl GlesExecutor {
 
     /// Attaches level `level` of `texture` (0: detaches) at `attachment` of the bound
     /// framebuffer: a 2D image or the cube face `textarget` names (`layer: None`), or slice
-    /// `layer` of a 3D image. The checks are Mesa's, in its order: the texture, the target named
-    /// against the texture's, the slice, the level.
+    /// `layer` of a 3D image. The checks are Mesa's for every shape, in its order: the texture,
+    /// the target named (against the call's shape and the texture's), the slice, the level.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn framebuffer_texture(
         &mut self,
@@ -224,19 +224,18 @@ impl GlesExecutor {
             return set_attachment(ctx, attachment, Attachment::None);
         }
         let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
-        // The target named: a 2D image or a cube face (anything else is GL_INVALID_ENUM), or for a
-        // slice GL_TEXTURE_3D_OES; it must be the texture's (a face for a cube map), though a
-        // name never bound takes a 2D image or a face.
-        let image = match layer {
-            None => ImageTarget::from_gl(textarget)?,
-            Some(_) => volume_target(textarget).map_err(|_| GlError::InvalidOperation)?,
+        // The target named: an unknown one is GL_INVALID_ENUM; one of the other call's shape,
+        // or not the texture's (a face for a cube map), GL_INVALID_OPERATION.
+        let image = match textarget {
+            TEXTURE_3D_OES => volume_target(textarget)?,
+            other => ImageTarget::from_gl(other)?,
         };
         let expected = match (image.three_d, image.cube) {
             (true, _) => TEXTURE_3D_OES,
             (_, true) => TEXTURE_CUBE_MAP,
             _ => TEXTURE_2D,
         };
-        if t.target != expected && (image.three_d || t.target != 0) {
+        if image.three_d != layer.is_some() || t.target != expected {
             return Err(GlError::InvalidOperation);
         }
         let layer = layer.unwrap_or(0);

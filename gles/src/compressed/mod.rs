@@ -110,11 +110,9 @@ impl GlesExecutor {
         // `EXT_compressed_ETC1_RGB8_sub_texture`).
         let fits = |t: &Texture, _: &_| if t.format == format { Ok(()) } else { Err(GlError::InvalidOperation) };
         // As on Mesa, data of the wrong size for the box in the format named is refused before
-        // the texture is looked at. A 3D box's negative size counts as none; a 2D box with a
-        // negative width or height is left to the box's own check.
+        // the texture is looked at (a negative size counts as none).
         let [w, h, d] = extent.map(|n| n.max(0) as u32);
-        let checked = image.three_d || (extent[0] >= 0 && extent[1] >= 0);
-        if checked && !sized(c, &data, w, h, d) {
+        if !sized(c, &data, w, h, d) {
             return Err(GlError::InvalidValue);
         }
         let SubImage { texture: t, region, layers, .. } = sub_image(gpu, ctx, image, level, origin, extent, fits)?;
