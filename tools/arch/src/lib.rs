@@ -1,11 +1,13 @@
 //! Checks of the workspace's structure: import circles between the files of each crate, the
-//! module table and the walk of `docs/architecture.md`, and the length of source files.
+//! layers table (the crate graph), the module table and the walk of `docs/architecture.md`,
+//! and the length of source files.
 #![warn(missing_docs)]
 
 pub mod circles;
 pub mod doc;
 mod error;
 pub mod graph;
+pub mod layers;
 mod modules;
 pub mod report;
 mod resolve;
@@ -19,6 +21,7 @@ pub use circles::{find_circles, Circle};
 pub use doc::TableCheck;
 pub use error::ArchError;
 pub use graph::{crate_graph, Edge, FileGraph};
+pub use layers::LayerCheck;
 pub use report::{CrateCircles, LongFile, Report, MAX_LINES};
 pub use walk::{WalkCheck, WalkCounts};
 pub use workspace::{CrateKind, CrateRoot, Member};
@@ -43,6 +46,7 @@ pub fn check(repo_root: &Path) -> Result<Report, ArchError> {
     Ok(Report {
         crates,
         table: doc::check_table(repo_root, &doc, &sources),
+        layers: layers::check_layers(&doc, &members),
         walk: walk::check_walk(repo_root, &doc),
         long_files: long_files(repo_root, &sources)?,
     })

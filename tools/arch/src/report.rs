@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use crate::circles::Circle;
 use crate::doc::TableCheck;
+use crate::layers::LayerCheck;
 use crate::walk::WalkCheck;
 use crate::workspace::{slash_path, CrateKind};
 
@@ -40,6 +41,8 @@ pub struct Report {
     pub crates: Vec<CrateCircles>,
     /// The module table's missing and stale rows.
     pub table: TableCheck,
+    /// Where the layers table and the manifests disagree.
+    pub layers: LayerCheck,
     /// The walk's problems and counts.
     pub walk: WalkCheck,
     /// Source files over the line limit.
@@ -57,6 +60,7 @@ impl Report {
         self.circle_count()
             + self.table.missing.len()
             + self.table.stale.len()
+            + self.layers.problems.len()
             + self.walk.problems.len()
             + self.long_files.len()
     }
@@ -110,6 +114,10 @@ impl fmt::Display for Report {
         }
         for s in &self.table.stale {
             writeln!(f, "  stale row (no such file): {s}")?;
+        }
+        writeln!(f, "Layers: {} problems", self.layers.problems.len())?;
+        for p in &self.layers.problems {
+            writeln!(f, "  {p}")?;
         }
         match self.walk.counts {
             Some(c) => writeln!(

@@ -31,6 +31,8 @@ pub struct Member {
     pub name: String,
     /// Its crates: the library first, then the binaries.
     pub crates: Vec<CrateRoot>,
+    /// The packages its `[dependencies]` name (build and development dependencies left out).
+    pub dependencies: Vec<String>,
 }
 
 /// Parses a manifest into a TOML table.
@@ -104,7 +106,19 @@ fn member(repo_root: &Path, dir: PathBuf) -> Result<Member, ArchError> {
             crates.push(CrateRoot { kind: CrateKind::Bin, root: bin });
         }
     }
-    Ok(Member { dir, name, crates })
+    let dependencies = table
+        .get("dependencies")
+        .and_then(|d| d.as_table())
+        .map(|d| {
+            d.iter()
+                .map(|(key, spec)| {
+                    let renamed = spec.get("package").and_then(|p| p.as_str());
+                    renamed.unwrap_or(key).to_string()
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok(Member { dir, name, crates, dependencies })
 }
 
 /// The crates of a directory given on the command line: a `src` directory or a package

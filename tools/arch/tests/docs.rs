@@ -8,7 +8,8 @@ use strata_arch::{check, Report, WalkCounts};
 /// The architecture document of the synthetic repository; `steps` replaces the walk's body.
 fn doc(rows: &str, walk: &str) -> String {
     format!(
-        "# Architecture\n\n## Modules\n\n| File | Purpose |\n|---|---|\n{rows}\n## The walk of one call\n\n{walk}\n## After\n\n\
+        "# Architecture\n\n## Layers\n\n| crate | depends on |\n|---|---|\n| `alpha` | (no workspace crate) |\n\n\
+         ## Modules\n\n| File | Purpose |\n|---|---|\n{rows}\n## The walk of one call\n\n{walk}\n## After\n\n\
          1. `alpha/src/nowhere.rs` — `ignored`: outside the walk.\n"
     )
 }
@@ -151,6 +152,32 @@ fn a_walk_without_its_sections_or_counts_is_reported() {
     let report = check(&tree.root).expect("the repository can be checked");
     assert!(report.walk.problems.iter().any(|p| p.contains("## The walk of")));
     assert_eq!(report.walk.counts, None);
+}
+
+#[test]
+fn a_dependency_the_layers_table_does_not_state_is_reported() {
+    let tree = clean_repo("layers");
+    // A second member, which alpha now depends on; the table still says alpha depends on
+    // nothing, and names no `beta`.
+    tree.write("Cargo.toml", "[workspace]\nmembers = [\"alpha\", \"beta\"]\n");
+    tree.write("beta/Cargo.toml", "[package]\nname = \"beta\"\nversion = \"0.1.0\"\n");
+    tree.write("beta/src/lib.rs", "pub fn b() {}\n");
+    tree.write(
+        "alpha/Cargo.toml",
+        "[package]\nname = \"alpha\"\nversion = \"0.1.0\"\n\n[dependencies]\nbeta = { path = \"../beta\" }\n\n\
+         [dev-dependencies]\ngamma = \"1\"\n",
+    );
+    let report = report(&tree);
+    assert_eq!(
+        report.layers.problems,
+        [
+            "`alpha` depends on beta but the layers table says no workspace crate",
+            "`beta` has no row in the layers table"
+        ]
+    );
+    tree.write("docs/architecture.md", "# Architecture\n");
+    let report = check(&tree.root).expect("the repository can be checked");
+    assert_eq!(report.layers.problems, ["no `## Layers` table with a `depends on` column"]);
 }
 
 #[test]
