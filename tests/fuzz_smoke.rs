@@ -12,7 +12,7 @@ use std::time::Instant;
 use support::TempDir;
 
 /// Each target and how many seconds it fuzzes after replaying its sample.
-const TARGETS: &[(&str, u32)] = &[("ring_reader", 2), ("decoder", 2), ("glsl", 4), ("executor", 6)];
+const TARGETS: &[(&str, u32)] = &[("ring_reader", 2), ("ring_race", 2), ("decoder", 2), ("glsl", 4), ("executor", 6)];
 /// Corpus files replayed per target: the unoptimised build takes about 0.1 s for a shader or
 /// an executor input, and a whole corpus has thousands.
 const SAMPLE: usize = 64;

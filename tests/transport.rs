@@ -131,6 +131,92 @@ fn bad_clients_are_disconnected_and_others_unaffected() {
     assert!(daemon.stop().success());
 }
 
+/// A client whose second thread scribbles over its command ring while the daemon reads it:
+/// the daemon ends that session at worst (with a reason), never panics, and a bystander's
+/// stream stays intact.
+#[test]
+fn a_racing_writer_ends_only_its_own_session() {
+    use rand::{Rng, SeedableRng};
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, Mutex};
+
+    let mut daemon = Daemon::start("racing", &[]);
+    let opts = ConnectOptions { socket: daemon.socket.clone(), tally: true, ..ConnectOptions::default() };
+    let mut watcher = Connection::connect(&opts).expect("bystander");
+    let mut load = Workload::new(9, 2048);
+    for round in 0..4u64 {
+        let name = format!("racer-{round}");
+        let mut raw = RawClient::connect(&daemon.socket, &name);
+        let region = raw.segment.command_ring().expect("ring");
+        // The racer and the framing writer take turns (the writer's slices are not atomic);
+        // the daemon reads throughout.
+        let turn = Arc::new(Mutex::new(()));
+        let stop = Arc::new(AtomicBool::new(false));
+        let racer = {
+            let (turn, stop) = (turn.clone(), stop.clone());
+            std::thread::spawn(move || {
+                let mut rng = rand::rngs::StdRng::seed_from_u64(round);
+                while !stop.load(Ordering::Relaxed) {
+                    let _turn = turn.lock().expect("turn");
+                    for _ in 0..64 {
+                        // Payload bytes mostly; a header byte in one round of two.
+                        let off = rng.random_range(0..region.capacity() as usize);
+                        if round % 2 == 1 || off % 8 >= 4 {
+                            region.scribble(off, rng.random());
+                        }
+                    }
+                }
+            })
+        };
+        let started = std::time::Instant::now();
+        let gone = std::cell::Cell::new(false);
+        while started.elapsed() < Duration::from_millis(700) && !gone.get() {
+            let _turn = turn.lock().expect("turn");
+            for i in 0..32 {
+                let text = format!("attribute_{i}_{}", "x".repeat(i as usize * 7));
+                let cmd = strata_protocol::Command::BindAttribLocation {
+                    program: i,
+                    index: 0,
+                    name: strata_protocol::Text::borrowed(&text),
+                };
+                let bytes = strata_protocol::codec::encode_to_vec(&cmd).expect("encode");
+                let wrote = raw.writer.write::<strata_protocol::ring::RingError>(bytes.len(), &|| false, |b| {
+                    b.copy_from_slice(&bytes);
+                    Ok(())
+                });
+                if wrote.is_err() {
+                    gone.set(true);
+                    break;
+                }
+            }
+            raw.writer.publish();
+        }
+        stop.store(true, Ordering::Relaxed);
+        racer.join().expect("racer");
+        drop(raw);
+        daemon.wait_log(&format!("name={name} role=raw}}: strata_server::listener::client: session ended"));
+        daemon.assert_running();
+        for _ in 0..20_000 {
+            watcher.send(&load.next_command()).expect("bystander send");
+        }
+        let t = watcher.verify().expect("bystander verify");
+        assert!(t.matches, "bystander stream damaged by {name}: {t:?}");
+    }
+    let log = daemon.log_text();
+    assert!(!log.contains("panicked"), "daemon panicked:\n{log}");
+    // The racer did strike: a scribbled header or payload ended at least one of its sessions.
+    let ended = (0..4)
+        .filter(|r| {
+            log.contains(&format!(
+                "name=racer-{r} role=raw}}: strata_server::listener: disconnected: protocol violation"
+            ))
+        })
+        .count();
+    eprintln!("racing sessions ended for a protocol violation: {ended} of 4");
+    assert!(ended > 0, "no racing session was ended for what it wrote:\n{log}");
+    assert!(daemon.stop().success());
+}
+
 /// Payloads several times larger than the command ring arrive whole (chunked transfer).
 #[test]
 fn payload_larger_than_the_ring() {

@@ -9,15 +9,17 @@
 //! `u64`), `CHUNK_MORE` and `CHUNK_LAST` frames.
 //!
 //! The reader trusts nothing in shared memory except what it validates: it keeps its own tail,
-//! reads each header once into locals, and checks every length against the published head and
-//! the data area before it forms a slice. The writer never overwrites unread bytes: when the
+//! reads each header once into locals, checks every length against the published head and
+//! the data area, and then copies the payload out once: the decoder reads only that private
+//! copy, never the shared memory, so a peer that rewrites a frame while it is decoded changes
+//! nothing the daemon checked. The writer never overwrites unread bytes: when the
 //! ring is full it publishes, then waits for the reader.
 //!
 //! Waiting spins briefly, yields a few times, then sleeps on a futex on the word it waits for,
 //! with a short timeout so that a dead peer is noticed.
 
 use std::ptr::NonNull;
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicU32, AtomicU64, AtomicU8, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -219,10 +221,54 @@ impl RingRegion {
         }
     }
 
+    /// Appends the `len` bytes at `off` to `dst`, each read once: the reader's private copy,
+    /// which is all that decoding ever sees. The peer may rewrite the ring at any moment, so
+    /// no reference to it is ever formed; every word is read by an atomic load, which a
+    /// concurrent write cannot make undefined.
+    ///
     /// # Safety
     /// `off + len` must lie within the data area.
-    unsafe fn bytes(&self, off: usize, len: usize) -> &[u8] {
-        std::slice::from_raw_parts(self.data.as_ptr().add(off), len)
+    unsafe fn copy_out(&self, off: usize, len: usize, dst: &mut Vec<u8>) {
+        dst.reserve(len);
+        let src = self.data.as_ptr().add(off);
+        let out = dst.as_mut_ptr().add(dst.len());
+        let byte = |i: usize| AtomicU8::from_ptr(src.add(i)).load(Ordering::Relaxed);
+        let mut i = 0;
+        while i < len && !(src as usize + i).is_multiple_of(8) {
+            out.add(i).write(byte(i));
+            i += 1;
+        }
+        while i + 8 <= len {
+            let word = AtomicU64::from_ptr(src.add(i).cast::<u64>()).load(Ordering::Relaxed);
+            out.add(i).cast::<u64>().write_unaligned(word);
+            i += 8;
+        }
+        while i < len {
+            out.add(i).write(byte(i));
+            i += 1;
+        }
+        dst.set_len(dst.len() + len);
+    }
+
+    /// The `N` bytes at `off`, read once (as [`RingRegion::copy_out`] reads them).
+    ///
+    /// # Safety
+    /// `off + N` must lie within the data area.
+    unsafe fn read_array<const N: usize>(&self, off: usize) -> [u8; N] {
+        let mut v = Vec::with_capacity(N);
+        self.copy_out(off, N, &mut v);
+        let mut a = [0u8; N];
+        a.copy_from_slice(&v);
+        a
+    }
+
+    /// Stores `byte` at `off` (taken modulo the capacity) of the data area, whatever lies
+    /// there: the tool for testing a reader against a peer that rewrites frames as they are read.
+    #[cfg(feature = "fault-injection")]
+    pub fn scribble(&self, off: usize, byte: u8) {
+        let off = off % self.capacity as usize;
+        // SAFETY: `off` lies inside the data area; an atomic store races with nothing undefined.
+        unsafe { AtomicU8::from_ptr(self.data.as_ptr().add(off)).store(byte, Ordering::Relaxed) }
     }
 
     /// # Safety

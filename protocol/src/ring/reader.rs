@@ -1,5 +1,7 @@
 //! The consuming end of a ring: validates every frame against its own tail and the
-//! published head, reassembles chunked messages, and skips those over its limit.
+//! published head, copies its payload out of the shared memory once (what it delivers is
+//! always that private copy, never a view of memory the peer can still write), reassembles
+//! chunked messages, and skips those over its limit.
 
 use std::sync::atomic::Ordering;
 
@@ -38,6 +40,8 @@ pub struct Reader {
     tail: u32,
     released: u32,
     max_message: usize,
+    /// The private copy of the frame being handled: all that decoding reads.
+    frame: Vec<u8>,
     assembly: Vec<u8>,
     expected: Option<usize>,
     /// Of an oversized message being skipped: the bytes seen so far.
@@ -48,7 +52,16 @@ impl Reader {
     /// Takes the consuming end; `max_message` bounds chunked messages.
     pub fn new(ring: RingRegion, max_message: usize) -> Self {
         let tail = ring.ctl().tail.0.load(Ordering::Acquire);
-        Reader { ring, tail, released: tail, max_message, assembly: Vec::new(), expected: None, skipped: None }
+        Reader {
+            ring,
+            tail,
+            released: tail,
+            max_message,
+            frame: Vec::new(),
+            assembly: Vec::new(),
+            expected: None,
+            skipped: None,
+        }
     }
 
     /// Whether a chunked message has begun but not ended.
@@ -125,25 +138,34 @@ impl Reader {
             if size > available {
                 return Err(RingError::Truncated { needed: size, available }.into());
             }
-            // SAFETY: `off + FRAME_HEADER + len <= capacity` was checked above.
-            let payload = unsafe { self.ring.bytes(off + FRAME_HEADER, len as usize) };
+            let payload = off + FRAME_HEADER;
+            let len = len as usize;
             match kind {
                 KIND_WHOLE => {
                     if self.expected.is_some() {
                         return Err(RingError::BadChunk("whole message inside a chunked one").into());
                     }
-                    on_message(Message::Whole(payload))?;
+                    self.frame.clear();
+                    // SAFETY: `payload + len <= capacity` was checked above.
+                    unsafe { self.ring.copy_out(payload, len, &mut self.frame) };
+                    let r = on_message(Message::Whole(&self.frame));
+                    if self.frame.capacity() > (64 << 20) {
+                        self.frame = Vec::new();
+                    }
+                    r?;
                     delivered += 1;
                 }
                 KIND_CHUNK_FIRST => {
                     if self.expected.is_some() {
                         return Err(RingError::BadChunk("chunked message started twice").into());
                     }
-                    let (total, rest) = payload
-                        .split_first_chunk::<8>()
-                        .ok_or(RingError::BadChunk("first chunk lacks the total length"))?;
-                    let total = u64::from_le_bytes(*total);
-                    if (rest.len() as u64) > total {
+                    if len < 8 {
+                        return Err(RingError::BadChunk("first chunk lacks the total length").into());
+                    }
+                    // SAFETY: `payload + len <= capacity` was checked above, and `len >= 8`.
+                    let total = u64::from_le_bytes(unsafe { self.ring.read_array::<8>(payload) });
+                    let (rest, rest_len) = (payload + 8, len - 8);
+                    if (rest_len as u64) > total {
                         return Err(RingError::BadChunk("chunk exceeds the announced size").into());
                     }
                     if total > self.max_message as u64 && oversized == Oversized::Refuse {
@@ -154,20 +176,22 @@ impl Reader {
                         let total = usize::try_from(total)
                             .map_err(|_| RingError::TooLarge { len: total, limit: self.max_message })?;
                         self.assembly.clear();
-                        self.assembly.extend_from_slice(&rest[..rest.len().min(OVERSIZED_HEAD)]);
-                        self.skipped = Some(rest.len());
+                        // SAFETY: within this frame's payload, checked above.
+                        unsafe { self.ring.copy_out(rest, rest_len.min(OVERSIZED_HEAD), &mut self.assembly) };
+                        self.skipped = Some(rest_len);
                         self.expected = Some(total);
                         self.tail = self.tail.wrapping_add(size as u32);
                         continue;
                     }
                     self.assembly.clear();
                     self.assembly.reserve(total as usize);
-                    self.assembly.extend_from_slice(rest);
+                    // SAFETY: within this frame's payload, checked above.
+                    unsafe { self.ring.copy_out(rest, rest_len, &mut self.assembly) };
                     self.expected = Some(total as usize);
                 }
                 KIND_CHUNK_MORE | KIND_CHUNK_LAST if self.skipped.is_some() => {
                     let total = self.expected.ok_or(RingError::BadChunk("continuation without a first chunk"))?;
-                    let seen = self.skipped.unwrap_or(0) + payload.len();
+                    let seen = self.skipped.unwrap_or(0) + len;
                     if seen > total {
                         return Err(RingError::BadChunk("chunks exceed the announced size").into());
                     }
@@ -184,10 +208,11 @@ impl Reader {
                 }
                 KIND_CHUNK_MORE | KIND_CHUNK_LAST => {
                     let total = self.expected.ok_or(RingError::BadChunk("continuation without a first chunk"))?;
-                    if self.assembly.len() + payload.len() > total {
+                    if self.assembly.len() + len > total {
                         return Err(RingError::BadChunk("chunks exceed the announced size").into());
                     }
-                    self.assembly.extend_from_slice(payload);
+                    // SAFETY: `payload + len <= capacity` was checked above.
+                    unsafe { self.ring.copy_out(payload, len, &mut self.assembly) };
                     if kind == KIND_CHUNK_LAST {
                         if self.assembly.len() != total {
                             return Err(RingError::BadChunk("chunked message ended short").into());
