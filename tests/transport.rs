@@ -257,3 +257,19 @@ fn live_socket_is_refused_stale_socket_replaced_and_removed_on_exit() {
     assert!(daemon.stop().success());
     assert!(!socket.exists(), "socket left behind after SIGTERM");
 }
+
+/// A client name that carries a line break and a log line of its own, and runs to 300
+/// characters, shows in the daemon's log escaped and cut: it forges no line.
+#[test]
+fn a_name_forges_no_log_line() {
+    let daemon = Daemon::start("names", &[]);
+    let forged = "2026-01-01T00:00:00.000000Z  WARN strata_server::listener: forged";
+    let name = format!("hu\n{forged}{}", "y".repeat(300));
+    let raw = RawClient::connect(&daemon.socket, &name);
+    drop(raw);
+    daemon.wait_log("name=hu\\n2026-01-01T00:00:00.000000Z  WARN");
+    let log = daemon.log_text();
+    assert!(!log.lines().any(|l| l.starts_with(forged)), "a forged line in the log:\n{log}");
+    assert!(log.contains("…(368 characters)"), "the name is not cut:\n{log}");
+    assert!(!log.contains(&"y".repeat(100)), "the name is not cut:\n{log}");
+}

@@ -47,7 +47,7 @@ fn claim_socket(path: &Path, group: Option<u32>) -> Result<UnixListener, ServerE
         info!(socket = %path.display(), "replacing stale socket");
         std::fs::remove_file(path).map_err(io_err(format!("removing stale socket {}", path.display())))?;
     }
-    let listener = UnixListener::bind(path).map_err(io_err(format!("binding {}", path.display())))?;
+    let listener = bind_private(path).map_err(io_err(format!("binding {}", path.display())))?;
     std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o600))
         .map_err(io_err(format!("restricting {}", path.display())))?;
     if let Some(gid) = group {
@@ -57,6 +57,19 @@ fn claim_socket(path: &Path, group: Option<u32>) -> Result<UnixListener, ServerE
             .map_err(io_err(format!("opening {} to group {gid}", path.display())))?;
     }
     Ok(listener)
+}
+
+/// Binds a socket at `path` under a umask of 077, so that it is never open to anyone but the
+/// daemon's user, not even between its creation and the mode `claim_socket` then gives it.
+/// The umask is the process's: the daemon binds its sockets at start, before any other thread
+/// of its creates files.
+fn bind_private(path: &Path) -> std::io::Result<UnixListener> {
+    // SAFETY: umask only swaps the process's file-creation mask; it cannot fail.
+    let old = unsafe { libc::umask(0o077) };
+    let bound = UnixListener::bind(path);
+    // SAFETY: as above, restoring the mask found.
+    unsafe { libc::umask(old) };
+    bound
 }
 
 /// Where a listener listens (`fallback` if it has no path).
@@ -140,4 +153,27 @@ pub(super) async fn write_with_fd(stream: &mut UnixStream, bytes: &[u8], fd: Bor
         }
     };
     stream.write_all(&bytes[sent..]).await
+}
+
+#[cfg(test)]
+mod tests {
+    use std::os::unix::fs::PermissionsExt;
+
+    /// Even under a umask of 0, a socket is created closed to group and others.
+    #[tokio::test]
+    async fn a_socket_is_born_private() {
+        let dir = std::env::temp_dir().join(format!("strata-doors-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("s.sock");
+        let _ = std::fs::remove_file(&path);
+        // SAFETY: swaps the process's file-creation mask; restored below.
+        let old = unsafe { libc::umask(0) };
+        let bound = super::bind_private(&path);
+        // SAFETY: as above.
+        unsafe { libc::umask(old) };
+        let _listener = bound.expect("bind");
+        let mode = std::fs::metadata(&path).expect("stat").permissions().mode();
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(mode & 0o077, 0, "a fresh socket is open to others: {mode:o}");
+    }
 }

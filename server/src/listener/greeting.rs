@@ -71,3 +71,29 @@ pub(crate) fn peer_of(stream: &UnixStream) -> std::io::Result<strata_protocol::c
         unverified: false,
     })
 }
+
+/// Most characters of a client's name or role that a log line shows.
+const SHOWN_CHARS: usize = 64;
+
+/// A client's name or role as log lines show it: control and other non-printing characters
+/// escaped, so that a name cannot forge a line of its own, and cut to [`SHOWN_CHARS`]
+/// characters, with the length it had. Entries still match the whole name.
+pub(crate) fn shown(text: &str) -> String {
+    let mut out: String = text.chars().take(SHOWN_CHARS).flat_map(char::escape_debug).collect();
+    let n = text.chars().count();
+    if n > SHOWN_CHARS {
+        out.push_str(&format!("…({n} characters)"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn names_are_escaped_and_cut_for_the_log() {
+        assert_eq!(super::shown("ic-cluster"), "ic-cluster");
+        assert_eq!(super::shown("a\nb\u{1b}[31m"), "a\\nb\\u{1b}[31m");
+        let long = "x".repeat(300);
+        assert_eq!(super::shown(&long), format!("{}…(300 characters)", "x".repeat(64)));
+    }
+}

@@ -26,7 +26,7 @@ mod watcher;
 pub use options::{DeviceMode, ExecutorKind, ServeOptions, ServerError};
 pub use shared::ClientInfo;
 
-use greeting::{first_byte, greet, peer_of, send};
+use greeting::{first_byte, greet, peer_of, send, shown};
 use options::io_err;
 use shared::Shared;
 
@@ -255,7 +255,7 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: do
         peer.unverified = true;
         warn!(
             client = id,
-            name = %hello.name,
+            name = %shown(&hello.name),
             pid = peer.pid,
             uid = peer.uid,
             gid = peer.gid,
@@ -263,8 +263,7 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: do
              class, deadline, projection, surface IDs or quota)"
         );
     }
-    let span =
-        tracing::info_span!("client", id, uid = peer.uid, pid = peer.pid, name = %hello.name, role = %hello.role);
+    let span = tracing::info_span!("client", id, uid = peer.uid, pid = peer.pid, name = %shown(&hello.name), role = %shown(&hello.role));
     shared.scene.client_connected(id, &hello.name, peer);
     let run = client::run_client(&mut stream, &shared, id, &hello, identity);
     let reason = match run.instrument(span.clone()).await {
