@@ -273,3 +273,59 @@ fn a_name_forges_no_log_line() {
     assert!(log.contains("…(368 characters)"), "the name is not cut:\n{log}");
     assert!(!log.contains(&"y".repeat(100)), "the name is not cut:\n{log}");
 }
+
+/// The daemon out of descriptors (`ulimit -n 64`) while 200 connections wait: it pauses
+/// accepting after each failure instead of spinning, logs about it at most once a second,
+/// uses almost no CPU meanwhile, and serves again once the connections go.
+#[test]
+fn out_of_descriptors_the_daemon_pauses_and_logs_once_a_second() {
+    use std::os::unix::process::CommandExt;
+    let dir = TempDir::new("emfile");
+    let socket = dir.0.join("s.sock");
+    let log = dir.0.join("d.log");
+    let mut cmd = std::process::Command::new(stratad());
+    cmd.args(["serve", "--socket"]).arg(&socket).stderr(std::fs::File::create(&log).expect("log"));
+    // SAFETY: only setrlimit (async-signal-safe) between fork and exec.
+    unsafe {
+        cmd.pre_exec(|| {
+            let lim = libc::rlimit { rlim_cur: 64, rlim_max: 64 };
+            if libc::setrlimit(libc::RLIMIT_NOFILE, &lim) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let child = cmd.spawn().expect("spawn");
+    let pid = child.id();
+    let mut daemon = Daemon { child, socket: socket.clone(), log, dir: TempDir::new("emfile-log") };
+    daemon.wait_log("stratad serving");
+    let flood: Vec<_> =
+        (0..200).map(|_| std::os::unix::net::UnixStream::connect(&socket).expect("the kernel queues it")).collect();
+    daemon.wait_log("accept failed: Too many open files");
+    let cpu = || {
+        let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).expect("stat");
+        let fields: Vec<u64> =
+            stat.rsplit(')').next().expect("fields").split_whitespace().filter_map(|f| f.parse().ok()).collect();
+        // utime and stime, fields 14 and 15 of the whole line (clock ticks of 10 ms).
+        (fields[10] + fields[11]) as f64 / 100.0
+    };
+    let (before, started) = (cpu(), std::time::Instant::now());
+    std::thread::sleep(Duration::from_secs(4));
+    let share = (cpu() - before) / started.elapsed().as_secs_f64();
+    let text = daemon.log_text();
+    let lines = text.lines().filter(|l| l.contains("accept failed")).count();
+    let seconds = 5 + started.elapsed().as_secs() as usize;
+    let head: Vec<&str> = text.lines().take(20).collect();
+    assert!(
+        lines <= seconds,
+        "{lines} lines about refusals in about {seconds} s; the log begins:\n{}",
+        head.join("\n")
+    );
+    assert!(share < 0.05, "the refusing daemon used {:.1} % of a core", share * 100.0);
+    drop(flood);
+    let mut conn = Connection::connect(&ConnectOptions { socket: socket.clone(), ..ConnectOptions::default() })
+        .expect("a client once the flood is gone");
+    assert_eq!(conn.strataPing(7).expect("ping"), 7);
+    daemon.assert_running();
+    assert!(daemon.stop().success());
+}

@@ -72,6 +72,61 @@ fn bind_private(path: &Path) -> std::io::Result<UnixListener> {
     bound
 }
 
+/// How long a door stops accepting after `accept` fails (out of descriptors, say): the
+/// connection stays queued in the kernel, so retrying at once would only spin.
+const ACCEPT_BACKOFF: std::time::Duration = std::time::Duration::from_millis(100);
+
+/// A door's failed accepts: it pauses after each, and logs at most one line a second, with
+/// the count since the last.
+#[derive(Debug, Default)]
+pub(super) struct Refusals {
+    /// Until when the door does not accept.
+    paused_until: Option<tokio::time::Instant>,
+    /// Failures since the last line logged.
+    unlogged: u64,
+    /// Failures in all.
+    pub(super) total: u64,
+    /// When the last line was logged.
+    logged_at: Option<tokio::time::Instant>,
+}
+
+impl Refusals {
+    /// Whether the door accepts now.
+    pub(super) fn open(&self) -> bool {
+        self.paused_until.is_none()
+    }
+
+    /// When the door opens again (now if it is open).
+    pub(super) fn reopens_at(&self) -> tokio::time::Instant {
+        self.paused_until.unwrap_or_else(tokio::time::Instant::now)
+    }
+
+    /// Opens the door again.
+    pub(super) fn reopen(&mut self) {
+        self.paused_until = None;
+    }
+
+    /// Counts a failed accept on door `what`, pauses the door, and logs if a second has passed
+    /// since the last line.
+    pub(super) fn failed(&mut self, what: &str, e: &std::io::Error) {
+        let now = tokio::time::Instant::now();
+        self.total += 1;
+        self.unlogged += 1;
+        self.paused_until = Some(now + ACCEPT_BACKOFF);
+        if self.logged_at.is_none_or(|t| now.duration_since(t) >= std::time::Duration::from_secs(1)) {
+            tracing::warn!(
+                door = what,
+                failures = self.unlogged,
+                total = self.total,
+                "accept failed: {e}; pausing this door {} ms after each failure",
+                ACCEPT_BACKOFF.as_millis()
+            );
+            self.unlogged = 0;
+            self.logged_at = Some(now);
+        }
+    }
+}
+
 /// Where a listener listens (`fallback` if it has no path).
 fn path_of(l: &UnixListener, fallback: &Path) -> PathBuf {
     l.local_addr().ok().and_then(|a| a.as_pathname().map(Path::to_path_buf)).unwrap_or_else(|| fallback.into())

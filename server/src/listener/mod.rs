@@ -152,23 +152,27 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     crate::systemd::ready(&format!("serving on {}", at.display()));
     let mut tasks = tokio::task::JoinSet::new();
     tokio::pin!(shutdown);
+    let (mut client_refusals, mut control_refusals) = (doors::Refusals::default(), doors::Refusals::default());
     loop {
+        let (client_wake, control_wake) = (client_refusals.reopens_at(), control_refusals.reopens_at());
         tokio::select! {
             _ = &mut shutdown => break,
-            accepted = doors.client.accept() => match accepted {
+            accepted = doors.client.accept(), if client_refusals.open() => match accepted {
                 Ok((stream, _)) => {
                     let shared = shared.clone();
                     tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Client).await });
                 }
-                Err(e) => warn!("accept failed: {e}"),
+                Err(e) => client_refusals.failed("client", &e),
             },
-            accepted = doors.control.accept() => match accepted {
+            accepted = doors.control.accept(), if control_refusals.open() => match accepted {
                 Ok((stream, _)) => {
                     let shared = shared.clone();
                     tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Control).await });
                 }
-                Err(e) => warn!("accept on the control socket failed: {e}"),
+                Err(e) => control_refusals.failed("control", &e),
             },
+            () = tokio::time::sleep_until(client_wake), if !client_refusals.open() => client_refusals.reopen(),
+            () = tokio::time::sleep_until(control_wake), if !control_refusals.open() => control_refusals.reopen(),
             Some(_) = tasks.join_next(), if !tasks.is_empty() => {}
         }
     }
