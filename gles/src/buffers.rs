@@ -131,8 +131,7 @@ impl GlesExecutor {
         data: Blob<'_>,
     ) -> GlResult {
         let gpu = &self.gpu;
-        let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
-        let b = ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let b = bound(ctx, target)?;
         if offset < 0 {
             return Err(GlError::InvalidValue);
         }
