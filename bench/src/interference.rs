@@ -2,7 +2,8 @@
 //! a dial at swap interval 1) must keep its frame deadline whatever a head-unit client (HU)
 //! does. The IC runs alone, then beside each HU load in turn (glmark2-es2 `terrain` and
 //! `refract` through the drop-in libraries, one huge draw per frame, 64 MiB of uploads per
-//! frame); its frame times are compared with those it had alone. The daemon is this
+//! frame, a flood of sessions each drawing huge draws); its frame times are compared with
+//! those it had alone. The daemon is this
 //! benchmark's own, configured to place both clients and, unless `--no-priorities`, to give
 //! the IC high priority and a deadline.
 
@@ -31,13 +32,15 @@ const SETTLE: Duration = Duration::from_secs(2);
 /// Longest the HU is given to show its first frame before the IC is measured beside it.
 const SETTLE_LIMIT: Duration = Duration::from_secs(60);
 
-/// The daemon's layout: the IC at the left, the HU beside it.
+/// The daemon's layout: the IC at the left, the HU beside it; the HU's sessions are capped
+/// at 8 (the session flood's).
 fn config(priorities: bool) -> String {
     let (ic, hu) =
         if priorities { ("priority = \"high\"\ndeadline = true\n", "priority = \"low\"\n") } else { ("", "") };
     format!(
         "[[layout]]\nclient = \"ic\"\nx = 0\ny = 0\nz = 0.5\n{ic}\
-         [[layout]]\nclient = \"hu\"\nx = 400\ny = 0\nz = 0.6\n{hu}"
+         [[layout]]\nclient = \"hu\"\nx = 400\ny = 0\nz = 0.6\n{hu}\
+         [[quota]]\nclient = \"hu\"\nsessions = 8\n"
     )
 }
 

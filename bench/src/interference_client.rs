@@ -52,6 +52,9 @@ pub enum Role {
     Upload,
     /// Not a client: one busy thread per core, the CPU contention no daemon can schedule.
     CpuHog,
+    /// A head unit that opens sessions until the daemon refuses one, each drawing the huge
+    /// draw in a small window of its own.
+    SessionFlood,
 }
 
 /// The `interference-client` arguments.
@@ -114,6 +117,7 @@ pub fn run(args: &Args) -> Result<()> {
         Role::Ic => ("ic", "0,0,320x320", 1),
         Role::HugeDraw | Role::Upload => ("hu", "400,0,1280x720", 0),
         Role::CpuHog => return cpu_hog(args),
+        Role::SessionFlood => return write_outcome(args, &session_flood(args)?),
     };
     let rect = parse_window(args.window.as_deref().unwrap_or(default_window))?;
     let z = if args.role == Role::Ic { 0.5 } else { 0.6 };
@@ -127,12 +131,61 @@ pub fn run(args: &Args) -> Result<()> {
         Role::Ic => ic(&mut gl, cur, args)?,
         Role::HugeDraw => huge_draw(&mut gl, cur, args)?,
         Role::Upload => upload(&mut gl, cur, args)?,
-        Role::CpuHog => unreachable!("handled before connecting"),
+        Role::CpuHog | Role::SessionFlood => unreachable!("handled before connecting"),
     };
+    write_outcome(args, &outcome)
+}
+
+/// Writes `outcome` to `--out`, if given.
+fn write_outcome(args: &Args, outcome: &Outcome) -> Result<()> {
     if let Some(out) = &args.out {
-        std::fs::write(out, serde_json::to_string(&outcome)?).with_context(|| format!("writing {}", out.display()))?;
+        std::fs::write(out, serde_json::to_string(outcome)?).with_context(|| format!("writing {}", out.display()))?;
     }
     Ok(())
+}
+
+/// Opens sessions named `hu` until the daemon refuses one (at most 256), each on a thread of
+/// its own drawing the huge draw unthrottled in a 160×90 window; their frames together.
+fn session_flood(args: &Args) -> Result<Outcome> {
+    let start = Instant::now();
+    let frames = std::sync::atomic::AtomicU64::new(0);
+    std::thread::scope(|s| -> Result<()> {
+        let mut sessions = 0;
+        let refusal = loop {
+            if sessions == 256 {
+                break "none: 256 sessions opened".to_string();
+            }
+            let opts = ConnectOptions {
+                socket: args.socket.clone(),
+                name: "hu".into(),
+                role: "hu".into(),
+                ..Default::default()
+            };
+            let mut gl = match Connection::connect(&opts) {
+                Ok(gl) => gl,
+                Err(e) => break e.to_string(),
+            };
+            let rect = [400 + (sessions % 8) * 160, (sessions / 8 % 8) * 90, 160, 90];
+            let cur = egl_context(&mut gl, 0, 0, SurfaceKind::Window { rect, z: 0.6 })?;
+            gl.eglSwapInterval(cur.display, 0)?.map_err(|e| anyhow!("eglSwapInterval: EGL error {e:#x}"))?;
+            gl.glViewport(0, 0, rect[2], rect[3])?;
+            let frames = &frames;
+            s.spawn(move || match huge_draw(&mut gl, cur, args) {
+                Ok(o) => frames.fetch_add(o.frames, Ordering::Relaxed),
+                Err(e) => {
+                    eprintln!("session-flood: a session failed: {e:#}");
+                    0
+                }
+            });
+            sessions += 1;
+        };
+        eprintln!("session-flood: {sessions} sessions open; the next was refused: {refusal}");
+        Ok(())
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    let frames = frames.load(Ordering::Relaxed);
+    let fps = frames as f64 / seconds.max(1e-9);
+    Ok(Outcome { role: "session-flood".into(), frames, seconds, fps, frame_times_ms: Vec::new() })
 }
 
 /// Spins one thread per core until `--seconds` pass or a signal stops it.

@@ -207,9 +207,13 @@ impl GlesExecutor {
                         s.scene_id = Some(scene_id);
                     }
                 }
-                Err(taken) => {
-                    // The second surface to claim an ID is refused; the first keeps it.
-                    tracing::warn!("eglCreateWindowSurface: EGL_BAD_MATCH: {taken}");
+                Err(refused) => {
+                    // The second surface to claim an ID is refused, and so is one whose
+                    // client lacks the credentials an entry reserves it for; logged once per
+                    // ID and client, so that a client asking again floods nothing.
+                    if self.refused_ids.insert(refused.id()) {
+                        tracing::warn!("eglCreateWindowSurface: EGL_BAD_MATCH: {refused} (logged once)");
+                    }
                     self.surfaces.remove(&id);
                     return Err(EGL_BAD_MATCH);
                 }

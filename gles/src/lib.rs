@@ -100,6 +100,8 @@ pub struct GlesExecutor {
     surface_ids: Vec<u64>,
     /// Window surfaces this client has created: which of `surface_ids` the next one takes.
     windows_made: usize,
+    /// Stable IDs this client has been refused: each is logged once.
+    refused_ids: std::collections::BTreeSet<u64>,
     uid: u64,
     /// Where window surfaces are shown: the scene, this client's id and name.
     scene: Option<(Arc<strata_scene::Scene>, u64, String)>,
@@ -156,6 +158,7 @@ impl GlesExecutor {
             bad_projections: 0,
             surface_ids: Vec::new(),
             windows_made: 0,
+            refused_ids: Default::default(),
         }
     }
 

@@ -316,6 +316,13 @@ pub struct ClientStats {
     pub gpu_bytes: u64,
     /// Its limit on that.
     pub gpu_bytes_limit: u64,
+    /// Bytes the daemon holds in its own memory for it (its segment, a command being
+    /// assembled from chunks).
+    #[serde(default)]
+    pub daemon_bytes: u64,
+    /// Its limit on that.
+    #[serde(default)]
+    pub daemon_bytes_limit: u64,
     /// Objects it holds, by kind (`buffers`, `textures`, …, `contexts`, `surfaces`).
     pub objects: BTreeMap<String, u64>,
     /// Allocations refused because they exceeded its quota.
@@ -353,6 +360,19 @@ pub struct DaemonStats {
     pub gpu_bytes: u64,
     /// The limit on that for all clients together.
     pub gpu_bytes_limit: u64,
+    /// Of that limit, what only the reserved class holds (`--reserve-gpu-bytes`).
+    #[serde(default)]
+    pub reserve_bytes: u64,
+    /// The daemon's own memory its sessions hold for their clients, bytes.
+    #[serde(default)]
+    pub daemon_bytes: u64,
+    /// The limit on that for all clients together.
+    #[serde(default)]
+    pub daemon_bytes_limit: u64,
+    /// Connections refused at the doors, by cap (`sessions-per-uid`, `handshakes`, `accept`
+    /// for accepts the system refused, …).
+    #[serde(default)]
+    pub refused: BTreeMap<String, u64>,
     /// Objects all clients hold, by kind.
     pub objects: BTreeMap<String, u64>,
     /// Objects alive on the device, by type, as the GPU layer counts them (clients' and the
@@ -438,6 +458,38 @@ pub struct Peer {
     /// Whether it claims the name of a configuration entry whose credentials it lacks; such a
     /// client is treated as unnamed (no entry's placement, class, deadline, projection or quota).
     pub unverified: bool,
+}
+
+/// The credentials an entry requires (resolved `uid` and `gid`; `None`: any).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Requirement {
+    /// The user ID it requires.
+    pub uid: Option<u32>,
+    /// The primary group ID it requires.
+    pub gid: Option<u32>,
+}
+
+impl Requirement {
+    /// Whether it requires anything.
+    pub fn any(self) -> bool {
+        self.uid.is_some() || self.gid.is_some()
+    }
+
+    /// Whether `peer`'s credentials meet it.
+    pub fn admits(self, peer: &Peer) -> bool {
+        self.uid.is_none_or(|u| u == peer.uid) && self.gid.is_none_or(|g| g == peer.gid)
+    }
+}
+
+impl std::fmt::Display for Requirement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match (self.uid, self.gid) {
+            (Some(u), Some(g)) => write!(f, "uid {u} and gid {g}"),
+            (Some(u), None) => write!(f, "uid {u}"),
+            (None, Some(g)) => write!(f, "gid {g}"),
+            (None, None) => f.write_str("nothing"),
+        }
+    }
 }
 
 /// One output of `stratad ctl list`.

@@ -116,6 +116,24 @@ pub enum RingError {
         /// The limit.
         limit: usize,
     },
+    /// The memory to assemble a chunked message was not granted (the reason).
+    #[error("a chunked message of {len} bytes cannot be held: {why}")]
+    NotHeld {
+        /// Announced size.
+        len: u64,
+        /// Why it was refused.
+        why: String,
+    },
+    /// A chunked message was begun and not finished in time.
+    #[error("a chunked message of {len} bytes was begun {secs:.0} s ago and not finished ({have} bytes came)")]
+    Stale {
+        /// Announced size.
+        len: u64,
+        /// Bytes that came.
+        have: u64,
+        /// Seconds since its first chunk.
+        secs: f64,
+    },
     /// Chunk frames out of order or inconsistent with their announced size.
     #[error("bad chunk sequence: {0}")]
     BadChunk(&'static str),
@@ -331,7 +349,7 @@ fn wait_change(
 mod reader;
 mod writer;
 
-pub use reader::{Message, Oversized, Reader, OVERSIZED_HEAD};
+pub use reader::{Holdings, Message, Oversized, Reader, OVERSIZED_HEAD};
 pub use writer::Writer;
 
 #[cfg(test)]
@@ -419,7 +437,7 @@ mod tests {
             r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m| {
                 seen.push(match m {
                     Message::Whole(b) => (b.len() as u64, b.to_vec()),
-                    Message::Oversized { len, head } => (len, head.to_vec()),
+                    Message::Oversized { len, head, .. } => (len, head.to_vec()),
                 });
                 Ok(())
             })

@@ -5,64 +5,17 @@
 //! The ring lies in heap memory here; the peer's rewrites are atomic stores, as the reader's
 //! copy is made of atomic loads, so the race the test stages is one the language defines.
 
-use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
+mod support;
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use rand::{Rng, SeedableRng};
 use strata_protocol::codec::{decode_command, encode_to_vec};
-use strata_protocol::ring::{Backing, Reader, RingError, RingRegion, Writer, CONTROL_BYTES};
+use strata_protocol::ring::{Reader, RingError, Writer};
 use strata_protocol::{Command, Text};
-
-/// Heap memory standing in for the shared segment.
-struct Heap(#[allow(dead_code)] Vec<u64>);
-impl Backing for Heap {}
-
-/// The data area of a heap ring, as the peer sees it: rewritten byte by byte.
-#[derive(Clone, Copy)]
-struct Peer {
-    data: *mut u8,
-    len: usize,
-}
-// SAFETY: the pointer names memory that the ring's backing keeps alive for the whole test, and
-// the peer only ever stores to it atomically.
-unsafe impl Send for Peer {}
-
-impl Peer {
-    fn byte(&self, i: usize) -> &AtomicU8 {
-        assert!(i < self.len);
-        // SAFETY: `i` lies inside the data area, which outlives every use (see `Send` above).
-        unsafe { AtomicU8::from_ptr(self.data.add(i)) }
-    }
-
-    /// Replaces every occurrence of `from` in the data area with `to` (of the same length);
-    /// returns how many it rewrote.
-    fn rewrite(&self, from: &[u8], to: &[u8]) -> usize {
-        let mut n = 0;
-        for start in 0..=self.len - from.len() {
-            if (0..from.len()).all(|k| self.byte(start + k).load(Ordering::Relaxed) == from[k]) {
-                for (k, &b) in to.iter().enumerate() {
-                    self.byte(start + k).store(b, Ordering::Relaxed);
-                }
-                n += 1;
-            }
-        }
-        n
-    }
-}
-
-fn heap_ring(capacity: u32) -> (RingRegion, Peer) {
-    let words = (CONTROL_BYTES + capacity as usize) / 8 + 8;
-    let mut mem = vec![0u64; words];
-    let base = mem.as_mut_ptr().cast::<u8>();
-    let ctl = ((base as usize + 63) & !63) as *mut u8;
-    // SAFETY: `ctl` is 64-aligned inside `mem` and followed by CONTROL_BYTES + capacity bytes,
-    // which `mem` (moved into the backing, which does not move its heap buffer) keeps.
-    let (ctl, data) = unsafe { (ctl, ctl.add(CONTROL_BYTES)) };
-    // SAFETY: as above.
-    let ring = unsafe { RingRegion::new(ctl, data, capacity, Arc::new(Heap(mem))) }.expect("ring");
-    (ring, Peer { data, len: capacity as usize })
-}
+use support::heap_ring;
 
 fn write(w: &mut Writer, msg: &[u8]) {
     w.write::<RingError>(msg.len(), &|| true, |buf| {

@@ -22,7 +22,7 @@ pub mod transfer;
 mod waiter;
 
 pub use frames::{Producer, Swapped};
-pub use ids::IdTaken;
+pub use ids::IdRefused;
 pub use input::Candidate;
 pub use layers::{LayerState, Layers};
 pub use mailbox::{Buffers, Images, Use, Views};

@@ -44,6 +44,19 @@ pub struct SurfaceEntry {
     /// Whether it accepts input (default true).
     #[serde(default = "yes")]
     pub input: bool,
+    // As on [[layout]] and [[quota]] entries: the credentials a client needs to take this ID.
+    /// The user ID a client must connect as to take this ID (none: any client may).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uid: Option<u32>,
+    /// The user a client must connect as (resolved into `uid` when the configuration is read).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub user: Option<String>,
+    /// The primary group ID a client must connect with.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gid: Option<u32>,
+    /// The primary group a client must connect with (resolved into `gid`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
 }
 
 /// A layer in the configuration (`[[layer]]`).
@@ -64,6 +77,11 @@ pub struct LayerEntry {
 }
 
 impl SurfaceEntry {
+    /// The credentials a client needs to take this entry's ID.
+    pub fn requirement(&self) -> strata_protocol::control::Requirement {
+        strata_protocol::control::Requirement { uid: self.uid, gid: self.gid }
+    }
+
     /// The property changes it makes to its surface.
     pub fn changes(&self) -> Vec<strata_protocol::properties::Change> {
         use strata_protocol::properties::Change;

@@ -16,9 +16,9 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use strata_device::Gpu;
-use strata_protocol::control::{LightChange, Lighting, Priority, SurfaceRow};
+use strata_protocol::control::{LightChange, Lighting, Priority, Requirement, SurfaceRow};
 
-use crate::ids::{IdTaken, Ids};
+use crate::ids::{IdRefused, Ids};
 use crate::layers::Layers;
 use crate::mailbox::{Buffers, Images};
 use crate::presets::SurfaceEntry;
@@ -290,15 +290,19 @@ impl Scene {
         self.changed.notify_all();
     }
 
-    /// Keeps the stable IDs the layout assigns out of the runtime IDs.
-    pub fn reserve_ids(&self, ids: impl IntoIterator<Item = u64>) {
+    /// Keeps the stable IDs the configuration names out of the runtime IDs; an ID with a
+    /// claim (the entry's name and the credentials it requires) goes only to clients whose
+    /// credentials the claim admits.
+    pub fn reserve_ids(&self, ids: impl IntoIterator<Item = (u64, Option<(String, Requirement)>)>) {
         if let Some(mut g) = self.lock() {
-            g.ids.reserve(ids);
+            for (id, claim) in ids {
+                g.ids.reserve(id, claim);
+            }
         }
     }
 
     /// Registers a new window surface (visible once it has swapped) with the stable ID `asked`
-    /// or a runtime one; returns its ID, or which client holds the one asked for.
+    /// or a runtime one; returns its ID, or why the one asked for is refused.
     pub fn add(
         &self,
         client: u64,
@@ -307,12 +311,12 @@ impl Scene {
         rect: [i32; 4],
         z: f32,
         asked: Option<u64>,
-    ) -> Result<u64, IdTaken> {
+    ) -> Result<u64, IdRefused> {
         let Some(mut guard) = self.lock() else { return Ok(0) };
         let g = &mut *guard;
         let surfaces = &g.surfaces;
         let holder = |id| surfaces.values().find(|s| s.id == id).map(|s| s.client.clone());
-        let (id, order) = g.ids.assign(asked, holder)?;
+        let (id, order) = g.ids.assign(asked, g.peers.get(&client), holder)?;
         let (priority, deadline) = g.policies.get(&client).copied().unwrap_or_default();
         let pid = g.peers.get(&client).map_or(0, |p| p.pid);
         g.surfaces.insert(

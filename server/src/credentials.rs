@@ -1,8 +1,6 @@
 //! The credentials a configuration entry requires (`uid`/`user`/`gid`/`group`), resolved from
 //! the names the configuration gives, and whether a connection's credentials meet them.
 
-use strata_protocol::control::Peer;
-
 /// A user or group name in the configuration that this machine does not have.
 #[derive(Debug, thiserror::Error)]
 pub enum IdentityError {
@@ -78,37 +76,7 @@ pub fn resolve(
     Ok(())
 }
 
-/// The credentials an entry requires (resolved `uid` and `gid`; `None`: any).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Requirement {
-    /// The user ID it requires.
-    pub uid: Option<u32>,
-    /// The primary group ID it requires.
-    pub gid: Option<u32>,
-}
-
-impl Requirement {
-    /// Whether it requires anything.
-    pub fn any(self) -> bool {
-        self.uid.is_some() || self.gid.is_some()
-    }
-
-    /// Whether `peer`'s credentials meet it.
-    pub fn admits(self, peer: &Peer) -> bool {
-        self.uid.is_none_or(|u| u == peer.uid) && self.gid.is_none_or(|g| g == peer.gid)
-    }
-}
-
-impl std::fmt::Display for Requirement {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match (self.uid, self.gid) {
-            (Some(u), Some(g)) => write!(f, "uid {u} and gid {g}"),
-            (Some(u), None) => write!(f, "uid {u}"),
-            (None, Some(g)) => write!(f, "gid {g}"),
-            (None, None) => f.write_str("nothing"),
-        }
-    }
-}
+pub use strata_protocol::control::Requirement;
 
 #[cfg(test)]
 mod tests {
@@ -130,7 +98,7 @@ mod tests {
 
     #[test]
     fn a_requirement_admits_only_matching_credentials() {
-        let peer = |uid, gid| Peer { pid: 1, uid, gid, unverified: false };
+        let peer = |uid, gid| strata_protocol::control::Peer { pid: 1, uid, gid, unverified: false };
         let r = Requirement { uid: Some(1000), gid: None };
         assert!(r.admits(&peer(1000, 5)) && !r.admits(&peer(1001, 5)));
         let r = Requirement { uid: None, gid: Some(7) };

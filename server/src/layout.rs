@@ -18,7 +18,9 @@ pub use strata_scene::presets::{LayerEntry, SurfaceEntry};
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LayoutEntry {
-    /// The client name it applies to.
+    /// The client name it applies to; empty or absent: every client whose credentials the
+    /// entry's `uid`/`user`/`gid`/`group` admit, whatever it calls itself.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub client: String,
     /// Left edge in the output space.
     pub x: i32,
@@ -182,6 +184,17 @@ pub enum LayoutError {
         /// What is wrong.
         source: crate::credentials::IdentityError,
     },
+    /// A `--layout` entry names a client whose configuration entry requires credentials.
+    #[error(
+        "--layout {client:?} would shadow the configuration's [[layout]] entry for {client:?}, which requires \
+         {requires}: give that client's placement in the configuration file"
+    )]
+    Shadows {
+        /// The client.
+        client: String,
+        /// What the configuration's entry requires.
+        requires: crate::credentials::Requirement,
+    },
     /// A `--layout` argument does not parse.
     #[error("--layout {0:?} is not CLIENT=X,Y,Z[,WxH]")]
     Syntax(String),
@@ -205,8 +218,10 @@ impl LayoutEntry {
     /// Checks the values: a finite z, sizes within 1..=8192 when given, a usable projection.
     pub fn validate(&self) -> Result<(), LayoutError> {
         let bad = |why: String| LayoutError::Invalid { client: self.client.clone(), why };
-        if self.client.is_empty() {
-            return Err(bad("the client name is empty".into()));
+        if self.client.is_empty() && !self.requirement().any() {
+            return Err(bad(
+                "it names no client and requires no credentials: give client, or uid/user/gid/group".into()
+            ));
         }
         if !self.z.is_finite() {
             return Err(bad(format!("z {} is not finite", self.z)));
@@ -288,6 +303,10 @@ impl Config {
             crate::credentials::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
                 .map_err(|source| LayoutError::Identity { section: "[[quota]]", client: e.client.clone(), source })?;
         }
+        for e in &mut config.surface {
+            crate::credentials::resolve(&mut e.uid, e.user.as_deref(), &mut e.gid, e.group.as_deref())
+                .map_err(|source| LayoutError::Identity { section: "[[surface]]", client: e.id.to_string(), source })?;
+        }
         for e in &config.layout {
             e.validate()?;
         }
@@ -324,17 +343,31 @@ impl Config {
                 }
             }
         }
-        if let Some(q) = config.quota.iter().find(|q| q.client.is_empty()) {
+        if let Some(q) = config.quota.iter().find(|q| q.client.is_empty() && !q.requirement().any()) {
             return Err(LayoutError::Invalid {
                 client: q.client.clone(),
-                why: "a [[quota]] entry has no client name".into(),
+                why: "a [[quota]] entry names no client and requires no credentials: give client, or \
+                      uid/user/gid/group"
+                    .into(),
             });
         }
         Ok(config)
     }
 }
 
-/// The entry for client `name`, if any.
+/// The `--layout` entries (first) and the configuration's; refuses a `--layout` entry that
+/// would shadow a configuration entry of the same name that requires credentials (its
+/// placement is the configuration's to give).
+pub fn merge(cli: Vec<LayoutEntry>, config: Vec<LayoutEntry>) -> Result<Vec<LayoutEntry>, LayoutError> {
+    for e in &cli {
+        if let Some(c) = config.iter().find(|c| c.client == e.client && c.requirement().any()) {
+            return Err(LayoutError::Shadows { client: e.client.clone(), requires: c.requirement() });
+        }
+    }
+    Ok(cli.into_iter().chain(config).collect())
+}
+
+/// The first entry naming client `name`, if any (whatever credentials it requires).
 pub fn find<'a>(layout: &'a [LayoutEntry], name: &str) -> Option<&'a LayoutEntry> {
     layout.iter().find(|e| e.client == name)
 }
@@ -342,6 +375,18 @@ pub fn find<'a>(layout: &'a [LayoutEntry], name: &str) -> Option<&'a LayoutEntry
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_layout_argument_may_not_shadow_an_entry_that_requires_credentials() {
+        let ic: LayoutEntry = "ic=0,0,0.5".parse().expect("entry");
+        let mut bound = ic.clone();
+        bound.uid = Some(1);
+        let cli: LayoutEntry = "ic=9,9,0.5".parse().expect("entry");
+        let e = merge(vec![cli.clone()], vec![bound]).expect_err("shadows");
+        assert!(matches!(e, LayoutError::Shadows { ref client, .. } if client == "ic"), "{e}");
+        let merged = merge(vec![cli], vec![ic]).expect("an entry without credentials may be shadowed");
+        assert_eq!(merged.iter().map(|e| e.x).collect::<Vec<_>>(), vec![9, 0]);
+    }
 
     #[test]
     fn layout_arguments_parse_and_bad_ones_are_refused() {

@@ -8,6 +8,7 @@ pub mod listener;
 pub mod session;
 
 pub use listener::{serve, DeviceMode, ExecutorKind, ServeOptions, ServerError};
+pub mod caps;
 pub mod credentials;
 pub mod demo;
 pub mod identity;

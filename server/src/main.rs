@@ -125,6 +125,9 @@ enum Cmd {
         /// The class of clients the configuration does not name.
         #[command(flatten)]
         schedule: strata_server::schedule::ScheduleArgs,
+        /// Caps on sessions, devices and handshakes, and the reserves of the reserved class.
+        #[command(flatten)]
+        caps: strata_server::caps::CapArgs,
         /// Real input devices (libinput), off by default.
         #[command(flatten)]
         input: strata_server::input::libinput::InputArgs,
@@ -283,6 +286,7 @@ fn main() -> Result<()> {
             mut layouts,
             quota,
             schedule,
+            caps,
             input,
             devices,
             frame_transfer,
@@ -296,7 +300,7 @@ fn main() -> Result<()> {
             let mut c = Config::default();
             if let Some(path) = config {
                 c = Config::load(&path)?;
-                layouts.extend(c.layout);
+                layouts = strata_server::layout::merge(layouts, c.layout)?;
             }
             let quotas = c.quota;
             let mut outputs = outputs;
@@ -354,6 +358,8 @@ fn main() -> Result<()> {
                 limits: quota.limits(),
                 quotas,
                 total_gpu_bytes: quota.total(),
+                total_daemon_bytes: quota.total_daemon(),
+                command_time: quota.command_time().map_err(anyhow::Error::msg)?,
                 default_class: schedule.default_priority,
                 devices,
                 frame_transfer,
@@ -361,6 +367,7 @@ fn main() -> Result<()> {
                 fault_injection: allow_fault_injection,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
                 max_client_devices: (max_client_devices > 0).then_some(max_client_devices),
+                caps,
                 bands,
                 input,
             };

@@ -57,7 +57,9 @@ impl<'de> Deserialize<'de> for ByteSize {
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct QuotaEntry {
-    /// The client name it applies to.
+    /// The client name it applies to; empty or absent: every client whose credentials the
+    /// entry's `uid`/`user`/`gid`/`group` admit, whatever it calls itself.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub client: String,
     /// GPU memory.
     #[serde(alias = "gpu-bytes")]
@@ -84,6 +86,16 @@ pub struct QuotaEntry {
     /// The largest single command.
     #[serde(alias = "command-bytes")]
     pub command_bytes: Option<ByteSize>,
+    /// The daemon's own memory held for it.
+    #[serde(default, alias = "daemon-bytes", skip_serializing_if = "Option::is_none")]
+    pub daemon_bytes: Option<ByteSize>,
+    /// Most sessions the clients this entry matches hold together (see [`crate::caps`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sessions: Option<u64>,
+    /// Whether its clients draw on the reserves (`--reserve-devices`, `--reserve-gpu-bytes`)
+    /// whatever their class.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reserve: Option<bool>,
     // The same four fields stand on [[layout]] entries: serde cannot flatten a shared struct into
     // one that denies unknown fields.
     /// The user ID a client must connect as to get this entry (see [`crate::identity`]).
@@ -113,6 +125,9 @@ impl QuotaEntry {
         }
         if let Some(b) = self.command_bytes {
             base.command_bytes = b.0;
+        }
+        if let Some(b) = self.daemon_bytes {
+            base.daemon_bytes = b.0;
         }
         let counts = [
             self.buffers,
@@ -173,6 +188,19 @@ pub struct QuotaArgs {
     /// The largest single command or upload a client may send.
     #[arg(long, default_value = "256M", value_parser = parse_size)]
     pub quota_command_bytes: ByteSize,
+    /// The daemon's own memory one client's session may hold: its segment (twice the command
+    /// ring and the reply ring) and a command being assembled from chunks.
+    #[arg(long, default_value = "512M", value_parser = parse_size)]
+    pub quota_daemon_bytes: ByteSize,
+    /// The daemon's own memory all clients' sessions together may hold [default: a quarter of
+    /// the machine's memory].
+    #[arg(long, value_parser = parse_size)]
+    pub quota_total_daemon_bytes: Option<ByteSize>,
+    /// Longest a command sent in chunks may take, from its first chunk to its last, in
+    /// seconds; a client that leaves one unfinished longer is disconnected, and its memory
+    /// freed.
+    #[arg(long, default_value_t = 30.0)]
+    pub quota_command_seconds: f64,
 }
 
 fn parse_size(s: &str) -> Result<ByteSize, String> {
@@ -193,7 +221,24 @@ impl QuotaArgs {
             self.quota_contexts,
             self.quota_surfaces,
         ];
-        Limits { gpu_bytes: self.quota_gpu_bytes.0, counts, command_bytes: self.quota_command_bytes.0 }
+        Limits {
+            gpu_bytes: self.quota_gpu_bytes.0,
+            counts,
+            command_bytes: self.quota_command_bytes.0,
+            daemon_bytes: self.quota_daemon_bytes.0,
+        }
+    }
+
+    /// The time a chunked command may take (`--quota-command-seconds`).
+    pub fn command_time(&self) -> Result<std::time::Duration, String> {
+        std::time::Duration::try_from_secs_f64(self.quota_command_seconds).ok().filter(|d| !d.is_zero()).ok_or_else(
+            || format!("--quota-command-seconds {} must be a number of seconds above 0", self.quota_command_seconds),
+        )
+    }
+
+    /// The total of the daemon's own memory for all clients.
+    pub fn total_daemon(&self) -> u64 {
+        self.quota_total_daemon_bytes.map_or_else(|| default_total() / 2, |b| b.0)
     }
 
     /// The total for all clients.

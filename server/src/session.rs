@@ -110,22 +110,23 @@ impl Session {
         let Session { reader, replies, tally, executor, stats, counter, account, .. } = &mut self;
         loop {
             let r = reader.recv_messages::<Stop>(&alive, strata_protocol::ring::Oversized::Skip, |message| {
-                let (bytes, len) = match message {
-                    Message::Whole(bytes) => (bytes, bytes.len() as u64),
+                let (bytes, len, unheld) = match message {
+                    Message::Whole(bytes) => (bytes, bytes.len() as u64, None),
                     // The reader kept only its start; it is refused below.
-                    Message::Oversized { len, head } => (head, len),
+                    Message::Oversized { len, head, why } => (head, len, why),
                 };
                 stats.commands += 1;
                 stats.bytes += len;
                 if let Some(c) = counter {
                     c.fetch_add(len, Ordering::Relaxed);
                 }
-                let admitted = match account {
-                    Some(a) => a.admit_command(len),
-                    None if matches!(message, Message::Oversized { .. }) => {
+                let admitted = match (account.as_ref(), unheld) {
+                    (_, Some(why)) => Err(why.to_string()),
+                    (Some(a), None) => a.admit_command(len).map_err(|e| e.to_string()),
+                    (None, None) if matches!(message, Message::Oversized { .. }) => {
                         return Err(RingError::TooLarge { len, limit: codec::MAX_MESSAGE_LEN }.into())
                     }
-                    None => Ok(()),
+                    (None, None) => Ok(()),
                 };
                 if let Err(e) = admitted {
                     // Too large to run: the client's call fails, and the stream goes on.
@@ -133,7 +134,7 @@ impl Session {
                         opcode: u64::MAX,
                         known: strata_protocol::Opcode::COUNT,
                     })?;
-                    if let Some(reply) = executor.refuse(op, &e.to_string()) {
+                    if let Some(reply) = executor.refuse(op, &e) {
                         let len = codec::encoded_len(&reply)?;
                         replies.write::<Stop>(len, &alive, |buf| Ok(codec::encode_into(&reply, buf).map(|_| ())?))?;
                         replies.publish();

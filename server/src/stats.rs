@@ -72,7 +72,7 @@ pub fn device_stats(gpu: &Gpu, own: bool) -> DeviceStats {
 /// Gathers the daemon's statistics.
 pub fn collect(
     gpu: Option<&Gpu>,
-    pool: &Pool,
+    pools: (&Pool, &Pool),
     sessions: u64,
     clients: &HashMap<u64, ClientInfo>,
     scene: &Scene,
@@ -98,6 +98,8 @@ pub fn collect(
                 role: c.role.clone(),
                 gpu_bytes: usage.gpu_bytes,
                 gpu_bytes_limit: c.account.limits().gpu_bytes,
+                daemon_bytes: usage.daemon_bytes,
+                daemon_bytes_limit: c.account.limits().daemon_bytes,
                 objects: mine,
                 refusals: usage.refusals,
                 stream_bytes: scene.stream_bytes(id),
@@ -115,8 +117,13 @@ pub fn collect(
         rss_anon_bytes,
         sessions,
         clients: rows,
-        gpu_bytes: pool.used(),
-        gpu_bytes_limit: pool.limit(),
+        gpu_bytes: pools.0.used(),
+        gpu_bytes_limit: pools.0.limit(),
+        reserve_bytes: pools.0.reserve(),
+        daemon_bytes: pools.1.used(),
+        daemon_bytes_limit: pools.1.limit(),
+        // Filled in by the listener, which counts them.
+        refused: BTreeMap::new(),
         objects,
         device_objects: gpu.map(device_objects).unwrap_or_default(),
         compositor_device: gpu.map(|g| device_stats(g, false)),

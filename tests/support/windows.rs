@@ -80,6 +80,20 @@ impl Client {
         Client::spawn(socket, shim, name, spawn)
     }
 
+    /// Starts a client named `name` on `socket` as user and group `user`, creating `windows`
+    /// window surfaces whose application asks for `asks` (the test must be root).
+    pub fn start_as(
+        socket: &std::path::Path,
+        shim: &std::path::Path,
+        name: &str,
+        windows: usize,
+        asks: Option<i32>,
+        user: (u32, u32),
+    ) -> Client {
+        let spawn = Spawn { windows, env: None, asks, draws: None, window: "0,0,0.5,16x16", user: Some(user) };
+        Client::spawn(socket, shim, name, spawn)
+    }
+
     /// Starts a client named `name` on `socket` creating `windows` window surfaces, with
     /// `STRATA_SURFACE_ID` set to `env` and its application asking for `asks`; with `draws`, it
     /// swaps one frame into its first surface (red under green).

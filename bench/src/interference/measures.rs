@@ -27,6 +27,9 @@ pub enum Load {
     /// No client at all: one busy thread per core outside the daemon, the CPU contention no
     /// scheduling in the daemon can remove (on lavapipe the "GPU" is the same CPU).
     CpuHog,
+    /// A head unit that opens sessions until the daemon refuses one (its `[[quota]]` entry
+    /// allows 8), each drawing the huge draw (`interference-client`).
+    SessionFlood,
 }
 
 impl Load {

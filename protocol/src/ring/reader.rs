@@ -4,6 +4,7 @@
 //! chunked messages, and skips those over its limit.
 
 use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
 
 use super::*;
 
@@ -21,14 +22,26 @@ pub enum Oversized {
 pub enum Message<'a> {
     /// A whole message.
     Whole(&'a [u8]),
-    /// A chunked message larger than the reader's limit, skipped without being kept: its
-    /// announced length and the start of its first chunk (enough to name its command).
+    /// A chunked message larger than the reader's limit, or one whose memory its
+    /// [`Holdings`] refused, skipped without being kept: its announced length and the start
+    /// of its first chunk (enough to name its command).
     Oversized {
         /// The announced length.
         len: u64,
         /// Up to [`OVERSIZED_HEAD`] bytes from its start.
         head: &'a [u8],
+        /// Why its memory was refused (`None`: it is over the limit).
+        why: Option<&'a str>,
     },
+}
+
+/// Charges the memory a reader holds for its peer (a chunked message being assembled)
+/// before the reader allocates it.
+pub trait Holdings: Send {
+    /// The reader is about to hold `bytes` in all (less than before: it gives some back). An
+    /// error, with the reason, refuses the growth: the message is skipped and reported as
+    /// [`Message::Oversized`].
+    fn hold(&mut self, bytes: usize) -> Result<(), String>;
 }
 
 /// Bytes kept from the start of a message that is skipped for its size.
@@ -46,6 +59,13 @@ pub struct Reader {
     expected: Option<usize>,
     /// Of an oversized message being skipped: the bytes seen so far.
     skipped: Option<usize>,
+    /// What the assembly's memory is charged to, and how much it holds.
+    holdings: Option<(Box<dyn Holdings>, usize)>,
+    /// Why the memory for the message being skipped was refused.
+    refused: Option<String>,
+    /// When the chunked message being read began, and how long one may take in all.
+    partial: Option<Instant>,
+    partial_limit: Option<Duration>,
 }
 
 impl Reader {
@@ -61,7 +81,52 @@ impl Reader {
             assembly: Vec::new(),
             expected: None,
             skipped: None,
+            holdings: None,
+            refused: None,
+            partial: None,
+            partial_limit: None,
         }
+    }
+
+    /// Charges the memory of chunked messages being assembled to `holdings`, before it is
+    /// allocated.
+    pub fn with_holdings(mut self, holdings: Box<dyn Holdings>) -> Self {
+        self.holdings = Some((holdings, 0));
+        self
+    }
+
+    /// Fails the read with [`RingError::Stale`] when a chunked message is not finished within
+    /// `limit` of its first chunk.
+    pub fn with_partial_limit(mut self, limit: Duration) -> Self {
+        self.partial_limit = Some(limit);
+        self
+    }
+
+    /// Charges `bytes` as what the assembly holds; the reason if refused.
+    fn hold(&mut self, bytes: usize) -> Result<(), String> {
+        if let Some((h, held)) = &mut self.holdings {
+            if bytes != *held {
+                h.hold(bytes)?;
+                *held = bytes;
+            }
+        }
+        Ok(())
+    }
+
+    /// The chunked message being read, taken too long.
+    fn stale(&self) -> RingError {
+        let (len, have) = (self.expected.unwrap_or(0) as u64, self.skipped.unwrap_or(self.assembly.len()));
+        let secs = self.partial.map_or(0.0, |t| t.elapsed().as_secs_f64());
+        RingError::Stale { len, have: have as u64, secs }
+    }
+
+    /// Lets the assembly's memory go if it is large, and charges what it keeps.
+    fn trim(&mut self) {
+        if self.assembly.capacity() > (64 << 20) {
+            self.assembly = Vec::new();
+        }
+        // Giving back is never refused.
+        let _ = self.hold(self.assembly.capacity());
     }
 
     /// Whether a chunked message has begun but not ended.
@@ -102,8 +167,16 @@ impl Reader {
     ) -> Result<usize, E> {
         let ctl = self.ring.ctl();
         let mut head = ctl.head.0.load(Ordering::Acquire);
+        let due = self.partial.zip(self.partial_limit).map(|(t, l)| t + l);
+        let in_time = || due.is_none_or(|d| Instant::now() < d);
+        if !in_time() {
+            return Err(self.stale().into());
+        }
         if head == self.tail {
-            head = wait_change(&ctl.head.0, &ctl.reader_waiting.0, self.tail, alive)?;
+            head = match wait_change(&ctl.head.0, &ctl.reader_waiting.0, self.tail, &|| alive() && in_time()) {
+                Err(RingError::PeerGone) if alive() => return Err(self.stale().into()),
+                other => other?,
+            };
         }
         let cap = self.ring.capacity;
         let mut delivered = 0;
@@ -171,7 +244,19 @@ impl Reader {
                     if total > self.max_message as u64 && oversized == Oversized::Refuse {
                         return Err(RingError::TooLarge { len: total, limit: self.max_message }.into());
                     }
-                    if total > self.max_message as u64 {
+                    self.partial = Some(Instant::now());
+                    // Charged before it is allocated; refused, it is skipped as one too large.
+                    let held = match total {
+                        t if t > self.max_message as u64 => None,
+                        t => Some(self.hold((t as usize).max(self.assembly.capacity()))),
+                    };
+                    if let Some(Err(why)) = &held {
+                        if oversized == Oversized::Refuse {
+                            return Err(RingError::NotHeld { len: total, why: why.clone() }.into());
+                        }
+                    }
+                    if !matches!(held, Some(Ok(()))) {
+                        self.refused = held.and_then(Result::err);
                         // Kept: only the head, to name the command when it is refused.
                         let total = usize::try_from(total)
                             .map_err(|_| RingError::TooLarge { len: total, limit: self.max_message })?;
@@ -202,7 +287,13 @@ impl Reader {
                         }
                         self.expected = None;
                         self.skipped = None;
-                        on_message(Message::Oversized { len: total as u64, head: &self.assembly })?;
+                        self.partial = None;
+                        let why = self.refused.take();
+                        on_message(Message::Oversized {
+                            len: total as u64,
+                            head: &self.assembly,
+                            why: why.as_deref(),
+                        })?;
                         delivered += 1;
                     }
                 }
@@ -218,12 +309,11 @@ impl Reader {
                             return Err(RingError::BadChunk("chunked message ended short").into());
                         }
                         self.expected = None;
+                        self.partial = None;
                         let msg = std::mem::take(&mut self.assembly);
                         let r = on_message(Message::Whole(&msg));
                         self.assembly = msg;
-                        if self.assembly.capacity() > (64 << 20) {
-                            self.assembly = Vec::new();
-                        }
+                        self.trim();
                         r?;
                         delivered += 1;
                     }

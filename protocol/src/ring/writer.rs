@@ -75,7 +75,20 @@ impl Writer {
         Ok(())
     }
 
+    /// Writes every chunk of `msg` but its last (`msg` must need chunks: longer than a
+    /// quarter of the ring), and publishes them: a message begun and never finished, the tool
+    /// for testing what a reader holds for a writer that stops.
+    #[cfg(feature = "fault-injection")]
+    pub fn write_unfinished(&mut self, msg: &[u8], alive: &dyn Fn() -> bool) -> Result<(), RingError> {
+        self.write_chunked_but(msg, alive, true)
+    }
+
     fn write_chunked(&mut self, msg: &[u8], alive: &dyn Fn() -> bool) -> Result<(), RingError> {
+        self.write_chunked_but(msg, alive, false)
+    }
+
+    /// Writes `msg` in chunks; with `unfinished`, all but the last.
+    fn write_chunked_but(&mut self, msg: &[u8], alive: &dyn Fn() -> bool, unfinished: bool) -> Result<(), RingError> {
         let piece = self.ring.capacity as usize / 4 - 2 * FRAME_HEADER;
         let first = msg.len().min(piece);
         let off = self.reserve(frame_size(8 + first), alive)?;
@@ -89,6 +102,9 @@ impl Writer {
         loop {
             let n = rest.len().min(piece);
             let kind = if n == rest.len() { KIND_CHUNK_LAST } else { KIND_CHUNK_MORE };
+            if unfinished && kind == KIND_CHUNK_LAST {
+                return Ok(());
+            }
             let off = self.reserve(frame_size(n), alive)?;
             // SAFETY: reserved above.
             unsafe { self.ring.bytes_mut(off + FRAME_HEADER, n) }.copy_from_slice(&rest[..n]);

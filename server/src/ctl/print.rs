@@ -161,11 +161,22 @@ pub fn stats(s: &strata_protocol::control::DaemonStats) {
         "input picks: {} texels read on input routing's device, {} on the compositor's",
         s.pick_reads[0], s.pick_reads[1]
     );
-    println!("gpu memory: {} of {} for all clients", mib(s.gpu_bytes), mib(s.gpu_bytes_limit));
+    println!(
+        "gpu memory: {} of {} for all clients ({} of it reserved for the reserved class); daemon's memory: {} of {}",
+        mib(s.gpu_bytes),
+        mib(s.gpu_bytes_limit),
+        mib(s.reserve_bytes),
+        mib(s.daemon_bytes),
+        mib(s.daemon_bytes_limit)
+    );
+    if !s.refused.is_empty() {
+        let by: Vec<String> = s.refused.iter().map(|(cap, n)| format!("{cap} {n}")).collect();
+        println!("connections refused: {}", by.join(", "));
+    }
     let kinds: Vec<&String> = s.objects.keys().collect();
     print!(
-        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
-        "id", "client", "priority", "missed", "gpu memory", "limit", "refused"
+        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>12} {:>8}",
+        "id", "client", "priority", "missed", "gpu memory", "daemon-side", "limit", "refused"
     );
     for k in &kinds {
         print!(" {:>13}", k);
@@ -173,12 +184,13 @@ pub fn stats(s: &strata_protocol::control::DaemonStats) {
     println!();
     for c in &s.clients {
         print!(
-            "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
+            "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>12} {:>8}",
             c.id,
             c.name,
             c.priority.name(),
             c.deadline_misses,
             mib(c.gpu_bytes),
+            mib(c.daemon_bytes),
             mib(c.gpu_bytes_limit),
             c.refusals
         );
@@ -188,12 +200,13 @@ pub fn stats(s: &strata_protocol::control::DaemonStats) {
         println!();
     }
     print!(
-        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>8}",
+        "{:>4} {:<20} {:>8} {:>8} {:>12} {:>12} {:>12} {:>8}",
         "",
         "total",
         "",
         "",
         mib(s.gpu_bytes),
+        mib(s.daemon_bytes),
         mib(s.gpu_bytes_limit),
         ""
     );

@@ -1,7 +1,7 @@
 //! One render client's session: its segment, its executor (built on its session thread, with a
 //! device of its own opened there at its class's priority) and the session thread itself.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use strata_protocol::codec::MAX_MESSAGE_LEN;
@@ -31,22 +31,26 @@ fn release_free_memory() {
     }
 }
 
-/// One of the `--max-client-devices` places, held while a client's own device is open.
-struct DeviceSlot(Arc<AtomicUsize>);
+/// A session's chunked commands being assembled, charged to its account.
+struct Assembly(strata_device::account::Reservation);
 
-impl DeviceSlot {
-    /// A place if fewer than `max` are taken (any number without a maximum).
-    fn take(count: &Arc<AtomicUsize>, max: Option<usize>) -> Option<DeviceSlot> {
-        let limit = max.unwrap_or(usize::MAX);
-        count.fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| (n < limit).then_some(n + 1)).ok()?;
-        Some(DeviceSlot(count.clone()))
+impl strata_protocol::ring::Holdings for Assembly {
+    fn hold(&mut self, bytes: usize) -> Result<(), String> {
+        self.0.resize(bytes as u64).map_err(|e| e.to_string())
     }
 }
 
-impl Drop for DeviceSlot {
-    fn drop(&mut self) {
-        self.0.fetch_sub(1, Ordering::AcqRel);
-    }
+/// What the caps granted a session at its handshake.
+pub(super) struct Admission {
+    /// Its place among the sessions, held for the session's life.
+    pub(super) seat: crate::caps::Seat,
+    /// Its place among clients' own devices (none: it shares the compositor's device).
+    pub(super) place: Option<crate::caps::DevicePlace>,
+    /// Whether it draws on the reserves.
+    pub(super) reserved: bool,
+    /// Its place among handshakes in progress, given up once the client has mapped its
+    /// segment.
+    pub(super) handshake: Option<crate::caps::Handshake>,
 }
 
 /// What a session thread builds its GLES executor from.
@@ -70,6 +74,8 @@ pub(super) enum SetupError {
     Segment(#[from] SegmentError),
     #[error("starting the session thread: {0}")]
     Thread(std::io::Error),
+    #[error("{0}")]
+    Held(String),
 }
 
 /// Sends the welcome with the segment's memory file attached.
@@ -85,10 +91,25 @@ pub(super) async fn run_client(
     id: u64,
     hello: &Hello,
     identity: crate::identity::Identity<'_>,
+    admission: Admission,
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
     let limits = identity.limits(opts.limits);
-    let account = strata_device::account::Account::new(&hello.name, limits, shared.pool.clone());
+    let Admission { seat: _seat, place, reserved, handshake } = admission;
+    let pools = (shared.pool.clone(), shared.daemon_pool.clone());
+    let account = strata_device::account::Account::new(&hello.name, limits, pools, reserved);
+    // The segment, and the private copy of a frame the reader makes, are charged before they
+    // are made.
+    let segment_bytes = 2 * u64::from(opts.cmd_ring) + u64::from(opts.reply_ring);
+    let charged = account.hold(segment_bytes).and_then(|segment| Ok((segment, account.hold(0)?)));
+    let (segment_held, assembly_held) = match charged {
+        Ok(held) => held,
+        Err(e) => {
+            let reason = format!("its segment of {segment_bytes} bytes cannot be held: {e}");
+            let _ = super::greeting::send(stream, &ServerMessage::Refused { reason: reason.clone() }).await;
+            return Err(SetupError::Held(reason));
+        }
+    };
     let mut segment = Segment::create(opts.cmd_ring, opts.reply_ring)?;
     let msg = ServerMessage::Welcome {
         client_id: id,
@@ -99,6 +120,7 @@ pub(super) async fn run_client(
     timed(welcome(stream, &msg, &segment)).await?;
     let mapped: ClientMessage = timed(recv(stream, "mapped")).await?;
     let ClientMessage::Mapped = mapped;
+    drop(handshake);
     // The client has its own descriptor and mapping now; the daemon keeps only its mapping.
     segment.close_fd();
     let cmd_ring = segment.command_ring()?;
@@ -108,7 +130,9 @@ pub(super) async fn run_client(
     let closed_for_thread = closed.clone();
     let reader =
         // Larger commands are skipped unread and refused (see `Session::with_account`).
-        Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN));
+        Reader::new(cmd_ring, usize::try_from(limits.command_bytes).unwrap_or(MAX_MESSAGE_LEN).min(MAX_MESSAGE_LEN))
+            .with_holdings(Box::new(Assembly(assembly_held)))
+            .with_partial_limit(opts.command_time);
     let writer = Writer::new(reply_ring, 0);
     let device = Arc::new(std::sync::OnceLock::new());
     // What the session thread builds its executor from.
@@ -169,15 +193,14 @@ pub(super) async fn run_client(
     let (devices, frame_transfer, depth, global_priority) =
         (opts.devices, opts.frame_transfer, opts.depth, opts.global_priority);
     let rasterizer_threads = opts.client_rasterizer_threads;
-    let (client_devices, max_client_devices) = (shared.client_devices.clone(), opts.max_client_devices);
     std::thread::Builder::new()
         .name(format!("session-{id}"))
         .spawn(move || {
             // Everything the session logs (GPU errors included) carries the client's identity.
             let _span = span.enter();
-            let _keep = segment;
+            let keep = (segment, segment_held);
             // The device's place (`--max-client-devices`) is held for the whole session.
-            let (executor, _slot): (Box<dyn strata_gles::execute::Executor>, Option<DeviceSlot>) = match plan {
+            let (executor, _place): (Box<dyn strata_gles::execute::Executor>, _) = match plan {
                 Some(p) => {
                     let class = p.class;
                     // The session's decoding, and the driver threads of a device opened here,
@@ -187,11 +210,11 @@ pub(super) async fn run_client(
                     strata_device::set_thread_class(class);
                     let own = match devices {
                         DeviceMode::Shared => None,
-                        DeviceMode::PerClient => match DeviceSlot::take(&client_devices, max_client_devices) {
+                        DeviceMode::PerClient => match place {
                             None => {
                                 warn!(
-                                    "--max-client-devices devices are open: it shares the compositor's device, without \
-                                     isolation"
+                                    "--max-client-devices devices are open (or all that are left are reserved): it \
+                                     shares the compositor's device, without isolation"
                                 );
                                 None
                             }
@@ -239,6 +262,8 @@ pub(super) async fn run_client(
                 .with_byte_counter(counter)
                 .with_account(account);
             let ended = session.run();
+            // Everything the session held is given back before the daemon says it has ended.
+            drop(keep);
             // The session and everything its client held are freed by now: give the pages
             // back, so that clients coming and going leave the daemon's memory where it was.
             release_free_memory();

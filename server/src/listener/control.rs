@@ -117,9 +117,16 @@ fn outputs(shared: &Shared) -> Vec<[i32; 4]> {
 fn stats(shared: &Shared) -> strata_protocol::control::DaemonStats {
     let clients = shared.clients.lock().map(|c| c.clone()).unwrap_or_default();
     let sessions = shared.sessions.load(Ordering::Relaxed);
-    let s = crate::stats::collect(shared.gpu.as_deref(), &shared.pool, sessions, &clients, &shared.scene);
+    let s = crate::stats::collect(
+        shared.gpu.as_deref(),
+        (&shared.pool, &shared.daemon_pool),
+        sessions,
+        &clients,
+        &shared.scene,
+    );
     let pick_reads = shared.root.as_ref().map_or([0; 2], |r| r.pick_reads());
-    strata_protocol::control::DaemonStats { input_dropped: shared.input.dropped(), pick_reads, ..s }
+    let refused = shared.caps.refusals();
+    strata_protocol::control::DaemonStats { input_dropped: shared.input.dropped(), pick_reads, refused, ..s }
 }
 
 /// Every output, with its keyboard focus.

@@ -17,11 +17,13 @@ pub(super) fn export(shared: &Shared) -> serde_json::Value {
             .collect(),
         None => Vec::new(),
     };
-    let surface = shared
-        .scene
-        .rows()
+    let rows: Vec<_> = shared.scene.rows().into_iter().filter(|r| r.stable).collect();
+    let configured = |id: u64| shared.opts.surfaces.iter().find(|s| s.id == id);
+    // Entries for IDs no live surface holds stay as configured, so that their credentials
+    // survive the round trip.
+    let waiting: Vec<_> = shared.opts.surfaces.iter().filter(|s| !rows.iter().any(|r| r.id == s.id)).cloned().collect();
+    let surface = rows
         .into_iter()
-        .filter(|r| r.stable)
         .map(|r| SurfaceEntry {
             id: r.id,
             x: Some(r.rect[0]),
@@ -33,7 +35,12 @@ pub(super) fn export(shared: &Shared) -> serde_json::Value {
             destination: r.props.destination,
             normal: Some(r.normal),
             input: r.props.input,
+            uid: configured(r.id).and_then(|s| s.uid),
+            user: configured(r.id).and_then(|s| s.user.clone()),
+            gid: configured(r.id).and_then(|s| s.gid),
+            group: configured(r.id).and_then(|s| s.group.clone()),
         })
+        .chain(waiting)
         .collect();
     let layer = shared
         .scene

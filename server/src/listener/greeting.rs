@@ -10,7 +10,7 @@ use tokio::net::UnixStream;
 use super::doors;
 
 /// How long a client may take over each handshake step.
-const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
+pub(crate) const HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(5);
 
 pub(crate) async fn send(stream: &mut UnixStream, msg: &ServerMessage) -> Result<(), HandshakeError> {
     stream.write_all(&handshake::frame(msg)?).await?;

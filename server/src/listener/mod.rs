@@ -78,6 +78,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
             return Err(ServerError::BadRing(cap));
         }
     }
+    opts.caps.check(opts.max_client_devices, opts.total_gpu_bytes)?;
     let gpu = match opts.executor {
         ExecutorKind::Gles => Some(open_compositor_device(opts.global_priority)?),
         ExecutorKind::Drain => None,
@@ -91,7 +92,7 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         }
     }
     let scene = Arc::new(strata_scene::Scene::new(opts.frames_in_flight, opts.lighting));
-    scene.reserve_ids(opts.layout.iter().flat_map(|e| e.id.0.iter().map(|&id| u64::from(id))));
+    scene.reserve_ids(reserved_ids(&opts));
     scene.configure(&opts.surfaces, &opts.layers);
     if let Some(gpu) = &gpu {
         scene.set_compositor(gpu.clone());
@@ -126,13 +127,14 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
         gpu,
         scene,
         root,
-        pool: strata_device::account::Pool::new(opts.total_gpu_bytes),
+        pool: strata_device::account::Pool::with_reserve(opts.total_gpu_bytes, opts.caps.reserve_gpu_bytes.0),
+        daemon_pool: strata_device::account::Pool::daemon(opts.total_daemon_bytes),
         next_id: AtomicU64::new(1),
         clients: Mutex::default(),
         input: Default::default(),
         router: Mutex::new(Some(to_router)),
         sessions: AtomicU64::new(0),
-        client_devices: Arc::default(),
+        caps: crate::caps::Caps::new(opts.caps.clone(), opts.max_client_devices),
         shutdown: stop_rx,
         client_path: at,
         control_path: control_at,
@@ -162,14 +164,20 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
                     let shared = shared.clone();
                     tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Client).await });
                 }
-                Err(e) => client_refusals.failed("client", &e),
+                Err(e) => {
+                    client_refusals.failed("client", &e);
+                    shared.caps.count("accept");
+                }
             },
             accepted = doors.control.accept(), if control_refusals.open() => match accepted {
                 Ok((stream, _)) => {
                     let shared = shared.clone();
                     tasks.spawn(async move { handle_connection(stream, shared, doors::Door::Control).await });
                 }
-                Err(e) => control_refusals.failed("control", &e),
+                Err(e) => {
+                    control_refusals.failed("control", &e);
+                    shared.caps.count("accept");
+                }
             },
             () = tokio::time::sleep_until(client_wake), if !client_refusals.open() => client_refusals.reopen(),
             () = tokio::time::sleep_until(control_wake), if !control_refusals.open() => control_refusals.reopen(),
@@ -192,6 +200,42 @@ pub async fn serve(opts: ServeOptions, shutdown: impl std::future::Future<Output
     Ok(())
 }
 
+/// The stable IDs the configuration names, each with the claim of an entry that requires
+/// credentials for it: the layout's, and `[[surface]]` entries' that require credentials.
+fn reserved_ids(opts: &ServeOptions) -> Vec<(u64, Option<(String, strata_protocol::control::Requirement)>)> {
+    use crate::identity::Entry;
+    let layout = opts.layout.iter().flat_map(|e| {
+        let claim = e.requirement().any().then(|| (format!("[[layout]] {}", e.label()), e.requirement()));
+        e.id.0.iter().map(move |&id| (u64::from(id), claim.clone()))
+    });
+    let surfaces = opts.surfaces.iter().filter(|s| s.requirement().any());
+    layout.chain(surfaces.map(|s| (s.id, Some((format!("[[surface]] {}", s.id), s.requirement()))))).collect()
+}
+
+/// Admits a session of `peer` with `identity` against the caps (the refusal's reason if not):
+/// its class as the daemon's configuration fixes it, whether it draws on the reserves, and
+/// a device place if it is to have a device of its own and one is free to it.
+fn admit(
+    shared: &Shared,
+    peer: &strata_protocol::control::Peer,
+    identity: &crate::identity::Identity<'_>,
+    handshake: Option<crate::caps::Handshake>,
+) -> Result<client::Admission, String> {
+    use crate::identity::Entry;
+    let opts = &shared.opts;
+    let class = identity.layout.and_then(|e| e.priority).unwrap_or(opts.default_class);
+    let by_entry = identity.quota.is_some_and(|(_, q)| q.reserve == Some(true));
+    let reserved = by_entry || shared.caps.args().reserved(class);
+    let ask = crate::caps::Ask {
+        uid: peer.uid,
+        entry: identity.quota.map(|(i, q)| (i, q.sessions, q.label())),
+        reserved,
+        device: opts.executor == options::ExecutorKind::Gles && opts.devices == options::DeviceMode::PerClient,
+    };
+    let (seat, place) = shared.caps.admit(&ask)?;
+    Ok(client::Admission { seat, place, reserved, handshake })
+}
+
 async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: doors::Door) {
     let id = shared.next_id.fetch_add(1, Ordering::Relaxed);
     let mut peer = match peer_of(&stream) {
@@ -200,6 +244,18 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: do
             warn!(client = id, "refused: the kernel gave no credentials for the connection: {e}");
             return;
         }
+    };
+    // A user's connections in their handshake are capped, so that a flood of half-open ones
+    // from one user leaves the others' doors open.
+    let handshake = match door {
+        doors::Door::Client => match shared.caps.handshake(peer.uid, greeting::HANDSHAKE_TIMEOUT).await {
+            Ok(h) => Some(h),
+            Err(reason) => {
+                let _ = send(&mut stream, &ServerMessage::Refused { reason }).await;
+                return;
+            }
+        },
+        doors::Door::Control => None,
     };
     let first = match first_byte(&stream).await {
         Ok(b) => b,
@@ -268,8 +324,16 @@ async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: do
         );
     }
     let span = tracing::info_span!("client", id, uid = peer.uid, pid = peer.pid, name = %shown(&hello.name), role = %shown(&hello.role));
+    let admitted = admit(&shared, &peer, &identity, handshake);
+    let admission = match admitted {
+        Ok(a) => a,
+        Err(reason) => {
+            let _ = send(&mut stream, &ServerMessage::Refused { reason }).await;
+            return;
+        }
+    };
     shared.scene.client_connected(id, &hello.name, peer);
-    let run = client::run_client(&mut stream, &shared, id, &hello, identity);
+    let run = client::run_client(&mut stream, &shared, id, &hello, identity, admission);
     let reason = match run.instrument(span.clone()).await {
         Ok(end) => {
             match end {

@@ -55,6 +55,10 @@ pub struct ServeOptions {
     pub quotas: Vec<crate::quota::QuotaEntry>,
     /// GPU memory all clients together may hold.
     pub total_gpu_bytes: u64,
+    /// The daemon's own memory all clients' sessions together may hold.
+    pub total_daemon_bytes: u64,
+    /// Longest a chunked command may take from its first chunk to its last.
+    pub command_time: std::time::Duration,
     /// The class of clients the configuration does not name and whose contexts do not ask.
     pub default_class: Priority,
     /// Whether each client renders on a device of its own or all share the compositor's.
@@ -71,6 +75,8 @@ pub struct ServeOptions {
     /// Most clients' devices open at once (`None`: as many as the driver opens); clients
     /// beyond it share the compositor's device.
     pub max_client_devices: Option<usize>,
+    /// Caps on sessions, devices and handshakes, and the reserved class's reserves.
+    pub caps: crate::caps::CapArgs,
     /// When the compositor draws a lower-priority change band by band between refreshes.
     pub bands: strata_compositor::root::BandOptions,
     /// Real input devices (`--input libinput`).
@@ -127,6 +133,8 @@ impl Default for ServeOptions {
             limits: strata_device::account::Limits::default(),
             quotas: Vec::new(),
             total_gpu_bytes: strata_device::account::default_total(),
+            command_time: std::time::Duration::from_secs(30),
+            total_daemon_bytes: strata_device::account::default_total() / 2,
             default_class: Priority::Normal,
             devices: DeviceMode::PerClient,
             frame_transfer: strata_gles::TransferMode::Auto,
@@ -135,6 +143,7 @@ impl Default for ServeOptions {
             client_rasterizer_threads: Some(1),
             bands: strata_compositor::root::BandOptions::default(),
             max_client_devices: None,
+            caps: crate::caps::CapArgs::default(),
             input: crate::input::libinput::InputArgs::default(),
         }
     }
@@ -161,6 +170,9 @@ pub enum ServerError {
     /// No outputs, or two with one name.
     #[error("{0}")]
     Outputs(String),
+    /// Caps and reserves that cannot hold together.
+    #[error(transparent)]
+    Caps(#[from] crate::caps::CapError),
     /// Ring sizes are unusable.
     #[error("ring capacity {0} must be a power of two between 4 KiB and 1 GiB")]
     BadRing(u32),

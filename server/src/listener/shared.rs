@@ -42,13 +42,15 @@ pub(crate) struct Shared {
     pub(crate) next_id: AtomicU64,
     pub(crate) clients: Mutex<HashMap<u64, ClientInfo>>,
     pub(crate) pool: Arc<strata_device::account::Pool>,
+    /// The daemon's own memory that sessions hold for their clients.
+    pub(crate) daemon_pool: Arc<strata_device::account::Pool>,
     /// Grabs and keyboard focus.
     pub(crate) input: crate::input::Router,
     /// The input routing thread's queue.
     pub(crate) router: Mutex<Option<std::sync::mpsc::Sender<crate::listener::shared::Routed>>>,
     pub(crate) sessions: AtomicU64,
-    /// Clients' devices open now (for `--max-client-devices`).
-    pub(crate) client_devices: Arc<std::sync::atomic::AtomicUsize>,
+    /// Sessions, devices and handshakes counted against their caps.
+    pub(crate) caps: Arc<crate::caps::Caps>,
     pub(crate) shutdown: watch::Receiver<bool>,
     /// Where the client socket is (for refusals that point there).
     pub(crate) client_path: PathBuf,
