@@ -18,13 +18,9 @@ use strata_client::setup::{egl_context, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_protocol::control::Priority;
 use support::scene::list;
+use support::users::{root, IC_USER, NOBODY};
 use support::windows::{Client, EGL_BAD_MATCH};
 use support::{stats, Daemon, TempDir};
-
-/// The user and group `nobody`/`nogroup` (65534 on Debian): the head unit's virtual machine.
-const NOBODY: (u32, u32) = (65534, 65534);
-/// User `daemon` (1 on Debian) in group `nogroup`: the instrument cluster's virtual machine.
-const IC_USER: (u32, u32) = (1, 65534);
 
 const GL_TEXTURE_2D: u32 = 0x0DE1;
 const GL_RGBA: u32 = 0x1908;
@@ -33,16 +29,6 @@ const GL_UNSIGNED_BYTE: u32 = 0x1401;
 #[test]
 fn client_process() {
     support::windows::serve();
-}
-
-/// Whether this test runs as root (needed to start processes as other users).
-fn root() -> bool {
-    // SAFETY: geteuid cannot fail.
-    let root = unsafe { libc::geteuid() } == 0;
-    if !root {
-        eprintln!("skipped: starting clients as other users needs root");
-    }
-    root
 }
 
 /// A daemon whose client socket other users' processes reach (group `nogroup`), configured

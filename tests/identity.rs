@@ -19,14 +19,10 @@ use std::time::{Duration, Instant};
 
 use strata_protocol::control::{Priority, SurfaceRow};
 use support::scene::{ctl, list, png};
+use support::users::{root, IC_USER, NOBODY};
 use support::windows::{self, Client};
 use support::{Daemon, TempDir};
 
-/// The user and group `nobody`/`nogroup` (65534 on Debian).
-const NOBODY: (u32, u32) = (65534, 65534);
-/// User `daemon` (1 on Debian) in group `nogroup`, which may use the client socket: the
-/// instrument cluster's virtual machine.
-const IC_USER: (u32, u32) = (1, 65534);
 /// A uid that no client runs as: the prober's.
 const PROBER: (u32, u32) = (65533, 65533);
 
@@ -85,16 +81,6 @@ fn probe_round(tried: &mut u64, opened: &mut Vec<String>) {
             attempt(&e.path());
         }
     }
-}
-
-/// Whether this test runs as root (needed to start processes as other users).
-fn root() -> bool {
-    // SAFETY: geteuid cannot fail.
-    let root = unsafe { libc::geteuid() } == 0;
-    if !root {
-        eprintln!("skipped: starting clients as other users needs root");
-    }
-    root
 }
 
 /// A directory other users can reach, holding the drop-in libraries and a daemon whose client

@@ -5,6 +5,7 @@
 pub mod egl;
 pub mod gl;
 pub mod scene;
+pub mod users;
 pub mod windows;
 
 use std::io::Write;
