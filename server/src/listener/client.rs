@@ -48,6 +48,8 @@ pub(super) struct Admission {
     pub(super) place: Option<crate::caps::DevicePlace>,
     /// Whether it draws on the reserves.
     pub(super) reserved: bool,
+    /// Its class as the daemon's configuration gives it (its entry's, else the default).
+    pub(super) class: Priority,
     /// Its place among handshakes in progress, given up once the client has mapped its
     /// segment.
     pub(super) handshake: Option<crate::caps::Handshake>,
@@ -95,7 +97,7 @@ pub(super) async fn run_client(
 ) -> Result<SessionEnd, SetupError> {
     let opts = &shared.opts;
     let limits = identity.limits(opts.limits);
-    let Admission { seat: _seat, place, reserved, handshake } = admission;
+    let Admission { seat: _seat, place, reserved, class, handshake } = admission;
     let pools = (shared.pool.clone(), shared.daemon_pool.clone());
     let account = strata_device::account::Account::new(&hello.name, limits, pools, reserved);
     // The segment, and the private copy of a frame the reader makes, are charged before they
@@ -150,7 +152,6 @@ pub(super) async fn run_client(
             // A client that claimed an entry's name without its credentials keeps the default
             // class: its context cannot ask for another.
             let fixed = entry.and_then(|e| e.priority).or(identity.refused.map(|_| opts.default_class));
-            let class = fixed.unwrap_or(opts.default_class);
             let deadline = entry.is_some_and(|e| e.deadline);
             shared.scene.set_policy(id, class, deadline);
             if fixed.is_some() || deadline {

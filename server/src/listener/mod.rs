@@ -233,7 +233,7 @@ fn admit(
         device: opts.executor == options::ExecutorKind::Gles && opts.devices == options::DeviceMode::PerClient,
     };
     let (seat, place) = shared.caps.admit(&ask)?;
-    Ok(client::Admission { seat, place, reserved, handshake })
+    Ok(client::Admission { seat, place, reserved, class, handshake })
 }
 
 async fn handle_connection(mut stream: UnixStream, shared: Arc<Shared>, door: doors::Door) {
