@@ -17,7 +17,7 @@ use strata_protocol::input::InputEvent;
 
 use crate::error::ClientError;
 use crate::input::InputReader;
-use strata_protocol::ring::{Reader, Writer};
+use strata_protocol::ring::{Reader, Writer, STREAM_FROM};
 use strata_protocol::segment::Segment;
 use strata_protocol::tally::Tally;
 use strata_protocol::{Calls, Command, Reply, StreamTally};
@@ -186,6 +186,18 @@ impl Connection {
     pub fn take_input_reader(&mut self) -> Option<InputReader> {
         self.input.take()
     }
+
+    /// Writes `cmd`, `len` bytes encoded, as one message.
+    fn write_message(&mut self, cmd: &Command<'_>, len: usize, alive: &dyn Fn() -> bool) -> Result<(), ClientError> {
+        let tally = &mut self.tally;
+        self.commands.write::<ClientError>(len, alive, |buf| {
+            codec::encode_into(cmd, buf)?;
+            if let Some(t) = tally {
+                t.add(buf);
+            }
+            Ok(())
+        })
+    }
 }
 
 impl Calls for Connection {
@@ -195,14 +207,14 @@ impl Calls for Connection {
         let fd = self.stream.as_raw_fd();
         let alive = move || socket_alive(fd);
         let len = codec::encoded_len(cmd)?;
-        let tally = &mut self.tally;
-        self.commands.write::<ClientError>(len, &alive, |buf| {
-            codec::encode_into(cmd, buf)?;
-            if let Some(t) = tally {
-                t.add(buf);
+        if len >= STREAM_FROM {
+            // A large blob follows its command in pieces, read straight to where it goes.
+            if let Some((head, bytes)) = cmd.split_bulk(STREAM_FROM) {
+                self.write_message(&head, codec::encoded_len(&head)?, &alive)?;
+                return Ok(self.commands.write_bulk(bytes, &alive)?);
             }
-            Ok(())
-        })
+        }
+        self.write_message(cmd, len, &alive)
     }
 
     fn call(&mut self, cmd: &Command<'_>) -> Result<Reply, ClientError> {

@@ -4,8 +4,9 @@
 //! control block and a zeroed data area are built over a plain heap buffer; each round writes
 //! the bytes into the data area at the offset, publishes a head `advance` bytes past the tail
 //! the reader last released (so that most rounds are plausible, and any head is possible),
-//! then runs `recv_batch` and decodes every delivered message as the session does. The peer counts as gone, so a reader
-//! that would wait returns instead; `recv_batch` is only entered with data published, because
+//! then runs `recv_messages` and decodes every delivered message as the session does (a
+//! streamed blob announced, then read from the `BULK` frames after it). The peer counts as gone, so a reader
+//! that would wait returns instead; `recv_messages` is only entered with data published, because
 //! with none it sleeps on the futex before it notices.
 #![no_main]
 
@@ -14,7 +15,7 @@ use std::sync::Arc;
 
 use libfuzzer_sys::fuzz_target;
 use strata_protocol::codec::decode_command;
-use strata_protocol::ring::{Backing, Reader, RingError, RingRegion, CONTROL_BYTES, MIN_CAPACITY};
+use strata_protocol::ring::{Backing, Message, Oversized, Reader, RingError, RingRegion, CONTROL_BYTES, MIN_CAPACITY};
 
 /// The data area's size: the smallest a ring may have, so that the input covers it.
 const CAPACITY: usize = MIN_CAPACITY as usize;
@@ -69,9 +70,20 @@ fuzz_target!(|data: &[u8]| {
         if !reader.has_data() {
             continue;
         }
-        let r = reader.recv_batch::<RingError>(&|| false, |msg| {
+        let r = reader.recv_messages::<RingError>(&|| false, Oversized::Refuse, |m, bulk| {
+            let Message::Whole(msg) = m else { return Ok(()) };
             assert!(msg.len() <= MAX_MESSAGE, "a {}-byte message passed the {MAX_MESSAGE}-byte limit", msg.len());
-            let _ = decode_command(msg);
+            // As the session does: a streamed blob is announced, then read from the frames after.
+            let Ok(mut cmd) = decode_command(msg) else { return Ok(()) };
+            if let Some(blob) = cmd.bulk_mut() {
+                let len = blob.streamed_len().unwrap_or(0);
+                if len <= MAX_MESSAGE as u64 {
+                    bulk.expect(len)?;
+                    blob.attach(bulk);
+                    blob.materialize()?;
+                    assert_eq!(blob.as_bytes().len() as u64, len, "a streamed blob read at another length");
+                }
+            }
             Ok(())
         });
         if r.is_err() {

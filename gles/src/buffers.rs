@@ -106,7 +106,11 @@ impl GlesExecutor {
         *b = Buffer { generation: b.generation, usage: b.usage, ..Buffer::default() };
         let padded = (size as u64).div_ceil(4).max(1) * 4;
         b._reserved = Some(account.reserve(size as u64 + padded).map_err(|_| GlError::OutOfMemory)?);
-        b.data = data.map(|d| d.as_bytes().to_vec()).unwrap_or_else(|| vec![0; size as usize]);
+        // A streamed blob is read from the ring straight into the shadow.
+        b.data = vec![0; size as usize];
+        if let Some(d) = &data {
+            d.read_into(&mut b.data).map_err(|_| GlError::OutOfMemory)?;
+        }
         b.usage = usage;
         b.generation += 1;
         let gbuf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -143,8 +147,7 @@ impl GlesExecutor {
         if end.is_none_or(|e| e as usize > b.data.len()) {
             return Err(GlError::InvalidValue);
         }
-        b.write(gpu, flushed, offset as usize, data.as_bytes());
-        Ok(())
+        b.write_blob(gpu, flushed, offset as usize, &data).map_err(|_| GlError::OutOfMemory)
     }
 
     pub(super) fn glGetBufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {

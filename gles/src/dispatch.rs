@@ -117,6 +117,11 @@ impl Executor for GlesExecutor {
         self.record(GlError::OutOfMemory);
         op.is_sync().then(|| Reply::Unsupported(format!("{} refused: {why}", op.name())))
     }
+
+    fn streams(&self, op: Opcode) -> bool {
+        // Their blobs go from the ring straight into the buffer's shadow.
+        matches!(op, Opcode::BufferData | Opcode::BufferSubData)
+    }
 }
 
 impl GlesExecutor {

@@ -17,4 +17,12 @@ pub trait Executor: Send {
     fn refuse(&mut self, op: Opcode, why: &str) -> Option<Reply> {
         op.is_sync().then(|| Reply::Unsupported(format!("{} refused: {why}", op.name())))
     }
+
+    /// Whether the executor reads a streamed blob of `op` itself, straight from the ring into
+    /// its destination ([`strata_protocol::Blob::read_into`]); for any other command the
+    /// session reads the blob into the daemon's memory first, and the executor sees its bytes.
+    fn streams(&self, op: Opcode) -> bool {
+        let _ = op;
+        false
+    }
 }

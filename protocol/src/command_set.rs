@@ -138,12 +138,36 @@ macro_rules! command_set {
             }
         }
 
-        impl Command<'_> {
+        impl<'a> Command<'a> {
             /// Which command this is.
             pub fn opcode(&self) -> Opcode {
                 match self {
                     $( Command::$av { .. } => Opcode::$av, )*
                     $( Command::$sv { .. } => Opcode::$sv, )*
+                }
+            }
+
+            /// If a blob of the command holds at least `min` bytes: the command with that blob
+            /// (the first such) announced as streamed, and the blob's bytes, to be streamed
+            /// after it ([`crate::ring::Writer::write_bulk`]).
+            pub fn split_bulk(&self, min: usize) -> Option<(Command<'_>, &[u8])> {
+                #[allow(unused_imports)]
+                use crate::wire::{BulkProbe, BulkProbeAny};
+                let mut bulk = None;
+                let cmd = match self {
+                    $( Command::$av { $( $af ),* } => Command::$av { $( $af: BulkProbe($af).split(min, &mut bulk) ),* }, )*
+                    $( Command::$sv { $( $sf ),* } => Command::$sv { $( $sf: BulkProbe($sf).split(min, &mut bulk) ),* }, )*
+                };
+                bulk.map(|b| (cmd, b))
+            }
+
+            /// The command's first streamed blob not yet attached to its stream, if any.
+            pub fn bulk_mut(&mut self) -> Option<&mut crate::wire::Blob<'a>> {
+                #[allow(unused_imports)]
+                use crate::wire::{BulkProbeMut, BulkProbeMutAny};
+                match self {
+                    $( Command::$av { $( $af ),* } => { $( if let Some(b) = BulkProbeMut($af).streamed() { return Some(b); } )* None } )*
+                    $( Command::$sv { $( $sf ),* } => { $( if let Some(b) = BulkProbeMut($sf).streamed() { return Some(b); } )* None } )*
                 }
             }
         }

@@ -97,7 +97,7 @@ impl<'de> Deserialize<'de> for Bytes {
             let text = String::deserialize(d)?;
             data_encoding::BASE64.decode(text.as_bytes()).map(Bytes).map_err(serde::de::Error::custom)
         } else {
-            Blob::deserialize(d).map(|b| Bytes(b.0.into_owned()))
+            d.deserialize_bytes(crate::wire::BytesVisitor).map(|b| Bytes(b.into_owned()))
         }
     }
 }

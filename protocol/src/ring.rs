@@ -6,7 +6,8 @@
 //! `[len: u32][kind: u32][payload; len][padding]`. When a frame does not fit before the end
 //! of the data area the writer emits a `WRAP` frame and continues at offset 0. A message larger
 //! than half the ring is split into `CHUNK_FIRST` (payload starts with the total length as
-//! `u64`), `CHUNK_MORE` and `CHUNK_LAST` frames.
+//! `u64`), `CHUNK_MORE` and `CHUNK_LAST` frames. A large blob may instead follow its message in `BULK`
+//! frames, which the consumer of the message copies straight to where the bytes go (see [`Bulk`]).
 //!
 //! The reader trusts nothing in shared memory except what it validates: it keeps its own tail,
 //! reads each header once into locals, checks every length against the published head and
@@ -35,6 +36,9 @@ pub const KIND_CHUNK_FIRST: u32 = 2;
 pub const KIND_CHUNK_MORE: u32 = 3;
 /// Last piece of a chunked message.
 pub const KIND_CHUNK_LAST: u32 = 4;
+/// A piece of a streamed blob: raw bytes that belong to the message before it (see
+/// [`Bulk`]).
+pub const KIND_BULK: u32 = 5;
 /// Skip to the start of the data area.
 pub const KIND_WRAP: u32 = 0x5041_5257;
 
@@ -68,7 +72,7 @@ pub struct RingControl {
 pub const CONTROL_BYTES: usize = std::mem::size_of::<RingControl>();
 
 /// A ring failure: a peer that vanished or broke the framing rules.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum RingError {
     /// The peer disconnected or died while we waited.
     #[error("peer disconnected")]
@@ -251,12 +255,21 @@ impl RingRegion {
     /// `off + len` must lie within the data area.
     unsafe fn copy_out(&self, off: usize, len: usize, dst: &mut Vec<u8>) {
         dst.reserve(len);
+        self.copy_raw(off, len, dst.as_mut_ptr().add(dst.len()));
+        dst.set_len(dst.len() + len);
+    }
+
+    /// Copies the `len` bytes at `off` to `out`, each read once (as [`RingRegion::copy_out`]).
+    ///
+    /// # Safety
+    /// `off + len` must lie within the data area, and `out` must name `len` writable bytes of
+    /// the daemon's own memory.
+    unsafe fn copy_raw(&self, off: usize, len: usize, out: *mut u8) {
         let src = self.data.as_ptr().add(off);
-        let out = dst.as_mut_ptr().add(dst.len());
         #[cfg(target_arch = "x86_64")]
         if len >= STRING_COPY_FROM {
             // SAFETY: `src` names `len` readable bytes of the data area and `out` `len`
-            // writable bytes that `reserve` made; they do not overlap (`dst` is the daemon's).
+            // writable bytes of the caller's; they do not overlap (`out` is the daemon's).
             std::arch::asm!(
                 "rep movsb",
                 inout("rcx") len => _,
@@ -264,7 +277,6 @@ impl RingRegion {
                 inout("rdi") out => _,
                 options(nostack, preserves_flags)
             );
-            dst.set_len(dst.len() + len);
             return;
         }
         let byte = |i: usize| AtomicU8::from_ptr(src.add(i)).load(Ordering::Relaxed);
@@ -282,7 +294,6 @@ impl RingRegion {
             out.add(i).write(byte(i));
             i += 1;
         }
-        dst.set_len(dst.len() + len);
     }
 
     /// The `N` bytes at `off`, read once (as [`RingRegion::copy_out`] reads them).
@@ -367,11 +378,16 @@ fn wait_change(
     }
 }
 
+mod bulk;
+mod frame;
+mod holdings;
 mod reader;
 mod writer;
 
-pub use reader::{Holdings, Message, Oversized, Reader, OVERSIZED_HEAD};
-pub use writer::Writer;
+pub use bulk::Bulk;
+pub use holdings::Holdings;
+pub use reader::{Message, Oversized, Reader, OVERSIZED_HEAD};
+pub use writer::{Writer, BULK_PIECE, HOT_WINDOW, STREAM_FROM};
 
 #[cfg(test)]
 mod tests {
@@ -455,7 +471,7 @@ mod tests {
         let mut r = Reader::new(reader_ring, 10_000);
         let mut seen = Vec::new();
         while seen.len() < 3 {
-            r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m| {
+            r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m, _| {
                 seen.push(match m {
                     Message::Whole(b) => (b.len() as u64, b.to_vec()),
                     Message::Oversized { len, head, .. } => (len, head.to_vec()),

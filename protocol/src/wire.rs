@@ -1,4 +1,10 @@
-//! Field types that carry bulk data on the wire as raw bytes, borrowed from the ring on decode.
+//! Field types that carry bulk data on the wire as raw bytes, borrowed from the reader's
+//! private copy on decode.
+
+mod blob;
+
+pub(crate) use blob::BytesVisitor;
+pub use blob::{Blob, BulkProbe, BulkProbeAny, BulkProbeMut, BulkProbeMutAny, BulkSource};
 
 use std::borrow::Cow;
 use std::fmt;
@@ -24,73 +30,6 @@ pub type GLbitfield = u32;
 pub type EglHandle = u32;
 /// EGL attribute or integer value.
 pub type EGLint = i32;
-
-/// Raw bytes (vertex data, pixels, shader binaries) sent without per-element encoding.
-#[derive(Clone, PartialEq, Eq, Default)]
-pub struct Blob<'a>(pub Cow<'a, [u8]>);
-
-impl<'a> Blob<'a> {
-    /// Wraps borrowed bytes without copying.
-    pub fn borrowed(bytes: &'a [u8]) -> Self {
-        Blob(Cow::Borrowed(bytes))
-    }
-    /// Wraps owned bytes.
-    pub fn owned(bytes: Vec<u8>) -> Blob<'static> {
-        Blob(Cow::Owned(bytes))
-    }
-    /// The bytes.
-    pub fn as_bytes(&self) -> &[u8] {
-        &self.0
-    }
-    /// Number of bytes.
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-    /// Whether there are no bytes.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-    /// Detaches the bytes from the buffer they were decoded from.
-    pub fn into_owned(self) -> Blob<'static> {
-        Blob(Cow::Owned(self.0.into_owned()))
-    }
-}
-
-impl fmt::Debug for Blob<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Blob({} bytes, crc32 {:08x})", self.0.len(), crc32fast::hash(&self.0))
-    }
-}
-
-impl Serialize for Blob<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_bytes(&self.0)
-    }
-}
-
-struct BytesVisitor;
-
-impl<'de> Visitor<'de> for BytesVisitor {
-    type Value = Cow<'de, [u8]>;
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("a byte string")
-    }
-    fn visit_borrowed_bytes<E: serde::de::Error>(self, v: &'de [u8]) -> Result<Self::Value, E> {
-        Ok(Cow::Borrowed(v))
-    }
-    fn visit_bytes<E: serde::de::Error>(self, v: &[u8]) -> Result<Self::Value, E> {
-        Ok(Cow::Owned(v.to_vec()))
-    }
-    fn visit_byte_buf<E: serde::de::Error>(self, v: Vec<u8>) -> Result<Self::Value, E> {
-        Ok(Cow::Owned(v))
-    }
-}
-
-impl<'de: 'a, 'a> Deserialize<'de> for Blob<'a> {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_bytes(BytesVisitor).map(Blob)
-    }
-}
 
 /// UTF-8 text (shader sources, identifiers, logs), borrowed from the ring on decode.
 #[derive(Clone, PartialEq, Eq, Default)]

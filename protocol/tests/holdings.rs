@@ -53,7 +53,7 @@ fn a_chunked_message_is_charged_before_it_is_assembled_and_refused_when_it_canno
     let mut seen = Vec::new();
     while seen.len() < 3 {
         let charges = ledger.charges.clone();
-        r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m| {
+        r.recv_messages::<RingError>(&|| true, Oversized::Skip, |m, _| {
             // What is held while a message is delivered: charged before it was assembled.
             let held = charges.lock().expect("ledger").last().copied().unwrap_or(0);
             seen.push(match m {
@@ -89,7 +89,7 @@ fn a_message_begun_and_never_finished_ends_the_read_in_time() {
     let mut r = Reader::new(reader_ring, 1 << 20).with_partial_limit(limit);
     let start = Instant::now();
     let err = loop {
-        if let Err(e) = r.recv_messages::<RingError>(&|| true, Oversized::Skip, |_| Ok(())) {
+        if let Err(e) = r.recv_messages::<RingError>(&|| true, Oversized::Skip, |_, _| Ok(())) {
             break e;
         }
         assert!(start.elapsed() < Duration::from_secs(10), "the read never ended");

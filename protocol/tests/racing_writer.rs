@@ -15,7 +15,7 @@ use rand::{Rng, SeedableRng};
 use strata_protocol::codec::{decode_command, encode_to_vec};
 use strata_protocol::ring::{Reader, RingError, Writer};
 use strata_protocol::{Command, Text};
-use support::heap_ring;
+use support::{heap_ring, scribbler};
 
 fn write(w: &mut Writer, msg: &[u8]) {
     w.write::<RingError>(msg.len(), &|| true, |buf| {
@@ -80,22 +80,10 @@ fn a_racing_writer_changes_nothing_delivered() {
         // ... then the peer scribbles while the reader reads and decodes.
         let stop = Arc::new(AtomicBool::new(false));
         let strokes = Arc::new(AtomicUsize::new(0));
-        let racer = {
-            let (stop, strokes) = (stop.clone(), strokes.clone());
-            let seed = rng.random::<u64>();
-            let headers_too = rounds % 4 == 0;
-            std::thread::spawn(move || {
-                let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-                while !stop.load(Ordering::Relaxed) {
-                    let i = rng.random_range(0..peer.len);
-                    // Payload bytes only, except in every fourth round.
-                    if headers_too || i % 8 >= 4 {
-                        peer.byte(i).store(rng.random(), Ordering::Relaxed);
-                        strokes.fetch_add(1, Ordering::Relaxed);
-                    }
-                }
-            })
-        };
+        // Payload bytes only, except in every fourth round.
+        let headers_too = rounds % 4 == 0;
+        let pick = move |i: usize| headers_too || i % 8 >= 4;
+        let racer = scribbler(peer, rng.random(), stop.clone(), strokes.clone(), pick);
         let result = r.recv_batch::<RingError>(&|| false, |msg| {
             let before = msg.to_vec();
             let decoded = decode_command(msg).map(|c| format!("{c:?}")).map_err(|e| e.to_string());

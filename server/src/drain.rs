@@ -1,11 +1,12 @@
 //! The transport-only executor, for measuring the command stream without GL.
 
 use strata_gles::execute::{ExecError, Executor};
-use strata_protocol::{Command, Reply};
+use strata_protocol::{Blob, Command, Opcode, Reply};
 
 /// The transport-only executor: it answers Strata's own calls, stages every bulk payload the
-/// way an upload would (one copy into daemon-owned memory), and reports every other
-/// synchronous call as unsupported, because this build has no GLES back end.
+/// way an upload would (one copy into daemon-owned memory: a streamed blob straight from the
+/// ring), and reports every other synchronous call as unsupported, because this build has no
+/// GLES back end.
 #[derive(Default)]
 pub struct Drain {
     staging: Vec<u8>,
@@ -18,14 +19,30 @@ impl Drain {
         self.staged_bytes
     }
 
-    fn stage(&mut self, bytes: &[u8]) {
-        self.staging.clear();
-        self.staging.extend_from_slice(bytes);
-        self.staged_bytes += bytes.len() as u64;
+    fn stage(&mut self, blob: &Blob<'_>) -> Result<(), ExecError> {
+        // Kept between payloads, as a staging belt is: only growth is zeroed.
+        self.staging.resize(blob.len(), 0);
+        blob.read_into(&mut self.staging).map_err(|e| ExecError(e.to_string()))?;
+        self.staged_bytes += blob.len() as u64;
+        Ok(())
     }
 }
 
+/// The commands whose payload the executor stages.
+const STAGED: &[Opcode] = &[
+    Opcode::BufferData,
+    Opcode::BufferSubData,
+    Opcode::TexImage2D,
+    Opcode::TexSubImage2D,
+    Opcode::CompressedTexImage2D,
+    Opcode::CompressedTexSubImage2D,
+];
+
 impl Executor for Drain {
+    fn streams(&self, op: Opcode) -> bool {
+        STAGED.contains(&op)
+    }
+
     fn execute(&mut self, cmd: Command<'_>) -> Result<Option<Reply>, ExecError> {
         let op = cmd.opcode();
         match &cmd {
@@ -35,7 +52,7 @@ impl Executor for Drain {
             | Command::TexImage2D { pixels: Some(d), .. }
             | Command::TexSubImage2D { pixels: d, .. }
             | Command::CompressedTexImage2D { data: d, .. }
-            | Command::CompressedTexSubImage2D { data: d, .. } => self.stage(d.as_bytes()),
+            | Command::CompressedTexSubImage2D { data: d, .. } => self.stage(d)?,
             // Deliberately a catch-all: this executor measures transport, not GL. The GLES
             // executor's dispatch is generated from the command table and has no such arm.
             _ => {}

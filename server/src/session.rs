@@ -46,6 +46,23 @@ enum Stop {
     Exec(#[from] ExecError),
 }
 
+/// Refuses a command of `op` for `why` without running it: a synchronous one is answered,
+/// and the stream goes on.
+fn refuse(
+    executor: &mut dyn Executor,
+    replies: &mut Writer,
+    alive: &dyn Fn() -> bool,
+    op: strata_protocol::Opcode,
+    why: &str,
+) -> Result<(), Stop> {
+    if let Some(reply) = executor.refuse(op, why) {
+        let len = codec::encoded_len(&reply)?;
+        replies.write::<Stop>(len, alive, |buf| Ok(codec::encode_into(&reply, buf).map(|_| ())?))?;
+        replies.publish();
+    }
+    Ok(())
+}
+
 /// Summary of what a session decoded.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct SessionStats {
@@ -109,40 +126,76 @@ impl Session {
         let alive = move || !closed.load(Ordering::Acquire);
         let Session { reader, replies, tally, executor, stats, counter, account, .. } = &mut self;
         loop {
-            let r = reader.recv_messages::<Stop>(&alive, strata_protocol::ring::Oversized::Skip, |message| {
-                let (bytes, len, unheld) = match message {
-                    Message::Whole(bytes) => (bytes, bytes.len() as u64, None),
-                    // The reader kept only its start; it is refused below.
-                    Message::Oversized { len, head, why } => (head, len, why),
+            let r = reader.recv_messages::<Stop>(&alive, strata_protocol::ring::Oversized::Skip, |message, bulk| {
+                let mut count = |len: u64| {
+                    stats.commands += 1;
+                    stats.bytes += len;
+                    if let Some(c) = counter {
+                        c.fetch_add(len, Ordering::Relaxed);
+                    }
                 };
-                stats.commands += 1;
-                stats.bytes += len;
-                if let Some(c) = counter {
-                    c.fetch_add(len, Ordering::Relaxed);
-                }
-                let admitted = match (account.as_ref(), unheld) {
-                    (_, Some(why)) => Err(why.to_string()),
-                    (Some(a), None) => a.admit_command(len).map_err(|e| e.to_string()),
-                    (None, None) if matches!(message, Message::Oversized { .. }) => {
+                let bytes = match message {
+                    Message::Whole(bytes) => bytes,
+                    // The reader kept only its start: the command is refused.
+                    Message::Oversized { len, head, why } => {
+                        count(len);
+                        let why = match (why, account.as_ref()) {
+                            (Some(why), _) => why.to_string(),
+                            (None, Some(a)) => a.admit_command(len).err().map_or_else(
+                                || {
+                                    format!(
+                                        "{len} bytes exceed the {}-byte limit on one command",
+                                        codec::MAX_MESSAGE_LEN
+                                    )
+                                },
+                                |e| e.to_string(),
+                            ),
+                            (None, None) => {
+                                return Err(RingError::TooLarge { len, limit: codec::MAX_MESSAGE_LEN }.into())
+                            }
+                        };
+                        let op = codec::peek_opcode(head).ok_or(CodecError::UnknownCommand {
+                            opcode: u64::MAX,
+                            known: strata_protocol::Opcode::COUNT,
+                        })?;
+                        return refuse(executor.as_mut(), replies, &alive, op, &why);
+                    }
+                };
+                let mut cmd = codec::decode_command(bytes)?;
+                let op = cmd.opcode();
+                // A streamed blob follows the message: it counts toward its size.
+                let mut blob = cmd.bulk_mut();
+                let streamed = blob.as_ref().and_then(|b| b.streamed_len()).unwrap_or(0);
+                bulk.expect(streamed)?;
+                let len = (bytes.len() as u64).saturating_add(streamed);
+                count(len);
+                let admitted = match account.as_ref() {
+                    Some(a) => a.admit_command(len).map_err(|e| e.to_string()),
+                    None if len > codec::MAX_MESSAGE_LEN as u64 => {
                         return Err(RingError::TooLarge { len, limit: codec::MAX_MESSAGE_LEN }.into())
                     }
-                    (None, None) => Ok(()),
+                    None => Ok(()),
                 };
-                if let Err(e) = admitted {
+                if let Err(why) = admitted {
                     // Too large to run: the client's call fails, and the stream goes on.
-                    let op = codec::peek_opcode(bytes).ok_or(CodecError::UnknownCommand {
-                        opcode: u64::MAX,
-                        known: strata_protocol::Opcode::COUNT,
-                    })?;
-                    if let Some(reply) = executor.refuse(op, &e) {
-                        let len = codec::encoded_len(&reply)?;
-                        replies.write::<Stop>(len, &alive, |buf| Ok(codec::encode_into(&reply, buf).map(|_| ())?))?;
-                        replies.publish();
-                    }
-                    return Ok(());
+                    return refuse(executor.as_mut(), replies, &alive, op, &why);
                 }
-                let cmd = codec::decode_command(bytes)?;
-                let op = cmd.opcode();
+                if let Some(blob) = blob.as_mut() {
+                    blob.attach(bulk);
+                    if !executor.streams(op) {
+                        // Into the daemon's memory, charged first; refused, the call fails.
+                        match blob.materialize() {
+                            Err(RingError::NotHeld { why, .. }) => {
+                                return refuse(executor.as_mut(), replies, &alive, op, &why)
+                            }
+                            other => other?,
+                        }
+                    }
+                    if cmd.bulk_mut().is_some() {
+                        // One stream follows a message: a second streamed blob has no bytes.
+                        return Err(RingError::BadChunk("a second streamed blob in one message").into());
+                    }
+                }
                 let reply = match cmd {
                     Command::Verify { commands, crc32 } => Some(Reply::Verify(match tally {
                         Some(t) => StreamTally {

@@ -24,11 +24,30 @@ impl Buffer {
     /// the GPU copy.
     pub fn write(&mut self, gpu: &strata_device::Gpu, flushed: &Flushed, off: usize, bytes: &[u8]) {
         self.data[off..off + bytes.len()].copy_from_slice(bytes);
+        self.upload(gpu, flushed, off, bytes.len());
+    }
+
+    /// Writes `blob` at `off` (already checked to lie within the buffer) as [`Buffer::write`]
+    /// does, a streamed blob read from the ring straight into the shadow.
+    pub fn write_blob(
+        &mut self,
+        gpu: &strata_device::Gpu,
+        flushed: &Flushed,
+        off: usize,
+        blob: &strata_protocol::Blob<'_>,
+    ) -> Result<(), strata_protocol::ring::RingError> {
+        blob.read_into(&mut self.data[off..off + blob.len()])?;
+        self.upload(gpu, flushed, off, blob.len());
+        Ok(())
+    }
+
+    /// Copies the shadow's `len` bytes at `off` to the GPU copy.
+    fn upload(&mut self, gpu: &strata_device::Gpu, flushed: &Flushed, off: usize, len: usize) {
         self.generation += 1;
         if let Some(g) = &self.gpu {
             // wgpu writes whole 4-byte words; widen the range using the shadow.
             let start = off / 4 * 4;
-            let stop = ((off + bytes.len()).div_ceil(4) * 4).min(g.size() as usize);
+            let stop = ((off + len).div_ceil(4) * 4).min(g.size() as usize);
             let mut words = self.data[start..stop.min(self.data.len())].to_vec();
             words.resize(stop - start, 0);
             if !words.is_empty() {

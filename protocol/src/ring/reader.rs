@@ -3,9 +3,13 @@
 //! always that private copy, never a view of memory the peer can still write), reassembles
 //! chunked messages, and skips those over its limit.
 
+use std::cell::RefCell;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
+use super::bulk::BulkState;
+use super::frame::{next_frame, Frame, RELEASE_EVERY};
+use super::holdings::Holdings;
 use super::*;
 
 /// What the reader does with a message beyond its limit.
@@ -35,15 +39,6 @@ pub enum Message<'a> {
     },
 }
 
-/// Charges the memory a reader holds for its peer (a chunked message being assembled)
-/// before the reader allocates it.
-pub trait Holdings: Send {
-    /// The reader is about to hold `bytes` in all (less than before: it gives some back). An
-    /// error, with the reason, refuses the growth: the message is skipped and reported as
-    /// [`Message::Oversized`].
-    fn hold(&mut self, bytes: usize) -> Result<(), String>;
-}
-
 /// Bytes kept from the start of a message that is skipped for its size.
 pub const OVERSIZED_HEAD: usize = 16;
 
@@ -60,7 +55,9 @@ pub struct Reader {
     /// Of an oversized message being skipped: the bytes seen so far.
     skipped: Option<usize>,
     /// What the assembly's memory is charged to, and how much it holds.
-    holdings: Option<(Box<dyn Holdings>, usize)>,
+    holdings: RefCell<Option<(Box<dyn Holdings>, usize)>>,
+    /// Where the blob streamed after a message is read.
+    bulk: BulkState,
     /// Why the memory for the message being skipped was refused.
     refused: Option<String>,
     /// When the chunked message being read began, and how long one may take in all.
@@ -81,7 +78,8 @@ impl Reader {
             assembly: Vec::new(),
             expected: None,
             skipped: None,
-            holdings: None,
+            holdings: RefCell::new(None),
+            bulk: BulkState::default(),
             refused: None,
             partial: None,
             partial_limit: None,
@@ -91,7 +89,7 @@ impl Reader {
     /// Charges the memory of chunked messages being assembled to `holdings`, before it is
     /// allocated.
     pub fn with_holdings(mut self, holdings: Box<dyn Holdings>) -> Self {
-        self.holdings = Some((holdings, 0));
+        self.holdings = RefCell::new(Some((holdings, 0)));
         self
     }
 
@@ -104,7 +102,7 @@ impl Reader {
 
     /// Charges `bytes` as what the assembly holds; the reason if refused.
     fn hold(&mut self, bytes: usize) -> Result<(), String> {
-        if let Some((h, held)) = &mut self.holdings {
+        if let Some((h, held)) = self.holdings.get_mut() {
             if bytes != *held {
                 h.hold(bytes)?;
                 *held = bytes;
@@ -148,14 +146,15 @@ impl Reader {
         mut on_message: impl FnMut(&[u8]) -> Result<(), E>,
     ) -> Result<usize, E> {
         let limit = self.max_message;
-        self.recv_messages(alive, Oversized::Refuse, |m| match m {
+        self.recv_messages(alive, Oversized::Refuse, |m, _| match m {
             Message::Whole(bytes) => on_message(bytes),
             Message::Oversized { len, .. } => Err(RingError::TooLarge { len, limit }.into()),
         })
     }
 
     /// Waits until frames are published, then hands every message among them to `on_message`,
-    /// in order; returns the number delivered. A message beyond the limit is refused at once
+    /// in order, with the [`Bulk`] that streams a blob the message announces (consumed or
+    /// not, its bytes are gone once `on_message` returns); returns the number delivered. A message beyond the limit is refused at once
     /// with [`Oversized::Refuse`]; with [`Oversized::Skip`] a chunked one is skipped without
     /// being kept and reported as [`Message::Oversized`] once its last chunk is read, so that
     /// the stream goes on after it.
@@ -163,7 +162,7 @@ impl Reader {
         &mut self,
         alive: &dyn Fn() -> bool,
         oversized: Oversized,
-        mut on_message: impl FnMut(Message<'_>) -> Result<(), E>,
+        mut on_message: impl FnMut(Message<'_>, &Bulk<'_>) -> Result<(), E>,
     ) -> Result<usize, E> {
         let ctl = self.ring.ctl();
         let mut head = ctl.head.0.load(Ordering::Acquire);
@@ -181,52 +180,29 @@ impl Reader {
         let cap = self.ring.capacity;
         let mut delivered = 0;
         while self.tail != head {
-            let ahead = head.wrapping_sub(self.tail);
-            if ahead > cap {
-                return Err(RingError::BadHead { ahead, capacity: cap }.into());
-            }
-            let available = ahead as usize;
-            if available < FRAME_HEADER {
-                return Err(RingError::Truncated { needed: FRAME_HEADER, available }.into());
-            }
-            let off = self.ring.offset(self.tail);
-            // Frames keep the tail aligned; only a tail planted before the reader began is not.
-            if !off.is_multiple_of(8) {
-                return Err(RingError::MisalignedTail(self.tail).into());
-            }
-            let (len, kind) = self.ring.read_header(off);
+            let Frame { off, len, kind, size } = next_frame(&self.ring, self.tail, head)?;
             if kind == KIND_WRAP {
-                let skip = cap as usize - off;
-                if skip > available {
-                    return Err(RingError::Truncated { needed: skip, available }.into());
-                }
-                self.tail = self.tail.wrapping_add(skip as u32);
+                self.tail = self.tail.wrapping_add(size as u32);
                 continue;
             }
-            let limit = cap as usize - off - FRAME_HEADER;
-            if len as usize > limit {
-                return Err(RingError::BadLength { len, limit }.into());
-            }
-            let size = frame_size(len as usize);
-            if size > available {
-                return Err(RingError::Truncated { needed: size, available }.into());
-            }
             let payload = off + FRAME_HEADER;
-            let len = len as usize;
             match kind {
                 KIND_WHOLE => {
                     if self.expected.is_some() {
                         return Err(RingError::BadChunk("whole message inside a chunked one").into());
                     }
                     self.frame.clear();
-                    // SAFETY: `payload + len <= capacity` was checked above.
+                    // SAFETY: `payload + len <= capacity` was checked by `next_frame`.
                     unsafe { self.ring.copy_out(payload, len, &mut self.frame) };
-                    let r = on_message(Message::Whole(&self.frame));
+                    let frame = std::mem::take(&mut self.frame);
+                    let r = self.deliver(Message::Whole(&frame), (size, head), alive, &mut on_message);
+                    self.frame = frame;
                     if self.frame.capacity() > (64 << 20) {
                         self.frame = Vec::new();
                     }
-                    r?;
+                    head = r?;
                     delivered += 1;
+                    continue;
                 }
                 KIND_CHUNK_FIRST => {
                     if self.expected.is_some() {
@@ -289,12 +265,13 @@ impl Reader {
                         self.skipped = None;
                         self.partial = None;
                         let why = self.refused.take();
-                        on_message(Message::Oversized {
-                            len: total as u64,
-                            head: &self.assembly,
-                            why: why.as_deref(),
-                        })?;
+                        let kept = std::mem::take(&mut self.assembly);
+                        let message = Message::Oversized { len: total as u64, head: &kept, why: why.as_deref() };
+                        let r = self.deliver(message, (size, head), alive, &mut on_message);
+                        self.assembly = kept;
+                        head = r?;
                         delivered += 1;
+                        continue;
                     }
                 }
                 KIND_CHUNK_MORE | KIND_CHUNK_LAST => {
@@ -311,22 +288,53 @@ impl Reader {
                         self.expected = None;
                         self.partial = None;
                         let msg = std::mem::take(&mut self.assembly);
-                        let r = on_message(Message::Whole(&msg));
+                        let r = self.deliver(Message::Whole(&msg), (size, head), alive, &mut on_message);
                         self.assembly = msg;
                         self.trim();
-                        r?;
+                        head = r?;
                         delivered += 1;
+                        continue;
                     }
                 }
+                KIND_BULK => return Err(RingError::BadChunk("bulk frame outside a streamed blob").into()),
                 other => return Err(RingError::UnknownKind(other).into()),
             }
             self.tail = self.tail.wrapping_add(size as u32);
-            if self.tail.wrapping_sub(self.released) >= cap / 4 {
+            if self.tail.wrapping_sub(self.released) >= (cap / 4).min(RELEASE_EVERY) {
                 self.release();
             }
         }
         self.release();
         Ok(delivered)
+    }
+
+    /// Hands `message` (a frame of `size` bytes at the tail, `head` the published head as last
+    /// seen) to `on_message` with a [`Bulk`] over the frames after it, then skips what of its
+    /// blob `on_message` left unread; returns the published head as last seen.
+    fn deliver<E: From<RingError>>(
+        &mut self,
+        message: Message<'_>,
+        (size, head): (usize, u32),
+        alive: &dyn Fn() -> bool,
+        on_message: &mut impl FnMut(Message<'_>, &Bulk<'_>) -> Result<(), E>,
+    ) -> Result<u32, E> {
+        self.tail = self.tail.wrapping_add(size as u32);
+        self.bulk.begin(self.tail, head, self.released);
+        let bulk = Bulk::new(&self.ring, &self.bulk, alive, self.partial_limit, &self.holdings);
+        let r = on_message(message, &bulk);
+        if let Some(e) = self.bulk.failure() {
+            return Err(e.into());
+        }
+        r?;
+        if !self.bulk.used.get() {
+            return Ok(head);
+        }
+        bulk.finish()?;
+        (self.tail, self.released) = (self.bulk.tail.get(), self.bulk.released.get());
+        if self.tail.wrapping_sub(self.released) >= (self.ring.capacity / 4).min(RELEASE_EVERY) {
+            self.release();
+        }
+        Ok(self.bulk.head.get())
     }
 
     fn release(&mut self) {

@@ -5,6 +5,20 @@ use std::sync::atomic::Ordering;
 
 use super::*;
 
+/// How far into the ring the writer goes before it returns to the start whenever everything
+/// unread and its next frame fit before its position: a reader that keeps up then sees the
+/// same stretch of the ring over and over, which stays in cache.
+pub const HOT_WINDOW: usize = 1 << 20;
+
+/// The most bytes of a streamed blob in one `BULK` frame: each piece is published as soon as
+/// it is written, so that the reader copies it on while the writer writes the next, and both
+/// work on bytes still in cache.
+pub const BULK_PIECE: usize = 64 << 10;
+
+/// The smallest blob a client streams after its message rather than inline (see
+/// [`Writer::write_bulk`]).
+pub const STREAM_FROM: usize = 64 << 10;
+
 /// The producing end of a ring.
 pub struct Writer {
     ring: RingRegion,
@@ -12,6 +26,8 @@ pub struct Writer {
     pub(super) head: u32,
     published: u32,
     tail: u32,
+    /// The head when the tail was last read for [`Writer::wrap_early`].
+    tail_seen_at: u32,
     batch_limit: u32,
     scratch: Vec<u8>,
 }
@@ -24,7 +40,7 @@ impl Writer {
         let head = ctl.head.0.load(Ordering::Acquire);
         let tail = ctl.tail.0.load(Ordering::Acquire);
         let batch_limit = batch_limit.clamp(FRAME_HEADER as u32, ring.capacity / 2);
-        Writer { ring, head, published: head, tail, batch_limit, scratch: Vec::new() }
+        Writer { ring, head, published: head, tail, tail_seen_at: head, batch_limit, scratch: Vec::new() }
     }
 
     /// Largest payload that travels as one frame; larger messages are chunked.
@@ -75,6 +91,26 @@ impl Writer {
         Ok(())
     }
 
+    /// Streams `bytes` as `BULK` frames of at most [`BULK_PIECE`] bytes (and at most a quarter
+    /// of the ring), publishing each and keeping at most [`HOT_WINDOW`] unread: the blob of the
+    /// message written just before, which announced their number (see [`super::Bulk`]).
+    pub fn write_bulk(&mut self, bytes: &[u8], alive: &dyn Fn() -> bool) -> Result<(), RingError> {
+        let cap = self.ring.capacity as usize;
+        let piece = BULK_PIECE.min(cap / 4 - FRAME_HEADER);
+        let lead = HOT_WINDOW.min(cap / 2);
+        for part in bytes.chunks(piece) {
+            // Never more than the hot window ahead of the reader: a writer further ahead
+            // would spread the stream over the whole ring, out of cache.
+            self.wait_space(cap - lead + frame_size(part.len()), alive)?;
+            let off = self.reserve(frame_size(part.len()), alive)?;
+            // SAFETY: `reserve` found `frame_size(part.len())` free contiguous bytes at `off`.
+            unsafe { self.ring.bytes_mut(off + FRAME_HEADER, part.len()) }.copy_from_slice(part);
+            self.commit(off, part.len(), KIND_BULK);
+            self.publish();
+        }
+        Ok(())
+    }
+
     /// Writes every chunk of `msg` but its last (`msg` must need chunks: longer than a
     /// quarter of the ring), and publishes them: a message begun and never finished, the tool
     /// for testing what a reader holds for a writer that stops.
@@ -117,17 +153,37 @@ impl Writer {
         }
     }
 
-    /// Finds `need` contiguous free bytes, emitting a wrap frame if needed; returns the offset.
+    /// Finds `need` contiguous free bytes at the head and returns their offset, wrapping to the
+    /// ring's start when they do not fit before its end or [`Writer::wrap_early`] says so.
     fn reserve(&mut self, need: usize, alive: &dyn Fn() -> bool) -> Result<usize, RingError> {
         let off = self.ring.offset(self.head);
         let to_end = self.ring.capacity as usize - off;
-        if need > to_end {
+        if need > to_end || self.wrap_early(off, need) {
             self.wait_space(to_end, alive)?;
             self.ring.write_header(off, 0, KIND_WRAP);
             self.head = self.head.wrapping_add(to_end as u32);
         }
         self.wait_space(need, alive)?;
         Ok(self.ring.offset(self.head))
+    }
+
+    /// Whether to go back to the ring's start before its end: past [`HOT_WINDOW`], once the
+    /// reader has consumed enough that everything unread and `need` fit before `off`. A reader
+    /// that keeps up then sees the same megabyte or so over and over, which stays in both
+    /// cores' caches, rather than the whole ring, which does not. The price: after such a wrap
+    /// the writer has about [`HOT_WINDOW`] of room, not the whole ring, should the reader stall.
+    fn wrap_early(&mut self, off: usize, need: usize) -> bool {
+        if off < HOT_WINDOW {
+            return false;
+        }
+        // The reader's tail is looked at once per [`BULK_PIECE`] written, not per frame: its
+        // cache line is the reader's to write.
+        if self.head.wrapping_sub(self.tail_seen_at) >= BULK_PIECE as u32 {
+            self.tail = self.ring.ctl().tail.0.load(Ordering::Acquire);
+            self.tail_seen_at = self.head;
+        }
+        let used = self.head.wrapping_sub(self.tail) as usize;
+        used <= self.ring.capacity as usize && used + need <= off
     }
 
     fn commit(&mut self, off: usize, len: usize, kind: u32) {

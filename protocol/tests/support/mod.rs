@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use strata_protocol::ring::{Backing, RingRegion, CONTROL_BYTES};
@@ -55,4 +55,26 @@ pub fn heap_ring(capacity: u32) -> (RingRegion, Peer) {
     // SAFETY: as above.
     let ring = unsafe { RingRegion::new(ctl, data, capacity, Arc::new(Heap(mem))) }.expect("ring");
     (ring, Peer { data, len: capacity as usize })
+}
+
+/// Starts the racing peer: a thread that stores random bytes at random offsets of the data
+/// area that `pick` accepts, counting each store in `strokes`, until `stop` is raised.
+pub fn scribbler(
+    peer: Peer,
+    seed: u64,
+    stop: Arc<AtomicBool>,
+    strokes: Arc<AtomicUsize>,
+    pick: impl Fn(usize) -> bool + Send + 'static,
+) -> std::thread::JoinHandle<()> {
+    use rand::{Rng, SeedableRng};
+    std::thread::spawn(move || {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+        while !stop.load(Ordering::Relaxed) {
+            let i = rng.random_range(0..peer.len);
+            if pick(i) {
+                peer.byte(i).store(rng.random(), Ordering::Relaxed);
+                strokes.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    })
 }
