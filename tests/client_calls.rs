@@ -31,7 +31,11 @@
 //! - `pixel_format_float`: the configs' component type (`EGL_EXT_pixel_format_float`);
 //! - `texture_3d`: 3D images, whose slices the library lays out by the unpack state
 //!   (`GL_OES_texture_3D`);
-//! - `image_shapes`: the one image path's order of checks for every shape, two faults a call.
+//! - `image_shapes`: the one image path's order of checks for every shape, two faults a call;
+//! - `debug_callback`: `GL_KHR_debug`'s callback, which the library calls, in a debug context
+//!   and in a plain one;
+//! - `share_group`: contexts that share objects (`eglCreateContext`'s `share_context`), whose
+//!   buffers' contents the library keeps for the whole group.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -43,6 +47,8 @@ use libloading::Library;
 use support::{Daemon, TempDir};
 
 type Ptr = *mut c_void;
+/// `GLDEBUGPROCKHR`.
+type DebugProc = Option<unsafe extern "C" fn(u32, u32, u32, u32, i32, *const i8, *const c_void)>;
 
 const NONE: i32 = 0x3038;
 const ARRAY: u32 = 0x8892;
@@ -52,6 +58,8 @@ const STATIC_DRAW: u32 = 0x88E4;
 mod border;
 #[path = "client_calls/colorspace.rs"]
 mod colorspace;
+#[path = "client_calls/debug_callback.rs"]
+mod debug_callback;
 #[path = "client_calls/draw_buffers.rs"]
 mod draw_buffers;
 #[path = "client_calls/egl_image.rs"]
@@ -78,6 +86,8 @@ mod robust_access;
 mod robustness;
 #[path = "client_calls/separate.rs"]
 mod separate;
+#[path = "client_calls/share_group.rs"]
+mod share_group;
 #[path = "client_calls/surfaceless.rs"]
 mod surfaceless;
 #[path = "client_calls/texture_3d.rs"]
@@ -199,6 +209,18 @@ api! {
     delete_textures = "glDeleteTextures": fn(i32, *const u32);
     get_shaderiv = "glGetShaderiv": fn(u32, u32, *mut i32);
     enable = "glEnable": fn(u32);
+    is_enabled = "glIsEnabled": fn(u32) -> u8;
+    is_buffer = "glIsBuffer": fn(u32) -> u8;
+    is_texture = "glIsTexture": fn(u32) -> u8;
+    is_program = "glIsProgram": fn(u32) -> u8;
+    is_framebuffer = "glIsFramebuffer": fn(u32) -> u8;
+    disable_vertex_attrib_array = "glDisableVertexAttribArray": fn(u32);
+    delete_framebuffers = "glDeleteFramebuffers": fn(i32, *const u32);
+    gen_vertex_arrays = "glGenVertexArraysOES": fn(i32, *mut u32);
+    bind_vertex_array = "glBindVertexArrayOES": fn(u32);
+    is_vertex_array = "glIsVertexArrayOES": fn(u32) -> u8;
+    delete_vertex_arrays = "glDeleteVertexArraysOES": fn(i32, *const u32);
+    debug_message_callback = "glDebugMessageCallbackKHR": fn(DebugProc, *const c_void);
     disable = "glDisable": fn(u32);
     scissor = "glScissor": fn(i32, i32, i32, i32);
     compressed_tex_image_2d = "glCompressedTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, *const c_void);
@@ -384,7 +406,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 18] = [
+    let sequences: [Sequence; 20] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -403,6 +425,8 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("image_shapes", image_shapes::sequence),
         ("pixel_format_float", pixel_format_float::sequence),
         ("colorspace", colorspace::sequence),
+        ("debug_callback", debug_callback::sequence),
+        ("share_group", share_group::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in sequences {

@@ -107,6 +107,29 @@ impl Gpu {
         index
     }
 
+    /// A fence: marks the point after everything submitted on the queue so far, for `lane`.
+    /// Returns the mark, which [`Gpu::reached`] checks; nothing waits.
+    pub fn mark(&self, lane: &Lane) -> u64 {
+        let marks = lane.marks().clone();
+        let mark = marks.issued.fetch_add(1, std::sync::atomic::Ordering::AcqRel) + 1;
+        self.queue.on_submitted_work_done(move || {
+            marks.done.fetch_max(mark, std::sync::atomic::Ordering::AcqRel);
+        });
+        mark
+    }
+
+    /// Whether the work before `lane`'s fence `mark` has completed, without waiting (the device
+    /// is polled once). A lost device has nothing left to complete: every mark is reached.
+    pub fn reached(&self, lane: &Lane, mark: u64) -> bool {
+        use std::sync::atomic::Ordering;
+        let marks = lane.marks();
+        if marks.done.load(Ordering::Acquire) >= mark || self.lost.load(Ordering::Acquire) {
+            return true;
+        }
+        let _ = self.device.poll(wgpu::PollType::Poll);
+        marks.done.load(Ordering::Acquire) >= mark
+    }
+
     /// Writes `data` into `buffer` at `offset` on the queue (before the next submission).
     pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
         self.queue.write_buffer(buffer, offset, data);

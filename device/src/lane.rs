@@ -4,7 +4,7 @@
 //! `Gpu::lane`, for the work of the device's owner).
 
 use std::sync::atomic::{AtomicU64, AtomicU8, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use strata_protocol::control::{Priority, Waits};
@@ -28,6 +28,17 @@ pub struct Lane {
     /// Its newest submission at its previous swap.
     frame: Mutex<Option<wgpu::SubmissionIndex>>,
     counters: Counters,
+    /// The client's fence marks (see [`crate::Gpu::mark`]).
+    marks: Arc<Marks>,
+}
+
+/// A lane's fence marks: the newest handed out, and the newest whose work has completed.
+#[derive(Default)]
+pub(crate) struct Marks {
+    /// The newest mark handed out.
+    pub(crate) issued: AtomicU64,
+    /// The newest mark whose work has completed.
+    pub(crate) done: AtomicU64,
 }
 
 impl std::fmt::Debug for Lane {
@@ -42,12 +53,13 @@ fn micros(d: Duration) -> u64 {
 
 impl Lane {
     /// A lane in `class`.
-    pub fn new(class: Priority) -> std::sync::Arc<Lane> {
-        std::sync::Arc::new(Lane {
+    pub fn new(class: Priority) -> Arc<Lane> {
+        Arc::new(Lane {
             class: AtomicU8::new(class as u8),
             last: Mutex::new(None),
             frame: Mutex::new(None),
             counters: Counters::default(),
+            marks: Arc::default(),
         })
     }
 
@@ -71,6 +83,11 @@ impl Lane {
         if let Ok(mut l) = self.last.lock() {
             *l = Some(index);
         }
+    }
+
+    /// The lane's fence marks.
+    pub(crate) fn marks(&self) -> &Arc<Marks> {
+        &self.marks
     }
 
     /// Waits until `index` has completed, counting the time as device wait.

@@ -1,7 +1,7 @@
 //! One GL context's state, grouped the way GL groups it: named objects, bindings, vertex
 //! arrays, rasterisation, depth and stencil, blending and colour output, pixel store.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use crate::egl_config::Config;
 use crate::enums::*;
@@ -43,6 +43,19 @@ pub struct Objects {
 }
 
 impl Objects {
+    /// Takes the tables a share group shares (buffers, textures, renderbuffers, framebuffers,
+    /// as ES 2.0 and Mesa share them, shaders and programs) from `from`, whose tables are left
+    /// as this one's were: a group's tables are kept by one of its contexts at a time (see
+    /// `GlesExecutor::hold_shared`). Vertex arrays and program pipelines stay each context's.
+    pub fn take_shared(&mut self, from: &mut Objects) {
+        std::mem::swap(&mut self.buffers, &mut from.buffers);
+        std::mem::swap(&mut self.textures, &mut from.textures);
+        std::mem::swap(&mut self.renderbuffers, &mut from.renderbuffers);
+        std::mem::swap(&mut self.framebuffers, &mut from.framebuffers);
+        std::mem::swap(&mut self.shaders, &mut from.shaders);
+        std::mem::swap(&mut self.programs, &mut from.programs);
+    }
+
     /// The error for `name` where a shader or program of the other kind was expected: the
     /// wrong kind is `GL_INVALID_OPERATION`, no object at all `GL_INVALID_VALUE`.
     pub fn shader_or_program_error(&self, name: u32) -> GlError {
@@ -319,6 +332,13 @@ pub struct Context {
     /// While a conditional render is active (`GL_NV_conditional_render`): whether its query
     /// passed a sample, so that draws and clears are done.
     pub conditional: Option<bool>,
+    /// The share group: the handle of the group's first context (`eglCreateContext`'s
+    /// `share_context`).
+    pub group: u32,
+    /// The programs the group's other contexts use (their current program and their
+    /// pipelines'), which a deletion here leaves pending: as of this context's taking the
+    /// group's tables, since no other context runs while it is current.
+    pub others_use: HashSet<u32>,
     /// Bindings.
     pub bindings: Bindings,
     /// Generic vertex attributes.
@@ -371,6 +391,8 @@ impl Context {
             active_query: None,
             active_timer: None,
             conditional: None,
+            group: 0,
+            others_use: HashSet::new(),
             bindings: Bindings::default(),
             attribs: vec![Attrib::default(); MAX_ATTRIBS],
             raster: Raster::default(),

@@ -234,10 +234,15 @@ impl GlesExecutor {
         &mut self,
         display: EglHandle,
         config: EglHandle,
-        _share_context: EglHandle,
+        share_context: EglHandle,
         attribs: Slice<'_, i32>,
     ) -> EglResult<EglHandle> {
         self.check_display(display)?;
+        // EGL: a share context that is not a context of this display is EGL_BAD_CONTEXT.
+        let group = match share_context {
+            0 => None,
+            s => Some(self.contexts.get(&s).ok_or(EGL_BAD_CONTEXT)?.group),
+        };
         // EGL_KHR_no_config_context: EGL_NO_CONFIG_KHR takes each surface's config.
         let c = if config == 0 { CONFIGS[0] } else { Config::get(config).ok_or(EGL_BAD_CONFIG)? };
         let asked = crate::context_attribs::parse(&attribs.to_vec())?;
@@ -247,6 +252,11 @@ impl GlesExecutor {
         let id = self.next_handle;
         self.next_handle += 1;
         let mut ctx = Context::new(c);
+        // Its own share group, or `share_context`'s, whose tables another context keeps.
+        ctx.group = group.unwrap_or(id);
+        if group.is_none() {
+            self.holders.insert(id, id);
+        }
         // KHR_debug: a debug context starts with debug output enabled.
         ctx.debug.output = asked.debug;
         ctx.no_error = asked.no_error;
@@ -301,6 +311,7 @@ impl GlesExecutor {
         }
         if draw == 0 {
             // EGL_KHR_surfaceless_context: current with no default framebuffer.
+            self.hold_shared(context);
             let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
             ctx.surfaceless = true;
             self.r.flush();
@@ -311,6 +322,7 @@ impl GlesExecutor {
         let surface = self.surfaces.get(&draw).ok_or(EGL_BAD_SURFACE)?;
         let (w, h) = (surface.target.width as i32, surface.target.height as i32);
         let config = surface.config;
+        self.hold_shared(context);
         let ctx = self.contexts.get_mut(&context).ok_or(EGL_BAD_CONTEXT)?;
         ctx.surfaceless = false;
         ctx.config = config;
@@ -381,7 +393,68 @@ impl GlesExecutor {
             self.current = None;
             self.r.occlusion = None;
         }
-        self.contexts.remove(&context).map(|_| ()).ok_or(EGL_BAD_CONTEXT)
+        let mut gone = self.contexts.remove(&context).ok_or(EGL_BAD_CONTEXT)?;
+        if self.holders.get(&gone.group) == Some(&context) {
+            // The group's tables go to another of its contexts; with none left, they go.
+            match self.contexts.iter_mut().find(|(_, c)| c.group == gone.group) {
+                Some((&other, ctx)) => {
+                    ctx.objects.take_shared(&mut gone.objects);
+                    self.holders.insert(gone.group, other);
+                    self.refresh_uses(other);
+                }
+                None => {
+                    self.holders.remove(&gone.group);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves `context`'s share group's shared tables (buffers, textures, renderbuffers,
+    /// framebuffers, shaders, programs) to it from the context that keeps them, so that it sees every object
+    /// of the group while it is current.
+    fn hold_shared(&mut self, context: EglHandle) {
+        let Some(group) = self.contexts.get(&context).map(|c| c.group) else { return };
+        match self.holders.insert(group, context) {
+            Some(holder) if holder != context => {
+                if let Some(mut from) = self.contexts.remove(&holder) {
+                    if let Some(to) = self.contexts.get_mut(&context) {
+                        to.objects.take_shared(&mut from.objects);
+                    }
+                    self.contexts.insert(holder, from);
+                }
+            }
+            _ => {}
+        }
+        self.refresh_uses(context);
+    }
+
+    /// Notes, in `context`, which programs the other contexts of its group use, and deletes
+    /// those whose deletion was pending and that no context uses any more.
+    fn refresh_uses(&mut self, context: EglHandle) {
+        let Some(group) = self.contexts.get(&context).map(|c| c.group) else { return };
+        let others_use = self
+            .contexts
+            .iter()
+            .filter(|(&id, c)| id != context && c.group == group)
+            .flat_map(|(_, c)| {
+                let pipelines = c.objects.pipelines.values().flat_map(|pl| [pl.vertex, pl.fragment, pl.active]);
+                std::iter::once(c.bindings.program).chain(pipelines)
+            })
+            .filter(|&p| p != 0)
+            .collect();
+        let Some(ctx) = self.contexts.get_mut(&context) else { return };
+        ctx.others_use = others_use;
+        let pending: Vec<u32> =
+            ctx.objects.programs.iter().filter(|(_, p)| p.delete_pending).map(|(&n, _)| n).collect();
+        for program in pending {
+            crate::linking::release_if_unused(ctx, program);
+        }
+    }
+
+    /// The context that keeps `context`'s share group's shared tables.
+    pub(super) fn holder(&self, context: EglHandle) -> EglHandle {
+        self.contexts.get(&context).and_then(|c| self.holders.get(&c.group)).copied().unwrap_or(context)
     }
 
     pub(super) fn eglSwapBuffers(&mut self, display: EglHandle, surface: EglHandle) -> EglResult<()> {

@@ -129,7 +129,9 @@ impl GlesExecutor {
         attribs: Slice<'_, i32>,
     ) -> EglResult<EglHandle> {
         self.check_display(display)?;
-        let ctx = self.contexts.get(&context).ok_or(EGL_BAD_CONTEXT)?;
+        self.contexts.get(&context).ok_or(EGL_BAD_CONTEXT)?;
+        // A context's textures and renderbuffers are its share group's.
+        let ctx = self.contexts.get(&self.holder(context)).ok_or(EGL_BAD_CONTEXT)?;
         let level = parse_attribs(&attribs.to_vec())?;
         let image = match target {
             EGL_GL_TEXTURE_2D_KHR => texture_image(ctx, buffer, false, 0, level)?,

@@ -86,6 +86,9 @@ pub struct GlesExecutor {
     initialized: bool,
     surfaces: HashMap<u32, Surface>,
     contexts: HashMap<u32, Context>,
+    /// Which context keeps each share group's shared tables, by group (see
+    /// [`Objects::take_shared`](context::Objects::take_shared)).
+    holders: HashMap<u32, u32>,
     /// The client's EGLImages, by handle (handles share `next_handle` with contexts and
     /// surfaces).
     images: HashMap<u32, objects::egl_image::EglImage>,
@@ -144,6 +147,7 @@ impl GlesExecutor {
             initialized: false,
             surfaces: HashMap::new(),
             contexts: HashMap::new(),
+            holders: HashMap::new(),
             images: HashMap::new(),
             next_handle: 1,
             current: None,

@@ -91,7 +91,10 @@ pub fn link_shaders(
 pub fn release_if_unused(ctx: &mut Context, program: u32) {
     let objects = &ctx.objects;
     let pending = objects.programs.get(&program).is_some_and(|p| p.delete_pending);
-    if pending && ctx.bindings.program != program && !objects.pipelines.values().any(|pl| pl.uses(program)) {
+    let used = ctx.bindings.program == program
+        || objects.pipelines.values().any(|pl| pl.uses(program))
+        || ctx.others_use.contains(&program);
+    if pending && !used {
         crate::linking::remove_program(&mut ctx.objects, program);
     }
 }

@@ -1,9 +1,9 @@
 //! `EGL_KHR_fence_sync`, `EGL_KHR_reusable_sync` and `EGL_KHR_wait_sync`, with
 //! `GL_OES_EGL_sync` in the GL extension string: fences' attributes, their status before and
-//! after `glFinish`, waits that poll and waits that block, the errors for bad displays, types,
-//! attributes and handles, a fence asked for with no context current; a reusable sync
-//! signalled and unsignalled, waited for with a timeout, and signalled by another thread
-//! while this one waits.
+//! after `glFinish`, fences signalled by polls alone, waits that poll and waits that block, the
+//! errors for bad displays, types, attributes and handles, a fence asked for with no context
+//! current; a reusable sync signalled and unsignalled, waited for with a timeout, and
+//! signalled by another thread while this one waits.
 
 use super::*;
 
@@ -31,7 +31,7 @@ impl Run {
     }
 
     /// Logs `f`'s answer and EGL's error.
-    fn egl_note(&mut self, what: &str, answer: i64) {
+    pub(super) fn egl_note(&mut self, what: &str, answer: i64) {
         // SAFETY: eglGetError's prototype.
         let e = unsafe { (self.gl.egl_get_error)() };
         self.log.push(format!("{what}: {answer:#x}, EGL error {e:#x}"));
@@ -44,6 +44,21 @@ impl Run {
         let ok = unsafe { (self.gl.egl_get_sync_attrib)(self.egl.display, sync, attribute, &mut v) };
         self.egl_note(&format!("{what} (value {v:#x})"), i64::from(ok));
     }
+}
+
+/// Whether `signalled` answers true within 2 s of asking every millisecond. How long it took
+/// goes to the test's output, not into the comparison.
+fn polled(signalled: impl Fn() -> bool) -> bool {
+    let start = std::time::Instant::now();
+    let deadline = start + std::time::Duration::from_secs(2);
+    while std::time::Instant::now() < deadline {
+        if signalled() {
+            eprintln!("a fence signalled by polls after {:.1} ms", start.elapsed().as_secs_f64() * 1e3);
+            return true;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    }
+    false
 }
 
 /// The fence-sync sequence.
@@ -82,6 +97,22 @@ pub fn sequence(r: &mut Run) {
         r.egl_note("poll after glFinish", i64::from(w));
         r.egl_note("destroy", i64::from((gl.egl_destroy_sync)(egl.display, s)));
         r.egl_note("destroy again", i64::from((gl.egl_destroy_sync)(egl.display, s)));
+        // Polls alone signal a fence once its work is done, as frame pacers rely on: a draw,
+        // a fence, then polls and no glFinish, by a wait with no timeout and by the status.
+        (gl.clear)(0x4000);
+        let s = r.create_sync("a fence to poll", egl.display, SYNC_FENCE, std::ptr::null());
+        let by_wait = polled(|| (gl.egl_client_wait_sync)(egl.display, s, 0, 0) == CONDITION_SATISFIED);
+        r.log.push(format!("signalled by polls with no timeout alone: {by_wait}"));
+        (gl.egl_destroy_sync)(egl.display, s);
+        (gl.clear)(0x4000);
+        let s = r.create_sync("another fence to poll", egl.display, SYNC_FENCE, std::ptr::null());
+        let by_status = polled(|| {
+            let mut v = 0;
+            (gl.egl_get_sync_attrib)(egl.display, s, SYNC_STATUS, &mut v);
+            v == SIGNALED
+        });
+        r.log.push(format!("signalled by status queries alone: {by_status}"));
+        (gl.egl_destroy_sync)(egl.display, s);
         // Waits that block, with and without a flush asked for.
         let s = r.create_sync("another fence", egl.display, SYNC_FENCE, std::ptr::null());
         (gl.clear)(0x4000);

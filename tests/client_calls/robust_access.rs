@@ -27,7 +27,7 @@ const FS: &str = "precision mediump float; varying vec4 v; void main() { gl_Frag
 impl Run {
     /// Creates a context with `attribs` (after the client version); logs whether it was made
     /// and EGL's error.
-    fn context_with(&mut self, what: &str, attribs: &[i32]) -> Ptr {
+    pub(super) fn context_with(&mut self, what: &str, attribs: &[i32]) -> Ptr {
         let list: Vec<i32> = [0x3098, 2].iter().chain(attribs).chain(&[NONE]).copied().collect();
         // SAFETY: EGL's prototypes; a NONE-terminated list.
         let (ctx, e) = unsafe {

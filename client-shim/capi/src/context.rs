@@ -98,13 +98,35 @@ pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: 
     }
     let mut p = process();
     let d = initialized(&mut p, dpy)?;
-    let share = match share {
-        0 => 0,
-        s => p.daemon_context(s).ok_or(EGL_BAD_CONTEXT)?,
+    let (share, group) = match share {
+        0 => (0, None),
+        s => (p.daemon_context(s).ok_or(EGL_BAD_CONTEXT)?, p.contexts.get(&s).map(|c| c.group)),
     };
     let attribs = with_env_priority(attribs)?;
     let ctx = daemon(&mut p, |c, dd| c.eglCreateContext(dd, config, share, Slice::new(&attribs)))?;
-    Ok(p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl: GlState::default() }))
+    let mut gl = GlState::default();
+    // KHR_debug: a debug context starts with debug output enabled, on the daemon (which has
+    // accepted the list) and so here, where the callback is called.
+    gl.debug.output = asks_debug(&attribs);
+    let handle = p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl, group: 0 });
+    // A new group is named after its first context.
+    if let Some(c) = p.contexts.get_mut(&handle) {
+        c.group = group.unwrap_or(handle);
+    }
+    Ok(handle)
+}
+
+/// `EGL_CONTEXT_FLAGS_KHR`.
+const EGL_CONTEXT_FLAGS_KHR: EGLint = 0x30FC;
+/// `EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR`.
+const EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR: EGLint = 0x1;
+
+/// Whether an attribute list the daemon accepted asks for a debug context.
+fn asks_debug(attribs: &[EGLint]) -> bool {
+    attribs
+        .chunks_exact(2)
+        .take_while(|p| p[0] != EGL_NONE)
+        .any(|p| p[0] == EGL_CONTEXT_FLAGS_KHR && p[1] & EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR != 0)
 }
 
 /// `eglDestroyContext`.
@@ -113,7 +135,12 @@ pub(crate) fn destroy_context(dpy: EGLDisplay, ctx: u32) -> Result<(), EGLint> {
     initialized(&mut p, dpy)?;
     let d_ctx = p.daemon_context(ctx).ok_or(EGL_BAD_CONTEXT)?;
     daemon(&mut p, |c, dd| c.eglDestroyContext(dd, d_ctx))?;
-    p.contexts.remove(&ctx);
+    if let Some(gone) = p.contexts.remove(&ctx) {
+        // The group's buffers' copies go with its last context.
+        if !p.contexts.values().any(|c| c.group == gone.group) {
+            p.shadows.remove(&gone.group);
+        }
+    }
     if p.daemon_current.is_some_and(|(c, _, _)| c == d_ctx) {
         p.daemon_current = None;
     }

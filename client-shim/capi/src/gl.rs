@@ -31,6 +31,8 @@ pub(crate) struct Gl<'a> {
     /// The process's mapped buffers, by name (names are the process's, so one table serves
     /// every share group).
     pub maps: &'a mut HashMap<u32, Mapping>,
+    /// The copies of the share group's buffers' contents, by name (see `Process::shadows`).
+    pub shadows: &'a mut HashMap<u32, Vec<u8>>,
 }
 
 impl Gl<'_> {
@@ -118,9 +120,10 @@ fn with_gl_locked<R>(
         }
         return default;
     }
-    let state::Process { conn: Some(conn), contexts, next_name, maps, .. } = p else { return default };
+    let state::Process { conn: Some(conn), contexts, next_name, maps, shadows, .. } = p else { return default };
     let Some(ctx) = contexts.get_mut(&cur.context) else { return default };
-    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name, maps });
+    let shadows = shadows.entry(ctx.group).or_default();
+    let mut result = f(&mut Gl { conn, st: &mut ctx.gl, next_name, maps, shadows });
     if check_errors() && name != "glGetError" && result.is_ok() {
         // Debugging aid: name the call that raised each GL error (one round trip per call).
         match conn.glGetError() {

@@ -68,9 +68,6 @@ pub(crate) struct GlState {
     pub unpack_rows: [usize; 3],
     /// Where `glReadPixels` puts its rows: see [`Pack`].
     pub pack: Pack,
-    /// A copy of every buffer's contents: index ranges of client-array draws read it, uploads
-    /// from an unpack buffer read it, and reads into a pack buffer write it.
-    pub buffers: HashMap<u32, Vec<u8>>,
     /// `GL_PIXEL_PACK_BUFFER_BINDING_NV` (`GL_NV_pixel_buffer_object`).
     pub pack_buffer: u32,
     /// `GL_PIXEL_UNPACK_BUFFER_BINDING_NV`.
@@ -90,7 +87,6 @@ impl Default for GlState {
             unpack_alignment: 4,
             unpack_rows: [0; 3],
             pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
-            buffers: HashMap::new(),
             pack_buffer: 0,
             unpack_buffer: 0,
         }

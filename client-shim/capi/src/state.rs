@@ -38,6 +38,8 @@ pub(crate) struct ContextInfo {
     pub owner: Option<ThreadId>,
     /// Client-side GL state.
     pub gl: GlState,
+    /// Its share group: the handle of the group's first context.
+    pub group: u32,
 }
 
 /// A surface as the application holds it: the shim numbers surfaces itself (a handle of its own
@@ -88,6 +90,10 @@ pub(crate) struct Process {
     pub next_name: u32,
     /// Mapped buffers, by name: the memory handed to the application.
     pub maps: HashMap<u32, Mapping>,
+    /// A copy of every buffer's contents, by share group and name: index ranges of
+    /// client-array draws read it, uploads from an unpack buffer read it, and reads into a
+    /// pack buffer write it. A group's go with its last context.
+    pub shadows: HashMap<u32, HashMap<u32, Vec<u8>>>,
 }
 
 static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
@@ -103,6 +109,7 @@ static PROCESS: LazyLock<Mutex<Process>> = LazyLock::new(|| {
         daemon_current: None,
         next_name: 1,
         maps: HashMap::new(),
+        shadows: HashMap::new(),
     })
 });
 

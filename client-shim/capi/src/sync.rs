@@ -2,14 +2,18 @@
 //! `GL_OES_EGL_sync` on the GL side): fence syncs, `glFinish`, which signals them, and reusable
 //! syncs, which only the application signals (`eglSignalSyncKHR`) and a wait blocks on.
 //!
-//! A fence is signalled once the GL commands before it have completed. The daemon runs each
-//! process's commands in order on one connection, and its `glFinish` waits until the GPU has
-//! finished everything the process submitted: so a fence is signalled by any `glFinish`
-//! completed after it was created (the application's, or one a wait sends). Creating a fence
-//! flushes; a wait with no timeout polls; a wait with a timeout finishes (bounded by the
-//! daemon, whose GPU waits are bounded). Waiting in the server (`eglWaitSyncKHR`) needs
-//! nothing: the daemon never runs a later command before an earlier one. A fence waited on
-//! after the daemon connection was lost is signalled, so that the wait returns.
+//! A fence is signalled once the GL commands before it have completed. Creating one flushes
+//! the context's commands and has the daemon mark the point after them (`strataFence`). A
+//! poll (a wait with no timeout, or the fence's status) asks the daemon whether the GPU has
+//! completed the work before the mark (`strataFenceReached`, answered at once), so a program
+//! that flushes and then polls sees its fence signalled as soon as the work is done, as on
+//! Mesa. The daemon also runs each process's commands in order on one connection, and its
+//! `glFinish` waits until the GPU has finished everything the process submitted: so a fence
+//! is signalled by any `glFinish` completed after it was created too (the application's, or
+//! one a wait with a timeout sends; bounded by the daemon, whose GPU waits are bounded).
+//! Waiting in the server (`eglWaitSyncKHR`) needs nothing: the daemon never runs a later
+//! command before an earlier one. A fence waited on after the daemon connection was lost is
+//! signalled, so that the wait returns.
 
 use std::collections::HashMap;
 use std::ffi::c_void;
@@ -17,10 +21,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Condvar, Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
+use strata_client::ClientError;
 use strata_protocol::Calls;
 
 use crate::display::initialized;
-use crate::gl::simple::glFlush;
 use crate::gl::{with_gl, Call};
 use crate::state::{self, answer, process};
 use crate::types::*;
@@ -56,8 +60,10 @@ struct Fence {
 /// What signals a sync.
 #[derive(Clone, Copy)]
 enum Kind {
-    /// A fence: any finish after [`FINISHES`] had this value.
-    Fence(u64),
+    /// A fence: any finish after [`FINISHES`] had the value `finishes`, or the daemon's answer
+    /// that the GPU has completed the work before `mark` (`None`: the daemon gave no mark),
+    /// which `reached` keeps.
+    Fence { finishes: u64, mark: Option<u64>, reached: bool },
     /// A reusable sync: the application, and this is its state.
     Reusable(bool),
 }
@@ -78,9 +84,35 @@ fn fences<R>(f: impl FnOnce(&mut usize, &mut HashMap<usize, Fence>) -> R) -> R {
 /// Whether sync `f` is signalled.
 fn signaled(f: &Fence) -> bool {
     match f.kind {
-        Kind::Fence(finishes) => FINISHES.load(Ordering::SeqCst) > finishes,
+        Kind::Fence { finishes, reached, .. } => reached || FINISHES.load(Ordering::SeqCst) > finishes,
         Kind::Reusable(signalled) => signalled,
     }
+}
+
+/// Whether sync `sync` (of `kind`, not yet signalled) is signalled now: for a fence with a
+/// mark, the daemon is asked, without waiting, and a yes is kept. A lost connection signals.
+fn poll(sync: usize, kind: Kind) -> bool {
+    let Kind::Fence { mark: Some(mark), .. } = kind else { return false };
+    let reached = {
+        let mut p = process();
+        match p.conn.as_mut().map(|c| c.strataFenceReached(mark)) {
+            Some(Ok(r)) => r,
+            Some(Err(ClientError::Unsupported(_))) => false,
+            Some(Err(e)) => {
+                p.lose(&e);
+                true
+            }
+            None => true,
+        }
+    };
+    if reached {
+        fences(|_, map| {
+            if let Some(Fence { kind: Kind::Fence { reached, .. }, .. }) = map.get_mut(&sync) {
+                *reached = true;
+            }
+        });
+    }
+    reached
 }
 
 /// Blocks until reusable sync `sync` is signalled, destroyed, or `timeout` (ns) has passed;
@@ -140,9 +172,16 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
             if state::current().is_none_or(|c| c.display != d) {
                 return Err(EGL_BAD_MATCH);
             }
-            // SAFETY: glFlush takes no arguments.
-            unsafe { glFlush() };
-            Kind::Fence(FINISHES.load(Ordering::SeqCst))
+            let finishes = FINISHES.load(Ordering::SeqCst);
+            let args = String::new;
+            let mark =
+                with_gl(Call { name: "eglCreateSyncKHR", args: &args }, None, |gl| match gl.conn.strataFence() {
+                    Ok(mark) => Ok(Some(mark)),
+                    // A daemon without fences: a flush, and the fence waits for a finish.
+                    Err(ClientError::Unsupported(_)) => gl.conn.glFlush().map(|()| None),
+                    Err(e) => Err(e),
+                });
+            Kind::Fence { finishes, mark, reached: false }
         }
         EGL_SYNC_REUSABLE_KHR => Kind::Reusable(false),
         _ => return Err(EGL_BAD_ATTRIBUTE),
@@ -183,18 +222,19 @@ crate::entry::entry_points! {
         answer(r, EGL_FALSE)
     }
 
-    /// Waits for a sync: a zero timeout polls; a fence is then waited for by finishing the
-    /// process's commands, a reusable sync until it is signalled or the timeout passes.
+    /// Waits for a sync: a zero timeout polls (a fence asks the daemon whether its work is
+    /// done); a fence is otherwise waited for by finishing the process's commands, a reusable
+    /// sync until it is signalled or the timeout passes.
     fn eglClientWaitSyncKHR(dpy: EGLDisplay, sync: EGLSyncKHR, _flags: EGLint, timeout: EGLTimeKHR) -> EGLint {
         let r = with_fence(dpy, sync, |f| (signaled(f), f.kind)).map(|(done, kind)| {
-            if done {
+            if done || poll(sync as usize, kind) {
                 return EGL_CONDITION_SATISFIED_KHR;
             }
             if timeout == 0 {
                 return EGL_TIMEOUT_EXPIRED_KHR;
             }
             match kind {
-                Kind::Fence(_) => finish_everything(),
+                Kind::Fence { .. } => finish_everything(),
                 Kind::Reusable(_) if !wait_reusable(sync as usize, timeout) => return EGL_TIMEOUT_EXPIRED_KHR,
                 Kind::Reusable(_) => {}
             }
@@ -225,10 +265,11 @@ crate::entry::entry_points! {
         answer(r, EGL_FALSE)
     }
 
-    /// A fence's type, status or condition.
+    /// A fence's type, status (a fence's polled, as a wait with no timeout) or condition.
     fn eglGetSyncAttribKHR(dpy: EGLDisplay, sync: EGLSyncKHR, attribute: EGLint, value: *mut EGLint) -> EGLBoolean {
         let r = with_fence(dpy, sync, |f| (signaled(f), f.kind)).and_then(|(done, kind)| {
-            let fence = matches!(kind, Kind::Fence(_));
+            let fence = matches!(kind, Kind::Fence { .. });
+            let done = done || (attribute == EGL_SYNC_STATUS_KHR && poll(sync as usize, kind));
             let v = match attribute {
                 EGL_SYNC_TYPE_KHR if fence => EGL_SYNC_FENCE_KHR,
                 EGL_SYNC_TYPE_KHR => EGL_SYNC_REUSABLE_KHR,

@@ -151,6 +151,15 @@ impl Arms<'_> {
         Err(unsupported("strataStats (Strata's own call)"))
     }
 
+    pub(super) fn strataFence(&mut self) -> Result<u64, ClientError> {
+        Err(unsupported("strataFence (Strata's own call; the reference's fences are EGL's)"))
+    }
+
+    pub(super) fn strataFenceReached(&mut self, mark: &u64) -> Result<bool, ClientError> {
+        let _ = mark;
+        Err(unsupported("strataFenceReached (Strata's own call)"))
+    }
+
     pub(super) fn eglSwapBuffers(
         &mut self,
         display: &EglHandle,

@@ -56,8 +56,7 @@ pub(super) fn draw_elements(
         if uses_client_arrays(gl.st) {
             let offset = indices as usize;
             let n = gl
-                .st
-                .buffers
+                .shadows
                 .get(&gl.st.element_buffer)
                 .and_then(|b| b.get(offset..offset.checked_add(len)?))
                 .map_or(0, |d| vertex_count(d, ty));

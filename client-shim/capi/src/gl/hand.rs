@@ -239,7 +239,7 @@ crate::entry::entry_points! {
             // SAFETY: the application passes `n` names.
             let v = unsafe { values(buffers, i64::from(n)) };
             for &b in v.iter().filter(|&&b| b != 0) {
-                gl.st.buffers.remove(&b);
+                gl.shadows.remove(&b);
                 gl.maps.remove(&b);
                 if gl.st.array_buffer == b {
                     gl.st.array_buffer = 0;
@@ -282,7 +282,7 @@ crate::entry::entry_points! {
                 // New contents end a mapping.
                 gl.maps.remove(&b);
                 let shadow = if data.is_null() { vec![0; size as usize] } else { d.to_vec() };
-                gl.st.buffers.insert(b, shadow);
+                gl.shadows.insert(b, shadow);
             }
             let blob = (!data.is_null()).then(|| Blob::borrowed(d));
             gl.conn.glBufferData(target, size as i64, blob, usage)
@@ -298,7 +298,7 @@ crate::entry::entry_points! {
             }
             // SAFETY: `data` holds `size` bytes.
             let d = unsafe { bytes(data, size as usize) };
-            if let Some(shadow) = gl.st.bound(target).and_then(|b| gl.st.buffers.get_mut(&b)) {
+            if let Some(shadow) = gl.st.bound(target).and_then(|b| gl.shadows.get_mut(&b)) {
                 if let Some(dst) = shadow.get_mut(offset as usize..offset as usize + d.len()) {
                     dst.copy_from_slice(d);
                 }

@@ -7,17 +7,18 @@
 //! from one not written). That memory, and what the daemon answered, is a `Mapping` (in
 //! `gl_state.rs`), which the process keeps by buffer name.
 
+use std::collections::HashMap;
 use std::ffi::c_void;
 
 use strata_protocol::{Blob, Calls};
 
 use super::{put, with_gl, Gl};
-use crate::gl_state::{GlState, Mapping, MAP_FLUSH_EXPLICIT, MAP_WRITE};
+use crate::gl_state::{Mapping, MAP_FLUSH_EXPLICIT, MAP_WRITE};
 use crate::types::*;
 
-/// Copies `bytes` written at `offset` into the context's shadow of buffer `name`.
-fn shadow_write(st: &mut GlState, name: u32, offset: usize, bytes: &[u8]) {
-    if let Some(dst) = st.buffers.get_mut(&name).and_then(|s| s.get_mut(offset..offset + bytes.len())) {
+/// Copies `bytes` written at `offset` into the process's shadow of buffer `name`.
+fn shadow_write(shadows: &mut HashMap<u32, Vec<u8>>, name: u32, offset: usize, bytes: &[u8]) {
+    if let Some(dst) = shadows.get_mut(&name).and_then(|s| s.get_mut(offset..offset + bytes.len())) {
         dst.copy_from_slice(bytes);
     }
 }
@@ -65,7 +66,7 @@ crate::entry::entry_points! {
             // A flush the mapping does not allow goes without bytes: the daemon reports it.
             let (at, data) = flushed.unwrap_or((0, &[]));
             gl.conn.glFlushMappedBufferRangeEXT(target, offset as i64, length as i64, Blob::borrowed(data))?;
-            shadow_write(gl.st, name, at, data);
+            shadow_write(gl.shadows, name, at, data);
             Ok(())
         })
     }
@@ -77,7 +78,7 @@ crate::entry::entry_points! {
             let m = gl.maps.remove(&name);
             let (at, data) = m.as_ref().map_or((0, &[][..]), Mapping::written);
             gl.conn.glUnmapBufferOES(target, at as i64, Blob::borrowed(data))?;
-            shadow_write(gl.st, name, at, data);
+            shadow_write(gl.shadows, name, at, data);
             Ok(GLboolean::from(m.is_some()))
         })
     }

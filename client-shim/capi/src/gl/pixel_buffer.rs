@@ -28,7 +28,7 @@ pub(super) fn element_size(ty: GLenum) -> usize {
 /// of `align`; `None` (and `GL_INVALID_OPERATION`) for a mapped buffer or a range that does not
 /// fit.
 fn range(gl: &mut Gl<'_>, name: u32, offset: usize, len: usize, align: usize) -> Option<std::ops::Range<usize>> {
-    let size = gl.st.buffers.get(&name).map_or(0, Vec::len);
+    let size = gl.shadows.get(&name).map_or(0, Vec::len);
     let fits = offset.is_multiple_of(align.max(1)) && offset.checked_add(len).is_some_and(|end| end <= size);
     if gl.maps.contains_key(&name) || !fits {
         gl.st.err(GL_INVALID_OPERATION);
@@ -46,7 +46,7 @@ pub(super) fn unpack(gl: &mut Gl<'_>, ptr: *const c_void, len: usize, align: usi
         return None;
     }
     let r = range(gl, name, ptr as usize, len, align);
-    Some(r.and_then(|r| gl.st.buffers.get(&name).and_then(|b| b.get(r)).map(<[u8]>::to_vec)))
+    Some(r.and_then(|r| gl.shadows.get(&name).and_then(|b| b.get(r)).map(<[u8]>::to_vec)))
 }
 
 /// The bytes an uncompressed upload of `width`×`height` `format`/`ty` pixels reads from the
@@ -84,7 +84,7 @@ pub(super) fn pack(
     let rows: Vec<_> = packed_rows(&data.0, width as usize, height as usize, bpp, gl.st.pack).collect();
     let need = rows.iter().map(|(at, row)| at + row.len()).max().unwrap_or(0);
     let Some(r) = range(gl, name, ptr as usize, need, element_size(ty)) else { return Ok(true) };
-    let Some(shadow) = gl.st.buffers.get_mut(&name) else { return Ok(true) };
+    let Some(shadow) = gl.shadows.get_mut(&name) else { return Ok(true) };
     let dst = &mut shadow[r.clone()];
     for (at, row) in rows {
         dst[at..at + row.len()].copy_from_slice(row);
