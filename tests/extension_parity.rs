@@ -1,10 +1,15 @@
 //! The extension-parity file (`tests/extension_parity.txt`) against the live extension strings
 //! of Mesa held to ES 2.0 and of Strata: it lists every extension Mesa offers on an ES 2.0
 //! context exactly once, says "advertised" exactly for those Strata advertises (naming tests
-//! that cover each), and Strata advertises nothing Mesa does not.
+//! that cover each), and Strata advertises nothing Mesa does not. And piglit's scope
+//! (`tests/piglit/verdict.rs`) holds every GL and EGL extension the drop-in library
+//! advertises, so that no exception line can excuse a test of something Strata claims.
 
 mod programs;
 mod support;
+#[path = "piglit/verdict.rs"]
+#[allow(dead_code)]
+mod verdict;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -126,4 +131,64 @@ fn the_parity_file_matches_both_extension_strings() {
         count(|s| matches!(s, Status::Excused(_))),
         count(|s| matches!(s, Status::Missing(_))),
     );
+}
+
+/// The GL and EGL extension strings of a pbuffer context made through the drop-in library.
+fn library_extensions(socket: &Path) -> (BTreeSet<String>, BTreeSet<String>) {
+    use std::ffi::{c_char, c_void, CStr};
+    type Ptr = *mut c_void;
+    // SAFETY: set before this test loads the library, which reads it at eglInitialize; the
+    // other test of this binary reads no STRATA_ variable.
+    unsafe { std::env::set_var("STRATA_SOCKET", socket) };
+    let tmp = support::TempDir::new("extension-scope");
+    // SAFETY: loading the drop-in library runs no initialisers that need anything from the test.
+    let lib = unsafe { libloading::Library::new(support::shim_dir(&tmp).join("libEGL.so.1")) }.expect("the library");
+    let text = |p: *const c_char| {
+        // SAFETY: a non-null answer of eglQueryString or glGetString is NUL-terminated.
+        words((!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()))
+    };
+    // SAFETY: EGL's and GLES2's prototypes; every out-pointer has room for what it gets.
+    unsafe {
+        let get_display: libloading::Symbol<unsafe extern "C" fn(Ptr) -> Ptr> =
+            lib.get(b"eglGetDisplay\0").expect("eglGetDisplay");
+        let init: libloading::Symbol<unsafe extern "C" fn(Ptr, *mut i32, *mut i32) -> u32> =
+            lib.get(b"eglInitialize\0").expect("eglInitialize");
+        let query: libloading::Symbol<unsafe extern "C" fn(Ptr, i32) -> *const c_char> =
+            lib.get(b"eglQueryString\0").expect("eglQueryString");
+        let choose: libloading::Symbol<unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32> =
+            lib.get(b"eglChooseConfig\0").expect("eglChooseConfig");
+        let pbuffer: libloading::Symbol<unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr> =
+            lib.get(b"eglCreatePbufferSurface\0").expect("eglCreatePbufferSurface");
+        let create: libloading::Symbol<unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr> =
+            lib.get(b"eglCreateContext\0").expect("eglCreateContext");
+        let make_current: libloading::Symbol<unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32> =
+            lib.get(b"eglMakeCurrent\0").expect("eglMakeCurrent");
+        let get_string: libloading::Symbol<unsafe extern "C" fn(u32) -> *const c_char> =
+            lib.get(b"glGetString\0").expect("glGetString");
+        let dpy = get_display(std::ptr::null_mut());
+        assert!(init(dpy, std::ptr::null_mut(), std::ptr::null_mut()) != 0, "eglInitialize");
+        let egl = text(query(dpy, 0x3055));
+        let attribs = [0x3033, 1, 0x3040, 4, 0x3038];
+        let (mut config, mut n) = (std::ptr::null_mut(), 0);
+        assert!(choose(dpy, attribs.as_ptr(), &mut config, 1, &mut n) != 0 && n == 1, "an ES 2.0 pbuffer config");
+        let surface = pbuffer(dpy, config, [0x3057, 4, 0x3056, 4, 0x3038].as_ptr());
+        let ctx = create(dpy, config, std::ptr::null_mut(), [0x3098, 2, 0x3038].as_ptr());
+        assert!(make_current(dpy, surface, surface, ctx) != 0, "a current context");
+        let gl = text(get_string(GL_EXTENSIONS));
+        (gl, egl)
+    }
+}
+
+#[test]
+fn piglit_scope_holds_every_advertised_extension() {
+    let daemon = Daemon::start("extension-scope", &[]);
+    let (gl, egl) = library_extensions(Path::new(&daemon.socket));
+    assert!(!gl.is_empty() && !egl.is_empty(), "no extension strings: GL {gl:?}, EGL {egl:?}");
+    let outside: Vec<&String> =
+        gl.iter().chain(&egl).filter(|e| !verdict::IN_SCOPE_EXTENSIONS.contains(&e.as_str())).collect();
+    assert!(
+        outside.is_empty(),
+        "advertised, and missing from IN_SCOPE_EXTENSIONS in tests/piglit/verdict.rs (an exception could excuse a test of them): {outside:?}"
+    );
+    eprintln!("{} GL and {} EGL extensions advertised, all in piglit's scope", gl.len(), egl.len());
 }

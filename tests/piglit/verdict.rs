@@ -96,6 +96,18 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
     "GL_EXT_robustness",
     "GL_KHR_robustness",
     "EGL_KHR_create_context",
+    "GL_EXT_unpack_subimage",
+    "EGL_EXT_buffer_age",
+    "EGL_EXT_pixel_format_float",
+    "EGL_IMG_context_priority",
+    "EGL_KHR_context_flush_control",
+    "EGL_KHR_create_context_no_error",
+    "EGL_KHR_get_all_proc_addresses",
+    "EGL_KHR_gl_colorspace",
+    "EGL_KHR_no_config_context",
+    "EGL_KHR_swap_buffers_with_damage",
+    "EGL_STRATA_surface_id",
+    "EGL_STRATA_surface_projection",
 ];
 
 /// The reasons a test may be excused, as the part of a reason before its first colon.

@@ -97,6 +97,7 @@ pub(super) fn attrib_formats(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glDrawArrays(TRIANGLES, 0, 3)
 }
 
+/// Normalised shorts for positions and `GL_OES_vertex_half_float`'s half floats for colours.
 pub(super) fn attrib_short_half(gl: Gl<'_>, n: &mut Names) -> R {
     program(gl, n, VS_COLOR, FS_VARY, &["pos", "col"])?;
     let pos: Vec<u8> = [-30000i16, -30000, 30000, -30000, 0, 30000].iter().flat_map(|v| v.to_ne_bytes()).collect();
