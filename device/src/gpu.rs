@@ -110,6 +110,9 @@ impl Gpu {
     /// A fence: marks the point after everything submitted on the queue so far, for `lane`.
     /// Returns the mark, which [`Gpu::reached`] checks; nothing waits.
     pub fn mark(&self, lane: &Lane) -> u64 {
+        // Runs the callbacks of marks whose work is done, so that a client making fences and
+        // never polling holds at most those of its work still in flight.
+        let _ = self.device.poll(wgpu::PollType::Poll);
         let marks = lane.marks().clone();
         let mark = marks.issued.fetch_add(1, std::sync::atomic::Ordering::AcqRel) + 1;
         self.queue.on_submitted_work_done(move || {
