@@ -116,6 +116,11 @@ fn a_blob_left_unread_is_skipped_and_the_stream_goes_on() {
 
 /// Runs a reader over what `write` produces; returns its error.
 fn violation(write: impl FnOnce(&mut Writer), messages: usize) -> RingError {
+    violation_mid(write, messages).0
+}
+
+/// [`violation`], and whether the reader then says it was in the middle of a message.
+fn violation_mid(write: impl FnOnce(&mut Writer), messages: usize) -> (RingError, bool) {
     let (ring, _) = heap_ring(1 << 14);
     let mut w = Writer::new(ring.clone(), 4096);
     write(&mut w);
@@ -139,7 +144,7 @@ fn violation(write: impl FnOnce(&mut Writer), messages: usize) -> RingError {
                 seen += n;
                 assert!(seen < messages, "every message was delivered without an error");
             }
-            Err(e) => return e,
+            Err(e) => return (e, r.mid_message()),
         }
     }
 }
@@ -178,7 +183,7 @@ fn a_blob_overrun_is_refused() {
 
 #[test]
 fn a_peer_gone_mid_blob_ends_the_read() {
-    let e = violation(
+    let (e, mid) = violation_mid(
         |w| {
             announce(w, 10_000);
             w.write_bulk(&blob(5_000, 0), &|| true).expect("stream");
@@ -186,6 +191,8 @@ fn a_peer_gone_mid_blob_ends_the_read() {
         1,
     );
     assert!(matches!(e, RingError::PeerGone), "{e}");
+    // As a peer gone between a chunked message's chunks: the session says so.
+    assert!(mid, "a peer gone mid-blob is not reported as gone in the middle of a command");
 }
 
 #[test]

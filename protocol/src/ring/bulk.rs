@@ -42,6 +42,12 @@ impl BulkState {
     }
 
     /// What failed while the blob was read, if anything did.
+    /// Whether a streamed blob was announced and not all of it has come: a peer gone now left
+    /// in the middle of a command.
+    pub fn unfinished(&self) -> bool {
+        self.used.get() && self.remaining.get() > 0
+    }
+
     pub fn failure(&self) -> Option<RingError> {
         if self.used.get() {
             self.failed.borrow().clone()

@@ -127,9 +127,9 @@ impl Reader {
         let _ = self.hold(self.assembly.capacity());
     }
 
-    /// Whether a chunked message has begun but not ended.
+    /// Whether a chunked message has begun but not ended, or a streamed blob has not all come.
     pub fn mid_message(&self) -> bool {
-        self.expected.is_some()
+        self.expected.is_some() || self.bulk.unfinished()
     }
 
     /// Whether the writer has published anything not yet consumed.
