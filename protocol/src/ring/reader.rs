@@ -177,7 +177,6 @@ impl Reader {
                 other => other?,
             };
         }
-        let cap = self.ring.capacity;
         let mut delivered = 0;
         while self.tail != head {
             let Frame { off, len, kind, size } = next_frame(&self.ring, self.tail, head)?;
@@ -300,9 +299,7 @@ impl Reader {
                 other => return Err(RingError::UnknownKind(other).into()),
             }
             self.tail = self.tail.wrapping_add(size as u32);
-            if self.tail.wrapping_sub(self.released) >= (cap / 4).min(RELEASE_EVERY) {
-                self.release();
-            }
+            self.release_if_due();
         }
         self.release();
         Ok(delivered)
@@ -331,10 +328,16 @@ impl Reader {
         }
         bulk.finish()?;
         (self.tail, self.released) = (self.bulk.tail.get(), self.bulk.released.get());
+        self.release_if_due();
+        Ok(self.bulk.head.get())
+    }
+
+    /// Hands consumed space back once enough has gathered (a quarter of the ring, at most
+    /// [`RELEASE_EVERY`]), mid-batch too.
+    fn release_if_due(&mut self) {
         if self.tail.wrapping_sub(self.released) >= (self.ring.capacity / 4).min(RELEASE_EVERY) {
             self.release();
         }
-        Ok(self.bulk.head.get())
     }
 
     fn release(&mut self) {
