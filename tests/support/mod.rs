@@ -258,6 +258,19 @@ pub fn oracles_required() -> bool {
     std::env::var_os("STRATA_REQUIRE_ORACLES").is_some()
 }
 
+/// The items of a suite that `STRATA_ONLY` (comma-separated parts of names) selects, all of
+/// them when it is unset: for re-running a few programs or sequences of a long suite by hand.
+/// A selection is announced, and `STRATA_REQUIRE_ORACLES` (CI) refuses one.
+#[allow(dead_code)]
+pub fn only<T>(items: Vec<T>, name: impl Fn(&T) -> &str) -> Vec<T> {
+    let Some(only) = std::env::var("STRATA_ONLY").ok().filter(|s| !s.is_empty()) else { return items };
+    assert!(!oracles_required(), "STRATA_ONLY={only} selects part of a suite, and STRATA_REQUIRE_ORACLES asks for all");
+    let total = items.len();
+    let kept: Vec<T> = items.into_iter().filter(|i| only.split(',').any(|part| name(i).contains(part.trim()))).collect();
+    eprintln!("STRATA_ONLY={only}: {} of {total}", kept.len());
+    kept
+}
+
 /// The path of `program` on `PATH`, if installed.
 pub fn which(program: &str) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
