@@ -266,7 +266,8 @@ pub fn only<T>(items: Vec<T>, name: impl Fn(&T) -> &str) -> Vec<T> {
     let Some(only) = std::env::var("STRATA_ONLY").ok().filter(|s| !s.is_empty()) else { return items };
     assert!(!oracles_required(), "STRATA_ONLY={only} selects part of a suite, and STRATA_REQUIRE_ORACLES asks for all");
     let total = items.len();
-    let kept: Vec<T> = items.into_iter().filter(|i| only.split(',').any(|part| name(i).contains(part.trim()))).collect();
+    let kept: Vec<T> =
+        items.into_iter().filter(|i| only.split(',').any(|part| name(i).contains(part.trim()))).collect();
     eprintln!("STRATA_ONLY={only}: {} of {total}", kept.len());
     kept
 }
