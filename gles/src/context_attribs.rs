@@ -82,7 +82,7 @@ pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
     }
     match (major, minor) {
         (2, 0) => Ok(out),
-        (1 | 3, _) => Err(EGL_BAD_CONFIG),
+        (1, _) => Err(EGL_BAD_CONFIG),
         _ => Err(EGL_BAD_MATCH),
     }
 }
@@ -99,7 +99,7 @@ mod tests {
         assert_eq!(asked, Ok(ContextAttribs { debug: true, ..Default::default() }));
         for (list, err) in [
             (&[EGL_NONE][..], EGL_BAD_CONFIG),
-            (&[EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE], EGL_BAD_CONFIG),
+            (&[EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 4, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, 0x2, EGL_NONE], EGL_BAD_ATTRIBUTE),

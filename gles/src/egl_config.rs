@@ -16,7 +16,9 @@ pub struct Config {
     pub stencil: i32,
 }
 
-/// Every config the daemon offers. All are window- and pbuffer-capable and ES2-renderable.
+/// Every config the daemon offers. All are window- and pbuffer-capable, and ES 2 and ES 3
+/// renderable as Mesa's are (held to ES 2.0, Mesa keeps the ES 3 bit and refuses ES 3 contexts
+/// with `EGL_BAD_MATCH`, as the daemon does until it has ES 3 contexts).
 pub const CONFIGS: &[Config] = &[
     Config { id: 1, rgba: [8, 8, 8, 8], depth: 24, stencil: 8 },
     Config { id: 2, rgba: [8, 8, 8, 8], depth: 0, stencil: 0 },
@@ -45,7 +47,7 @@ impl Config {
             EGL_STENCIL_SIZE => self.stencil,
             EGL_CONFIG_ID => self.id as i32,
             EGL_SURFACE_TYPE => EGL_WINDOW_BIT | EGL_PBUFFER_BIT,
-            EGL_RENDERABLE_TYPE | EGL_CONFORMANT => EGL_OPENGL_ES2_BIT,
+            EGL_RENDERABLE_TYPE | EGL_CONFORMANT => EGL_OPENGL_ES2_BIT | EGL_OPENGL_ES3_BIT_KHR,
             EGL_COLOR_BUFFER_TYPE => EGL_RGB_BUFFER,
             // EGL_EXT_pixel_format_float: every config is fixed-point, as Mesa's on X11 are.
             EGL_COLOR_COMPONENT_TYPE_EXT => EGL_COLOR_COMPONENT_TYPE_FIXED_EXT,
