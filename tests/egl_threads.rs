@@ -1,7 +1,10 @@
 //! The drop-in libEGL/libGLESv2 keep one current context per thread, as EGL requires: two
 //! threads, each with its own context and pbuffer, draw and read back at the same time through
 //! one daemon connection, and each sees only its own context's results; a thread that made
-//! nothing current has no current context, and its GL calls do nothing.
+//! nothing current has no current context, and its GL calls do nothing. And a sync destroyed
+//! by one thread while another waits on it ends the wait as if it had been signalled, as
+//! `EGL_KHR_fence_sync` and `EGL_KHR_reusable_sync` say (compared with the extensions' words,
+//! not with Mesa, whose wait reads the sync after another thread freed it).
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -106,5 +109,54 @@ fn each_thread_has_its_own_current_context() {
         // No current context: a GL call is a no-op, not a crash.
         (egl.clear)(GL_COLOR_BUFFER_BIT);
     }
+    destroyed_while_waited_on(&lib, &egl, dpy as Ptr, config as Ptr);
     drop(lib);
+}
+
+const EGL_SYNC_FENCE_KHR: u32 = 0x30F9;
+const EGL_SYNC_REUSABLE_KHR: u32 = 0x30FA;
+const EGL_CONDITION_SATISFIED_KHR: i32 = 0x30F6;
+const EGL_TIMEOUT_EXPIRED_KHR: i32 = 0x30F5;
+
+/// A reusable sync and a fence, each destroyed by a second thread 50 ms into a 10 s wait on
+/// it: the reusable sync's wait returns at once, as if signalled; the fence's wait goes on to
+/// the fence's work, which is done well before the timeout.
+fn destroyed_while_waited_on(lib: &libloading::Library, egl: &support::egl::Egl, dpy: Ptr, config: Ptr) {
+    type Create = unsafe extern "C" fn(Ptr, u32, *const i32) -> Ptr;
+    type Destroy = unsafe extern "C" fn(Ptr, Ptr) -> u32;
+    type Wait = unsafe extern "C" fn(Ptr, Ptr, i32, u64) -> i32;
+    // SAFETY: the extensions' prototypes; a pbuffer context is made current on this thread.
+    unsafe {
+        let create: Create = support::egl::sym(lib, b"eglCreateSyncKHR\0");
+        let destroy: Destroy = support::egl::sym(lib, b"eglDestroySyncKHR\0");
+        let wait: Wait = support::egl::sym(lib, b"eglClientWaitSyncKHR\0");
+        let size = [EGL_WIDTH, 16, EGL_HEIGHT, 16, EGL_NONE];
+        let surface = (egl.create_pbuffer)(dpy, config, size.as_ptr());
+        let ctx_attribs = [EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE];
+        let ctx = (egl.create_context)(dpy, config, std::ptr::null_mut(), ctx_attribs.as_ptr());
+        assert_eq!((egl.make_current)(dpy, surface, surface, ctx), 1, "eglMakeCurrent");
+        for (what, ty) in [("reusable sync", EGL_SYNC_REUSABLE_KHR), ("fence", EGL_SYNC_FENCE_KHR)] {
+            (egl.clear)(GL_COLOR_BUFFER_BIT);
+            let sync = create(dpy, ty, std::ptr::null());
+            assert!(!sync.is_null(), "eglCreateSyncKHR ({what})");
+            let (d, s) = (dpy as usize, sync as usize);
+            let other = std::thread::spawn(move || {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                // The display and sync of this test (inside the unsafe block above).
+                destroy(d as Ptr, s as Ptr)
+            });
+            let start = std::time::Instant::now();
+            let answer = wait(dpy, sync, 0, 10_000_000_000);
+            let took = start.elapsed();
+            assert_eq!(other.join().expect("destroying thread"), 1, "eglDestroySyncKHR ({what})");
+            assert_eq!(
+                answer, EGL_CONDITION_SATISFIED_KHR,
+                "{what} destroyed while waited on: the wait answered {answer:#x} ({EGL_TIMEOUT_EXPIRED_KHR:#x} is a timeout)"
+            );
+            assert!(took < std::time::Duration::from_secs(5), "{what}: the wait took {took:?}");
+        }
+        (egl.make_current)(dpy, std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut());
+        (egl.destroy_context)(dpy, ctx);
+        (egl.destroy_surface)(dpy, surface);
+    }
 }

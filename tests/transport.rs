@@ -329,3 +329,31 @@ fn out_of_descriptors_the_daemon_pauses_and_logs_once_a_second() {
     daemon.assert_running();
     assert!(daemon.stop().success());
 }
+
+/// A fence's mark reaches the client through its segment's fence word with nothing sent after
+/// the fence: polling costs no round trip. The client only reads shared memory while it waits;
+/// the daemon's own watch of the device publishes the mark once the draw before it completes.
+#[test]
+fn a_fence_mark_is_published_without_a_request() {
+    let daemon = Daemon::start("fence-word", &[]);
+    let opts =
+        ConnectOptions { socket: daemon.socket.clone(), name: "fence-word".into(), tally: true, ..Default::default() };
+    let mut c = Connection::connect(&opts).expect("connect");
+    let pbuffer = strata_client::setup::SurfaceKind::Pbuffer { width: 64, height: 64 };
+    strata_client::setup::egl_context(&mut c, 24, 8, pbuffer).expect("context");
+    for round in 0..3 {
+        c.glClearColor(0.2, 0.4, 0.6, 1.0).expect("clear colour");
+        c.glClear(0x4000).expect("clear");
+        let mark = c.strataFence().expect("fence");
+        assert!(mark > 0, "round {round}: the daemon gave no mark");
+        let sent = c.sent();
+        assert!(sent.is_some(), "the connection counts what it sends");
+        let start = std::time::Instant::now();
+        while c.fences_reached() < mark {
+            assert!(start.elapsed() < Duration::from_secs(5), "round {round}: mark {mark} never published");
+            std::thread::sleep(Duration::from_micros(200));
+        }
+        assert_eq!(c.sent(), sent, "round {round}: waiting sent commands");
+        eprintln!("round {round}: mark {mark} published {:.2} ms after the fence", start.elapsed().as_secs_f64() * 1e3);
+    }
+}

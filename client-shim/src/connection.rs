@@ -18,7 +18,7 @@ use strata_protocol::input::InputEvent;
 use crate::error::ClientError;
 use crate::input::InputReader;
 use strata_protocol::ring::{Reader, Writer, STREAM_FROM};
-use strata_protocol::segment::Segment;
+use strata_protocol::segment::{FenceWord, Segment};
 use strata_protocol::tally::Tally;
 use strata_protocol::{Calls, Command, Reply, StreamTally};
 
@@ -68,6 +68,8 @@ pub struct Connection {
     client_id: u64,
     vertex_wire: VertexWire,
     _segment: Segment,
+    /// The segment's word for the newest completed fence mark.
+    fence_word: FenceWord,
     /// Reads the input events the daemon sends on the socket.
     input: Option<InputReader>,
 }
@@ -139,6 +141,7 @@ impl Connection {
             tally: opts.tally.then(Tally::default),
             client_id,
             vertex_wire,
+            fence_word: segment.fence_word(),
             _segment: segment,
         })
     }
@@ -151,6 +154,12 @@ impl Connection {
     /// How the daemon asked for `GL_FLOAT` client-side vertex arrays to be sent.
     pub fn vertex_wire(&self) -> VertexWire {
         self.vertex_wire
+    }
+
+    /// The newest fence mark (`strataFence`'s reply) whose commands have completed, as the daemon
+    /// publishes it in the segment: reading it costs no round trip.
+    pub fn fences_reached(&self) -> u64 {
+        self.fence_word.get()
     }
 
     /// Publishes every queued command.

@@ -71,6 +71,8 @@ pub struct Gpu {
     /// The threads the driver started for this device (lavapipe's queue and rasterizer
     /// threads), which inherited the nice value of the thread that opened it.
     pub threads: Vec<i32>,
+    /// Polls the device while fence marks are outstanding.
+    pub(crate) watch: crate::marks::Watch,
 }
 
 impl std::fmt::Debug for Gpu {
@@ -108,29 +110,16 @@ impl Gpu {
     }
 
     /// A fence: marks the point after everything submitted on the queue so far, for `lane`.
-    /// Returns the mark, which [`Gpu::reached`] checks; nothing waits.
+    /// Returns the mark; nothing waits. The device's watch polls until the mark is reached and
+    /// publishes it where the lane publishes its marks ([`Lane::publish_marks`]).
     pub fn mark(&self, lane: &Lane) -> u64 {
-        // Runs the callbacks of marks whose work is done, so that a client making fences and
-        // never polling holds at most those of its work still in flight.
-        let _ = self.device.poll(wgpu::PollType::Poll);
         let marks = lane.marks().clone();
+        // Handed out before the watch looks (see `marks::Watch::watch`).
         let mark = marks.issued.fetch_add(1, std::sync::atomic::Ordering::AcqRel) + 1;
-        self.queue.on_submitted_work_done(move || {
-            marks.done.fetch_max(mark, std::sync::atomic::Ordering::AcqRel);
-        });
+        let reached = marks.clone();
+        self.queue.on_submitted_work_done(move || reached.complete(mark));
+        self.watch.watch(&marks, &self.device, &self.lost);
         mark
-    }
-
-    /// Whether the work before `lane`'s fence `mark` has completed, without waiting (the device
-    /// is polled once). A lost device has nothing left to complete: every mark is reached.
-    pub fn reached(&self, lane: &Lane, mark: u64) -> bool {
-        use std::sync::atomic::Ordering;
-        let marks = lane.marks();
-        if marks.done.load(Ordering::Acquire) >= mark || self.lost.load(Ordering::Acquire) {
-            return true;
-        }
-        let _ = self.device.poll(wgpu::PollType::Poll);
-        marks.done.load(Ordering::Acquire) >= mark
     }
 
     /// Writes `data` into `buffer` at `offset` on the queue (before the next submission).

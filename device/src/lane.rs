@@ -10,6 +10,8 @@ use std::time::{Duration, Instant};
 use strata_protocol::control::{Priority, Waits};
 use tracing::warn;
 
+use crate::marks::Marks;
+
 /// The longest any wait for the device lasts before it is given up on (a wedged device must
 /// not wedge the daemon's threads).
 const GPU_WAIT_LIMIT: Duration = Duration::from_secs(5);
@@ -30,15 +32,6 @@ pub struct Lane {
     counters: Counters,
     /// The client's fence marks (see [`crate::Gpu::mark`]).
     marks: Arc<Marks>,
-}
-
-/// A lane's fence marks: the newest handed out, and the newest whose work has completed.
-#[derive(Default)]
-pub(crate) struct Marks {
-    /// The newest mark handed out.
-    pub(crate) issued: AtomicU64,
-    /// The newest mark whose work has completed.
-    pub(crate) done: AtomicU64,
 }
 
 impl std::fmt::Debug for Lane {
@@ -88,6 +81,12 @@ impl Lane {
     /// The lane's fence marks.
     pub(crate) fn marks(&self) -> &Arc<Marks> {
         &self.marks
+    }
+
+    /// Publishes the newest fence mark reached on this lane to `word` (the client's segment),
+    /// from now on.
+    pub fn publish_marks(&self, word: strata_protocol::segment::FenceWord) {
+        self.marks.publish_to(word);
     }
 
     /// Waits until `index` has completed, counting the time as device wait.

@@ -7,6 +7,7 @@
 pub mod account;
 mod gpu;
 mod lane;
+mod marks;
 mod open;
 mod passes;
 mod process;

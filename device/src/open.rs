@@ -238,6 +238,7 @@ impl Gpu {
             lost,
             waited_us: Default::default(),
             threads,
+            watch: Default::default(),
         }))
     }
 }

@@ -153,11 +153,6 @@ impl GlesExecutor {
         self.r.fence()
     }
 
-    /// Whether a fence's commands have completed (polled, never waited for).
-    pub(super) fn strataFenceReached(&mut self, mark: u64) -> bool {
-        self.r.fence_reached(mark)
-    }
-
     pub(super) fn glFinish(&mut self, _ctx: &mut Context) {
         self.r.finish();
         // Every command before it has completed, the swaps too: their frames are published.

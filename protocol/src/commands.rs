@@ -480,11 +480,9 @@ command_set! {
         /// within `rects` (x, y, width, height quadruples from the surface's bottom left).
         eglSwapBuffersWithDamageKHR [NoContext] => SwapBuffersWithDamageKHR { display: EglHandle, surface: EglHandle, rects: Slice<'a, EGLint> } -> EglResult<()>;
         /// `EGL_KHR_fence_sync`'s fence: flushes the context's commands and marks the point
-        /// after them. Reply: the mark.
+        /// after them. Reply: the mark, which the segment's fence word reaches once the commands
+        /// before it have completed (`segment::FenceWord`).
         strataFence [Context] => Fence {} -> u64;
-        /// Whether the commands before a fence's mark have completed on the GPU, answered at
-        /// once (a poll, as a wait with no timeout asks).
-        strataFenceReached [NoContext] => FenceReached { mark: u64 } -> bool;
     }
 }
 

@@ -1,5 +1,7 @@
 //! The per-client shared-memory segment: a header, then the command ring (client → daemon)
-//! and the reply ring (daemon → client).
+//! and the reply ring (daemon → client). The header also holds one word the daemon publishes
+//! and the client reads, the newest fence mark whose work has completed ([`FenceWord`]), so that
+//! polling a fence costs the client no round trip.
 //!
 //! The daemon creates it as an anonymous memory file (`memfd_create`) and hands the client its
 //! descriptor over the socket (`SCM_RIGHTS`, [`crate::fd_passing`]). It never has a name, so
@@ -7,6 +9,8 @@
 //! shrink it under the daemon's mapping.
 
 use std::os::fd::{AsFd, BorrowedFd, OwnedFd};
+use std::ptr::NonNull;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use rustix::fs::{MemfdFlags, SealFlags};
@@ -15,6 +19,8 @@ use rustix::mm::{MapFlags, ProtFlags};
 use crate::ring::{Backing, RingError, RingRegion, CONTROL_BYTES, MAX_CAPACITY, MIN_CAPACITY};
 
 const MAGIC: u64 = u64::from_le_bytes(*b"STRATA\x00\x01");
+/// Where the header keeps the [`FenceWord`] (8-aligned, before the command ring's control).
+const FENCE_WORD: usize = 16;
 const CMD_CONTROL: usize = 64;
 const REPLY_CONTROL: usize = CMD_CONTROL + CONTROL_BYTES;
 const DATA: usize = 4096;
@@ -189,6 +195,14 @@ impl Segment {
         self.map.base
     }
 
+    /// The header's word for the newest completed fence mark.
+    pub fn fence_word(&self) -> FenceWord {
+        // SAFETY: FENCE_WORD is 8-aligned within the header page of the mapping the Arc keeps
+        // alive; it is only ever accessed atomically.
+        let word = unsafe { NonNull::new_unchecked(self.base().add(FENCE_WORD).cast::<AtomicU64>()) };
+        FenceWord { word, _map: self.map.clone() }
+    }
+
     /// The client → daemon command ring.
     pub fn command_ring(&self) -> Result<RingRegion, SegmentError> {
         // SAFETY: control at 64-aligned offset 64, data at page offset 4096, both inside the
@@ -209,5 +223,38 @@ impl Segment {
                 self.map.clone(),
             )
         }?)
+    }
+}
+
+/// The newest fence mark whose work has completed, as the segment's header holds it: the daemon
+/// publishes it as the client's work completes, and the client reads it to poll a fence without
+/// a round trip. The daemon only ever writes it (it keeps its own count), so a client that
+/// writes it misleads nobody but itself.
+#[derive(Clone)]
+pub struct FenceWord {
+    word: NonNull<AtomicU64>,
+    _map: Arc<Mapping>,
+}
+
+// SAFETY: the word is an atomic in a shared mapping that `_map` keeps alive.
+unsafe impl Send for FenceWord {}
+// SAFETY: as above; every access is atomic.
+unsafe impl Sync for FenceWord {}
+
+impl FenceWord {
+    fn atomic(&self) -> &AtomicU64 {
+        // SAFETY: an aligned atomic word inside the live mapping (see `Segment::fence_word`).
+        unsafe { self.word.as_ref() }
+    }
+
+    /// Publishes `mark` as the newest completed one (daemon side; the caller keeps the values it
+    /// publishes increasing).
+    pub fn publish(&self, mark: u64) {
+        self.atomic().store(mark, Ordering::Release);
+    }
+
+    /// The newest completed mark the daemon has published (client side).
+    pub fn get(&self) -> u64 {
+        self.atomic().load(Ordering::Acquire)
     }
 }

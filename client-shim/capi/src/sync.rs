@@ -3,17 +3,16 @@
 //! syncs, which only the application signals (`eglSignalSyncKHR`) and a wait blocks on.
 //!
 //! A fence is signalled once the GL commands before it have completed. Creating one flushes
-//! the context's commands and has the daemon mark the point after them (`strataFence`). A
-//! poll (a wait with no timeout, or the fence's status) asks the daemon whether the GPU has
-//! completed the work before the mark (`strataFenceReached`, answered at once), so a program
-//! that flushes and then polls sees its fence signalled as soon as the work is done, as on
-//! Mesa. The daemon also runs each process's commands in order on one connection, and its
-//! `glFinish` waits until the GPU has finished everything the process submitted: so a fence
-//! is signalled by any `glFinish` completed after it was created too (the application's, or
-//! one a wait with a timeout sends; bounded by the daemon, whose GPU waits are bounded).
-//! Waiting in the server (`eglWaitSyncKHR`) needs nothing: the daemon never runs a later
-//! command before an earlier one. A fence waited on after the daemon connection was lost is
-//! signalled, so that the wait returns.
+//! the context's commands and has the daemon mark the point after them (`strataFence`). The
+//! daemon publishes the newest mark whose work has completed in the client's segment as soon as
+//! the GPU completes it, whether or not anyone asks; so a poll (a wait with no timeout, or the
+//! fence's status) is one read of shared memory, no round trip, and a program that flushes and
+//! then polls sees its fence signalled as soon as the work is done, as on Mesa. A wait with a
+//! timeout reads the same word until the mark comes, the fence is destroyed, or the time is up.
+//! A `glFinish` completed after a fence was created signals it too (the daemon's `glFinish`
+//! waits for everything the process submitted). Waiting in the server (`eglWaitSyncKHR`) needs
+//! nothing: the daemon never runs a later command before an earlier one. A fence waited on
+//! after the daemon connection was lost is signalled, so that the wait returns.
 
 use std::collections::HashMap;
 use std::ffi::c_void;
@@ -90,21 +89,11 @@ fn signaled(f: &Fence) -> bool {
 }
 
 /// Whether sync `sync` (of `kind`, not yet signalled) is signalled now: for a fence with a
-/// mark, the daemon is asked, without waiting, and a yes is kept. A lost connection signals.
+/// mark, the mark the daemon published in the segment is read (no round trip), and a yes is
+/// kept. A lost connection signals.
 fn poll(sync: usize, kind: Kind) -> bool {
     let Kind::Fence { mark: Some(mark), .. } = kind else { return false };
-    let reached = {
-        let mut p = process();
-        match p.conn.as_mut().map(|c| c.strataFenceReached(mark)) {
-            Some(Ok(r)) => r,
-            Some(Err(ClientError::Unsupported(_))) => false,
-            Some(Err(e)) => {
-                p.lose(&e);
-                true
-            }
-            None => true,
-        }
-    };
+    let reached = process().conn.as_ref().is_none_or(|c| c.fences_reached() >= mark);
     if reached {
         fences(|_, map| {
             if let Some(Fence { kind: Kind::Fence { reached, .. }, .. }) = map.get_mut(&sync) {
@@ -115,24 +104,47 @@ fn poll(sync: usize, kind: Kind) -> bool {
     reached
 }
 
+/// Blocks until fence `sync` (of `kind`, with a mark) is signalled or `timeout` (ns) has passed,
+/// reading the published mark with growing pauses (50 µs to 1 ms); whether it was signalled.
+/// A fence destroyed meanwhile is still waited for, by its mark, as Mesa waits on its fence.
+/// Holds no lock while it sleeps.
+fn wait_fence(sync: usize, kind: Kind, timeout: EGLTimeKHR) -> bool {
+    let deadline =
+        if timeout == EGL_FOREVER_KHR { None } else { Instant::now().checked_add(Duration::from_nanos(timeout)) };
+    let mut pause = Duration::from_micros(50);
+    loop {
+        if poll(sync, kind) {
+            return true;
+        }
+        let left = deadline.map(|d| d.saturating_duration_since(Instant::now()));
+        if left.is_some_and(|l| l.is_zero()) {
+            return false;
+        }
+        std::thread::sleep(left.map_or(pause, |l| l.min(pause)));
+        pause = (pause * 2).min(Duration::from_millis(1));
+    }
+}
+
 /// Blocks until reusable sync `sync` is signalled, destroyed, or `timeout` (ns) has passed;
-/// whether it was signalled.
-fn wait_reusable(sync: usize, timeout: EGLTimeKHR) -> bool {
+/// `eglClientWaitSyncKHR`'s answer for each.
+fn wait_reusable(sync: usize, timeout: EGLTimeKHR) -> EGLint {
     let deadline =
         if timeout == EGL_FOREVER_KHR { None } else { Instant::now().checked_add(Duration::from_nanos(timeout)) };
     let mut g = FENCES.lock().unwrap_or_else(PoisonError::into_inner);
     loop {
         match g.1.as_ref().and_then(|m| m.get(&sync)).map(|f| f.kind) {
             Some(Kind::Reusable(false)) => {}
-            Some(Kind::Reusable(true)) => return true,
-            _ => return false,
+            Some(Kind::Reusable(true)) => return EGL_CONDITION_SATISFIED_KHR,
+            // Destroyed while waited on: the wait returns at once, as if it had been signalled
+            // (EGL_KHR_reusable_sync).
+            _ => return EGL_CONDITION_SATISFIED_KHR,
         }
         g = match deadline {
             None => SIGNALLED.wait(g).unwrap_or_else(PoisonError::into_inner),
             Some(d) => {
                 let left = d.saturating_duration_since(Instant::now());
                 if left.is_zero() {
-                    return false;
+                    return EGL_TIMEOUT_EXPIRED_KHR;
                 }
                 SIGNALLED.wait_timeout(g, left).unwrap_or_else(PoisonError::into_inner).0
             }
@@ -222,9 +234,10 @@ crate::entry::entry_points! {
         answer(r, EGL_FALSE)
     }
 
-    /// Waits for a sync: a zero timeout polls (a fence asks the daemon whether its work is
-    /// done); a fence is otherwise waited for by finishing the process's commands, a reusable
-    /// sync until it is signalled or the timeout passes.
+    /// Waits for a sync: a zero timeout polls (a fence reads the mark the daemon published);
+    /// otherwise a fence is waited for until its mark is published, it is destroyed, or the
+    /// timeout passes (one the daemon gave no mark: by finishing the process's commands), a
+    /// reusable sync until it is signalled, destroyed, or the timeout passes.
     fn eglClientWaitSyncKHR(dpy: EGLDisplay, sync: EGLSyncKHR, _flags: EGLint, timeout: EGLTimeKHR) -> EGLint {
         let r = with_fence(dpy, sync, |f| (signaled(f), f.kind)).map(|(done, kind)| {
             if done || poll(sync as usize, kind) {
@@ -234,9 +247,12 @@ crate::entry::entry_points! {
                 return EGL_TIMEOUT_EXPIRED_KHR;
             }
             match kind {
-                Kind::Fence { .. } => finish_everything(),
-                Kind::Reusable(_) if !wait_reusable(sync as usize, timeout) => return EGL_TIMEOUT_EXPIRED_KHR,
-                Kind::Reusable(_) => {}
+                Kind::Fence { mark: Some(_), .. } if !wait_fence(sync as usize, kind, timeout) => {
+                    return EGL_TIMEOUT_EXPIRED_KHR
+                }
+                Kind::Fence { mark: Some(_), .. } => {}
+                Kind::Fence { mark: None, .. } => finish_everything(),
+                Kind::Reusable(_) => return wait_reusable(sync as usize, timeout),
             }
             EGL_CONDITION_SATISFIED_KHR
         });

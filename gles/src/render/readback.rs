@@ -104,11 +104,6 @@ impl Renderer {
         self.gpu.mark(&self.lane)
     }
 
-    /// Whether the work before fence `mark` has completed; nothing waits.
-    pub fn fence_reached(&self, mark: u64) -> bool {
-        self.gpu.reached(&self.lane, mark)
-    }
-
     /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
     /// rectangle `[x, y, w, h]` of array layer `layer` (a cube face) of a `size` depth or
     /// depth-stencil texture.

@@ -175,6 +175,10 @@ pub(super) async fn run_client(
         None => None,
     };
     let lane = plan.as_ref().map(|p| p.lane.clone());
+    // The client reads its reached fences from its segment, without asking.
+    if let Some(l) = &lane {
+        l.publish_marks(segment.fence_word());
+    }
     let events = Arc::new(crate::input::EventQueue::default());
     let info = ClientInfo {
         events: events.clone(),

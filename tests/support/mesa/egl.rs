@@ -155,11 +155,6 @@ impl Arms<'_> {
         Err(unsupported("strataFence (Strata's own call; the reference's fences are EGL's)"))
     }
 
-    pub(super) fn strataFenceReached(&mut self, mark: &u64) -> Result<bool, ClientError> {
-        let _ = mark;
-        Err(unsupported("strataFenceReached (Strata's own call)"))
-    }
-
     pub(super) fn eglSwapBuffers(
         &mut self,
         display: &EglHandle,
