@@ -1,8 +1,9 @@
 //! `GL_KHR_debug`'s callback through the C entry points: a debug context starts with debug
 //! output enabled, so a callback installed there receives the `GL_INVALID_ENUM` of an unknown
 //! capability without the application enabling anything; with output disabled it receives
-//! nothing; with synchronous output it has the message before the call returns; and a context
-//! that is not a debug context starts with output disabled.
+//! nothing; with synchronous output it has the message before the call returns; a callback
+//! that itself calls GL (which KHR_debug leaves undefined) gets its answer, and the program goes
+//! on; and a context that is not a debug context starts with output disabled.
 
 use std::sync::Mutex;
 
@@ -48,6 +49,30 @@ unsafe extern "C" fn callback(
     let ours = std::ptr::eq(user, std::ptr::addr_of!(USER).cast());
     let m = Received { source, ty, severity, id: id != 0, text, ours };
     RECEIVED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(m);
+}
+
+/// The entry points a callback that calls GL uses (set before it is installed).
+static API: Mutex<Option<Api>> = Mutex::new(None);
+
+/// What the GL-calling callback's own call answered, each time it was called.
+static ANSWERS: Mutex<Vec<u8>> = Mutex::new(Vec::new());
+
+/// A callback that calls GL itself: asks whether debug output is enabled.
+unsafe extern "C" fn calling_back(
+    _source: u32,
+    _ty: u32,
+    _id: u32,
+    _severity: u32,
+    _length: i32,
+    _message: *const i8,
+    _user: *const c_void,
+) {
+    let api = *API.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(gl) = api {
+        // SAFETY: glIsEnabled's prototype, on the thread whose context is current.
+        let on = unsafe { (gl.is_enabled)(DEBUG_OUTPUT) };
+        ANSWERS.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(on);
+    }
 }
 
 impl Run {
@@ -101,6 +126,17 @@ pub fn sequence(r: &mut Run) {
         (gl.enable)(UNKNOWN_CAP);
         r.received("synchronous output, before any other call");
         r.note("the error");
+        // A callback that calls GL: with synchronous output, from inside the call that failed.
+        *API.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(gl);
+        (gl.debug_message_callback)(Some(calling_back), user);
+        (gl.enable)(UNKNOWN_CAP);
+        (gl.disable)(DEBUG_OUTPUT_SYNCHRONOUS);
+        (gl.enable)(UNKNOWN_CAP);
+        (gl.finish)();
+        let answers = std::mem::take(&mut *ANSWERS.lock().unwrap_or_else(std::sync::PoisonError::into_inner));
+        r.log.push(format!("a callback calling glIsEnabled(GL_DEBUG_OUTPUT), twice: answered {answers:?}"));
+        r.note("the error after it");
+        r.enabled("output still", DEBUG_OUTPUT);
         (gl.debug_message_callback)(None, std::ptr::null());
         (gl.egl_make_current)(egl.display, egl.surface, egl.surface, egl.context);
         (gl.egl_destroy_context)(egl.display, ctx);
