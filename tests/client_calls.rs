@@ -35,7 +35,10 @@
 //! - `debug_callback`: `GL_KHR_debug`'s callback, which the library calls, in a debug context
 //!   and in a plain one;
 //! - `share_group`: contexts that share objects (`eglCreateContext`'s `share_context`), whose
-//!   buffers' contents the library keeps for the whole group.
+//!   buffers' contents the library keeps for the whole group;
+//! - `base_vertex`: `glDrawElementsBaseVertexEXT` and `...OES`, the entry points themselves
+//!   (`GL_EXT_draw_elements_base_vertex`, `GL_OES_draw_elements_base_vertex`), with client
+//!   indices the library sends.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -54,6 +57,8 @@ const NONE: i32 = 0x3038;
 const ARRAY: u32 = 0x8892;
 const STATIC_DRAW: u32 = 0x88E4;
 
+#[path = "client_calls/base_vertex.rs"]
+mod base_vertex;
 #[path = "client_calls/border.rs"]
 mod border;
 #[path = "client_calls/colorspace.rs"]
@@ -279,6 +284,8 @@ api! {
     framebuffer_texture_3d = "glFramebufferTexture3DOES": fn(u32, u32, u32, u32, i32, i32);
     compressed_tex_sub_image_2d = "glCompressedTexSubImage2D": fn(u32, i32, i32, i32, i32, i32, u32, i32, *const c_void);
     compressed_tex_sub_image_3d = "glCompressedTexSubImage3DOES": fn(u32, i32, i32, i32, i32, i32, i32, i32, u32, i32, *const c_void);
+    draw_elements_base_vertex_ext = "glDrawElementsBaseVertexEXT": fn(u32, i32, u32, *const c_void, i32);
+    draw_elements_base_vertex_oes = "glDrawElementsBaseVertexOES": fn(u32, i32, u32, *const c_void, i32);
 }
 
 /// The EGL objects the sequences start with: the display, the config, and the pbuffer and
@@ -406,7 +413,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 20] = [
+    let sequences: [Sequence; 21] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -427,6 +434,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("colorspace", colorspace::sequence),
         ("debug_callback", debug_callback::sequence),
         ("share_group", share_group::sequence),
+        ("base_vertex", base_vertex::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in support::only(sequences.to_vec(), |s| s.0) {

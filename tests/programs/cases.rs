@@ -186,6 +186,7 @@ fn precision_high_branch(gl: Gl<'_>, n: &mut Names) -> R {
     draw_positions(gl, n, &quad(-0.5, -0.5, 0.5, 0.5, 0.0), TRIANGLES)
 }
 
+/// `GL_OES_depth_texture`: a depth texture rendered into as a framebuffer's depth, then sampled.
 fn depth_texture_render_and_sample(gl: Gl<'_>, n: &mut Names) -> R {
     // A shadow-map pass: depth only into a DEPTH_COMPONENT texture, then sample it.
     let tex = depth_texture_target(gl, n, 32)?;
@@ -197,6 +198,7 @@ fn depth_texture_render_and_sample(gl: Gl<'_>, n: &mut Names) -> R {
     show_depth_texture(gl, n, tex)
 }
 
+/// `GL_OES_depth_texture`: a depth texture uploaded as 16-bit values, then sampled.
 fn depth_texture_upload(gl: Gl<'_>, n: &mut Names) -> R {
     let tex = n.next();
     gl.glBindTexture(TEXTURE_2D, tex)?;
