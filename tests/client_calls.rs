@@ -226,6 +226,7 @@ api! {
     is_vertex_array = "glIsVertexArrayOES": fn(u32) -> u8;
     delete_vertex_arrays = "glDeleteVertexArraysOES": fn(i32, *const u32);
     debug_message_callback = "glDebugMessageCallbackKHR": fn(DebugProc, *const c_void);
+    debug_message_control = "glDebugMessageControlKHR": fn(u32, u32, u32, i32, *const u32, u8);
     disable = "glDisable": fn(u32);
     scissor = "glScissor": fn(i32, i32, i32, i32);
     compressed_tex_image_2d = "glCompressedTexImage2D": fn(u32, i32, u32, i32, i32, i32, i32, *const c_void);

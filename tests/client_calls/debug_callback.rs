@@ -1,7 +1,9 @@
 //! `GL_KHR_debug`'s callback through the C entry points: a debug context starts with debug
 //! output enabled, so a callback installed there receives the `GL_INVALID_ENUM` of an unknown
 //! capability without the application enabling anything; with output disabled it receives
-//! nothing; with synchronous output it has the message before the call returns; a callback
+//! nothing; with error messages turned off by `glDebugMessageControlKHR` it receives nothing,
+//! and again once they are turned back on; with synchronous output it has the message before
+//! the call returns; a callback
 //! that itself calls GL (which KHR_debug leaves undefined) gets its answer, and the program goes
 //! on; and a context that is not a debug context starts with output disabled.
 
@@ -13,6 +15,8 @@ const FLAGS_KHR: i32 = 0x30FC;
 const DEBUG_BIT_KHR: i32 = 0x1;
 const DEBUG_OUTPUT: u32 = 0x92E0;
 const DEBUG_OUTPUT_SYNCHRONOUS: u32 = 0x8242;
+const DONT_CARE: u32 = 0x1100;
+const TYPE_ERROR: u32 = 0x824C;
 /// Not a capability.
 const UNKNOWN_CAP: u32 = 0x7FFF;
 
@@ -122,6 +126,17 @@ pub fn sequence(r: &mut Run) {
         r.received("output disabled");
         r.note("the error");
         (gl.enable)(DEBUG_OUTPUT);
+        // Error messages turned off, from any source and of any severity: none comes.
+        (gl.debug_message_control)(DONT_CARE, TYPE_ERROR, DONT_CARE, 0, std::ptr::null(), 0);
+        (gl.enable)(UNKNOWN_CAP);
+        (gl.finish)();
+        r.received("error messages turned off");
+        r.note("the error");
+        (gl.debug_message_control)(DONT_CARE, TYPE_ERROR, DONT_CARE, 0, std::ptr::null(), 1);
+        (gl.enable)(UNKNOWN_CAP);
+        (gl.finish)();
+        r.received("error messages turned on again");
+        r.note("the error");
         (gl.enable)(DEBUG_OUTPUT_SYNCHRONOUS);
         (gl.enable)(UNKNOWN_CAP);
         r.received("synchronous output, before any other call");
