@@ -3,7 +3,8 @@
 //! context exactly once, says "advertised" exactly for those Strata advertises (naming tests
 //! that cover each), and Strata advertises nothing Mesa does not. And piglit's scope
 //! (`tests/piglit/verdict.rs`) holds every GL and EGL extension the drop-in library
-//! advertises, so that no exception line can excuse a test of something Strata claims.
+//! advertises, so that no exception line can excuse a test of something Strata claims. And the
+//! mutation table (`tests/mutants/extensions.tsv`) has a line for every advertised extension.
 
 mod programs;
 mod support;
@@ -191,4 +192,29 @@ fn piglit_scope_holds_every_advertised_extension() {
         "advertised, and missing from IN_SCOPE_EXTENSIONS in tests/piglit/verdict.rs (an exception could excuse a test of them): {outside:?}"
     );
     eprintln!("{} GL and {} EGL extensions advertised, all in piglit's scope", gl.len(), egl.len());
+}
+
+/// The mutation table (`tests/mutants/extensions.tsv`, for `tools/extension-mutants`) has one
+/// line for each extension the parity file marks advertised, and names at least one test run
+/// for each.
+#[test]
+fn the_mutation_table_covers_every_advertised_extension() {
+    let file = parity_file();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/mutants/extensions.tsv");
+    let text = std::fs::read_to_string(&path).expect("tests/mutants/extensions.tsv");
+    let mut listed = BTreeSet::new();
+    for line in text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+        let mut fields = line.split('\t');
+        let (name, runs) = (fields.next().unwrap_or_default(), fields.next().unwrap_or_default());
+        assert!(!runs.trim().is_empty(), "tests/mutants/extensions.tsv: {name} names no test run");
+        assert!(listed.insert(name.to_string()), "tests/mutants/extensions.tsv: {name} listed twice");
+    }
+    let advertised: BTreeSet<String> =
+        file.iter().filter(|(_, s)| matches!(s, Status::Advertised(_))).map(|(n, _)| n.clone()).collect();
+    let missing: Vec<_> = advertised.difference(&listed).collect();
+    let extra: Vec<_> = listed.difference(&advertised).collect();
+    assert!(
+        missing.is_empty() && extra.is_empty(),
+        "tests/mutants/extensions.tsv: no line for {missing:?}; lines for extensions not advertised: {extra:?}"
+    );
 }
