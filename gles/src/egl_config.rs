@@ -16,7 +16,7 @@ pub struct Config {
     pub stencil: i32,
 }
 
-/// Every config the daemon offers. All are window- and pbuffer-capable, and ES 2 and ES 3
+/// Every config the daemon offers. All are window-, pixmap- and pbuffer-capable, and ES 2 and ES 3
 /// renderable as Mesa's are (held to ES 2.0, Mesa keeps the ES 3 bit and refuses ES 3 contexts
 /// with `EGL_BAD_MATCH`, as the daemon does until it has ES 3 contexts).
 pub const CONFIGS: &[Config] = &[
@@ -46,7 +46,8 @@ impl Config {
             EGL_DEPTH_SIZE => self.depth,
             EGL_STENCIL_SIZE => self.stencil,
             EGL_CONFIG_ID => self.id as i32,
-            EGL_SURFACE_TYPE => EGL_WINDOW_BIT | EGL_PBUFFER_BIT,
+            // Pixmap surfaces are the library's: a pbuffer here, copied to the X pixmap.
+            EGL_SURFACE_TYPE => EGL_WINDOW_BIT | EGL_PIXMAP_BIT | EGL_PBUFFER_BIT,
             EGL_RENDERABLE_TYPE | EGL_CONFORMANT => EGL_OPENGL_ES2_BIT | EGL_OPENGL_ES3_BIT_KHR,
             EGL_COLOR_BUFFER_TYPE => EGL_RGB_BUFFER,
             // EGL_EXT_pixel_format_float: every config is fixed-point, as Mesa's on X11 are.

@@ -483,6 +483,10 @@ command_set! {
         /// after them. Reply: the mark, which the segment's fence word reaches once the commands
         /// before it have completed (`segment::FenceWord`).
         strataFence [Context] => Fence {} -> u64;
+        /// The colour of the current draw surface, as RGBA8 rows from the bottom, whatever the
+        /// framebuffer bindings and pack state (the library copies a pixmap surface's contents
+        /// to its X pixmap with it). Empty with no surface current.
+        strataReadSurface [Context] => ReadSurface {} -> Bytes;
     }
 }
 

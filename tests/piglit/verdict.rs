@@ -111,9 +111,8 @@ pub const IN_SCOPE_EXTENSIONS: &[&str] = &[
 ];
 
 /// The reasons a test may be excused, as the part of a reason before its first colon.
-/// No "ES 3.x context": held to ES 2.0, Mesa cannot pass a test that needs one. "EGL pixmap
-/// surface": the test needs a config that renders to X pixmaps, which Strata has no surfaces for.
-pub const EXCUSES: &[&str] = &["desktop GL context", "ES 1.x context", "extension", "EGL pixmap surface"];
+/// No "ES 3.x context": held to ES 2.0, Mesa cannot pass a test that needs one.
+pub const EXCUSES: &[&str] = &["desktop GL context", "ES 1.x context", "extension"];
 
 /// One test's result as piglit recorded it.
 #[derive(Debug, Clone, Default)]

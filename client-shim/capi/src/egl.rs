@@ -311,24 +311,34 @@ crate::entry::entry_points! {
         handle_ptr(r)
     }
 
-    /// Not supported: no config renders to pixmaps.
+    /// A pixmap surface: a daemon pbuffer whose pixels `glFinish` puts into the X pixmap.
     fn eglCreatePixmapSurface(
-        _dpy: EGLDisplay,
-        _config: EGLConfig,
-        _pixmap: EGLNativePixmapType,
-        _attribs: *const EGLint,
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        pixmap: EGLNativePixmapType,
+        attribs: *const EGLint,
     ) -> EGLSurface {
-        handle_ptr(Err(unsupported("eglCreatePixmapSurface", EGL_BAD_MATCH)))
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        #[allow(clippy::useless_conversion)]
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), u64::from(pixmap), a)))
     }
 
-    /// Not supported: no config renders to pixmaps.
+    /// `EGL_EXT_platform_base` form of `eglCreatePixmapSurface`: `pixmap` points at an X11
+    /// `Pixmap`.
     fn eglCreatePlatformPixmapSurfaceEXT(
-        _dpy: EGLDisplay,
-        _config: EGLConfig,
-        _pixmap: *mut c_void,
-        _attribs: *const EGLint,
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        pixmap: *mut c_void,
+        attribs: *const EGLint,
     ) -> EGLSurface {
-        handle_ptr(Err(unsupported("eglCreatePlatformPixmapSurfaceEXT", EGL_BAD_MATCH)))
+        if pixmap.is_null() {
+            return handle_ptr(Err(EGL_BAD_NATIVE_PIXMAP));
+        }
+        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`.
+        #[allow(clippy::useless_conversion)]
+        let native = u64::from(unsafe { *(pixmap as *const EGLNativePixmapType) });
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), native, a)))
     }
 
     /// Not supported: there are no client buffer types.

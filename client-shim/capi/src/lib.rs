@@ -31,6 +31,7 @@ mod gl_state;
 mod glvnd;
 pub mod image;
 mod input;
+mod pixmap;
 pub mod registry;
 mod state;
 mod surface;

@@ -54,6 +54,23 @@ pub(crate) struct SurfaceInfo {
     pub window: Option<WindowInfo>,
     /// Whether it is a pbuffer, whose swaps show nothing (and so need no reply).
     pub pbuffer: bool,
+    /// For a pixmap surface (a pbuffer in the daemon): the X pixmap its contents go to.
+    pub pixmap: Option<PixmapInfo>,
+}
+
+/// The X pixmap behind a pixmap surface, which `glFinish` (and so `eglWaitClient`) fills.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PixmapInfo {
+    /// The X connection (an address; the library never frees it).
+    pub x_display: usize,
+    /// The pixmap.
+    pub native: u64,
+    /// Its width.
+    pub width: u32,
+    /// Its height.
+    pub height: u32,
+    /// Its depth (24 or 32).
+    pub depth: u32,
 }
 
 /// What the shim remembers of a window surface to follow its window's size.
@@ -196,7 +213,7 @@ impl Process {
             s = s.wrapping_add(1).max(1);
         }
         self.next_surface = s.wrapping_add(1);
-        self.surfaces.insert(s, SurfaceInfo { display, daemon, window, pbuffer });
+        self.surfaces.insert(s, SurfaceInfo { display, daemon, window, pbuffer, pixmap: None });
         s
     }
 

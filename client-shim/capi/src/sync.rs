@@ -208,13 +208,18 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
 }
 
 crate::entry::entry_points! {
-    /// Waits for every command of the process (`glFinish`); completes the fences before it.
+    /// Waits for every command of the process (`glFinish`); completes the fences before it,
+    /// and fills the pixmap of a pixmap surface drawn to.
     fn glFinish() {
         let args = String::new;
+        let pixmap = crate::pixmap::current();
         with_gl(Call { name: "glFinish", args: &args }, (), |gl| {
             gl.conn.glFinish()?;
             FINISHES.fetch_add(1, Ordering::SeqCst);
-            Ok(())
+            match pixmap {
+                Some(px) => crate::pixmap::fill(gl.conn, px),
+                None => Ok(()),
+            }
         })
     }
 

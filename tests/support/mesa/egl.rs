@@ -155,6 +155,10 @@ impl Arms<'_> {
         Err(unsupported("strataFence (Strata's own call; the reference's fences are EGL's)"))
     }
 
+    pub(super) fn strataReadSurface(&mut self) -> Result<Bytes, ClientError> {
+        Err(unsupported("strataReadSurface (Strata's own call)"))
+    }
+
     pub(super) fn eglSwapBuffers(
         &mut self,
         display: &EglHandle,

@@ -1,0 +1,75 @@
+//! Pixmap surfaces (`eglCreatePixmapSurface` on X11): a pbuffer in the daemon of the X
+//! pixmap's size, whose contents the library puts into the pixmap when the application waits
+//! for its rendering: `glFinish`, and so `eglWaitClient` and `eglWaitGL` (EGL 1.4 §3.8: the
+//! pixmap holds the client API's rendering once it has waited for it). A swap of a pixmap
+//! surface does nothing, as EGL says. The pixels come from the daemon's own read of the
+//! surface (`strataReadSurface`), past the application's framebuffer bindings and pack state,
+//! and go to the X server in one `XPutImage`.
+
+use std::ffi::c_ulong;
+
+use strata_client::{ClientError, Connection};
+use strata_protocol::{Calls, Slice};
+
+use crate::display::{daemon, initialized};
+use crate::state::{self, process, PixmapInfo};
+use crate::surface::x_display;
+use crate::types::*;
+use crate::x11;
+
+const EGL_WIDTH: EGLint = 0x3057;
+const EGL_HEIGHT: EGLint = 0x3056;
+const EGL_GL_COLORSPACE: EGLint = 0x309D;
+const EGL_VG_COLORSPACE: EGLint = 0x3087;
+const EGL_VG_ALPHA_FORMAT: EGLint = 0x3088;
+
+/// `eglCreatePixmapSurface`: a pixmap surface for X pixmap `pixmap` (of depth 24 or 32) on the
+/// shim's display behind `dpy`. Its only attribute is the GL colour space (OpenVG's are taken
+/// and ignored). Not a drawable of the display: `EGL_BAD_NATIVE_PIXMAP`, with the X error
+/// trapped. Returns the application's handle.
+pub(crate) fn create(dpy: EGLDisplay, config: u32, pixmap: u64, attribs: Vec<EGLint>) -> Result<u32, EGLint> {
+    let mut colorspace = Vec::new();
+    for pair in attribs.chunks(2) {
+        match *pair {
+            [EGL_NONE, ..] => break,
+            [EGL_GL_COLORSPACE, v] => colorspace.extend([EGL_GL_COLORSPACE, v]),
+            [EGL_VG_COLORSPACE | EGL_VG_ALPHA_FORMAT, _] => {}
+            _ => return Err(EGL_BAD_ATTRIBUTE),
+        }
+    }
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let xd = x_display(&mut p, d).ok_or(EGL_BAD_NATIVE_PIXMAP)?;
+    let native = c_ulong::try_from(pixmap).map_err(|_| EGL_BAD_NATIVE_PIXMAP)?;
+    let (width, height, depth) = x11::drawable_geometry(xd, native).ok_or(EGL_BAD_NATIVE_PIXMAP)?;
+    if !matches!(depth, 24 | 32) {
+        return Err(EGL_BAD_MATCH);
+    }
+    let size = |v: u32| i32::try_from(v).map_err(|_| EGL_BAD_NATIVE_PIXMAP);
+    let mut list = vec![EGL_WIDTH, size(width)?, EGL_HEIGHT, size(height)?];
+    list.extend(colorspace);
+    list.push(EGL_NONE);
+    let s = daemon(&mut p, |c, dd| c.eglCreatePbufferSurface(dd, config, Slice::new(&list)))?;
+    let handle = p.add_surface(d, s, None, true);
+    if let Some(info) = p.surfaces.get_mut(&handle) {
+        info.pixmap = Some(PixmapInfo { x_display: xd, native: pixmap, width, height, depth });
+    }
+    Ok(handle)
+}
+
+/// The pixmap behind the calling thread's draw surface, if that is a pixmap surface.
+pub(crate) fn current() -> Option<PixmapInfo> {
+    let cur = state::current()?;
+    process().surfaces.get(&cur.draw)?.pixmap
+}
+
+/// Puts the current draw surface's pixels into its pixmap `px` (after the daemon has finished
+/// drawing them). A pixmap the X server no longer has is logged once, and the call goes on.
+pub(crate) fn fill(conn: &mut Connection, px: PixmapInfo) -> Result<(), ClientError> {
+    let pixels = conn.strataReadSurface()?;
+    let native = c_ulong::try_from(px.native).unwrap_or_default();
+    if !x11::put_rgba(px.x_display, native, px.width, px.height, px.depth, &pixels.0) {
+        state::log_once(&format!("a pixmap surface's pixmap {:#x} could not be filled", px.native));
+    }
+    Ok(())
+}
