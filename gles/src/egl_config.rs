@@ -3,6 +3,11 @@
 
 use crate::enums::*;
 
+/// `EGL_PIXMAP_BIT`: pixmap surfaces are the library's (a pbuffer here, copied to the X pixmap).
+const EGL_PIXMAP_BIT: i32 = 0x0002;
+/// `EGL_OPENGL_ES3_BIT_KHR` (`EGL_KHR_create_context`).
+const EGL_OPENGL_ES3_BIT_KHR: i32 = 0x0040;
+
 /// One framebuffer configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Config {

@@ -537,10 +537,6 @@ pub const EGL_WIDTH: i32 = 0x3057;
 pub const EGL_PBUFFER_BIT: i32 = 0x0001;
 pub const EGL_WINDOW_BIT: i32 = 0x0004;
 pub const EGL_OPENGL_ES2_BIT: i32 = 0x0004;
-/// `EGL_PIXMAP_BIT`.
-pub const EGL_PIXMAP_BIT: i32 = 0x0002;
-/// `EGL_OPENGL_ES3_BIT_KHR` (`EGL_KHR_create_context`).
-pub const EGL_OPENGL_ES3_BIT_KHR: i32 = 0x0040;
 pub const EGL_DONT_CARE: i32 = -1;
 /// `EGL_KHR_gl_colorspace`: the surface attribute and its two values.
 pub const EGL_GL_COLORSPACE_KHR: i32 = 0x309D;
