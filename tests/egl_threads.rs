@@ -4,12 +4,15 @@
 //! nothing current has no current context, and its GL calls do nothing. And a sync destroyed
 //! by one thread while another waits on it ends the wait as if it had been signalled, as
 //! `EGL_KHR_fence_sync` and `EGL_KHR_reusable_sync` say (compared with the extensions' words,
-//! not with Mesa, whose wait reads the sync after another thread freed it).
+//! not with Mesa, whose wait reads the sync after another thread freed it); a fence waited on
+//! forever when the daemon is killed before its work is done is signalled, and the wait
+//! returns.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
 mod support;
 
+use std::ffi::c_void;
 use std::sync::{Arc, Barrier};
 
 use support::egl::{load, Ptr};
@@ -110,6 +113,7 @@ fn each_thread_has_its_own_current_context() {
         (egl.clear)(GL_COLOR_BUFFER_BIT);
     }
     destroyed_while_waited_on(&lib, &egl, dpy as Ptr, config as Ptr);
+    waited_on_when_the_daemon_dies(&lib, &egl, dpy as Ptr, config as Ptr, daemon);
     drop(lib);
 }
 
@@ -158,5 +162,78 @@ fn destroyed_while_waited_on(lib: &libloading::Library, egl: &support::egl::Egl,
         (egl.make_current)(dpy, std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut());
         (egl.destroy_context)(dpy, ctx);
         (egl.destroy_surface)(dpy, surface);
+    }
+}
+
+/// A fence after slow work, the daemon killed before that work is done, and a wait with no
+/// timeout: the library finds the daemon gone (its socket closed) and the wait returns, the
+/// fence signalled, within seconds (a watchdog fails the test if it does not).
+fn waited_on_when_the_daemon_dies(
+    lib: &libloading::Library,
+    egl: &support::egl::Egl,
+    dpy: Ptr,
+    config: Ptr,
+    daemon: Daemon,
+) {
+    use support::egl::sym;
+    type Create = unsafe extern "C" fn(Ptr, u32, *const i32) -> Ptr;
+    type Wait = unsafe extern "C" fn(Ptr, Ptr, i32, u64) -> i32;
+    const SLOW_FS: &[u8] = b"precision highp float; void main() { float x = gl_FragCoord.x * 0.001;
+        for (int i = 0; i < 400; i++) { x = fract(sin(x * 12.9898 + float(i)) * 43758.5453); }
+        gl_FragColor = vec4(x, 0.0, 0.0, 1.0); }\0";
+    const VS: &[u8] = b"attribute vec2 pos; void main() { gl_Position = vec4(pos, 0.0, 1.0); }\0";
+    // SAFETY: EGL's and GL's prototypes; a pbuffer context is made current on this thread, and
+    // every pointer passed lives across the call.
+    unsafe {
+        let create: Create = sym(lib, b"eglCreateSyncKHR");
+        let wait: Wait = sym(lib, b"eglClientWaitSyncKHR");
+        let create_shader: unsafe extern "C" fn(u32) -> u32 = sym(lib, b"glCreateShader");
+        let shader_source: unsafe extern "C" fn(u32, i32, *const *const u8, *const i32) = sym(lib, b"glShaderSource");
+        let compile: unsafe extern "C" fn(u32) = sym(lib, b"glCompileShader");
+        let create_program: unsafe extern "C" fn() -> u32 = sym(lib, b"glCreateProgram");
+        let attach: unsafe extern "C" fn(u32, u32) = sym(lib, b"glAttachShader");
+        let link: unsafe extern "C" fn(u32) = sym(lib, b"glLinkProgram");
+        let use_program: unsafe extern "C" fn(u32) = sym(lib, b"glUseProgram");
+        let attrib: unsafe extern "C" fn(u32, i32, u32, u8, i32, *const c_void) = sym(lib, b"glVertexAttribPointer");
+        let enable_attrib: unsafe extern "C" fn(u32) = sym(lib, b"glEnableVertexAttribArray");
+        let draw: unsafe extern "C" fn(u32, i32, i32) = sym(lib, b"glDrawArrays");
+        let viewport: unsafe extern "C" fn(i32, i32, i32, i32) = sym(lib, b"glViewport");
+        let size = [EGL_WIDTH, 512, EGL_HEIGHT, 512, EGL_NONE];
+        let surface = (egl.create_pbuffer)(dpy, config, size.as_ptr());
+        let ctx_attribs = [EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE];
+        let ctx = (egl.create_context)(dpy, config, std::ptr::null_mut(), ctx_attribs.as_ptr());
+        assert_eq!((egl.make_current)(dpy, surface, surface, ctx), 1, "eglMakeCurrent");
+        let program = create_program();
+        for (ty, src) in [(0x8B31, VS), (0x8B30, SLOW_FS)] {
+            let sh = create_shader(ty);
+            shader_source(sh, 1, &src.as_ptr(), std::ptr::null());
+            compile(sh);
+            attach(program, sh);
+        }
+        link(program);
+        use_program(program);
+        let quad: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
+        attrib(0, 2, 0x1406, 0, 0, quad.as_ptr().cast());
+        enable_attrib(0);
+        viewport(0, 0, 512, 512);
+        (egl.finish)();
+        for _ in 0..8 {
+            draw(0x0005, 0, 4);
+        }
+        let fence = create(dpy, EGL_SYNC_FENCE_KHR, std::ptr::null());
+        assert!(!fence.is_null(), "eglCreateSyncKHR");
+        let _ = daemon.kill();
+        let (d, f) = (dpy as usize, fence as usize);
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            // The display and fence of this test (inside the unsafe block above).
+            let _ = tx.send(wait(d as Ptr, f as Ptr, 0, u64::MAX));
+        });
+        let answer = rx.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(
+            answer,
+            Ok(EGL_CONDITION_SATISFIED_KHR),
+            "a fence waited on forever after the daemon died (Err: the wait never returned)"
+        );
     }
 }

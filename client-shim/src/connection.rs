@@ -162,6 +162,12 @@ impl Connection {
         self.fence_word.get()
     }
 
+    /// Whether the daemon's end of the connection is still open (one `poll` of the socket, no
+    /// round trip): a fence whose mark has not come is waited on only while it is.
+    pub fn daemon_alive(&self) -> bool {
+        socket_alive(self.stream.as_raw_fd())
+    }
+
     /// Publishes every queued command.
     pub fn flush(&mut self) {
         self.commands.publish();

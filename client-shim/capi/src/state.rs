@@ -135,6 +135,10 @@ pub(crate) fn process() -> MutexGuard<'static, Process> {
     PROCESS.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// How many times the process has lost its daemon connection: a fence made before a loss is
+/// signalled, since the work before it will never complete anywhere else.
+pub(crate) static LOSSES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
 impl Process {
     /// Records that the daemon went away: logged once, the connection is dropped and every
     /// context is lost (each records `GL_CONTEXT_LOST`).
@@ -144,6 +148,9 @@ impl Process {
                 "strata-egl: lost the connection to stratad ({e}); calls fail with context lost until eglInitialize \
                  connects again"
             );
+        }
+        if !self.lost {
+            LOSSES.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
         }
         self.lost = true;
         self.conn = None;

@@ -9,6 +9,8 @@
 //! fence's status) is one read of shared memory, no round trip, and a program that flushes and
 //! then polls sees its fence signalled as soon as the work is done, as on Mesa. A wait with a
 //! timeout reads the same word until the mark comes, the fence is destroyed, or the time is up.
+//! A poll that finds the mark missing also looks at the daemon's socket: a daemon that died
+//! publishes nothing more, so its fences are signalled and the connection is lost.
 //! A `glFinish` completed after a fence was created signals it too (the daemon's `glFinish`
 //! waits for everything the process submitted). Waiting in the server (`eglWaitSyncKHR`) needs
 //! nothing: the daemon never runs a later command before an earlier one. A fence waited on
@@ -59,10 +61,11 @@ struct Fence {
 /// What signals a sync.
 #[derive(Clone, Copy)]
 enum Kind {
-    /// A fence: any finish after [`FINISHES`] had the value `finishes`, or the daemon's answer
-    /// that the GPU has completed the work before `mark` (`None`: the daemon gave no mark),
-    /// which `reached` keeps.
-    Fence { finishes: u64, mark: Option<u64>, reached: bool },
+    /// A fence: any finish after [`FINISHES`] had the value `finishes`, the daemon's word that
+    /// the GPU has completed the work before `mark` (`None`: the daemon gave no mark), which
+    /// `reached` keeps, or the loss of the connection it was made on (`state::LOSSES` past
+    /// `losses`).
+    Fence { finishes: u64, mark: Option<u64>, reached: bool, losses: u64 },
     /// A reusable sync: the application, and this is its state.
     Reusable(bool),
 }
@@ -90,10 +93,24 @@ fn signaled(f: &Fence) -> bool {
 
 /// Whether sync `sync` (of `kind`, not yet signalled) is signalled now: for a fence with a
 /// mark, the mark the daemon published in the segment is read (no round trip), and a yes is
-/// kept. A lost connection signals.
+/// kept. A lost connection signals, and so does a daemon found gone (its socket closed).
 fn poll(sync: usize, kind: Kind) -> bool {
-    let Kind::Fence { mark: Some(mark), .. } = kind else { return false };
-    let reached = process().conn.as_ref().is_none_or(|c| c.fences_reached() >= mark);
+    let Kind::Fence { mark: Some(mark), losses, .. } = kind else { return false };
+    let reached = {
+        let mut p = process();
+        match p.conn.as_ref() {
+            _ if state::LOSSES.load(Ordering::SeqCst) > losses => true,
+            None => true,
+            Some(c) if c.fences_reached() >= mark => true,
+            // A daemon that died publishes nothing more: the connection is lost, and the fence
+            // signalled (its work will never complete).
+            Some(c) if !c.daemon_alive() => {
+                p.lose(&ClientError::Unexpected("the daemon closed the connection".into()));
+                true
+            }
+            Some(_) => false,
+        }
+    };
     if reached {
         fences(|_, map| {
             if let Some(Fence { kind: Kind::Fence { reached, .. }, .. }) = map.get_mut(&sync) {
@@ -193,7 +210,7 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
                     Err(ClientError::Unsupported(_)) => gl.conn.glFlush().map(|()| None),
                     Err(e) => Err(e),
                 });
-            Kind::Fence { finishes, mark, reached: false }
+            Kind::Fence { finishes, mark, reached: false, losses: state::LOSSES.load(Ordering::SeqCst) }
         }
         EGL_SYNC_REUSABLE_KHR => Kind::Reusable(false),
         _ => return Err(EGL_BAD_ATTRIBUTE),
