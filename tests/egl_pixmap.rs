@@ -5,7 +5,10 @@
 //! framebuffer is bound and however the pack state is set, and what is drawn into another
 //! framebuffer stays out of it; a swap does nothing and succeeds; an id that is no drawable is
 //! `EGL_BAD_NATIVE_PIXMAP` and the process lives on; another depth is `EGL_BAD_MATCH`; an
-//! attribute other than the colour space is `EGL_BAD_ATTRIBUTE`.
+//! attribute other than the colour space is `EGL_BAD_ATTRIBUTE`; EGL 1.5's
+//! `eglCreatePlatformPixmapSurface` makes one too. `eglCopyBuffers` puts a pbuffer's pixels
+//! into a pixmap of its size; another size is `EGL_BAD_MATCH`, no drawable
+//! `EGL_BAD_NATIVE_PIXMAP`.
 //!
 //! Held to EGL's words, not to Mesa: on Xvfb, Mesa's llvmpipe leaves the pixmap as it was after
 //! `glFinish` and `eglWaitClient`, and crashes on an id that is no drawable.
@@ -49,6 +52,9 @@ struct Api {
     get_configs: unsafe extern "C" fn(Ptr, *mut Ptr, i32, *mut i32) -> u32,
     choose_config: unsafe extern "C" fn(Ptr, *const i32, *mut Ptr, i32, *mut i32) -> u32,
     create_pixmap: unsafe extern "C" fn(Ptr, Ptr, u64, *const i32) -> Ptr,
+    create_platform_pixmap: unsafe extern "C" fn(Ptr, Ptr, *mut c_void, *const isize) -> Ptr,
+    create_pbuffer: unsafe extern "C" fn(Ptr, Ptr, *const i32) -> Ptr,
+    copy_buffers: unsafe extern "C" fn(Ptr, Ptr, u64) -> u32,
     create_context: unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr,
     make_current: unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32,
     query_surface: unsafe extern "C" fn(Ptr, Ptr, i32, *mut i32) -> u32,
@@ -84,6 +90,9 @@ fn load(lib: &libloading::Library) -> Api {
             get_configs: sym(lib, b"eglGetConfigs"),
             choose_config: sym(lib, b"eglChooseConfig"),
             create_pixmap: sym(lib, b"eglCreatePixmapSurface"),
+            create_platform_pixmap: sym(lib, b"eglCreatePlatformPixmapSurface"),
+            create_pbuffer: sym(lib, b"eglCreatePbufferSurface"),
+            copy_buffers: sym(lib, b"eglCopyBuffers"),
             create_context: sym(lib, b"eglCreateContext"),
             make_current: sym(lib, b"eglMakeCurrent"),
             query_surface: sym(lib, b"eglQuerySurface"),
@@ -228,6 +237,26 @@ fn pixmap_surfaces_fill_their_pixmap_when_waited_for() {
         let s = (gl.create_pixmap)(dpy, config, pm, [EGL_WIDTH, 4, EGL_NONE].as_ptr());
         assert!(s.is_null());
         assert_eq!((gl.get_error)(), EGL_BAD_ATTRIBUTE, "EGL_WIDTH on a pixmap surface");
+        // EGL 1.5's form, given a pointer to the pixmap.
+        let mut native = pm;
+        let s =
+            (gl.create_platform_pixmap)(dpy, config, (&mut native as *mut u64).cast(), [EGL_NONE as isize].as_ptr());
+        assert!(!s.is_null(), "eglCreatePlatformPixmapSurface: {:#x}", (gl.get_error)());
+        (gl.destroy_surface)(dpy, s);
+
+        // eglCopyBuffers: a pbuffer's pixels into a pixmap of its size.
+        let pb = (gl.create_pbuffer)(dpy, config, [EGL_WIDTH, W as i32, EGL_HEIGHT, H as i32, EGL_NONE].as_ptr());
+        assert_eq!((gl.make_current)(dpy, pb, pb, ctx), 1, "eglMakeCurrent on a pbuffer");
+        (gl.clear_color)(0.6, 0.2, 0.4, 1.0);
+        (gl.clear)(GL_COLOR_BUFFER_BIT);
+        assert_eq!((gl.copy_buffers)(dpy, pb, pm), 1, "eglCopyBuffers: {:#x}", (gl.get_error)());
+        let got = pixel(pm, 2, 2);
+        assert_eq!(got, 0x993366, "after eglCopyBuffers {got:#08x}");
+        let small = (xl.XCreatePixmap)(xd, root, W - 1, H, 24);
+        assert_eq!((gl.copy_buffers)(dpy, pb, small), 0);
+        assert_eq!((gl.get_error)(), EGL_BAD_MATCH, "eglCopyBuffers into a pixmap of another size");
+        assert_eq!((gl.copy_buffers)(dpy, pb, root + 0x0F00_0000), 0);
+        assert_eq!((gl.get_error)(), EGL_BAD_NATIVE_PIXMAP, "eglCopyBuffers into no drawable");
         (xl.XSync)(xd, 0);
         (xl.XCloseDisplay)(xd);
     }

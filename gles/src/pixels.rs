@@ -126,17 +126,17 @@ impl ReadFormat {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    /// The current draw surface's colour, RGBA8 rows from the bottom, read past every binding
-    /// and pack parameter (a pixmap surface's contents for its X pixmap). Empty with no surface
-    /// current, or one too large for a reply.
-    pub(super) fn strataReadSurface(&mut self, _ctx: &mut Context) -> Bytes {
-        let Some((_, sid)) = self.current else { return Bytes(Vec::new()) };
-        let Some(target) = self.surfaces.get(&sid).map(|s| s.target.clone()) else { return Bytes(Vec::new()) };
+    /// Surface `surface`'s colour, RGBA8 rows from the bottom, read past every binding and pack
+    /// parameter, after everything drawn to it (a pixmap surface's contents for its X pixmap).
+    /// Not a surface of the display: `EGL_BAD_SURFACE`; too large for a reply: `EGL_BAD_ALLOC`.
+    pub(super) fn strataReadSurface(&mut self, display: u32, surface: u32) -> Result<Bytes, i32> {
+        self.check_display(display)?;
+        let target = self.surfaces.get(&surface).map(|s| s.target.clone()).ok_or(crate::enums::EGL_BAD_SURFACE)?;
         let (w, h) = (target.width, target.height);
         if (w as usize).saturating_mul(h as usize).saturating_mul(4) > MAX_READ_BYTES {
-            return Bytes(Vec::new());
+            return Err(crate::enums::EGL_BAD_ALLOC);
         }
-        Bytes(self.r.read_rgba(&target, [0, 0, w, h]).unwrap_or_default())
+        Ok(Bytes(self.r.read_rgba(&target, [0, 0, w, h]).unwrap_or_default()))
     }
 
     #[allow(clippy::too_many_arguments)]

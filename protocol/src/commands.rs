@@ -483,10 +483,10 @@ command_set! {
         /// after them. Reply: the mark, which the segment's fence word reaches once the commands
         /// before it have completed (`segment::FenceWord`).
         strataFence [Context] => Fence {} -> u64;
-        /// The colour of the current draw surface, as RGBA8 rows from the bottom, whatever the
-        /// framebuffer bindings and pack state (the library copies a pixmap surface's contents
-        /// to its X pixmap with it). Empty with no surface current.
-        strataReadSurface [Context] => ReadSurface {} -> Bytes;
+        /// The colour of one of the client's surfaces, as RGBA8 rows from the bottom, whatever
+        /// the framebuffer bindings and pack state (the library puts a pixmap surface's
+        /// contents into its X pixmap with it, and `eglCopyBuffers`' into any pixmap).
+        strataReadSurface [NoContext] => ReadSurface { display: EglHandle, surface: EglHandle } -> EglResult<Bytes>;
     }
 }
 

@@ -323,6 +323,23 @@ crate::entry::entry_points! {
         handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), u64::from(pixmap), a)))
     }
 
+    /// EGL 1.5 form of `eglCreatePixmapSurface`: `pixmap` points at an X11 `Pixmap`.
+    fn eglCreatePlatformPixmapSurface(
+        dpy: EGLDisplay,
+        config: EGLConfig,
+        pixmap: *mut c_void,
+        attribs: *const EGLAttrib,
+    ) -> EGLSurface {
+        if pixmap.is_null() {
+            return handle_ptr(Err(EGL_BAD_NATIVE_PIXMAP));
+        }
+        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`.
+        #[allow(clippy::useless_conversion)]
+        let native = u64::from(unsafe { *(pixmap as *const EGLNativePixmapType) });
+        // SAFETY: the application passes an EGL_NONE-terminated list or null.
+        handle_ptr(unsafe { attrib_list_wide(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), native, a)))
+    }
+
     /// `EGL_EXT_platform_base` form of `eglCreatePixmapSurface`: `pixmap` points at an X11
     /// `Pixmap`.
     fn eglCreatePlatformPixmapSurfaceEXT(
@@ -530,9 +547,10 @@ crate::entry::entry_points! {
         boolean(r)
     }
 
-    /// Not supported: there are no native pixmaps.
-    fn eglCopyBuffers(_dpy: EGLDisplay, _surface: EGLSurface, _target: EGLNativePixmapType) -> EGLBoolean {
-        boolean(Err(unsupported("eglCopyBuffers", EGL_BAD_NATIVE_PIXMAP)))
+    /// Puts a surface's pixels into an X pixmap of its size.
+    fn eglCopyBuffers(dpy: EGLDisplay, surface: EGLSurface, target: EGLNativePixmapType) -> EGLBoolean {
+        #[allow(clippy::useless_conversion)]
+        boolean(crate::pixmap::copy_buffers(dpy, handle(surface), u64::from(target)))
     }
 
     /// Only `EGL_OPENGL_ES_API` can be bound.

@@ -2,9 +2,10 @@
 //! pixmap's size, whose contents the library puts into the pixmap when the application waits
 //! for its rendering: `glFinish`, and so `eglWaitClient` and `eglWaitGL` (EGL 1.4 §3.8: the
 //! pixmap holds the client API's rendering once it has waited for it). A swap of a pixmap
-//! surface does nothing, as EGL says. The pixels come from the daemon's own read of the
-//! surface (`strataReadSurface`), past the application's framebuffer bindings and pack state,
-//! and go to the X server in one `XPutImage`.
+//! surface does nothing, as EGL says. `eglCopyBuffers` puts any surface's pixels into a pixmap
+//! of its size. The pixels come from the daemon's own read of the surface
+//! (`strataReadSurface`), past the application's framebuffer bindings and pack state, and go to
+//! the X server in one `XPutImage`.
 
 use std::ffi::c_ulong;
 
@@ -57,19 +58,53 @@ pub(crate) fn create(dpy: EGLDisplay, config: u32, pixmap: u64, attribs: Vec<EGL
     Ok(handle)
 }
 
-/// The pixmap behind the calling thread's draw surface, if that is a pixmap surface.
-pub(crate) fn current() -> Option<PixmapInfo> {
+/// The pixmap behind the calling thread's draw surface, if that is a pixmap surface, with the
+/// daemon's display and surface.
+pub(crate) fn current() -> Option<(PixmapInfo, u32, u32)> {
     let cur = state::current()?;
-    process().surfaces.get(&cur.draw)?.pixmap
+    let p = process();
+    let info = p.surfaces.get(&cur.draw)?;
+    Some((info.pixmap?, p.daemon_display, info.daemon))
 }
 
-/// Puts the current draw surface's pixels into its pixmap `px` (after the daemon has finished
-/// drawing them). A pixmap the X server no longer has is logged once, and the call goes on.
-pub(crate) fn fill(conn: &mut Connection, px: PixmapInfo) -> Result<(), ClientError> {
-    let pixels = conn.strataReadSurface()?;
-    let native = c_ulong::try_from(px.native).unwrap_or_default();
-    if !x11::put_rgba(px.x_display, native, px.width, px.height, px.depth, &pixels.0) {
+/// Puts daemon surface `surface`'s pixels into its pixmap `px` (after everything drawn to it).
+/// A pixmap the X server no longer has is logged once, and the call goes on.
+pub(crate) fn fill(conn: &mut Connection, (px, display, surface): (PixmapInfo, u32, u32)) -> Result<(), ClientError> {
+    let put = match conn.strataReadSurface(display, surface)? {
+        Ok(pixels) => x11::put_rgba(
+            px.x_display,
+            c_ulong::try_from(px.native).unwrap_or_default(),
+            px.width,
+            px.height,
+            px.depth,
+            &pixels.0,
+        ),
+        Err(_) => false,
+    };
+    if !put {
         state::log_once(&format!("a pixmap surface's pixmap {:#x} could not be filled", px.native));
     }
     Ok(())
+}
+
+/// `eglCopyBuffers`: surface `surface`'s pixels into X pixmap `target`, which must be its size
+/// and of depth 24 or 32 (`EGL_BAD_MATCH`); not a drawable: `EGL_BAD_NATIVE_PIXMAP`.
+pub(crate) fn copy_buffers(dpy: EGLDisplay, surface: u32, target: u64) -> Result<(), EGLint> {
+    let mut p = process();
+    let d = initialized(&mut p, dpy)?;
+    let s = p.surfaces.get(&surface).filter(|i| i.display == d).map(|i| i.daemon).ok_or(EGL_BAD_SURFACE)?;
+    let xd = x_display(&mut p, d).ok_or(EGL_BAD_NATIVE_PIXMAP)?;
+    let native = c_ulong::try_from(target).map_err(|_| EGL_BAD_NATIVE_PIXMAP)?;
+    let (width, height, depth) = x11::drawable_geometry(xd, native).ok_or(EGL_BAD_NATIVE_PIXMAP)?;
+    let w = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, s, EGL_WIDTH))?;
+    let h = daemon(&mut p, |c, dd| c.eglQuerySurface(dd, s, EGL_HEIGHT))?;
+    if !matches!(depth, 24 | 32) || i64::from(w) != i64::from(width) || i64::from(h) != i64::from(height) {
+        return Err(EGL_BAD_MATCH);
+    }
+    let pixels = daemon(&mut p, |c, dd| c.strataReadSurface(dd, s))?;
+    if x11::put_rgba(xd, native, width, height, depth, &pixels.0) {
+        Ok(())
+    } else {
+        Err(EGL_BAD_NATIVE_PIXMAP)
+    }
 }

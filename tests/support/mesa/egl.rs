@@ -155,7 +155,12 @@ impl Arms<'_> {
         Err(unsupported("strataFence (Strata's own call; the reference's fences are EGL's)"))
     }
 
-    pub(super) fn strataReadSurface(&mut self) -> Result<Bytes, ClientError> {
+    pub(super) fn strataReadSurface(
+        &mut self,
+        display: &EglHandle,
+        surface: &EglHandle,
+    ) -> Result<EglResult<Bytes>, ClientError> {
+        let _ = (display, surface);
         Err(unsupported("strataReadSurface (Strata's own call)"))
     }
 
