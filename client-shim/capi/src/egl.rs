@@ -330,14 +330,10 @@ crate::entry::entry_points! {
         pixmap: *mut c_void,
         attribs: *const EGLAttrib,
     ) -> EGLSurface {
-        if pixmap.is_null() {
-            return handle_ptr(Err(EGL_BAD_NATIVE_PIXMAP));
-        }
-        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`.
-        #[allow(clippy::useless_conversion)]
-        let native = u64::from(unsafe { *(pixmap as *const EGLNativePixmapType) });
-        // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list_wide(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), native, a)))
+        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`; the application passes
+        // an EGL_NONE-terminated list or null.
+        let r = unsafe { crate::pixmap::pointed_at(pixmap).and_then(|n| attrib_list_wide(attribs).map(|a| (n, a))) };
+        handle_ptr(r.and_then(|(native, a)| crate::pixmap::create(dpy, handle(config), native, a)))
     }
 
     /// `EGL_EXT_platform_base` form of `eglCreatePixmapSurface`: `pixmap` points at an X11
@@ -348,14 +344,10 @@ crate::entry::entry_points! {
         pixmap: *mut c_void,
         attribs: *const EGLint,
     ) -> EGLSurface {
-        if pixmap.is_null() {
-            return handle_ptr(Err(EGL_BAD_NATIVE_PIXMAP));
-        }
-        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`.
-        #[allow(clippy::useless_conversion)]
-        let native = u64::from(unsafe { *(pixmap as *const EGLNativePixmapType) });
-        // SAFETY: the application passes an EGL_NONE-terminated list or null.
-        handle_ptr(unsafe { attrib_list(attribs) }.and_then(|a| crate::pixmap::create(dpy, handle(config), native, a)))
+        // SAFETY: on X11 the native pixmap argument points at a `Pixmap`; the application passes
+        // an EGL_NONE-terminated list or null.
+        let r = unsafe { crate::pixmap::pointed_at(pixmap).and_then(|n| attrib_list(attribs).map(|a| (n, a))) };
+        handle_ptr(r.and_then(|(native, a)| crate::pixmap::create(dpy, handle(config), native, a)))
     }
 
     /// Not supported: there are no client buffer types.
