@@ -48,6 +48,14 @@ where
     egl_context_with(gl, depth, stencil, kind, &[])
 }
 
+/// As [`egl_context`], with an OpenGL ES 3.0 context (the daemon must offer ES 3.0).
+pub fn egl_context_es3<C>(gl: &mut C, depth: i32, stencil: i32, kind: SurfaceKind) -> Result<Current, ClientError>
+where
+    C: Calls<Error = ClientError> + ?Sized,
+{
+    egl_context_version(gl, depth, stencil, kind, &[], 3)
+}
+
 /// As [`egl_context`], with extra window-surface attributes (name, value pairs, without the
 /// closing `EGL_NONE`), such as a declared projection.
 pub fn egl_context_with<C>(
@@ -56,6 +64,21 @@ pub fn egl_context_with<C>(
     stencil: i32,
     kind: SurfaceKind,
     surface_attribs: &[i32],
+) -> Result<Current, ClientError>
+where
+    C: Calls<Error = ClientError> + ?Sized,
+{
+    egl_context_version(gl, depth, stencil, kind, surface_attribs, 2)
+}
+
+/// The common body: an ES `major`.0 context.
+fn egl_context_version<C>(
+    gl: &mut C,
+    depth: i32,
+    stencil: i32,
+    kind: SurfaceKind,
+    surface_attribs: &[i32],
+    major: i32,
 ) -> Result<Current, ClientError>
 where
     C: Calls<Error = ClientError> + ?Sized,
@@ -101,7 +124,7 @@ where
             )?
         }
     };
-    let ctx = egl(gl.eglCreateContext(d, config, 0, Slice::new(&[0x3098, 2, EGL_NONE]))?, "eglCreateContext")?;
+    let ctx = egl(gl.eglCreateContext(d, config, 0, Slice::new(&[0x3098, major, EGL_NONE]))?, "eglCreateContext")?;
     egl(gl.eglMakeCurrent(d, s, s, ctx)?, "eglMakeCurrent")?;
     Ok(Current { display: d, surface: s })
 }

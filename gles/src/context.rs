@@ -376,6 +376,8 @@ pub struct Context {
     pub read_none: bool,
     /// Draws to the default framebuffer write no colour buffer (`glDrawBuffersEXT(GL_NONE)`).
     pub draw_none: bool,
+    /// The OpenGL ES major version it was created for: 2, or 3 where the daemon offers ES 3.0.
+    pub major: u8,
 }
 
 impl Context {
@@ -410,7 +412,13 @@ impl Context {
             robust: false,
             read_none: false,
             draw_none: false,
+            major: 2,
         }
+    }
+
+    /// Whether it is an OpenGL ES 3.0 context (ES 3.0's entry points, enums and language).
+    pub fn es3(&self) -> bool {
+        self.major >= 3
     }
 
     /// Records `e` (the first error wins until `glGetError`), and generates its debug message.

@@ -24,6 +24,8 @@ pub(super) struct ContextAttribs {
     pub(super) lose_on_reset: bool,
     /// Robust buffer access (`EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT` of `EGL_TRUE`).
     pub(super) robust: bool,
+    /// The OpenGL ES major version given: 2, or 3.
+    pub(super) major: u8,
 }
 
 /// `EGL_EXT_create_context_robustness`'s attributes (its reset strategy's values are
@@ -39,13 +41,14 @@ const EGL_CONTEXT_RELEASE_BEHAVIOR_NONE_KHR: i32 = 0;
 const EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR: i32 = 0x2098;
 
 /// Validates an OpenGL ES context's attribute list as EGL 1.4 with `EGL_KHR_create_context`
-/// and `EGL_IMG_context_priority` define it, and as Mesa answers it: version 2.0 only (ES 1 and
-/// ES 3 have no config here: `EGL_BAD_CONFIG`; another version or a minor version of 2 above 0:
-/// `EGL_BAD_MATCH`); the debug flag; either reset notification strategy; the profile mask and
-/// the forward-compatible flag (desktop OpenGL's), robust access, and unknown attributes, values
-/// or flag bits: `EGL_BAD_ATTRIBUTE`. A no-error context may not be a debug context
-/// (`EGL_BAD_MATCH`); the release behaviour is flush or none.
-pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
+/// and `EGL_IMG_context_priority` define it, and as Mesa answers it: version 2.0, and 3.0 where
+/// `es3` offers it (ES 1 has no config here: `EGL_BAD_CONFIG`; another version, or a minor
+/// version above 0: `EGL_BAD_MATCH`, as Mesa held to ES 2.0 or 3.0 answers); the debug flag;
+/// either reset notification strategy; the profile mask and the forward-compatible flag
+/// (desktop OpenGL's), robust access, and unknown attributes, values or flag bits:
+/// `EGL_BAD_ATTRIBUTE`. A no-error context may not be a debug context (`EGL_BAD_MATCH`); the
+/// release behaviour is flush or none.
+pub(super) fn parse(list: &[i32], es3: bool) -> EglResult<ContextAttribs> {
     let (mut major, mut minor, mut out) = (1, 0, ContextAttribs::default());
     for pair in list.chunks(2) {
         match *pair {
@@ -81,7 +84,8 @@ pub(super) fn parse(list: &[i32]) -> EglResult<ContextAttribs> {
         return Err(EGL_BAD_MATCH);
     }
     match (major, minor) {
-        (2, 0) => Ok(out),
+        (2, 0) => Ok(ContextAttribs { major: 2, ..out }),
+        (3, 0) if es3 => Ok(ContextAttribs { major: 3, ..out }),
         (1, _) => Err(EGL_BAD_CONFIG),
         _ => Err(EGL_BAD_MATCH),
     }
@@ -94,12 +98,19 @@ mod tests {
     #[test]
     fn create_context_attributes_are_validated_as_mesa_validates_them() {
         let debug = EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR;
-        assert_eq!(parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE]), Ok(ContextAttribs::default()));
-        let asked = parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, debug, EGL_NONE]);
-        assert_eq!(asked, Ok(ContextAttribs { debug: true, ..Default::default() }));
+        assert_eq!(
+            parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE], false),
+            Ok(ContextAttribs { major: 2, ..Default::default() })
+        );
+        let asked = parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, debug, EGL_NONE], false);
+        assert_eq!(asked, Ok(ContextAttribs { debug: true, major: 2, ..Default::default() }));
+        let three = [EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE];
+        assert_eq!(parse(&three, true), Ok(ContextAttribs { major: 3, ..Default::default() }));
+        assert_eq!(parse(&three, false), Err(EGL_BAD_MATCH), "ES 3.0 only where offered");
+        let three_one = [EGL_CONTEXT_CLIENT_VERSION, 3, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE];
+        assert_eq!(parse(&three_one, true), Err(EGL_BAD_MATCH), "ES 3.1 is not offered");
         for (list, err) in [
             (&[EGL_NONE][..], EGL_BAD_CONFIG),
-            (&[EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 4, EGL_NONE], EGL_BAD_MATCH),
             (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, 0x2, EGL_NONE], EGL_BAD_ATTRIBUTE),
@@ -112,7 +123,7 @@ mod tests {
                 EGL_BAD_ATTRIBUTE,
             ),
         ] {
-            assert_eq!(parse(list), Err(err), "{list:x?}");
+            assert_eq!(parse(list, true).and(parse(list, false)), Err(err), "{list:x?}");
         }
     }
 }

@@ -10,6 +10,8 @@
 //!   marks such calls `[Flush]`; their handlers are handed a [`Flushed`] proof, which the
 //!   functions that write images and buffers require, so a handler that writes without the
 //!   attribute does not compile.
+//! - **ES 3.0's calls** (`[Es3]` in the table) in an ES 2.0 context record
+//!   `GL_INVALID_OPERATION` and do nothing, as Mesa's dispatch answers them (`version`).
 //! - **Dispatch.** The match is generated from the protocol's command table
 //!   (`strata_protocol::command_table!`): each command calls the handler method named like its
 //!   `Calls` method (`glBufferData`, `eglSwapBuffers`, `strataPing`) with its fields. A command
@@ -41,13 +43,27 @@ macro_rules! handler_call {
             exec.$gl(ctx, &flushed, $( $arg ),*)
         })
     };
+    ($exec:ident . $gl:ident [Context, Es3] ( $( $arg:ident ),* )) => {
+        $exec.with_current(|exec, ctx| {
+            if ctx.es3() { exec.$gl(ctx, $( $arg ),*) } else { crate::version::not_in_es2(ctx) }
+        })
+    };
+    ($exec:ident . $gl:ident [Context, Flush, Es3] ( $( $arg:ident ),* )) => {
+        $exec.with_current(|exec, ctx| {
+            if !ctx.es3() {
+                return crate::version::not_in_es2(ctx);
+            }
+            let flushed = exec.flush_first();
+            exec.$gl(ctx, &flushed, $( $arg ),*)
+        })
+    };
     ($exec:ident . $gl:ident [NoContext] ( $( $arg:ident ),* )) => {
         Some($exec.$gl($( $arg ),*))
     };
     ($exec:ident . $gl:ident [ $( $other:ident ),* ] $args:tt) => {
         compile_error!(concat!(
             stringify!($gl),
-            ": the dispatch knows [Context], [Context, Flush] and [NoContext], not [",
+            ": the dispatch knows [Context], [Context, Flush], either with Es3, and [NoContext], not [",
             $( stringify!($other), " ", )* "]"
         ))
     };

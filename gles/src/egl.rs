@@ -245,7 +245,7 @@ impl GlesExecutor {
         };
         // EGL_KHR_no_config_context: EGL_NO_CONFIG_KHR takes each surface's config.
         let c = if config == 0 { CONFIGS[0] } else { Config::get(config).ok_or(EGL_BAD_CONFIG)? };
-        let asked = crate::context_attribs::parse(&attribs.to_vec())?;
+        let asked = crate::context_attribs::parse(&attribs.to_vec(), self.es3)?;
         self.account
             .admit(strata_device::account::Kind::Context, self.contexts.len() as u64, 1)
             .map_err(|_| EGL_BAD_ALLOC)?;
@@ -263,6 +263,7 @@ impl GlesExecutor {
         ctx.release_none = asked.release_none;
         ctx.lose_on_reset = asked.lose_on_reset;
         ctx.robust = asked.robust;
+        ctx.major = asked.major;
         self.contexts.insert(id, ctx);
         let asked = asked.priority;
         // The class applies to the whole client; the daemon's configuration wins over it.

@@ -53,6 +53,7 @@ mod textures;
 mod typed;
 mod uniforms;
 mod unpack;
+mod version;
 mod vertex;
 
 use std::collections::HashMap;
@@ -125,6 +126,8 @@ pub struct GlesExecutor {
     frame_transfer: TransferMode,
     /// Publishes each swapped frame once its work has completed on this client's device.
     waiter: strata_scene::FrameWaiter,
+    /// Whether `EGL_CONTEXT_MAJOR_VERSION` 3 gives an OpenGL ES 3.0 context (`--es3`).
+    es3: bool,
 }
 
 impl Drop for GlesExecutor {
@@ -163,6 +166,7 @@ impl GlesExecutor {
             surface_ids: Vec::new(),
             windows_made: 0,
             refused_ids: Default::default(),
+            es3: false,
         }
     }
 
@@ -215,6 +219,12 @@ impl GlesExecutor {
     /// Hands window surfaces' frames to the compositor as `mode` says.
     pub fn with_frame_transfer(mut self, mode: TransferMode) -> Self {
         self.frame_transfer = mode;
+        self
+    }
+
+    /// Gives OpenGL ES 3.0 contexts to those who ask for version 3 (else `EGL_BAD_MATCH`).
+    pub fn with_es3(mut self, es3: bool) -> Self {
+        self.es3 = es3;
         self
     }
 

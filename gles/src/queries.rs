@@ -53,9 +53,12 @@ fn texture_extensions(features: wgpu::Features) -> String {
 }
 
 /// A state value in the type GL stores it as.
-enum Value {
+pub(crate) enum Value {
+    /// Integers (enums, names, counts).
     Ints(Vec<i32>),
+    /// Floats.
     Floats(Vec<f32>),
+    /// Booleans.
     Bools(Vec<bool>),
 }
 
@@ -257,6 +260,9 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
 impl GlesExecutor {
     /// State `pname`, recording `GL_INVALID_ENUM` (and answering nothing) if there is none.
     fn state(&mut self, ctx: &mut Context, pname: u32) -> Value {
+        if let Some(v) = self.version_state(ctx, pname) {
+            return v;
+        }
         // The read format of a framebuffer that cannot be read (framebuffer 0 with no surface):
         // an error, and 0 written, as Mesa writes it.
         let read_format = matches!(pname, IMPLEMENTATION_COLOR_READ_FORMAT | IMPLEMENTATION_COLOR_READ_TYPE);
@@ -279,32 +285,34 @@ impl GlesExecutor {
         Some(match name {
             VENDOR => "Strata".to_string(),
             RENDERER => format!("Strata on {}", self.gpu.info.name),
-            VERSION => format!("OpenGL ES 2.0 Strata {}", env!("CARGO_PKG_VERSION")),
-            SHADING_LANGUAGE_VERSION => "OpenGL ES GLSL ES 1.00".to_string(),
-            EXTENSIONS => {
-                let clamp = self.gpu.features.contains(wgpu::Features::DEPTH_CLIP_CONTROL);
-                let depth_clamp = if clamp { " GL_EXT_depth_clamp" } else { "" };
-                // Every draw buffer is a colour attachment of one pass.
-                let mrt = self.gpu.limits.max_color_attachments as usize >= MAX_DRAW_BUFFERS_COUNT;
-                let draw_buffers =
-                    if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
-                let dual = if self.gpu.dual_source() { " GL_EXT_blend_func_extended" } else { "" };
-                let timers = if self.has_timers() { " GL_EXT_disjoint_timer_query" } else { "" };
-                let border = if self.has_border_clamp() {
-                    " GL_EXT_texture_border_clamp GL_OES_texture_border_clamp"
-                } else {
-                    ""
-                };
-                format!(
-                    "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}{border}",
-                    texture_extensions(self.gpu.features)
-                )
-            }
+            VERSION => crate::version::version_string(ctx),
+            SHADING_LANGUAGE_VERSION => crate::version::language_string(ctx).to_string(),
+            EXTENSIONS => self.extensions(),
             _ => {
                 ctx.record(GlError::InvalidEnum);
                 return None;
             }
         })
+    }
+
+    /// `GL_EXTENSIONS`: what the executor implements on this device, separated by spaces.
+    pub(super) fn extensions(&self) -> String {
+        {
+            let clamp = self.gpu.features.contains(wgpu::Features::DEPTH_CLIP_CONTROL);
+            let depth_clamp = if clamp { " GL_EXT_depth_clamp" } else { "" };
+            // Every draw buffer is a colour attachment of one pass.
+            let mrt = self.gpu.limits.max_color_attachments as usize >= MAX_DRAW_BUFFERS_COUNT;
+            let draw_buffers =
+                if mrt { " GL_EXT_draw_buffers GL_NV_draw_buffers GL_NV_fbo_color_attachments" } else { "" };
+            let dual = if self.gpu.dual_source() { " GL_EXT_blend_func_extended" } else { "" };
+            let timers = if self.has_timers() { " GL_EXT_disjoint_timer_query" } else { "" };
+            let border =
+                if self.has_border_clamp() { " GL_EXT_texture_border_clamp GL_OES_texture_border_clamp" } else { "" };
+            format!(
+                "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}{border}",
+                texture_extensions(self.gpu.features)
+            )
+        }
     }
 
     /// Whether the device clamps to a border (`GL_EXT_texture_border_clamp` and the OES

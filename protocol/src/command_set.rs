@@ -15,6 +15,9 @@ pub enum Attribute {
     /// It writes a buffer or texture that a draw already recorded may read, so the daemon
     /// submits the pending pass before it.
     Flush,
+    /// It is OpenGL ES 3.0's: in an ES 2.0 context it does nothing but record
+    /// `GL_INVALID_OPERATION`, as Mesa's dispatch answers an entry point its context lacks.
+    Es3,
 }
 
 impl Attribute {
@@ -26,7 +29,7 @@ impl Attribute {
             match attributes[i] {
                 Attribute::Context => context += 1,
                 Attribute::NoContext => none += 1,
-                Attribute::Flush => {}
+                Attribute::Flush | Attribute::Es3 => {}
             }
             i += 1;
         }
@@ -130,6 +133,11 @@ macro_rules! command_set {
             /// ([`Attribute::Context`](crate::Attribute::Context)).
             pub fn needs_context(self) -> bool {
                 self.attributes().contains(&crate::Attribute::Context)
+            }
+
+            /// Whether the command is OpenGL ES 3.0's ([`Attribute::Es3`](crate::Attribute::Es3)).
+            pub fn es3_only(self) -> bool {
+                self.attributes().contains(&crate::Attribute::Es3)
             }
 
             /// The opcode with wire number `index`, if the protocol defines one.

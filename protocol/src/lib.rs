@@ -14,6 +14,7 @@ pub mod input;
 pub mod json_control;
 pub mod projection;
 pub mod properties;
+pub mod replies;
 pub mod ring;
 pub mod segment;
 pub mod surface_id;

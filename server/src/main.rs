@@ -141,6 +141,11 @@ enum Cmd {
         /// copied through host memory).
         #[arg(long, value_enum, default_value_t = TransferMode::Auto)]
         frame_transfer: TransferMode,
+        /// Give OpenGL ES 3.0 contexts to clients that ask for version 3 (else
+        /// `EGL_BAD_MATCH`, and they fall back to 2.0). ES 3.0 is being built: what is there
+        /// and what is not is in docs/gles3.md.
+        #[arg(long)]
+        es3: bool,
         /// Do not ask for a queue global priority by class (VK_KHR/EXT_global_priority).
         #[arg(long)]
         no_global_priority: bool,
@@ -290,6 +295,7 @@ fn main() -> Result<()> {
             input,
             devices,
             frame_transfer,
+            es3,
             no_global_priority,
             allow_fault_injection,
             client_rasterizer_threads,
@@ -363,6 +369,7 @@ fn main() -> Result<()> {
                 default_class: schedule.default_priority,
                 devices,
                 frame_transfer,
+                es3,
                 global_priority: !no_global_priority,
                 fault_injection: allow_fault_injection,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),

@@ -279,6 +279,7 @@ mod depth_clamp;
 mod depth_cube;
 mod derivatives;
 mod draw_buffers;
+pub mod es3;
 mod frag_depth;
 mod framebuffer_ext;
 mod half_float_color;

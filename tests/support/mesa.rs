@@ -99,8 +99,15 @@ impl MesaGl {
         }
     }
 
-    /// Opens Mesa, or explains why not.
+    /// Opens Mesa with an ES 2.0 context, or explains why not.
     pub fn open(width: i32, height: i32) -> Result<MesaGl, String> {
+        MesaGl::open_version(width, height, 2)
+    }
+
+    /// Opens Mesa with an ES `major`.0 context, or explains why not. Mesa gives a context of
+    /// at most the version `MESA_GLES_VERSION_OVERRIDE` holds it to, which it reads once in a
+    /// process: a test of ES 3.0 sets it to 3.0 before its first context.
+    pub fn open_version(width: i32, height: i32, major: i32) -> Result<MesaGl, String> {
         let dir = lib_dir();
         // SAFETY: loading the system's EGL/GLES libraries; their initialisers are benign.
         let egl = unsafe { Library::new(format!("{dir}/libEGL.so.1")) }.map_err(|e| format!("libEGL: {e}"))?;
@@ -140,11 +147,11 @@ impl MesaGl {
             let surface = pbuf(display, config, [0x3057, width, 0x3056, height, 0x3038].as_ptr());
             let ctx_fn: libloading::Symbol<unsafe extern "C" fn(Ptr, Ptr, Ptr, *const i32) -> Ptr> =
                 egl.get(b"eglCreateContext\0").map_err(|e| e.to_string())?;
-            let ctx = ctx_fn(display, config, std::ptr::null(), [0x3098, 2, 0x3038].as_ptr());
+            let ctx = ctx_fn(display, config, std::ptr::null(), [0x3098, major, 0x3038].as_ptr());
             let make: libloading::Symbol<unsafe extern "C" fn(Ptr, Ptr, Ptr, Ptr) -> u32> =
                 egl.get(b"eglMakeCurrent\0").map_err(|e| e.to_string())?;
             if surface.is_null() || ctx.is_null() || make(display, surface, surface, ctx) == 0 {
-                return Err("could not make a pbuffer ES2 context current".into());
+                return Err(format!("could not make a pbuffer ES {major}.0 context current"));
             }
         }
         let mut m = MesaGl {

@@ -29,7 +29,9 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     let mut calls = Calls::default();
     parsed.tu.visit(&mut calls);
     for (name, span) in &calls.found {
-        if DERIVATIVES.contains(&name.as_str()) && (stage == Stage::Vertex || !parsed.enabled.derivatives) {
+        // Core in GLSL ES 3.00's fragment shaders.
+        let derivatives = parsed.enabled.derivatives || parsed.version == 300;
+        if DERIVATIVES.contains(&name.as_str()) && (stage == Stage::Vertex || !derivatives) {
             let why = if stage == Stage::Vertex {
                 "is only available in fragment shaders"
             } else {
@@ -63,7 +65,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
         }
     }
     globals(&parsed.tu, &at)?;
-    crate::glsl::writes::check(stage, &parsed.tu, &at)?;
+    crate::glsl::writes::check(stage, parsed.version, &parsed.tu, &at)?;
     let precisions = precision::check(stage, &parsed.tu, parsed.enabled.texture_3d, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {

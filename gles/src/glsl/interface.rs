@@ -1,5 +1,6 @@
-//! The global interface of one shader: attributes, varyings and uniforms lifted out of the
-//! AST and checked against GLSL ES 1.00's rules; what remains is rewritten (`rewrite`).
+//! The global interface of one shader: attributes, varyings and uniforms (GLSL ES 3.00: vertex
+//! `in`s, `out`s and `in`s between the stages, and fragment `out`s) lifted out of the AST and
+//! checked against the language's rules; what remains is rewritten (`rewrite`).
 
 use std::collections::HashMap;
 
@@ -32,10 +33,15 @@ fn array_len(spec: Option<&ast::ArraySpecifier>, consts: &HashMap<String, Val>) 
 }
 
 /// The storage qualifier that makes a declaration part of the interface.
+#[derive(Clone, Copy, PartialEq)]
 enum Storage {
     Attribute,
     Varying,
     Uniform,
+    /// GLSL ES 3.00 `in`.
+    In,
+    /// GLSL ES 3.00 `out`.
+    Out,
 }
 
 fn storage_of(q: Option<&ast::TypeQualifier>) -> Option<Storage> {
@@ -44,29 +50,69 @@ fn storage_of(q: Option<&ast::TypeQualifier>) -> Option<Storage> {
             ast::StorageQualifierData::Attribute => Some(Storage::Attribute),
             ast::StorageQualifierData::Varying => Some(Storage::Varying),
             ast::StorageQualifierData::Uniform => Some(Storage::Uniform),
+            ast::StorageQualifierData::In => Some(Storage::In),
+            ast::StorageQualifierData::Out => Some(Storage::Out),
             _ => None,
         },
         _ => None,
     })
 }
 
+/// Whether a declaration is interpolated `flat`.
+fn is_flat(q: Option<&ast::TypeQualifier>) -> bool {
+    q.is_some_and(|q| {
+        q.qualifiers.iter().any(|s| {
+            matches!(&s.content, TypeQualifierSpecData::Interpolation(i) if i.content == ast::InterpolationQualifierData::Flat)
+        })
+    })
+}
+
+/// A declaration's `layout(location = N)`, if it has one; any other layout qualifier is an
+/// error here (uniform blocks are not interface variables).
+fn location_of(q: Option<&ast::TypeQualifier>, consts: &HashMap<String, Val>) -> Result<Option<u32>, String> {
+    let mut location = None;
+    for s in q.iter().flat_map(|q| q.qualifiers.iter()) {
+        let TypeQualifierSpecData::Layout(l) = &s.content else { continue };
+        for id in &l.ids {
+            match &id.content {
+                ast::LayoutQualifierSpecData::Identifier(name, Some(e)) if name.0 == "location" => {
+                    match fold(e, consts) {
+                        Some(Val::Int(n)) if (0..=i64::from(i32::MAX)).contains(&n) => location = Some(n as u32),
+                        _ => return Err("0: the location must be a non-negative integral constant".into()),
+                    }
+                }
+                ast::LayoutQualifierSpecData::Identifier(name, _) => {
+                    return Err(format!("0: layout qualifier `{}' is not allowed here", name.0))
+                }
+                _ => return Err("0: this layout qualifier is not allowed here".into()),
+            }
+        }
+    }
+    Ok(location)
+}
+
 /// Compiles a shader: parse, lift the interface, rewrite the rest.
 pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String> {
     let parsed = parse(stage, source)?;
+    let version = parsed.version;
     let facts = checks::check(stage, &parsed)?;
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),
         attributes: vec![],
         varyings: vec![],
+        outputs: vec![],
+        version,
         uniforms: vec![],
         point_coord: false,
         frag_depth: false,
         instance_id: false,
+        vertex_id: false,
         frag_data: false,
         dual: false,
         has_main: false,
         lookups: Default::default(),
+        polyfills: Default::default(),
         log: parsed.warnings.join("\n"),
         source: source.to_string(),
         facts,
@@ -107,6 +153,16 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             shader.body.0.push(decl);
             continue;
         };
+        let qualifier = list.head.ty.qualifier.as_ref();
+        match (storage, version) {
+            (Storage::Attribute, 300) => return Err("0: illegal use of reserved word `attribute'".into()),
+            (Storage::Varying, 300) => return Err("0: illegal use of reserved word `varying'".into()),
+            (Storage::In | Storage::Out, 100) => {
+                return Err("0: `in' and `out' declare no global variables in GLSL ES 1.00".into())
+            }
+            _ => {}
+        }
+        let (location, flat) = (location_of(qualifier, &consts)?, is_flat(qualifier));
         let ty = Ty::from_spec(&list.head.ty.ty.ty.content).ok_or_else(|| {
             format!("0: interface variables of type '{}' are not supported", type_name(&list.head.ty.ty))
         })?;
@@ -117,6 +173,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 name: name.0.to_string(),
                 ty,
                 array: array_len(list.head.array_specifier.as_ref(), &consts)?.or(base_array),
+                location,
+                flat,
             });
         }
         for t in &list.tail {
@@ -124,12 +182,46 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 name: t.ident.ident.0.to_string(),
                 ty,
                 array: array_len(t.ident.array_spec.as_ref(), &consts)?.or(base_array),
+                location,
+                flat,
             });
         }
         if list.head.initializer.is_some() || list.tail.iter().any(|t| t.initializer.is_some()) {
             return Err("0: attribute, varying and uniform variables cannot be initialised".into());
         }
+        let storage = match (storage, stage) {
+            (Storage::In, Stage::Vertex) => Storage::Attribute,
+            (Storage::Out, Stage::Vertex) | (Storage::In, Stage::Fragment) => Storage::Varying,
+            (s, _) => s,
+        };
+        if location.is_some() && storage != Storage::Attribute && storage != Storage::Out {
+            return Err("0: a location may only be given to vertex shader inputs and fragment shader outputs".into());
+        }
+        if flat && storage != Storage::Varying {
+            return Err("0: `flat' only qualifies vertex shader outputs and fragment shader inputs".into());
+        }
         match storage {
+            Storage::Out => {
+                if !matches!(ty.scalar(), Scalar::Float | Scalar::Int | Scalar::UInt) || ty.columns() > 0 {
+                    return Err("0: fragment outputs must be float, int or uint scalars or vectors".into());
+                }
+                if ty.scalar() != Scalar::Float {
+                    return Err("0: integer fragment outputs are not supported yet".into());
+                }
+                if vars.iter().any(|v| v.array.is_some()) {
+                    return Err("0: fragment output arrays are not supported yet".into());
+                }
+                shader.outputs.extend(vars);
+            }
+            Storage::In => return Err("0: internal error: an input left unmapped".into()),
+            Storage::Attribute if version == 300 => {
+                if !matches!(ty.scalar(), Scalar::Float) || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
+                    return Err(
+                        "0: vertex inputs must be float, vec2, vec3 or vec4 (others are not supported yet)".into()
+                    );
+                }
+                shader.attributes.extend(vars);
+            }
             Storage::Attribute => {
                 if stage == Stage::Fragment {
                     return Err("0: 'attribute' is not allowed in a fragment shader".into());
@@ -138,6 +230,22 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                     return Err("0: attributes must be float, vec2, vec3 or vec4".into());
                 }
                 shader.attributes.extend(vars);
+            }
+            Storage::Varying if version == 300 => {
+                if !matches!(ty.scalar(), Scalar::Float | Scalar::Int | Scalar::UInt) {
+                    return Err("0: varyings must not be boolean".into());
+                }
+                // GLSL ES 3.00 §4.3.4 and §4.3.6: integer varyings are interpolated flat.
+                if ty.scalar() != Scalar::Float && !flat && stage == Stage::Fragment {
+                    return Err(
+                        "0: if a fragment input is (or contains) an integer, then it must be qualified with 'flat'"
+                            .into(),
+                    );
+                }
+                if vars.iter().any(|v| v.array.is_some_and(|n| n > MAX_VARYING_ARRAY)) {
+                    return Err(format!("0: a varying array may have at most {MAX_VARYING_ARRAY} elements"));
+                }
+                shader.varyings.extend(vars);
             }
             Storage::Varying => {
                 if ty.scalar() != Scalar::Float {
@@ -221,6 +329,9 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             .collect(),
         error: None,
         stage,
+        version,
+        vertex_id: false,
+        polyfills: Default::default(),
         point_coord: false,
         frag_depth: false,
         instance_id: false,
@@ -235,6 +346,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
     shader.lookups = std::mem::take(&mut rewrite.lookups);
     shader.frag_depth = rewrite.frag_depth;
     shader.instance_id = rewrite.instance_id;
+    shader.vertex_id = rewrite.vertex_id;
+    shader.polyfills = std::mem::take(&mut rewrite.polyfills);
     shader.frag_data = rewrite.frag_data || rewrite.secondary_data;
     shader.dual = rewrite.secondary_color || rewrite.secondary_data;
     // Each colour output pairs with its own second colour (Mesa's messages).

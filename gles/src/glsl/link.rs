@@ -197,10 +197,24 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     }
     let block_size = offset.div_ceil(16) * 16;
 
-    // Attributes: bound locations first, then the lowest free ones.
+    // Attributes: locations the shader gives (GLSL ES 3.00), then bound ones, then the lowest
+    // free ones.
     let mut attributes: Vec<(Var, u32)> = Vec::new();
     let mut used = vec![false; max_attribs as usize];
+    let bindings: HashMap<String, u32> = bindings
+        .iter()
+        .filter(|(name, _)| !vs.attributes.iter().any(|a| &a.name == *name && a.location.is_some()))
+        .map(|(n, l)| (n.clone(), *l))
+        .chain(vs.attributes.iter().filter_map(|a| a.location.map(|l| (a.name.clone(), l))))
+        .collect();
     for a in &vs.attributes {
+        // GLSL ES 3.00 §12.46: no two inputs at one location (ES 1.00 allows the aliasing).
+        let at = bindings.get(&a.name).copied().filter(|&l| l < max_attribs);
+        if let (Some(loc), 300) = (at, vs.version) {
+            if used[loc as usize] {
+                return Err(format!("error: vertex shader input '{}' shares location {loc} with another", a.name));
+            }
+        }
         if let Some(&loc) = bindings.get(&a.name) {
             if loc >= max_attribs {
                 return Err(format!("error: attribute '{}' bound to location {loc} beyond the limit", a.name));
@@ -218,9 +232,13 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         attributes.push((a.clone(), loc as u32));
     }
 
-    // Varyings: every fragment input must be a vertex output of the same type.
+    // Varyings: every fragment input must be a vertex output of the same type, and (GLSL ES
+    // 3.00 §4.3.9) the same interpolation.
     for v in &fs.varyings {
         match vs.varyings.iter().find(|o| o.name == v.name) {
+            Some(o) if o.ty == v.ty && o.array == v.array && o.flat != v.flat && fs.version == 300 => {
+                return Err(format!("error: interpolation qualifier mismatch for varying '{}'", v.name))
+            }
             Some(o) if o.ty == v.ty && o.array == v.array => {}
             Some(_) => return Err(format!("error: varying '{}' has different types in the two stages", v.name)),
             None => return Err(format!("error: fragment varying '{}' is not written by the vertex shader", v.name)),
@@ -255,6 +273,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
 
     let mut vsrc = common.clone();
     vsrc.push_str(&lookup_helpers(&vs.lookups));
+    vsrc.push_str(&crate::glsl::polyfill::definitions(&vs.polyfills));
     for (a, loc) in &attributes {
         let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
     }
@@ -274,13 +293,14 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let mut vs_copy = String::new();
     for v in &vs.varyings {
         let loc = locations[v.name.as_str()];
+        let flat = interpolation(v);
         if v.ty.columns() == 0 && v.array.is_none() {
-            let _ = writeln!(vsrc, "layout(location = {loc}) out {} {};", v.ty.glsl(false), v.name);
+            let _ = writeln!(vsrc, "layout(location = {loc}) {flat}out {} {};", v.ty.glsl(false), v.name);
             continue;
         }
         let _ = writeln!(vsrc, "{} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
         for (i, (suffix, access, ty)) in varying_slots(v).into_iter().enumerate() {
-            let _ = writeln!(vsrc, "layout(location = {}) out {ty} {}{suffix};", loc + i as u32, v.name);
+            let _ = writeln!(vsrc, "layout(location = {}) {flat}out {ty} {}{suffix};", loc + i as u32, v.name);
             let _ = writeln!(vs_copy, "    {}{suffix} = {}{access};", v.name, v.name);
         }
     }
@@ -301,6 +321,15 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     } else {
         ("", "")
     };
+    // gl_VertexID (GLSL ES 3.00): the vertex's number; in the points stage, whose vertices are
+    // a square's corners, the point's instance (the vertex of a non-indexed draw).
+    let (vertex_id, point_vertex_id) = if vs.vertex_id {
+        vsrc.push_str("int strata_VertexID;\n");
+        ("    strata_VertexID = int(gl_VertexIndex);\n", "    strata_VertexID = int(gl_InstanceIndex);\n")
+    } else {
+        ("", "")
+    };
+    let (instance, point_instance) = (format!("{instance}{vertex_id}"), format!("{point_instance}{point_vertex_id}"));
     let point_input = used.iter().position(|u| !u).unwrap_or(used.len()) as u32;
     let vs_body = transpile(vs)?;
     let body = &vs_body.text;
@@ -318,18 +347,20 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
 
     let mut fsrc = common;
     fsrc.push_str(&lookup_helpers(&fs.lookups));
+    fsrc.push_str(&crate::glsl::polyfill::definitions(&fs.polyfills));
     let mut fs_copy = String::new();
     for v in &fs.varyings {
         let loc = locations.get(v.name.as_str()).copied().unwrap_or(0);
+        let flat = interpolation(v);
         if v.ty.columns() == 0 && v.array.is_none() {
-            let _ = writeln!(fsrc, "layout(location = {loc}) in {} {};", v.ty.glsl(false), v.name);
+            let _ = writeln!(fsrc, "layout(location = {loc}) {flat}in {} {};", v.ty.glsl(false), v.name);
             continue;
         }
         let _ = writeln!(fsrc, "{} {}{};", v.ty.glsl(false), v.name, array_suffix(v));
         let slots = varying_slots(v);
         let cols = v.ty.columns();
         for (i, (suffix, access, ty)) in slots.iter().enumerate() {
-            let _ = writeln!(fsrc, "layout(location = {}) in {ty} {}{suffix};", loc + i as u32, v.name);
+            let _ = writeln!(fsrc, "layout(location = {}) {flat}in {ty} {}{suffix};", loc + i as u32, v.name);
             if cols == 0 {
                 let _ = writeln!(fs_copy, "    {}{access} = {}{suffix};", v.name, v.name);
             }
@@ -361,6 +392,45 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         fsrc.push_str("layout(location = 0, index = 0) out vec4 strata_FragOut0;\n");
         fsrc.push_str("layout(location = 0, index = 1) out vec4 strata_FragOut0b;\n");
         let _ = writeln!(color_out, "    strata_FragOut0 = {first};\n    strata_FragOut0b = {second};");
+    } else if fs.version == 300 {
+        // GLSL ES 3.00's own outputs (§4.3.8.2): each at its location, a lone one without a
+        // location at 0; each a private variable the generated `main` copies out.
+        let lone = fs.outputs.len() == 1;
+        let mut taken = [false; MAX_DRAW_BUFFERS];
+        for o in &fs.outputs {
+            let loc = match (o.location, lone) {
+                (Some(l), _) => l as usize,
+                (None, true) => 0,
+                (None, false) => {
+                    return Err(format!(
+                        "error: fragment shader output '{}' needs a location: the shader has more than one output",
+                        o.name
+                    ))
+                }
+            };
+            if loc >= MAX_DRAW_BUFFERS {
+                return Err(format!(
+                    "error: fragment output '{}' at location {loc} is past GL_MAX_DRAW_BUFFERS",
+                    o.name
+                ));
+            }
+            if std::mem::replace(&mut taken[loc], true) {
+                return Err(format!("error: fragment outputs share location {loc}"));
+            }
+            let _ = writeln!(
+                fsrc,
+                "{} {};\nlayout(location = {loc}) out vec4 strata_FragOut{loc};",
+                o.ty.glsl(false),
+                o.name
+            );
+            let value = match o.ty.components() {
+                1 => format!("vec4({}, 0.0, 0.0, 1.0)", o.name),
+                2 => format!("vec4({}, 0.0, 1.0)", o.name),
+                3 => format!("vec4({}, 1.0)", o.name),
+                _ => o.name.clone(),
+            };
+            let _ = writeln!(color_out, "    strata_FragOut{loc} = {value};");
+        }
     } else if fs.frag_data {
         let _ = writeln!(fsrc, "vec4 strata_FragData[{MAX_DRAW_BUFFERS}];");
         for i in 0..MAX_DRAW_BUFFERS {
@@ -399,6 +469,16 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         points_source,
         point_input,
     })
+}
+
+/// The interpolation qualifier a varying crosses stages with: `flat ` where the shader says so,
+/// and for integers, which are never interpolated.
+fn interpolation(v: &Var) -> &'static str {
+    if v.flat || matches!(v.ty.scalar(), Scalar::Int | Scalar::UInt) {
+        "flat "
+    } else {
+        ""
+    }
 }
 
 /// The name of each sampler, in the order of the program's sampler list: an array's elements

@@ -16,6 +16,7 @@
 //! | `interface` | lifting attributes, varyings and uniforms out of the AST; ES restrictions |
 //! | `rewrite` | the AST rewrite to Vulkan-flavoured GLSL |
 //! | `link` | the program-wide uniform block, locations, generated `main`s |
+//! | `polyfill` | generated functions for the built-ins naga lacks |
 //! | `separate` | one-stage programs, and two programs' stages linked into one executable |
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
@@ -24,6 +25,7 @@ mod consts;
 mod interface;
 mod link;
 pub mod linked;
+mod polyfill;
 mod precision;
 mod preprocess;
 mod rewrite;
@@ -56,6 +58,8 @@ pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
 
 #[cfg(test)]
 mod conformance_tests;
+#[cfg(test)]
+mod es3_tests;
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,8 @@
-//! Preprocessing and parsing: GLSL ES 1.00 only, with `GL_ES` (and in fragment shaders
-//! `GL_FRAGMENT_PRECISION_HIGH`) defined as Mesa defines them, `__VERSION__` 100, and the
-//! `#extension` directives of GLSL ES 1.00 §3.4 checked against the extensions Strata offers.
+//! Preprocessing and parsing: GLSL ES 1.00 and 3.00 (`#version 300 es`), with `GL_ES` (and in
+//! fragment shaders `GL_FRAGMENT_PRECISION_HIGH`) defined as Mesa defines them, `__VERSION__`
+//! the shader's, and the `#extension` directives of GLSL ES 1.00 §3.4 checked against the
+//! extensions Strata offers. As Mesa held to ES 2.0 does, either version compiles in either
+//! context.
 
 use std::sync::LazyLock;
 
@@ -83,6 +85,35 @@ pub(super) struct Parsed {
     pub(super) enabled: Enabled,
     /// Warnings for the info log.
     pub(super) warnings: Vec<String>,
+    /// The language version: 100 or 300.
+    pub(super) version: u16,
+}
+
+/// Identifiers GLSL ES 3.00 allows that the parser (whose grammar is GLSL 4.x's) takes for
+/// keywords, each with the name it is parsed under: as long, and with two underscores in a row,
+/// which GLSL ES reserves, so that it names nothing of the shader's.
+const KEYWORDS_NOT_IN_ES3: [(&str, &str); 3] = [("buffer", "buff__"), ("shared", "shar__"), ("precise", "preci__")];
+
+/// `text` with each of [`KEYWORDS_NOT_IN_ES3`] renamed where it stands as a word.
+fn rename_keywords(text: &str) -> String {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let renamed = KEYWORDS_NOT_IN_ES3.iter().find(|(k, _)| k == word).map_or(word.as_str(), |(_, r)| r);
+        out.push_str(renamed);
+        word.clear();
+    };
+    for c in text.chars() {
+        if ident(c) {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
 }
 
 /// `(line, column)`, both 1-based, of byte `offset` in `text`.
@@ -266,23 +297,31 @@ fn skipped_extension_lines(stage: Stage, text: &str) -> Result<std::collections:
 
 /// Preprocesses and parses `source`; the error is the info log.
 pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
-    // `#version 100` is the only version ES 2.0 has. `#extension` directives outside skipped
-    // sections are handled here (their lines then blanked, keeping line numbers) against the
-    // extensions Strata offers.
+    // `#version 100` and `#version 300 es`. `#extension` directives outside skipped sections
+    // are handled here (their lines then blanked, keeping line numbers) against the extensions
+    // Strata offers.
     let mut text = String::with_capacity(source.len());
     let mut extensions = Vec::new();
+    let mut version = 100;
     for (i, line) in source.lines().enumerate() {
         let directive = line.trim_start().strip_prefix('#').map(str::trim_start);
         if let Some(v) = directive.and_then(|d| d.strip_prefix("version")) {
-            let v = v.trim();
-            if !(v == "100" || v.starts_with("100 ")) {
-                return Err(error_at(
-                    i + 1,
-                    1,
-                    &format!("'#version {v}' : GLSL ES 1.00 (version 100) is the only version supported"),
-                ));
-            }
-            text.push_str("#version 100\n");
+            let words: Vec<&str> = v.split("//").next().unwrap_or("").split_whitespace().collect();
+            version = match words.as_slice() {
+                ["100"] => 100,
+                ["300", "es"] => 300,
+                _ => {
+                    let v = v.trim();
+                    return Err(error_at(
+                        i + 1,
+                        1,
+                        &format!(
+                            "'#version {v}' : only GLSL ES 1.00 (version 100) and 3.00 (version 300 es) are supported"
+                        ),
+                    ));
+                }
+            };
+            text.push_str(if version == 300 { "#version 300 es\n" } else { "#version 100\n" });
             continue;
         }
         if let Some(rest) = directive.and_then(|d| d.strip_prefix("extension")) {
@@ -315,11 +354,14 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     if enabled.image_external {
         text = spell_external(&text);
     }
+    if version == 300 {
+        text = rename_keywords(&text);
+    }
     let state = initial_state(stage)?;
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
     match parsed {
-        Ok((tu, _, _)) => Ok(Parsed { tu, text, enabled, warnings }),
+        Ok((tu, _, _)) => Ok(Parsed { tu, text, enabled, warnings, version }),
         // Mesa's form, `0:LINE(COL): error: …`, from the parser's 0-based position.
         Err(e) => Err(error_at(e.line() as usize + 1, e.col() as usize + 1, &e.inner().to_string())),
     }

@@ -33,6 +33,13 @@ pub(super) struct Rewrite {
     pub(super) error: Option<String>,
     /// The stage rewritten.
     pub(super) stage: Stage,
+    /// The language version: 100 or 300.
+    pub(super) version: u16,
+    /// Whether the (vertex) shader reads `gl_VertexID` (GLSL ES 3.00).
+    pub(super) vertex_id: bool,
+    /// The built-ins naga lacks that the shader calls, as the names of the generated functions
+    /// that stand in for them (`polyfill`).
+    pub(super) polyfills: std::collections::BTreeSet<&'static str>,
     /// Whether the (fragment) shader reads `gl_PointCoord`.
     pub(super) point_coord: bool,
     /// Whether the (fragment) shader writes `gl_FragDepthEXT`.
@@ -298,7 +305,23 @@ impl VisitorMut for Rewrite {
         let replacement = match &mut e.content {
             ExprData::Variable(id) => {
                 let name = id.0.as_str();
-                if name == "gl_FragColor" && self.stage == Stage::Fragment {
+                let es3 = self.version == 300;
+                if es3 && matches!(name, "gl_FragColor" | "gl_FragData") {
+                    // GLSL ES 3.00 declares its own outputs (Mesa's message).
+                    self.error.get_or_insert(format!("0: `{name}' undeclared"));
+                    None
+                } else if es3 && name == "gl_FragDepth" && self.stage == Stage::Fragment {
+                    // Clamped and written out by the generated `main` (`link`).
+                    self.frag_depth = true;
+                    Some(var("strata_FragDepth"))
+                } else if es3 && name == "gl_InstanceID" && self.stage == Stage::Vertex {
+                    self.instance_id = true;
+                    Some(var("strata_InstanceID"))
+                } else if es3 && name == "gl_VertexID" && self.stage == Stage::Vertex {
+                    // Set by the generated `main` (`link`).
+                    self.vertex_id = true;
+                    Some(var("strata_VertexID"))
+                } else if name == "gl_FragColor" && self.stage == Stage::Fragment {
                     self.frag_color = true;
                     Some(var("strata_FragColor"))
                 } else if name == "gl_SecondaryFragColorEXT" && self.stage == Stage::Fragment {
@@ -427,9 +450,26 @@ impl VisitorMut for Rewrite {
                         // A vertex shader has no derivatives: ES defines its implicit-LOD
                         // lookups as level 0, so they become explicit-LOD lookups.
                         let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
+                        let es3 = self.version == 300;
+                        if let Some(stand_in) = crate::glsl::polyfill::stand_in(id.0.as_str(), es3) {
+                            self.polyfills.insert(stand_in);
+                            *id = ast::IdentifierData(stand_in.into()).into();
+                        }
                         let renamed = match id.0.as_str() {
                             "texture2D" | "textureCube" | "texture3D" if vertex_implicit => Some("textureLod"),
                             "texture2DProj" | "texture3DProj" if vertex_implicit => Some("textureProjLod"),
+                            // GLSL ES 3.00's overloaded lookups, whose 2D and 3D forms go through
+                            // the same helpers.
+                            "texture" if es3 && vertex_implicit => Some("textureLod"),
+                            "textureProj" if es3 && vertex_implicit => Some("textureProjLod"),
+                            "texture" | "textureProj" | "textureLod" | "textureProjLod" if es3 => {
+                                Some(match id.0.as_str() {
+                                    "texture" => "texture",
+                                    "textureProj" => "textureProj",
+                                    "textureLod" => "textureLod",
+                                    _ => "textureProjLod",
+                                })
+                            }
                             "texture2D" | "textureCube" | "texture3D" => Some("texture"),
                             "texture2DProj" | "texture3DProj" => Some("textureProj"),
                             "texture2DLod" | "textureCubeLod" | "texture3DLod" => Some("textureLod"),

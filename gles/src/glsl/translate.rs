@@ -107,20 +107,22 @@ pub(super) fn naga_module(stage: Stage, src: &str, placed: &Placed<'_>) -> Resul
             .collect();
         lines.join("\n")
     })?;
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::DUAL_SOURCE_BLENDING)
-        .validate(&module)
-        .map_err(|e| {
-            debug!(target: "strata_gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
-            // The innermost span: the expression or statement, not the enclosing function.
-            let offset = e.spans().filter_map(|(span, _)| span.to_range()).min_by_key(|r| r.len()).map(|r| r.start);
-            let mut msg = e.as_inner().to_string();
-            let mut source = std::error::Error::source(e.as_inner());
-            while let Some(inner) = source {
-                msg.push_str(": ");
-                msg.push_str(&inner.to_string());
-                source = inner.source();
-            }
-            log_line(src, placed, offset, &msg)
-        })?;
+    // GLSL ES 3.00's packHalf2x16 and unpackHalf2x16 need f16 conversions, which wgpu's Vulkan
+    // back end always has (`DownlevelFlags::SHADER_F16_IN_F32`).
+    let capabilities =
+        naga::valid::Capabilities::DUAL_SOURCE_BLENDING | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32;
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), capabilities).validate(&module).map_err(|e| {
+        debug!(target: "strata_gles::glsl", "naga refused:\n{}", e.emit_to_string(src));
+        // The innermost span: the expression or statement, not the enclosing function.
+        let offset = e.spans().filter_map(|(span, _)| span.to_range()).min_by_key(|r| r.len()).map(|r| r.start);
+        let mut msg = e.as_inner().to_string();
+        let mut source = std::error::Error::source(e.as_inner());
+        while let Some(inner) = source {
+            msg.push_str(": ");
+            msg.push_str(&inner.to_string());
+            source = inner.source();
+        }
+        log_line(src, placed, offset, &msg)
+    })?;
     Ok(module)
 }

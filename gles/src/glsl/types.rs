@@ -16,7 +16,7 @@ pub enum Stage {
     Fragment,
 }
 
-/// The GLSL ES 1.00 types an interface variable can have.
+/// The GLSL ES types an interface variable can have (ES 1.00's, and ES 3.00's unsigned ones).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[allow(missing_docs)]
 pub enum Ty {
@@ -28,6 +28,10 @@ pub enum Ty {
     IVec2,
     IVec3,
     IVec4,
+    UInt,
+    UVec2,
+    UVec3,
+    UVec4,
     Bool,
     BVec2,
     BVec3,
@@ -43,6 +47,11 @@ pub enum Ty {
     Sampler3D,
 }
 
+/// `GL_UNSIGNED_INT_VEC2`..`4` (ES 3.0), as `glGetActiveUniform` reports them.
+const UNSIGNED_INT_VEC2: u32 = 0x8DC6;
+const UNSIGNED_INT_VEC3: u32 = 0x8DC7;
+const UNSIGNED_INT_VEC4: u32 = 0x8DC8;
+
 /// `GL_SAMPLER_EXTERNAL_OES`, the type `glGetActiveUniform` reports for `samplerExternalOES`.
 pub(crate) const SAMPLER_EXTERNAL_OES: u32 = 0x8D66;
 
@@ -57,6 +66,10 @@ impl Ty {
             T::IVec2 => Ty::IVec2,
             T::IVec3 => Ty::IVec3,
             T::IVec4 => Ty::IVec4,
+            T::UInt => Ty::UInt,
+            T::UVec2 => Ty::UVec2,
+            T::UVec3 => Ty::UVec3,
+            T::UVec4 => Ty::UVec4,
             T::Bool => Ty::Bool,
             T::BVec2 => Ty::BVec2,
             T::BVec3 => Ty::BVec3,
@@ -84,6 +97,10 @@ impl Ty {
             Ty::IVec2 => gl::INT_VEC2,
             Ty::IVec3 => gl::INT_VEC3,
             Ty::IVec4 => gl::INT_VEC4,
+            Ty::UInt => gl::UNSIGNED_INT,
+            Ty::UVec2 => UNSIGNED_INT_VEC2,
+            Ty::UVec3 => UNSIGNED_INT_VEC3,
+            Ty::UVec4 => UNSIGNED_INT_VEC4,
             Ty::Bool => gl::BOOL,
             Ty::BVec2 => gl::BOOL_VEC2,
             Ty::BVec3 => gl::BOOL_VEC3,
@@ -109,6 +126,10 @@ impl Ty {
             Ty::IVec2 => "ivec2",
             Ty::IVec3 => "ivec3",
             Ty::IVec4 => "ivec4",
+            Ty::UInt => "uint",
+            Ty::UVec2 => "uvec2",
+            Ty::UVec3 => "uvec3",
+            Ty::UVec4 => "uvec4",
             Ty::Bool if in_block => "int",
             Ty::BVec2 if in_block => "ivec2",
             Ty::BVec3 if in_block => "ivec3",
@@ -129,10 +150,17 @@ impl Ty {
     /// Scalars per element (a matrix counts all its entries).
     pub fn components(self) -> usize {
         match self {
-            Ty::Float | Ty::Int | Ty::Bool | Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => 1,
-            Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => 2,
-            Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => 3,
-            Ty::Vec4 | Ty::IVec4 | Ty::BVec4 | Ty::Mat2 => 4,
+            Ty::Float
+            | Ty::Int
+            | Ty::UInt
+            | Ty::Bool
+            | Ty::Sampler2D
+            | Ty::SamplerCube
+            | Ty::SamplerExternal
+            | Ty::Sampler3D => 1,
+            Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => 2,
+            Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => 3,
+            Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 | Ty::Mat2 => 4,
             Ty::Mat3 => 9,
             Ty::Mat4 => 16,
         }
@@ -152,6 +180,7 @@ impl Ty {
     pub fn scalar(self) -> Scalar {
         match self {
             Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 => Scalar::Int,
+            Ty::UInt | Ty::UVec2 | Ty::UVec3 | Ty::UVec4 => Scalar::UInt,
             Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => Scalar::Int,
             Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
             _ => Scalar::Float,
@@ -166,10 +195,10 @@ impl Ty {
     /// std140 (size, alignment) of one element that is not in an array.
     pub(crate) fn std140(self) -> (u32, u32) {
         match self {
-            Ty::Float | Ty::Int | Ty::Bool => (4, 4),
-            Ty::Vec2 | Ty::IVec2 | Ty::BVec2 => (8, 8),
-            Ty::Vec3 | Ty::IVec3 | Ty::BVec3 => (12, 16),
-            Ty::Vec4 | Ty::IVec4 | Ty::BVec4 => (16, 16),
+            Ty::Float | Ty::Int | Ty::UInt | Ty::Bool => (4, 4),
+            Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => (8, 8),
+            Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => (12, 16),
+            Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 => (16, 16),
             Ty::Mat2 => (32, 16),
             Ty::Mat3 => (48, 16),
             Ty::Mat4 => (64, 16),
@@ -185,6 +214,8 @@ pub enum Scalar {
     Float,
     /// Int and sampler.
     Int,
+    /// Unsigned int (GLSL ES 3.00).
+    UInt,
     /// Bool (set with either float or int calls).
     Bool,
 }
@@ -198,6 +229,10 @@ pub struct Var {
     pub ty: Ty,
     /// Array length, if an array.
     pub array: Option<u32>,
+    /// `layout(location = N)` (GLSL ES 3.00 vertex inputs and fragment outputs).
+    pub location: Option<u32>,
+    /// Interpolated `flat` (GLSL ES 3.00 varyings): the provoking vertex's value.
+    pub flat: bool,
 }
 
 /// A successfully compiled shader, kept for linking.
@@ -208,8 +243,12 @@ pub struct Shader {
     pub(crate) body: ast::TranslationUnit,
     /// `attribute` variables.
     pub attributes: Vec<Var>,
-    /// `varying` variables.
+    /// `varying` variables (GLSL ES 3.00: vertex `out`s and fragment `in`s).
     pub varyings: Vec<Var>,
+    /// GLSL ES 3.00 fragment `out`s, in declaration order.
+    pub outputs: Vec<Var>,
+    /// The language version: 100 or 300 (`#version 300 es`).
+    pub version: u16,
     /// `uniform` variables (samplers included).
     pub uniforms: Vec<Var>,
     /// Whether it reads `gl_PointCoord` (fragment shaders).
@@ -218,6 +257,11 @@ pub struct Shader {
     pub frag_depth: bool,
     /// Whether it reads `gl_InstanceIDEXT` (vertex shaders, `GL_EXT_draw_instanced`).
     pub instance_id: bool,
+    /// Whether it reads `gl_VertexID` (vertex shaders, GLSL ES 3.00).
+    pub vertex_id: bool,
+    /// The generated functions standing in for built-ins naga lacks that it calls
+    /// (`polyfill`).
+    pub polyfills: std::collections::BTreeSet<&'static str>,
     /// Whether it uses `gl_FragData` (fragment shaders, `GL_EXT_draw_buffers`), or
     /// `gl_SecondaryFragDataEXT`.
     pub frag_data: bool,

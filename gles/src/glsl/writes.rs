@@ -1,6 +1,6 @@
-//! GLSL ES 1.00 rules on expressions that the parser accepts: the reserved operators (§5.1:
-//! `%`, `~`, `<<`, `>>`, `&`, `|`, `^` and their assignments), assignment to a whole array
-//! (§5.8), writes to read-only variables (§4.3.3 attributes, §4.3.4 uniforms, §4.3.5 varyings
+//! GLSL ES rules on expressions that the parser accepts: in GLSL ES 1.00 the reserved operators
+//! (§5.1: `%`, `~`, `<<`, `>>`, `&`, `|`, `^` and their assignments) and assignment to a whole
+//! array (§5.8), which GLSL ES 3.00 allows; in either, writes to read-only variables (§4.3.3 attributes, §4.3.4 uniforms, §4.3.5 varyings
 //! in fragment shaders, constants), including passing them as `out`/`inout` arguments, and
 //! scalar initialisers of the wrong literal type (§4.1.10: no implicit conversions).
 //!
@@ -57,7 +57,7 @@ fn root(e: &ast::Expr) -> Option<&ast::Expr> {
 }
 
 /// Checks every rule above on `tu`.
-pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Result<(), String> {
+pub(super) fn check(stage: Stage, version: u16, tu: &ast::TranslationUnit, at: At<'_>) -> Result<(), String> {
     // Global read-only variables (with why) and global arrays.
     let mut read_only: HashMap<String, &'static str> = HashMap::new();
     let mut arrays: HashSet<String> = HashSet::new();
@@ -74,6 +74,8 @@ pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Resu
                         Some("uniform")
                     } else if st.contains(&S::Varying) && stage == Stage::Fragment {
                         Some("varying")
+                    } else if st.contains(&S::In) {
+                        Some("input")
                     } else if st.contains(&S::Const) {
                         Some("constant")
                     } else {
@@ -126,7 +128,8 @@ pub(super) fn check(stage: Stage, tu: &ast::TranslationUnit, at: At<'_>) -> Resu
             }
         }
         f.statement.visit(&mut locals);
-        let mut rules = Rules { read_only: &read_only, arrays: &arrays, outs: &outs, locals: &locals, error: None };
+        let mut rules =
+            Rules { read_only: &read_only, arrays: &arrays, outs: &outs, locals: &locals, error: None, version };
         f.statement.visit(&mut rules);
         if let Some((span, msg)) = rules.error {
             return Err(at(span, &msg));
@@ -165,6 +168,8 @@ struct Rules<'a> {
     outs: &'a HashMap<String, Vec<Vec<bool>>>,
     locals: &'a Locals,
     error: Option<(Option<ast::NodeSpan>, String)>,
+    /// The language version: GLSL ES 3.00 has the operators and array assignment.
+    version: u16,
 }
 
 impl Rules<'_> {
@@ -197,21 +202,21 @@ impl Visitor for Rules<'_> {
             return Visit::Parent;
         }
         match &e.content {
-            ExprData::Binary(op, ..) if reserved_binary(&op.content).is_some() => {
+            ExprData::Binary(op, ..) if self.version == 100 && reserved_binary(&op.content).is_some() => {
                 let text = reserved_binary(&op.content).unwrap_or_default();
                 return self.fail(e.span, format!("operator `{text}' is reserved in GLSL ES 1.00"));
             }
-            ExprData::Unary(op, _) if op.content == U::Complement => {
+            ExprData::Unary(op, _) if self.version == 100 && op.content == U::Complement => {
                 return self.fail(e.span, "operator `~' is reserved in GLSL ES 1.00".into());
             }
             ExprData::Assignment(lhs, op, _) => {
-                if let Some(text) = reserved_assignment(&op.content) {
+                if let Some(text) = reserved_assignment(&op.content).filter(|_| self.version == 100) {
                     return self.fail(e.span, format!("operator `{text}' is reserved in GLSL ES 1.00"));
                 }
                 if let Some(why) = self.unwritable(lhs) {
                     return self.fail(e.span, why);
                 }
-                if self.is_array(lhs) {
+                if self.version == 100 && self.is_array(lhs) {
                     return self.fail(e.span, "arrays cannot be the target of an assignment".into());
                 }
             }

@@ -195,8 +195,8 @@ pub(super) async fn run_client(
     let span = tracing::Span::current();
     let (scene, counter, name, tally) =
         (shared.scene.clone(), shared.scene.stream_counter(id), hello.name.clone(), hello.tally);
-    let (devices, frame_transfer, depth, global_priority) =
-        (opts.devices, opts.frame_transfer, opts.depth, opts.global_priority);
+    let (devices, frame_transfer, depth, global_priority, es3) =
+        (opts.devices, opts.frame_transfer, opts.depth, opts.global_priority, opts.es3);
     let rasterizer_threads = opts.client_rasterizer_threads;
     std::thread::Builder::new()
         .name(format!("session-{id}"))
@@ -258,7 +258,8 @@ pub(super) async fn run_client(
                         .with_projection(p.projection)
                         .with_surface_ids(p.surface_ids.0.iter().map(|&i| u64::from(i)).collect())
                         .with_depth(depth)
-                        .with_frame_transfer(frame_transfer);
+                        .with_frame_transfer(frame_transfer)
+                        .with_es3(es3);
                     (Box::new(executor), slot)
                 }
                 None => (Box::new(Drain::default()), None),

@@ -94,6 +94,11 @@ impl Arms<'_> {
         Ok(self.string(p))
     }
 
+    pub(super) fn glGetStringi(&mut self, name: &GLenum, index: &GLuint) -> Result<Option<String>, ClientError> {
+        let p = call!(self, "glGetStringi", fn(u32, u32) -> *const u8, *name, *index);
+        Ok(self.string(p))
+    }
+
     pub(super) fn glIsEnabled(&mut self, cap: &GLenum) -> Result<bool, ClientError> {
         Ok(call!(self, "glIsEnabled", fn(u32) -> u8, *cap) != 0)
     }

@@ -53,6 +53,16 @@ crate::entry::entry_points! {
         })
     }
 
+    /// ES 3.0: one extension by index; as long-lived as `glGetString`'s strings.
+    fn glGetStringi(name: GLenum, index: GLuint) -> *const GLubyte {
+        with_gl("glGetStringi", std::ptr::null(), |gl| {
+            Ok(match gl.conn.glGetStringi(name, index)? {
+                Some(s) => intern(s),
+                None => std::ptr::null(),
+            })
+        })
+    }
+
     /// Booleans as `GLboolean`s.
     fn glGetBooleanv(pname: GLenum, params: *mut GLboolean) {
         with_gl(Call { name: "glGetBooleanv", args: &|| pname.show() }, (), |gl| {

@@ -1,0 +1,97 @@
+//! Which OpenGL ES a context is: its version strings, ES 3.0's version queries
+//! (`GL_MAJOR_VERSION`, `GL_MINOR_VERSION`, `GL_NUM_EXTENSIONS`, `glGetStringi`), and what an
+//! ES 3.0 entry point does in an ES 2.0 context (records `GL_INVALID_OPERATION`, as Mesa's
+//! dispatch does for an entry point the context's API lacks).
+
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::queries::Value;
+use crate::GlesExecutor;
+
+/// `GL_MAJOR_VERSION`, `GL_MINOR_VERSION` and `GL_NUM_EXTENSIONS` (ES 3.0).
+const MAJOR_VERSION: u32 = 0x821B;
+const MINOR_VERSION: u32 = 0x821C;
+const NUM_EXTENSIONS: u32 = 0x821D;
+
+/// What an ES 3.0 call answers in an ES 2.0 context, where it does nothing.
+pub(crate) trait Es2Answer {
+    /// The value: nothing, empty or false.
+    fn es2_answer() -> Self;
+}
+
+impl Es2Answer for GlResult<()> {
+    fn es2_answer() -> Self {
+        Ok(())
+    }
+}
+
+impl<T> Es2Answer for Option<T> {
+    fn es2_answer() -> Self {
+        None
+    }
+}
+
+impl<T> Es2Answer for Vec<T> {
+    fn es2_answer() -> Self {
+        Vec::new()
+    }
+}
+
+macro_rules! zero_answer {
+    ($($t:ty),*) => { $( impl Es2Answer for $t { fn es2_answer() -> Self { <$t>::default() } } )* };
+}
+zero_answer!(bool, i32, u32, i64, u64);
+
+/// An ES 3.0 call in an ES 2.0 context: `GL_INVALID_OPERATION`, and nothing done.
+pub(crate) fn not_in_es2<T: Es2Answer>(ctx: &mut Context) -> T {
+    ctx.record(GlError::InvalidOperation);
+    T::es2_answer()
+}
+
+/// `GL_VERSION` for `ctx`'s version.
+pub(crate) fn version_string(ctx: &Context) -> String {
+    let version = if ctx.es3() { "3.0" } else { "2.0" };
+    format!("OpenGL ES {version} Strata {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// `GL_SHADING_LANGUAGE_VERSION` for `ctx`'s version.
+pub(crate) fn language_string(ctx: &Context) -> &'static str {
+    if ctx.es3() {
+        "OpenGL ES GLSL ES 3.00"
+    } else {
+        "OpenGL ES GLSL ES 1.00"
+    }
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    /// ES 3.0's version state, which an ES 2.0 context does not have (`None`: not one of them,
+    /// or not in this context, and the ordinary table answers).
+    pub(crate) fn version_state(&self, ctx: &Context, pname: u32) -> Option<Value> {
+        if !ctx.es3() {
+            return None;
+        }
+        Some(Value::Ints(vec![match pname {
+            MAJOR_VERSION => 3,
+            MINOR_VERSION => 0,
+            NUM_EXTENSIONS => self.extensions().split_whitespace().count() as i32,
+            _ => return None,
+        }]))
+    }
+
+    /// `glGetStringi`: one of `GL_EXTENSIONS` by index (`GL_INVALID_ENUM` for another name,
+    /// `GL_INVALID_VALUE` for an index past the last).
+    pub(crate) fn glGetStringi(&mut self, ctx: &mut Context, name: u32, index: u32) -> Option<String> {
+        if name != EXTENSIONS {
+            ctx.record(GlError::InvalidEnum);
+            return None;
+        }
+        let all = self.extensions();
+        let one = all.split_whitespace().nth(index as usize).map(str::to_string);
+        if one.is_none() {
+            ctx.record(GlError::InvalidValue);
+        }
+        one
+    }
+}

@@ -1,0 +1,20 @@
+//! OpenGL ES 3.0 programs, run by `gles3_oracle.rs` in ES 3.0 contexts through both Strata
+//! (started with `--es3`) and Mesa held to ES 3.0.
+
+use super::{Case, DEFAULT};
+
+mod language;
+
+/// Every ES 3.0 program.
+pub fn all() -> Vec<Case> {
+    let c = |name, run| Case { name, run, tol: DEFAULT, expects_error: false };
+    vec![
+        c("es3_interface", language::interface),
+        c("es3_integers", language::integers),
+        c("es3_builtins", language::builtins),
+        c("es3_lookups", language::lookups),
+        c("es3_vertex_ids", language::vertex_ids),
+        c("es3_outputs", language::outputs),
+        c("es3_frag_depth", language::frag_depth),
+    ]
+}
