@@ -38,7 +38,8 @@
 //!   buffers' contents the library keeps for the whole group;
 //! - `base_vertex`: `glDrawElementsBaseVertexEXT` and `...OES`, the entry points themselves
 //!   (`GL_EXT_draw_elements_base_vertex`, `GL_OES_draw_elements_base_vertex`), with client
-//!   indices the library sends.
+//!   indices the library sends;
+//! - `versions`: an ES 2.0 context's answers to ES 3.0's entry points, queries and language.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 
@@ -99,6 +100,8 @@ mod surfaceless;
 mod texture_3d;
 #[path = "client_calls/timer_query.rs"]
 mod timer_query;
+#[path = "client_calls/versions.rs"]
+mod versions;
 /// Declares [`Api`]: each entry point's field name, C name and prototype.
 macro_rules! api {
     ($($field:ident = $name:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
@@ -185,6 +188,7 @@ api! {
     read_buffer_nv = "glReadBufferNV": fn(u32);
     finish = "glFinish": fn();
     get_string = "glGetString": fn(u32) -> *const u8;
+    get_string_i = "glGetStringi": fn(u32, u32) -> *const u8;
     egl_create_sync = "eglCreateSyncKHR": fn(Ptr, u32, *const i32) -> Ptr;
     egl_destroy_sync = "eglDestroySyncKHR": fn(Ptr, Ptr) -> u32;
     egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;
@@ -414,7 +418,7 @@ type Sequence = (&'static str, fn(&mut Run));
 
 /// Runs every sequence; what each observed, one line each, under the sequence's name.
 fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
-    let sequences: [Sequence; 21] = [
+    let sequences: [Sequence; 22] = [
         ("mapping", mapping::sequence),
         ("pack", pack::sequence),
         ("surfaceless", surfaceless::sequence),
@@ -436,6 +440,7 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("debug_callback", debug_callback::sequence),
         ("share_group", share_group::sequence),
         ("base_vertex", base_vertex::sequence),
+        ("versions", versions::sequence),
     ];
     let mut lines = Vec::new();
     for (name, sequence) in support::only(sequences.to_vec(), |s| s.0) {

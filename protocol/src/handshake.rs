@@ -15,7 +15,7 @@ use crate::codec::{self, CodecError};
 pub use crate::control::{ControlReply, ControlRequest, SurfaceRow};
 
 /// The protocol version this build speaks.
-pub const PROTOCOL_VERSION: u32 = 12;
+pub const PROTOCOL_VERSION: u32 = 13;
 /// The first four bytes a client sends.
 pub const PREAMBLE_MAGIC: [u8; 4] = *b"STRT";
 /// Largest framed control message the daemon accepts.

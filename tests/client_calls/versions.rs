@@ -1,0 +1,37 @@
+//! An ES 2.0 context's answers to OpenGL ES 3.0: ES 3.0's entry points resolve but record
+//! `GL_INVALID_OPERATION` and do nothing, its version queries are `GL_INVALID_ENUM`, the version
+//! strings say 2.0, and a `#version 300 es` shader compiles (Mesa held to ES 2.0 compiles it).
+
+use super::*;
+
+const EXTENSIONS: u32 = 0x1F03;
+const VERSION: u32 = 0x1F02;
+const MAJOR_VERSION: u32 = 0x821B;
+const NUM_EXTENSIONS: u32 = 0x821D;
+const VERTEX_SHADER: u32 = 0x8B31;
+const COMPILE_STATUS: u32 = 0x8B81;
+
+/// The version sequence.
+pub fn sequence(r: &mut Run) {
+    let gl = r.gl;
+    // SAFETY: GL calls with a current context; out-pointers hold what the queries write, and the
+    // strings are NUL-terminated.
+    unsafe {
+        let s = (gl.get_string_i)(EXTENSIONS, 0);
+        r.note(&format!("glGetStringi in an ES 2.0 context: null {}", s.is_null()));
+        for pname in [MAJOR_VERSION, NUM_EXTENSIONS] {
+            let mut v = -7;
+            (gl.get_integerv)(pname, &mut v);
+            r.note(&format!("glGetIntegerv({pname:#x}) = {v}"));
+        }
+        let version = std::ffi::CStr::from_ptr((gl.get_string)(VERSION).cast()).to_string_lossy().into_owned();
+        r.note(&format!("GL_VERSION starts {:?}", version.split(' ').take(3).collect::<Vec<_>>()));
+        let shader = (gl.create_shader)(VERTEX_SHADER);
+        let src = c"#version 300 es\nin vec4 p; out vec4 c; void main() { c = p; gl_Position = p; }";
+        (gl.shader_source)(shader, 1, &src.as_ptr(), std::ptr::null());
+        (gl.compile_shader)(shader);
+        let mut ok = -1;
+        (gl.get_shaderiv)(shader, COMPILE_STATUS, &mut ok);
+        r.note(&format!("a 300 es shader compiles: {ok}"));
+    }
+}
