@@ -42,6 +42,9 @@
 //! - `versions`: an ES 2.0 context's answers to ES 3.0's entry points, queries and language.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
+//! The same file builds `client_calls_es3`, which runs `es3_core` instead, in ES 3.0 contexts
+//! on both sides (Mesa held to ES 3.0, the daemon started with `--es3`): Mesa reads its version
+//! override once per process, so each version needs a process of its own. [`ES3`] says which.
 
 mod support;
 
@@ -51,6 +54,25 @@ use libloading::Library;
 use support::{Daemon, TempDir};
 
 type Ptr = *mut c_void;
+
+/// Whether this build is `client_calls_es3` (ES 3.0 contexts and sequences), from the test
+/// target's crate name.
+const ES3: bool = same(env!("CARGO_CRATE_NAME").as_bytes(), b"client_calls_es3");
+
+/// Byte-string equality, for a constant.
+const fn same(a: &[u8], b: &[u8]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
 /// `GLDEBUGPROCKHR`.
 type DebugProc = Option<unsafe extern "C" fn(u32, u32, u32, u32, i32, *const i8, *const c_void)>;
 
@@ -70,6 +92,8 @@ mod debug_callback;
 mod draw_buffers;
 #[path = "client_calls/egl_image.rs"]
 mod egl_image;
+#[path = "client_calls/es3_core.rs"]
+mod es3_core;
 #[path = "client_calls/fence_sync.rs"]
 mod fence_sync;
 #[path = "client_calls/image_shapes.rs"]
@@ -189,6 +213,26 @@ api! {
     finish = "glFinish": fn();
     get_string = "glGetString": fn(u32) -> *const u8;
     get_string_i = "glGetStringi": fn(u32, u32) -> *const u8;
+    core_gen_vertex_arrays = "glGenVertexArrays": fn(i32, *mut u32);
+    core_bind_vertex_array = "glBindVertexArray": fn(u32);
+    core_is_vertex_array = "glIsVertexArray": fn(u32) -> u8;
+    core_delete_vertex_arrays = "glDeleteVertexArrays": fn(i32, *const u32);
+    core_draw_arrays_instanced = "glDrawArraysInstanced": fn(u32, i32, i32, i32);
+    core_draw_elements_instanced = "glDrawElementsInstanced": fn(u32, i32, u32, *const c_void, i32);
+    core_map_buffer_range = "glMapBufferRange": fn(u32, isize, isize, u32) -> Ptr;
+    core_flush_mapped_buffer_range = "glFlushMappedBufferRange": fn(u32, isize, isize);
+    core_unmap_buffer = "glUnmapBuffer": fn(u32) -> u8;
+    core_get_buffer_pointerv = "glGetBufferPointerv": fn(u32, u32, *mut Ptr);
+    core_draw_buffers = "glDrawBuffers": fn(i32, *const u32);
+    core_read_buffer = "glReadBuffer": fn(u32);
+    core_tex_image_3d = "glTexImage3D": fn(u32, i32, i32, i32, i32, i32, i32, u32, u32, *const c_void);
+    core_gen_queries = "glGenQueries": fn(i32, *mut u32);
+    core_begin_query = "glBeginQuery": fn(u32, u32);
+    core_end_query = "glEndQuery": fn(u32);
+    core_is_query = "glIsQuery": fn(u32) -> u8;
+    core_get_query_object_uiv = "glGetQueryObjectuiv": fn(u32, u32, *mut u32);
+    core_delete_queries = "glDeleteQueries": fn(i32, *const u32);
+    core_get_integer64v = "glGetInteger64v": fn(u32, *mut i64);
     egl_create_sync = "eglCreateSyncKHR": fn(Ptr, u32, *const i32) -> Ptr;
     egl_destroy_sync = "eglDestroySyncKHR": fn(Ptr, Ptr) -> u32;
     egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;
@@ -398,7 +442,8 @@ unsafe fn current(lib: &Library, display: &dyn Fn(GetProc<'_>) -> Ptr) -> Result
             return Err("no RGBA8 pbuffer config".into());
         }
         let surface = pbuffer(dpy, config, [0x3057, 16, 0x3056, 16, NONE].as_ptr());
-        let ctx = create(dpy, config, std::ptr::null_mut(), [0x3098, 2, NONE].as_ptr());
+        let major = if ES3 { 3 } else { 2 };
+        let ctx = create(dpy, config, std::ptr::null_mut(), [0x3098, major, NONE].as_ptr());
         if surface.is_null() || ctx.is_null() || make_current(dpy, surface, surface, ctx) == 0 {
             return Err("no current pbuffer context".into());
         }
@@ -442,8 +487,10 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("base_vertex", base_vertex::sequence),
         ("versions", versions::sequence),
     ];
+    let es3: [Sequence; 1] = [("es3_core", es3_core::sequence)];
+    let chosen = if ES3 { es3.to_vec() } else { sequences.to_vec() };
     let mut lines = Vec::new();
-    for (name, sequence) in support::only(sequences.to_vec(), |s| s.0) {
+    for (name, sequence) in support::only(chosen, |s| s.0) {
         let mut r = Run { gl, egl, log: Log(Vec::new()) };
         sequence(&mut r);
         lines.extend(r.log.0.into_iter().map(|l| format!("{name}: {l}")));
@@ -453,10 +500,10 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
 
 #[test]
 fn client_calls_behave_as_on_mesa() {
-    // Mesa held to ES 2.0, surfaceless.
+    // Mesa held to ES 2.0 (ES 3.0 in `client_calls_es3`), surfaceless.
     // SAFETY: set before this binary's only test loads either library or starts a thread.
     unsafe {
-        std::env::set_var("MESA_GLES_VERSION_OVERRIDE", "2.0");
+        std::env::set_var("MESA_GLES_VERSION_OVERRIDE", if ES3 { "3.0" } else { "2.0" });
         std::env::remove_var("DISPLAY");
     }
     let dir = support::mesa::lib_dir();
@@ -489,7 +536,7 @@ fn client_calls_behave_as_on_mesa() {
         }
     };
 
-    let daemon = Daemon::start("client-calls", &[]);
+    let daemon = Daemon::start("client-calls", if ES3 { &["--es3"] } else { &[] });
     // SAFETY: as above; the library reads it at eglInitialize.
     unsafe { std::env::set_var("STRATA_SOCKET", &daemon.socket) };
     let tmp = TempDir::new("client-calls");

@@ -1,4 +1,6 @@
-//! An ES 2.0 context's answers to OpenGL ES 3.0: ES 3.0's entry points resolve but record
+//! An ES 2.0 context's answers to OpenGL ES 3.0: ES 3.0's core names for what extensions gave
+//! work as the extensions' entry points (Mesa's dispatch makes them aliases); its new entry
+//! points resolve but record
 //! `GL_INVALID_OPERATION` and do nothing, its version queries are `GL_INVALID_ENUM`, the version
 //! strings say 2.0, and a `#version 300 es` shader compiles (Mesa held to ES 2.0 compiles it).
 
@@ -17,6 +19,12 @@ pub fn sequence(r: &mut Run) {
     // SAFETY: GL calls with a current context; out-pointers hold what the queries write, and the
     // strings are NUL-terminated.
     unsafe {
+        let mut vao = 0;
+        (gl.core_gen_vertex_arrays)(1, &mut vao);
+        r.note(&format!("glGenVertexArrays (ES 3.0's name) in an ES 2.0 context: name {}", vao != 0));
+        let mut q = 0;
+        (gl.core_gen_queries)(1, &mut q);
+        r.note(&format!("glGenQueries (ES 3.0's name) in an ES 2.0 context: name {}", q != 0));
         let s = (gl.get_string_i)(EXTENSIONS, 0);
         r.note(&format!("glGetStringi in an ES 2.0 context: null {}", s.is_null()));
         for pname in [MAJOR_VERSION, NUM_EXTENSIONS] {

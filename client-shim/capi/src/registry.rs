@@ -75,6 +75,7 @@ entry_point_modules! {
         crate::gl::border,
         crate::gl::texture3d,
         crate::gl::egl_image,
+        crate::gl::es3_aliases,
     ],
 }
 

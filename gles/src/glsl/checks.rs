@@ -66,7 +66,9 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     }
     globals(&parsed.tu, &at)?;
     crate::glsl::writes::check(stage, parsed.version, &parsed.tu, &at)?;
-    let precisions = precision::check(stage, &parsed.tu, parsed.enabled.texture_3d, &at)?;
+    // `sampler3D` is core in GLSL ES 3.00 (without a default precision, as with the extension).
+    let texture_3d = parsed.enabled.texture_3d || parsed.version == 300;
+    let precisions = precision::check(stage, &parsed.tu, texture_3d, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {

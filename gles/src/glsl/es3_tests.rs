@@ -119,3 +119,19 @@ fn es3_built_ins_compile() {
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
+
+#[test]
+fn sampler3d_is_core_in_300_es() {
+    let fs = |precision: &str| {
+        compile(
+            Stage::Fragment,
+            &format!(
+                "#version 300 es\nprecision mediump float; {precision} uniform sampler3D s; in vec2 uv; out vec4 o;\n\
+                 void main() {{ o = texture(s, vec3(uv, 0.5)); }}"
+            ),
+        )
+    };
+    fs("precision lowp sampler3D;").expect("a default precision for sampler3D");
+    let e = fs("").expect_err("sampler3D has no default precision");
+    assert!(e.contains("sampler3D"), "{e}");
+}
