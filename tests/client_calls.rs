@@ -42,9 +42,10 @@
 //! - `versions`: an ES 2.0 context's answers to ES 3.0's entry points, queries and language.
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
-//! `tests/client_calls_es3.rs` builds it again as `client_calls_es3`, which runs `es3_core` instead, in ES 3.0 contexts
-//! on both sides (Mesa held to ES 3.0, the daemon started with `--es3`): Mesa reads its version
-//! override once per process, so each version needs a process of its own. [`ES3`] says which.
+//! `tests/client_calls_es3.rs` builds it again as `client_calls_es3`, which runs `es3_core`
+//! instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
+//! `--es3`): Mesa reads its version override once per process, so each version needs a process
+//! of its own. [`ES3`] says which.
 
 mod support;
 
