@@ -214,6 +214,7 @@ api! {
     finish = "glFinish": fn();
     get_string = "glGetString": fn(u32) -> *const u8;
     get_string_i = "glGetStringi": fn(u32, u32) -> *const u8;
+    uniform1ui = "glUniform1ui": fn(i32, u32);
     core_gen_vertex_arrays = "glGenVertexArrays": fn(i32, *mut u32);
     core_bind_vertex_array = "glBindVertexArray": fn(u32);
     core_is_vertex_array = "glIsVertexArray": fn(u32) -> u8;

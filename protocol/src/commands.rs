@@ -269,6 +269,20 @@ command_set! {
         glCompressedTexSubImage3DOES [Context, Flush] => CompressedTexSubImage3DOES { target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, data: Blob<'a> };
         /// Slice `zoffset` of a 3D texture's `level` as a framebuffer attachment.
         glFramebufferTexture3DOES [Context] => FramebufferTexture3DOES { target: GLenum, attachment: GLenum, textarget: GLenum, texture: GLuint, level: GLint, zoffset: GLint };
+        glUniform1ui [Context, Es3] => Uniform1ui { location: GLint, x: GLuint };
+        glUniform2ui [Context, Es3] => Uniform2ui { location: GLint, x: GLuint, y: GLuint };
+        glUniform3ui [Context, Es3] => Uniform3ui { location: GLint, x: GLuint, y: GLuint, z: GLuint };
+        glUniform4ui [Context, Es3] => Uniform4ui { location: GLint, x: GLuint, y: GLuint, z: GLuint, w: GLuint };
+        glUniform1uiv [Context, Es3] => Uniform1uiv { location: GLint, values: Slice<'a, GLuint> };
+        glUniform2uiv [Context, Es3] => Uniform2uiv { location: GLint, values: Slice<'a, GLuint> };
+        glUniform3uiv [Context, Es3] => Uniform3uiv { location: GLint, values: Slice<'a, GLuint> };
+        glUniform4uiv [Context, Es3] => Uniform4uiv { location: GLint, values: Slice<'a, GLuint> };
+        glUniformMatrix2x3fv [Context, Es3] => UniformMatrix2x3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix3x2fv [Context, Es3] => UniformMatrix3x2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix2x4fv [Context, Es3] => UniformMatrix2x4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix4x2fv [Context, Es3] => UniformMatrix4x2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix3x4fv [Context, Es3] => UniformMatrix3x4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glUniformMatrix4x3fv [Context, Es3] => UniformMatrix4x3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -402,6 +416,8 @@ command_set! {
         strataReadSurface [NoContext] => ReadSurface { display: EglHandle, surface: EglHandle } -> EglResult<Bytes>;
         /// One extension of `GL_EXTENSIONS` by index (`None` after an error).
         glGetStringi [Context, Es3] => GetStringi { name: GLenum, index: GLuint } -> Option<String>;
+        /// A uniform's values as unsigned integers (nothing on error).
+        glGetUniformuiv [Context, Es3] => GetUniformuiv { program: GLuint, location: GLint } -> Vec<GLuint>;
     }
 }
 

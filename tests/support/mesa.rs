@@ -73,7 +73,10 @@ mod egl;
 mod framebuffers;
 mod mapping;
 mod pipelines;
+#[macro_use]
 mod programs;
+// After `programs`, whose uniform macros it uses.
+mod es3;
 mod queries;
 mod scalars;
 mod state;

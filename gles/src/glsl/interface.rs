@@ -324,8 +324,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         mat2s: shader
             .uniforms
             .iter()
-            .filter(|u| u.ty == Ty::Mat2)
-            .map(|u| (u.name.clone(), u.array.is_some()))
+            .filter(|u| u.ty.rows() == 2)
+            .map(|u| (u.name.clone(), (u.ty, u.array.is_some())))
             .collect(),
         error: None,
         stage,

@@ -15,11 +15,11 @@ use crate::limits::{MAX_DRAW_BUFFERS, MAX_POINT_SIZE};
 /// The vectors a matrix or array varying crosses stages as: (name suffix, access from the
 /// variable, GLSL type), one per location.
 fn varying_slots(v: &Var) -> Vec<(String, String, &'static str)> {
-    let column_ty = match v.ty {
-        Ty::Mat2 => "vec2",
-        Ty::Mat3 => "vec3",
-        Ty::Mat4 => "vec4",
-        t => t.glsl(false),
+    let column_ty = match v.ty.rows() {
+        2 => "vec2",
+        3 => "vec3",
+        4 => "vec4",
+        _ => v.ty.glsl(false),
     };
     let mut slots = Vec::new();
     for e in 0..v.array.unwrap_or(1) {
@@ -249,8 +249,9 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     if block_size > 0 {
         common.push_str("layout(std140, set = 0, binding = 0) uniform StrataUniforms {\n");
         for u in uniforms.iter().filter(|u| !u.ty.is_sampler()) {
-            if u.ty == Ty::Mat2 {
-                let _ = writeln!(common, "    vec4 strata_m2_{}[{}];", u.name, 2 * u.len);
+            if u.ty.rows() == 2 {
+                // naga lays out no `matCx2` in std140: each column is a vec4 (`rewrite::mat2_of`).
+                let _ = writeln!(common, "    vec4 strata_m2_{}[{}];", u.name, u.ty.columns() as u32 * u.len);
                 continue;
             }
             let name = if u.ty.scalar() == Scalar::Bool { format!("strata_b_{}", u.name) } else { u.name.clone() };

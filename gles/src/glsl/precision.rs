@@ -12,7 +12,25 @@ use crate::glsl::types::Stage;
 type At<'a> = &'a dyn Fn(Option<ast::NodeSpan>, &str) -> String;
 
 fn is_float(t: &T) -> bool {
-    matches!(t, T::Float | T::Vec2 | T::Vec3 | T::Vec4 | T::Mat2 | T::Mat3 | T::Mat4)
+    matches!(
+        t,
+        T::Float
+            | T::Vec2
+            | T::Vec3
+            | T::Vec4
+            | T::Mat2
+            | T::Mat3
+            | T::Mat4
+            | T::Mat22
+            | T::Mat23
+            | T::Mat24
+            | T::Mat32
+            | T::Mat33
+            | T::Mat34
+            | T::Mat42
+            | T::Mat43
+            | T::Mat44
+    )
 }
 
 /// Whether a type may carry a precision qualifier (§4.5.2).
@@ -45,7 +63,7 @@ struct Walk<'a> {
 }
 
 fn is_int(t: &T) -> bool {
-    matches!(t, T::Int | T::IVec2 | T::IVec3 | T::IVec4)
+    matches!(t, T::Int | T::IVec2 | T::IVec3 | T::IVec4 | T::UInt | T::UVec2 | T::UVec3 | T::UVec4)
 }
 
 fn is_storage(q: Option<&ast::TypeQualifier>, storage: &ast::StorageQualifierData) -> bool {

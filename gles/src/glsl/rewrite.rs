@@ -24,9 +24,9 @@ pub(super) struct Rewrite {
     pub(super) lookups: std::collections::BTreeSet<(String, String, bool)>,
     /// Sampler array uniforms: their lengths, by name.
     pub(super) sampler_arrays: HashMap<String, u32>,
-    /// `mat2` uniforms (naga cannot lay out `matCx2` in std140): stored as `vec4[2]` per matrix;
-    /// the flag says whether it is an array.
-    pub(super) mat2s: HashMap<String, bool>,
+    /// `matCx2` uniforms (naga cannot lay them out in std140): stored as `vec4[C]` per matrix,
+    /// with their type; the flag says whether it is an array.
+    pub(super) mat2s: HashMap<String, (Ty, bool)>,
     /// Boolean uniforms, stored as integers in the block.
     pub(super) bools: HashMap<String, Ty>,
     /// The first error found.
@@ -71,14 +71,16 @@ fn var(name: &str) -> ast::Expr {
     ExprData::Variable(ast::IdentifierData(name.into()).into()).into()
 }
 
-/// `mat2(strata_m2_NAME[i].xy, strata_m2_NAME[i + 1].xy)` where `i` is `2 * index` or 0.
-fn mat2_of(name: &str, index: Option<&ast::Expr>) -> ast::Expr {
+/// `matCx2(strata_m2_NAME[i].xy, …, strata_m2_NAME[i + C - 1].xy)` where `i` is `C * index` or
+/// 0, for a `matCx2` uniform of type `ty`.
+fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
+    let columns = ty.columns() as i32;
     let column = |k: i32| -> ast::Expr {
         let i: ast::Expr = match index {
             Some(idx) => {
                 let twice: ast::Expr = ExprData::Binary(
                     ast::BinaryOpData::Mult.into(),
-                    Box::new(ExprData::IntConst(2).into()),
+                    Box::new(ExprData::IntConst(columns).into()),
                     Box::new(idx.clone()),
                 )
                 .into();
@@ -90,7 +92,12 @@ fn mat2_of(name: &str, index: Option<&ast::Expr>) -> ast::Expr {
         let elem: ast::Expr = ExprData::Bracket(Box::new(var(&format!("strata_m2_{name}"))), Box::new(i)).into();
         ExprData::Dot(Box::new(elem), ast::IdentifierData("xy".into()).into()).into()
     };
-    ctor(T::Mat2, vec![column(0), column(1)])
+    let spec = match ty {
+        Ty::Mat3x2 => T::Mat32,
+        Ty::Mat4x2 => T::Mat42,
+        _ => T::Mat2,
+    };
+    ctor(spec, (0..columns).map(column).collect())
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -360,8 +367,8 @@ impl VisitorMut for Rewrite {
                         _ => T::Sampler2D,
                     };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
-                } else if self.mat2s.get(name) == Some(&false) {
-                    Some(mat2_of(name, None))
+                } else if let Some(&(ty, false)) = self.mat2s.get(name) {
+                    Some(mat2_of(name, ty, None))
                 } else if let Some(ty) = self.bools.get(name) {
                     let t = match ty {
                         Ty::BVec2 => T::BVec2,
@@ -384,10 +391,11 @@ impl VisitorMut for Rewrite {
                     }
                     None
                 }
-                (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()) == Some(&true) => {
+                (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()).is_some_and(|m| m.1) => {
                     let mut idx = (**index).clone();
                     idx.visit_mut(self);
-                    Some(mat2_of(id.0.as_str(), Some(&idx)))
+                    let ty = self.mat2s.get(id.0.as_str()).map_or(Ty::Mat2, |m| m.0);
+                    Some(mat2_of(id.0.as_str(), ty, Some(&idx)))
                 }
                 _ => None,
             },

@@ -39,6 +39,13 @@ pub enum Ty {
     Mat2,
     Mat3,
     Mat4,
+    /// GLSL ES 3.00's non-square matrices: `matCxR`, C columns of R rows.
+    Mat2x3,
+    Mat2x4,
+    Mat3x2,
+    Mat3x4,
+    Mat4x2,
+    Mat4x3,
     Sampler2D,
     SamplerCube,
     /// `samplerExternalOES` (`GL_OES_EGL_image_external`), sampled as a 2D image.
@@ -74,9 +81,15 @@ impl Ty {
             T::BVec2 => Ty::BVec2,
             T::BVec3 => Ty::BVec3,
             T::BVec4 => Ty::BVec4,
-            T::Mat2 => Ty::Mat2,
-            T::Mat3 => Ty::Mat3,
-            T::Mat4 => Ty::Mat4,
+            T::Mat2 | T::Mat22 => Ty::Mat2,
+            T::Mat3 | T::Mat33 => Ty::Mat3,
+            T::Mat4 | T::Mat44 => Ty::Mat4,
+            T::Mat23 => Ty::Mat2x3,
+            T::Mat24 => Ty::Mat2x4,
+            T::Mat32 => Ty::Mat3x2,
+            T::Mat34 => Ty::Mat3x4,
+            T::Mat42 => Ty::Mat4x2,
+            T::Mat43 => Ty::Mat4x3,
             T::Sampler2D => Ty::Sampler2D,
             T::SamplerCube => Ty::SamplerCube,
             T::Sampler3D => Ty::Sampler3D,
@@ -108,6 +121,12 @@ impl Ty {
             Ty::Mat2 => gl::FLOAT_MAT2,
             Ty::Mat3 => gl::FLOAT_MAT3,
             Ty::Mat4 => gl::FLOAT_MAT4,
+            Ty::Mat2x3 => 0x8B65,
+            Ty::Mat2x4 => 0x8B66,
+            Ty::Mat3x2 => 0x8B67,
+            Ty::Mat3x4 => 0x8B68,
+            Ty::Mat4x2 => 0x8B69,
+            Ty::Mat4x3 => 0x8B6A,
             Ty::Sampler2D => gl::SAMPLER_2D,
             Ty::SamplerCube => gl::SAMPLER_CUBE,
             Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
@@ -141,6 +160,12 @@ impl Ty {
             Ty::Mat2 => "mat2",
             Ty::Mat3 => "mat3",
             Ty::Mat4 => "mat4",
+            Ty::Mat2x3 => "mat2x3",
+            Ty::Mat2x4 => "mat2x4",
+            Ty::Mat3x2 => "mat3x2",
+            Ty::Mat3x4 => "mat3x4",
+            Ty::Mat4x2 => "mat4x2",
+            Ty::Mat4x3 => "mat4x3",
             Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
             Ty::SamplerCube => "textureCube",
             Ty::Sampler3D => "texture3D",
@@ -163,15 +188,28 @@ impl Ty {
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 | Ty::Mat2 => 4,
             Ty::Mat3 => 9,
             Ty::Mat4 => 16,
+            Ty::Mat2x3 | Ty::Mat3x2 => 6,
+            Ty::Mat2x4 | Ty::Mat4x2 => 8,
+            Ty::Mat3x4 | Ty::Mat4x3 => 12,
         }
     }
 
     /// Matrix columns (0 for non-matrices).
     pub fn columns(self) -> usize {
         match self {
-            Ty::Mat2 => 2,
-            Ty::Mat3 => 3,
-            Ty::Mat4 => 4,
+            Ty::Mat2 | Ty::Mat2x3 | Ty::Mat2x4 => 2,
+            Ty::Mat3 | Ty::Mat3x2 | Ty::Mat3x4 => 3,
+            Ty::Mat4 | Ty::Mat4x2 | Ty::Mat4x3 => 4,
+            _ => 0,
+        }
+    }
+
+    /// Matrix rows (0 for non-matrices).
+    pub fn rows(self) -> usize {
+        match self {
+            Ty::Mat2 | Ty::Mat3x2 | Ty::Mat4x2 => 2,
+            Ty::Mat3 | Ty::Mat2x3 | Ty::Mat4x3 => 3,
+            Ty::Mat4 | Ty::Mat2x4 | Ty::Mat3x4 => 4,
             _ => 0,
         }
     }
@@ -199,10 +237,9 @@ impl Ty {
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => (8, 8),
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => (12, 16),
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 => (16, 16),
-            Ty::Mat2 => (32, 16),
-            Ty::Mat3 => (48, 16),
-            Ty::Mat4 => (64, 16),
             Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => (0, 1),
+            // Each column a vector padded to 16 bytes.
+            t => (16 * t.columns() as u32, 16),
         }
     }
 }

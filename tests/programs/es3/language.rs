@@ -8,7 +8,7 @@ use super::super::*;
 const SCREEN: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
 
 /// A program over the whole screen: `vs`'s input `pos` at location 0.
-fn screen(gl: Gl<'_>, n: &mut Names, vs: &str, fs: &str) -> Result<u32, ClientError> {
+pub(super) fn screen(gl: Gl<'_>, n: &mut Names, vs: &str, fs: &str) -> Result<u32, ClientError> {
     let p = program(gl, n, vs, fs, &[])?;
     buffer(gl, n, ARRAY_BUFFER, &f32s(&SCREEN))?;
     attrib(gl, 0, 2, FLOAT, false, 0, 0)?;
@@ -16,7 +16,7 @@ fn screen(gl: Gl<'_>, n: &mut Names, vs: &str, fs: &str) -> Result<u32, ClientEr
 }
 
 /// The vertex stage of [`screen`]'s programs.
-const VS_SCREEN: &str = "#version 300 es
+pub(super) const VS_SCREEN: &str = "#version 300 es
 layout(location = 0) in vec2 pos;
 out vec2 uv;
 void main() { uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }";

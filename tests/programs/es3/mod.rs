@@ -4,6 +4,7 @@
 use super::{Case, DEFAULT};
 
 mod language;
+mod uniforms;
 
 /// Every ES 3.0 program.
 pub fn all() -> Vec<Case> {
@@ -16,5 +17,6 @@ pub fn all() -> Vec<Case> {
         c("es3_vertex_ids", language::vertex_ids),
         c("es3_outputs", language::outputs),
         c("es3_frag_depth", language::frag_depth),
+        c("es3_uniforms", uniforms::uniforms),
     ]
 }

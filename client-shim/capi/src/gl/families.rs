@@ -233,6 +233,10 @@ pub mod uniforms {
     glUniform2iv: GLint, 2;
     glUniform3iv: GLint, 3;
     glUniform4iv: GLint, 4;
+    glUniform1uiv: GLuint, 1;
+    glUniform2uiv: GLuint, 2;
+    glUniform3uiv: GLuint, 3;
+    glUniform4uiv: GLuint, 4;
     }
 }
 
@@ -243,6 +247,12 @@ pub mod matrix {
         glUniformMatrix2fv, 4;
         glUniformMatrix3fv, 9;
         glUniformMatrix4fv, 16;
+        glUniformMatrix2x3fv, 6;
+        glUniformMatrix3x2fv, 6;
+        glUniformMatrix2x4fv, 8;
+        glUniformMatrix4x2fv, 8;
+        glUniformMatrix3x4fv, 12;
+        glUniformMatrix4x3fv, 12;
     }
 }
 
@@ -302,6 +312,7 @@ pub mod get_arrays {
         glGetTexParameteriv(target: GLenum, pname: GLenum) -> GLint;
         glGetUniformfv(program: GLuint, location: GLint) -> GLfloat;
         glGetUniformiv(program: GLuint, location: GLint) -> GLint;
+        glGetUniformuiv(program: GLuint, location: GLint) -> GLuint;
         glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
         glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
         glGetQueryivEXT(target: GLenum, pname: GLenum) -> GLint;

@@ -122,6 +122,10 @@ simple_calls! {
     fn glUniform3i(location: GLint, x: GLint, y: GLint, z: GLint);
     fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
     fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
+    fn glUniform1ui(location: GLint, x: GLuint);
+    fn glUniform2ui(location: GLint, x: GLuint, y: GLuint);
+    fn glUniform3ui(location: GLint, x: GLuint, y: GLuint, z: GLuint);
+    fn glUniform4ui(location: GLint, x: GLuint, y: GLuint, z: GLuint, w: GLuint);
     fn glBeginConditionalRenderNV(id: GLuint, mode: GLenum);
     fn glEndConditionalRenderNV();
     fn glBeginQueryEXT(target: GLenum, id: GLuint);
