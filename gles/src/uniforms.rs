@@ -112,7 +112,7 @@ fn set_uniform(
         (&vals, u.ty.scalar()),
         (_, Scalar::Bool) | (Vals::F(_), Scalar::Float) | (Vals::I(_), Scalar::Int) | (Vals::U(_), Scalar::UInt)
     );
-    if !ok_kind || len % per != 0 || len == 0 {
+    if !ok_kind || !len.is_multiple_of(per) || len == 0 {
         return Err(if len == 0 { GlError::InvalidValue } else { GlError::InvalidOperation });
     }
     let count = len / per;
