@@ -23,7 +23,7 @@ use strata_protocol::{Blob, Slice};
 
 /// Checks `glBufferData`; the name of the buffer it replaces.
 fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blob<'_>>, usage: u32) -> GlResult<u32> {
-    let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
+    let name = ctx.bindings.buffer(BufferTarget::from_gl(target, ctx.es3())?);
     if !matches!(usage, STREAM_DRAW | STATIC_DRAW | DYNAMIC_DRAW) {
         return Err(GlError::InvalidEnum);
     }
@@ -62,6 +62,12 @@ impl GlesExecutor {
             if ctx.bindings.pixel_unpack == n {
                 ctx.bindings.pixel_unpack = 0;
             }
+            if ctx.bindings.uniform_buffer == n {
+                ctx.bindings.uniform_buffer = 0;
+            }
+            for b in ctx.bindings.uniform_buffers.iter_mut().filter(|b| b.buffer == n) {
+                *b = crate::context::RangeBinding::default();
+            }
             for a in &mut ctx.attribs {
                 if a.buffer == n {
                     a.buffer = 0;
@@ -72,13 +78,14 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBindBuffer(&mut self, ctx: &mut Context, target: u32, buffer: u32) -> GlResult {
-        let target = BufferTarget::from_gl(target)?;
+        let target = BufferTarget::from_gl(target, ctx.es3())?;
         self.admit(ctx, Kind::Buffer, ctx.objects.buffers.fresh([buffer]))?;
         match target {
             BufferTarget::Array => ctx.bindings.array_buffer = buffer,
             BufferTarget::ElementArray => ctx.bindings.element_buffer = buffer,
             BufferTarget::PixelPack => ctx.bindings.pixel_pack = buffer,
             BufferTarget::PixelUnpack => ctx.bindings.pixel_unpack = buffer,
+            BufferTarget::Uniform => ctx.bindings.uniform_buffer = buffer,
         }
         ctx.objects.buffers.bind(buffer);
         Ok(())
@@ -116,7 +123,10 @@ impl GlesExecutor {
         let gbuf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("gl buffer"),
             size: padded,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::VERTEX
+                | wgpu::BufferUsages::INDEX
+                | wgpu::BufferUsages::UNIFORM
+                | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let mut padded_data = b.data.clone();
@@ -151,7 +161,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetBufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {
-        let name = match BufferTarget::from_gl(target) {
+        let name = match BufferTarget::from_gl(target, ctx.es3()) {
             Ok(t) => ctx.bindings.buffer(t),
             Err(e) => {
                 ctx.record(e);
@@ -237,7 +247,7 @@ pub(super) fn parameter(b: &Buffer, pname: u32) -> Option<i32> {
 /// The buffer bound to `target`: `GL_INVALID_ENUM` for a target that is not one, and
 /// `GL_INVALID_OPERATION` where none is bound.
 fn bound(ctx: &mut Context, target: u32) -> GlResult<&mut Buffer> {
-    let name = ctx.bindings.buffer(BufferTarget::from_gl(target)?);
+    let name = ctx.bindings.buffer(BufferTarget::from_gl(target, ctx.es3())?);
     ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)
 }
 
@@ -291,7 +301,7 @@ impl GlesExecutor {
         let r = if access == WRITE_ONLY {
             map(ctx, target, None, WRITE)
         } else {
-            BufferTarget::from_gl(target).and(Err(GlError::InvalidEnum))
+            BufferTarget::from_gl(target, ctx.es3()).and(Err(GlError::InvalidEnum))
         };
         r.map_err(|e| ctx.record(e)).ok()
     }

@@ -97,6 +97,22 @@ pub struct Bindings {
     pub renderbuffer: u32,
     /// `GL_VERTEX_ARRAY_BINDING_OES`.
     pub vertex_array: u32,
+    /// `GL_UNIFORM_BUFFER_BINDING` (ES 3.0): the generic uniform buffer binding.
+    pub uniform_buffer: u32,
+    /// The indexed uniform buffer bindings uniform blocks read (`glBindBufferBase`/`Range`).
+    pub uniform_buffers: [RangeBinding; crate::glsl::blocks::MAX_COMBINED_UNIFORM_BLOCKS],
+}
+
+/// An indexed buffer binding: the buffer, and the range `glBindBufferRange` gave (a size of 0:
+/// the whole buffer, `glBindBufferBase`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RangeBinding {
+    /// The buffer (0: none).
+    pub buffer: u32,
+    /// The first byte.
+    pub offset: u64,
+    /// The bytes bound (0: all of it, however large it becomes).
+    pub size: u64,
 }
 
 impl Bindings {
@@ -107,6 +123,7 @@ impl Bindings {
             BufferTarget::ElementArray => self.element_buffer,
             BufferTarget::PixelPack => self.pixel_pack,
             BufferTarget::PixelUnpack => self.pixel_unpack,
+            BufferTarget::Uniform => self.uniform_buffer,
         }
     }
 

@@ -232,6 +232,7 @@ pub(crate) fn plan_draw<'c>(
         .map(|t| t.and_then(|t| t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))))
         .collect();
     let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);
+    let blocks = crate::uniform_blocks::block_buffers(ctx, &program, &exe.block_bindings);
     // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
     if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
         return Err(GlError::InvalidOperation);
@@ -269,6 +270,7 @@ pub(crate) fn plan_draw<'c>(
         program,
         uniforms,
         textures,
+        blocks,
         inputs,
         index,
         count,

@@ -45,6 +45,8 @@ pub struct Executable<'c> {
     pub data: Cow<'c, [u8]>,
     /// The texture unit of each of its samplers.
     pub units: Cow<'c, [u32]>,
+    /// The uniform buffer binding each of its uniform blocks reads (`glUniformBlockBinding`).
+    pub block_bindings: Cow<'c, [u32]>,
 }
 
 /// Links the vertex stage of `vp` with the fragment stage of `fp` (`id`: the executable's).
@@ -92,6 +94,7 @@ impl Context {
                 program: p.linked.clone()?,
                 data: Cow::Borrowed(&p.data),
                 units: Cow::Borrowed(&p.units),
+                block_bindings: Cow::Borrowed(&p.block_bindings),
             })
         };
         if self.bindings.program != 0 {
@@ -102,7 +105,14 @@ impl Context {
             Ready::Own(name) => own(*name),
             Ready::Combined(c) => {
                 let (data, units) = c.feed(objects.programs.get(&pl.vertex)?, objects.programs.get(&pl.fragment)?)?;
-                Some(Executable { program: c.program.clone(), data: Cow::Owned(data), units: Cow::Owned(units) })
+                // Program pipelines are ES 3.1's and `GL_EXT_separate_shader_objects`'s: their
+                // blocks read binding 0.
+                Some(Executable {
+                    program: c.program.clone(),
+                    data: Cow::Owned(data),
+                    units: Cow::Owned(units),
+                    block_bindings: Cow::Owned(Vec::new()),
+                })
             }
         }
     }

@@ -51,6 +51,7 @@ mod surface;
 mod teximage;
 mod textures;
 mod typed;
+mod uniform_blocks;
 mod uniforms;
 mod unpack;
 mod version;

@@ -16,16 +16,24 @@ pub enum BufferTarget {
     PixelPack,
     /// `GL_PIXEL_UNPACK_BUFFER_NV`: what uploads read; the library reads it.
     PixelUnpack,
+    /// `GL_UNIFORM_BUFFER` (ES 3.0): the generic binding beside the indexed ones that uniform
+    /// blocks read.
+    Uniform,
 }
 
+/// `GL_UNIFORM_BUFFER`.
+pub const UNIFORM_BUFFER: u32 = 0x8A11;
+
 impl BufferTarget {
-    /// Parses a buffer target; anything else is `GL_INVALID_ENUM`.
-    pub fn from_gl(target: u32) -> GlResult<Self> {
+    /// Parses a buffer target of a context (`es3`: an ES 3.0 one, which has ES 3.0's targets);
+    /// anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl(target: u32, es3: bool) -> GlResult<Self> {
         match target {
             ARRAY_BUFFER => Ok(BufferTarget::Array),
             ELEMENT_ARRAY_BUFFER => Ok(BufferTarget::ElementArray),
             PIXEL_PACK_BUFFER_NV => Ok(BufferTarget::PixelPack),
             PIXEL_UNPACK_BUFFER_NV => Ok(BufferTarget::PixelUnpack),
+            UNIFORM_BUFFER if es3 => Ok(BufferTarget::Uniform),
             _ => Err(GlError::InvalidEnum),
         }
     }

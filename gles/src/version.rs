@@ -72,6 +72,9 @@ impl GlesExecutor {
         if !ctx.es3() {
             return None;
         }
+        if let Some(v) = self.uniform_block_state(ctx, pname) {
+            return Some(v);
+        }
         Some(Value::Ints(vec![match pname {
             MAJOR_VERSION => 3,
             MINOR_VERSION => 0,

@@ -283,6 +283,9 @@ command_set! {
         glUniformMatrix4x2fv [Context, Es3] => UniformMatrix4x2fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
         glUniformMatrix3x4fv [Context, Es3] => UniformMatrix3x4fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
         glUniformMatrix4x3fv [Context, Es3] => UniformMatrix4x3fv { location: GLint, transpose: bool, values: Slice<'a, GLfloat> };
+        glBindBufferBase [Context, Es3] => BindBufferBase { target: GLenum, index: GLuint, buffer: GLuint };
+        glBindBufferRange [Context, Es3] => BindBufferRange { target: GLenum, index: GLuint, buffer: GLuint, offset: i64, size: i64 };
+        glUniformBlockBinding [Context, Es3] => UniformBlockBinding { program: GLuint, index: GLuint, binding: GLuint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -418,6 +421,15 @@ command_set! {
         glGetStringi [Context, Es3] => GetStringi { name: GLenum, index: GLuint } -> Option<String>;
         /// A uniform's values as unsigned integers (nothing on error).
         glGetUniformuiv [Context, Es3] => GetUniformuiv { program: GLuint, location: GLint } -> Vec<GLuint>;
+        /// A uniform block's index by name (`GL_INVALID_INDEX` if none).
+        glGetUniformBlockIndex [Context, Es3] => GetUniformBlockIndex { program: GLuint, name: Text<'a> } -> GLuint;
+        /// A uniform block's parameter (nothing on error).
+        glGetActiveUniformBlockiv [Context, Es3] => GetActiveUniformBlockiv { program: GLuint, index: GLuint, pname: GLenum } -> Vec<GLint>;
+        /// A uniform block's whole name (`None` on error; the client truncates).
+        glGetActiveUniformBlockName [Context, Es3] => GetActiveUniformBlockName { program: GLuint, index: GLuint } -> Option<String>;
+        /// An indexed binding's state (nothing on error).
+        glGetIntegeri_v [Context, Es3] => GetIntegeriV { target: GLenum, index: GLuint } -> Vec<GLint>;
+        glGetInteger64i_v [Context, Es3] => GetInteger64iV { target: GLenum, index: GLuint } -> Vec<i64>;
     }
 }
 

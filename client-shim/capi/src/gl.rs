@@ -381,5 +381,8 @@ pub mod texture3d;
 /// Textures and renderbuffers of EGLImages (`GL_OES_EGL_image`).
 pub mod egl_image;
 
+/// ES 3.0's uniform buffer bindings and block queries.
+pub mod uniform_blocks;
+
 /// ES 3.0's core names for what ES 2.0 extensions gave, as aliases of the extensions' entry points.
 pub mod es3_aliases;

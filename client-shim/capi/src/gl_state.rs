@@ -72,6 +72,8 @@ pub(crate) struct GlState {
     pub pack_buffer: u32,
     /// `GL_PIXEL_UNPACK_BUFFER_BINDING_NV`.
     pub unpack_buffer: u32,
+    /// `GL_UNIFORM_BUFFER_BINDING` (ES 3.0).
+    pub uniform_buffer: u32,
 }
 
 impl Default for GlState {
@@ -89,6 +91,7 @@ impl Default for GlState {
             pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
             pack_buffer: 0,
             unpack_buffer: 0,
+            uniform_buffer: 0,
         }
     }
 }
@@ -113,6 +116,7 @@ impl GlState {
             GL_ELEMENT_ARRAY_BUFFER => Some(self.element_buffer),
             0x88EB => Some(self.pack_buffer),
             0x88EC => Some(self.unpack_buffer),
+            crate::gl::uniform_blocks::GL_UNIFORM_BUFFER => Some(self.uniform_buffer),
             _ => None,
         }
     }

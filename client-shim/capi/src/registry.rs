@@ -76,6 +76,7 @@ entry_point_modules! {
         crate::gl::texture3d,
         crate::gl::egl_image,
         crate::gl::es3_aliases,
+        crate::gl::uniform_blocks,
     ],
 }
 

@@ -135,3 +135,41 @@ fn sampler3d_is_core_in_300_es() {
     let e = fs("").expect_err("sampler3D has no default precision");
     assert!(e.contains("sampler3D"), "{e}");
 }
+
+#[test]
+fn uniform_blocks_link_with_std140_offsets() {
+    let vs = compile(
+        Stage::Vertex,
+        "#version 300 es
+        layout(std140) uniform Transform { mat4 mvp; vec3 tint; float k[3]; } xf;
+        layout(shared) uniform Common { vec2 scale; int mode; };
+        in vec4 p; out vec3 c;
+        void main() { c = xf.tint * xf.k[2] * float(mode); gl_Position = xf.mvp * p * scale.x; }",
+    )
+    .expect("vs");
+    let fs = compile(
+        Stage::Fragment,
+        "#version 300 es
+        precision mediump float;
+        uniform Common { vec2 scale; int mode; };
+        uniform Light { uvec4 flags; mat3x4 m; } light;
+        in vec3 c; out vec4 o;
+        void main() { o = vec4(c * scale.y, float(light.flags.x)) * light.m[0]; }",
+    )
+    .expect("fs");
+    let l = link(&vs, &fs, &HashMap::new(), 16).expect("link");
+    let names: Vec<(&str, u32, bool, bool)> =
+        l.blocks.iter().map(|b| (b.block.name.as_str(), b.block.size, b.vertex, b.fragment)).collect();
+    assert_eq!(names, [("Transform", 128, true, false), ("Common", 16, true, true), ("Light", 64, false, true)]);
+    let offsets: Vec<(u32, u32)> = l.blocks[0].block.members.iter().map(|m| (m.offset, m.stride)).collect();
+    assert_eq!(offsets, [(0, 0), (64, 0), (80, 16)]);
+    let differ = compile(
+        Stage::Fragment,
+        "#version 300 es
+        precision mediump float; uniform Common { vec2 scale; uint mode; }; out vec4 o;
+        void main() { o = vec4(scale, 0.0, 1.0); }",
+    )
+    .expect("fs");
+    let e = link(&vs, &differ, &HashMap::new(), 16).expect_err("declared differently");
+    assert!(e.contains("Common"), "{e}");
+}

@@ -15,7 +15,10 @@ use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::MAX_VARYING_ARRAY;
 
 /// The length of an interface variable's array specifier, `None` if it is no array.
-fn array_len(spec: Option<&ast::ArraySpecifier>, consts: &HashMap<String, Val>) -> Result<Option<u32>, String> {
+pub(super) fn array_len(
+    spec: Option<&ast::ArraySpecifier>,
+    consts: &HashMap<String, Val>,
+) -> Result<Option<u32>, String> {
     let Some(spec) = spec else { return Ok(None) };
     match spec.dimensions.as_slice() {
         [d] => match &d.content {
@@ -102,6 +105,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         attributes: vec![],
         varyings: vec![],
         outputs: vec![],
+        blocks: vec![],
         version,
         uniforms: vec![],
         point_coord: false,
@@ -126,6 +130,17 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 // Precision is dropped; invariance of built-ins is checked at link time.
                 ast::DeclarationData::Precision(..) | ast::DeclarationData::Invariant(_) => continue,
                 ast::DeclarationData::InitDeclaratorList(list) => Some(list.clone()),
+                ast::DeclarationData::Block(b) if version == 300 => {
+                    if let Some(block) = crate::glsl::blocks::lift(b, &consts)? {
+                        shader.blocks.push(block);
+                        continue;
+                    }
+                    None
+                }
+                // `layout(std140) uniform;`: the default layout of later blocks, std140 here.
+                ast::DeclarationData::TypeOnly(q) if version == 300 && crate::glsl::blocks::default_layout(q)? => {
+                    continue
+                }
                 _ => None,
             },
             ast::ExternalDeclarationData::FunctionDefinition(f) => {

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use crate::glsl::linked::{array_suffix, Linked, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT};
+use crate::glsl::linked::{array_suffix, Linked, LinkedBlock, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT};
 use crate::glsl::translate::{naga_module, transpile, Body, Placed};
 use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::{MAX_BLOCK, MAX_SAMPLERS, MAX_VARYING_VECTORS};
@@ -69,6 +69,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         wrap_offsets,
         points_source,
         point_input,
+        blocks,
         ..
     } = g;
     Ok(Linked {
@@ -84,6 +85,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         reversed_fragment_source,
         point_input,
         dual: fs.dual,
+        blocks,
     })
 }
 
@@ -118,6 +120,7 @@ struct Generated {
     wrap_offsets: Vec<u32>,
     points_source: String,
     point_input: u32,
+    blocks: Vec<LinkedBlock>,
 }
 
 /// The uniform block, locations and both stages' sources of a program.
@@ -196,6 +199,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         offset = offset.checked_add(32).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
     }
     let block_size = offset.div_ceil(16) * 16;
+    let blocks = link_blocks(vs, fs)?;
 
     // Attributes: locations the shader gives (GLSL ES 3.00), then bound ones, then the lowest
     // free ones.
@@ -272,7 +276,16 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         let _ = writeln!(common, "layout(set = 0, binding = {}) uniform sampler {name}__b;", binding + 2);
     }
 
+    let declared = |stage_blocks: &[crate::glsl::types::Block]| -> String {
+        blocks
+            .iter()
+            .filter(|b| stage_blocks.iter().any(|s| s.name == b.block.name))
+            .map(|b| crate::glsl::blocks::declaration(&b.block, b.binding))
+            .collect()
+    };
+    let (vs_blocks, fs_blocks) = (declared(&vs.blocks), declared(&fs.blocks));
     let mut vsrc = common.clone();
+    vsrc.push_str(&vs_blocks);
     vsrc.push_str(&lookup_helpers(&vs.lookups));
     vsrc.push_str(&crate::glsl::polyfill::definitions(&vs.polyfills));
     for (a, loc) in &attributes {
@@ -347,6 +360,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     ));
 
     let mut fsrc = common;
+    fsrc.push_str(&fs_blocks);
     fsrc.push_str(&lookup_helpers(&fs.lookups));
     fsrc.push_str(&crate::glsl::polyfill::definitions(&fs.polyfills));
     let mut fs_copy = String::new();
@@ -469,7 +483,38 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         wrap_offsets,
         points_source,
         point_input,
+        blocks,
     })
+}
+
+/// The program's uniform blocks: each stage's, one per name (a block both stages declare must
+/// be declared alike, §4.3.7), each at its binding, within the limits.
+fn link_blocks(vs: &Shader, fs: &Shader) -> Result<Vec<LinkedBlock>, String> {
+    use crate::glsl::blocks::{FIRST_BLOCK_BINDING, MAX_COMBINED_UNIFORM_BLOCKS, MAX_STAGE_UNIFORM_BLOCKS};
+    for (s, stage) in [(vs, "vertex"), (fs, "fragment")] {
+        if s.blocks.len() > MAX_STAGE_UNIFORM_BLOCKS {
+            return Err(format!("error: the {stage} shader has more than {MAX_STAGE_UNIFORM_BLOCKS} uniform blocks"));
+        }
+    }
+    let mut blocks: Vec<LinkedBlock> = Vec::new();
+    for (b, vertex) in vs.blocks.iter().map(|b| (b, true)).chain(fs.blocks.iter().map(|b| (b, false))) {
+        match blocks.iter_mut().find(|l| l.block.name == b.name) {
+            Some(l) if l.block.members != b.members || l.block.instance.is_some() != b.instance.is_some() => {
+                return Err(format!("error: uniform block `{}' is declared differently in the two stages", b.name))
+            }
+            Some(l) => l.fragment = true,
+            None => blocks.push(LinkedBlock {
+                block: b.clone(),
+                binding: FIRST_BLOCK_BINDING + blocks.len() as u32,
+                vertex,
+                fragment: !vertex,
+            }),
+        }
+    }
+    if blocks.len() > MAX_COMBINED_UNIFORM_BLOCKS {
+        return Err(format!("error: the program has more than {MAX_COMBINED_UNIFORM_BLOCKS} uniform blocks"));
+    }
+    Ok(blocks)
 }
 
 /// The interpolation qualifier a varying crosses stages with: `flat ` where the shader says so,

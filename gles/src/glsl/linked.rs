@@ -1,7 +1,7 @@
 //! A linked program's interface as the linker leaves it (uniform slots, attributes, samplers,
 //! the translated stages), and the conventions every generated stage follows.
 
-use crate::glsl::types::{Ty, Var};
+use crate::glsl::types::{Block, Ty, Var};
 
 /// A uniform's place in the program's block (or, for samplers, its binding).
 #[derive(Debug, Clone)]
@@ -20,6 +20,19 @@ pub struct UniformSlot {
     pub stride: u32,
     /// For samplers: index into the program's sampler list.
     pub sampler: Option<usize>,
+}
+
+/// A uniform block of a linked program.
+#[derive(Debug, Clone)]
+pub struct LinkedBlock {
+    /// The block, laid out.
+    pub block: Block,
+    /// Its binding in the program's bind group.
+    pub binding: u32,
+    /// Whether the vertex stage declares it (`GL_UNIFORM_BLOCK_REFERENCED_BY_VERTEX_SHADER`).
+    pub vertex: bool,
+    /// Whether the fragment stage declares it.
+    pub fragment: bool,
 }
 
 /// A linked program: naga modules and everything needed to feed them.
@@ -58,6 +71,8 @@ pub struct Linked {
     /// Whether the fragment stage writes a second colour (`GL_EXT_blend_func_extended`): its
     /// one output is location 0's two blend sources.
     pub dual: bool,
+    /// GLSL ES 3.00 uniform blocks, by block index.
+    pub blocks: Vec<LinkedBlock>,
 }
 
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]

@@ -14,12 +14,14 @@
 //! |---|---|
 //! | `preprocess` | `#version` check, `GL_ES` defines, preprocessing and parsing |
 //! | `interface` | lifting attributes, varyings and uniforms out of the AST; ES restrictions |
+//! | `blocks` | GLSL ES 3.00 uniform blocks: lifted, laid out by std140, declared again |
 //! | `rewrite` | the AST rewrite to Vulkan-flavoured GLSL |
 //! | `link` | the program-wide uniform block, locations, generated `main`s |
 //! | `polyfill` | generated functions for the built-ins naga lacks |
 //! | `separate` | one-stage programs, and two programs' stages linked into one executable |
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
+pub mod blocks;
 mod checks;
 mod consts;
 mod interface;
@@ -38,7 +40,7 @@ mod writes;
 pub use link::{link, points_vertex};
 pub use linked::{Linked, UniformSlot};
 pub use separate::{fragment_uniform_name, interfaces_match, link_alone, rename_uniforms};
-pub use types::{Scalar, Shader, Stage, Ty, Var};
+pub use types::{Block, BlockMember, Scalar, Shader, Stage, Ty, Var};
 pub use variants::ClipZ;
 
 /// Compiles (parses and checks) a GLSL ES 1.00 shader. The error is the info log.

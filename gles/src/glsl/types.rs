@@ -272,6 +272,34 @@ pub struct Var {
     pub flat: bool,
 }
 
+/// A member of a uniform block, with its std140 place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockMember {
+    /// Its name.
+    pub name: String,
+    /// Its type.
+    pub ty: Ty,
+    /// Array length, if an array.
+    pub array: Option<u32>,
+    /// Byte offset in the block.
+    pub offset: u32,
+    /// Bytes between array elements (0 for a non-array).
+    pub stride: u32,
+}
+
+/// A GLSL ES 3.00 uniform block, laid out by std140.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Block {
+    /// The block's name (what `glGetUniformBlockIndex` takes).
+    pub name: String,
+    /// The instance name, if the block has one (its members are then `instance.member`).
+    pub instance: Option<String>,
+    /// Its members, in order.
+    pub members: Vec<BlockMember>,
+    /// Its data size in bytes (`GL_UNIFORM_BLOCK_DATA_SIZE`).
+    pub size: u32,
+}
+
 /// A successfully compiled shader, kept for linking.
 #[derive(Debug, Clone)]
 pub struct Shader {
@@ -284,6 +312,8 @@ pub struct Shader {
     pub varyings: Vec<Var>,
     /// GLSL ES 3.00 fragment `out`s, in declaration order.
     pub outputs: Vec<Var>,
+    /// GLSL ES 3.00 uniform blocks, in declaration order.
+    pub blocks: Vec<Block>,
     /// The language version: 100 or 300 (`#version 300 es`).
     pub version: u16,
     /// `uniform` variables (samplers included).

@@ -134,6 +134,9 @@ pub struct Program {
     pub data: Vec<u8>,
     /// Texture unit of each sampler uniform.
     pub units: Vec<u32>,
+    /// The uniform buffer binding of each uniform block (`glUniformBlockBinding`; 0 after a
+    /// link).
+    pub block_bindings: Vec<u32>,
     /// Deleted while current: freed when no longer in use.
     pub delete_pending: bool,
     /// `glValidateProgram` result.
@@ -150,6 +153,7 @@ impl Program {
             Ok(linked) => {
                 self.data = vec![0; linked.info.block_size as usize];
                 self.units = vec![0; linked.info.samplers.len()];
+                self.block_bindings = vec![0; linked.info.blocks.len()];
                 self.linked = Some(Arc::new(linked));
                 self.link_ok = true;
                 self.log.clear();
@@ -246,6 +250,18 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
                 ty: wgpu::BufferBindingType::Uniform,
                 has_dynamic_offset: true,
                 min_binding_size: wgpu::BufferSize::new(u64::from(info.block_size)),
+            },
+            count: None,
+        });
+    }
+    for b in &info.blocks {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: b.binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(u64::from(b.block.size)),
             },
             count: None,
         });

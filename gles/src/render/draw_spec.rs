@@ -78,6 +78,9 @@ pub struct DrawSpec<'a> {
     /// Per sampler: texture view, its uid, sampling state, and whether the image cannot be
     /// filtered (depth, or float without `FLOAT32_FILTERABLE`) (`None`: incomplete, sample black).
     pub textures: Vec<Option<(wgpu::TextureView, u64, SamplerState, bool)>>,
+    /// Per uniform block of the program: the buffer and offset it reads (`None`: no buffer
+    /// large enough is bound, and it reads zeros).
+    pub blocks: Vec<Option<(wgpu::Buffer, u64)>>,
     /// Vertex inputs.
     pub inputs: Vec<VertexInput>,
     /// Indices, if indexed.

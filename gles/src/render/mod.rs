@@ -144,6 +144,9 @@ pub struct Fixed {
     black_2d: wgpu::TextureView,
     black_cube: wgpu::TextureView,
     black_3d: wgpu::TextureView,
+    /// What a uniform block without a large enough buffer reads: zeros, as many as a block
+    /// may hold.
+    zero_block: wgpu::Buffer,
     clear_module: wgpu::ShaderModule,
     clear_bgl: wgpu::BindGroupLayout,
     clear_layout: wgpu::PipelineLayout,
@@ -197,6 +200,12 @@ impl Fixed {
             black_2d: black(gpu, 1),
             black_cube: black(gpu, 6),
             black_3d: black_volume(gpu),
+            zero_block: d.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("zero uniform block"),
+                size: u64::from(crate::glsl::blocks::MAX_UNIFORM_BLOCK_SIZE),
+                usage: wgpu::BufferUsages::UNIFORM,
+                mapped_at_creation: false,
+            }),
             clear_module,
             clear_bgl,
             clear_layout,

@@ -17,6 +17,8 @@ pub(crate) enum Bind {
         layout: wgpu::BindGroupLayout,
         uniform: Option<u32>,
         textures: Vec<(wgpu::TextureView, u64, wgpu::Sampler, SamplerState, wgpu::Sampler)>,
+        /// Per uniform block: the buffer and offset it reads.
+        blocks: Vec<(wgpu::Buffer, u64)>,
     },
     /// A clear quad's parameters, at an offset into the ring.
     Clear(u32),

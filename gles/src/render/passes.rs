@@ -81,6 +81,8 @@ impl Renderer {
                 }
             }
         }
+        let blocks: Vec<(wgpu::Buffer, u64)> =
+            spec.blocks.into_iter().map(|b| b.unwrap_or_else(|| (self.fixed.zero_block.clone(), 0))).collect();
         let align = 4;
         let mut vertex = Vec::with_capacity(spec.inputs.len());
         for i in spec.inputs {
@@ -102,7 +104,7 @@ impl Renderer {
         self.draws += 1;
         let rec = Recorded {
             pipeline,
-            bind: Bind::Program { program: spec.program, layout, uniform, textures },
+            bind: Bind::Program { program: spec.program, layout, uniform, textures, blocks },
             vertex,
             index,
             count: spec.count,
@@ -173,7 +175,8 @@ impl Renderer {
     fn bind_groups(&self, pass: &Pass, ring: Option<&wgpu::Buffer>) -> Vec<Option<wgpu::BindGroup>> {
         let d = &self.gpu.device;
         let mut groups: Vec<Option<wgpu::BindGroup>> = Vec::with_capacity(pass.draws.len());
-        let mut cache: HashMap<(u64, Vec<(u64, SamplerState)>), wgpu::BindGroup> = HashMap::new();
+        type Key = (u64, Vec<(u64, SamplerState)>, Vec<(wgpu::Buffer, u64)>);
+        let mut cache: HashMap<Key, wgpu::BindGroup> = HashMap::new();
         let mut clear_group: Option<wgpu::BindGroup> = None;
         for r in &pass.draws {
             let g = match &r.bind {
@@ -196,11 +199,11 @@ impl Renderer {
                     }
                     clear_group.clone()
                 }
-                Bind::Program { program, layout, uniform, textures } => {
-                    if uniform.is_none() && textures.is_empty() {
+                Bind::Program { program, layout, uniform, textures, blocks } => {
+                    if uniform.is_none() && textures.is_empty() && blocks.is_empty() {
                         None
                     } else {
-                        let key = (program.id, textures.iter().map(|t| (t.1, t.3)).collect::<Vec<_>>());
+                        let key = (program.id, textures.iter().map(|t| (t.1, t.3)).collect::<Vec<_>>(), blocks.clone());
                         if let Some(g) = cache.get(&key) {
                             Some(g.clone())
                         } else {
@@ -228,6 +231,16 @@ impl Renderer {
                                 entries.push(wgpu::BindGroupEntry {
                                     binding: b + 2,
                                     resource: wgpu::BindingResource::Sampler(&t.4),
+                                });
+                            }
+                            for ((buffer, offset), b) in blocks.iter().zip(&program.info.blocks) {
+                                entries.push(wgpu::BindGroupEntry {
+                                    binding: b.binding,
+                                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                        buffer,
+                                        offset: *offset,
+                                        size: wgpu::BufferSize::new(u64::from(b.block.size)),
+                                    }),
                                 });
                             }
                             let g = d.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -3,6 +3,7 @@
 
 use super::{Case, DEFAULT};
 
+mod blocks;
 mod language;
 mod uniforms;
 
@@ -18,5 +19,6 @@ pub fn all() -> Vec<Case> {
         c("es3_outputs", language::outputs),
         c("es3_frag_depth", language::frag_depth),
         c("es3_uniforms", uniforms::uniforms),
+        c("es3_uniform_blocks", blocks::uniform_blocks),
     ]
 }

@@ -51,3 +51,99 @@ matrix_arms! {
     glUniformMatrix3x4fv = "glUniformMatrix3x4fv", 12;
     glUniformMatrix4x3fv = "glUniformMatrix4x3fv", 12;
 }
+
+impl Arms<'_> {
+    pub(super) fn glBindBufferBase(
+        &mut self,
+        target: &GLenum,
+        index: &GLuint,
+        buffer: &GLuint,
+    ) -> Result<(), ClientError> {
+        call!(self, "glBindBufferBase", fn(u32, u32, u32) -> (), *target, *index, *buffer);
+        Ok(())
+    }
+
+    pub(super) fn glBindBufferRange(
+        &mut self,
+        target: &GLenum,
+        index: &GLuint,
+        buffer: &GLuint,
+        offset: &i64,
+        size: &i64,
+    ) -> Result<(), ClientError> {
+        call!(
+            self,
+            "glBindBufferRange",
+            fn(u32, u32, u32, isize, isize) -> (),
+            *target,
+            *index,
+            *buffer,
+            *offset as isize,
+            *size as isize
+        );
+        Ok(())
+    }
+
+    pub(super) fn glUniformBlockBinding(
+        &mut self,
+        program: &GLuint,
+        index: &GLuint,
+        binding: &GLuint,
+    ) -> Result<(), ClientError> {
+        let p = self.shader(*program);
+        call!(self, "glUniformBlockBinding", fn(u32, u32, u32) -> (), p, *index, *binding);
+        Ok(())
+    }
+
+    pub(super) fn glGetUniformBlockIndex(&mut self, program: &GLuint, name: &Text<'_>) -> Result<GLuint, ClientError> {
+        let p = self.shader(*program);
+        let name = std::ffi::CString::new(name.as_str()).map_err(|e| ClientError::Unsupported(e.to_string()))?;
+        Ok(call!(self, "glGetUniformBlockIndex", fn(u32, *const i8) -> u32, p, name.as_ptr()))
+    }
+
+    pub(super) fn glGetActiveUniformBlockiv(
+        &mut self,
+        program: &GLuint,
+        index: &GLuint,
+        pname: &GLenum,
+    ) -> Result<Vec<GLint>, ClientError> {
+        let p = self.shader(*program);
+        let mut v = [INT_SENTINEL; 64];
+        call!(self, "glGetActiveUniformBlockiv", fn(u32, u32, u32, *mut i32) -> (), p, *index, *pname, v.as_mut_ptr());
+        Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL).collect())
+    }
+
+    pub(super) fn glGetActiveUniformBlockName(
+        &mut self,
+        program: &GLuint,
+        index: &GLuint,
+    ) -> Result<Option<String>, ClientError> {
+        let p = self.shader(*program);
+        let mut buf = vec![0u8; 256];
+        let mut len = -1;
+        call!(
+            self,
+            "glGetActiveUniformBlockName",
+            fn(u32, u32, i32, *mut i32, *mut u8) -> (),
+            p,
+            *index,
+            256,
+            &mut len,
+            buf.as_mut_ptr()
+        );
+        Ok((len >= 0).then(|| String::from_utf8_lossy(&buf[..len as usize]).into_owned()))
+    }
+
+    pub(super) fn glGetIntegeri_v(&mut self, target: &GLenum, index: &GLuint) -> Result<Vec<GLint>, ClientError> {
+        let mut v = [INT_SENTINEL; 4];
+        call!(self, "glGetIntegeri_v", fn(u32, u32, *mut i32) -> (), *target, *index, v.as_mut_ptr());
+        Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL).collect())
+    }
+
+    pub(super) fn glGetInteger64i_v(&mut self, target: &GLenum, index: &GLuint) -> Result<Vec<i64>, ClientError> {
+        let sentinel = i64::from(INT_SENTINEL);
+        let mut v = [sentinel; 4];
+        call!(self, "glGetInteger64i_v", fn(u32, u32, *mut i64) -> (), *target, *index, v.as_mut_ptr());
+        Ok(v.iter().copied().take_while(|x| *x != sentinel).collect())
+    }
+}

@@ -313,6 +313,9 @@ pub mod get_arrays {
         glGetUniformfv(program: GLuint, location: GLint) -> GLfloat;
         glGetUniformiv(program: GLuint, location: GLint) -> GLint;
         glGetUniformuiv(program: GLuint, location: GLint) -> GLuint;
+        glGetActiveUniformBlockiv(program: GLuint, index: GLuint, pname: GLenum) -> GLint;
+        glGetIntegeri_v(target: GLenum, index: GLuint) -> GLint;
+        glGetInteger64i_v(target: GLenum, index: GLuint) -> GLint64;
         glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
         glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;
         glGetQueryivEXT(target: GLenum, pname: GLenum) -> GLint;

@@ -263,6 +263,9 @@ crate::entry::entry_points! {
                 if gl.st.unpack_buffer == b {
                     gl.st.unpack_buffer = 0;
                 }
+                if gl.st.uniform_buffer == b {
+                    gl.st.uniform_buffer = 0;
+                }
             }
             gl.conn.glDeleteBuffers(Slice::new(v))
         })
@@ -277,6 +280,7 @@ crate::entry::entry_points! {
                 GL_ELEMENT_ARRAY_BUFFER => gl.st.element_buffer = buffer,
                 PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
                 PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
+                super::uniform_blocks::GL_UNIFORM_BUFFER => gl.st.uniform_buffer = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)

@@ -122,6 +122,7 @@ simple_calls! {
     fn glUniform3i(location: GLint, x: GLint, y: GLint, z: GLint);
     fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
     fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
+    fn glUniformBlockBinding(program: GLuint, index: GLuint, binding: GLuint);
     fn glUniform1ui(location: GLint, x: GLuint);
     fn glUniform2ui(location: GLint, x: GLuint, y: GLuint);
     fn glUniform3ui(location: GLint, x: GLuint, y: GLuint, z: GLuint);

@@ -1,0 +1,124 @@
+//! GLSL ES 3.00 uniform blocks (§4.3.7): lifted out of the shader as [`Block`]s, laid out by
+//! std140 (`shared` and `packed` take std140's layout, as §4.3.8.3 allows), and declared again in
+//! the generated code at their program-wide binding.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use glsl_lang::ast::{self, TypeQualifierSpecData};
+
+use crate::glsl::consts::Val;
+use crate::glsl::types::{Block, BlockMember, Scalar, Ty};
+
+/// `GL_MAX_UNIFORM_BLOCK_SIZE`: the bytes one block may hold (ES 3.0's minimum).
+pub const MAX_UNIFORM_BLOCK_SIZE: u32 = 16384;
+/// `GL_MAX_VERTEX_UNIFORM_BLOCKS` and `GL_MAX_FRAGMENT_UNIFORM_BLOCKS` (ES 3.0's minimum).
+pub const MAX_STAGE_UNIFORM_BLOCKS: usize = 12;
+/// `GL_MAX_COMBINED_UNIFORM_BLOCKS` and `GL_MAX_UNIFORM_BUFFER_BINDINGS` (ES 3.0's minimum).
+pub const MAX_COMBINED_UNIFORM_BLOCKS: usize = 24;
+/// The binding of a program's first block in its bind group, after the default block (0) and
+/// the samplers (1 + 3k).
+pub const FIRST_BLOCK_BINDING: u32 = 100;
+
+/// The layout qualifiers a block (or `layout(…) uniform;`) may carry: std140 and its
+/// stand-ins, and column-major matrices. `shared` reaches here renamed (`preprocess`).
+fn check_layout(q: Option<&ast::TypeQualifier>) -> Result<(), String> {
+    for s in q.iter().flat_map(|q| q.qualifiers.iter()) {
+        let TypeQualifierSpecData::Layout(l) = &s.content else { continue };
+        for id in &l.ids {
+            match &id.content {
+                ast::LayoutQualifierSpecData::Shared => {}
+                ast::LayoutQualifierSpecData::Identifier(name, None)
+                    if matches!(name.0.as_str(), "std140" | "packed" | "shar__" | "column_major") => {}
+                ast::LayoutQualifierSpecData::Identifier(name, None) if name.0 == "row_major" => {
+                    return Err("0: row_major uniform block members are not supported yet".into())
+                }
+                ast::LayoutQualifierSpecData::Identifier(name, _) => {
+                    return Err(format!("0: layout qualifier `{}' is not allowed on a uniform block", name.0))
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether `decl` is `layout(…) uniform;`, the default layout of later blocks (checked).
+pub(super) fn default_layout(q: &ast::TypeQualifier) -> Result<bool, String> {
+    let uniform = q.qualifiers.iter().any(|s| {
+        matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
+    });
+    if uniform {
+        check_layout(Some(q))?;
+    }
+    Ok(uniform)
+}
+
+/// Lifts a `uniform` block declaration; `None` if the block is not a uniform block.
+pub(super) fn lift(b: &ast::Block, consts: &HashMap<String, Val>) -> Result<Option<Block>, String> {
+    let uniform = b.qualifier.qualifiers.iter().any(|s| {
+        matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
+    });
+    if !uniform {
+        return Ok(None);
+    }
+    check_layout(Some(&b.qualifier))?;
+    let instance = match &b.identifier {
+        Some(id) if id.array_spec.is_some() => return Err("0: arrays of uniform blocks are not supported yet".into()),
+        Some(id) => Some(id.ident.0.to_string()),
+        None => None,
+    };
+    let mut members = Vec::new();
+    for f in &b.fields {
+        check_layout(f.qualifier.as_ref())?;
+        let ty = Ty::from_spec(&f.ty.ty).filter(|t| !t.is_sampler()).ok_or_else(|| {
+            "0: uniform block members of this type (structures, samplers) are not supported yet".to_string()
+        })?;
+        if ty.scalar() == Scalar::Bool || ty.rows() == 2 {
+            return Err("0: boolean and two-row matrix uniform block members are not supported yet".into());
+        }
+        for id in &f.identifiers {
+            let spec = id.array_spec.as_ref().or(f.ty.array_specifier.as_ref());
+            let array = crate::glsl::interface::array_len(spec, consts)?;
+            members.push(BlockMember { name: id.ident.0.to_string(), ty, array, offset: 0, stride: 0 });
+        }
+    }
+    let mut block = Block { name: b.name.0.to_string(), instance, members, size: 0 };
+    lay_out(&mut block)?;
+    Ok(Some(block))
+}
+
+/// std140 (§2.12.6.4 of ES 3.0): each member's offset and array stride, and the block's size.
+fn lay_out(block: &mut Block) -> Result<(), String> {
+    let mut offset = 0u32;
+    for m in &mut block.members {
+        let (size, align) = m.ty.std140();
+        let (align, stride, total) = match m.array {
+            // An array's elements (and a matrix's columns) are 16 bytes apart at least.
+            Some(n) => {
+                let stride = size.div_ceil(16) * 16;
+                (16, stride, stride.checked_mul(n))
+            }
+            None => (align, 0, Some(size)),
+        };
+        offset = offset.div_ceil(align) * align;
+        m.offset = offset;
+        m.stride = stride;
+        offset =
+            total.and_then(|t| offset.checked_add(t)).filter(|&o| o <= MAX_UNIFORM_BLOCK_SIZE).ok_or_else(|| {
+                format!("error: uniform block `{}' needs more than {MAX_UNIFORM_BLOCK_SIZE} bytes", block.name)
+            })?;
+    }
+    block.size = offset.div_ceil(16) * 16;
+    Ok(())
+}
+
+/// The generated declaration of `block` at `binding`.
+pub(super) fn declaration(block: &Block, binding: u32) -> String {
+    let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {} {{\n", block.name);
+    for m in &block.members {
+        let array = m.array.map_or(String::new(), |n| format!("[{n}]"));
+        let _ = writeln!(out, "    {} {}{array};", m.ty.glsl(true), m.name);
+    }
+    let _ = writeln!(out, "}}{};", block.instance.as_deref().map_or(String::new(), |i| format!(" {i}")));
+    out
+}
