@@ -176,6 +176,8 @@ impl Renderer {
         let d = &self.gpu.device;
         let mut groups: Vec<Option<wgpu::BindGroup>> = Vec::with_capacity(pass.draws.len());
         type Key = (u64, Vec<(u64, SamplerState)>, Vec<(wgpu::Buffer, u64)>);
+        // A wgpu::Buffer hashes and compares by its id, which never changes.
+        #[allow(clippy::mutable_key_type)]
         let mut cache: HashMap<Key, wgpu::BindGroup> = HashMap::new();
         let mut clear_group: Option<wgpu::BindGroup> = None;
         for r in &pass.draws {
