@@ -235,6 +235,7 @@ api! {
     core_get_query_object_uiv = "glGetQueryObjectuiv": fn(u32, u32, *mut u32);
     core_delete_queries = "glDeleteQueries": fn(i32, *const u32);
     core_get_integer64v = "glGetInteger64v": fn(u32, *mut i64);
+    core_vertex_attrib_divisor = "glVertexAttribDivisor": fn(u32, u32);
     egl_create_sync = "eglCreateSyncKHR": fn(Ptr, u32, *const i32) -> Ptr;
     egl_destroy_sync = "eglDestroySyncKHR": fn(Ptr, Ptr) -> u32;
     egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;

@@ -7,6 +7,7 @@ use std::borrow::Cow;
 
 use crate::context::Context;
 use crate::conv::{clip_rect, component, float_format, native_format, reads_src1, type_size, viewport, Mirror};
+use crate::divisors::{plan_divided, InstanceReads};
 use crate::draw_state::{bound_textures, raster_state};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
@@ -30,6 +31,7 @@ pub(crate) fn plan_inputs(
     vertex_count: u64,
     order: Option<&[u32]>,
     robust: bool,
+    reads: InstanceReads,
 ) -> GlResult<Vec<VertexInput>> {
     let mut inputs = Vec::with_capacity(program.info.attributes.len());
     for (_, loc) in &program.info.attributes {
@@ -40,7 +42,12 @@ pub(crate) fn plan_inputs(
                 format: wgpu::VertexFormat::Float32x4,
                 stride: 0,
                 source: Source::Bytes(bytemuck::cast_slice(&a.current).to_vec()),
+                per_instance: false,
             });
+            continue;
+        }
+        if a.divisor > 0 {
+            inputs.push(plan_divided(ctx, a, *loc, reads)?);
             continue;
         }
         // A buffer object's shadow, or the client array sent for this draw (offset 0).
@@ -72,7 +79,13 @@ pub(crate) fn plan_inputs(
                     Some(g) => Source::Buffer(g.clone(), offset as u64),
                     None => Source::Bytes(data[..need].to_vec()),
                 };
-                inputs.push(VertexInput { location: *loc, format: fmt, stride: stride as u64, source });
+                inputs.push(VertexInput {
+                    location: *loc,
+                    format: fmt,
+                    stride: stride as u64,
+                    source,
+                    per_instance: false,
+                });
             }
             _ => {
                 let ts = type_size(a.ty).unwrap_or(4);
@@ -103,6 +116,7 @@ pub(crate) fn plan_inputs(
                     format: float_format(a.size),
                     stride: a.size as u64 * 4,
                     source: Source::Bytes(out),
+                    per_instance: false,
                 });
             }
         }
@@ -130,7 +144,8 @@ pub(crate) fn plan_points(
         Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, count)),
         None => (u64::from(first) + u64::from(count), (first, count)),
     };
-    let mut inputs = plan_inputs(ctx, program, vertex_count, order.as_deref(), ctx.robust)?;
+    let mut inputs =
+        plan_inputs(ctx, program, vertex_count, order.as_deref(), ctx.robust, InstanceReads::One(instance))?;
     let [_, _, w, h] = ctx.raster.viewport;
     let point = [1.0 / w.max(1) as f32, 1.0 / h.max(1) as f32, instance as f32, 0.0];
     inputs.push(VertexInput {
@@ -138,6 +153,7 @@ pub(crate) fn plan_points(
         format: wgpu::VertexFormat::Float32x4,
         stride: 0,
         source: Source::Bytes(bytemuck::cast_slice(&point).to_vec()),
+        per_instance: false,
     });
     Ok((inputs, instances))
 }
@@ -204,8 +220,10 @@ pub(crate) fn plan_draw<'c>(
         let (inputs, instances) = plan_points(ctx, &program, count, indices, first, shape.instance)?;
         (inputs, None, 4, 0, instances)
     } else {
-        let planned = plan_indices(ctx, prim, count, indices, first)
-            .and_then(|plan| Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false)?, plan)));
+        let planned = plan_indices(ctx, prim, count, indices, first).and_then(|plan| {
+            let reads = InstanceReads::Drawn(shape.instances);
+            Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false, reads)?, plan))
+        });
         match planned {
             Ok((inputs, IndexPlan { index, count, .. })) => {
                 if count == 0 {
@@ -220,7 +238,8 @@ pub(crate) fn plan_draw<'c>(
                 if order.is_empty() {
                     return Ok(None);
                 }
-                let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true)?;
+                let reads = InstanceReads::Drawn(shape.instances);
+                let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true, reads)?;
                 (inputs, None, order.len() as u32, 0, (0, shape.instances))
             }
             Err(e) => return Err(e),

@@ -20,6 +20,7 @@ mod conv;
 mod copyimage;
 mod debug;
 mod dispatch;
+mod divisors;
 mod draw;
 mod draw_plan;
 mod draw_state;

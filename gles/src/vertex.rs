@@ -58,6 +58,9 @@ fn current_from(values: &Slice<'_, f32>, n: usize) -> GlResult<[f32; 4]> {
     Ok(v)
 }
 
+/// `GL_VERTEX_ATTRIB_ARRAY_DIVISOR` (ES 3.0).
+const VERTEX_ATTRIB_ARRAY_DIVISOR: u32 = 0x88FE;
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
     #[allow(clippy::too_many_arguments)]
@@ -92,6 +95,13 @@ impl GlesExecutor {
         a.stride = stride;
         a.offset = offset;
         a.buffer = buffer;
+        Ok(())
+    }
+
+    /// ES 3.0: attribute `index` advances once every `divisor` instances (0: per vertex).
+    pub(super) fn glVertexAttribDivisor(&mut self, ctx: &mut Context, index: u32, divisor: u32) -> GlResult {
+        let a = ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
+        a.divisor = divisor;
         Ok(())
     }
 
@@ -207,6 +217,7 @@ impl GlesExecutor {
         };
         match pname {
             CURRENT_VERTEX_ATTRIB => a.current.iter().map(|f| *f as i32).collect(),
+            VERTEX_ATTRIB_ARRAY_DIVISOR if ctx.es3() => vec![a.divisor as i32],
             _ => match attrib_param(a, pname) {
                 Some(i) => vec![i],
                 None => {

@@ -286,6 +286,7 @@ command_set! {
         glBindBufferBase [Context, Es3] => BindBufferBase { target: GLenum, index: GLuint, buffer: GLuint };
         glBindBufferRange [Context, Es3] => BindBufferRange { target: GLenum, index: GLuint, buffer: GLuint, offset: i64, size: i64 };
         glUniformBlockBinding [Context, Es3] => UniformBlockBinding { program: GLuint, index: GLuint, binding: GLuint };
+        glVertexAttribDivisor [Context, Es3] => VertexAttribDivisor { index: GLuint, divisor: GLuint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

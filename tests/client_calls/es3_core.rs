@@ -33,6 +33,15 @@ const VS_INSTANCES: &str = "#version 300 es
     }";
 const FS_VARY: &str = "#version 300 es
     precision mediump float; in vec4 c; out vec4 o; void main() { o = c; }";
+/// Instances placed by a per-instance attribute (location 1) rather than by their number.
+const VS_PLACED: &str = "#version 300 es
+    layout(location = 0) in vec2 pos;
+    layout(location = 1) in vec2 offset;
+    out vec4 c;
+    void main() {
+        c = vec4(offset.x > 0.0 ? 1.0 : 0.0, offset.x < -0.5 ? 1.0 : 0.0, 1.0, 1.0);
+        gl_Position = vec4(pos * 0.25 + offset, 0.0, 1.0);
+    }";
 /// Two outputs: the first red, the second the vertex colour.
 const FS_TWO: &str = "#version 300 es
     precision mediump float; in vec4 c;
@@ -57,7 +66,7 @@ fn pixels(r: &mut Run, what: &str) {
     // SAFETY: a context is current; `px` holds the window's RGBA8 pixels.
     unsafe { (r.gl.read_pixels)(0, 0, 16, 16, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast()) };
     let at = |x: usize, y: usize| px[(y * 16 + x) * 4..(y * 16 + x) * 4 + 4].to_vec();
-    r.note(&format!("{what}: {:?} {:?} {:?} {:?}", at(1, 8), at(5, 8), at(9, 8), at(14, 8)));
+    r.note(&format!("{what}: {:?} {:?} {:?} {:?}", at(1, 8), at(5, 8), at(9, 8), at(12, 8)));
 }
 
 /// The ES 3.0 core-names sequence.
@@ -108,6 +117,24 @@ pub fn sequence(r: &mut Run) {
         (gl.clear)(0x4000);
         (gl.core_draw_elements_instanced)(TRIANGLES, 6, UNSIGNED_SHORT, indices.as_ptr().cast(), 3);
         pixels(r, "three instances from client indices");
+
+        // A client array with a divisor: one element per instance, which the library sends
+        // as many of as the draw has instances.
+        program(r, VS_PLACED, FS_VARY);
+        let places: [f32; 6] = [-0.75, 0.0, -0.25, 0.0, 0.5, 0.0];
+        (gl.vertex_attrib_pointer)(1, 2, FLOAT, 0, 0, places.as_ptr().cast());
+        (gl.enable_vertex_attrib_array)(1);
+        (gl.core_vertex_attrib_divisor)(1, 1);
+        (gl.clear)(0x4000);
+        (gl.core_draw_arrays_instanced)(0x0005, 0, 4, 3);
+        pixels(r, "three instances placed by a client array with divisor 1");
+        (gl.core_vertex_attrib_divisor)(1, 2);
+        (gl.clear)(0x4000);
+        (gl.core_draw_elements_instanced)(TRIANGLES, 6, UNSIGNED_SHORT, indices.as_ptr().cast(), 4);
+        pixels(r, "four indexed instances, two to each element (divisor 2)");
+        (gl.core_vertex_attrib_divisor)(1, 0);
+        (gl.disable_vertex_attrib_array)(1);
+        program(r, VS_INSTANCES, FS_VARY);
 
         // A mapped range written, flushed in part, unmapped and read back.
         (gl.bind_buffer)(ARRAY, buf);

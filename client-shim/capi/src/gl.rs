@@ -277,13 +277,18 @@ fn intern(s: String) -> *const GLubyte {
 
 /// Sends the bytes of every enabled client-side array that a draw of `vertices` vertices reads;
 /// `GL_FLOAT` ones in the daemon's vertex wire format.
-fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64) -> Result<(), ClientError> {
+fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64, instances: u64) -> Result<(), ClientError> {
     if vertices == 0 {
         return Ok(());
     }
     for i in 0..MAX_ATTRIBS {
         let a = gl.st.attribs[i];
         let (true, Some(ClientArray { ptr, size, ty, stride })) = (a.enabled, a.client) else { continue };
+        // An attribute with a divisor (ES 3.0) reads one element per `divisor` instances.
+        let vertices = match a.divisor {
+            0 => vertices,
+            d => instances.max(1).div_ceil(u64::from(d)),
+        };
         let Some(component) = type_size(ty) else { continue };
         let element = component * size.clamp(1, 4) as usize;
         let stride = if stride > 0 { stride as usize } else { element };

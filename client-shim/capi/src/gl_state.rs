@@ -30,6 +30,8 @@ pub(crate) struct Attrib {
     pub enabled: bool,
     /// Set when the last `glVertexAttribPointer` had no array buffer bound.
     pub client: Option<ClientArray>,
+    /// `GL_VERTEX_ATTRIB_ARRAY_DIVISOR` (ES 3.0).
+    pub divisor: u32,
 }
 
 /// The pack state `glReadPixels` lays its rows out by in the application's memory.

@@ -28,6 +28,8 @@ pub struct Attrib {
     /// The type and stride the application set, while `client` holds an array the client
     /// converted for the wire (`ty` and `stride` then describe those bytes, tightly packed).
     pub declared: Option<(u32, i32)>,
+    /// `GL_VERTEX_ATTRIB_ARRAY_DIVISOR` (ES 3.0): 0 reads per vertex, d per d instances.
+    pub divisor: u32,
 }
 
 impl Default for Attrib {
@@ -43,6 +45,7 @@ impl Default for Attrib {
             current: [0.0, 0.0, 0.0, 1.0],
             client: None,
             declared: None,
+            divisor: 0,
         }
     }
 }

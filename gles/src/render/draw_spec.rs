@@ -27,6 +27,9 @@ pub struct VertexInput {
     pub stride: u64,
     /// The bytes.
     pub source: Source,
+    /// Stepped once per instance (an attribute with a divisor; constants step per instance
+    /// too, having stride 0).
+    pub per_instance: bool,
 }
 
 /// Fixed-function state that selects a pipeline.

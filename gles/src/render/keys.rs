@@ -8,7 +8,7 @@ use crate::render::RasterState;
 pub(crate) struct PipelineKey {
     pub(crate) program: u64,
     pub(crate) depth_mask: u32,
-    pub(crate) inputs: Vec<(u32, wgpu::VertexFormat, u64)>,
+    pub(crate) inputs: Vec<(u32, wgpu::VertexFormat, u64, bool)>,
     pub(crate) raster: RasterState,
     /// Per colour slot, whether it has an image, the channels that image lacks, and its format.
     pub(crate) colors: Vec<Option<(wgpu::ColorWrites, wgpu::TextureFormat)>>,

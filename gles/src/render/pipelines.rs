@@ -51,7 +51,7 @@ impl Renderer {
         let key = PipelineKey {
             program: spec.program.id,
             depth_mask,
-            inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride)).collect(),
+            inputs: spec.inputs.iter().map(|i| (i.location, i.format, i.stride, i.per_instance)).collect(),
             raster: spec.raster.clone(),
             colors: target.slots().iter().map(|s| s.map(|s| (s.1, s.2))).collect(),
             depth_format: target.depth.as_ref().map(|d| d.1),
@@ -73,7 +73,7 @@ impl Renderer {
             .map(|(i, a)| {
                 Some(wgpu::VertexBufferLayout {
                     array_stride: i.stride,
-                    step_mode: if i.stride == 0 || spec.raster.points {
+                    step_mode: if i.stride == 0 || i.per_instance || spec.raster.points {
                         wgpu::VertexStepMode::Instance
                     } else {
                         wgpu::VertexStepMode::Vertex

@@ -4,6 +4,7 @@
 use super::{Case, DEFAULT};
 
 mod blocks;
+mod divisors;
 mod language;
 mod uniforms;
 
@@ -20,5 +21,6 @@ pub fn all() -> Vec<Case> {
         c("es3_frag_depth", language::frag_depth),
         c("es3_uniforms", uniforms::uniforms),
         c("es3_uniform_blocks", blocks::uniform_blocks),
+        c("es3_divisors", divisors::divisors),
     ]
 }

@@ -37,6 +37,7 @@ scalar_arms! {
     glUniform4f(location: GLint => i32, x: GLfloat => f32, y: GLfloat => f32, z: GLfloat => f32, w: GLfloat => f32);
     glUniform4i(location: GLint => i32, x: GLint => i32, y: GLint => i32, z: GLint => i32, w: GLint => i32);
     glUniform1ui(location: GLint => i32, x: GLuint => u32);
+    glVertexAttribDivisor(index: GLuint => u32, divisor: GLuint => u32);
     glUniform2ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32);
     glUniform3ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32);
     glUniform4ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32, w: GLuint => u32);

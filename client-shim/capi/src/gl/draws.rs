@@ -47,6 +47,10 @@ pub(super) fn draw_elements(
         return draw_buffer(gl);
     };
     let len = size * count as usize;
+    let instances = match extra {
+        Extra::Instances(n) => n.max(0) as u64,
+        _ => 1,
+    };
     // The vertices the draw reads: up to the largest index, plus the base.
     let reach = |n: u64| match extra {
         Extra::Base(b) if n > 0 => (n as i64 + i64::from(b)).max(0) as u64,
@@ -60,7 +64,7 @@ pub(super) fn draw_elements(
                 .get(&gl.st.element_buffer)
                 .and_then(|b| b.get(offset..offset.checked_add(len)?))
                 .map_or(0, |d| vertex_count(d, ty));
-            send_client_arrays(gl, reach(n))?;
+            send_client_arrays(gl, reach(n), instances)?;
         }
         return draw_buffer(gl);
     }
@@ -71,7 +75,7 @@ pub(super) fn draw_elements(
     // SAFETY: a client-side index array holds `count` indices.
     let data = unsafe { bytes(indices, len) };
     if uses_client_arrays(gl.st) {
-        send_client_arrays(gl, reach(vertex_count(data, ty)))?;
+        send_client_arrays(gl, reach(vertex_count(data, ty)), instances)?;
     }
     let data = Blob::borrowed(data);
     match extra {
@@ -159,7 +163,7 @@ crate::entry::entry_points! {
                 let reach = firsts.iter().zip(counts).filter(|&(&f, &c)| f >= 0 && c > 0);
                 let reach = reach.map(|(&f, &c)| f as u64 + c as u64).max().unwrap_or(0);
                 if reach > 0 {
-                    send_client_arrays(gl, reach)?;
+                    send_client_arrays(gl, reach, 1)?;
                 }
             }
             gl.conn.glMultiDrawArraysEXT(mode, Slice::new(firsts), Slice::new(counts), drawcount)
@@ -187,12 +191,12 @@ crate::entry::entry_points! {
         })
     }
 
-    /// `GL_EXT_draw_instanced`: the client arrays the draw reads (every attribute steps per
-    /// vertex), then the draw.
+    /// `GL_EXT_draw_instanced`: the client arrays the draw reads (per vertex, or with a
+    /// divisor per instance), then the draw.
     fn glDrawArraysInstancedEXT(mode: GLenum, first: GLint, count: GLsizei, primcount: GLsizei) {
         with_gl("glDrawArraysInstancedEXT", (), |gl| {
             if first >= 0 && count > 0 && primcount > 0 && uses_client_arrays(gl.st) {
-                send_client_arrays(gl, first as u64 + count as u64)?;
+                send_client_arrays(gl, first as u64 + count as u64, primcount as u64)?;
             }
             gl.conn.glDrawArraysInstancedEXT(mode, first, count, primcount)
         })

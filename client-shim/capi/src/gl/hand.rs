@@ -363,11 +363,21 @@ crate::entry::entry_points! {
         })
     }
 
+    /// ES 3.0: the divisor is the library's too (it sizes the client arrays it sends).
+    fn glVertexAttribDivisor(index: GLuint, divisor: GLuint) {
+        with_gl("glVertexAttribDivisor", (), |gl| {
+            if let Some(a) = gl.st.attribs.get_mut(index as usize) {
+                a.divisor = divisor;
+            }
+            gl.conn.glVertexAttribDivisor(index, divisor)
+        })
+    }
+
     /// Sends the client arrays the draw reads, then the draw.
     fn glDrawArrays(mode: GLenum, first: GLint, count: GLsizei) {
         with_gl("glDrawArrays", (), |gl| {
             if first >= 0 && count > 0 && uses_client_arrays(gl.st) {
-                send_client_arrays(gl, first as u64 + count as u64)?;
+                send_client_arrays(gl, first as u64 + count as u64, 1)?;
             }
             gl.conn.glDrawArrays(mode, first, count)
         })
