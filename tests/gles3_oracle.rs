@@ -7,7 +7,7 @@
 mod programs;
 mod support;
 
-use programs::harness::{compare, render, save};
+use programs::harness::{judge, render};
 use programs::{H, W};
 use strata_client::{Calls, ClientError, ConnectOptions, Connection};
 use support::mesa::MesaGl;
@@ -120,21 +120,7 @@ fn es3_programs_match_mesa() {
             MesaGl::open_version(W, H, 3).map_err(ClientError::Unsupported).and_then(|mut m| render(&mut m, case));
         let actual = strata_es3(&daemon.socket, case.name).and_then(|mut c| render(&mut c, case));
         match (actual, expected) {
-            (Ok(a), Ok(e)) => match compare(case, &a, &e) {
-                Some(why) => {
-                    let _ = std::fs::create_dir_all(&out_dir);
-                    save(&out_dir.join(format!("{}-actual.png", case.name)), &a);
-                    save(&out_dir.join(format!("{}-expected.png", case.name)), &e);
-                    failures.push(format!("{}: {why}", case.name));
-                }
-                None => {
-                    eprintln!("ok   {}", case.name);
-                    if std::env::var_os("STRATA_ORACLE_DUMP").is_some() {
-                        let _ = std::fs::create_dir_all(&out_dir);
-                        save(&out_dir.join(format!("{}-ok.png", case.name)), &a);
-                    }
-                }
-            },
+            (Ok(a), Ok(e)) => failures.extend(judge(case, &a, &e, &out_dir)),
             (Err(e), _) => failures.push(format!("{}: through stratad: {e}", case.name)),
             (_, Err(e)) => failures.push(format!("{}: through Mesa: {e}", case.name)),
         }

@@ -7,7 +7,7 @@
 mod programs;
 mod support;
 
-use programs::harness::{compare, render, save, strata_context};
+use programs::harness::{judge, render, strata_context};
 use programs::{H, W};
 use strata_client::{Calls, ClientError};
 use support::mesa::MesaGl;
@@ -50,29 +50,7 @@ fn matches_mesa(tag: &str, daemon_args: &[&str]) {
         let expected = MesaGl::open(W, H).map_err(ClientError::Unsupported).and_then(|mut m| render(&mut m, case));
         let actual = strata_context(&daemon.socket, case.name).and_then(|mut c| render(&mut c, case));
         match (actual, expected) {
-            (Ok(a), Ok(e)) => {
-                if let Some(why) = compare(case, &a, &e) {
-                    let _ = std::fs::create_dir_all(&out_dir);
-                    save(&out_dir.join(format!("{}-actual.png", case.name)), &a);
-                    save(&out_dir.join(format!("{}-expected.png", case.name)), &e);
-                    let diff: Vec<u8> = a
-                        .chunks(4)
-                        .zip(e.chunks(4))
-                        .flat_map(|(x, y)| {
-                            let d = x.iter().zip(y).map(|(p, q)| p.abs_diff(*q)).max().unwrap_or(0);
-                            [d.saturating_mul(8), 0, 0, 255]
-                        })
-                        .collect();
-                    save(&out_dir.join(format!("{}-diff.png", case.name)), &diff);
-                    failures.push(format!("{}: {why}", case.name));
-                } else {
-                    eprintln!("ok   {}", case.name);
-                    if std::env::var_os("STRATA_ORACLE_DUMP").is_some() {
-                        let _ = std::fs::create_dir_all(&out_dir);
-                        save(&out_dir.join(format!("{}-ok.png", case.name)), &a);
-                    }
-                }
-            }
+            (Ok(a), Ok(e)) => failures.extend(judge(case, &a, &e, &out_dir)),
             (Err(e), _) => failures.push(format!("{}: through stratad: {e}", case.name)),
             (_, Err(e)) => failures.push(format!("{}: through Mesa: {e}", case.name)),
         }

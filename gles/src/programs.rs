@@ -173,10 +173,10 @@ impl GlesExecutor {
                     ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
                     ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked
                         .map_or(0, |l| l.info.attributes.iter().map(|a| a.0.name.len() as i32 + 1).max().unwrap_or(0))),
-                    crate::uniform_blocks::ACTIVE_UNIFORM_BLOCKS if ctx.es3() => {
+                    crate::glsl::blocks::ACTIVE_UNIFORM_BLOCKS if ctx.es3() => {
                         Ok(linked.map_or(0, |l| l.info.blocks.len() as i32))
                     }
-                    crate::uniform_blocks::ACTIVE_UNIFORM_BLOCK_MAX_NAME_LENGTH if ctx.es3() => Ok(linked
+                    crate::glsl::blocks::ACTIVE_UNIFORM_BLOCK_MAX_NAME_LENGTH if ctx.es3() => Ok(linked
                         .map_or(0, |l| l.info.blocks.iter().map(|b| b.block.name.len() as i32 + 1).max().unwrap_or(0))),
                     ACTIVE_UNIFORM_MAX_LENGTH => Ok(linked.map_or(0, |l| {
                         l.info

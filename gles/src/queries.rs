@@ -53,7 +53,7 @@ fn texture_extensions(features: wgpu::Features) -> String {
 }
 
 /// A state value in the type GL stores it as.
-pub(crate) enum Value {
+enum Value {
     /// Integers (enums, names, counts).
     Ints(Vec<i32>),
     /// Floats.
@@ -261,7 +261,7 @@ impl GlesExecutor {
     /// State `pname`, recording `GL_INVALID_ENUM` (and answering nothing) if there is none.
     fn state(&mut self, ctx: &mut Context, pname: u32) -> Value {
         if let Some(v) = self.version_state(ctx, pname) {
-            return v;
+            return Value::Ints(v);
         }
         // The read format of a framebuffer that cannot be read (framebuffer 0 with no surface):
         // an error, and 0 written, as Mesa writes it.

@@ -11,7 +11,6 @@ use crate::error::{GlError, GlResult};
 use crate::glsl::blocks::{MAX_COMBINED_UNIFORM_BLOCKS, MAX_STAGE_UNIFORM_BLOCKS, MAX_UNIFORM_BLOCK_SIZE};
 use crate::linking::linked_for_query;
 use crate::objects::program::LinkedProgram;
-use crate::queries::Value;
 use crate::typed::UNIFORM_BUFFER;
 use crate::GlesExecutor;
 use strata_device::account::Kind;
@@ -36,9 +35,6 @@ const MAX_UNIFORM_BLOCK_SIZE_ENUM: u32 = 0x8A30;
 const MAX_COMBINED_VERTEX_UNIFORM_COMPONENTS: u32 = 0x8A31;
 const MAX_COMBINED_FRAGMENT_UNIFORM_COMPONENTS: u32 = 0x8A33;
 const UNIFORM_BUFFER_OFFSET_ALIGNMENT: u32 = 0x8A34;
-/// `glGetProgramiv`'s names for the blocks.
-pub(crate) const ACTIVE_UNIFORM_BLOCK_MAX_NAME_LENGTH: u32 = 0x8A35;
-pub(crate) const ACTIVE_UNIFORM_BLOCKS: u32 = 0x8A36;
 /// What `glGetUniformBlockIndex` answers for a name no block has.
 const INVALID_INDEX: u32 = u32::MAX;
 
@@ -71,10 +67,10 @@ pub(crate) fn block_buffers(
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// ES 3.0's uniform buffer state and limits (`None`: not one of them).
-    pub(crate) fn uniform_block_state(&self, ctx: &Context, pname: u32) -> Option<Value> {
+    pub(crate) fn uniform_block_state(&self, ctx: &Context, pname: u32) -> Option<Vec<i32>> {
         let stage = MAX_STAGE_UNIFORM_BLOCKS as i32;
         let components = |default: i32| default + stage * MAX_UNIFORM_BLOCK_SIZE as i32 / 4;
-        Some(Value::Ints(vec![match pname {
+        Some(vec![match pname {
             UNIFORM_BUFFER_BINDING => ctx.bindings.uniform_buffer as i32,
             MAX_VERTEX_UNIFORM_BLOCKS | MAX_FRAGMENT_UNIFORM_BLOCKS => stage,
             MAX_COMBINED_UNIFORM_BLOCKS_ENUM | MAX_UNIFORM_BUFFER_BINDINGS => MAX_COMBINED_UNIFORM_BLOCKS as i32,
@@ -83,7 +79,7 @@ impl GlesExecutor {
             MAX_COMBINED_VERTEX_UNIFORM_COMPONENTS | MAX_COMBINED_FRAGMENT_UNIFORM_COMPONENTS => components(4 * 256),
             UNIFORM_BUFFER_OFFSET_ALIGNMENT => self.gpu.limits.min_uniform_buffer_offset_alignment as i32,
             _ => return None,
-        }]))
+        }])
     }
 
     /// Binds `buffer` (its `offset`, `size` bytes; size 0: all of it) to uniform buffer binding

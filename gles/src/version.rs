@@ -6,7 +6,6 @@
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::queries::Value;
 use crate::GlesExecutor;
 
 /// `GL_MAJOR_VERSION`, `GL_MINOR_VERSION` and `GL_NUM_EXTENSIONS` (ES 3.0).
@@ -66,21 +65,21 @@ pub(crate) fn language_string(ctx: &Context) -> &'static str {
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
-    /// ES 3.0's version state, which an ES 2.0 context does not have (`None`: not one of them,
-    /// or not in this context, and the ordinary table answers).
-    pub(crate) fn version_state(&self, ctx: &Context, pname: u32) -> Option<Value> {
+    /// ES 3.0's state, which an ES 2.0 context does not have (`None`: not one of it, or not in
+    /// this context, and the ordinary table answers).
+    pub(crate) fn version_state(&self, ctx: &Context, pname: u32) -> Option<Vec<i32>> {
         if !ctx.es3() {
             return None;
         }
         if let Some(v) = self.uniform_block_state(ctx, pname) {
             return Some(v);
         }
-        Some(Value::Ints(vec![match pname {
+        Some(vec![match pname {
             MAJOR_VERSION => 3,
             MINOR_VERSION => 0,
             NUM_EXTENSIONS => self.extensions().split_whitespace().count() as i32,
             _ => return None,
-        }]))
+        }])
     }
 
     /// `glGetStringi`: one of `GL_EXTENSIONS` by index (`GL_INVALID_ENUM` for another name,

@@ -75,3 +75,30 @@ pub fn compare(case: &Case, actual: &[u8], expected: &[u8]) -> Option<String> {
         )
     })
 }
+
+/// Compares a program's image through Strata (`actual`) with Mesa's: the failure's line, with
+/// the two images and their difference saved under `out_dir`; on success `None`, the image
+/// saved too where `STRATA_ORACLE_DUMP` asks.
+pub fn judge(case: &Case, actual: &[u8], expected: &[u8], out_dir: &std::path::Path) -> Option<String> {
+    let Some(why) = compare(case, actual, expected) else {
+        eprintln!("ok   {}", case.name);
+        if std::env::var_os("STRATA_ORACLE_DUMP").is_some() {
+            let _ = std::fs::create_dir_all(out_dir);
+            save(&out_dir.join(format!("{}-ok.png", case.name)), actual);
+        }
+        return None;
+    };
+    let _ = std::fs::create_dir_all(out_dir);
+    save(&out_dir.join(format!("{}-actual.png", case.name)), actual);
+    save(&out_dir.join(format!("{}-expected.png", case.name)), expected);
+    let diff: Vec<u8> = actual
+        .chunks(4)
+        .zip(expected.chunks(4))
+        .flat_map(|(x, y)| {
+            let d = x.iter().zip(y).map(|(p, q)| p.abs_diff(*q)).max().unwrap_or(0);
+            [d.saturating_mul(8), 0, 0, 255]
+        })
+        .collect();
+    save(&out_dir.join(format!("{}-diff.png", case.name)), &diff);
+    Some(format!("{}: {why}", case.name))
+}

@@ -118,7 +118,7 @@ impl GlState {
             GL_ELEMENT_ARRAY_BUFFER => Some(self.element_buffer),
             0x88EB => Some(self.pack_buffer),
             0x88EC => Some(self.unpack_buffer),
-            crate::gl::uniform_blocks::GL_UNIFORM_BUFFER => Some(self.uniform_buffer),
+            GL_UNIFORM_BUFFER => Some(self.uniform_buffer),
             _ => None,
         }
     }

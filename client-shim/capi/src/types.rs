@@ -129,6 +129,8 @@ pub const EGL_PLATFORM_X11_KHR: EGLenum = 0x31D5;
 pub const GL_NO_ERROR: GLenum = 0;
 /// `GL_INVALID_ENUM`.
 pub const GL_INVALID_ENUM: GLenum = 0x0500;
+/// `GL_UNIFORM_BUFFER` (ES 3.0).
+pub const GL_UNIFORM_BUFFER: GLenum = 0x8A11;
 /// `GL_INVALID_VALUE`.
 pub const GL_INVALID_VALUE: GLenum = 0x0501;
 /// `GL_INVALID_OPERATION`.

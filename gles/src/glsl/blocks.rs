@@ -8,7 +8,8 @@ use std::fmt::Write as _;
 use glsl_lang::ast::{self, TypeQualifierSpecData};
 
 use crate::glsl::consts::Val;
-use crate::glsl::types::{Block, BlockMember, Scalar, Ty};
+use crate::glsl::linked::LinkedBlock;
+use crate::glsl::types::{Block, BlockMember, Scalar, Shader, Ty};
 
 /// `GL_MAX_UNIFORM_BLOCK_SIZE`: the bytes one block may hold (ES 3.0's minimum).
 pub const MAX_UNIFORM_BLOCK_SIZE: u32 = 16384;
@@ -16,6 +17,10 @@ pub const MAX_UNIFORM_BLOCK_SIZE: u32 = 16384;
 pub const MAX_STAGE_UNIFORM_BLOCKS: usize = 12;
 /// `GL_MAX_COMBINED_UNIFORM_BLOCKS` and `GL_MAX_UNIFORM_BUFFER_BINDINGS` (ES 3.0's minimum).
 pub const MAX_COMBINED_UNIFORM_BLOCKS: usize = 24;
+/// `glGetProgramiv`'s names for a program's blocks.
+pub const ACTIVE_UNIFORM_BLOCK_MAX_NAME_LENGTH: u32 = 0x8A35;
+/// `GL_ACTIVE_UNIFORM_BLOCKS`.
+pub const ACTIVE_UNIFORM_BLOCKS: u32 = 0x8A36;
 /// The binding of a program's first block in its bind group, after the default block (0) and
 /// the samplers (1 + 3k).
 pub const FIRST_BLOCK_BINDING: u32 = 100;
@@ -78,7 +83,7 @@ pub(super) fn lift(b: &ast::Block, consts: &HashMap<String, Val>) -> Result<Opti
         }
         for id in &f.identifiers {
             let spec = id.array_spec.as_ref().or(f.ty.array_specifier.as_ref());
-            let array = crate::glsl::interface::array_len(spec, consts)?;
+            let array = crate::glsl::consts::array_len(spec, consts)?;
             members.push(BlockMember { name: id.ident.0.to_string(), ty, array, offset: 0, stride: 0 });
         }
     }
@@ -121,4 +126,33 @@ pub(super) fn declaration(block: &Block, binding: u32) -> String {
     }
     let _ = writeln!(out, "}}{};", block.instance.as_deref().map_or(String::new(), |i| format!(" {i}")));
     out
+}
+
+/// The program's uniform blocks: each stage's, one per name (a block both stages declare must
+/// be declared alike, §4.3.7), each at its binding, within the limits.
+pub(super) fn link_blocks(vs: &Shader, fs: &Shader) -> Result<Vec<LinkedBlock>, String> {
+    for (s, stage) in [(vs, "vertex"), (fs, "fragment")] {
+        if s.blocks.len() > MAX_STAGE_UNIFORM_BLOCKS {
+            return Err(format!("error: the {stage} shader has more than {MAX_STAGE_UNIFORM_BLOCKS} uniform blocks"));
+        }
+    }
+    let mut blocks: Vec<LinkedBlock> = Vec::new();
+    for (b, vertex) in vs.blocks.iter().map(|b| (b, true)).chain(fs.blocks.iter().map(|b| (b, false))) {
+        match blocks.iter_mut().find(|l| l.block.name == b.name) {
+            Some(l) if l.block.members != b.members || l.block.instance.is_some() != b.instance.is_some() => {
+                return Err(format!("error: uniform block `{}' is declared differently in the two stages", b.name))
+            }
+            Some(l) => l.fragment = true,
+            None => blocks.push(LinkedBlock {
+                block: b.clone(),
+                binding: FIRST_BLOCK_BINDING + blocks.len() as u32,
+                vertex,
+                fragment: !vertex,
+            }),
+        }
+    }
+    if blocks.len() > MAX_COMBINED_UNIFORM_BLOCKS {
+        return Err(format!("error: the program has more than {MAX_COMBINED_UNIFORM_BLOCKS} uniform blocks"));
+    }
+    Ok(blocks)
 }

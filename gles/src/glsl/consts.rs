@@ -1,6 +1,7 @@
 //! Constant folding of integral constant expressions (GLSL ES 1.00 §4.3.3), as array sizes
 //! need: literals, `const` globals, the built-in constants (with the values Strata reports
-//! through `glGetIntegerv`), arithmetic, comparisons, logic, `?:` and the comma operator.
+//! through `glGetIntegerv`), arithmetic, comparisons, logic, `?:` and the comma operator; and
+//! the array lengths of declarations, which are such expressions.
 
 use std::collections::HashMap;
 
@@ -104,4 +105,25 @@ fn binary(op: &B, a: Val, b: Val) -> Option<Val> {
         },
         _ => return None,
     })
+}
+
+/// The length of an interface variable's array specifier, `None` if it is no array.
+pub(super) fn array_len(
+    spec: Option<&ast::ArraySpecifier>,
+    consts: &HashMap<String, Val>,
+) -> Result<Option<u32>, String> {
+    let Some(spec) = spec else { return Ok(None) };
+    match spec.dimensions.as_slice() {
+        [d] => match &d.content {
+            ast::ArraySpecifierDimensionData::ExplicitlySized(e) => match fold(e, consts) {
+                // Uniform arrays are bounded by the block at link (with a log naming them),
+                // varyings below; the size only has to be a positive int.
+                Some(Val::Int(n)) if n > 0 && n <= i64::from(i32::MAX) => Ok(Some(n as u32)),
+                Some(Val::Int(_)) => Err("0: array size must be greater than zero".into()),
+                _ => Err("0: array size must be a constant valued expression".into()),
+            },
+            ast::ArraySpecifierDimensionData::Unsized => Err("unsized arrays are not allowed".into()),
+        },
+        _ => Err("arrays of arrays are not allowed in GLSL ES 1.00".into()),
+    }
 }

@@ -8,32 +8,11 @@ use glsl_lang::ast::{self, TypeQualifierSpecData};
 use glsl_lang::visitor::HostMut;
 
 use crate::glsl::checks;
-use crate::glsl::consts::{fold, Val};
+use crate::glsl::consts::{array_len, fold, Val};
 use crate::glsl::preprocess::parse;
 use crate::glsl::rewrite::Rewrite;
 use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::MAX_VARYING_ARRAY;
-
-/// The length of an interface variable's array specifier, `None` if it is no array.
-pub(super) fn array_len(
-    spec: Option<&ast::ArraySpecifier>,
-    consts: &HashMap<String, Val>,
-) -> Result<Option<u32>, String> {
-    let Some(spec) = spec else { return Ok(None) };
-    match spec.dimensions.as_slice() {
-        [d] => match &d.content {
-            ast::ArraySpecifierDimensionData::ExplicitlySized(e) => match fold(e, consts) {
-                // Uniform arrays are bounded by the block at link (with a log naming them),
-                // varyings below; the size only has to be a positive int.
-                Some(Val::Int(n)) if n > 0 && n <= i64::from(i32::MAX) => Ok(Some(n as u32)),
-                Some(Val::Int(_)) => Err("0: array size must be greater than zero".into()),
-                _ => Err("0: array size must be a constant valued expression".into()),
-            },
-            ast::ArraySpecifierDimensionData::Unsized => Err("unsized arrays are not allowed".into()),
-        },
-        _ => Err("arrays of arrays are not allowed in GLSL ES 1.00".into()),
-    }
-}
 
 /// The storage qualifier that makes a declaration part of the interface.
 #[derive(Clone, Copy, PartialEq)]

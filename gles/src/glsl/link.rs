@@ -199,7 +199,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         offset = offset.checked_add(32).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
     }
     let block_size = offset.div_ceil(16) * 16;
-    let blocks = link_blocks(vs, fs)?;
+    let blocks = crate::glsl::blocks::link_blocks(vs, fs)?;
 
     // Attributes: locations the shader gives (GLSL ES 3.00), then bound ones, then the lowest
     // free ones.
@@ -485,36 +485,6 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         point_input,
         blocks,
     })
-}
-
-/// The program's uniform blocks: each stage's, one per name (a block both stages declare must
-/// be declared alike, §4.3.7), each at its binding, within the limits.
-fn link_blocks(vs: &Shader, fs: &Shader) -> Result<Vec<LinkedBlock>, String> {
-    use crate::glsl::blocks::{FIRST_BLOCK_BINDING, MAX_COMBINED_UNIFORM_BLOCKS, MAX_STAGE_UNIFORM_BLOCKS};
-    for (s, stage) in [(vs, "vertex"), (fs, "fragment")] {
-        if s.blocks.len() > MAX_STAGE_UNIFORM_BLOCKS {
-            return Err(format!("error: the {stage} shader has more than {MAX_STAGE_UNIFORM_BLOCKS} uniform blocks"));
-        }
-    }
-    let mut blocks: Vec<LinkedBlock> = Vec::new();
-    for (b, vertex) in vs.blocks.iter().map(|b| (b, true)).chain(fs.blocks.iter().map(|b| (b, false))) {
-        match blocks.iter_mut().find(|l| l.block.name == b.name) {
-            Some(l) if l.block.members != b.members || l.block.instance.is_some() != b.instance.is_some() => {
-                return Err(format!("error: uniform block `{}' is declared differently in the two stages", b.name))
-            }
-            Some(l) => l.fragment = true,
-            None => blocks.push(LinkedBlock {
-                block: b.clone(),
-                binding: FIRST_BLOCK_BINDING + blocks.len() as u32,
-                vertex,
-                fragment: !vertex,
-            }),
-        }
-    }
-    if blocks.len() > MAX_COMBINED_UNIFORM_BLOCKS {
-        return Err(format!("error: the program has more than {MAX_COMBINED_UNIFORM_BLOCKS} uniform blocks"));
-    }
-    Ok(blocks)
 }
 
 /// The interpolation qualifier a varying crosses stages with: `flat ` where the shader says so,

@@ -280,7 +280,7 @@ crate::entry::entry_points! {
                 GL_ELEMENT_ARRAY_BUFFER => gl.st.element_buffer = buffer,
                 PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
                 PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
-                super::uniform_blocks::GL_UNIFORM_BUFFER => gl.st.uniform_buffer = buffer,
+                GL_UNIFORM_BUFFER => gl.st.uniform_buffer = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)

@@ -7,9 +7,6 @@ use strata_protocol::{Calls, Text};
 use super::{c_name, copy_string, with_gl};
 use crate::types::*;
 
-/// `GL_UNIFORM_BUFFER`.
-pub(crate) const GL_UNIFORM_BUFFER: GLenum = 0x8A11;
-
 crate::entry::entry_points! {
     /// Binds the whole buffer to an indexed binding and to the generic one.
     fn glBindBufferBase(target: GLenum, index: GLuint, buffer: GLuint) {
