@@ -236,6 +236,8 @@ api! {
     core_delete_queries = "glDeleteQueries": fn(i32, *const u32);
     core_get_integer64v = "glGetInteger64v": fn(u32, *mut i64);
     core_vertex_attrib_divisor = "glVertexAttribDivisor": fn(u32, u32);
+    copy_buffer_sub_data = "glCopyBufferSubData": fn(u32, u32, isize, isize, isize);
+    get_buffer_parameteri64v = "glGetBufferParameteri64v": fn(u32, u32, *mut i64);
     egl_create_sync = "eglCreateSyncKHR": fn(Ptr, u32, *const i32) -> Ptr;
     egl_destroy_sync = "eglDestroySyncKHR": fn(Ptr, Ptr) -> u32;
     egl_client_wait_sync = "eglClientWaitSyncKHR": fn(Ptr, Ptr, i32, u64) -> i32;

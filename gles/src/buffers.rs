@@ -65,6 +65,9 @@ impl GlesExecutor {
             if ctx.bindings.uniform_buffer == n {
                 ctx.bindings.uniform_buffer = 0;
             }
+            for b in ctx.bindings.copy_buffers.iter_mut().filter(|b| **b == n) {
+                *b = 0;
+            }
             for b in ctx.bindings.uniform_buffers.iter_mut().filter(|b| b.buffer == n) {
                 *b = crate::context::RangeBinding::default();
             }
@@ -86,6 +89,8 @@ impl GlesExecutor {
             BufferTarget::PixelPack => ctx.bindings.pixel_pack = buffer,
             BufferTarget::PixelUnpack => ctx.bindings.pixel_unpack = buffer,
             BufferTarget::Uniform => ctx.bindings.uniform_buffer = buffer,
+            BufferTarget::CopyRead => ctx.bindings.copy_buffers[0] = buffer,
+            BufferTarget::CopyWrite => ctx.bindings.copy_buffers[1] = buffer,
         }
         ctx.objects.buffers.bind(buffer);
         Ok(())
@@ -225,7 +230,7 @@ const BUFFER_MAP_LENGTH: u32 = 0x9120;
 const BUFFER_MAP_OFFSET: u32 = 0x9121;
 
 /// The mapping queries of `glGetBufferParameteriv`; `None` for any other `pname`.
-pub(super) fn parameter(b: &Buffer, pname: u32) -> Option<i32> {
+pub(crate) fn parameter(b: &Buffer, pname: u32) -> Option<i32> {
     let m = b.map;
     Some(match pname {
         BUFFER_MAPPED => i32::from(m.is_some()),
@@ -246,7 +251,7 @@ pub(super) fn parameter(b: &Buffer, pname: u32) -> Option<i32> {
 
 /// The buffer bound to `target`: `GL_INVALID_ENUM` for a target that is not one, and
 /// `GL_INVALID_OPERATION` where none is bound.
-fn bound(ctx: &mut Context, target: u32) -> GlResult<&mut Buffer> {
+pub(crate) fn bound(ctx: &mut Context, target: u32) -> GlResult<&mut Buffer> {
     let name = ctx.bindings.buffer(BufferTarget::from_gl(target, ctx.es3())?);
     ctx.objects.buffers.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)
 }

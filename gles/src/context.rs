@@ -99,6 +99,8 @@ pub struct Bindings {
     pub vertex_array: u32,
     /// `GL_UNIFORM_BUFFER_BINDING` (ES 3.0): the generic uniform buffer binding.
     pub uniform_buffer: u32,
+    /// `GL_COPY_READ_BUFFER_BINDING` and `GL_COPY_WRITE_BUFFER_BINDING` (ES 3.0).
+    pub copy_buffers: [u32; 2],
     /// The indexed uniform buffer bindings uniform blocks read (`glBindBufferBase`/`Range`).
     pub uniform_buffers: [RangeBinding; crate::glsl::blocks::MAX_COMBINED_UNIFORM_BLOCKS],
 }
@@ -124,6 +126,8 @@ impl Bindings {
             BufferTarget::PixelPack => self.pixel_pack,
             BufferTarget::PixelUnpack => self.pixel_unpack,
             BufferTarget::Uniform => self.uniform_buffer,
+            BufferTarget::CopyRead => self.copy_buffers[0],
+            BufferTarget::CopyWrite => self.copy_buffers[1],
         }
     }
 

@@ -19,6 +19,10 @@ pub enum BufferTarget {
     /// `GL_UNIFORM_BUFFER` (ES 3.0): the generic binding beside the indexed ones that uniform
     /// blocks read.
     Uniform,
+    /// `GL_COPY_READ_BUFFER` (ES 3.0): a binding for copies, which draws never read.
+    CopyRead,
+    /// `GL_COPY_WRITE_BUFFER` (ES 3.0).
+    CopyWrite,
 }
 
 /// `GL_UNIFORM_BUFFER`.
@@ -34,6 +38,8 @@ impl BufferTarget {
             PIXEL_PACK_BUFFER_NV => Ok(BufferTarget::PixelPack),
             PIXEL_UNPACK_BUFFER_NV => Ok(BufferTarget::PixelUnpack),
             UNIFORM_BUFFER if es3 => Ok(BufferTarget::Uniform),
+            0x8F36 if es3 => Ok(BufferTarget::CopyRead),
+            0x8F37 if es3 => Ok(BufferTarget::CopyWrite),
             _ => Err(GlError::InvalidEnum),
         }
     }

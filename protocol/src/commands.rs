@@ -287,6 +287,7 @@ command_set! {
         glBindBufferRange [Context, Es3] => BindBufferRange { target: GLenum, index: GLuint, buffer: GLuint, offset: i64, size: i64 };
         glUniformBlockBinding [Context, Es3] => UniformBlockBinding { program: GLuint, index: GLuint, binding: GLuint };
         glVertexAttribDivisor [Context, Es3] => VertexAttribDivisor { index: GLuint, divisor: GLuint };
+        glCopyBufferSubData [Context, Flush, Es3] => CopyBufferSubData { read_target: GLenum, write_target: GLenum, read_offset: i64, write_offset: i64, size: i64 };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -431,6 +432,8 @@ command_set! {
         /// An indexed binding's state (nothing on error).
         glGetIntegeri_v [Context, Es3] => GetIntegeriV { target: GLenum, index: GLuint } -> Vec<GLint>;
         glGetInteger64i_v [Context, Es3] => GetInteger64iV { target: GLenum, index: GLuint } -> Vec<i64>;
+        /// A buffer's parameter as a 64-bit integer (0 on error).
+        glGetBufferParameteri64v [Context, Es3] => GetBufferParameteri64v { target: GLenum, pname: GLenum } -> i64;
     }
 }
 

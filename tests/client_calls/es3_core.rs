@@ -22,6 +22,8 @@ const TEXTURE_3D: u32 = 0x806F;
 const ANY_SAMPLES_PASSED: u32 = 0x8C2F;
 const QUERY_RESULT: u32 = 0x8866;
 const MAJOR_VERSION: u32 = 0x821B;
+const COPY_READ: u32 = 0x8F36;
+const COPY_WRITE: u32 = 0x8F37;
 
 /// Instances side by side, coloured by their number; vertex positions from attribute 0.
 const VS_INSTANCES: &str = "#version 300 es
@@ -155,6 +157,40 @@ pub fn sequence(r: &mut Run) {
             (gl.core_unmap_buffer)(ARRAY);
         }
         (gl.bind_buffer)(ARRAY, 0);
+
+        // Copies between buffers: a range, then the errors; read back through a mapping.
+        let mut bufs = [0u32; 2];
+        (gl.gen_buffers)(2, bufs.as_mut_ptr());
+        let source: Vec<u8> = (0..32).collect();
+        for (k, &b) in bufs.iter().enumerate() {
+            (gl.bind_buffer)(COPY_READ + k as u32, b);
+            let data = if k == 0 { source.clone() } else { vec![0xEE; 32] };
+            (gl.buffer_data)(COPY_READ + k as u32, 32, data.as_ptr().cast(), STATIC_DRAW);
+        }
+        (gl.copy_buffer_sub_data)(COPY_READ, COPY_WRITE, 4, 12, 8);
+        r.note("glCopyBufferSubData of 8 bytes");
+        for (read, write, size) in [(0, 40, 8), (-1, 0, 8), (30, 0, 4), (0, 0, -2)] {
+            (gl.copy_buffer_sub_data)(COPY_READ, COPY_WRITE, read, write, size);
+            r.note(&format!("a copy from {read} to {write} of {size}"));
+        }
+        (gl.bind_buffer)(COPY_WRITE, bufs[0]);
+        (gl.copy_buffer_sub_data)(COPY_READ, COPY_WRITE, 0, 4, 8);
+        r.note("an overlapping copy within one buffer");
+        (gl.copy_buffer_sub_data)(COPY_READ, COPY_WRITE, 0, 16, 8);
+        r.note("a copy within one buffer that does not overlap");
+        (gl.copy_buffer_sub_data)(COPY_READ, 0x8892 + 0x10, 0, 0, 4);
+        r.note("a copy to a target that is none");
+        for (k, &b) in bufs.iter().enumerate() {
+            (gl.bind_buffer)(COPY_WRITE, b);
+            let mut size = -1i64;
+            (gl.get_buffer_parameteri64v)(COPY_WRITE, 0x8764, &mut size);
+            let p = (gl.core_map_buffer_range)(COPY_WRITE, 0, 32, MAP_READ);
+            if !p.is_null() {
+                let bytes = std::slice::from_raw_parts(p.cast::<u8>(), 32).to_vec();
+                r.note(&format!("buffer {k} ({size} bytes) reads {bytes:?}"));
+                (gl.core_unmap_buffer)(COPY_WRITE);
+            }
+        }
 
         // Two draw buffers of a framebuffer, each read through glReadBuffer.
         let mut tex = [0u32; 2];

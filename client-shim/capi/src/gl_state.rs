@@ -76,6 +76,8 @@ pub(crate) struct GlState {
     pub unpack_buffer: u32,
     /// `GL_UNIFORM_BUFFER_BINDING` (ES 3.0).
     pub uniform_buffer: u32,
+    /// `GL_COPY_READ_BUFFER_BINDING` and `GL_COPY_WRITE_BUFFER_BINDING` (ES 3.0).
+    pub copy_buffers: [u32; 2],
 }
 
 impl Default for GlState {
@@ -94,6 +96,7 @@ impl Default for GlState {
             pack_buffer: 0,
             unpack_buffer: 0,
             uniform_buffer: 0,
+            copy_buffers: [0; 2],
         }
     }
 }
@@ -119,6 +122,8 @@ impl GlState {
             0x88EB => Some(self.pack_buffer),
             0x88EC => Some(self.unpack_buffer),
             GL_UNIFORM_BUFFER => Some(self.uniform_buffer),
+            GL_COPY_READ_BUFFER => Some(self.copy_buffers[0]),
+            GL_COPY_WRITE_BUFFER => Some(self.copy_buffers[1]),
             _ => None,
         }
     }

@@ -131,6 +131,10 @@ pub const GL_NO_ERROR: GLenum = 0;
 pub const GL_INVALID_ENUM: GLenum = 0x0500;
 /// `GL_UNIFORM_BUFFER` (ES 3.0).
 pub const GL_UNIFORM_BUFFER: GLenum = 0x8A11;
+/// `GL_COPY_READ_BUFFER` (ES 3.0).
+pub const GL_COPY_READ_BUFFER: GLenum = 0x8F36;
+/// `GL_COPY_WRITE_BUFFER` (ES 3.0).
+pub const GL_COPY_WRITE_BUFFER: GLenum = 0x8F37;
 /// `GL_INVALID_VALUE`.
 pub const GL_INVALID_VALUE: GLenum = 0x0501;
 /// `GL_INVALID_OPERATION`.

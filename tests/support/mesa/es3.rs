@@ -147,3 +147,33 @@ impl Arms<'_> {
         Ok(v.iter().copied().take_while(|x| *x != sentinel).collect())
     }
 }
+
+impl Arms<'_> {
+    pub(super) fn glCopyBufferSubData(
+        &mut self,
+        read_target: &GLenum,
+        write_target: &GLenum,
+        read_offset: &i64,
+        write_offset: &i64,
+        size: &i64,
+    ) -> Result<(), ClientError> {
+        let (r, w, n) = (*read_offset as isize, *write_offset as isize, *size as isize);
+        call!(
+            self,
+            "glCopyBufferSubData",
+            fn(u32, u32, isize, isize, isize) -> (),
+            *read_target,
+            *write_target,
+            r,
+            w,
+            n
+        );
+        Ok(())
+    }
+
+    pub(super) fn glGetBufferParameteri64v(&mut self, target: &GLenum, pname: &GLenum) -> Result<i64, ClientError> {
+        let mut v = 0i64;
+        call!(self, "glGetBufferParameteri64v", fn(u32, u32, *mut i64) -> (), *target, *pname, &mut v);
+        Ok(v)
+    }
+}

@@ -266,6 +266,9 @@ crate::entry::entry_points! {
                 if gl.st.uniform_buffer == b {
                     gl.st.uniform_buffer = 0;
                 }
+                for c in gl.st.copy_buffers.iter_mut().filter(|c| **c == b) {
+                    *c = 0;
+                }
             }
             gl.conn.glDeleteBuffers(Slice::new(v))
         })
@@ -281,6 +284,8 @@ crate::entry::entry_points! {
                 PIXEL_PACK_BUFFER_NV => gl.st.pack_buffer = buffer,
                 PIXEL_UNPACK_BUFFER_NV => gl.st.unpack_buffer = buffer,
                 GL_UNIFORM_BUFFER => gl.st.uniform_buffer = buffer,
+                GL_COPY_READ_BUFFER => gl.st.copy_buffers[0] = buffer,
+                GL_COPY_WRITE_BUFFER => gl.st.copy_buffers[1] = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)

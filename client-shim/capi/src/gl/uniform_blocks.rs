@@ -1,6 +1,7 @@
-//! ES 3.0's uniform buffers and blocks: the indexed bindings (which also set the generic
-//! `GL_UNIFORM_BUFFER` binding the library follows, for mapping), and the queries that take or
-//! give names.
+//! ES 3.0's buffer calls the library takes part in: the indexed uniform buffer bindings (which
+//! also set the generic `GL_UNIFORM_BUFFER` binding the library follows, for mapping), the
+//! block queries that take or give names, copies between buffers (whose contents the library
+//! keeps a copy of) and 64-bit buffer parameters.
 
 use strata_protocol::{Calls, Text};
 
@@ -28,6 +29,41 @@ crate::entry::entry_points! {
                 gl.st.uniform_buffer = buffer;
             }
             c
+        })
+    }
+
+    /// The copy, on the daemon and in the library's copies of the contents, where the daemon's
+    /// checks pass (both bound and unmapped, no negative value, both ranges within their
+    /// buffers, no overlap within one).
+    fn glCopyBufferSubData(read_target: GLenum, write_target: GLenum, read_offset: GLintptr, write_offset: GLintptr, size: GLsizeiptr) {
+        with_gl("glCopyBufferSubData", (), |gl| {
+            gl.conn.glCopyBufferSubData(read_target, write_target, read_offset as i64, write_offset as i64, size as i64)?;
+            let (Some(src), Some(dst)) = (gl.st.bound(read_target), gl.st.bound(write_target)) else { return Ok(()) };
+            let unmapped = !gl.maps.contains_key(&src) && !gl.maps.contains_key(&dst);
+            if src == 0 || dst == 0 || !unmapped || read_offset < 0 || write_offset < 0 || size < 0 {
+                return Ok(());
+            }
+            let (from, to, n) = (read_offset as usize, write_offset as usize, size as usize);
+            if src == dst && from < to + n && to < from + n {
+                return Ok(());
+            }
+            let bytes = gl.shadows.get(&src).and_then(|s| s.get(from..from.checked_add(n)?)).map(<[u8]>::to_vec);
+            if let (Some(bytes), Some(d)) = (bytes, gl.shadows.get_mut(&dst)) {
+                if let Some(range) = d.get_mut(to..to.saturating_add(n)) {
+                    range.copy_from_slice(&bytes);
+                }
+            }
+            Ok(())
+        })
+    }
+
+    /// One 64-bit parameter.
+    fn glGetBufferParameteri64v(target: GLenum, pname: GLenum, params: *mut GLint64) {
+        with_gl("glGetBufferParameteri64v", (), |gl| {
+            let v = gl.conn.glGetBufferParameteri64v(target, pname)?;
+            // SAFETY: `params` points at one GLint64.
+            unsafe { super::put(params, v) };
+            Ok(())
         })
     }
 
