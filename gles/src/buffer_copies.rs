@@ -16,6 +16,7 @@ impl GlesExecutor {
     /// bound to `write_target` at `write_offset`, checked in Mesa's order: the targets, a
     /// buffer bound to each, neither mapped, no negative value, both ranges within their
     /// buffers, and (one buffer) ranges that do not overlap.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glCopyBufferSubData(
         &mut self,
         ctx: &mut Context,
