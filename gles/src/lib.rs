@@ -36,6 +36,7 @@ mod framebuffers;
 pub mod glsl;
 mod image_calls;
 mod indices;
+mod invalidate;
 pub mod limits;
 mod linking;
 mod names;

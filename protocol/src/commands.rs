@@ -288,6 +288,8 @@ command_set! {
         glUniformBlockBinding [Context, Es3] => UniformBlockBinding { program: GLuint, index: GLuint, binding: GLuint };
         glVertexAttribDivisor [Context, Es3] => VertexAttribDivisor { index: GLuint, divisor: GLuint };
         glCopyBufferSubData [Context, Flush, Es3] => CopyBufferSubData { read_target: GLenum, write_target: GLenum, read_offset: i64, write_offset: i64, size: i64 };
+        glInvalidateFramebuffer [Context, Es3] => InvalidateFramebuffer { target: GLenum, attachments: Slice<'a, GLenum> };
+        glInvalidateSubFramebuffer [Context, Es3] => InvalidateSubFramebuffer { target: GLenum, attachments: Slice<'a, GLenum>, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

@@ -215,7 +215,25 @@ pub fn sequence(r: &mut Run) {
         }
         (gl.core_read_buffer)(COLOR_ATTACHMENT0 + 8);
         r.note("glReadBuffer of an attachment past the limit");
+        // Invalidation of a framebuffer object's attachments, and the errors.
+        for (target, list) in [
+            (FRAMEBUFFER, &[COLOR_ATTACHMENT0, 0x8D00, 0x821A][..]),
+            (0x8CA8, &[COLOR_ATTACHMENT0 + 1][..]),
+            (FRAMEBUFFER, &[0x1800][..]),
+            (FRAMEBUFFER, &[COLOR_ATTACHMENT0 + 9][..]),
+            (0x0DE1, &[COLOR_ATTACHMENT0][..]),
+        ] {
+            (gl.invalidate_framebuffer)(target, list.len() as i32, list.as_ptr());
+            r.note(&format!("glInvalidateFramebuffer({target:#x}, {list:x?})"));
+        }
+        (gl.invalidate_sub_framebuffer)(FRAMEBUFFER, 1, [COLOR_ATTACHMENT0].as_ptr(), 0, 0, -1, 4);
+        r.note("glInvalidateSubFramebuffer with a negative width");
         (gl.bind_framebuffer)(FRAMEBUFFER, 0);
+        let back = [0x1800, 0x1801, 0x1802];
+        (gl.invalidate_sub_framebuffer)(FRAMEBUFFER, 3, back.as_ptr(), 0, 0, 8, 8);
+        r.note("glInvalidateSubFramebuffer of the default framebuffer's buffers");
+        (gl.invalidate_framebuffer)(FRAMEBUFFER, 1, [COLOR_ATTACHMENT0].as_ptr());
+        r.note("glInvalidateFramebuffer of an attachment the default framebuffer has not");
 
         // A 3D image through the core name.
         let mut t3 = 0;

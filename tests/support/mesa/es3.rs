@@ -177,3 +177,49 @@ impl Arms<'_> {
         Ok(v)
     }
 }
+
+impl Arms<'_> {
+    pub(super) fn glInvalidateFramebuffer(
+        &mut self,
+        target: &GLenum,
+        attachments: &Slice<'_, GLenum>,
+    ) -> Result<(), ClientError> {
+        let list: Vec<u32> = attachments.iter().collect();
+        call!(
+            self,
+            "glInvalidateFramebuffer",
+            fn(u32, i32, *const u32) -> (),
+            *target,
+            list.len() as i32,
+            list.as_ptr()
+        );
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glInvalidateSubFramebuffer(
+        &mut self,
+        target: &GLenum,
+        attachments: &Slice<'_, GLenum>,
+        x: &GLint,
+        y: &GLint,
+        width: &GLsizei,
+        height: &GLsizei,
+    ) -> Result<(), ClientError> {
+        let list: Vec<u32> = attachments.iter().collect();
+        let n = list.len() as i32;
+        call!(
+            self,
+            "glInvalidateSubFramebuffer",
+            fn(u32, i32, *const u32, i32, i32, i32, i32) -> (),
+            *target,
+            n,
+            list.as_ptr(),
+            *x,
+            *y,
+            *width,
+            *height
+        );
+        Ok(())
+    }
+}
