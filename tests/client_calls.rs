@@ -237,6 +237,7 @@ api! {
     core_get_integer64v = "glGetInteger64v": fn(u32, *mut i64);
     core_vertex_attrib_divisor = "glVertexAttribDivisor": fn(u32, u32);
     copy_buffer_sub_data = "glCopyBufferSubData": fn(u32, u32, isize, isize, isize);
+    draw_range_elements = "glDrawRangeElements": fn(u32, u32, u32, i32, u32, *const c_void);
     invalidate_framebuffer = "glInvalidateFramebuffer": fn(u32, i32, *const u32);
     invalidate_sub_framebuffer = "glInvalidateSubFramebuffer": fn(u32, i32, *const u32, i32, i32, i32, i32);
     get_buffer_parameteri64v = "glGetBufferParameteri64v": fn(u32, u32, *mut i64);

@@ -119,6 +119,11 @@ pub fn sequence(r: &mut Run) {
         (gl.clear)(0x4000);
         (gl.core_draw_elements_instanced)(TRIANGLES, 6, UNSIGNED_SHORT, indices.as_ptr().cast(), 3);
         pixels(r, "three instances from client indices");
+        (gl.clear)(0x4000);
+        (gl.draw_range_elements)(TRIANGLES, 0, 3, 6, UNSIGNED_SHORT, indices.as_ptr().cast());
+        pixels(r, "glDrawRangeElements from client indices");
+        (gl.draw_range_elements)(TRIANGLES, 3, 0, 6, UNSIGNED_SHORT, indices.as_ptr().cast());
+        r.note("glDrawRangeElements with end before start");
 
         // A client array with a divisor: one element per instance, which the library sends
         // as many of as the draw has instances.

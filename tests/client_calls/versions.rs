@@ -27,6 +27,8 @@ pub fn sequence(r: &mut Run) {
         r.note(&format!("glGenQueries (ES 3.0's name) in an ES 2.0 context: name {}", q != 0));
         (gl.uniform1ui)(0, 5);
         r.note("glUniform1ui in an ES 2.0 context");
+        (gl.draw_range_elements)(0x0004, 0, 2, 3, 0x1401, [0u8, 1, 2].as_ptr().cast());
+        r.note("glDrawRangeElements in an ES 2.0 context");
         let s = (gl.get_string_i)(EXTENSIONS, 0);
         r.note(&format!("glGetStringi in an ES 2.0 context: null {}", s.is_null()));
         for pname in [MAJOR_VERSION, NUM_EXTENSIONS] {

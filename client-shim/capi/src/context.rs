@@ -108,6 +108,7 @@ pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: 
     // KHR_debug: a debug context starts with debug output enabled, on the daemon (which has
     // accepted the list) and so here, where the callback is called.
     gl.debug.output = asks_debug(&attribs);
+    gl.es3 = asks_es3(&attribs);
     let handle = p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl, group: 0 });
     // A new group is named after its first context.
     if let Some(c) = p.contexts.get_mut(&handle) {
@@ -120,6 +121,16 @@ pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: 
 const EGL_CONTEXT_FLAGS_KHR: EGLint = 0x30FC;
 /// `EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR`.
 const EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR: EGLint = 0x1;
+
+/// `EGL_CONTEXT_CLIENT_VERSION`, which is `EGL_CONTEXT_MAJOR_VERSION_KHR` too.
+const EGL_CONTEXT_CLIENT_VERSION: EGLint = 0x3098;
+
+/// Whether an attribute list the daemon accepted asks for ES 3.0 (which it gives only as
+/// asked).
+fn asks_es3(attribs: &[EGLint]) -> bool {
+    let pairs = attribs.chunks_exact(2).take_while(|p| p[0] != EGL_NONE);
+    pairs.filter(|p| p[0] == EGL_CONTEXT_CLIENT_VERSION).last().is_some_and(|p| p[1] == 3)
+}
 
 /// Whether an attribute list the daemon accepted asks for a debug context.
 fn asks_debug(attribs: &[EGLint]) -> bool {

@@ -78,6 +78,10 @@ pub(crate) struct GlState {
     pub uniform_buffer: u32,
     /// `GL_COPY_READ_BUFFER_BINDING` and `GL_COPY_WRITE_BUFFER_BINDING` (ES 3.0).
     pub copy_buffers: [u32; 2],
+    /// An ES 3.0 context: the ES 3.0 entry points the library implements with other commands
+    /// work (in an ES 2.0 context they record `GL_INVALID_OPERATION`, as the daemon does for
+    /// its own).
+    pub es3: bool,
 }
 
 impl Default for GlState {
@@ -97,6 +101,7 @@ impl Default for GlState {
             unpack_buffer: 0,
             uniform_buffer: 0,
             copy_buffers: [0; 2],
+            es3: false,
         }
     }
 }

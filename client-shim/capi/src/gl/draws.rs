@@ -191,6 +191,22 @@ crate::entry::entry_points! {
         })
     }
 
+    /// ES 3.0: `glDrawElements` whose indices the application says lie in [start, end]
+    /// (`GL_INVALID_VALUE` where end < start, checked first, as on Mesa).
+    fn glDrawRangeElements(mode: GLenum, start: GLuint, end: GLuint, count: GLsizei, ty: GLenum, indices: *const c_void) {
+        with_gl("glDrawRangeElements", (), |gl| {
+            if !gl.st.es3 {
+                gl.st.err(GL_INVALID_OPERATION);
+                return Ok(());
+            }
+            if end < start {
+                gl.st.err(GL_INVALID_VALUE);
+                return Ok(());
+            }
+            draw_elements(gl, mode, count, ty, indices, Extra::None)
+        })
+    }
+
     /// `GL_EXT_draw_instanced`: the client arrays the draw reads (per vertex, or with a
     /// divisor per instance), then the draw.
     fn glDrawArraysInstancedEXT(mode: GLenum, first: GLint, count: GLsizei, primcount: GLsizei) {
