@@ -12,7 +12,9 @@ use crate::draw_state::{bound_textures, raster_state};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{border_color, Storage};
+use crate::glsl::Scalar;
 use crate::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
+use crate::int_attribs::plan_integer;
 use crate::limits::MAX_CONVERTED;
 use crate::objects::program::LinkedProgram;
 use crate::objects::surface::ReversedZ;
@@ -34,8 +36,13 @@ pub(crate) fn plan_inputs(
     reads: InstanceReads,
 ) -> GlResult<Vec<VertexInput>> {
     let mut inputs = Vec::with_capacity(program.info.attributes.len());
-    for (_, loc) in &program.info.attributes {
+    for (var, loc) in &program.info.attributes {
         let a = &ctx.attribs[*loc as usize];
+        if let kind @ (Scalar::Int | Scalar::UInt) = var.ty.scalar() {
+            let signed = kind == Scalar::Int;
+            inputs.push(plan_integer(ctx, a, *loc, signed, (vertex_count, order, robust), reads)?);
+            continue;
+        }
         if !a.enabled {
             inputs.push(VertexInput {
                 location: *loc,

@@ -36,6 +36,7 @@ mod framebuffers;
 pub mod glsl;
 mod image_calls;
 mod indices;
+mod int_attribs;
 mod invalidate;
 pub mod limits;
 mod linking;

@@ -26,7 +26,7 @@ fn wire_type(ty: u32) -> bool {
 }
 
 /// An integer parameter of an attribute's array, `None` if `pname` is not one.
-fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
+pub(crate) fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
     let (ty, stride) = a.declared.unwrap_or((a.ty, a.stride));
     Some(match pname {
         VERTEX_ATTRIB_ARRAY_ENABLED => i32::from(a.enabled),
@@ -43,6 +43,7 @@ fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
 fn set_current(ctx: &mut Context, index: u32, v: [f32; 4]) -> GlResult {
     let a = ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
     a.current = v;
+    a.current_int = None;
     Ok(())
 }
 
@@ -60,6 +61,8 @@ fn current_from(values: &Slice<'_, f32>, n: usize) -> GlResult<[f32; 4]> {
 
 /// `GL_VERTEX_ATTRIB_ARRAY_DIVISOR` (ES 3.0).
 const VERTEX_ATTRIB_ARRAY_DIVISOR: u32 = 0x88FE;
+/// `GL_VERTEX_ATTRIB_ARRAY_INTEGER` (ES 3.0).
+pub(crate) const VERTEX_ATTRIB_ARRAY_INTEGER: u32 = 0x88FD;
 
 #[allow(non_snake_case)]
 impl GlesExecutor {
@@ -89,6 +92,7 @@ impl GlesExecutor {
         }
         let a = &mut ctx.attribs[index as usize];
         a.declared = None;
+        a.integer = false;
         a.size = size;
         a.ty = attrib_type;
         a.normalized = normalized;
@@ -218,6 +222,7 @@ impl GlesExecutor {
         match pname {
             CURRENT_VERTEX_ATTRIB => a.current.iter().map(|f| *f as i32).collect(),
             VERTEX_ATTRIB_ARRAY_DIVISOR if ctx.es3() => vec![a.divisor as i32],
+            VERTEX_ATTRIB_ARRAY_INTEGER if ctx.es3() => vec![i32::from(a.integer)],
             _ => match attrib_param(a, pname) {
                 Some(i) => vec![i],
                 None => {

@@ -290,6 +290,11 @@ command_set! {
         glCopyBufferSubData [Context, Flush, Es3] => CopyBufferSubData { read_target: GLenum, write_target: GLenum, read_offset: i64, write_offset: i64, size: i64 };
         glInvalidateFramebuffer [Context, Es3] => InvalidateFramebuffer { target: GLenum, attachments: Slice<'a, GLenum> };
         glInvalidateSubFramebuffer [Context, Es3] => InvalidateSubFramebuffer { target: GLenum, attachments: Slice<'a, GLenum>, x: GLint, y: GLint, width: GLsizei, height: GLsizei };
+        /// `offset` is the byte offset into the bound `GL_ARRAY_BUFFER`, or with none bound a
+        /// client array's address (its bytes follow in `strataVertexAttribData`).
+        glVertexAttribIPointer [Context, Es3] => VertexAttribIPointer { index: GLuint, size: GLint, attrib_type: GLenum, stride: GLsizei, offset: u64 };
+        glVertexAttribI4i [Context, Es3] => VertexAttribI4i { index: GLuint, x: GLint, y: GLint, z: GLint, w: GLint };
+        glVertexAttribI4ui [Context, Es3] => VertexAttribI4ui { index: GLuint, x: GLuint, y: GLuint, z: GLuint, w: GLuint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -436,6 +441,9 @@ command_set! {
         glGetInteger64i_v [Context, Es3] => GetInteger64iV { target: GLenum, index: GLuint } -> Vec<i64>;
         /// A buffer's parameter as a 64-bit integer (0 on error).
         glGetBufferParameteri64v [Context, Es3] => GetBufferParameteri64v { target: GLenum, pname: GLenum } -> i64;
+        /// An attribute's state as integers (nothing on error).
+        glGetVertexAttribIiv [Context, Es3] => GetVertexAttribIiv { index: GLuint, pname: GLenum } -> Vec<GLint>;
+        glGetVertexAttribIuiv [Context, Es3] => GetVertexAttribIuiv { index: GLuint, pname: GLenum } -> Vec<GLuint>;
     }
 }
 

@@ -209,10 +209,9 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             }
             Storage::In => return Err("0: internal error: an input left unmapped".into()),
             Storage::Attribute if version == 300 => {
-                if !matches!(ty.scalar(), Scalar::Float) || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
-                    return Err(
-                        "0: vertex inputs must be float, vec2, vec3 or vec4 (others are not supported yet)".into()
-                    );
+                let scalar = matches!(ty.scalar(), Scalar::Float | Scalar::Int | Scalar::UInt);
+                if !scalar || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
+                    return Err("0: vertex inputs must be float, int or uint scalars or vectors (matrices and arrays are not supported yet)".into());
                 }
                 shader.attributes.extend(vars);
             }

@@ -30,6 +30,11 @@ pub struct Attrib {
     pub declared: Option<(u32, i32)>,
     /// `GL_VERTEX_ATTRIB_ARRAY_DIVISOR` (ES 3.0): 0 reads per vertex, d per d instances.
     pub divisor: u32,
+    /// `GL_VERTEX_ATTRIB_ARRAY_INTEGER` (ES 3.0): set by `glVertexAttribIPointer`.
+    pub integer: bool,
+    /// The current value as integers, where `glVertexAttribI4i`/`ui` set it last (what an
+    /// integer input reads while the array is disabled).
+    pub current_int: Option<[u32; 4]>,
 }
 
 impl Default for Attrib {
@@ -46,6 +51,8 @@ impl Default for Attrib {
             client: None,
             declared: None,
             divisor: 0,
+            integer: false,
+            current_int: None,
         }
     }
 }

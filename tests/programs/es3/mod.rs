@@ -5,6 +5,7 @@ use super::{Case, DEFAULT};
 
 mod blocks;
 mod divisors;
+mod int_attributes;
 mod language;
 mod uniforms;
 
@@ -22,5 +23,6 @@ pub fn all() -> Vec<Case> {
         c("es3_uniforms", uniforms::uniforms),
         c("es3_uniform_blocks", blocks::uniform_blocks),
         c("es3_divisors", divisors::divisors),
+        c("es3_int_attributes", int_attributes::int_attributes),
     ]
 }

@@ -223,3 +223,41 @@ impl Arms<'_> {
         Ok(())
     }
 }
+
+impl Arms<'_> {
+    /// Buffer arrays only (`offset` into the bound array buffer): the ES 3.0 programs keep
+    /// integer arrays in buffers.
+    pub(super) fn glVertexAttribIPointer(
+        &mut self,
+        index: &GLuint,
+        size: &GLint,
+        attrib_type: &GLenum,
+        stride: &GLsizei,
+        offset: &u64,
+    ) -> Result<(), ClientError> {
+        let p = *offset as usize as *const std::ffi::c_void;
+        call!(
+            self,
+            "glVertexAttribIPointer",
+            fn(u32, i32, u32, i32, *const std::ffi::c_void) -> (),
+            *index,
+            *size,
+            *attrib_type,
+            *stride,
+            p
+        );
+        Ok(())
+    }
+
+    pub(super) fn glGetVertexAttribIiv(&mut self, index: &GLuint, pname: &GLenum) -> Result<Vec<GLint>, ClientError> {
+        let mut v = [INT_SENTINEL; 4];
+        call!(self, "glGetVertexAttribIiv", fn(u32, u32, *mut i32) -> (), *index, *pname, v.as_mut_ptr());
+        Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL).collect())
+    }
+
+    pub(super) fn glGetVertexAttribIuiv(&mut self, index: &GLuint, pname: &GLenum) -> Result<Vec<GLuint>, ClientError> {
+        let mut v = [INT_SENTINEL as u32; 4];
+        call!(self, "glGetVertexAttribIuiv", fn(u32, u32, *mut u32) -> (), *index, *pname, v.as_mut_ptr());
+        Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL as u32).collect())
+    }
+}

@@ -315,6 +315,8 @@ pub mod get_arrays {
         glGetUniformuiv(program: GLuint, location: GLint) -> GLuint;
         glGetActiveUniformBlockiv(program: GLuint, index: GLuint, pname: GLenum) -> GLint;
         glGetIntegeri_v(target: GLenum, index: GLuint) -> GLint;
+        glGetVertexAttribIiv(index: GLuint, pname: GLenum) -> GLint;
+        glGetVertexAttribIuiv(index: GLuint, pname: GLenum) -> GLuint;
         glGetInteger64i_v(target: GLenum, index: GLuint) -> GLint64;
         glGetVertexAttribfv(index: GLuint, pname: GLenum) -> GLfloat;
         glGetVertexAttribiv(index: GLuint, pname: GLenum) -> GLint;

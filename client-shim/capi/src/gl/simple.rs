@@ -123,6 +123,8 @@ simple_calls! {
     fn glUniform4f(location: GLint, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat);
     fn glUniform4i(location: GLint, x: GLint, y: GLint, z: GLint, w: GLint);
     fn glUniformBlockBinding(program: GLuint, index: GLuint, binding: GLuint);
+    fn glVertexAttribI4i(index: GLuint, x: GLint, y: GLint, z: GLint, w: GLint);
+    fn glVertexAttribI4ui(index: GLuint, x: GLuint, y: GLuint, z: GLuint, w: GLuint);
     fn glUniform1ui(location: GLint, x: GLuint);
     fn glUniform2ui(location: GLint, x: GLuint, y: GLuint);
     fn glUniform3ui(location: GLint, x: GLuint, y: GLuint, z: GLuint);
