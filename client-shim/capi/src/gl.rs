@@ -389,5 +389,8 @@ pub mod egl_image;
 /// ES 3.0's uniform buffer bindings and block queries.
 pub mod uniform_blocks;
 
+/// ES 3.0's integer vertex attributes and divisors.
+pub mod vertex_es3;
+
 /// ES 3.0's core names for what ES 2.0 extensions gave, as aliases of the extensions' entry points.
 pub mod es3_aliases;

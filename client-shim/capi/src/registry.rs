@@ -77,6 +77,7 @@ entry_point_modules! {
         crate::gl::egl_image,
         crate::gl::es3_aliases,
         crate::gl::uniform_blocks,
+        crate::gl::vertex_es3,
     ],
 }
 
