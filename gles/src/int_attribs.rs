@@ -12,9 +12,7 @@ use crate::error::{GlError, GlResult};
 use crate::limits::MAX_CONVERTED;
 use crate::objects::vertex_array::Attrib;
 use crate::render::{Source, VertexInput};
-
-/// `GL_INT`.
-const INT: u32 = 0x1404;
+use crate::vertex::{set_array, ArrayPointer, INT};
 
 /// Bytes per component of an integer array's type (`GL_FLOAT` and the others of
 /// `glVertexAttribPointer` too, read into an integer input as GL leaves undefined).
@@ -120,21 +118,8 @@ impl crate::GlesExecutor {
         stride: i32,
         offset: u64,
     ) -> GlResult {
-        if index as usize >= crate::limits::MAX_ATTRIBS || !(1..=4).contains(&size) || stride < 0 {
-            return Err(GlError::InvalidValue);
-        }
-        if !matches!(attrib_type, BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT | INT | UNSIGNED_INT) {
-            return Err(GlError::InvalidEnum);
-        }
-        let buffer = ctx.bindings.array_buffer;
-        if buffer == 0 && offset != 0 && ctx.bindings.vertex_array != 0 {
-            return Err(GlError::InvalidOperation);
-        }
-        let a = &mut ctx.attribs[index as usize];
-        a.declared = None;
-        a.integer = true;
-        (a.size, a.ty, a.normalized, a.stride, a.offset, a.buffer) = (size, attrib_type, false, stride, offset, buffer);
-        Ok(())
+        let p = ArrayPointer { index, size, ty: attrib_type, normalized: false, stride, offset, integer: true };
+        set_array(ctx, p)
     }
 
     /// A current value of signed integers.

@@ -39,6 +39,50 @@ pub(crate) fn attrib_param(a: &Attrib, pname: u32) -> Option<i32> {
     })
 }
 
+/// `GL_INT` (ES 3.0's integer arrays).
+pub(crate) const INT: u32 = 0x1404;
+
+/// What `glVertexAttribPointer` and `glVertexAttribIPointer` set.
+pub(crate) struct ArrayPointer {
+    pub(crate) index: u32,
+    pub(crate) size: i32,
+    pub(crate) ty: u32,
+    pub(crate) normalized: bool,
+    pub(crate) stride: i32,
+    pub(crate) offset: u64,
+    /// `glVertexAttribIPointer`'s: integer types only, read as integers.
+    pub(crate) integer: bool,
+}
+
+/// Points attribute `p.index` at an array, checked in Mesa's order: index, size and stride
+/// (`GL_INVALID_VALUE`), the type (`GL_INVALID_ENUM`), a client array in a vertex array object
+/// (`GL_INVALID_OPERATION`).
+pub(crate) fn set_array(ctx: &mut Context, p: ArrayPointer) -> GlResult {
+    if p.index as usize >= MAX_ATTRIBS || !(1..=4).contains(&p.size) || p.stride < 0 {
+        return Err(GlError::InvalidValue);
+    }
+    let typed = match p.integer {
+        true => matches!(p.ty, BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT | UNSIGNED_INT | INT),
+        false => type_size(p.ty).is_some(),
+    };
+    if !typed {
+        return Err(GlError::InvalidEnum);
+    }
+    // With no array buffer bound the pointer names a client-side array, whose bytes arrive with
+    // `strataVertexAttribData` before each draw. A vertex array object cannot hold one
+    // (`GL_OES_vertex_array_object`); a null pointer detaches its buffer.
+    let buffer = ctx.bindings.array_buffer;
+    if buffer == 0 && p.offset != 0 && ctx.bindings.vertex_array != 0 {
+        return Err(GlError::InvalidOperation);
+    }
+    let a = &mut ctx.attribs[p.index as usize];
+    a.declared = None;
+    a.integer = p.integer;
+    (a.size, a.ty, a.normalized, a.stride, a.offset, a.buffer) =
+        (p.size, p.ty, p.normalized, p.stride, p.offset, buffer);
+    Ok(())
+}
+
 /// Sets attribute `index`'s current value.
 fn set_current(ctx: &mut Context, index: u32, v: [f32; 4]) -> GlResult {
     let a = ctx.attribs.get_mut(index as usize).ok_or(GlError::InvalidValue)?;
@@ -77,29 +121,7 @@ impl GlesExecutor {
         stride: i32,
         offset: u64,
     ) -> GlResult {
-        if index as usize >= MAX_ATTRIBS || !(1..=4).contains(&size) || stride < 0 {
-            return Err(GlError::InvalidValue);
-        }
-        if type_size(attrib_type).is_none() {
-            return Err(GlError::InvalidEnum);
-        }
-        // With no array buffer bound the pointer names a client-side array, whose bytes
-        // arrive with `strataVertexAttribData` before each draw. A vertex array object cannot
-        // hold one (`GL_OES_vertex_array_object`); a null pointer detaches its buffer.
-        let buffer = ctx.bindings.array_buffer;
-        if buffer == 0 && offset != 0 && ctx.bindings.vertex_array != 0 {
-            return Err(GlError::InvalidOperation);
-        }
-        let a = &mut ctx.attribs[index as usize];
-        a.declared = None;
-        a.integer = false;
-        a.size = size;
-        a.ty = attrib_type;
-        a.normalized = normalized;
-        a.stride = stride;
-        a.offset = offset;
-        a.buffer = buffer;
-        Ok(())
+        set_array(ctx, ArrayPointer { index, size, ty: attrib_type, normalized, stride, offset, integer: false })
     }
 
     /// ES 3.0: attribute `index` advances once every `divisor` instances (0: per vertex).
