@@ -137,7 +137,7 @@ impl GlesExecutor {
             let absent = wgpu::ColorWrites::ALPHA;
             let mut level_target = Target::color_only((uid, 3), color, (lw, lh), absent);
             level_target.slices = vec![slice];
-            let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA));
+            let alpha_one = Some(([0.0, 0.0, 0.0, 1.0], wgpu::ColorWrites::ALPHA, None));
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }
         Ok(())

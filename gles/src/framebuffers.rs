@@ -31,10 +31,15 @@ use strata_protocol::Slice;
 /// Attaches `a` to `attachment` of the bound framebuffer object.
 pub(super) fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
     let bound = ctx.bindings.framebuffer;
+    let es3 = ctx.es3();
     let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
     match attachment {
         DEPTH_ATTACHMENT => fb.depth = a,
         STENCIL_ATTACHMENT => fb.stencil = a,
+        DEPTH_STENCIL_ATTACHMENT if es3 => {
+            fb.depth = a;
+            fb.stencil = a;
+        }
         _ => fb.colors[color_slot(attachment, 16).ok_or(GlError::InvalidEnum)??] = a,
     }
     Ok(())
@@ -126,7 +131,7 @@ impl GlesExecutor {
             let (w, h) = (width as u32, height as u32);
             let color = (tex.clone(), view.clone());
             let t = Target::color_only((uid, 2), color, (w, h), absent);
-            self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL)), None, None, None);
+            self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL, None)), None, None, None);
         }
         let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         *rb = Renderbuffer {
@@ -272,6 +277,7 @@ impl GlesExecutor {
         attachment: u32,
         pname: u32,
     ) -> i32 {
+        let es3 = ctx.es3();
         let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
         let a = match (target, fb, attachment) {
             (FRAMEBUFFER, Some(fb), _) if color_slot(attachment, 16).is_some() => match color_slot(attachment, 16) {
@@ -283,6 +289,12 @@ impl GlesExecutor {
             },
             (FRAMEBUFFER, Some(fb), DEPTH_ATTACHMENT) => fb.depth,
             (FRAMEBUFFER, Some(fb), STENCIL_ATTACHMENT) => fb.stencil,
+            // ES 3.0: one image at both, or the question has no answer.
+            (FRAMEBUFFER, Some(fb), DEPTH_STENCIL_ATTACHMENT) if es3 && fb.depth == fb.stencil => fb.depth,
+            (FRAMEBUFFER, Some(_), DEPTH_STENCIL_ATTACHMENT) if es3 => {
+                ctx.record(GlError::InvalidOperation);
+                return 0;
+            }
             (FRAMEBUFFER, None, _) => {
                 ctx.record(GlError::InvalidOperation);
                 return 0;

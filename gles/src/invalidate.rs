@@ -10,10 +10,9 @@ use crate::error::{GlError, GlResult};
 use crate::limits::MAX_DRAW_BUFFERS;
 use crate::GlesExecutor;
 
-/// `GL_DRAW_FRAMEBUFFER`, `GL_READ_FRAMEBUFFER` and `GL_DEPTH_STENCIL_ATTACHMENT` (ES 3.0).
+/// `GL_DRAW_FRAMEBUFFER` and `GL_READ_FRAMEBUFFER` (ES 3.0).
 const DRAW_FRAMEBUFFER: u32 = 0x8CA9;
 const READ_FRAMEBUFFER: u32 = 0x8CA8;
-const DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
 /// The default framebuffer's buffers as ES 3.0 names them (`GL_COLOR`, `GL_DEPTH`, `GL_STENCIL`).
 const DEFAULT_BUFFERS: [u32; 3] = [0x1800, 0x1801, 0x1802];
 

@@ -14,6 +14,7 @@
 mod account;
 mod buffer_copies;
 mod buffers;
+mod clear_buffers;
 mod compressed;
 mod context;
 mod context_attribs;

@@ -219,6 +219,20 @@ impl GlesExecutor {
         })
     }
 
+    pub(super) fn glGetFragDataLocation(&mut self, ctx: &mut Context, program: u32, name: Text<'_>) -> i32 {
+        let v = match ctx.objects.programs.get(&program) {
+            Some(p) => match &p.linked {
+                Some(l) => Ok(l.info.outputs.iter().find(|o| o.0 == name.as_str()).map_or(-1, |o| o.1 as i32)),
+                None => Err(GlError::InvalidOperation),
+            },
+            None => Err(ctx.objects.shader_or_program_error(program)),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            -1
+        })
+    }
+
     pub(super) fn glGetActiveAttrib(&mut self, ctx: &mut Context, program: u32, index: u32) -> Option<ActiveVariable> {
         let v = linked_for_query(&ctx.objects, program).and_then(|l| {
             let (a, _) = l.info.attributes.get(index as usize).ok_or(GlError::InvalidValue)?;

@@ -95,7 +95,7 @@ impl GlesExecutor {
         };
         self.r.clear(
             &target,
-            Some((target.stored([0.0; 4]), wgpu::ColorWrites::ALL)),
+            Some((target.stored([0.0; 4]), wgpu::ColorWrites::ALL, None)),
             target.depth.as_ref().map(|_| (if reversed { 0.0 } else { 1.0 }, true)),
             target.has_stencil().then_some((0, 0xff)),
             None,

@@ -12,6 +12,8 @@ use crate::GlesExecutor;
 const MAJOR_VERSION: u32 = 0x821B;
 const MINOR_VERSION: u32 = 0x821C;
 const NUM_EXTENSIONS: u32 = 0x821D;
+/// `GL_MAX_SERVER_WAIT_TIMEOUT`.
+const MAX_SERVER_WAIT_TIMEOUT: u32 = 0x9111;
 
 /// What an ES 3.0 call answers in an ES 2.0 context, where it does nothing.
 pub(crate) trait Es2Answer {
@@ -78,6 +80,8 @@ impl GlesExecutor {
             MAJOR_VERSION => 3,
             MINOR_VERSION => 0,
             NUM_EXTENSIONS => self.extensions().split_whitespace().count() as i32,
+            // Server waits (`glWaitSync`) take no timeout: the daemon runs commands in order.
+            MAX_SERVER_WAIT_TIMEOUT => 0,
             _ => return None,
         }])
     }

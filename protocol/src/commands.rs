@@ -295,6 +295,11 @@ command_set! {
         glVertexAttribIPointer [Context, Es3] => VertexAttribIPointer { index: GLuint, size: GLint, attrib_type: GLenum, stride: GLsizei, offset: u64 };
         glVertexAttribI4i [Context, Es3] => VertexAttribI4i { index: GLuint, x: GLint, y: GLint, z: GLint, w: GLint };
         glVertexAttribI4ui [Context, Es3] => VertexAttribI4ui { index: GLuint, x: GLuint, y: GLuint, z: GLuint, w: GLuint };
+        /// `values`: four for a colour, one for the depth or the stencil.
+        glClearBufferfv [Context, Es3] => ClearBufferfv { buffer: GLenum, drawbuffer: GLint, values: Slice<'a, GLfloat> };
+        glClearBufferiv [Context, Es3] => ClearBufferiv { buffer: GLenum, drawbuffer: GLint, values: Slice<'a, GLint> };
+        glClearBufferuiv [Context, Es3] => ClearBufferuiv { buffer: GLenum, drawbuffer: GLint, values: Slice<'a, GLuint> };
+        glClearBufferfi [Context, Es3] => ClearBufferfi { buffer: GLenum, drawbuffer: GLint, depth: GLfloat, stencil: GLint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -444,6 +449,8 @@ command_set! {
         /// An attribute's state as integers (nothing on error).
         glGetVertexAttribIiv [Context, Es3] => GetVertexAttribIiv { index: GLuint, pname: GLenum } -> Vec<GLint>;
         glGetVertexAttribIuiv [Context, Es3] => GetVertexAttribIuiv { index: GLuint, pname: GLenum } -> Vec<GLuint>;
+        /// A fragment output's location by name (-1 if none).
+        glGetFragDataLocation [Context, Es3] => GetFragDataLocation { program: GLuint, name: Text<'a> } -> GLint;
     }
 }
 

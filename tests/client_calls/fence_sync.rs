@@ -22,7 +22,7 @@ const FOREVER: u64 = u64::MAX;
 
 /// A fragment stage slow enough that a 256×256 image of it takes milliseconds on a CPU
 /// rasterizer: a fence made right after drawing it is not yet signalled.
-const SLOW_FS: &str = "precision highp float;
+pub(super) const SLOW_FS: &str = "precision highp float;
     void main() {
         float x = gl_FragCoord.x * 0.001;
         for (int i = 0; i < 200; i++) { x = fract(sin(x * 12.9898 + float(i)) * 43758.5453); }
@@ -59,7 +59,7 @@ impl Run {
 
 /// Whether `signalled` answers true within 2 s of asking every millisecond. How long it took
 /// goes to the test's output, not into the comparison.
-fn polled(signalled: impl Fn() -> bool) -> bool {
+pub(super) fn polled(signalled: impl Fn() -> bool) -> bool {
     let start = std::time::Instant::now();
     let deadline = start + std::time::Duration::from_secs(2);
     while std::time::Instant::now() < deadline {

@@ -29,6 +29,14 @@ pub fn sequence(r: &mut Run) {
         r.note("glUniform1ui in an ES 2.0 context");
         (gl.draw_range_elements)(0x0004, 0, 2, 3, 0x1401, [0u8, 1, 2].as_ptr().cast());
         r.note("glDrawRangeElements in an ES 2.0 context");
+        (gl.clear_buffer_fv)(0x1800, 0, [0.0f32; 4].as_ptr());
+        r.note("glClearBufferfv in an ES 2.0 context");
+        let l = (gl.get_frag_data_location)(1, c"o".as_ptr());
+        r.note(&format!("glGetFragDataLocation in an ES 2.0 context: {l}"));
+        let s = (gl.fence_sync)(0x9117, 0);
+        r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
+        let w = (gl.client_wait_sync)(s, 0, 0);
+        r.note(&format!("glClientWaitSync in an ES 2.0 context: {w:#x}"));
         let s = (gl.get_string_i)(EXTENSIONS, 0);
         r.note(&format!("glGetStringi in an ES 2.0 context: null {}", s.is_null()));
         for pname in [MAJOR_VERSION, NUM_EXTENSIONS] {

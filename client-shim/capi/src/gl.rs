@@ -394,3 +394,9 @@ pub mod vertex_es3;
 
 /// ES 3.0's core names for what ES 2.0 extensions gave, as aliases of the extensions' entry points.
 pub mod es3_aliases;
+
+/// ES 3.0's clears of one buffer and fragment output locations.
+pub mod es3_calls;
+
+/// ES 3.0's sync objects (`glFenceSync` and the rest).
+pub mod sync_objects;

@@ -78,6 +78,8 @@ entry_point_modules! {
         crate::gl::es3_aliases,
         crate::gl::uniform_blocks,
         crate::gl::vertex_es3,
+        crate::gl::es3_calls,
+        crate::gl::sync_objects,
     ],
 }
 

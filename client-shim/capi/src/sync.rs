@@ -15,6 +15,9 @@
 //! waits for everything the process submitted). Waiting in the server (`eglWaitSyncKHR`) needs
 //! nothing: the daemon never runs a later command before an earlier one. A fence waited on
 //! after the daemon connection was lost is signalled, so that the wait returns.
+//!
+//! ES 3.0's sync objects (`gl/sync_objects.rs`) are these fences too, in the same table under
+//! a display number of their own, so that neither API finds the other's.
 
 use std::collections::HashMap;
 use std::ffi::c_void;
@@ -26,7 +29,7 @@ use strata_client::ClientError;
 use strata_protocol::Calls;
 
 use crate::display::initialized;
-use crate::gl::{with_gl, Call};
+use crate::gl::{with_gl, Call, Gl};
 use crate::state::{self, answer, process};
 use crate::types::*;
 
@@ -201,16 +204,8 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
             if state::current().is_none_or(|c| c.display != d) {
                 return Err(EGL_BAD_MATCH);
             }
-            let finishes = FINISHES.load(Ordering::SeqCst);
             let args = String::new;
-            let mark =
-                with_gl(Call { name: "eglCreateSyncKHR", args: &args }, None, |gl| match gl.conn.strataFence() {
-                    Ok(mark) => Ok(Some(mark)),
-                    // A daemon without fences: a flush, and the fence waits for a finish.
-                    Err(ClientError::Unsupported(_)) => gl.conn.glFlush().map(|()| None),
-                    Err(e) => Err(e),
-                });
-            Kind::Fence { finishes, mark, reached: false, losses: state::LOSSES.load(Ordering::SeqCst) }
+            with_gl(Call { name: "eglCreateSyncKHR", args: &args }, unmarked(), fence)
         }
         EGL_SYNC_REUSABLE_KHR => Kind::Reusable(false),
         _ => return Err(EGL_BAD_ATTRIBUTE),
@@ -222,6 +217,97 @@ fn create(dpy: EGLDisplay, ty: EGLenum, attribs: *const EGLint) -> Result<EGLSyn
         map.insert(handle, Fence { display: d, kind });
         handle as EGLSyncKHR
     }))
+}
+
+/// A fence after the commands so far with no mark from the daemon: signalled by a finish
+/// (or the connection's loss).
+fn unmarked() -> Kind {
+    let finishes = FINISHES.load(Ordering::SeqCst);
+    Kind::Fence { finishes, mark: None, reached: false, losses: state::LOSSES.load(Ordering::SeqCst) }
+}
+
+/// Flushes the current context's commands and makes a fence after them.
+fn fence(gl: &mut Gl<'_>) -> Result<Kind, ClientError> {
+    let mut kind = unmarked();
+    let mark = match gl.conn.strataFence() {
+        Ok(mark) => Some(mark),
+        // A daemon without fences: a flush, and the fence waits for a finish.
+        Err(ClientError::Unsupported(_)) => gl.conn.glFlush().map(|()| None)?,
+        Err(e) => return Err(e),
+    };
+    if let Kind::Fence { mark: m, .. } = &mut kind {
+        *m = mark;
+    }
+    Ok(kind)
+}
+
+/// The display number GL's sync objects (`glFenceSync`) carry: EGL's calls never find them,
+/// nor GL's EGL's.
+const GL_SYNCS: usize = usize::MAX;
+
+/// A GL sync object's fence, as a wait or a status query needs it.
+#[derive(Clone, Copy)]
+pub(crate) struct GlFence(Kind);
+
+/// `glFenceSync`: a fence after the current context's commands, which are flushed; its handle.
+pub(crate) fn gl_fence_sync(gl: &mut Gl<'_>) -> Result<usize, ClientError> {
+    let kind = fence(gl)?;
+    Ok(fences(|next, map| {
+        *next += 1;
+        let handle = 0x5E70_0000 + *next * 16;
+        map.insert(handle, Fence { display: GL_SYNCS, kind });
+        handle
+    }))
+}
+
+/// GL's sync object `sync`, if it is one.
+pub(crate) fn gl_sync(sync: usize) -> Option<GlFence> {
+    fences(|_, map| map.get(&sync).filter(|f| f.display == GL_SYNCS).map(|f| GlFence(f.kind)))
+}
+
+/// Deletes GL's sync object `sync`; whether it was one.
+pub(crate) fn gl_delete_sync(sync: usize) -> bool {
+    fences(|_, map| {
+        let found = map.get(&sync).is_some_and(|f| f.display == GL_SYNCS);
+        if found {
+            map.remove(&sync);
+        }
+        found
+    })
+}
+
+/// Whether GL's sync `sync` is signalled now (polled, as [`poll`]). Not under the library's lock.
+pub(crate) fn gl_signalled(sync: usize, f: GlFence) -> bool {
+    signaled(&Fence { display: GL_SYNCS, kind: f.0 }) || poll(sync, f.0)
+}
+
+/// `glClientWaitSync`'s wait (not under the library's lock): whether the sync was signalled
+/// when asked, became signalled within `timeout` ns, or was not.
+pub(crate) fn gl_client_wait(sync: usize, f: GlFence, timeout: u64) -> Waited {
+    if gl_signalled(sync, f) {
+        return Waited::Already;
+    }
+    if timeout == 0 {
+        return Waited::TimedOut;
+    }
+    match f.0 {
+        Kind::Fence { mark: Some(_), .. } if wait_fence(sync, f.0, timeout) => Waited::Satisfied,
+        Kind::Fence { mark: Some(_), .. } => Waited::TimedOut,
+        _ => {
+            finish_everything();
+            Waited::Satisfied
+        }
+    }
+}
+
+/// How a `glClientWaitSync` ended.
+pub(crate) enum Waited {
+    /// Signalled before the wait (`GL_ALREADY_SIGNALED`).
+    Already,
+    /// Signalled during it (`GL_CONDITION_SATISFIED`).
+    Satisfied,
+    /// Not signalled in time (`GL_TIMEOUT_EXPIRED`).
+    TimedOut,
 }
 
 crate::entry::entry_points! {

@@ -86,6 +86,8 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         point_input,
         dual: fs.dual,
         blocks,
+        // GLSL ES 3.00's outputs; the link placed a lone one without a location at 0.
+        outputs: fs.outputs.iter().map(|o| (o.name.clone(), o.location.unwrap_or(0))).collect(),
     })
 }
 

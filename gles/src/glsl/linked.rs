@@ -73,6 +73,8 @@ pub struct Linked {
     pub dual: bool,
     /// GLSL ES 3.00 uniform blocks, by block index.
     pub blocks: Vec<LinkedBlock>,
+    /// GLSL ES 3.00 fragment outputs by name, with their locations (`glGetFragDataLocation`).
+    pub outputs: Vec<(String, u32)>,
 }
 
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]

@@ -9,24 +9,25 @@ use crate::render::{Renderer, Target};
 
 impl Renderer {
     /// `glClear` of the target's colour slots to `color` (as each image stores it: see
-    /// [`stored`]), its depth and its stencil. A clear of the whole target with full masks
-    /// becomes the pass's load operations when nothing has been drawn yet.
+    /// [`stored`]; `glClearBuffer*` names one slot, and the others keep their contents), its
+    /// depth and its stencil. A clear of the whole target with full masks becomes the pass's
+    /// load operations when nothing has been drawn yet.
     #[allow(clippy::too_many_arguments)]
     pub fn clear(
         &mut self,
         target: &Target,
-        color: Option<([f32; 4], wgpu::ColorWrites)>,
+        color: Option<([f32; 4], wgpu::ColorWrites, Option<usize>)>,
         depth: Option<(f32, bool)>,
         stencil: Option<(u32, u32)>,
         scissor: Option<[u32; 4]>,
     ) {
-        let full_color = color.is_none_or(|(_, m)| m == wgpu::ColorWrites::ALL);
+        let full_color = color.is_none_or(|(_, m, only)| m == wgpu::ColorWrites::ALL && only.is_none());
         let full_depth = depth.is_none_or(|(_, w)| w);
         let full_stencil = stencil.is_none_or(|(_, m)| m & 0xff == 0xff);
         let whole = scissor.is_none_or(|s| s == [0, 0, target.width, target.height]);
         let pass = self.pass_for(target);
         if pass.draws.is_empty() && full_color && full_depth && full_stencil && whole {
-            if let Some((c, _)) = color {
+            if let Some((c, _, _)) = color {
                 pass.clear_color = Some(c);
             }
             if let Some((d, _)) = depth {
@@ -39,7 +40,8 @@ impl Renderer {
         }
         // A quad that honours masks and the scissor.
         let key = ClearKey {
-            color: color.map(|(_, m)| m),
+            color: color.map(|(_, m, _)| m),
+            only: color.and_then(|(_, _, only)| only),
             depth: target.depth.as_ref().map(|(_, f)| {
                 (
                     *f,
@@ -51,7 +53,7 @@ impl Renderer {
         };
         let pipeline = self.clear_pipeline(&key);
         let mut params = [0u8; CLEAR_PARAMS as usize];
-        let c = color.map(|(c, _)| c).unwrap_or([0.0; 4]);
+        let c = color.map(|(c, _, _)| c).unwrap_or([0.0; 4]);
         for (slot, s) in target.slots().iter().enumerate() {
             let c = stored(s.map_or(wgpu::ColorWrites::empty(), |s| s.1), c);
             for (i, v) in c.iter().enumerate() {
@@ -93,7 +95,11 @@ impl Renderer {
         let targets: Vec<Option<wgpu::ColorTargetState>> = key
             .slots
             .iter()
-            .map(|s| s.map(|format| wgpu::ColorTargetState { format, blend: None, write_mask }))
+            .enumerate()
+            .map(|(i, s)| {
+                let write_mask = if key.only.is_none_or(|o| o == i) { write_mask } else { wgpu::ColorWrites::empty() };
+                s.map(|format| wgpu::ColorTargetState { format, blend: None, write_mask })
+            })
             .collect();
         let depth_stencil = key.depth.map(|(format, write, stencil)| {
             let face = wgpu::StencilFaceState {

@@ -19,6 +19,8 @@ pub(crate) struct PipelineKey {
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub(crate) struct ClearKey {
     pub(crate) color: Option<wgpu::ColorWrites>,
+    /// The one colour slot a `glClearBuffer*` clears (`None`: all of them).
+    pub(crate) only: Option<usize>,
     pub(crate) depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
     /// Which colour slots have an image, and its format.
     pub(crate) slots: Vec<Option<wgpu::TextureFormat>>,

@@ -260,4 +260,43 @@ impl Arms<'_> {
         call!(self, "glGetVertexAttribIuiv", fn(u32, u32, *mut u32) -> (), *index, *pname, v.as_mut_ptr());
         Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL as u32).collect())
     }
+
+    pub(super) fn glClearBufferfv(
+        &mut self,
+        buffer: &GLenum,
+        drawbuffer: &GLint,
+        values: &Slice<'_, GLfloat>,
+    ) -> Result<(), ClientError> {
+        let v: Vec<f32> = values.iter().collect();
+        call!(self, "glClearBufferfv", fn(u32, i32, *const f32) -> (), *buffer, *drawbuffer, v.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glClearBufferiv(
+        &mut self,
+        buffer: &GLenum,
+        drawbuffer: &GLint,
+        values: &Slice<'_, GLint>,
+    ) -> Result<(), ClientError> {
+        let v: Vec<i32> = values.iter().collect();
+        call!(self, "glClearBufferiv", fn(u32, i32, *const i32) -> (), *buffer, *drawbuffer, v.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glClearBufferuiv(
+        &mut self,
+        buffer: &GLenum,
+        drawbuffer: &GLint,
+        values: &Slice<'_, GLuint>,
+    ) -> Result<(), ClientError> {
+        let v: Vec<u32> = values.iter().collect();
+        call!(self, "glClearBufferuiv", fn(u32, i32, *const u32) -> (), *buffer, *drawbuffer, v.as_ptr());
+        Ok(())
+    }
+
+    pub(super) fn glGetFragDataLocation(&mut self, program: &GLuint, name: &Text<'_>) -> Result<GLint, ClientError> {
+        let p = self.shader(*program);
+        let name = std::ffi::CString::new(name.as_str()).map_err(|e| ClientError::Unsupported(e.to_string()))?;
+        Ok(call!(self, "glGetFragDataLocation", fn(u32, *const i8) -> i32, p, name.as_ptr()))
+    }
 }

@@ -39,6 +39,7 @@ scalar_arms! {
     glUniform1ui(location: GLint => i32, x: GLuint => u32);
     glVertexAttribDivisor(index: GLuint => u32, divisor: GLuint => u32);
     glVertexAttribI4i(index: GLuint => u32, x: GLint => i32, y: GLint => i32, z: GLint => i32, w: GLint => i32);
+    glClearBufferfi(buffer: GLenum => u32, drawbuffer: GLint => i32, depth: GLfloat => f32, stencil: GLint => i32);
     glVertexAttribI4ui(index: GLuint => u32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32, w: GLuint => u32);
     glUniform2ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32);
     glUniform3ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32);
