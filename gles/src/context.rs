@@ -155,6 +155,9 @@ pub struct Raster {
     pub polygon_offset_fill: bool,
     /// `GL_DEPTH_CLAMP_EXT`.
     pub depth_clamp: bool,
+    /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0): an index of the type's largest value
+    /// ends a primitive and starts the next.
+    pub primitive_restart: bool,
     /// `GL_CLIP_ORIGIN_EXT` and `GL_CLIP_DEPTH_MODE_EXT` (`GL_EXT_clip_control`).
     pub clip: ClipControl,
     /// `GL_POLYGON_OFFSET_FACTOR`, `_UNITS` and `_CLAMP_EXT`.
@@ -181,6 +184,7 @@ impl Default for Raster {
             front_face: CCW,
             polygon_offset_fill: false,
             depth_clamp: false,
+            primitive_restart: false,
             clip: ClipControl::default(),
             polygon_offset: [0.0; 3],
             line_width: 1.0,
@@ -461,6 +465,7 @@ impl Context {
             Capability::StencilTest => self.depth_stencil.stencil_test,
             Capability::PolygonOffsetFill => self.raster.polygon_offset_fill,
             Capability::DepthClamp => self.raster.depth_clamp,
+            Capability::PrimitiveRestartFixedIndex => self.raster.primitive_restart,
             Capability::Dither => self.blend.dither,
             Capability::SampleCoverage => self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => self.raster.alpha_to_coverage,
@@ -479,6 +484,7 @@ impl Context {
             Capability::StencilTest => &mut self.depth_stencil.stencil_test,
             Capability::PolygonOffsetFill => &mut self.raster.polygon_offset_fill,
             Capability::DepthClamp => &mut self.raster.depth_clamp,
+            Capability::PrimitiveRestartFixedIndex => &mut self.raster.primitive_restart,
             Capability::Dither => &mut self.blend.dither,
             Capability::SampleCoverage => &mut self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => &mut self.raster.alpha_to_coverage,

@@ -144,11 +144,18 @@ pub(crate) fn plan_points(
     instance: u32,
 ) -> GlResult<(Vec<VertexInput>, (u32, u32))> {
     let order = match indices {
-        Some((ty, i)) => Some(index_values(ctx, ty, i, count)?.0),
+        Some((ty, i)) => {
+            let mut v = index_values(ctx, ty, i, count)?.0;
+            // Restart indices end points, which are primitives of one vertex: they draw nothing.
+            if ctx.raster.primitive_restart {
+                v.retain(|&i| i != ty.restart_index());
+            }
+            Some(v)
+        }
         None => None,
     };
     let (vertex_count, instances) = match &order {
-        Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, count)),
+        Some(o) => (u64::from(o.iter().copied().max().unwrap_or(0)) + 1, (0, o.len() as u32)),
         None => (u64::from(first) + u64::from(count), (first, count)),
     };
     let mut inputs =
@@ -223,31 +230,35 @@ pub(crate) fn plan_draw<'c>(
     if count == 0 {
         return Ok(None);
     }
-    let (inputs, index, count, first, instances) = if prim == Primitive::Points {
+    let (inputs, index, count, first, instances, topology) = if prim == Primitive::Points {
         let (inputs, instances) = plan_points(ctx, &program, count, indices, first, shape.instance)?;
-        (inputs, None, 4, 0, instances)
+        if instances.1 == 0 {
+            return Ok(None);
+        }
+        (inputs, None, 4, 0, instances, prim.topology())
     } else {
-        let planned = plan_indices(ctx, prim, count, indices, first).and_then(|plan| {
+        let flat = program.info.flat;
+        let planned = plan_indices(ctx, prim, count, indices, first, flat).and_then(|plan| {
             let reads = InstanceReads::Drawn(shape.instances);
             Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false, reads)?, plan))
         });
         match planned {
-            Ok((inputs, IndexPlan { index, count, .. })) => {
+            Ok((inputs, IndexPlan { index, count, topology, .. })) => {
                 if count == 0 {
                     return Ok(None);
                 }
-                (inputs, index, count, first, (0, shape.instances))
+                (inputs, index, count, first, (0, shape.instances), topology)
             }
             // Robust access, with an array too short for the draw: each vertex the draw reads
             // is gathered, what lies past an array as zeros, and drawn unindexed.
             Err(GlError::InvalidOperation) if ctx.robust => {
-                let order = robust_order(ctx, prim, count, indices, first)?;
+                let (order, topology) = robust_order(ctx, prim, count, indices, first, flat)?;
                 if order.is_empty() {
                     return Ok(None);
                 }
                 let reads = InstanceReads::Drawn(shape.instances);
                 let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true, reads)?;
-                (inputs, None, order.len() as u32, 0, (0, shape.instances))
+                (inputs, None, order.len() as u32, 0, (0, shape.instances), topology)
             }
             Err(e) => return Err(e),
         }
@@ -263,7 +274,6 @@ pub(crate) fn plan_draw<'c>(
     if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {
         return Err(GlError::InvalidOperation);
     }
-    let topology = prim.topology();
     let mut raster = raster_state(ctx, topology, target, program.info.dual);
     if matches!(topology, wgpu::PrimitiveTopology::LineStrip | wgpu::PrimitiveTopology::TriangleStrip) {
         raster.strip_index = index.as_ref().map(|i| i.1);

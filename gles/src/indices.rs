@@ -1,6 +1,13 @@
 //! A draw's indices: where they come from, how they are read and checked (robust contexts
 //! reading what lies past the index data as 0), and what wgpu reads for them: the element
 //! buffer itself, or a list generated per pass for loops, fans, byte indices and client data.
+//!
+//! Two ES 3.0 rules rearrange the vertices ([`Reorder`]), each primitive then drawn on its own
+//! as a list: `GL_PRIMITIVE_RESTART_FIXED_INDEX`, where the type's largest index ends one
+//! primitive and starts the next (wgpu restarts strips only, and always), and GL's provoking
+//! vertex, the last of each primitive, which gives `flat` varyings their values where wgpu
+//! takes the first: a program with flat varyings has each primitive's last vertex put first,
+//! turning its vertices without changing its winding.
 
 use crate::context::Context;
 use crate::error::{GlError, GlResult};
@@ -25,6 +32,34 @@ pub(super) struct IndexPlan {
     pub(super) count: u32,
     /// One more than the largest vertex the draw reads.
     pub(super) vertex_count: u64,
+    /// What wgpu draws the vertices as.
+    pub(super) topology: wgpu::PrimitiveTopology,
+}
+
+/// How a draw's vertices are rearranged beyond what its primitive needs.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Reorder {
+    /// The restart index, where the draw's indices hold it with restart enabled.
+    pub(super) restart: Option<u32>,
+    /// Whether each primitive's last vertex goes first (the program has flat varyings).
+    pub(super) last_first: bool,
+}
+
+impl Reorder {
+    /// The rearrangement of a draw of `values` (indices of `ty`; `None` for a vertex range)
+    /// in `ctx`, by a program with flat varyings if `flat`.
+    pub(super) fn of(ctx: &Context, values: Option<(IndexType, &[u32])>, flat: bool) -> Reorder {
+        let restart = values
+            .filter(|_| ctx.raster.primitive_restart)
+            .map(|(ty, v)| (ty.restart_index(), v))
+            .and_then(|(r, v)| v.contains(&r).then_some(r));
+        Reorder { restart, last_first: flat }
+    }
+
+    /// Whether the draw's vertices are rearranged at all (points have no provoking vertex).
+    fn any(self, prim: Primitive) -> bool {
+        self.restart.is_some() || (self.last_first && prim != Primitive::Points)
+    }
 }
 
 /// Reads a draw's `count` indices, checked against their source: the values, and the byte
@@ -75,20 +110,24 @@ pub(super) fn generated_size(count: u32) -> GlResult {
 }
 
 /// Validates a draw's indices (or its vertex range) and plans what wgpu reads: the element
-/// buffer directly where wgpu can, else indices generated into the per-pass ring.
+/// buffer directly where wgpu can, else indices generated into the per-pass ring. `flat`:
+/// the program has flat varyings.
 pub(super) fn plan_indices(
     ctx: &Context,
     prim: Primitive,
     count: u32,
     indices: Option<(IndexType, Indices<'_>)>,
     first: u32,
+    flat: bool,
 ) -> GlResult<IndexPlan> {
     let mut index: Option<(Source, wgpu::IndexFormat)> = None;
-    let mut list: Option<Vec<u32>> = None;
+    let mut list: Option<(Vec<u32>, Reorder)> = None;
     let vertex_count: u64;
     if let Some((ty, indices)) = indices {
         let (values, offset, gpu) = index_values(ctx, ty, indices, count)?;
-        vertex_count = u64::from(values.iter().copied().max().unwrap_or(0)) + 1;
+        let reorder = Reorder::of(ctx, Some((ty, &values)), flat);
+        let reached = values.iter().copied().filter(|&i| Some(i) != reorder.restart).max();
+        vertex_count = u64::from(reached.unwrap_or(0)) + 1;
         // A u16 strip containing 0xFFFF would restart under wgpu; widen it to u32, whose
         // restart value no validated index can reach.
         let restart_hazard = prim.is_strip() && ty == IndexType::U16 && values.contains(&0xFFFF);
@@ -96,54 +135,99 @@ pub(super) fn plan_indices(
             && offset.is_multiple_of(ty.size())
             && !prim.generates_indices()
             && !restart_hazard
+            && !reorder.any(prim)
             && gpu.is_some();
         if direct {
             let fmt = if ty == IndexType::U16 { wgpu::IndexFormat::Uint16 } else { wgpu::IndexFormat::Uint32 };
             index = gpu.cloned().map(|g| (Source::Buffer(g, offset), fmt));
         } else {
-            list = Some(values);
+            list = Some((values, reorder));
         }
     } else {
         vertex_count = u64::from(first) + u64::from(count);
-        if prim.generates_indices() {
+        let reorder = Reorder::of(ctx, None, flat);
+        if prim.generates_indices() || reorder.any(prim) {
             generated_size(count)?;
-            list = Some((first..first + count).collect());
+            list = Some(((first..first + count).collect(), reorder));
         }
     }
     let mut draw_count = count;
-    if let Some(v) = list {
+    let mut topology = prim.topology();
+    if let Some((v, reorder)) = list {
         generated_size(count)?;
-        let out = expand(prim, v);
+        let (out, drawn) = expand(prim, v, reorder);
         draw_count = out.len() as u32;
+        topology = drawn;
         index = Some((Source::Bytes(bytemuck::cast_slice(&out).to_vec()), wgpu::IndexFormat::Uint32));
     }
-    Ok(IndexPlan { index, count: draw_count, vertex_count })
+    Ok(IndexPlan { index, count: draw_count, vertex_count, topology })
 }
 
-/// The vertices `v` of a `prim` draw as wgpu draws them: loops closed, fans as triangles.
-fn expand(prim: Primitive, v: Vec<u32>) -> Vec<u32> {
+/// The vertices `v` of a `prim` draw as wgpu draws them, and what it draws them as: loops
+/// closed, fans as triangles; rearranged by `r`, each primitive on its own in a list.
+fn expand(prim: Primitive, v: Vec<u32>, r: Reorder) -> (Vec<u32>, wgpu::PrimitiveTopology) {
+    if !r.any(prim) {
+        let out = match prim {
+            Primitive::LineLoop => v.iter().copied().chain(v.first().copied()).collect(),
+            Primitive::TriangleFan => (1..v.len().saturating_sub(1)).flat_map(|i| [v[0], v[i], v[i + 1]]).collect(),
+            _ => v,
+        };
+        return (out, prim.topology());
+    }
+    let mut out = Vec::with_capacity(v.len() * 3);
+    for run in v.split(|&i| Some(i) == r.restart) {
+        primitives(prim, run, r.last_first, &mut out);
+    }
+    (out, prim.list_topology())
+}
+
+/// Appends the primitives of one run of `prim` vertices (between restarts) to `out` as a list,
+/// each primitive's last vertex first if `last_first`.
+fn primitives(prim: Primitive, s: &[u32], last_first: bool, out: &mut Vec<u32>) {
+    let line = |out: &mut Vec<u32>, a: u32, b: u32| out.extend(if last_first { [b, a] } else { [a, b] });
+    // A rotation: the winding stays.
+    let tri = |out: &mut Vec<u32>, a: u32, b: u32, c: u32| out.extend(if last_first { [c, a, b] } else { [a, b, c] });
+    let n = s.len();
     match prim {
-        Primitive::LineLoop => v.iter().copied().chain(v.first().copied()).collect(),
-        Primitive::TriangleFan => (1..v.len().saturating_sub(1)).flat_map(|i| [v[0], v[i], v[i + 1]]).collect(),
-        _ => v,
+        Primitive::Points => out.extend_from_slice(s),
+        Primitive::Lines => s.chunks_exact(2).for_each(|p| line(out, p[0], p[1])),
+        Primitive::LineStrip => s.windows(2).for_each(|p| line(out, p[0], p[1])),
+        Primitive::LineLoop => {
+            s.windows(2).for_each(|p| line(out, p[0], p[1]));
+            if n >= 2 {
+                line(out, s[n - 1], s[0]);
+            }
+        }
+        Primitive::Triangles => s.chunks_exact(3).for_each(|t| tri(out, t[0], t[1], t[2])),
+        // Odd triangles of a strip take their first two vertices swapped, keeping the winding.
+        Primitive::TriangleStrip => (0..n.saturating_sub(2)).for_each(|i| match i % 2 {
+            0 => tri(out, s[i], s[i + 1], s[i + 2]),
+            _ => tri(out, s[i + 1], s[i], s[i + 2]),
+        }),
+        Primitive::TriangleFan => (1..n.saturating_sub(1)).for_each(|i| tri(out, s[0], s[i], s[i + 1])),
     }
 }
 
 /// Robust access: every vertex a draw reads, in the order wgpu draws them unindexed (its
 /// indices, those past the index data read as 0, or its vertex range), for a draw that reads
-/// past an array.
+/// past an array, and what wgpu draws them as.
 pub(super) fn robust_order(
     ctx: &Context,
     prim: Primitive,
     count: u32,
     indices: Option<(IndexType, Indices<'_>)>,
     first: u32,
-) -> GlResult<Vec<u32>> {
+    flat: bool,
+) -> GlResult<(Vec<u32>, wgpu::PrimitiveTopology)> {
     generated_size(count)?;
-    let v = match indices {
-        Some((ty, i)) => index_values(ctx, ty, i, count)?.0,
+    let (v, reorder) = match indices {
+        Some((ty, i)) => {
+            let v = index_values(ctx, ty, i, count)?.0;
+            let reorder = Reorder::of(ctx, Some((ty, &v)), flat);
+            (v, reorder)
+        }
         // Vertices past u32 are past every array: they read as 0 anyway.
-        None => (0..count).map(|i| first.saturating_add(i)).collect(),
+        None => ((0..count).map(|i| first.saturating_add(i)).collect(), Reorder::of(ctx, None, flat)),
     };
-    Ok(expand(prim, v))
+    Ok(expand(prim, v, reorder))
 }

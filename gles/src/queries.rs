@@ -113,7 +113,7 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
     let i = |x: i32| Ints(vec![x]);
     let u = |x: u32| Ints(vec![x as i32]);
     let f = |x: f32| Floats(vec![x]);
-    if let Ok(cap) = Capability::on(pname, gpu.features) {
+    if let Ok(cap) = Capability::on(pname, gpu.features, ctx.es3()) {
         return Some(b(ctx.enabled(cap)));
     }
     let (raster, ds, blend, bind) = (&ctx.raster, &ctx.depth_stencil, &ctx.blend, &ctx.bindings);

@@ -76,17 +76,17 @@ fn stencil_op(ctx: &mut Context, face: u32, fail: u32, zfail: u32, zpass: u32) -
 #[allow(non_snake_case)]
 impl GlesExecutor {
     pub(super) fn glEnable(&mut self, ctx: &mut Context, cap: u32) -> GlResult {
-        *ctx.enabled_mut(Capability::on(cap, self.gpu.features)?) = true;
+        *ctx.enabled_mut(Capability::on(cap, self.gpu.features, ctx.es3())?) = true;
         Ok(())
     }
 
     pub(super) fn glDisable(&mut self, ctx: &mut Context, cap: u32) -> GlResult {
-        *ctx.enabled_mut(Capability::on(cap, self.gpu.features)?) = false;
+        *ctx.enabled_mut(Capability::on(cap, self.gpu.features, ctx.es3())?) = false;
         Ok(())
     }
 
     pub(super) fn glIsEnabled(&mut self, ctx: &mut Context, cap: u32) -> bool {
-        match Capability::on(cap, self.gpu.features) {
+        match Capability::on(cap, self.gpu.features, ctx.es3()) {
             Ok(c) => ctx.enabled(c),
             Err(e) => {
                 ctx.record(e);

@@ -153,15 +153,19 @@ pub enum Capability {
     /// `GL_DEPTH_CLAMP_EXT` (`EXT_depth_clamp`, where the device has
     /// `wgpu::Features::DEPTH_CLIP_CONTROL`).
     DepthClamp,
+    /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0).
+    PrimitiveRestartFixedIndex,
 }
 
 impl Capability {
-    /// Parses a capability the device with `features` has; anything else is `GL_INVALID_ENUM`.
-    pub fn on(cap: u32, features: wgpu::Features) -> GlResult<Self> {
+    /// Parses a capability the device with `features` has, in a context of ES 3.0 if `es3`;
+    /// anything else is `GL_INVALID_ENUM`.
+    pub fn on(cap: u32, features: wgpu::Features, es3: bool) -> GlResult<Self> {
         match Capability::from_gl(cap)? {
             Capability::DepthClamp if !features.contains(wgpu::Features::DEPTH_CLIP_CONTROL) => {
                 Err(GlError::InvalidEnum)
             }
+            Capability::PrimitiveRestartFixedIndex if !es3 => Err(GlError::InvalidEnum),
             c => Ok(c),
         }
     }
@@ -181,6 +185,7 @@ impl Capability {
             DEBUG_OUTPUT => Capability::DebugOutput,
             DEBUG_OUTPUT_SYNCHRONOUS => Capability::DebugOutputSynchronous,
             DEPTH_CLAMP_EXT => Capability::DepthClamp,
+            PRIMITIVE_RESTART_FIXED_INDEX => Capability::PrimitiveRestartFixedIndex,
             _ => return Err(GlError::InvalidEnum),
         })
     }
@@ -236,6 +241,18 @@ impl Primitive {
         matches!(self, Primitive::LineLoop | Primitive::TriangleFan)
     }
 
+    /// The list wgpu draws this primitive's vertices as once they are rearranged: each
+    /// primitive on its own (see `indices::Reorder`).
+    pub fn list_topology(self) -> wgpu::PrimitiveTopology {
+        match self {
+            Primitive::Points => wgpu::PrimitiveTopology::PointList,
+            Primitive::Lines | Primitive::LineStrip | Primitive::LineLoop => wgpu::PrimitiveTopology::LineList,
+            Primitive::Triangles | Primitive::TriangleStrip | Primitive::TriangleFan => {
+                wgpu::PrimitiveTopology::TriangleList
+            }
+        }
+    }
+
     /// Whether this is a strip (whose indexed form restarts at the format's maximum in wgpu).
     pub fn is_strip(self) -> bool {
         matches!(self, Primitive::LineStrip | Primitive::TriangleStrip)
@@ -270,6 +287,15 @@ impl IndexType {
             IndexType::U8 => 1,
             IndexType::U16 => 2,
             IndexType::U32 => 4,
+        }
+    }
+
+    /// The index `GL_PRIMITIVE_RESTART_FIXED_INDEX` restarts at: the type's largest value.
+    pub fn restart_index(self) -> u32 {
+        match self {
+            IndexType::U8 => 0xFF,
+            IndexType::U16 => 0xFFFF,
+            IndexType::U32 => u32::MAX,
         }
     }
 }

@@ -33,6 +33,8 @@ pub fn sequence(r: &mut Run) {
         r.note("glClearBufferfv in an ES 2.0 context");
         let l = (gl.get_frag_data_location)(1, c"o".as_ptr());
         r.note(&format!("glGetFragDataLocation in an ES 2.0 context: {l}"));
+        (gl.enable)(0x8D69);
+        r.note("glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX) in an ES 2.0 context");
         let s = (gl.fence_sync)(0x9117, 0);
         r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
         let w = (gl.client_wait_sync)(s, 0, 0);

@@ -88,6 +88,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         blocks,
         // GLSL ES 3.00's outputs; the link placed a lone one without a location at 0.
         outputs: fs.outputs.iter().map(|o| (o.name.clone(), o.location.unwrap_or(0))).collect(),
+        flat: fs.varyings.iter().any(|v| interpolation(v) == "flat "),
     })
 }
 

@@ -75,6 +75,9 @@ pub struct Linked {
     pub blocks: Vec<LinkedBlock>,
     /// GLSL ES 3.00 fragment outputs by name, with their locations (`glGetFragDataLocation`).
     pub outputs: Vec<(String, u32)>,
+    /// Whether a varying reaches the fragment stage `flat`: its value is then the last
+    /// vertex's of each primitive, as GL takes it (wgpu takes the first's).
+    pub flat: bool,
 }
 
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]

@@ -7,6 +7,7 @@ mod blocks;
 mod divisors;
 mod int_attributes;
 mod language;
+mod restart;
 mod uniforms;
 
 /// Every ES 3.0 program.
@@ -24,5 +25,7 @@ pub fn all() -> Vec<Case> {
         c("es3_uniform_blocks", blocks::uniform_blocks),
         c("es3_divisors", divisors::divisors),
         c("es3_int_attributes", int_attributes::int_attributes),
+        c("es3_primitive_restart", restart::primitive_restart),
+        c("es3_provoking_vertex", restart::provoking_vertex),
     ]
 }
