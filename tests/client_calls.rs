@@ -43,8 +43,8 @@
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 //! `tests/client_calls_es3.rs` builds it again as `client_calls_es3`, which runs `es3_core`,
-//! `es3_clears` (`glClearBuffer*`, `glGetFragDataLocation`) and `es3_sync` (sync objects)
-//! instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
+//! `es3_clears` (`glClearBuffer*`, `glGetFragDataLocation`), `es3_sync` (sync objects) and
+//! `es3_xfb` (transform feedback) instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
 //! `--es3`): Mesa reads its version override once per process, so each version needs a process
 //! of its own. [`ES3`] says which.
 
@@ -102,6 +102,8 @@ mod es3_clears;
 mod es3_core;
 #[path = "client_calls/es3_sync.rs"]
 mod es3_sync;
+#[path = "client_calls/es3_xfb.rs"]
+mod es3_xfb;
 #[path = "client_calls/fence_sync.rs"]
 mod fence_sync;
 #[path = "client_calls/image_shapes.rs"]
@@ -286,8 +288,12 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("base_vertex", base_vertex::sequence),
         ("versions", versions::sequence),
     ];
-    let es3: [Sequence; 3] =
-        [("es3_core", es3_core::sequence), ("es3_clears", es3_clears::sequence), ("es3_sync", es3_sync::sequence)];
+    let es3: [Sequence; 4] = [
+        ("es3_core", es3_core::sequence),
+        ("es3_clears", es3_clears::sequence),
+        ("es3_sync", es3_sync::sequence),
+        ("es3_xfb", es3_xfb::sequence),
+    ];
     let chosen = if ES3 { es3.to_vec() } else { sequences.to_vec() };
     let mut lines = Vec::new();
     for (name, sequence) in support::only(chosen, |s| s.0) {

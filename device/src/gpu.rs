@@ -34,7 +34,9 @@ pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FIL
     .union(wgpu::Features::TEXTURE_COMPRESSION_ASTC)
     .union(wgpu::Features::DEPTH_CLIP_CONTROL)
     .union(wgpu::Features::DUAL_SOURCE_BLENDING)
-    .union(wgpu::Features::ADDRESS_MODE_CLAMP_TO_BORDER);
+    .union(wgpu::Features::ADDRESS_MODE_CLAMP_TO_BORDER)
+    // ES 3.0's transform feedback: the vertex stage writes the captured varyings.
+    .union(wgpu::Features::VERTEX_WRITABLE_STORAGE);
 
 /// What upper layers build once per device and share (their pipelines and fixed images), by type.
 type Shared = HashMap<std::any::TypeId, Arc<dyn std::any::Any + Send + Sync>>;

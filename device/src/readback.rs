@@ -1,4 +1,4 @@
-//! Reading a texture's texels back to host memory, waiting for the device.
+//! Reading a texture's texels, or a buffer's bytes, back to host memory, waiting for the device.
 
 use crate::gpu::Gpu;
 use crate::lane::Lane;
@@ -63,5 +63,32 @@ impl Gpu {
         drop(data);
         buf.unmap();
         Some(out)
+    }
+
+    /// Reads `len` bytes of `buffer` from `offset` (both multiples of 4), after `lane`'s work
+    /// so far: what the device wrote there.
+    pub fn read_buffer(&self, lane: &Lane, buffer: &wgpu::Buffer, offset: u64, len: u64) -> Option<Vec<u8>> {
+        if len == 0 {
+            return Some(Vec::new());
+        }
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("buffer readback"),
+            size: len,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(buffer, offset, &staging, 0, len);
+        self.submit(lane, vec![enc.finish()]);
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        let _ = self.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+        rx.recv().ok()?.ok()?;
+        let data = slice.get_mapped_range().ok()?.to_vec();
+        staging.unmap();
+        Some(data)
     }
 }

@@ -91,6 +91,7 @@ impl GlesExecutor {
             BufferTarget::Uniform => ctx.bindings.uniform_buffer = buffer,
             BufferTarget::CopyRead => ctx.bindings.copy_buffers[0] = buffer,
             BufferTarget::CopyWrite => ctx.bindings.copy_buffers[1] = buffer,
+            BufferTarget::TransformFeedback => ctx.bindings.xfb_buffer = buffer,
         }
         ctx.objects.buffers.bind(buffer);
         Ok(())
@@ -131,6 +132,9 @@ impl GlesExecutor {
             usage: wgpu::BufferUsages::VERTEX
                 | wgpu::BufferUsages::INDEX
                 | wgpu::BufferUsages::UNIFORM
+                // Transform feedback writes its buffers from the vertex stage.
+                | wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
                 | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });

@@ -1,7 +1,7 @@
 //! ES 3.0's `glClearBuffer{fv,iv,uiv,fi}`: one draw buffer's colour, or the depth, the stencil
 //! or both, cleared to the values given rather than the clear state, through the same quads and
-//! load operations as `glClear` (honouring the scissor, the write masks and a conditional
-//! render). Checked in Mesa's order: the buffer, then the draw buffer's number.
+//! load operations as `glClear` (honouring the scissor, the write masks, a conditional render
+//! and `GL_RASTERIZER_DISCARD`, under which clears do nothing). Checked in Mesa's order: the buffer, then the draw buffer's number.
 //!
 //! Colour images are all of floating-point or normalized formats until integer formats come:
 //! clearing one with integers (`glClearBufferiv`/`uiv` of `GL_COLOR`) is undefined in ES 3.0,
@@ -127,7 +127,7 @@ impl GlesExecutor {
 
     /// Clears what `cleared` names in the draw framebuffer, as `glClear` would with those values.
     fn clear_buffer(&mut self, ctx: &mut Context, cleared: Cleared) -> GlResult {
-        if matches!(cleared, Cleared::Nothing) || ctx.conditional == Some(false) {
+        if matches!(cleared, Cleared::Nothing) || ctx.conditional == Some(false) || ctx.raster.discard {
             return Ok(());
         }
         let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;

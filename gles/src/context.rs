@@ -101,21 +101,13 @@ pub struct Bindings {
     pub uniform_buffer: u32,
     /// `GL_COPY_READ_BUFFER_BINDING` and `GL_COPY_WRITE_BUFFER_BINDING` (ES 3.0).
     pub copy_buffers: [u32; 2],
+    /// `GL_TRANSFORM_FEEDBACK_BUFFER_BINDING` (ES 3.0): the generic binding.
+    pub xfb_buffer: u32,
     /// The indexed uniform buffer bindings uniform blocks read (`glBindBufferBase`/`Range`).
     pub uniform_buffers: [RangeBinding; crate::glsl::blocks::MAX_COMBINED_UNIFORM_BLOCKS],
 }
 
-/// An indexed buffer binding: the buffer, and the range `glBindBufferRange` gave (a size of 0:
-/// the whole buffer, `glBindBufferBase`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct RangeBinding {
-    /// The buffer (0: none).
-    pub buffer: u32,
-    /// The first byte.
-    pub offset: u64,
-    /// The bytes bound (0: all of it, however large it becomes).
-    pub size: u64,
-}
+pub use crate::objects::buffer::RangeBinding;
 
 impl Bindings {
     /// The buffer bound to `target`.
@@ -128,6 +120,7 @@ impl Bindings {
             BufferTarget::Uniform => self.uniform_buffer,
             BufferTarget::CopyRead => self.copy_buffers[0],
             BufferTarget::CopyWrite => self.copy_buffers[1],
+            BufferTarget::TransformFeedback => self.xfb_buffer,
         }
     }
 
@@ -155,6 +148,8 @@ pub struct Raster {
     pub polygon_offset_fill: bool,
     /// `GL_DEPTH_CLAMP_EXT`.
     pub depth_clamp: bool,
+    /// `GL_RASTERIZER_DISCARD` (ES 3.0): draws rasterize nothing, and clears do nothing.
+    pub discard: bool,
     /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0): an index of the type's largest value
     /// ends a primitive and starts the next.
     pub primitive_restart: bool,
@@ -185,6 +180,7 @@ impl Default for Raster {
             polygon_offset_fill: false,
             depth_clamp: false,
             primitive_restart: false,
+            discard: false,
             clip: ClipControl::default(),
             polygon_offset: [0.0; 3],
             line_width: 1.0,
@@ -401,6 +397,8 @@ pub struct Context {
     pub read_none: bool,
     /// Draws to the default framebuffer write no colour buffer (`glDrawBuffersEXT(GL_NONE)`).
     pub draw_none: bool,
+    /// Transform feedback (ES 3.0).
+    pub xfb: crate::objects::xfb::XfbState,
     /// The OpenGL ES major version it was created for: 2, or 3 where the daemon offers ES 3.0.
     pub major: u8,
 }
@@ -437,6 +435,7 @@ impl Context {
             robust: false,
             read_none: false,
             draw_none: false,
+            xfb: Default::default(),
             major: 2,
         }
     }
@@ -466,6 +465,7 @@ impl Context {
             Capability::PolygonOffsetFill => self.raster.polygon_offset_fill,
             Capability::DepthClamp => self.raster.depth_clamp,
             Capability::PrimitiveRestartFixedIndex => self.raster.primitive_restart,
+            Capability::RasterizerDiscard => self.raster.discard,
             Capability::Dither => self.blend.dither,
             Capability::SampleCoverage => self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => self.raster.alpha_to_coverage,
@@ -485,6 +485,7 @@ impl Context {
             Capability::PolygonOffsetFill => &mut self.raster.polygon_offset_fill,
             Capability::DepthClamp => &mut self.raster.depth_clamp,
             Capability::PrimitiveRestartFixedIndex => &mut self.raster.primitive_restart,
+            Capability::RasterizerDiscard => &mut self.raster.discard,
             Capability::Dither => &mut self.blend.dither,
             Capability::SampleCoverage => &mut self.raster.sample_coverage,
             Capability::SampleAlphaToCoverage => &mut self.raster.alpha_to_coverage,

@@ -61,25 +61,46 @@ impl GlesExecutor {
             Some((ty, i)) => Some((IndexType::from_gl(ty)?, i)),
             None => None,
         };
+        let capture = self.capture_plan(ctx, prim, count, indices.is_some(), instances)?;
         let Some(DrawState { target, reversed, stages }) = self.draw_state(ctx, prim == Primitive::Points)? else {
             return Ok(());
         };
-        let renderer = &mut self.r;
+        let capture_stage = match &capture {
+            Some(_) => match self.capture_stage(ctx, prim == Primitive::Points) {
+                Ok(vs) => Some(vs),
+                Err(e) => {
+                    tracing::warn!("draw dropped: the program's capturing vertex stage failed: {e}");
+                    return Ok(());
+                }
+            },
+            None => None,
+        };
         let plans = if prim == Primitive::Points { instances } else { instances.min(1) };
         for instance in 0..plans {
             let shape = Instancing { instance, instances };
             let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first, shape)? else {
                 return Ok(());
             };
-            // Validated, and discarded by a conditional render whose query passed no sample.
-            if ctx.conditional == Some(false) {
+            // Validated, and discarded by a conditional render whose query passed no sample,
+            // or by GL_RASTERIZER_DISCARD where nothing is captured.
+            if ctx.conditional == Some(false) || (ctx.raster.discard && capture.is_none()) {
                 return Ok(());
             }
             if let Some((vs, fs)) = stages.clone() {
                 spec.vs = vs;
                 spec.fs = fs;
             }
-            renderer.draw(&target, spec);
+            if let (Some(plan), Some(vs)) = (&capture, &capture_stage) {
+                // Points draw one instance at a time: each writes after the ones before.
+                let done = if prim == Primitive::Points { instance } else { 0 };
+                spec.capture = self.capture_binding(ctx, plan, first, done);
+                spec.vs = vs.clone();
+                spec.fs = None;
+            }
+            self.r.draw(&target, spec);
+        }
+        if let Some(plan) = &capture {
+            self.captured(ctx, plan, instances);
         }
         Ok(())
     }
@@ -136,7 +157,8 @@ impl GlesExecutor {
         let stencil = (mask & STENCIL_BUFFER_BIT != 0 && target.has_stencil() && ds.stencil[0].write & 0xff != 0)
             .then_some((ds.clear_stencil as u32 & 0xff, ds.stencil[0].write & 0xff));
         let scissor = ctx.raster.scissor_test.then(|| clip_rect(ctx.raster.scissor, &target));
-        if (color.is_none() && depth.is_none() && stencil.is_none()) || ctx.conditional == Some(false) {
+        let none = color.is_none() && depth.is_none() && stencil.is_none();
+        if none || ctx.conditional == Some(false) || ctx.raster.discard {
             return Ok(());
         }
         renderer.clear(&target, color, depth, stencil, scissor);

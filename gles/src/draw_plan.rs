@@ -317,5 +317,6 @@ pub(crate) fn plan_draw<'c>(
         scissor,
         stencil_ref: ctx.depth_stencil.stencil[0].reference.clamp(0, 255) as u32,
         blend_color: ctx.blend.color.map(|c| f64::from(c.clamp(0.0, 1.0))),
+        capture: None,
     }))
 }

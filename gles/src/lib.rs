@@ -55,6 +55,7 @@ mod state;
 mod surface;
 mod teximage;
 mod textures;
+mod transform_feedback;
 mod typed;
 mod uniform_blocks;
 mod uniforms;

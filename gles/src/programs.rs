@@ -123,6 +123,11 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let objects = &mut ctx.objects;
         let Some(p) = objects.programs.get(&program) else { return Err(objects.shader_or_program_error(program)) };
+        // Not the program an active transform feedback captures from.
+        let capturing = ctx.xfb.active().map(|c| c.program.id);
+        if capturing.is_some() && p.linked.as_ref().map(|l| l.id) == capturing {
+            return Err(GlError::InvalidOperation);
+        }
         let result = link_stages(objects, p).and_then(|linked| create_gpu_program(gpu, linked, id));
         if let Some(p) = objects.programs.get_mut(&program) {
             p.install(result);
@@ -131,6 +136,9 @@ impl GlesExecutor {
     }
 
     pub(super) fn glUseProgram(&mut self, ctx: &mut Context, program: u32) -> GlResult {
+        if ctx.xfb.capturing().is_some() {
+            return Err(GlError::InvalidOperation);
+        }
         let objects = &mut ctx.objects;
         if program != 0 && !objects.programs.get(&program).is_some_and(|p| p.link_ok) {
             return Err(objects.shader_or_program_error(program));
@@ -173,6 +181,9 @@ impl GlesExecutor {
                     ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
                     ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked
                         .map_or(0, |l| l.info.attributes.iter().map(|a| a.0.name.len() as i32 + 1).max().unwrap_or(0))),
+                    _ if ctx.es3() && crate::transform_feedback::program_state(p, pname).is_some() => {
+                        Ok(crate::transform_feedback::program_state(p, pname).unwrap_or(0))
+                    }
                     crate::glsl::blocks::ACTIVE_UNIFORM_BLOCKS if ctx.es3() => {
                         Ok(linked.map_or(0, |l| l.info.blocks.len() as i32))
                     }

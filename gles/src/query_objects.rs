@@ -36,6 +36,10 @@ const QUERY_RESULT_AVAILABLE: u32 = 0x8867;
 /// `GL_QUERY_WAIT_NV` … `GL_QUERY_BY_REGION_NO_WAIT_NV`: conditional render modes.
 const CONDITIONAL_MODES: std::ops::RangeInclusive<u32> = 0x8E13..=0x8E16;
 
+/// `GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN` (ES 3.0): the primitives transform feedback
+/// captured between the begin and the end, counted as the draws are.
+const PRIMITIVES_WRITTEN: u32 = 0x8C88;
+
 /// Checks an occlusion query target.
 fn target(t: u32) -> GlResult<u32> {
     match t {
@@ -61,6 +65,9 @@ impl GlesExecutor {
                 ctx.active_query = None;
                 self.r.occlusion = None;
             }
+            if ctx.xfb.query.is_some_and(|q| q.0 == n) {
+                ctx.xfb.query = None;
+            }
             if ctx.active_timer == Some(n) {
                 ctx.active_timer = None;
             }
@@ -75,6 +82,18 @@ impl GlesExecutor {
     pub(super) fn glBeginQueryEXT(&mut self, ctx: &mut Context, target_: u32, id: u32) -> GlResult {
         if target_ == TIME_ELAPSED && self.has_timers() {
             return self.begin_timer(ctx, id);
+        }
+        if target_ == PRIMITIVES_WRITTEN && ctx.es3() {
+            if id == 0 || ctx.xfb.query.is_some() {
+                return Err(GlError::InvalidOperation);
+            }
+            let q = ctx.queries.get_mut(&id).ok_or(GlError::InvalidOperation)?;
+            if q.target != 0 && q.target != target_ {
+                return Err(GlError::InvalidOperation);
+            }
+            q.target = target_;
+            ctx.xfb.query = Some((id, 0));
+            return Ok(());
         }
         let target = target(target_)?;
         // Both targets share one slot: one occlusion query at a time.
@@ -96,6 +115,13 @@ impl GlesExecutor {
     pub(super) fn glEndQueryEXT(&mut self, ctx: &mut Context, target_: u32) -> GlResult {
         if target_ == TIME_ELAPSED && self.has_timers() {
             return self.end_timer(ctx);
+        }
+        if target_ == PRIMITIVES_WRITTEN && ctx.es3() {
+            let (id, n) = ctx.xfb.query.take().ok_or(GlError::InvalidOperation)?;
+            if let Some(q) = ctx.queries.get_mut(&id) {
+                q.primitives = n;
+            }
+            return Ok(());
         }
         let target = target(target_)?;
         if ctx.active_query.is_none_or(|a| a.target != target) {
@@ -134,6 +160,7 @@ impl GlesExecutor {
             (TIME_ELAPSED, CURRENT_QUERY) if timers => Ok(ctx.active_timer.map_or(0, |n| n as i32)),
             (TIMESTAMP, CURRENT_QUERY) if timers => Ok(0),
             (TIME_ELAPSED | TIMESTAMP, QUERY_COUNTER_BITS) if timers => Ok(64),
+            (PRIMITIVES_WRITTEN, CURRENT_QUERY) if ctx.es3() => Ok(ctx.xfb.query.map_or(0, |q| q.0 as i32)),
             _ => target(target_).and_then(|t| match pname {
                 CURRENT_QUERY => Ok(ctx.active_query.filter(|a| a.target == t).map_or(0, |a| a.name as i32)),
                 _ => Err(GlError::InvalidEnum),
@@ -168,7 +195,9 @@ impl GlesExecutor {
     /// an unknown or active query or a bad `pname`); a larger result than the caller's type
     /// holds is saturated.
     fn query_object(&mut self, ctx: &mut Context, id: u32, pname: u32) -> Option<u64> {
-        let active = ctx.active_query.is_some_and(|a| a.name == id) || ctx.active_timer == Some(id);
+        let active = ctx.active_query.is_some_and(|a| a.name == id)
+            || ctx.active_timer == Some(id)
+            || ctx.xfb.query.is_some_and(|q| q.0 == id);
         let Some(q) = ctx.queries.get(&id).filter(|q| q.target != 0 && !active) else {
             ctx.record(GlError::InvalidOperation);
             return None;
@@ -179,6 +208,9 @@ impl GlesExecutor {
         }
         if q.timer.is_some() {
             return self.timer_value(ctx, id, pname == QUERY_RESULT);
+        }
+        if q.target == PRIMITIVES_WRITTEN {
+            return Some(if pname == QUERY_RESULT { q.primitives } else { 1 });
         }
         let occlusion = q.last.clone()?;
         // Its draws still in the open pass are submitted first: asked repeatedly, the answer

@@ -23,10 +23,19 @@ pub enum BufferTarget {
     CopyRead,
     /// `GL_COPY_WRITE_BUFFER` (ES 3.0).
     CopyWrite,
+    /// `GL_TRANSFORM_FEEDBACK_BUFFER` (ES 3.0): the generic binding beside the indexed ones
+    /// transform feedback writes.
+    TransformFeedback,
 }
 
 /// `GL_UNIFORM_BUFFER`.
 pub const UNIFORM_BUFFER: u32 = 0x8A11;
+/// `GL_TRANSFORM_FEEDBACK_BUFFER`.
+pub const TRANSFORM_FEEDBACK_BUFFER: u32 = 0x8C8E;
+/// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0).
+pub const PRIMITIVE_RESTART_FIXED_INDEX: u32 = 0x8D69;
+/// `GL_RASTERIZER_DISCARD` (ES 3.0).
+pub const RASTERIZER_DISCARD: u32 = 0x8C89;
 
 impl BufferTarget {
     /// Parses a buffer target of a context (`es3`: an ES 3.0 one, which has ES 3.0's targets);
@@ -40,6 +49,7 @@ impl BufferTarget {
             UNIFORM_BUFFER if es3 => Ok(BufferTarget::Uniform),
             0x8F36 if es3 => Ok(BufferTarget::CopyRead),
             0x8F37 if es3 => Ok(BufferTarget::CopyWrite),
+            TRANSFORM_FEEDBACK_BUFFER if es3 => Ok(BufferTarget::TransformFeedback),
             _ => Err(GlError::InvalidEnum),
         }
     }
@@ -155,6 +165,8 @@ pub enum Capability {
     DepthClamp,
     /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0).
     PrimitiveRestartFixedIndex,
+    /// `GL_RASTERIZER_DISCARD` (ES 3.0).
+    RasterizerDiscard,
 }
 
 impl Capability {
@@ -165,7 +177,7 @@ impl Capability {
             Capability::DepthClamp if !features.contains(wgpu::Features::DEPTH_CLIP_CONTROL) => {
                 Err(GlError::InvalidEnum)
             }
-            Capability::PrimitiveRestartFixedIndex if !es3 => Err(GlError::InvalidEnum),
+            Capability::PrimitiveRestartFixedIndex | Capability::RasterizerDiscard if !es3 => Err(GlError::InvalidEnum),
             c => Ok(c),
         }
     }
@@ -186,6 +198,7 @@ impl Capability {
             DEBUG_OUTPUT_SYNCHRONOUS => Capability::DebugOutputSynchronous,
             DEPTH_CLAMP_EXT => Capability::DepthClamp,
             PRIMITIVE_RESTART_FIXED_INDEX => Capability::PrimitiveRestartFixedIndex,
+            RASTERIZER_DISCARD => Capability::RasterizerDiscard,
             _ => return Err(GlError::InvalidEnum),
         })
     }

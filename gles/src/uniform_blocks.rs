@@ -85,6 +85,9 @@ impl GlesExecutor {
     /// Binds `buffer` (its `offset`, `size` bytes; size 0: all of it) to uniform buffer binding
     /// `index` and to the generic binding.
     fn bind_range(&mut self, ctx: &mut Context, target: u32, index: u32, r: RangeBinding) -> GlResult {
+        if target == crate::typed::TRANSFORM_FEEDBACK_BUFFER {
+            return self.bind_xfb_range(ctx, index, r);
+        }
         if target != UNIFORM_BUFFER {
             return Err(GlError::InvalidEnum);
         }
@@ -109,8 +112,18 @@ impl GlesExecutor {
         offset: i64,
         size: i64,
     ) -> GlResult {
-        let align = i64::from(self.gpu.limits.min_uniform_buffer_offset_alignment);
-        if buffer != 0 && (size <= 0 || offset < 0 || offset % align != 0) {
+        if buffer != 0 && size <= 0 {
+            return Err(GlError::InvalidValue);
+        }
+        // Transform feedback writes words: its ranges start and end on them.
+        let align = match target {
+            crate::typed::TRANSFORM_FEEDBACK_BUFFER => 4,
+            _ => i64::from(self.gpu.limits.min_uniform_buffer_offset_alignment),
+        };
+        if target == crate::typed::TRANSFORM_FEEDBACK_BUFFER && buffer != 0 && size % 4 != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        if buffer != 0 && (offset < 0 || offset % align != 0) {
             return Err(GlError::InvalidValue);
         }
         let r = if buffer == 0 {
@@ -194,6 +207,9 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetInteger64i_v(&mut self, ctx: &mut Context, target: u32, index: u32) -> Vec<i64> {
+        if let Some(r) = self.xfb_binding(ctx, target, index) {
+            return r.map_err(|e| ctx.record(e)).ok().into_iter().collect();
+        }
         if !matches!(target, UNIFORM_BUFFER_BINDING | UNIFORM_BUFFER_START | UNIFORM_BUFFER_SIZE) {
             ctx.record(GlError::InvalidEnum);
             return Vec::new();

@@ -73,7 +73,7 @@ impl GlesExecutor {
         if !ctx.es3() {
             return None;
         }
-        if let Some(v) = self.uniform_block_state(ctx, pname) {
+        if let Some(v) = self.uniform_block_state(ctx, pname).or_else(|| self.xfb_state(ctx, pname)) {
             return Some(v);
         }
         Some(vec![match pname {

@@ -300,6 +300,16 @@ command_set! {
         glClearBufferiv [Context, Es3] => ClearBufferiv { buffer: GLenum, drawbuffer: GLint, values: Slice<'a, GLint> };
         glClearBufferuiv [Context, Es3] => ClearBufferuiv { buffer: GLenum, drawbuffer: GLint, values: Slice<'a, GLuint> };
         glClearBufferfi [Context, Es3] => ClearBufferfi { buffer: GLenum, drawbuffer: GLint, depth: GLfloat, stencil: GLint };
+        glGenTransformFeedbacks [Context, Es3] => GenTransformFeedbacks { names: Slice<'a, GLuint> };
+        glDeleteTransformFeedbacks [Context, Es3] => DeleteTransformFeedbacks { names: Slice<'a, GLuint> };
+        glBindTransformFeedback [Context, Es3] => BindTransformFeedback { target: GLenum, id: GLuint };
+        glBeginTransformFeedback [Context, Es3] => BeginTransformFeedback { mode: GLenum };
+        /// Ends capture; the captured buffers' contents are read back for the daemon's copies.
+        glEndTransformFeedback [Context, Es3] => EndTransformFeedback {};
+        glPauseTransformFeedback [Context, Es3] => PauseTransformFeedback {};
+        glResumeTransformFeedback [Context, Es3] => ResumeTransformFeedback {};
+        /// `names`: the `count` varyings' names, each ended by a newline.
+        glTransformFeedbackVaryings [Context, Es3] => TransformFeedbackVaryings { program: GLuint, count: GLsizei, names: Text<'a>, buffer_mode: GLenum };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -451,6 +461,9 @@ command_set! {
         glGetVertexAttribIuiv [Context, Es3] => GetVertexAttribIuiv { index: GLuint, pname: GLenum } -> Vec<GLuint>;
         /// A fragment output's location by name (-1 if none).
         glGetFragDataLocation [Context, Es3] => GetFragDataLocation { program: GLuint, name: Text<'a> } -> GLint;
+        glIsTransformFeedback [Context, Es3] => IsTransformFeedback { id: GLuint } -> bool;
+        /// A captured varying's size, type and name (`None` on error).
+        glGetTransformFeedbackVarying [Context, Es3] => GetTransformFeedbackVarying { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
     }
 }
 

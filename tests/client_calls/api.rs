@@ -236,4 +236,18 @@ api! {
     client_wait_sync = "glClientWaitSync": fn(Ptr, u32, u64) -> u32;
     wait_sync = "glWaitSync": fn(Ptr, u32, u64);
     get_synciv = "glGetSynciv": fn(Ptr, u32, i32, *mut i32, *mut i32);
+    gen_transform_feedbacks = "glGenTransformFeedbacks": fn(i32, *mut u32);
+    delete_transform_feedbacks = "glDeleteTransformFeedbacks": fn(i32, *const u32);
+    bind_transform_feedback = "glBindTransformFeedback": fn(u32, u32);
+    is_transform_feedback = "glIsTransformFeedback": fn(u32) -> u8;
+    begin_transform_feedback = "glBeginTransformFeedback": fn(u32);
+    end_transform_feedback = "glEndTransformFeedback": fn();
+    pause_transform_feedback = "glPauseTransformFeedback": fn();
+    resume_transform_feedback = "glResumeTransformFeedback": fn();
+    transform_feedback_varyings = "glTransformFeedbackVaryings": fn(u32, i32, *const *const i8, u32);
+    get_transform_feedback_varying = "glGetTransformFeedbackVarying": fn(u32, u32, i32, *mut i32, *mut i32, *mut u32, *mut i8);
+    bind_buffer_base = "glBindBufferBase": fn(u32, u32, u32);
+    bind_buffer_range = "glBindBufferRange": fn(u32, u32, u32, isize, isize);
+    get_integeri_v = "glGetIntegeri_v": fn(u32, u32, *mut i32);
+    get_query_object_uiv_core = "glGetQueryObjectuiv": fn(u32, u32, *mut u32);
 }

@@ -35,6 +35,10 @@ pub fn sequence(r: &mut Run) {
         r.note(&format!("glGetFragDataLocation in an ES 2.0 context: {l}"));
         (gl.enable)(0x8D69);
         r.note("glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX) in an ES 2.0 context");
+        (gl.enable)(0x8C89);
+        r.note("glEnable(GL_RASTERIZER_DISCARD) in an ES 2.0 context");
+        (gl.begin_transform_feedback)(0x0004);
+        r.note("glBeginTransformFeedback in an ES 2.0 context");
         let s = (gl.fence_sync)(0x9117, 0);
         r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
         let w = (gl.client_wait_sync)(s, 0, 0);

@@ -42,6 +42,8 @@ pub struct MesaGl {
     queries: HashMap<u32, u32>,
     /// The client's program pipeline names and Mesa's.
     pipelines: HashMap<u32, u32>,
+    /// The client's transform feedback names and Mesa's.
+    xfbs: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
     client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
@@ -83,6 +85,7 @@ mod state;
 mod texture3d;
 mod textures;
 mod vertices;
+mod xfb;
 
 fn unsupported(what: &str) -> ClientError {
     ClientError::Unsupported(format!("the Mesa reference backend does not forward {what}"))
@@ -165,6 +168,7 @@ impl MesaGl {
             vaos: HashMap::new(),
             queries: HashMap::new(),
             pipelines: HashMap::new(),
+            xfbs: HashMap::new(),
             client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),

@@ -78,6 +78,8 @@ pub(crate) struct GlState {
     pub uniform_buffer: u32,
     /// `GL_COPY_READ_BUFFER_BINDING` and `GL_COPY_WRITE_BUFFER_BINDING` (ES 3.0).
     pub copy_buffers: [u32; 2],
+    /// `GL_TRANSFORM_FEEDBACK_BUFFER_BINDING` (ES 3.0): the generic binding.
+    pub xfb_buffer: u32,
     /// An ES 3.0 context: the ES 3.0 entry points the library implements with other commands
     /// work (in an ES 2.0 context they record `GL_INVALID_OPERATION`, as the daemon does for
     /// its own).
@@ -101,6 +103,7 @@ impl Default for GlState {
             unpack_buffer: 0,
             uniform_buffer: 0,
             copy_buffers: [0; 2],
+            xfb_buffer: 0,
             es3: false,
         }
     }
@@ -129,6 +132,7 @@ impl GlState {
             GL_UNIFORM_BUFFER => Some(self.uniform_buffer),
             GL_COPY_READ_BUFFER => Some(self.copy_buffers[0]),
             GL_COPY_WRITE_BUFFER => Some(self.copy_buffers[1]),
+            GL_TRANSFORM_FEEDBACK_BUFFER => Some(self.xfb_buffer),
             _ => None,
         }
     }

@@ -6,7 +6,9 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use crate::glsl::linked::{array_suffix, Linked, LinkedBlock, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT};
+use crate::glsl::linked::{
+    array_suffix, Linked, LinkedBlock, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP,
+};
 use crate::glsl::translate::{naga_module, transpile, Body, Placed};
 use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
 use crate::limits::{MAX_BLOCK, MAX_SAMPLERS, MAX_VARYING_VECTORS};
@@ -89,6 +91,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         // GLSL ES 3.00's outputs; the link placed a lone one without a location at 0.
         outputs: fs.outputs.iter().map(|o| (o.name.clone(), o.location.unwrap_or(0))).collect(),
         flat: fs.varyings.iter().any(|v| interpolation(v) == "flat "),
+        capture: None,
     })
 }
 
@@ -352,7 +355,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let body = &vs_body.text;
     let points_source = format!(
         "{vsrc}layout(location = {point_input}) in vec4 strata_point;\n{body}\nvoid main() {{\n    strata_PointSize = 1.0;\n{point_instance}    strata_main();\n{vs_copy}\
-    float strata_size = clamp(strata_PointSize, 1.0, {MAX_POINT_SIZE:.1});\n\
+{POINT_SIZE_STEP} = clamp(strata_PointSize, 1.0, {MAX_POINT_SIZE:.1});\n\
     vec2 strata_corner = vec2(float(gl_VertexIndex & 1), float((gl_VertexIndex >> 1) & 1));\n{pc_corner}\
     gl_Position.xy += (strata_corner * 2.0 - 1.0) * (strata_size * gl_Position.w) * strata_point.xy;\n{CONVENTIONS}}}\n"
     );

@@ -78,7 +78,13 @@ pub struct Linked {
     /// Whether a varying reaches the fragment stage `flat`: its value is then the last
     /// vertex's of each primitive, as GL takes it (wgpu takes the first's).
     pub flat: bool,
+    /// What transform feedback captures (`glTransformFeedbackVaryings` before the link).
+    pub capture: Option<crate::glsl::capture::Capture>,
 }
+
+/// The points stage's first step after the shader's `main` and its copies: where a
+/// capturing variant stores the vertex, before the point is expanded.
+pub(crate) const POINT_SIZE_STEP: &str = "    float strata_size";
 
 /// The vertex stage's last steps, Strata's conventions: y negated, clip z mapped to [0, 1]
 /// (`variants::FLIP_Y` and `variants::FORWARD_Z`, which the stage's variants replace).

@@ -22,6 +22,7 @@
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
 pub mod blocks;
+pub mod capture;
 mod checks;
 mod consts;
 mod interface;

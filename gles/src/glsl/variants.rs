@@ -3,7 +3,7 @@
 //! and a reversed-Z surface's depth. The shader's own code is never touched: the generated
 //! steps come last, so each is found as its last occurrence.
 
-use crate::glsl::linked::{Linked, CONVENTIONS, FRAG_DEPTH_OUT};
+use crate::glsl::linked::{Linked, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP};
 use crate::glsl::translate::{naga_module, Body, Placed};
 use crate::glsl::types::Stage;
 
@@ -68,7 +68,26 @@ impl Linked {
     /// declaration: the program's projection must have the standard perspective z row for
     /// `near` and `far`.
     pub fn vertex_variant(&self, points: bool, upper_left: bool, z: ClipZ) -> Result<naga::Module, String> {
-        let source = if points { &self.points_source } else { &self.vertex_source };
+        self.capturing_variant(points, upper_left, z, None)
+    }
+
+    /// [`Linked::vertex_variant`], storing the captured varyings first where `capture` is
+    /// `Some(discard)` (with `discard`, `GL_RASTERIZER_DISCARD`: nothing is rasterized).
+    pub fn capturing_variant(
+        &self,
+        points: bool,
+        upper_left: bool,
+        z: ClipZ,
+        capture: Option<bool>,
+    ) -> Result<naga::Module, String> {
+        let mut source = if points { self.points_source.clone() } else { self.vertex_source.clone() };
+        if let (Some(discard), Some(c)) = (capture, &self.capture) {
+            let step = if points { POINT_SIZE_STEP } else { CONVENTIONS };
+            let at = source.rfind(step).ok_or("internal error: no place to capture in the vertex stage")?;
+            source.insert_str(at, &crate::glsl::capture::statements(c, points, discard));
+            let top = source.find('\n').map_or(0, |n| n + 1);
+            source.insert_str(top, &crate::glsl::capture::declarations(c));
+        }
         let at = source.rfind(CONVENTIONS).ok_or("internal error: no conventions in the vertex stage")?;
         let mut head = source[..at].to_string();
         if upper_left && points {

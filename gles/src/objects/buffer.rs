@@ -72,3 +72,15 @@ pub struct Mapping {
     /// `GL_MAP_*_BIT_EXT` flags (`GL_MAP_WRITE_BIT_EXT` for `glMapBufferOES`).
     pub access: u32,
 }
+
+/// An indexed buffer binding: the buffer, and the range `glBindBufferRange` gave (a size of 0:
+/// the whole buffer, `glBindBufferBase`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RangeBinding {
+    /// The buffer (0: none).
+    pub buffer: u32,
+    /// The first byte.
+    pub offset: u64,
+    /// The bytes bound (0: all of it, however large it becomes).
+    pub size: u64,
+}

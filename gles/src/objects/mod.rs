@@ -14,3 +14,4 @@ pub mod surface;
 pub mod texture;
 pub mod vertex_array;
 pub mod window;
+pub mod xfb;

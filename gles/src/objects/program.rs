@@ -54,7 +54,13 @@ pub struct LinkedProgram {
     /// Vertex stages for `GL_EXT_clip_control` states other than the default, by (points,
     /// state), created on first use (or why they failed).
     pub(crate) clip_vs: Mutex<HashMap<(bool, ClipControl), Result<wgpu::ShaderModule, String>>>,
+    /// Capturing vertex stages (transform feedback), by (points, clip control, rasterizer
+    /// discard), created on first use (or why they failed).
+    pub(crate) capture_vs: Mutex<VariantCache<(bool, ClipControl, bool)>>,
 }
+
+/// Vertex stage variants by what selects them, each created on first use (or why it failed).
+pub(crate) type VariantCache<K> = HashMap<K, Result<wgpu::ShaderModule, String>>;
 
 /// The stages a link used: program pipelines link a vertex stage of one separable program
 /// with the fragment stage of another (`GL_EXT_separate_shader_objects`), so a separable
@@ -115,6 +121,26 @@ impl LinkedProgram {
             })
             .clone()
     }
+
+    /// The vertex module (`points`: the points variant) that captures the transform feedback
+    /// varyings, for clip control state `clip` and rasterizer discard `discard`.
+    pub fn capture_vs(
+        &self,
+        gpu: &Gpu,
+        points: bool,
+        clip: ClipControl,
+        discard: bool,
+    ) -> Result<wgpu::ShaderModule, String> {
+        let mut cache = self.capture_vs.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        cache
+            .entry((points, clip, discard))
+            .or_insert_with(|| {
+                let z = if clip.zero_to_one { glsl::ClipZ::Direct } else { glsl::ClipZ::Forward };
+                let m = self.info.capturing_variant(points, clip.upper_left, z, Some(discard))?;
+                shader_module(gpu, "vs capture", m)
+            })
+            .clone()
+    }
 }
 
 /// A program object.
@@ -143,6 +169,10 @@ pub struct Program {
     pub validated: bool,
     /// `GL_PROGRAM_SEPARABLE_EXT`: whether the next link makes a program pipelines can use.
     pub separable: bool,
+    /// `glTransformFeedbackVaryings`: the varyings the next link captures, and whether each
+    /// goes to a buffer of its own (`GL_TRANSFORM_FEEDBACK_BUFFER_MODE` `GL_SEPARATE_ATTRIBS`;
+    /// the default is `GL_INTERLEAVED_ATTRIBS`).
+    pub xfb: (Vec<String>, bool),
 }
 
 impl Program {
@@ -209,6 +239,7 @@ pub fn create_gpu_program(gpu: &Gpu, (info, recipe, stages): LinkResult, id: u64
         stages,
         points_vs: OnceLock::new(),
         clip_vs: Mutex::default(),
+        capture_vs: Mutex::default(),
     })
 }
 
@@ -292,6 +323,30 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
                 } else {
                     wgpu::SamplerBindingType::Filtering
                 }),
+                count: None,
+            });
+        }
+    }
+    if let Some(c) = &info.capture {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: glsl::capture::PARAMS_BINDING,
+            visibility: wgpu::ShaderStages::VERTEX,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(glsl::capture::PARAMS_SIZE),
+            },
+            count: None,
+        });
+        for b in 0..c.strides.len() as u32 {
+            entries.push(wgpu::BindGroupLayoutEntry {
+                binding: glsl::capture::FIRST_BUFFER_BINDING + b,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: false },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
                 count: None,
             });
         }

@@ -19,6 +19,8 @@ pub struct Query {
     pub last: Option<Arc<Occlusion>>,
     /// A timer query's timestamps (`GL_EXT_disjoint_timer_query`).
     pub timer: Option<crate::objects::query::Timer>,
+    /// A `GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN` query's count (ES 3.0).
+    pub primitives: u64,
 }
 
 /// The occlusion query a context has active: its name and target.

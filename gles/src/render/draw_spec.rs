@@ -104,4 +104,7 @@ pub struct DrawSpec<'a> {
     pub stencil_ref: u32,
     /// Blend constant.
     pub blend_color: [f64; 4],
+    /// A capturing draw's numbers (the capture block's bytes) and its buffers, by binding
+    /// (transform feedback).
+    pub capture: Option<(Vec<u8>, Vec<wgpu::Buffer>)>,
 }

@@ -147,6 +147,9 @@ pub struct Fixed {
     /// What a uniform block without a large enough buffer reads: zeros, as many as a block
     /// may hold.
     zero_block: wgpu::Buffer,
+    /// What a transform feedback program's capture buffers are when it does not capture: one
+    /// small buffer per binding, which nothing writes.
+    unused_capture: Vec<wgpu::Buffer>,
     clear_module: wgpu::ShaderModule,
     clear_bgl: wgpu::BindGroupLayout,
     clear_layout: wgpu::PipelineLayout,
@@ -200,6 +203,16 @@ impl Fixed {
             black_2d: black(gpu, 1),
             black_cube: black(gpu, 6),
             black_3d: black_volume(gpu),
+            unused_capture: (0..crate::glsl::capture::MAX_SEPARATE_ATTRIBS)
+                .map(|_| {
+                    d.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("unused capture buffer"),
+                        size: 16,
+                        usage: wgpu::BufferUsages::STORAGE,
+                        mapped_at_creation: false,
+                    })
+                })
+                .collect(),
             zero_block: d.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("zero uniform block"),
                 size: u64::from(crate::glsl::blocks::MAX_UNIFORM_BLOCK_SIZE),

@@ -19,6 +19,9 @@ pub(crate) enum Bind {
         textures: Vec<(wgpu::TextureView, u64, wgpu::Sampler, SamplerState, wgpu::Sampler)>,
         /// Per uniform block: the buffer and offset it reads.
         blocks: Vec<(wgpu::Buffer, u64)>,
+        /// A transform feedback program's capture block and buffers (unused ones where the
+        /// draw does not capture).
+        capture: Option<(wgpu::Buffer, Vec<wgpu::Buffer>)>,
     },
     /// A clear quad's parameters, at an offset into the ring.
     Clear(u32),

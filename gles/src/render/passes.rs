@@ -42,6 +42,20 @@ impl Renderer {
 
     /// Records a validated draw into the target's pass.
     pub fn draw(&mut self, target: &Target, spec: DrawSpec<'_>) {
+        // A capturing draw has a pass of its own: the buffers it writes as storage may be read
+        // as vertices, indices or uniforms by the draws before and after it.
+        let capturing = spec.capture.is_some();
+        if capturing {
+            self.flush();
+        }
+        self.record(target, spec);
+        if capturing {
+            self.flush();
+        }
+    }
+
+    /// Records a validated draw into the target's pass.
+    fn record(&mut self, target: &Target, spec: DrawSpec<'_>) {
         let depth_mask = spec
             .textures
             .iter()
@@ -83,6 +97,18 @@ impl Renderer {
         }
         let blocks: Vec<(wgpu::Buffer, u64)> =
             spec.blocks.into_iter().map(|b| b.unwrap_or_else(|| (self.fixed.zero_block.clone(), 0))).collect();
+        let capture = spec.program.info.capture.as_ref().map(|c| match spec.capture {
+            Some((params, buffers)) => {
+                use wgpu::util::DeviceExt;
+                let block = self.gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("capture numbers"),
+                    contents: &params,
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                (block, buffers)
+            }
+            None => (self.fixed.zero_block.clone(), self.fixed.unused_capture[..c.strides.len()].to_vec()),
+        });
         let align = 4;
         let mut vertex = Vec::with_capacity(spec.inputs.len());
         for i in spec.inputs {
@@ -104,7 +130,7 @@ impl Renderer {
         self.draws += 1;
         let rec = Recorded {
             pipeline,
-            bind: Bind::Program { program: spec.program, layout, uniform, textures, blocks },
+            bind: Bind::Program { program: spec.program, layout, uniform, textures, blocks, capture },
             vertex,
             index,
             count: spec.count,
@@ -201,11 +227,17 @@ impl Renderer {
                     }
                     clear_group.clone()
                 }
-                Bind::Program { program, layout, uniform, textures, blocks } => {
-                    if uniform.is_none() && textures.is_empty() && blocks.is_empty() {
+                Bind::Program { program, layout, uniform, textures, blocks, capture } => {
+                    if uniform.is_none() && textures.is_empty() && blocks.is_empty() && capture.is_none() {
                         None
                     } else {
-                        let key = (program.id, textures.iter().map(|t| (t.1, t.3)).collect::<Vec<_>>(), blocks.clone());
+                        let mut key =
+                            (program.id, textures.iter().map(|t| (t.1, t.3)).collect::<Vec<_>>(), blocks.clone());
+                        if let Some((block, buffers)) = capture {
+                            // Captures are in passes of their own: these tell them apart anyway.
+                            key.2.push((block.clone(), u64::MAX));
+                            key.2.extend(buffers.iter().map(|b| (b.clone(), u64::MAX - 1)));
+                        }
                         if let Some(g) = cache.get(&key) {
                             Some(g.clone())
                         } else {
@@ -244,6 +276,22 @@ impl Renderer {
                                         size: wgpu::BufferSize::new(u64::from(b.block.size)),
                                     }),
                                 });
+                            }
+                            if let Some((block, buffers)) = capture {
+                                entries.push(wgpu::BindGroupEntry {
+                                    binding: crate::glsl::capture::PARAMS_BINDING,
+                                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                        buffer: block,
+                                        offset: 0,
+                                        size: wgpu::BufferSize::new(crate::glsl::capture::PARAMS_SIZE),
+                                    }),
+                                });
+                                for (b, buffer) in buffers.iter().enumerate() {
+                                    entries.push(wgpu::BindGroupEntry {
+                                        binding: crate::glsl::capture::FIRST_BUFFER_BINDING + b as u32,
+                                        resource: buffer.as_entire_binding(),
+                                    });
+                                }
                             }
                             let g = d.create_bind_group(&wgpu::BindGroupDescriptor {
                                 label: None,

@@ -9,6 +9,7 @@ mod int_attributes;
 mod language;
 mod restart;
 mod uniforms;
+mod xfb;
 
 /// Every ES 3.0 program.
 pub fn all() -> Vec<Case> {
@@ -27,5 +28,6 @@ pub fn all() -> Vec<Case> {
         c("es3_int_attributes", int_attributes::int_attributes),
         c("es3_primitive_restart", restart::primitive_restart),
         c("es3_provoking_vertex", restart::provoking_vertex),
+        c("es3_transform_feedback", xfb::transform_feedback),
     ]
 }

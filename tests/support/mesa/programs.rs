@@ -210,7 +210,7 @@ impl Arms<'_> {
     }
 
     /// `glGetActiveAttrib` or `glGetActiveUniform` (`entry`, same C signature).
-    fn active_variable(
+    pub(super) fn active_variable(
         &mut self,
         entry: &'static str,
         program: GLuint,

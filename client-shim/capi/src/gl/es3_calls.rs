@@ -1,6 +1,6 @@
 //! ES 3.0 calls the library marshals by hand: `glClearBuffer*`, whose array holds four values
-//! for a colour and one for the depth or the stencil, and `glGetFragDataLocation`, which takes
-//! a name.
+//! for a colour and one for the depth or the stencil, `glGetFragDataLocation`, which takes a
+//! name, and `glTransformFeedbackVaryings`, which takes a list of them.
 
 use strata_protocol::{Calls, Slice, Text};
 
@@ -54,6 +54,22 @@ crate::entry::entry_points! {
     /// Clears the depth and the stencil together.
     fn glClearBufferfi(buffer: GLenum, drawbuffer: GLint, depth: GLfloat, stencil: GLint) {
         with_gl("glClearBufferfi", (), |gl| gl.conn.glClearBufferfi(buffer, drawbuffer, depth, stencil))
+    }
+
+    /// The varyings the next link captures, sent as one text of lines (`count` is checked by
+    /// the daemon; a name that is no string is sent empty, which no varying has).
+    fn glTransformFeedbackVaryings(program: GLuint, count: GLsizei, varyings: *const *const GLchar, buffer_mode: GLenum) {
+        with_gl("glTransformFeedbackVaryings", (), |gl| {
+            // SAFETY: the application passes `count` pointers.
+            let names = unsafe { values(varyings, i64::from(count)) };
+            let mut text = String::new();
+            for &n in names {
+                // SAFETY: each is NUL-terminated.
+                text.push_str(unsafe { c_name(n) }.unwrap_or(""));
+                text.push('\n');
+            }
+            gl.conn.glTransformFeedbackVaryings(program, count, Text::borrowed(&text), buffer_mode)
+        })
     }
 
     /// A fragment output's location by name (-1 for none, or a name that is no string).

@@ -276,6 +276,7 @@ pub mod names {
         glGenTextures;
         glGenQueriesEXT;
         glGenProgramPipelinesEXT;
+        glGenTransformFeedbacks;
     }
 }
 
@@ -288,6 +289,7 @@ pub mod delete {
         glDeleteTextures;
         glDeleteQueriesEXT;
         glDeleteProgramPipelinesEXT;
+        glDeleteTransformFeedbacks;
     }
 }
 
@@ -347,5 +349,6 @@ pub mod active {
     get_active! {
         glGetActiveAttrib;
         glGetActiveUniform;
+        glGetTransformFeedbackVarying;
     }
 }

@@ -269,6 +269,9 @@ crate::entry::entry_points! {
                 for c in gl.st.copy_buffers.iter_mut().filter(|c| **c == b) {
                     *c = 0;
                 }
+                if gl.st.xfb_buffer == b {
+                    gl.st.xfb_buffer = 0;
+                }
             }
             gl.conn.glDeleteBuffers(Slice::new(v))
         })
@@ -286,6 +289,7 @@ crate::entry::entry_points! {
                 GL_UNIFORM_BUFFER => gl.st.uniform_buffer = buffer,
                 GL_COPY_READ_BUFFER => gl.st.copy_buffers[0] = buffer,
                 GL_COPY_WRITE_BUFFER => gl.st.copy_buffers[1] = buffer,
+                GL_TRANSFORM_FEEDBACK_BUFFER => gl.st.xfb_buffer = buffer,
                 _ => {}
             }
             gl.conn.glBindBuffer(target, buffer)

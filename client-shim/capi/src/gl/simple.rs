@@ -155,4 +155,10 @@ simple_calls! {
     fn glIsTexture(name: GLuint) -> GLboolean;
     fn glIsQueryEXT(id: GLuint) -> GLboolean;
     fn glIsProgramPipelineEXT(pipeline: GLuint) -> GLboolean;
+    fn glBindTransformFeedback(target: GLenum, id: GLuint);
+    fn glBeginTransformFeedback(mode: GLenum);
+    fn glEndTransformFeedback();
+    fn glPauseTransformFeedback();
+    fn glResumeTransformFeedback();
+    fn glIsTransformFeedback(id: GLuint) -> GLboolean;
 }

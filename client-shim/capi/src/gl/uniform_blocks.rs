@@ -15,6 +15,9 @@ crate::entry::entry_points! {
             if target == GL_UNIFORM_BUFFER && (index as usize) < 24 {
                 gl.st.uniform_buffer = buffer;
             }
+            if target == GL_TRANSFORM_FEEDBACK_BUFFER && (index as usize) < 4 {
+                gl.st.xfb_buffer = buffer;
+            }
             gl.conn.glBindBufferBase(target, index, buffer)
         })
     }
@@ -27,6 +30,9 @@ crate::entry::entry_points! {
             // at the next query; here it follows a call that can succeed.
             if target == GL_UNIFORM_BUFFER && (index as usize) < 24 && (buffer == 0 || size > 0) {
                 gl.st.uniform_buffer = buffer;
+            }
+            if target == GL_TRANSFORM_FEEDBACK_BUFFER && (index as usize) < 4 && (buffer == 0 || size > 0) {
+                gl.st.xfb_buffer = buffer;
             }
             c
         })
