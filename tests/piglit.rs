@@ -7,8 +7,14 @@
 //! Entries that pass through Strata again are stale and fail the test too, so the file stays
 //! honest.
 //!
-//! Results stay under `target/piglit/{native,strata}` (piglit's `results.json`, the daemon's
-//! log) and the verdict is written to `target/strata-tests/piglit.txt`.
+//! The same for ES 3.0: piglit's GLES 3.0 selection in the areas ES 3.0's language and buffer
+//! and draw side cover, natively on Mesa held to ES 3.0 and through `stratad --es3`, with
+//! `tests/piglit/exceptions_es3.txt`; at least 95 % of the native passes must pass through
+//! Strata, and each that does not needs its entry there.
+//!
+//! Results stay under `target/piglit/{native,strata}` (`…-es3` for ES 3.0: piglit's
+//! `results.json`, the daemon's log) and the verdict is written to
+//! `target/strata-tests/piglit.txt` (`piglit-es3.txt`).
 
 #[path = "piglit/selection.rs"]
 mod selection;
@@ -30,15 +36,57 @@ const TESTS: &str = "/usr/lib/x86_64-linux-gnu/piglit/tests";
 const BIN: &str = "/usr/lib/x86_64-linux-gnu/piglit/bin";
 /// The profiles the selection is drawn from.
 const PROFILES: &[&str] = &["opengl.xml.gz", "shader.xml.gz", "glslparser.xml.gz"];
-/// What the native side's version string must start with: Mesa held to ES 2.0.
-const NATIVE_VERSION: &str = "OpenGL ES 2.0";
 /// piglit kills a test that runs longer than this and records `timeout`.
 const PER_TEST_TIMEOUT_S: u32 = 60;
 /// A whole run that takes longer than this is killed and fails the test.
 const RUN_DEADLINE: Duration = Duration::from_secs(900);
-/// Mesa held to ES 2.0 passes about 190 tests of the selection; far fewer means the oracle
-/// itself is broken.
-const NATIVE_PASS_FLOOR: usize = 160;
+/// One comparison: a selection, the version both sides are held to, and its exceptions.
+struct Oracle {
+    /// What the selection takes.
+    api: &'static selection::Api,
+    /// What its files and report are called (`gles2`, `gles3`).
+    label: &'static str,
+    /// The version Mesa is held to (`MESA_GLES_VERSION_OVERRIDE`), which its version string
+    /// must then start with after "OpenGL ES ".
+    version: &'static str,
+    /// What wflinfo asks for (`gles2`, `gles3`).
+    wflinfo_api: &'static str,
+    /// The daemon's options beyond the output.
+    daemon_args: &'static [&'static str],
+    /// The exceptions file, under `tests/piglit`, and the excuses it may give.
+    exceptions: &'static str,
+    excuses: &'static [&'static str],
+    /// Where the results go, under `target/piglit`, beside `native` and `strata`: "" or `-es3`.
+    suffix: &'static str,
+    /// Fewer native passes than this means the oracle itself is broken.
+    native_floor: usize,
+}
+
+/// piglit's GLES 2.0 selection: Mesa held to ES 2.0 passes about 190 of its tests.
+const ES2: Oracle = Oracle {
+    api: &selection::GLES2,
+    label: "gles2",
+    version: "2.0",
+    wflinfo_api: "gles2",
+    daemon_args: &[],
+    exceptions: "exceptions.txt",
+    excuses: verdict::EXCUSES,
+    suffix: "",
+    native_floor: 160,
+};
+
+/// piglit's GLES 3.0 selection in the first part's areas: Mesa held to ES 3.0 passes about 150.
+const ES3: Oracle = Oracle {
+    api: &selection::GLES3,
+    label: "gles3",
+    version: "3.0",
+    wflinfo_api: "gles3",
+    daemon_args: &["--es3", "--es3-for-es2"],
+    exceptions: "exceptions_es3.txt",
+    excuses: verdict::EXCUSES_ES3,
+    suffix: "-es3",
+    native_floor: 120,
+};
 
 /// Whether piglit, wflinfo and Xvfb are installed; if not, the test skips with the reason,
 /// unless `STRATA_REQUIRE_ORACLES=1` (CI), where it fails.
@@ -56,9 +104,9 @@ fn target_dir() -> PathBuf {
     PathBuf::from(support::stratad()).parent().and_then(Path::parent).expect("target dir").to_path_buf()
 }
 
-/// The checked-in exceptions file.
-fn exceptions_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/piglit/exceptions.txt")
+/// A checked-in exceptions file.
+fn exceptions_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/piglit").join(name)
 }
 
 /// One side of the comparison: the environment its programs run in.
@@ -87,9 +135,9 @@ impl Side {
         cmd
     }
 
-    /// The renderer and version string wflinfo reports for an ES 2 context on this side.
-    fn renderer(&self) -> (String, String) {
-        let out = self.command("wflinfo").args(["-p", "x11_egl", "-a", "gles2"]).output().expect("run wflinfo");
+    /// The renderer and version string wflinfo reports for a context of `api` on this side.
+    fn renderer(&self, api: &str) -> (String, String) {
+        let out = self.command("wflinfo").args(["-p", "x11_egl", "-a", api]).output().expect("run wflinfo");
         let text = String::from_utf8_lossy(&out.stdout);
         let line = |key: &str| text.lines().find_map(|l| l.strip_prefix(key)).unwrap_or("?").trim().to_string();
         let renderer = line("OpenGL renderer string:");
@@ -139,23 +187,26 @@ impl Side {
     }
 }
 
-/// The summary written to `target/strata-tests/piglit.txt`.
-fn summary(native: (&Run, Duration), strata: (&Run, Duration), v: &Verdict, rerun: &str) -> String {
+/// The summary written to `target/strata-tests/piglit.txt` (`piglit-es3.txt`).
+fn summary(o: &Oracle, native: (&Run, Duration), strata: (&Run, Duration), v: &Verdict, rerun: &str) -> String {
     let mut s = String::new();
     let mut line = |l: String| {
         s.push_str(&l);
         s.push('\n');
     };
     line(format!(
-        "piglit selection: the tests of {} on GLES 2.0 and GLSL ES 1.00, by piglit's metadata (tests/piglit/selection.rs); native side held to {NATIVE_VERSION}",
-        PROFILES.join(" ")
+        "piglit selection: the tests of {} of piglit's {} build, by its metadata (tests/piglit/selection.rs); native side held to OpenGL ES {}",
+        PROFILES.join(" "),
+        o.label,
+        o.version
     ));
     line(format!("native (Mesa):   {} in {:.1}s", verdict::counts_line(native.0), native.1.as_secs_f64()));
     line(format!("through stratad: {} in {:.1}s", verdict::counts_line(strata.0), strata.1.as_secs_f64()));
     let native_passes = native.0.values().filter(|o| o.result == "pass").count();
     let both = native.0.iter().filter(|(n, o)| o.result == "pass" && strata.0[*n].result == "pass").count();
     line(format!(
-        "of {native_passes} native passes: {both} pass through stratad, {} excused, {} regressions",
+        "of {native_passes} native passes: {both} pass through stratad ({:.1} %), {} excused, {} regressions",
+        100.0 * both as f64 / native_passes.max(1) as f64,
         v.excused,
         v.regressions.len()
     ));
@@ -188,8 +239,18 @@ fn summary(native: (&Run, Duration), strata: (&Run, Duration), v: &Verdict, reru
 
 #[test]
 fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
-    let exceptions_text = std::fs::read_to_string(exceptions_path()).expect("read tests/piglit/exceptions.txt");
-    let exceptions = verdict::parse_exceptions(&exceptions_text).expect("tests/piglit/exceptions.txt");
+    compare(&ES2);
+}
+
+#[test]
+fn piglit_es3_passes_through_stratad_as_on_mesa() {
+    compare(&ES3);
+}
+
+/// Runs `o`'s selection natively and through `stratad`, and judges the two.
+fn compare(o: &Oracle) {
+    let exceptions_text = std::fs::read_to_string(exceptions_path(o.exceptions)).expect("read the exceptions");
+    let exceptions = verdict::parse_exceptions_with(&exceptions_text, o.excuses).expect("the exceptions file");
     if !oracles_present() {
         return;
     }
@@ -198,39 +259,42 @@ fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
 
     // The oracle: Mesa's own libraries (LIBGL_ALWAYS_SOFTWARE keeps it on llvmpipe where a GPU
     // exists), nothing of Strata's on the library path.
-    let selected = selection::select(Path::new(TESTS), Path::new(BIN), PROFILES).expect("piglit's profiles");
-    let list = out_dir.join("gles2.xml.gz");
+    let selected = selection::select(Path::new(TESTS), Path::new(BIN), PROFILES, o.api).expect("piglit's profiles");
+    let list = out_dir.join(format!("{}.xml.gz", o.label));
     selection::write_profile(&list, &selected).expect("write the selection's profile");
-    eprintln!("selection: {} tests of piglit's GLES 2.0 build and GLSL ES 1.00 ({})", selected.len(), list.display());
+    eprintln!("selection: {} tests of piglit's {} build ({})", selected.len(), o.label, list.display());
     let x_native = Xvfb::start(1024, 768).expect("Xvfb");
     let native = Side {
         name: "native",
         display: x_native.display.clone(),
-        env: vec![("LIBGL_ALWAYS_SOFTWARE", "1".into()), ("MESA_GLES_VERSION_OVERRIDE", "2.0".into())],
+        env: vec![("LIBGL_ALWAYS_SOFTWARE", "1".into()), ("MESA_GLES_VERSION_OVERRIDE", o.version.into())],
     };
-    let (renderer, version) = native.renderer();
+    let (renderer, version) = native.renderer(o.wflinfo_api);
     assert!(
         renderer.contains("llvmpipe") && !renderer.contains("Strata"),
         "the native run must use Mesa's llvmpipe, but wflinfo reports {renderer:?}"
     );
     assert!(
-        version.starts_with(NATIVE_VERSION),
-        "the native side must be held to ES 2.0, but wflinfo reports {version:?}"
+        version.starts_with(&format!("OpenGL ES {}", o.version)),
+        "the native side must be held to ES {}, but wflinfo reports {version:?}",
+        o.version
     );
-    let (native_run, native_time) = native.run_piglit(&list, &out_dir.join("native"));
+    let (native_run, native_time) = native.run_piglit(&list, &out_dir.join(format!("native{}", o.suffix)));
     eprintln!("native (Mesa):   {} in {:.1}s", verdict::counts_line(&native_run), native_time.as_secs_f64());
     let native_passes = native_run.values().filter(|o| o.result == "pass").count();
     assert!(
-        native_passes >= NATIVE_PASS_FLOOR,
-        "Mesa passes only {native_passes} tests (expected about 190): the oracle is broken; see {}",
-        out_dir.join("native.log").display()
+        native_passes >= o.native_floor,
+        "Mesa passes only {native_passes} tests: the oracle is broken; see {}",
+        out_dir.join(format!("native{}.log", o.suffix)).display()
     );
 
     // Through Strata: its own X server, daemon, socket, and the drop-in libraries.
     let x_strata = Xvfb::start(1024, 768).expect("Xvfb");
     let tmp = TempDir::new("piglit");
     let shim = support::shim_dir(&tmp);
-    let daemon = Daemon::start("piglit", &["--output", "headless:main=640x480"]);
+    let mut args = vec!["--output", "headless:main=640x480"];
+    args.extend(o.daemon_args);
+    let daemon = Daemon::start("piglit", &args);
     // piglit's GLES utility library (built with GLX) resolves extension entry points with
     // libGL's glXGetProcAddressARB, whose stubs call nothing without a GLX context. The
     // drop-in answers that query too, and is preloaded so that its answer comes first.
@@ -243,11 +307,11 @@ fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
             ("STRATA_SOCKET", daemon.socket.clone()),
         ],
     };
-    let (renderer, _) = strata.renderer();
+    let (renderer, _) = strata.renderer(o.wflinfo_api);
     assert!(renderer.starts_with("Strata"), "the run through stratad reaches {renderer:?} instead");
-    let (strata_run, strata_time) = strata.run_piglit(&list, &out_dir.join("strata"));
+    let (strata_run, strata_time) = strata.run_piglit(&list, &out_dir.join(format!("strata{}", o.suffix)));
     eprintln!("through stratad: {} in {:.1}s", verdict::counts_line(&strata_run), strata_time.as_secs_f64());
-    let _ = std::fs::write(out_dir.join("stratad.log"), daemon.log_text());
+    let _ = std::fs::write(out_dir.join(format!("stratad{}.log", o.suffix)), daemon.log_text());
     assert_eq!(
         native_run.keys().collect::<Vec<_>>(),
         strata_run.keys().collect::<Vec<_>>(),
@@ -258,21 +322,25 @@ fn piglit_passes_through_stratad_wherever_it_passes_on_mesa() {
     let rerun = "stratad serve --socket /tmp/s.sock & Xvfb :9 -noreset & DISPLAY=:9 PIGLIT_PLATFORM=x11_egl \
                  PIGLIT_SOURCE_DIR=/usr/lib/x86_64-linux-gnu/piglit LD_LIBRARY_PATH=$(tools/build-shim) \
                  LD_PRELOAD=target/strata-gl/libEGL.so.1 STRATA_SOCKET=/tmp/s.sock";
-    let text = summary((&native_run, native_time), (&strata_run, strata_time), &v, rerun);
+    let text = summary(o, (&native_run, native_time), (&strata_run, strata_time), &v, rerun);
     let report_dir = target_dir().join("strata-tests");
     std::fs::create_dir_all(&report_dir).expect("target/strata-tests");
-    let report = report_dir.join("piglit.txt");
+    let report = report_dir.join(format!("piglit{}.txt", o.suffix));
     std::fs::write(&report, &text).expect("write the summary");
-    eprintln!("{} native passes excused by exceptions.txt; summary in {}", v.excused, report.display());
+    eprintln!("{} native passes excused by {}; summary in {}", v.excused, o.exceptions, report.display());
     assert!(v.ok(), "piglit through stratad falls short of Mesa (full results in {}):\n{text}", out_dir.display());
 }
 
-/// The checked-in exceptions file parses, and excuses nothing that is in scope.
+/// The checked-in exceptions files parse.
 #[test]
-fn exceptions_file_is_well_formed() {
-    let text = std::fs::read_to_string(exceptions_path()).expect("read tests/piglit/exceptions.txt");
-    let list = verdict::parse_exceptions(&text).unwrap_or_else(|e| panic!("tests/piglit/exceptions.txt: {e}"));
-    assert!(!list.is_empty());
+fn exceptions_files_are_well_formed() {
+    for o in [&ES2, &ES3] {
+        let name = o.exceptions;
+        let text = std::fs::read_to_string(exceptions_path(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let list =
+            verdict::parse_exceptions_with(&text, o.excuses).unwrap_or_else(|e| panic!("tests/piglit/{name}: {e}"));
+        assert!(!list.is_empty(), "{name} lists nothing");
+    }
 }
 
 /// The selection holds piglit's GLES 2 tests and no other: known members of each kind are in,
@@ -282,7 +350,8 @@ fn the_selection_is_piglits_gles2_build_and_glsl_es_1_00() {
     if !oracles_present() {
         return;
     }
-    let selected = selection::select(Path::new(TESTS), Path::new(BIN), PROFILES).expect("piglit's profiles");
+    let selected =
+        selection::select(Path::new(TESTS), Path::new(BIN), PROFILES, &selection::GLES2).expect("piglit's profiles");
     let names: std::collections::HashSet<&str> = selected.iter().map(|t| t.name.as_str()).collect();
     for inside in [
         // C tests of the GLES 2 build, with and without the suffix.

@@ -24,7 +24,9 @@ use strata_protocol::{Blob, Slice};
 /// Checks `glBufferData`; the name of the buffer it replaces.
 fn validate_buffer_data(ctx: &Context, target: u32, size: i64, data: Option<&Blob<'_>>, usage: u32) -> GlResult<u32> {
     let name = ctx.bindings.buffer(BufferTarget::from_gl(target, ctx.es3())?);
-    if !matches!(usage, STREAM_DRAW | STATIC_DRAW | DYNAMIC_DRAW) {
+    // ES 3.0 adds the read and copy usages (`GL_STREAM_READ` … `GL_DYNAMIC_COPY`).
+    let es3_usage = ctx.es3() && matches!(usage, 0x88E1 | 0x88E2 | 0x88E5 | 0x88E6 | 0x88E9 | 0x88EA);
+    if !matches!(usage, STREAM_DRAW | STATIC_DRAW | DYNAMIC_DRAW) && !es3_usage {
         return Err(GlError::InvalidEnum);
     }
     if size < 0 || data.is_some_and(|d| d.len() as i64 != size) {

@@ -42,13 +42,14 @@ const EGL_CONTEXT_RELEASE_BEHAVIOR_FLUSH_KHR: i32 = 0x2098;
 
 /// Validates an OpenGL ES context's attribute list as EGL 1.4 with `EGL_KHR_create_context`
 /// and `EGL_IMG_context_priority` define it, and as Mesa answers it: version 2.0, and 3.0 where
-/// `es3` offers it (ES 1 has no config here: `EGL_BAD_CONFIG`; another version, or a minor
+/// `es3` offers it (to 2.0 requests too with `Es3Contexts::ForEs2`, as Mesa does) (ES 1 has no config here: `EGL_BAD_CONFIG`; another version, or a minor
 /// version above 0: `EGL_BAD_MATCH`, as Mesa held to ES 2.0 or 3.0 answers); the debug flag;
 /// either reset notification strategy; the profile mask and the forward-compatible flag
 /// (desktop OpenGL's), robust access, and unknown attributes, values or flag bits:
 /// `EGL_BAD_ATTRIBUTE`. A no-error context may not be a debug context (`EGL_BAD_MATCH`); the
 /// release behaviour is flush or none.
-pub(super) fn parse(list: &[i32], es3: bool) -> EglResult<ContextAttribs> {
+pub(super) fn parse(list: &[i32], es3: crate::Es3Contexts) -> EglResult<ContextAttribs> {
+    use crate::Es3Contexts::{Asked, ForEs2};
     let (mut major, mut minor, mut out) = (1, 0, ContextAttribs::default());
     for pair in list.chunks(2) {
         match *pair {
@@ -84,8 +85,9 @@ pub(super) fn parse(list: &[i32], es3: bool) -> EglResult<ContextAttribs> {
         return Err(EGL_BAD_MATCH);
     }
     match (major, minor) {
+        (2, 0) if es3 == ForEs2 => Ok(ContextAttribs { major: 3, ..out }),
         (2, 0) => Ok(ContextAttribs { major: 2, ..out }),
-        (3, 0) if es3 => Ok(ContextAttribs { major: 3, ..out }),
+        (3, 0) if matches!(es3, Asked | ForEs2) => Ok(ContextAttribs { major: 3, ..out }),
         (1, _) => Err(EGL_BAD_CONFIG),
         _ => Err(EGL_BAD_MATCH),
     }
@@ -94,21 +96,25 @@ pub(super) fn parse(list: &[i32], es3: bool) -> EglResult<ContextAttribs> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Es3Contexts::{Asked, ForEs2, Off};
 
     #[test]
     fn create_context_attributes_are_validated_as_mesa_validates_them() {
         let debug = EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR;
         assert_eq!(
-            parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE], false),
+            parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE], Off),
             Ok(ContextAttribs { major: 2, ..Default::default() })
         );
-        let asked = parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, debug, EGL_NONE], false);
+        let asked = parse(&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_FLAGS_KHR, debug, EGL_NONE], Off);
         assert_eq!(asked, Ok(ContextAttribs { debug: true, major: 2, ..Default::default() }));
         let three = [EGL_CONTEXT_CLIENT_VERSION, 3, EGL_NONE];
-        assert_eq!(parse(&three, true), Ok(ContextAttribs { major: 3, ..Default::default() }));
-        assert_eq!(parse(&three, false), Err(EGL_BAD_MATCH), "ES 3.0 only where offered");
+        assert_eq!(parse(&three, Asked), Ok(ContextAttribs { major: 3, ..Default::default() }));
+        assert_eq!(parse(&three, Off), Err(EGL_BAD_MATCH), "ES 3.0 only where offered");
+        let two = [EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE];
+        assert_eq!(parse(&two, Asked).map(|a| a.major), Ok(2), "2.0 asked for, 2.0 given");
+        assert_eq!(parse(&two, ForEs2).map(|a| a.major), Ok(3), "2.0 asked for, 3.0 given, as on Mesa");
         let three_one = [EGL_CONTEXT_CLIENT_VERSION, 3, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE];
-        assert_eq!(parse(&three_one, true), Err(EGL_BAD_MATCH), "ES 3.1 is not offered");
+        assert_eq!(parse(&three_one, Asked), Err(EGL_BAD_MATCH), "ES 3.1 is not offered");
         for (list, err) in [
             (&[EGL_NONE][..], EGL_BAD_CONFIG),
             (&[EGL_CONTEXT_CLIENT_VERSION, 2, EGL_CONTEXT_MINOR_VERSION_KHR, 1, EGL_NONE], EGL_BAD_MATCH),
@@ -123,7 +129,7 @@ mod tests {
                 EGL_BAD_ATTRIBUTE,
             ),
         ] {
-            assert_eq!(parse(list, true).and(parse(list, false)), Err(err), "{list:x?}");
+            assert_eq!(parse(list, Asked).and(parse(list, Off)), Err(err), "{list:x?}");
         }
     }
 }

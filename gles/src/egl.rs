@@ -281,11 +281,11 @@ impl GlesExecutor {
     /// class the client is scheduled in (the configuration's, if it names one).
     pub(super) fn eglQueryContext(&mut self, display: EglHandle, context: EglHandle, attribute: i32) -> EglResult<i32> {
         self.check_display(display)?;
-        if !self.contexts.contains_key(&context) {
-            return Err(EGL_BAD_CONTEXT);
-        }
+        let Some(ctx) = self.contexts.get(&context) else { return Err(EGL_BAD_CONTEXT) };
         match attribute {
             EGL_CONTEXT_PRIORITY_LEVEL_IMG => Ok(self.r.lane.class().egl_level()),
+            // The version it was given, which may be above the one asked for.
+            EGL_CONTEXT_CLIENT_VERSION => Ok(i32::from(ctx.major)),
             _ => Err(EGL_BAD_ATTRIBUTE),
         }
     }

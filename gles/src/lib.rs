@@ -133,8 +133,21 @@ pub struct GlesExecutor {
     frame_transfer: TransferMode,
     /// Publishes each swapped frame once its work has completed on this client's device.
     waiter: strata_scene::FrameWaiter,
-    /// Whether `EGL_CONTEXT_MAJOR_VERSION` 3 gives an OpenGL ES 3.0 context (`--es3`).
-    es3: bool,
+    /// Which requests get an OpenGL ES 3.0 context (`--es3`, `--es3-for-es2`).
+    es3: Es3Contexts,
+}
+
+/// Which context requests get OpenGL ES 3.0.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Es3Contexts {
+    /// None: a request for version 3 is `EGL_BAD_MATCH` (ES 3.0 is being built).
+    #[default]
+    Off,
+    /// Those that ask for version 3; a request for 2.0 gets 2.0.
+    Asked,
+    /// Those that ask for version 3 or 2, as Mesa answers a 2.0 request with the highest
+    /// version it has (`--es3-for-es2`).
+    ForEs2,
 }
 
 impl Drop for GlesExecutor {
@@ -173,7 +186,7 @@ impl GlesExecutor {
             surface_ids: Vec::new(),
             windows_made: 0,
             refused_ids: Default::default(),
-            es3: false,
+            es3: Es3Contexts::Off,
         }
     }
 
@@ -229,8 +242,8 @@ impl GlesExecutor {
         self
     }
 
-    /// Gives OpenGL ES 3.0 contexts to those who ask for version 3 (else `EGL_BAD_MATCH`).
-    pub fn with_es3(mut self, es3: bool) -> Self {
+    /// Gives OpenGL ES 3.0 contexts to the requests `es3` says.
+    pub fn with_es3(mut self, es3: Es3Contexts) -> Self {
         self.es3 = es3;
         self
     }

@@ -146,6 +146,12 @@ enum Cmd {
         /// and what is not is in docs/gles3.md.
         #[arg(long)]
         es3: bool,
+        /// With `--es3`, give OpenGL ES 3.0 contexts to clients that ask for 2.0 too, as Mesa
+        /// answers such a request with the highest version it has (piglit's GLSL ES 3.00
+        /// compiler tests run in contexts asked for as 2.0). Off by default: until ES 3.0 is
+        /// whole, a request for 2.0 gets 2.0.
+        #[arg(long, requires = "es3")]
+        es3_for_es2: bool,
         /// Do not ask for a queue global priority by class (VK_KHR/EXT_global_priority).
         #[arg(long)]
         no_global_priority: bool,
@@ -296,6 +302,7 @@ fn main() -> Result<()> {
             devices,
             frame_transfer,
             es3,
+            es3_for_es2,
             no_global_priority,
             allow_fault_injection,
             client_rasterizer_threads,
@@ -369,7 +376,11 @@ fn main() -> Result<()> {
                 default_class: schedule.default_priority,
                 devices,
                 frame_transfer,
-                es3,
+                es3: match (es3, es3_for_es2) {
+                    (true, true) => strata_gles::Es3Contexts::ForEs2,
+                    (true, false) => strata_gles::Es3Contexts::Asked,
+                    _ => strata_gles::Es3Contexts::Off,
+                },
                 global_priority: !no_global_priority,
                 fault_injection: allow_fault_injection,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),

@@ -226,9 +226,10 @@ pub fn sequence(r: &mut Run) {
         r.note(&format!("primitives written: {n}"));
         (gl.disable)(RASTERIZER_DISCARD);
         let mut px = [0u8; 4];
-        (gl.read_pixels)(8, 8, 1, 1, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
-        r.note(&format!("the window after a discarded clear: {px:?}"));
-        words(r, "interleaved", bufs[0], 54);
+        (gl.read_pixels)(4, 4, 1, 1, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
+        r.note(&format!("the window after a discarded clear and discarded draws: {px:?}"));
+        // Six vertices captured, and nothing after them.
+        words(r, "interleaved", bufs[0], 63);
 
         // What was captured drawn from: gl_Position is the second vector of each record.
         let draw = r.program(VS_DRAW, FS_RED);

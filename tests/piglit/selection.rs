@@ -1,12 +1,18 @@
-//! piglit's GLES 2.0 selection, read from piglit's own metadata rather than from test names:
+//! piglit's GLES 2.0 and GLES 3.0 selections, read from piglit's own metadata rather than from
+//! test names:
 //! - a shader_runner or glslparsertest test carries its API, GLSL version and API version in
-//!   the profile; it is selected where the API is `gles2`, the GLSL version at most 1.00 and
-//!   the API version, where given, at most 2.0;
+//!   the profile; it is selected where the API is `gles2` (`gles3`), the GLSL version at most
+//!   1.00 (3.00) and the API version, where given, at most 2.0 (3.0);
 //! - a C test carries only its command, and its API is the piglit utility library its binary
 //!   was linked against: it is selected where the binary needs `libpiglitutil_gles2.so` (the
 //!   GLES 2 build; the GLES 3 build links `libpiglitutil_gles3.so`, GLES 1 and desktop GL
 //!   their own). Such a test may still ask for an ES 3 context at run time; held to ES 2.0,
 //!   the native side then skips it.
+//!
+//! The GLES 3.0 selection is further held to the areas ES 3.0's first part covers (the
+//! language, buffers, uniform blocks, instancing, transform feedback, sync and queries): the
+//! GLES 3 build's image tests (texture views, compressed arrays, ETC2, immutable levels) and
+//! its tests of extensions beyond ES 3.0 are left to the image side.
 
 use std::collections::HashMap;
 use std::io::Read;
@@ -15,8 +21,41 @@ use std::path::Path;
 use object::read::elf::{Dyn as _, ElfFile64, FileHeader, SectionHeader as _};
 use object::Endianness;
 
-/// The library a binary of piglit's GLES 2 build needs (its soname, without the version).
-const GLES2_UTIL: &[u8] = b"libpiglitutil_gles2.so";
+/// Which of piglit's builds and language versions a selection takes.
+pub struct Api {
+    /// The library a binary of the build needs (its soname, without the version).
+    pub util: &'static [u8],
+    /// The API a shader test names.
+    pub api: &'static str,
+    /// The highest GLSL ES version.
+    pub shader_max: f64,
+    /// The highest API version.
+    pub api_max: f64,
+    /// Where given, the name prefixes of the tests taken (the areas).
+    pub areas: Option<&'static [&'static str]>,
+}
+
+/// piglit's GLES 2.0 build and GLSL ES 1.00.
+pub const GLES2: Api =
+    Api { util: b"libpiglitutil_gles2.so", api: "gles2", shader_max: 1.0, api_max: 2.0, areas: None };
+
+/// piglit's GLES 3.0 build and GLSL ES 3.00, in the areas of ES 3.0's language and buffer and
+/// draw side.
+pub const GLES3: Api = Api {
+    util: b"libpiglitutil_gles3.so",
+    api: "gles3",
+    shader_max: 3.0,
+    api_max: 3.0,
+    areas: Some(&[
+        "spec@glsl-es-3.00@",
+        "spec@!opengl es 3.0@minmax",
+        "spec@!opengl es 3.0@gl_vertexid used with gldrawarrays",
+        "spec@!opengl es 3.0@gles-3.0-transform-feedback-uniform-buffer-object",
+        "spec@!opengl es 3.0@vertex attribute aliasing",
+        "spec@ext_transform_feedback@",
+        "spec@arb_transform_feedback2@",
+    ]),
+};
 
 /// A value as piglit writes it in a profile: a Python literal (`'gles2'`, `1.0`, `['cmd', …]`).
 /// The first quoted string in it, or the text itself where it has none.
@@ -71,7 +110,7 @@ pub fn write_profile(path: &Path, tests: &[Selected]) -> Result<(), String> {
     let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut gz = flate2::write::GzEncoder::new(file, flate2::Compression::fast());
     let mut text = format!(
-        "<?xml version='1.0' encoding='utf-8'?>\n<PiglitTestList count=\"{}\" name=\"strata-gles2\">",
+        "<?xml version='1.0' encoding='utf-8'?>\n<PiglitTestList count=\"{}\" name=\"strata-gles\">",
         tests.len()
     );
     for t in tests {
@@ -81,9 +120,9 @@ pub fn write_profile(path: &Path, tests: &[Selected]) -> Result<(), String> {
     gz.write_all(text.as_bytes()).and_then(|()| gz.finish().map(drop)).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// The tests of the gzipped profiles `profiles` (in `tests_dir`) that run on GLES 2.0 with GLSL
-/// ES 1.00, in profile order; C tests' binaries are looked up in `bin_dir`.
-pub fn select(tests_dir: &Path, bin_dir: &Path, profiles: &[&str]) -> Result<Vec<Selected>, String> {
+/// The tests of the gzipped profiles `profiles` (in `tests_dir`) that `api` takes, in profile
+/// order; C tests' binaries are looked up in `bin_dir`.
+pub fn select(tests_dir: &Path, bin_dir: &Path, profiles: &[&str], api: &Api) -> Result<Vec<Selected>, String> {
     let mut chosen = Vec::new();
     let mut gles2_binary: HashMap<String, bool> = HashMap::new();
     for profile in profiles {
@@ -94,16 +133,19 @@ pub fn select(tests_dir: &Path, bin_dir: &Path, profiles: &[&str]) -> Result<Vec
         let doc = roxmltree::Document::parse(&xml).map_err(|e| format!("{}: {e}", path.display()))?;
         for test in doc.root_element().children().filter(|n| n.has_tag_name("Test")) {
             let Some(name) = test.attribute("name") else { continue };
+            if api.areas.is_some_and(|areas| !areas.iter().any(|a| name.starts_with(a))) {
+                continue;
+            }
             let options: HashMap<&str, &str> = test
                 .children()
                 .filter(|n| n.has_tag_name("option"))
                 .filter_map(|o| Some((o.attribute("name")?, o.attribute("value")?)))
                 .collect();
             let selected = match options.get("api") {
-                Some(api) => {
-                    first_string(api) == "gles2"
-                        && options.get("shader_version").is_none_or(|v| at_most(v, 1.0))
-                        && options.get("api_version").is_none_or(|v| at_most(v, 2.0))
+                Some(named) => {
+                    first_string(named) == api.api
+                        && options.get("shader_version").is_none_or(|v| at_most(v, api.shader_max))
+                        && options.get("api_version").is_none_or(|v| at_most(v, api.api_max))
                 }
                 None => {
                     let Some(command) = options.get("command") else { continue };
@@ -112,8 +154,8 @@ pub fn select(tests_dir: &Path, bin_dir: &Path, profiles: &[&str]) -> Result<Vec
                         Some(&b) => b,
                         None => {
                             let binary = bin_dir.join(&program);
-                            // A command that is no binary of piglit's (a script) is no GLES 2 test.
-                            let b = binary.is_file() && needed(&binary)?.iter().any(|n| n.starts_with(GLES2_UTIL));
+                            // A command that is no binary of piglit's (a script) is no GLES test.
+                            let b = binary.is_file() && needed(&binary)?.iter().any(|n| n.starts_with(api.util));
                             gles2_binary.insert(program, b);
                             b
                         }

@@ -108,7 +108,11 @@ pub(crate) fn create_context(dpy: EGLDisplay, config: u32, share: u32, attribs: 
     // KHR_debug: a debug context starts with debug output enabled, on the daemon (which has
     // accepted the list) and so here, where the callback is called.
     gl.debug.output = asks_debug(&attribs);
-    gl.es3 = asks_es3(&attribs);
+    // The version the daemon gave: a request for 2.0 may get 3.0 (`--es3-for-es2`).
+    gl.es3 = match daemon(&mut p, |c, dd| c.eglQueryContext(dd, ctx, EGL_CONTEXT_CLIENT_VERSION)) {
+        Ok(v) => v == 3,
+        Err(_) => asks_es3(&attribs),
+    };
     let handle = p.add_context(ContextInfo { daemon: Some(ctx), display: d, config, owner: None, gl, group: 0 });
     // A new group is named after its first context.
     if let Some(c) = p.contexts.get_mut(&handle) {
@@ -181,7 +185,13 @@ pub(crate) fn query_context(dpy: EGLDisplay, ctx: u32, attribute: EGLint, value:
     let v = match attribute {
         EGL_CONFIG_ID => c.config as EGLint,
         EGL_CONTEXT_CLIENT_TYPE => EGL_OPENGL_ES_API as EGLint,
-        EGL_CONTEXT_CLIENT_VERSION => 2,
+        EGL_CONTEXT_CLIENT_VERSION => {
+            if c.gl.es3 {
+                3
+            } else {
+                2
+            }
+        }
         EGL_RENDER_BUFFER => match state::current() {
             Some(cur) if cur.context == ctx => EGL_BACK_BUFFER,
             _ => EGL_NONE,

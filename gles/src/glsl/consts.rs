@@ -63,6 +63,17 @@ pub(super) fn fold(e: &ast::Expr, consts: &HashMap<String, Val>) -> Option<Val> 
             _ => return None,
         },
         ExprData::Binary(op, a, b) => binary(&op.content, fold(a, consts)?, fold(b, consts)?)?,
+        // An array's `length()`, where the array's size is known (`NAME.length()` in `consts`).
+        ExprData::FunCall(f, args) if args.is_empty() => match &f.content {
+            ast::FunIdentifierData::Expr(callee) => match &callee.content {
+                ExprData::Dot(base, field) if field.0 == "length" => match &base.content {
+                    ExprData::Variable(id) => *consts.get(&format!("{}.length()", id.0))?,
+                    _ => return None,
+                },
+                _ => return None,
+            },
+            _ => return None,
+        },
         _ => return None,
     })
 }

@@ -75,9 +75,13 @@ fn location_of(q: Option<&ast::TypeQualifier>, consts: &HashMap<String, Val>) ->
 
 /// Compiles a shader: parse, lift the interface, rewrite the rest.
 pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String> {
-    let parsed = parse(stage, source)?;
+    let mut parsed = parse(stage, source)?;
     let version = parsed.version;
     let facts = checks::check(stage, &parsed)?;
+    if version == 300 {
+        crate::glsl::es3_rules::check(stage, &parsed.text, &parsed.tu)?;
+        crate::glsl::sized_arrays::size(&mut parsed.tu);
+    }
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),
@@ -182,6 +186,12 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         }
         if list.head.initializer.is_some() || list.tail.iter().any(|t| t.initializer.is_some()) {
             return Err("0: attribute, varying and uniform variables cannot be initialised".into());
+        }
+        // An array's `length()` is a constant expression (GLSL ES 3.00 §4.1.9).
+        for v in &vars {
+            if let Some(n) = v.array {
+                consts.insert(format!("{}.length()", v.name), crate::glsl::consts::Val::Int(i64::from(n)));
+            }
         }
         let storage = match (storage, stage) {
             (Storage::In, Stage::Vertex) => Storage::Attribute,

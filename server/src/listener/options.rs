@@ -65,8 +65,8 @@ pub struct ServeOptions {
     pub devices: DeviceMode,
     /// How window surfaces' frames reach the compositor's device.
     pub frame_transfer: strata_gles::TransferMode,
-    /// Whether clients that ask for OpenGL ES 3.0 get it (`--es3`).
-    pub es3: bool,
+    /// Which clients get OpenGL ES 3.0 contexts (`--es3`, `--es3-for-es2`).
+    pub es3: strata_gles::Es3Contexts,
     /// Whether devices ask for a queue global priority by class where the adapter offers it.
     pub global_priority: bool,
     /// Whether `ctl` may destroy a client's device (`ControlRequest::LoseDevice`; tests).
@@ -140,7 +140,7 @@ impl Default for ServeOptions {
             default_class: Priority::Normal,
             devices: DeviceMode::PerClient,
             frame_transfer: strata_gles::TransferMode::Auto,
-            es3: false,
+            es3: strata_gles::Es3Contexts::Off,
             global_priority: true,
             fault_injection: false,
             client_rasterizer_threads: Some(1),

@@ -161,9 +161,12 @@ pub fn provoking_vertex(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glDrawArrays(TRIANGLES, 0, 6)?;
     gl.glDrawArrays(TRIANGLE_STRIP, 6, 6)?;
     gl.glDrawArrays(TRIANGLE_FAN, 12, 5)?;
-    // A strip from indices with a restart in it.
+    // A strip from indices with a restart in it, back faces culled: turned, each triangle
+    // keeps its winding.
     gl.glEnable(PRIMITIVE_RESTART_FIXED_INDEX)?;
+    gl.glEnable(CULL_FACE)?;
     draw_indexed(gl, n, TRIANGLE_STRIP, UNSIGNED_SHORT, &[17, 18, 19, 20, 0xFFFF, 21, 22, 23, 24])?;
+    gl.glDisable(CULL_FACE)?;
     gl.glDisable(PRIMITIVE_RESTART_FIXED_INDEX)?;
     gl.glDrawArrays(LINES, 25, 4)?;
     draw_indexed(gl, n, LINE_STRIP, UNSIGNED_BYTE, &[29, 30, 31, 32])?;
