@@ -2,7 +2,8 @@
 //! (a) by a client streaming GLES2 through `stratad`, and (b) by plain wgpu code in this process
 //! using the very same shader (translated by Strata's GLSL ES front end) and mesh. Both sides
 //! are set up first and then take turns, round by round, so that each round compares them
-//! under the same load.
+//! under the same load. `--scene es3` draws an OpenGL ES 3.0 scene instead
+//! (`execute_es3.rs`): instanced horses placed by a uniform buffer.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -34,12 +35,37 @@ pub struct Args {
     rounds: u32,
     /// Square framebuffer size.
     #[arg(long, default_value_t = 540)]
-    size: u32,
+    pub(crate) size: u32,
     /// Rasterizer threads of the client's device on lavapipe, as for `stratad serve
     /// --client-rasterizer-threads` [default: 0, the driver's one per core, as the baseline's
     /// device has: the two sides then differ only in the path the commands take].
     #[arg(long, default_value_t = 0)]
-    client_rasterizer_threads: u32,
+    pub(crate) client_rasterizer_threads: u32,
+    /// What is drawn: the horse through ES 2.0, or instanced horses reading a uniform buffer
+    /// through ES 3.0.
+    #[arg(long, value_enum, default_value_t = Scene::Horse)]
+    scene: Scene,
+}
+
+/// The scenes `strata-bench execute` draws.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Scene {
+    /// The glmark2 horse, one draw a frame (OpenGL ES 2.0).
+    Horse,
+    /// Instanced horses, each placed and tinted by a uniform buffer (OpenGL ES 3.0).
+    Es3,
+}
+
+/// One side of the comparison.
+pub(crate) trait Side {
+    /// Draws frames `range` and waits for them: the seconds it took.
+    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64>;
+    /// Frame `f` again, read back (RGBA8, bottom row first).
+    fn image(&mut self, f: u32) -> Result<Vec<u8>>;
+    /// The executor's counters, for the side through `stratad`.
+    fn stats(&mut self) -> Result<Option<strata_protocol::ExecStats>> {
+        Ok(None)
+    }
 }
 
 const VS: &str = "attribute vec3 position;
@@ -146,14 +172,6 @@ impl StrataSide {
         self.gl.glFinish()?;
         Ok(start.elapsed().as_secs_f64())
     }
-
-    /// The executor's counters, and frame `f` again, read back (RGBA8, bottom row first).
-    fn finish(mut self, f: u32) -> Result<(strata_protocol::ExecStats, Vec<u8>)> {
-        let stats = self.gl.strataStats()?;
-        self.frame(f)?;
-        let image = self.gl.glReadPixels(0, 0, self.size, self.size, 0x1908, 0x1401)?.0;
-        Ok((stats, image))
-    }
 }
 
 /// The baseline: the same shader (through Strata's GLSL ES front end) and mesh drawn by wgpu
@@ -172,6 +190,31 @@ struct NativeSide {
     offsets: (u64, u64),
     count: u32,
     size: u32,
+}
+
+impl Side for StrataSide {
+    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
+        StrataSide::frames(self, range, pb)
+    }
+
+    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
+        self.frame(f)?;
+        Ok(self.gl.glReadPixels(0, 0, self.size, self.size, 0x1908, 0x1401)?.0)
+    }
+
+    fn stats(&mut self) -> Result<Option<strata_protocol::ExecStats>> {
+        Ok(Some(self.gl.strataStats()?))
+    }
+}
+
+impl Side for NativeSide {
+    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
+        NativeSide::frames(self, range, pb)
+    }
+
+    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
+        NativeSide::image(self, f)
+    }
 }
 
 impl NativeSide {
@@ -354,7 +397,7 @@ impl NativeSide {
 }
 
 /// Fraction of pixels whose channels all agree within 2/255.
-fn agreement(a: &[u8], b: &[u8]) -> f64 {
+pub(crate) fn agreement(a: &[u8], b: &[u8]) -> f64 {
     if a.len() != b.len() || a.is_empty() {
         return 0.0;
     }
@@ -364,7 +407,7 @@ fn agreement(a: &[u8], b: &[u8]) -> f64 {
 }
 
 /// Fraction of pixels that are not the black background.
-fn coverage(a: &[u8]) -> f64 {
+pub(crate) fn coverage(a: &[u8]) -> f64 {
     a.chunks(4).filter(|p| p[0] > 0 || p[1] > 0 || p[2] > 0).count() as f64 / (a.len() / 4).max(1) as f64
 }
 
@@ -375,8 +418,14 @@ pub fn run(args: &Args) -> Result<()> {
     if args.rounds == 0 || args.frames < args.rounds {
         bail!("--rounds must be positive and at most --frames");
     }
-    let mut strata = StrataSide::open(&mesh, args)?;
-    let native = NativeSide::open(&mesh, args)?;
+    let (mut strata, mut native, what): (Box<dyn Side>, Box<dyn Side>, String) = match args.scene {
+        Scene::Horse => (
+            Box::new(StrataSide::open(&mesh, args)?),
+            Box::new(NativeSide::open(&mesh, args)?),
+            format!("{} ({triangles} triangles)", mesh.source),
+        ),
+        Scene::Es3 => crate::execute_es3::open(&mesh, args)?,
+    };
     // The frames in rounds, each side in turn (the order alternating), so that a change in
     // the machine's load falls on both sides alike; each round's ratio compares the two
     // sides under the same load.
@@ -401,7 +450,8 @@ pub fn run(args: &Args) -> Result<()> {
     let timed = f64::from(per * args.rounds);
     let (strata_fps, native_wgpu_fps) = (timed / strata_secs, timed / native_secs);
     let last = 10 + per * args.rounds - 1;
-    let (stats, strata_image) = strata.finish(last)?;
+    let stats = strata.stats()?.unwrap_or_default();
+    let strata_image = strata.image(last)?;
     let native_image = native.image(last)?;
     let ratio_of_totals = strata_fps / native_wgpu_fps;
     let mut sorted = ratios.clone();
@@ -417,9 +467,7 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     println!(
-        "execute: {} ({} triangles) at {}x{}, {} frames each; the client's device has {} rasterizer threads",
-        mesh.source,
-        triangles,
+        "execute: {what} at {}x{}, {} frames each; the client's device has {} rasterizer threads",
         args.size,
         args.size,
         args.frames,
@@ -461,6 +509,7 @@ pub fn run(args: &Args) -> Result<()> {
             "size": args.size,
             "triangles": triangles,
             "mesh": mesh.source,
+            "scene": what,
         });
         println!("{report}");
     }

@@ -5,6 +5,7 @@ mod clients;
 mod composite;
 mod control;
 mod execute;
+mod execute_es3;
 mod glmark2;
 mod input;
 mod interference;
@@ -70,6 +71,9 @@ enum Cmd {
         /// As for `stratad serve --client-rasterizer-threads`.
         #[arg(long, default_value_t = 1)]
         client_rasterizer_threads: u32,
+        /// As for `stratad serve --es3`.
+        #[arg(long)]
+        es3: bool,
     },
     /// What an idle client costs the daemon: resident memory and threads per connected client
     /// at 10 and 64 clients, against the empty daemon.
@@ -124,6 +128,7 @@ fn main() -> Result<()> {
             devices,
             frame_transfer,
             client_rasterizer_threads,
+            es3,
         } => {
             let opts = strata_server::ServeOptions {
                 socket,
@@ -133,6 +138,7 @@ fn main() -> Result<()> {
                 devices,
                 frame_transfer,
                 client_rasterizer_threads: (client_rasterizer_threads > 0).then_some(client_rasterizer_threads),
+                es3: if es3 { strata_gles::Es3Contexts::Asked } else { strata_gles::Es3Contexts::Off },
                 ..Default::default()
             };
             transport::daemon(opts, outputs)
