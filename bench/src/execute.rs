@@ -16,6 +16,7 @@ use strata_gles::glsl;
 use strata_protocol::{Blob, Slice, Text};
 
 use crate::mesh::{self, Mesh};
+use crate::side::{Setup, Side, Sides};
 use indicatif::ProgressBar;
 
 use crate::transport::{bar, start_daemon_with};
@@ -35,12 +36,12 @@ pub struct Args {
     rounds: u32,
     /// Square framebuffer size.
     #[arg(long, default_value_t = 540)]
-    pub(crate) size: u32,
+    size: u32,
     /// Rasterizer threads of the client's device on lavapipe, as for `stratad serve
     /// --client-rasterizer-threads` [default: 0, the driver's one per core, as the baseline's
     /// device has: the two sides then differ only in the path the commands take].
     #[arg(long, default_value_t = 0)]
-    pub(crate) client_rasterizer_threads: u32,
+    client_rasterizer_threads: u32,
     /// What is drawn: the horse through ES 2.0, or instanced horses reading a uniform buffer
     /// through ES 3.0.
     #[arg(long, value_enum, default_value_t = Scene::Horse)]
@@ -54,18 +55,6 @@ enum Scene {
     Horse,
     /// Instanced horses, each placed and tinted by a uniform buffer (OpenGL ES 3.0).
     Es3,
-}
-
-/// One side of the comparison.
-pub(crate) trait Side {
-    /// Draws frames `range` and waits for them: the seconds it took.
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64>;
-    /// Frame `f` again, read back (RGBA8, bottom row first).
-    fn image(&mut self, f: u32) -> Result<Vec<u8>>;
-    /// The executor's counters, for the side through `stratad`.
-    fn stats(&mut self) -> Result<Option<strata_protocol::ExecStats>> {
-        Ok(None)
-    }
 }
 
 const VS: &str = "attribute vec3 position;
@@ -418,13 +407,16 @@ pub fn run(args: &Args) -> Result<()> {
     if args.rounds == 0 || args.frames < args.rounds {
         bail!("--rounds must be positive and at most --frames");
     }
-    let (mut strata, mut native, what): (Box<dyn Side>, Box<dyn Side>, String) = match args.scene {
+    let (mut strata, mut native, what): Sides = match args.scene {
         Scene::Horse => (
             Box::new(StrataSide::open(&mesh, args)?),
             Box::new(NativeSide::open(&mesh, args)?),
             format!("{} ({triangles} triangles)", mesh.source),
         ),
-        Scene::Es3 => crate::execute_es3::open(&mesh, args)?,
+        Scene::Es3 => {
+            let setup = Setup { size: args.size, client_rasterizer_threads: args.client_rasterizer_threads };
+            crate::execute_es3::open(&mesh, &setup)?
+        }
     };
     // The frames in rounds, each side in turn (the order alternating), so that a change in
     // the machine's load falls on both sides alike; each round's ratio compares the two

@@ -16,8 +16,8 @@ use strata_client::{Calls, ConnectOptions, Connection};
 use strata_gles::glsl;
 use strata_protocol::{Blob, Slice, Text};
 
-use crate::execute::{Args, Side};
 use crate::mesh::Mesh;
+use crate::side::{Setup, Side, Sides};
 use crate::transport::start_daemon_with;
 
 /// The horses drawn, in a 3×3 grid.
@@ -75,7 +75,7 @@ struct StrataEs3 {
 }
 
 impl StrataEs3 {
-    fn open(mesh: &Mesh, args: &Args) -> Result<StrataEs3> {
+    fn open(mesh: &Mesh, args: &Setup) -> Result<StrataEs3> {
         let extra = ["--client-rasterizer-threads".to_string(), args.client_rasterizer_threads.to_string()];
         let extra = [&extra[..], &["--es3".to_string()]].concat();
         let daemon = start_daemon_with(strata_server::ExecutorKind::Gles, &extra, None)?;
@@ -163,7 +163,7 @@ struct NativeEs3 {
 }
 
 impl NativeEs3 {
-    fn open(mesh: &Mesh, args: &Args) -> Result<NativeEs3> {
+    fn open(mesh: &Mesh, args: &Setup) -> Result<NativeEs3> {
         let vs = glsl::compile(glsl::Stage::Vertex, VS).map_err(|e| anyhow!("{e}"))?;
         let fs = glsl::compile(glsl::Stage::Fragment, FS).map_err(|e| anyhow!("{e}"))?;
         let linked = glsl::link(&vs, &fs, &HashMap::new(), 16).map_err(|e| anyhow!("{e}"))?;
@@ -321,7 +321,7 @@ impl Side for NativeEs3 {
 }
 
 /// Both sides of the ES 3.0 scene, and what they draw.
-pub(crate) fn open(mesh: &Mesh, args: &Args) -> Result<(Box<dyn Side>, Box<dyn Side>, String)> {
+pub(crate) fn open(mesh: &Mesh, args: &Setup) -> Result<Sides> {
     let what = format!(
         "{INSTANCES} instances of {} ({} triangles each), placed by a uniform buffer",
         mesh.source,

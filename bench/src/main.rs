@@ -13,6 +13,7 @@ mod interference_client;
 mod mesh;
 mod plot;
 mod precision;
+mod side;
 mod soak;
 mod soak_client;
 mod stratad;

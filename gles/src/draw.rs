@@ -66,7 +66,7 @@ impl GlesExecutor {
             return Ok(());
         };
         let capture_stage = match &capture {
-            Some(_) => match self.capture_stage(ctx, prim == Primitive::Points) {
+            Some(c) => match self.capture_stage(ctx, prim == Primitive::Points, c.unroll) {
                 Ok(vs) => Some(vs),
                 Err(e) => {
                     tracing::warn!("draw dropped: the program's capturing vertex stage failed: {e}");
@@ -77,7 +77,8 @@ impl GlesExecutor {
         };
         let plans = if prim == Primitive::Points { instances } else { instances.min(1) };
         for instance in 0..plans {
-            let shape = Instancing { instance, instances };
+            let unroll = capture.as_ref().is_some_and(|c| c.unroll);
+            let shape = Instancing { instance, instances, unroll };
             let Some(mut spec) = plan_draw(ctx, &target, reversed, prim, count, indices, first, shape)? else {
                 return Ok(());
             };

@@ -13,7 +13,7 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{border_color, Storage};
 use crate::glsl::Scalar;
-use crate::indices::{index_values, plan_indices, robust_order, IndexPlan, Indices};
+use crate::indices::{index_values, plan_indices, robust_order, unrolled, IndexPlan, Indices};
 use crate::int_attribs::plan_integer;
 use crate::limits::MAX_CONVERTED;
 use crate::objects::program::LinkedProgram;
@@ -210,6 +210,9 @@ pub(crate) fn with_sampler_params<'c>(
 pub(crate) struct Instancing {
     pub(crate) instance: u32,
     pub(crate) instances: u32,
+    /// Draw each primitive's vertices on their own, gathered in order (a strip, fan or loop
+    /// captured by transform feedback, which records independent primitives).
+    pub(crate) unroll: bool,
 }
 
 /// Validates a draw of the current program into `target` (a reversed-Z framebuffer 0 with
@@ -238,7 +241,13 @@ pub(crate) fn plan_draw<'c>(
         (inputs, None, 4, 0, instances, prim.topology())
     } else {
         let flat = program.info.flat;
-        let planned = plan_indices(ctx, prim, count, indices, first, flat).and_then(|plan| {
+        let planned = if shape.unroll {
+            // Straight to the gathered draw below.
+            Err(GlError::InvalidOperation)
+        } else {
+            plan_indices(ctx, prim, count, indices, first, flat)
+        };
+        let planned = planned.and_then(|plan| {
             let reads = InstanceReads::Drawn(shape.instances);
             Ok((plan_inputs(ctx, &program, plan.vertex_count, None, false, reads)?, plan))
         });
@@ -251,13 +260,27 @@ pub(crate) fn plan_draw<'c>(
             }
             // Robust access, with an array too short for the draw: each vertex the draw reads
             // is gathered, what lies past an array as zeros, and drawn unindexed.
-            Err(GlError::InvalidOperation) if ctx.robust => {
-                let (order, topology) = robust_order(ctx, prim, count, indices, first, flat)?;
+            Err(GlError::InvalidOperation) if ctx.robust || shape.unroll => {
+                // Unrolled for a capture, in the order it records: GL's, not turned for flat.
+                let (order, topology) = match shape.unroll {
+                    true => unrolled(prim, first, count)?,
+                    false => robust_order(ctx, prim, count, indices, first, flat)?,
+                };
                 if order.is_empty() {
                     return Ok(None);
                 }
                 let reads = InstanceReads::Drawn(shape.instances);
-                let inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true, reads)?;
+                let mut inputs = plan_inputs(ctx, &program, order.len() as u64, Some(&order), true, reads)?;
+                if shape.unroll && program.info.reads_vertex_id() {
+                    // Each gathered vertex's own number, for `gl_VertexID`.
+                    inputs.push(VertexInput {
+                        location: program.info.point_input,
+                        format: wgpu::VertexFormat::Uint32,
+                        stride: 4,
+                        source: Source::Bytes(bytemuck::cast_slice(&order).to_vec()),
+                        per_instance: false,
+                    });
+                }
                 (inputs, None, order.len() as u32, 0, (0, shape.instances), topology)
             }
             Err(e) => return Err(e),

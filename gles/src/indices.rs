@@ -208,6 +208,17 @@ fn primitives(prim: Primitive, s: &[u32], last_first: bool, out: &mut Vec<u32>) 
     }
 }
 
+/// The vertex range `first..first + count` of a `prim` draw as independent primitives, in GL's
+/// order (a strip's odd triangles with their first two vertices swapped, a loop closed), and
+/// the list topology they are drawn as: what transform feedback records of a strip, fan or loop.
+pub(super) fn unrolled(prim: Primitive, first: u32, count: u32) -> GlResult<(Vec<u32>, wgpu::PrimitiveTopology)> {
+    generated_size(count)?;
+    let v: Vec<u32> = (0..count).map(|i| first.saturating_add(i)).collect();
+    let mut out = Vec::with_capacity(v.len() * 3);
+    primitives(prim, &v, false, &mut out);
+    Ok((out, prim.list_topology()))
+}
+
 /// Robust access: every vertex a draw reads, in the order wgpu draws them unindexed (its
 /// indices, those past the index data read as 0, or its vertex range), for a draw that reads
 /// past an array, and what wgpu draws them as.

@@ -41,8 +41,11 @@ const MAX_OBJECTS: usize = 4096;
 /// What a capturing draw writes: per instance, the vertices captured, and per buffer binding
 /// the bytes each vertex takes.
 pub(crate) struct CapturePlan {
-    /// Vertices captured per instance (the draw's, less those of an unfinished primitive).
+    /// Vertices captured per instance (the draw's, less those of an unfinished primitive; a
+    /// strip's, fan's or loop's unrolled into independent primitives).
     pub(crate) per_instance: u32,
+    /// Whether the draw's vertices are unrolled into independent primitives first.
+    pub(crate) unroll: bool,
     /// Per buffer binding: the bytes of one vertex's record.
     pub(crate) strides: Vec<u64>,
 }
@@ -53,6 +56,32 @@ fn vertices_per(mode: Primitive) -> u32 {
         Primitive::Points => 1,
         Primitive::Lines => 2,
         _ => 3,
+    }
+}
+
+/// Whether a draw of `draw` may be captured by a capture of `mode`: the same mode, or as Mesa
+/// (and desktop GL) allows, a strip, fan or loop of the same primitive, recorded as independent
+/// primitives. (ES 3.0 §2.15.2 asks for the same mode; Mesa, the oracle, takes the others.)
+fn captures(mode: Primitive, draw: Primitive) -> bool {
+    use Primitive::*;
+    matches!(
+        (mode, draw),
+        (Points, Points) | (Lines, Lines | LineStrip | LineLoop) | (Triangles, Triangles | TriangleStrip | TriangleFan)
+    )
+}
+
+/// The vertices a draw of `count` vertices of `draw` records: its whole primitives' (a strip's,
+/// fan's or loop's unrolled).
+fn recorded(draw: Primitive, count: u32) -> u32 {
+    use Primitive::*;
+    match draw {
+        Points => count,
+        Lines => count - count % 2,
+        Triangles => count - count % 3,
+        LineStrip => 2 * count.saturating_sub(1),
+        LineLoop if count >= 2 => 2 * count,
+        LineLoop => 0,
+        TriangleStrip | TriangleFan => 3 * count.saturating_sub(2),
     }
 }
 
@@ -130,11 +159,11 @@ impl GlesExecutor {
         instances: u32,
     ) -> GlResult<Option<CapturePlan>> {
         let Some(c) = ctx.xfb.capturing() else { return Ok(None) };
-        if indexed || mode != c.mode {
+        if indexed || !captures(c.mode, mode) {
             return Err(GlError::InvalidOperation);
         }
         let Some(capture) = c.program.info.capture.as_ref() else { return Ok(None) };
-        let per_instance = count - count % vertices_per(mode);
+        let per_instance = recorded(mode, count);
         let vertices = u64::from(per_instance) * u64::from(instances);
         let strides: Vec<u64> = (0..c.targets.len()).map(|b| u64::from(capture.stride(b)) * 4).collect();
         for (b, &(_, _, space)) in c.targets.iter().enumerate() {
@@ -142,7 +171,8 @@ impl GlesExecutor {
                 return Err(GlError::InvalidOperation);
             }
         }
-        Ok(Some(CapturePlan { per_instance, strides }))
+        let unroll = !matches!(mode, Primitive::Points | Primitive::Lines | Primitive::Triangles);
+        Ok(Some(CapturePlan { per_instance, strides, unroll }))
     }
 
     /// Counts what a capturing draw of `plan`, `instances` times, wrote.
@@ -160,9 +190,14 @@ impl GlesExecutor {
 
     /// The capturing vertex stage of the program capture draws with (`points`: its points
     /// variant), for the context's clip control and rasterizer discard.
-    pub(crate) fn capture_stage(&self, ctx: &Context, points: bool) -> Result<wgpu::ShaderModule, String> {
+    pub(crate) fn capture_stage(
+        &self,
+        ctx: &Context,
+        points: bool,
+        unrolled: bool,
+    ) -> Result<wgpu::ShaderModule, String> {
         let c = ctx.xfb.capturing().ok_or("no capture")?;
-        c.program.capture_vs(&self.gpu, points, ctx.raster.clip, ctx.raster.discard)
+        c.program.capture_vs(&self.gpu, points, ctx.raster.clip, (ctx.raster.discard, unrolled))
     }
 
     /// The capture block's bytes and buffers for a draw of `plan` from vertex `first`, after
@@ -175,6 +210,8 @@ impl GlesExecutor {
         done: u32,
     ) -> Option<(Vec<u8>, Vec<wgpu::Buffer>)> {
         let c = ctx.xfb.capturing()?;
+        // An unrolled draw's vertices are numbered from 0 in the order they are recorded.
+        let first = if plan.unroll { 0 } else { first };
         let mut words = [first, plan.per_instance, plan.per_instance, 0, 0, 0, 0, 0];
         let mut buffers = Vec::new();
         for (b, &(name, offset, _)) in c.targets.iter().enumerate() {

@@ -160,7 +160,7 @@ pub fn sequence(r: &mut Run) {
         (gl.gen_buffers)(3, bufs.as_mut_ptr());
         for &b in &bufs {
             (gl.bind_buffer)(TF_BUFFER, b);
-            (gl.buffer_data)(TF_BUFFER, 256, [0u8; 256].as_ptr().cast(), STATIC_DRAW);
+            (gl.buffer_data)(TF_BUFFER, 512, [0u8; 512].as_ptr().cast(), STATIC_DRAW);
         }
         (gl.bind_buffer_base)(TF_BUFFER, 0, bufs[0]);
         indexed(r, XFB_BUFFER_BINDING, 0, Some(bufs[0]));
@@ -216,6 +216,9 @@ pub fn sequence(r: &mut Run) {
         // Four vertices: the fourth starts a triangle that is not finished.
         (gl.draw_arrays)(TRIANGLES, 3, 4);
         r.note("a triangle and a vertex captured");
+        // A strip of four: two triangles, recorded on their own, right after the triangle.
+        (gl.draw_arrays)(0x0005, 0, 4);
+        r.note("a strip captured as triangles");
         (gl.end_transform_feedback)();
         r.note("glEndTransformFeedback");
         (gl.end_transform_feedback)();
@@ -228,8 +231,8 @@ pub fn sequence(r: &mut Run) {
         let mut px = [0u8; 4];
         (gl.read_pixels)(4, 4, 1, 1, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
         r.note(&format!("the window after a discarded clear and discarded draws: {px:?}"));
-        // Six vertices captured, and nothing after them.
-        words(r, "interleaved", bufs[0], 63);
+        // Twelve vertices captured, and nothing after them.
+        words(r, "interleaved", bufs[0], 117);
 
         // What was captured drawn from: gl_Position is the second vector of each record.
         let draw = r.program(VS_DRAW, FS_RED);
@@ -237,7 +240,7 @@ pub fn sequence(r: &mut Run) {
         (gl.vertex_attrib_pointer)(0, 4, FLOAT, 0, 36, 16 as *const c_void);
         (gl.clear_color)(0.0, 0.0, 0.0, 1.0);
         (gl.clear)(0x4000);
-        (gl.draw_arrays)(TRIANGLES, 0, 6);
+        (gl.draw_arrays)(TRIANGLES, 0, 12);
         let mut px = vec![0u8; 16 * 16 * 4];
         (gl.read_pixels)(0, 0, 16, 16, RGBA, UNSIGNED_BYTE, px.as_mut_ptr().cast());
         let red = px.chunks(4).filter(|p| p[0] > 128).count();

@@ -94,8 +94,10 @@ pub fn resolve(names: &[String], interleaved: bool, vs: &Shader) -> Result<Optio
             Some((b, ix)) => (b, Some(ix.parse::<u32>().map_err(|_| format!("error: '{name}' is no varying"))?)),
             None => (name.as_str(), None),
         };
+        // A member of a structure varying is a varying of its own (`s.a` is `s__a`).
+        let base = base.replace('.', "__");
         let var = if base == "gl_Position" {
-            Some(Var { name: base.into(), ty: Ty::Vec4, array: None, location: None, flat: false })
+            Some(Var { name: base.clone(), ty: Ty::Vec4, array: None, location: None, flat: false })
         } else {
             vs.varyings.iter().find(|v| v.name == base).cloned()
         };

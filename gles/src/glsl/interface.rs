@@ -81,6 +81,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
     if version == 300 {
         crate::glsl::es3_rules::check(stage, &parsed.text, &parsed.tu)?;
         crate::glsl::sized_arrays::size(&mut parsed.tu);
+        crate::glsl::struct_varyings::flatten(stage, &mut parsed.tu)?;
     }
     let mut shader = Shader {
         stage,

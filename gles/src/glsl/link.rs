@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use crate::glsl::linked::{
-    array_suffix, Linked, LinkedBlock, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP,
+    array_suffix, Linked, LinkedBlock, UniformSlot, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP, VERTEX_ID_STEP,
 };
 use crate::glsl::translate::{naga_module, transpile, Body, Placed};
 use crate::glsl::types::{Scalar, Shader, Stage, Ty, Var};
@@ -345,7 +345,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     // a square's corners, the point's instance (the vertex of a non-indexed draw).
     let (vertex_id, point_vertex_id) = if vs.vertex_id {
         vsrc.push_str("int strata_VertexID;\n");
-        ("    strata_VertexID = int(gl_VertexIndex);\n", "    strata_VertexID = int(gl_InstanceIndex);\n")
+        (VERTEX_ID_STEP, "    strata_VertexID = int(gl_InstanceIndex);\n")
     } else {
         ("", "")
     };

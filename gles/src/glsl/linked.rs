@@ -82,6 +82,9 @@ pub struct Linked {
     pub capture: Option<crate::glsl::capture::Capture>,
 }
 
+/// The vertex stage's `gl_VertexID` step, which an unrolled capture replaces.
+pub(crate) const VERTEX_ID_STEP: &str = "    strata_VertexID = int(gl_VertexIndex);\n";
+
 /// The points stage's first step after the shader's `main` and its copies: where a
 /// capturing variant stores the vertex, before the point is expanded.
 pub(crate) const POINT_SIZE_STEP: &str = "    float strata_size";

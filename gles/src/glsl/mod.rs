@@ -35,6 +35,7 @@ mod preprocess;
 mod rewrite;
 mod separate;
 mod sized_arrays;
+mod struct_varyings;
 mod translate;
 pub mod types;
 mod variants;

@@ -3,7 +3,7 @@
 //! and a reversed-Z surface's depth. The shader's own code is never touched: the generated
 //! steps come last, so each is found as its last occurrence.
 
-use crate::glsl::linked::{Linked, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP};
+use crate::glsl::linked::{Linked, CONVENTIONS, FRAG_DEPTH_OUT, POINT_SIZE_STEP, VERTEX_ID_STEP};
 use crate::glsl::translate::{naga_module, Body, Placed};
 use crate::glsl::types::Stage;
 
@@ -71,17 +71,30 @@ impl Linked {
         self.capturing_variant(points, upper_left, z, None)
     }
 
+    /// Whether the vertex stage reads `gl_VertexID`.
+    pub fn reads_vertex_id(&self) -> bool {
+        self.vertex_source.contains(VERTEX_ID_STEP)
+    }
+
     /// [`Linked::vertex_variant`], storing the captured varyings first where `capture` is
-    /// `Some(discard)` (with `discard`, `GL_RASTERIZER_DISCARD`: nothing is rasterized).
+    /// `Some((discard, unrolled))` (with `discard`, `GL_RASTERIZER_DISCARD`: nothing is
+    /// rasterized; `unrolled`: the draw's vertices are gathered in the order they are recorded,
+    /// and `gl_VertexID` is the vertex input at [`Linked::point_input`], the vertex's number).
     pub fn capturing_variant(
         &self,
         points: bool,
         upper_left: bool,
         z: ClipZ,
-        capture: Option<bool>,
+        capture: Option<(bool, bool)>,
     ) -> Result<naga::Module, String> {
         let mut source = if points { self.points_source.clone() } else { self.vertex_source.clone() };
-        if let (Some(discard), Some(c)) = (capture, &self.capture) {
+        if let (Some((discard, unrolled)), Some(c)) = (capture, &self.capture) {
+            if unrolled && source.contains(VERTEX_ID_STEP) {
+                source = source.replacen(VERTEX_ID_STEP, "    strata_VertexID = int(strata_unrolled_id);\n", 1);
+                let top = source.find('\n').map_or(0, |n| n + 1);
+                let input = format!("layout(location = {}) in uint strata_unrolled_id;\n", self.point_input);
+                source.insert_str(top, &input);
+            }
             let step = if points { POINT_SIZE_STEP } else { CONVENTIONS };
             let at = source.rfind(step).ok_or("internal error: no place to capture in the vertex stage")?;
             source.insert_str(at, &crate::glsl::capture::statements(c, points, discard));

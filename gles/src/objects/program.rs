@@ -56,7 +56,7 @@ pub struct LinkedProgram {
     pub(crate) clip_vs: Mutex<HashMap<(bool, ClipControl), Result<wgpu::ShaderModule, String>>>,
     /// Capturing vertex stages (transform feedback), by (points, clip control, rasterizer
     /// discard), created on first use (or why they failed).
-    pub(crate) capture_vs: Mutex<VariantCache<(bool, ClipControl, bool)>>,
+    pub(crate) capture_vs: Mutex<VariantCache<(bool, ClipControl, bool, bool)>>,
 }
 
 /// Vertex stage variants by what selects them, each created on first use (or why it failed).
@@ -123,20 +123,21 @@ impl LinkedProgram {
     }
 
     /// The vertex module (`points`: the points variant) that captures the transform feedback
-    /// varyings, for clip control state `clip` and rasterizer discard `discard`.
+    /// varyings, for clip control state `clip`, rasterizer discard `discard` and draws whose
+    /// vertices are `unrolled` (see `glsl::Linked::capturing_variant`).
     pub fn capture_vs(
         &self,
         gpu: &Gpu,
         points: bool,
         clip: ClipControl,
-        discard: bool,
+        (discard, unrolled): (bool, bool),
     ) -> Result<wgpu::ShaderModule, String> {
         let mut cache = self.capture_vs.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         cache
-            .entry((points, clip, discard))
+            .entry((points, clip, discard, unrolled))
             .or_insert_with(|| {
                 let z = if clip.zero_to_one { glsl::ClipZ::Direct } else { glsl::ClipZ::Forward };
-                let m = self.info.capturing_variant(points, clip.upper_left, z, Some(discard))?;
+                let m = self.info.capturing_variant(points, clip.upper_left, z, Some((discard, unrolled)))?;
                 shader_module(gpu, "vs capture", m)
             })
             .clone()

@@ -87,7 +87,10 @@ pub fn transform_feedback(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBindBuffer(ARRAY_BUFFER, one)?;
     attrib(gl, 0, 4, FLOAT, false, 32, 0)?;
     attrib(gl, 1, 4, FLOAT, false, 32, 16)?;
+    // The interleaved capture in the lower right quarter, apart from the separate one's.
+    gl.glViewport(W / 2, 0, W / 2, H / 2)?;
     gl.glDrawArrays(TRIANGLES, 0, 6)?;
+    gl.glViewport(0, 0, W, H)?;
     gl.glBindBuffer(ARRAY_BUFFER, moved)?;
     gl.glVertexAttribPointer(0, 4, FLOAT, false, 0, 0)?;
     gl.glBindBuffer(ARRAY_BUFFER, tint)?;
