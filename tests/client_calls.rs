@@ -43,8 +43,8 @@
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 //! `tests/client_calls_es3.rs` builds it again as `client_calls_es3`, which runs `es3_core`,
-//! `es3_clears` (`glClearBuffer*`, `glGetFragDataLocation`), `es3_sync` (sync objects) and
-//! `es3_xfb` (transform feedback) instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
+//! `es3_clears` (`glClearBuffer*`, `glGetFragDataLocation`), `es3_sync` (sync objects),
+//! `es3_xfb` (transform feedback) and `es3_blocks` (active uniforms with blocks) instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
 //! `--es3`): Mesa reads its version override once per process, so each version needs a process
 //! of its own. [`ES3`] says which.
 
@@ -96,6 +96,8 @@ mod debug_callback;
 mod draw_buffers;
 #[path = "client_calls/egl_image.rs"]
 mod egl_image;
+#[path = "client_calls/es3_blocks.rs"]
+mod es3_blocks;
 #[path = "client_calls/es3_clears.rs"]
 mod es3_clears;
 #[path = "client_calls/es3_core.rs"]
@@ -288,11 +290,12 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("base_vertex", base_vertex::sequence),
         ("versions", versions::sequence),
     ];
-    let es3: [Sequence; 4] = [
+    let es3: [Sequence; 5] = [
         ("es3_core", es3_core::sequence),
         ("es3_clears", es3_clears::sequence),
         ("es3_sync", es3_sync::sequence),
         ("es3_xfb", es3_xfb::sequence),
+        ("es3_blocks", es3_blocks::sequence),
     ];
     let chosen = if ES3 { es3.to_vec() } else { sequences.to_vec() };
     let mut lines = Vec::new();

@@ -12,6 +12,7 @@
 //! `render`. `conv` holds the typed enums and every GL → wgpu mapping.
 
 mod account;
+mod active_uniforms;
 mod buffer_copies;
 mod buffers;
 mod clear_buffers;

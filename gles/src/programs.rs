@@ -178,7 +178,7 @@ impl GlesExecutor {
                     ATTACHED_SHADERS => Ok(p.attached.len() as i32),
                     PROGRAM_BINARY_LENGTH_OES => Ok(crate::programs::length(p)),
                     ACTIVE_ATTRIBUTES => Ok(linked.map_or(0, |l| l.info.attributes.len() as i32)),
-                    ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| l.info.uniforms.len() as i32)),
+                    ACTIVE_UNIFORMS => Ok(linked.map_or(0, |l| crate::active_uniforms::active(&l.info).len() as i32)),
                     ACTIVE_ATTRIBUTE_MAX_LENGTH => Ok(linked
                         .map_or(0, |l| l.info.attributes.iter().map(|a| a.0.name.len() as i32 + 1).max().unwrap_or(0))),
                     _ if ctx.es3() && crate::transform_feedback::program_state(p, pname).is_some() => {
@@ -190,12 +190,8 @@ impl GlesExecutor {
                     crate::glsl::blocks::ACTIVE_UNIFORM_BLOCK_MAX_NAME_LENGTH if ctx.es3() => Ok(linked
                         .map_or(0, |l| l.info.blocks.iter().map(|b| b.block.name.len() as i32 + 1).max().unwrap_or(0))),
                     ACTIVE_UNIFORM_MAX_LENGTH => Ok(linked.map_or(0, |l| {
-                        l.info
-                            .uniforms
-                            .iter()
-                            .map(|u| u.name.len() as i32 + if u.is_array { 4 } else { 1 })
-                            .max()
-                            .unwrap_or(0)
+                        let list = crate::active_uniforms::active(&l.info);
+                        list.iter().map(|a| a.name.len() as i32 + 1).max().unwrap_or(0)
                     })),
                     _ => Err(GlError::InvalidEnum),
                 }

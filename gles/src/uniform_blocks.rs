@@ -20,6 +20,7 @@ const UNIFORM_BLOCK_BINDING: u32 = 0x8A3F;
 const UNIFORM_BLOCK_DATA_SIZE: u32 = 0x8A40;
 const UNIFORM_BLOCK_NAME_LENGTH: u32 = 0x8A41;
 const UNIFORM_BLOCK_ACTIVE_UNIFORMS: u32 = 0x8A42;
+const UNIFORM_BLOCK_ACTIVE_UNIFORM_INDICES: u32 = 0x8A43;
 const UNIFORM_BLOCK_REFERENCED_BY_VERTEX_SHADER: u32 = 0x8A44;
 const UNIFORM_BLOCK_REFERENCED_BY_FRAGMENT_SHADER: u32 = 0x8A46;
 /// `glGetIntegeri_v`'s names for the indexed bindings.
@@ -173,6 +174,9 @@ impl GlesExecutor {
             let b = l.info.blocks.get(index as usize).ok_or(GlError::InvalidValue)?;
             let binding =
                 ctx.objects.programs.get(&program).and_then(|p| p.block_bindings.get(index as usize).copied());
+            if pname == UNIFORM_BLOCK_ACTIVE_UNIFORM_INDICES {
+                return Ok(crate::active_uniforms::block_members(&l.info, index));
+            }
             Ok(vec![match pname {
                 UNIFORM_BLOCK_BINDING => binding.unwrap_or(0) as i32,
                 UNIFORM_BLOCK_DATA_SIZE => b.block.size as i32,

@@ -1,14 +1,13 @@
 //! Uniforms: locations, active-uniform queries, the `glUniform*` family writing the program's
 //! std140 block (or a sampler's texture unit), and reading values back.
 
-use strata_protocol::{ActiveVariable, Slice, Text};
+use strata_protocol::{Slice, Text};
 
 use crate::context::Context;
 
 use crate::error::{GlError, GlResult};
 use crate::glsl::types::Scalar;
 use crate::limits::MAX_UNITS;
-use crate::linking::linked_for_query;
 use crate::objects::program::LinkedProgram;
 use crate::GlesExecutor;
 
@@ -288,18 +287,6 @@ impl GlesExecutor {
             ctx.record(e);
             -1
         })
-    }
-
-    pub(super) fn glGetActiveUniform(&mut self, ctx: &mut Context, program: u32, index: u32) -> Option<ActiveVariable> {
-        let v = linked_for_query(&ctx.objects, program).and_then(|l| {
-            let u = l.info.uniforms.get(index as usize).ok_or(GlError::InvalidValue)?;
-            Ok(ActiveVariable {
-                size: u.len as i32,
-                ty: u.ty.gl_enum(),
-                name: if u.is_array { format!("{}[0]", u.name) } else { u.name.clone() },
-            })
-        });
-        v.map_err(|e| ctx.record(e)).ok()
     }
 
     pub(super) fn glGetUniformfv(&mut self, ctx: &mut Context, program: u32, location: i32) -> Vec<f32> {

@@ -462,6 +462,10 @@ command_set! {
         /// A fragment output's location by name (-1 if none).
         glGetFragDataLocation [Context, Es3] => GetFragDataLocation { program: GLuint, name: Text<'a> } -> GLint;
         glIsTransformFeedback [Context, Es3] => IsTransformFeedback { id: GLuint } -> bool;
+        /// `names`: the `count` names, each ended by a newline; an index per name.
+        glGetUniformIndices [Context, Es3] => GetUniformIndices { program: GLuint, count: GLsizei, names: Text<'a> } -> Vec<GLuint>;
+        /// A value per index (nothing on error).
+        glGetActiveUniformsiv [Context, Es3] => GetActiveUniformsiv { program: GLuint, indices: Slice<'a, GLuint>, pname: GLenum } -> Vec<GLint>;
         /// A captured varying's size, type and name (`None` on error).
         glGetTransformFeedbackVarying [Context, Es3] => GetTransformFeedbackVarying { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
     }

@@ -250,4 +250,8 @@ api! {
     bind_buffer_range = "glBindBufferRange": fn(u32, u32, u32, isize, isize);
     get_integeri_v = "glGetIntegeri_v": fn(u32, u32, *mut i32);
     get_query_object_uiv_core = "glGetQueryObjectuiv": fn(u32, u32, *mut u32);
+    get_active_uniform = "glGetActiveUniform": fn(u32, u32, i32, *mut i32, *mut i32, *mut u32, *mut i8);
+    get_uniform_indices = "glGetUniformIndices": fn(u32, i32, *const *const i8, *mut u32);
+    get_active_uniformsiv = "glGetActiveUniformsiv": fn(u32, i32, *const u32, u32, *mut i32);
+    get_active_uniform_blockiv = "glGetActiveUniformBlockiv": fn(u32, u32, u32, *mut i32);
 }

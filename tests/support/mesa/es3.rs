@@ -299,4 +299,52 @@ impl Arms<'_> {
         let name = std::ffi::CString::new(name.as_str()).map_err(|e| ClientError::Unsupported(e.to_string()))?;
         Ok(call!(self, "glGetFragDataLocation", fn(u32, *const i8) -> i32, p, name.as_ptr()))
     }
+
+    pub(super) fn glGetUniformIndices(
+        &mut self,
+        program: &GLuint,
+        count: &GLsizei,
+        names: &Text<'_>,
+    ) -> Result<Vec<GLuint>, ClientError> {
+        let p = self.shader(*program);
+        let owned: Vec<std::ffi::CString> = names
+            .as_str()
+            .lines()
+            .map(|n| std::ffi::CString::new(n).map_err(|e| ClientError::Unsupported(e.to_string())))
+            .collect::<Result<_, _>>()?;
+        let ptrs: Vec<*const i8> = owned.iter().map(|c| c.as_ptr()).collect();
+        let mut out = vec![0xDEAD_BEEF_u32; ptrs.len()];
+        call!(
+            self,
+            "glGetUniformIndices",
+            fn(u32, i32, *const *const i8, *mut u32) -> (),
+            p,
+            *count,
+            ptrs.as_ptr(),
+            out.as_mut_ptr()
+        );
+        Ok(out)
+    }
+
+    pub(super) fn glGetActiveUniformsiv(
+        &mut self,
+        program: &GLuint,
+        indices: &Slice<'_, GLuint>,
+        pname: &GLenum,
+    ) -> Result<Vec<GLint>, ClientError> {
+        let p = self.shader(*program);
+        let list: Vec<u32> = indices.iter().collect();
+        let mut out = vec![i32::MIN; list.len()];
+        call!(
+            self,
+            "glGetActiveUniformsiv",
+            fn(u32, i32, *const u32, u32, *mut i32) -> (),
+            p,
+            list.len() as i32,
+            list.as_ptr(),
+            *pname,
+            out.as_mut_ptr()
+        );
+        Ok(if out.contains(&i32::MIN) { Vec::new() } else { out })
+    }
 }

@@ -82,6 +82,40 @@ crate::entry::entry_points! {
         })
     }
 
+    /// Each name's active uniform index (`GL_INVALID_INDEX` for none), sent as one text of lines.
+    fn glGetUniformIndices(program: GLuint, count: GLsizei, names: *const *const GLchar, indices: *mut GLuint) {
+        with_gl("glGetUniformIndices", (), |gl| {
+            // SAFETY: the application passes `count` pointers.
+            let list = unsafe { super::values(names, i64::from(count)) };
+            let mut text = String::new();
+            for &n in list {
+                // SAFETY: each is NUL-terminated.
+                text.push_str(unsafe { c_name(n) }.unwrap_or(""));
+                text.push('\n');
+            }
+            let v = gl.conn.glGetUniformIndices(program, count, Text::borrowed(&text))?;
+            // SAFETY: `indices` has room for `count` values.
+            unsafe { super::write_out(indices, &v) };
+            Ok(())
+        })
+    }
+
+    /// One property of each active uniform `indices` names.
+    fn glGetActiveUniformsiv(program: GLuint, count: GLsizei, indices: *const GLuint, pname: GLenum, params: *mut GLint) {
+        with_gl("glGetActiveUniformsiv", (), |gl| {
+            if count < 0 {
+                gl.st.err(GL_INVALID_VALUE);
+                return Ok(());
+            }
+            // SAFETY: the application passes `count` indices.
+            let list = unsafe { super::values(indices, i64::from(count)) };
+            let v = gl.conn.glGetActiveUniformsiv(program, strata_protocol::Slice::new(list), pname)?;
+            // SAFETY: `params` has room for `count` values.
+            unsafe { super::write_out(params, &v) };
+            Ok(())
+        })
+    }
+
     /// A block's name, NUL-terminated and truncated to `buf_size`.
     fn glGetActiveUniformBlockName(program: GLuint, index: GLuint, buf_size: GLsizei, length: *mut GLsizei, name: *mut GLchar) {
         with_gl("glGetActiveUniformBlockName", (), |gl| {
