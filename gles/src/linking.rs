@@ -51,10 +51,12 @@ pub fn link_stages(objects: &Objects, p: &Program) -> Result<LinkResult, String>
     };
     let vertex = find(Stage::Vertex).map(compiled).transpose()?;
     let fragment = find(Stage::Fragment).map(compiled).transpose()?;
-    let (mut info, recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &p.bindings, p.separable)?;
+    let (mut info, mut recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &p.bindings, p.separable)?;
     if let Some(v) = &vertex {
         info.capture = glsl::capture::resolve(&p.xfb.0, !p.xfb.1, v)?;
     }
+    // A binary of the program captures what it does.
+    recipe.xfb = p.xfb.clone();
     Ok((info, recipe, LinkedStages::new(p.separable, vertex, fragment)))
 }
 

@@ -254,7 +254,7 @@ pub const PROGRAM_BINARY_FORMAT: u32 = 0x5354_5241;
 /// The first bytes of every binary.
 const MAGIC: &[u8; 8] = b"STRATApb";
 /// The layout of what follows the header; a binary of another version is refused.
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 /// Magic, version and CRC-32.
 const HEADER: usize = 16;
 /// The most a binary's payload may claim to hold.
@@ -338,7 +338,12 @@ fn relink(bytes: &[u8], separable: bool) -> Result<LinkResult, String> {
     let vertex = compile(Stage::Vertex, &recipe.vertex, "vertex")?;
     let fragment = compile(Stage::Fragment, &recipe.fragment, "fragment")?;
     let bindings: HashMap<String, u32> = recipe.bindings.iter().cloned().collect();
-    let (info, recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &bindings, separable)?;
+    let xfb = recipe.xfb.clone();
+    let (mut info, mut recipe) = link_either(vertex.as_ref(), fragment.as_ref(), &bindings, separable)?;
+    if let Some(v) = &vertex {
+        info.capture = glsl::capture::resolve(&xfb.0, !xfb.1, v)?;
+    }
+    recipe.xfb = xfb;
     Ok((info, recipe, LinkedStages::new(separable, vertex, fragment)))
 }
 
@@ -368,6 +373,10 @@ impl GlesExecutor {
         let bytes = binary.as_bytes();
         let bytes = &bytes[..bytes.len().min(length as usize)];
         let result = relink(bytes, p.separable).and_then(|linked| create_gpu_program(&self.gpu, linked, id));
+        // The program's varyings for transform feedback become the binary's.
+        if let Ok(l) = &result {
+            p.xfb = l.recipe.xfb.clone();
+        }
         p.install(result);
         Ok(())
     }
@@ -408,6 +417,7 @@ mod tests {
             vertex: "attribute vec4 p; void main() { gl_Position = p; }".into(),
             fragment: "void main() { gl_FragColor = vec4(1.0); }".into(),
             bindings: vec![("p".into(), 3)],
+            xfb: (Vec::new(), false),
         }
     }
 
@@ -429,8 +439,8 @@ mod tests {
         assert_eq!(decode(&good[..HEADER - 1]), Err(BinaryError::Foreign));
         assert_eq!(decode(b"MESA binary, whatever it holds"), Err(BinaryError::Foreign));
         let mut other = good.clone();
-        other[8] = 2;
-        assert_eq!(decode(&other), Err(BinaryError::Version(2)));
+        other[8] = 1;
+        assert_eq!(decode(&other), Err(BinaryError::Version(1)), "a binary of the layout before");
         for at in [HEADER, good.len() / 2, good.len() - 1] {
             let mut flipped = good.clone();
             flipped[at] ^= 0x10;
@@ -467,7 +477,7 @@ mod tests {
         /// Recipes with arbitrary sources and bindings survive the round trip.
         #[test]
         fn any_recipe_round_trips(vertex in ".*", fragment in ".*", index in 0..MAX_ATTRIBS as u32) {
-            let r = Recipe { vertex, fragment, bindings: vec![("a".into(), index)] };
+            let r = Recipe { vertex, fragment, bindings: vec![("a".into(), index)], xfb: (Vec::new(), false) };
             proptest::prop_assert_eq!(decode(&encode(&r)), Ok(r));
         }
     }

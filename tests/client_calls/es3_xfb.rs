@@ -248,6 +248,27 @@ pub fn sequence(r: &mut Run) {
         (gl.bind_buffer)(ARRAY, 0);
         (gl.delete_program)(draw);
 
+        // The program's binary captures what it does.
+        let mut len = 0;
+        (gl.get_programiv)(p, 0x8741, &mut len);
+        let mut bin = vec![0u8; len.max(0) as usize];
+        let (mut got, mut format) = (0, 0u32);
+        (gl.get_program_binary)(p, len, &mut got, &mut format, bin.as_mut_ptr().cast());
+        let q = (gl.create_program)();
+        (gl.program_binary)(q, format, bin.as_ptr().cast(), got);
+        let (mut ok, mut varyings) = (-1, -1);
+        (gl.get_programiv)(q, LINK_STATUS, &mut ok);
+        (gl.get_programiv)(q, VARYINGS, &mut varyings);
+        r.note(&format!("a program from the binary: linked {ok}, {varyings} varyings"));
+        (gl.use_program)(q);
+        (gl.vertex_attrib_pointer)(0, 4, FLOAT, 0, 0, tri.as_ptr().cast());
+        (gl.bind_buffer_base)(TF_BUFFER, 0, bufs[2]);
+        (gl.begin_transform_feedback)(POINTS);
+        (gl.draw_arrays)(POINTS, 4, 2);
+        (gl.end_transform_feedback)();
+        words(r, "captured by the binary's program", bufs[2], 18);
+        (gl.delete_program)(q);
+
         // Separate buffers, ranges of two, from points drawn twice over.
         let s = xfb_program(r, "separate", &["scale", "twice"], SEPARATE);
         (gl.use_program)(s);

@@ -253,6 +253,8 @@ pub struct Recipe {
     pub fragment: String,
     /// `glBindAttribLocation` requests in force at the link, by name.
     pub bindings: Vec<(String, u32)>,
+    /// The transform feedback varyings the link captured, and whether separately.
+    pub xfb: (Vec<String>, bool),
 }
 
 impl Recipe {
@@ -264,7 +266,7 @@ impl Recipe {
             Stage::Vertex => (s.source.clone(), String::new()),
             Stage::Fragment => (String::new(), s.source.clone()),
         };
-        Recipe { vertex, fragment, bindings: listed }
+        Recipe { vertex, fragment, bindings: listed, xfb: (Vec::new(), false) }
     }
 }
 
