@@ -374,3 +374,33 @@ fn the_selection_is_piglits_gles2_build_and_glsl_es_1_00() {
     }
     assert!(selected.iter().all(|t| t.xml.starts_with("<Test ") && t.xml.ends_with("</Test>")));
 }
+
+/// The GLES 3.0 selection holds piglit's GLES 3 build and GLSL ES 3.00 in its areas, and no
+/// other: known members of each kind are in, image tests and other builds' tests are out.
+#[test]
+fn the_es3_selection_is_piglits_gles3_build_in_its_areas() {
+    if !oracles_present() {
+        return;
+    }
+    let selected =
+        selection::select(Path::new(TESTS), Path::new(BIN), PROFILES, &selection::GLES3).expect("piglit's profiles");
+    let names: std::collections::HashSet<&str> = selected.iter().map(|t| t.name.as_str()).collect();
+    for inside in [
+        // C tests of the GLES 3 build, a glslparsertest and a compiler test with version 3.00.
+        "spec@!opengl es 3.0@gl_vertexid used with gldrawarrays",
+        "spec@arb_transform_feedback2@change objects while paused (gles3)",
+        "spec@glsl-es-3.00@compiler@undefined-macro.vert",
+        "spec@glsl-es-3.00@compiler@flat_interpolation@flat-struct-int.frag",
+    ] {
+        assert!(names.contains(inside), "{inside} is missing from the selection");
+    }
+    for outside in [
+        // The image side, an extension beyond ES 3.0, the GLES 2 build, GLSL ES 1.00.
+        "spec@!opengl es 3.0@texture-immutable-levels",
+        "spec@oes_texture_view@formats",
+        "spec@!opengl es 2.0@invalid-es3-queries_gles2",
+        "spec@glsl-es-1.00@linker@glsl-fface-invariant",
+    ] {
+        assert!(!names.contains(outside), "{outside} is in the selection");
+    }
+}
