@@ -6,7 +6,6 @@
 //! (`execute_es3.rs`): instanced horses placed by a uniform buffer.
 
 use std::collections::HashMap;
-use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{Mat4, Vec3};
@@ -16,8 +15,7 @@ use strata_gles::glsl;
 use strata_protocol::{Blob, Slice, Text};
 
 use crate::mesh::{self, Mesh};
-use crate::side::{Setup, Side, Sides};
-use indicatif::ProgressBar;
+use crate::side::{NativeTarget, Setup, Side, Sides};
 
 use crate::transport::{bar, start_daemon_with};
 
@@ -129,13 +127,29 @@ impl StrataSide {
         let count = mesh.indices.len() as i32;
         let locations = (mvp_loc, nm_loc);
         let mut side = StrataSide { gl, _daemon: daemon, locations, count, size };
-        side.frames(0..10, None)?;
+        Side::frames(&mut side, 0..10, None)?;
         if side.gl.glGetError()? != 0 {
             bail!("GL error during the Strata frames");
         }
         Ok(side)
     }
+}
 
+/// The baseline: the same shader (through Strata's GLSL ES front end) and mesh drawn by wgpu
+/// code in this process, on a device of its own.
+struct NativeSide {
+    target: NativeTarget,
+    vbuf: wgpu::Buffer,
+    ibuf: wgpu::Buffer,
+    ubuf: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    pipeline: wgpu::RenderPipeline,
+    /// Where the two matrices lie in the uniform block.
+    offsets: (u64, u64),
+    count: u32,
+}
+
+impl Side for StrataSide {
     fn frame(&mut self, f: u32) -> Result<()> {
         let gl = &mut self.gl;
         let (mvp, nm) = matrices(f, 1.0);
@@ -149,45 +163,11 @@ impl StrataSide {
         Ok(())
     }
 
-    /// Draws frames `range` and waits for them: the seconds it took.
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        let start = Instant::now();
-        for f in range {
-            self.frame(f)?;
-            if let Some(pb) = pb {
-                pb.inc(1);
-            }
-        }
-        self.gl.glFinish()?;
-        Ok(start.elapsed().as_secs_f64())
-    }
-}
-
-/// The baseline: the same shader (through Strata's GLSL ES front end) and mesh drawn by wgpu
-/// code in this process, on a device of its own.
-struct NativeSide {
-    gpu: std::sync::Arc<strata_device::Gpu>,
-    color_tex: wgpu::Texture,
-    color: wgpu::TextureView,
-    depth: wgpu::TextureView,
-    vbuf: wgpu::Buffer,
-    ibuf: wgpu::Buffer,
-    ubuf: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    pipeline: wgpu::RenderPipeline,
-    /// Where the two matrices lie in the uniform block.
-    offsets: (u64, u64),
-    count: u32,
-    size: u32,
-}
-
-impl Side for StrataSide {
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        StrataSide::frames(self, range, pb)
+    fn wait(&mut self) -> Result<()> {
+        Ok(self.gl.glFinish()?)
     }
 
-    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
-        self.frame(f)?;
+    fn read(&mut self) -> Result<Vec<u8>> {
         Ok(self.gl.glReadPixels(0, 0, self.size, self.size, 0x1908, 0x1401)?.0)
     }
 
@@ -197,12 +177,21 @@ impl Side for StrataSide {
 }
 
 impl Side for NativeSide {
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        NativeSide::frames(self, range, pb)
+    fn frame(&mut self, f: u32) -> Result<()> {
+        let (mvp, nm) = matrices(f, 1.0);
+        let gpu = &self.target.gpu;
+        gpu.write_buffer(&self.ubuf, self.offsets.0, bytemuck::cast_slice(&mvp));
+        gpu.write_buffer(&self.ubuf, self.offsets.1, bytemuck::cast_slice(&nm));
+        self.target.frame(&self.pipeline, &self.group, (&self.vbuf, &self.ibuf), self.count, 1);
+        Ok(())
     }
 
-    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
-        NativeSide::image(self, f)
+    fn wait(&mut self) -> Result<()> {
+        self.target.wait()
+    }
+
+    fn read(&mut self) -> Result<Vec<u8>> {
+        self.target.image()
     }
 }
 
@@ -214,28 +203,10 @@ impl NativeSide {
         bindings.insert("position".to_string(), 0);
         bindings.insert("normal".to_string(), 1);
         let linked = glsl::link(&vs, &fs, &bindings, 16).map_err(|e| anyhow!("{e}"))?;
-        let gpu = strata_device::Gpu::open()?;
-        let d = &gpu.device;
-        let square = (args.size, args.size);
-        let target =
-            |format, usage| gpu.texture_2d("execute target", format, square, usage).create_view(&Default::default());
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let color_tex = gpu.texture_2d("execute colour", wgpu::TextureFormat::Rgba8Unorm, square, usage);
-        let color = color_tex.create_view(&Default::default());
-        let depth = target(wgpu::TextureFormat::Depth24PlusStencil8, wgpu::TextureUsages::RENDER_ATTACHMENT);
-        let buffer = |bytes: &[u8], usage: wgpu::BufferUsages| {
-            let b = d.create_buffer(&wgpu::BufferDescriptor {
-                label: None,
-                size: bytes.len() as u64,
-                usage: usage | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            gpu.write_buffer(&b, 0, bytes);
-            b
-        };
-        let vbuf = buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
-        let ibuf = buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
-        let ubuf = buffer(&vec![0u8; linked.block_size as usize], wgpu::BufferUsages::UNIFORM);
+        let target = NativeTarget::new(args.size)?;
+        let vbuf = target.buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
+        let ibuf = target.buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
+        let ubuf = target.buffer(&vec![0u8; linked.block_size as usize], wgpu::BufferUsages::UNIFORM);
         let offset_of = |name: &str| {
             linked
                 .uniforms
@@ -245,6 +216,7 @@ impl NativeSide {
                 .ok_or_else(|| anyhow!("no uniform {name}"))
         };
         let (mvp_off, nm_off) = (offset_of("ModelViewProjectionMatrix")?, offset_of("NormalMatrix")?);
+        let d = &target.gpu.device;
         let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: None,
             entries: &[wgpu::BindGroupLayoutEntry {
@@ -268,120 +240,12 @@ impl NativeSide {
             bind_group_layouts: &[Some(&bgl)],
             immediate_size: 0,
         });
-        let vmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: None,
-            source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.vertex)),
-        });
-        let fmod = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: None,
-            source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(linked.fragment)),
-        });
-        let attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: None,
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &vmod,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 24,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attrs,
-                })],
-            },
-            primitive: wgpu::PrimitiveState { front_face: wgpu::FrontFace::Cw, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth24PlusStencil8,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &fmod,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = target.pipeline(&layout, linked.vertex, linked.fragment);
         let count = mesh.indices.len() as u32;
         let offsets = (mvp_off, nm_off);
-        let side = NativeSide {
-            gpu,
-            color_tex,
-            color,
-            depth,
-            vbuf,
-            ibuf,
-            ubuf,
-            group,
-            pipeline,
-            offsets,
-            count,
-            size: args.size,
-        };
-        side.frames(0..10, None)?;
+        let mut side = NativeSide { target, vbuf, ibuf, ubuf, group, pipeline, offsets, count };
+        Side::frames(&mut side, 0..10, None)?;
         Ok(side)
-    }
-
-    fn frame(&self, f: u32) {
-        let (mvp, nm) = matrices(f, 1.0);
-        self.gpu.write_buffer(&self.ubuf, self.offsets.0, bytemuck::cast_slice(&mvp));
-        self.gpu.write_buffer(&self.ubuf, self.offsets.1, bytemuck::cast_slice(&nm));
-        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.color,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            rp.set_pipeline(&self.pipeline);
-            rp.set_bind_group(0, &self.group, &[]);
-            rp.set_vertex_buffer(0, self.vbuf.slice(..));
-            rp.set_index_buffer(self.ibuf.slice(..), wgpu::IndexFormat::Uint32);
-            rp.draw_indexed(0..self.count, 0, 0..1);
-        }
-        self.gpu.submit(&self.gpu.lane, vec![enc.finish()]);
-    }
-
-    /// Draws frames `range` and waits for them: the seconds it took.
-    fn frames(&self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        let start = Instant::now();
-        for f in range {
-            self.frame(f);
-            if let Some(pb) = pb {
-                pb.inc(1);
-            }
-        }
-        self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None })?;
-        Ok(start.elapsed().as_secs_f64())
-    }
-
-    /// Frame `f` again, read back (RGBA8, bottom row first).
-    fn image(&self, f: u32) -> Result<Vec<u8>> {
-        self.frame(f);
-        self.gpu
-            .read_rgba8(&self.color_tex, [0, 0, self.size, self.size])
-            .ok_or_else(|| anyhow!("reading the frame back failed"))
     }
 }
 

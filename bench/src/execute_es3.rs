@@ -6,18 +6,16 @@
 //! (translated by Strata's front end), mesh and block with one instanced `draw_indexed`.
 
 use std::collections::HashMap;
-use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{Mat4, Vec3};
-use indicatif::ProgressBar;
 use strata_client::setup::{egl_context_es3, link_program, SurfaceKind};
 use strata_client::{Calls, ConnectOptions, Connection};
 use strata_gles::glsl;
 use strata_protocol::{Blob, Slice, Text};
 
 use crate::mesh::Mesh;
-use crate::side::{Setup, Side, Sides};
+use crate::side::{NativeTarget, Setup, Side, Sides};
 use crate::transport::start_daemon_with;
 
 /// The horses drawn, in a 3×3 grid.
@@ -110,7 +108,9 @@ impl StrataEs3 {
         }
         Ok(side)
     }
+}
 
+impl Side for StrataEs3 {
     fn frame(&mut self, f: u32) -> Result<()> {
         let gl = &mut self.gl;
         // The frame's block first, then the frame: its clear and draw share one pass.
@@ -121,23 +121,12 @@ impl StrataEs3 {
         gl.glFlush()?;
         Ok(())
     }
-}
 
-impl Side for StrataEs3 {
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        let start = Instant::now();
-        for f in range {
-            self.frame(f)?;
-            if let Some(pb) = pb {
-                pb.inc(1);
-            }
-        }
-        self.gl.glFinish()?;
-        Ok(start.elapsed().as_secs_f64())
+    fn wait(&mut self) -> Result<()> {
+        Ok(self.gl.glFinish()?)
     }
 
-    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
-        self.frame(f)?;
+    fn read(&mut self) -> Result<Vec<u8>> {
         Ok(self.gl.glReadPixels(0, 0, self.size, self.size, 0x1908, 0x1401)?.0)
     }
 
@@ -149,17 +138,13 @@ impl Side for StrataEs3 {
 /// The baseline: the same stages and block drawn by wgpu code in this process, on a device of
 /// its own.
 struct NativeEs3 {
-    gpu: std::sync::Arc<strata_device::Gpu>,
-    color_tex: wgpu::Texture,
-    color: wgpu::TextureView,
-    depth: wgpu::TextureView,
+    target: NativeTarget,
     vbuf: wgpu::Buffer,
     ibuf: wgpu::Buffer,
     ubuf: wgpu::Buffer,
     group: wgpu::BindGroup,
     pipeline: wgpu::RenderPipeline,
     count: u32,
-    size: u32,
 }
 
 impl NativeEs3 {
@@ -171,33 +156,11 @@ impl NativeEs3 {
             bail!("the scene's program should have its one block and no other uniforms");
         }
         let (binding, size) = (linked.blocks[0].binding, u64::from(linked.blocks[0].block.size));
-        let gpu = strata_device::Gpu::open()?;
-        let d = &gpu.device;
-        let square = (args.size, args.size);
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let color_tex = gpu.texture_2d("execute colour", wgpu::TextureFormat::Rgba8Unorm, square, usage);
-        let color = color_tex.create_view(&Default::default());
-        let depth = gpu
-            .texture_2d(
-                "execute depth",
-                wgpu::TextureFormat::Depth24PlusStencil8,
-                square,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            )
-            .create_view(&Default::default());
-        let buffer = |bytes: &[u8], usage: wgpu::BufferUsages| {
-            let b = d.create_buffer(&wgpu::BufferDescriptor {
-                label: None,
-                size: bytes.len() as u64,
-                usage: usage | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            gpu.write_buffer(&b, 0, bytes);
-            b
-        };
-        let vbuf = buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
-        let ibuf = buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
-        let ubuf = buffer(&vec![0u8; size as usize], wgpu::BufferUsages::UNIFORM);
+        let target = NativeTarget::new(args.size)?;
+        let vbuf = target.buffer(bytemuck::cast_slice(&mesh.vertices), wgpu::BufferUsages::VERTEX);
+        let ibuf = target.buffer(bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX);
+        let ubuf = target.buffer(&vec![0u8; size as usize], wgpu::BufferUsages::UNIFORM);
+        let d = &target.gpu.device;
         let bgl = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: None,
             entries: &[wgpu::BindGroupLayoutEntry {
@@ -221,102 +184,27 @@ impl NativeEs3 {
             bind_group_layouts: &[Some(&bgl)],
             immediate_size: 0,
         });
-        let module = |m: naga::Module| {
-            d.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: None,
-                source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(m)),
-            })
-        };
-        let (vmod, fmod) = (module(linked.vertex), module(linked.fragment));
-        let attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-        let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: None,
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &vmod,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 24,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attrs,
-                })],
-            },
-            primitive: wgpu::PrimitiveState { front_face: wgpu::FrontFace::Cw, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth24PlusStencil8,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &fmod,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = target.pipeline(&layout, linked.vertex, linked.fragment);
         let count = mesh.indices.len() as u32;
-        let mut side =
-            NativeEs3 { gpu, color_tex, color, depth, vbuf, ibuf, ubuf, group, pipeline, count, size: args.size };
+        let mut side = NativeEs3 { target, vbuf, ibuf, ubuf, group, pipeline, count };
         Side::frames(&mut side, 0..10, None)?;
         Ok(side)
-    }
-
-    fn frame(&self, f: u32) {
-        self.gpu.write_buffer(&self.ubuf, 0, &block(f));
-        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.color,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            rp.set_pipeline(&self.pipeline);
-            rp.set_bind_group(0, &self.group, &[]);
-            rp.set_vertex_buffer(0, self.vbuf.slice(..));
-            rp.set_index_buffer(self.ibuf.slice(..), wgpu::IndexFormat::Uint32);
-            rp.draw_indexed(0..self.count, 0, 0..INSTANCES);
-        }
-        self.gpu.submit(&self.gpu.lane, vec![enc.finish()]);
     }
 }
 
 impl Side for NativeEs3 {
-    fn frames(&mut self, range: std::ops::Range<u32>, pb: Option<&ProgressBar>) -> Result<f64> {
-        let start = Instant::now();
-        for f in range {
-            self.frame(f);
-            if let Some(pb) = pb {
-                pb.inc(1);
-            }
-        }
-        self.gpu.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None })?;
-        Ok(start.elapsed().as_secs_f64())
+    fn frame(&mut self, f: u32) -> Result<()> {
+        self.target.gpu.write_buffer(&self.ubuf, 0, &block(f));
+        self.target.frame(&self.pipeline, &self.group, (&self.vbuf, &self.ibuf), self.count, INSTANCES);
+        Ok(())
     }
 
-    fn image(&mut self, f: u32) -> Result<Vec<u8>> {
-        self.frame(f);
-        self.gpu.read_rgba8(&self.color_tex, [0, 0, self.size, self.size]).ok_or_else(|| anyhow!("reading back failed"))
+    fn wait(&mut self) -> Result<()> {
+        self.target.wait()
+    }
+
+    fn read(&mut self) -> Result<Vec<u8>> {
+        self.target.image()
     }
 }
 

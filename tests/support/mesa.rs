@@ -30,6 +30,15 @@ pub fn lib_dir() -> String {
 /// `glVertexAttribPointer`'s size, type, normalized and stride.
 type PointerParams = (i32, u32, bool, i32);
 
+/// The lines of `names` (a command's list of names) as C strings.
+fn c_lines(names: &strata_protocol::Text<'_>) -> Result<Vec<std::ffi::CString>, strata_client::ClientError> {
+    names
+        .as_str()
+        .lines()
+        .map(|n| std::ffi::CString::new(n).map_err(|e| strata_client::ClientError::Unsupported(e.to_string())))
+        .collect()
+}
+
 /// A current Mesa ES2 context on a pbuffer.
 pub struct MesaGl {
     _egl: Library,

@@ -262,6 +262,22 @@ unsafe fn c_name<'a>(name: *const GLchar) -> Option<&'a str> {
     unsafe { CStr::from_ptr(name) }.to_str().ok()
 }
 
+/// `count` NUL-terminated names as one text of lines, as the commands that take lists of names
+/// carry them (a name that is no string is an empty line, which no variable has).
+///
+/// # Safety
+/// `names` holds `count` pointers, each null or to a NUL-terminated string.
+unsafe fn name_lines(names: *const *const GLchar, count: GLsizei) -> String {
+    let mut text = String::new();
+    // SAFETY: see the function's contract.
+    for &n in unsafe { values(names, i64::from(count)) } {
+        // SAFETY: each is NUL-terminated.
+        text.push_str(unsafe { c_name(n) }.unwrap_or(""));
+        text.push('\n');
+    }
+    text
+}
+
 /// A string that stays valid for the rest of the process (what `glGetString` returns).
 fn intern(s: String) -> *const GLubyte {
     static STRINGS: LazyLock<Mutex<HashMap<String, &'static CStr>>> = LazyLock::new(|| Mutex::new(HashMap::new()));

@@ -307,11 +307,7 @@ impl Arms<'_> {
         names: &Text<'_>,
     ) -> Result<Vec<GLuint>, ClientError> {
         let p = self.shader(*program);
-        let owned: Vec<std::ffi::CString> = names
-            .as_str()
-            .lines()
-            .map(|n| std::ffi::CString::new(n).map_err(|e| ClientError::Unsupported(e.to_string())))
-            .collect::<Result<_, _>>()?;
+        let owned = super::c_lines(names)?;
         let ptrs: Vec<*const i8> = owned.iter().map(|c| c.as_ptr()).collect();
         let mut out = vec![0xDEAD_BEEF_u32; ptrs.len()];
         call!(

@@ -67,11 +67,7 @@ impl Arms<'_> {
         buffer_mode: &GLenum,
     ) -> Result<(), ClientError> {
         let p = self.shader(*program);
-        let owned: Vec<std::ffi::CString> = names
-            .as_str()
-            .lines()
-            .map(|n| std::ffi::CString::new(n).map_err(|e| ClientError::Unsupported(e.to_string())))
-            .collect::<Result<_, _>>()?;
+        let owned = super::c_lines(names)?;
         let ptrs: Vec<*const i8> = owned.iter().map(|c| c.as_ptr()).collect();
         call!(
             self,

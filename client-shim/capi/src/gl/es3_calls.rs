@@ -60,14 +60,8 @@ crate::entry::entry_points! {
     /// the daemon; a name that is no string is sent empty, which no varying has).
     fn glTransformFeedbackVaryings(program: GLuint, count: GLsizei, varyings: *const *const GLchar, buffer_mode: GLenum) {
         with_gl("glTransformFeedbackVaryings", (), |gl| {
-            // SAFETY: the application passes `count` pointers.
-            let names = unsafe { values(varyings, i64::from(count)) };
-            let mut text = String::new();
-            for &n in names {
-                // SAFETY: each is NUL-terminated.
-                text.push_str(unsafe { c_name(n) }.unwrap_or(""));
-                text.push('\n');
-            }
+            // SAFETY: the application passes `count` NUL-terminated names.
+            let text = unsafe { super::name_lines(varyings, count) };
             gl.conn.glTransformFeedbackVaryings(program, count, Text::borrowed(&text), buffer_mode)
         })
     }

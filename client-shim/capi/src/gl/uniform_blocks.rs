@@ -85,14 +85,8 @@ crate::entry::entry_points! {
     /// Each name's active uniform index (`GL_INVALID_INDEX` for none), sent as one text of lines.
     fn glGetUniformIndices(program: GLuint, count: GLsizei, names: *const *const GLchar, indices: *mut GLuint) {
         with_gl("glGetUniformIndices", (), |gl| {
-            // SAFETY: the application passes `count` pointers.
-            let list = unsafe { super::values(names, i64::from(count)) };
-            let mut text = String::new();
-            for &n in list {
-                // SAFETY: each is NUL-terminated.
-                text.push_str(unsafe { c_name(n) }.unwrap_or(""));
-                text.push('\n');
-            }
+            // SAFETY: the application passes `count` NUL-terminated names.
+            let text = unsafe { super::name_lines(names, count) };
             let v = gl.conn.glGetUniformIndices(program, count, Text::borrowed(&text))?;
             // SAFETY: `indices` has room for `count` values.
             unsafe { super::write_out(indices, &v) };
