@@ -80,9 +80,10 @@ pub fn resolve(names: &[String], interleaved: bool, vs: &Shader) -> Result<Optio
     if names.is_empty() {
         return Ok(None);
     }
-    // Each takes a word at least: more cannot fit (and the checks below stay cheap).
-    if names.len() > MAX_INTERLEAVED_COMPONENTS as usize {
-        return Err(format!("error: more than {MAX_INTERLEAVED_COMPONENTS} transform feedback varyings"));
+    // Each takes a word at least: more cannot fit (and the checks below stay cheap). Separate
+    // varyings take a buffer binding each; a program binary may ask for more than there are.
+    if names.len() > MAX_INTERLEAVED_COMPONENTS as usize || (!interleaved && names.len() > MAX_SEPARATE_ATTRIBS) {
+        return Err(format!("error: more transform feedback varyings than the buffers hold ({})", names.len()));
     }
     let mut varyings: Vec<Captured> = Vec::new();
     let mut strides: Vec<u32> = Vec::new();
@@ -179,5 +180,41 @@ impl Capture {
     /// The words one vertex's record takes in buffer binding `b` (0 where none goes there).
     pub fn stride(&self, b: usize) -> u32 {
         self.strides.get(b).copied().unwrap_or(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A vertex shader with four outputs.
+    fn shader() -> Shader {
+        crate::glsl::compile(
+            crate::glsl::Stage::Vertex,
+            "#version 300 es\nout vec4 a; out float b; out float c; out float d;\n\
+             void main() { a = vec4(1.0); b = 2.0; c = 3.0; d = 4.0; gl_Position = a; }",
+        )
+        .expect("compiles")
+    }
+
+    #[test]
+    fn varyings_resolve_to_words_in_their_buffers() {
+        let names: Vec<String> = ["a", "gl_Position", "b"].iter().map(|s| s.to_string()).collect();
+        let c = resolve(&names, true, &shader()).expect("resolves").expect("captures");
+        assert_eq!(c.strides, vec![9]);
+        assert_eq!(c.varyings.iter().map(|v| v.offset).collect::<Vec<_>>(), vec![0, 4, 8]);
+        let c = resolve(&names, false, &shader()).expect("resolves").expect("captures");
+        assert_eq!(c.strides, vec![4, 4, 1]);
+    }
+
+    #[test]
+    fn more_separate_varyings_than_bindings_fail_the_link() {
+        // As a program binary could ask: five separate varyings, four buffer bindings.
+        let names: Vec<String> = ["a", "b", "c", "d", "gl_Position"].iter().map(|s| s.to_string()).collect();
+        assert!(resolve(&names, false, &shader()).is_err());
+        assert!(resolve(&names[..4], false, &shader()).is_ok_and(|c| c.is_some()), "four fit");
+        let unknown = vec!["nothing".to_string()];
+        assert!(resolve(&unknown, true, &shader()).is_err());
+        assert_eq!(resolve(&[], true, &shader()), Ok(None));
     }
 }
