@@ -7,8 +7,11 @@ use strata_device::Gpu;
 
 /// `GL_MAX_VERTEX_ATTRIBS`.
 pub const MAX_ATTRIBS: usize = 16;
-/// Texture units (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
-pub const MAX_UNITS: usize = 16;
+/// Texture units (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`): ES 3.0's minimum of 32.
+pub const MAX_UNITS: usize = 32;
+/// Texture units one stage may sample (`GL_MAX_TEXTURE_IMAGE_UNITS`,
+/// `GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS`).
+pub const MAX_STAGE_UNITS: usize = 16;
 /// Colour attachments and draw buffers (`GL_EXT_draw_buffers`).
 pub const MAX_DRAW_BUFFERS: usize = strata_protocol::commands::MAX_DRAW_BUFFERS as usize;
 /// Largest texture, renderbuffer, viewport and surface dimension.

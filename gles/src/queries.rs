@@ -209,9 +209,8 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         MAX_VERTEX_ATTRIBS => i(MAX_ATTRIBS as i32),
         MAX_VERTEX_UNIFORM_VECTORS | MAX_FRAGMENT_UNIFORM_VECTORS => i(256),
         MAX_VARYING_VECTORS => i(crate::limits::MAX_VARYING_VECTORS as i32),
-        MAX_COMBINED_TEXTURE_IMAGE_UNITS | MAX_TEXTURE_IMAGE_UNITS | MAX_VERTEX_TEXTURE_IMAGE_UNITS => {
-            i(MAX_UNITS as i32)
-        }
+        MAX_COMBINED_TEXTURE_IMAGE_UNITS => i(MAX_UNITS as i32),
+        MAX_TEXTURE_IMAGE_UNITS | MAX_VERTEX_TEXTURE_IMAGE_UNITS => i(crate::limits::MAX_STAGE_UNITS as i32),
         RED_BITS => i(bits[0]),
         GREEN_BITS => i(bits[1]),
         BLUE_BITS => i(bits[2]),

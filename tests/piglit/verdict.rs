@@ -271,6 +271,13 @@ impl Verdict {
     }
 }
 
+/// How many of the native run's passes pass in the run through Strata too, and how many there are.
+pub fn shared_passes(native: &Run, strata: &Run) -> (usize, usize) {
+    let passes = |run: &Run, name: &str| run.get(name).is_some_and(|o| o.result == "pass");
+    let native_passes: Vec<&String> = native.keys().filter(|n| passes(native, n)).collect();
+    (native_passes.iter().filter(|n| passes(strata, n)).count(), native_passes.len())
+}
+
 /// Compares the two runs under the exceptions.
 pub fn judge(native: &Run, strata: &Run, exceptions: &[Exception]) -> Verdict {
     let excused: BTreeMap<&str, &Exception> = exceptions.iter().map(|e| (e.name.as_str(), e)).collect();

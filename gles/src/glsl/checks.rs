@@ -68,7 +68,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     crate::glsl::writes::check(stage, parsed.version, &parsed.tu, &at)?;
     // `sampler3D` is core in GLSL ES 3.00 (without a default precision, as with the extension).
     let texture_3d = parsed.enabled.texture_3d || parsed.version == 300;
-    let precisions = precision::check(stage, &parsed.tu, texture_3d, &at)?;
+    let precisions = precision::check(stage, &parsed.tu, texture_3d, parsed.version == 300, &at)?;
     let mut invariants = HashSet::new();
     for decl in &parsed.tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use glsl_lang::ast::{self, BinaryOpData as B, ExprData, UnaryOpData as U};
 
-use crate::limits::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_UNITS};
+use crate::limits::{MAX_ATTRIBS, MAX_DRAW_BUFFERS, MAX_STAGE_UNITS, MAX_UNITS};
 
 /// A folded constant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,13 +26,34 @@ pub(super) fn builtin(name: &str) -> Option<i64> {
         "gl_MaxVertexAttribs" => MAX_ATTRIBS as i64,
         "gl_MaxVertexUniformVectors" | "gl_MaxFragmentUniformVectors" => 256,
         "gl_MaxVaryingVectors" => 15,
-        "gl_MaxVertexTextureImageUnits" | "gl_MaxCombinedTextureImageUnits" | "gl_MaxTextureImageUnits" => {
-            MAX_UNITS as i64
-        }
+        "gl_MaxVertexTextureImageUnits" | "gl_MaxTextureImageUnits" => MAX_STAGE_UNITS as i64,
+        "gl_MaxCombinedTextureImageUnits" => MAX_UNITS as i64,
         "gl_MaxDrawBuffers" => MAX_DRAW_BUFFERS as i64,
         "gl_MaxDualSourceDrawBuffersEXT" => 1,
         _ => return None,
     })
+}
+
+/// The built-in constants GLSL ES 3.00 §7.3 adds to those of 1.00 (the specification's
+/// minimums, which Strata's limits meet: texel offsets are WGSL's −8…7).
+const ES3_CONSTANTS: [(&str, i64); 4] = [
+    ("gl_MaxVertexOutputVectors", 16),
+    ("gl_MaxFragmentInputVectors", 15),
+    ("gl_MinProgramTexelOffset", -8),
+    ("gl_MaxProgramTexelOffset", 7),
+];
+
+/// One of [`ES3_CONSTANTS`] by name.
+pub(super) fn builtin_es3(name: &str) -> Option<i64> {
+    ES3_CONSTANTS.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+}
+
+/// The constants a shader of `version` starts with: GLSL ES 3.00's own built-in ones.
+pub(super) fn seeded(version: u16) -> HashMap<String, Val> {
+    match version {
+        300 => ES3_CONSTANTS.iter().map(|(n, v)| (n.to_string(), Val::Int(*v))).collect(),
+        _ => HashMap::new(),
+    }
 }
 
 /// Folds `e`; `None` if it is not a constant expression this folder understands.

@@ -136,6 +136,49 @@ fn sampler3d_is_core_in_300_es() {
     assert!(e.contains("sampler3D"), "{e}");
 }
 
+/// GLSL ES 3.00's shadow, array and integer samplers take precision qualifiers and default
+/// precision statements, and have no default precision of their own (§4.5.4); an unused one
+/// is dropped as inactive; sampling one is refused with a log rather than mistranslated.
+#[test]
+fn es3_sampler_types_take_precision() {
+    let fs = |decl: &str, body: &str| {
+        compile(
+            Stage::Fragment,
+            &format!("#version 300 es\nprecision mediump float;\n{decl}\nout vec4 o;\nvoid main() {{ {body} }}"),
+        )
+    };
+    for t in ["sampler2DShadow", "samplerCubeShadow", "sampler2DArray", "isampler3D", "usampler2DArray"] {
+        fs(&format!("uniform highp {t} s;"), "o = vec4(1.0);").unwrap_or_else(|e| panic!("{t}: {e}"));
+        fs(&format!("precision lowp {t}; uniform {t} s;"), "o = vec4(1.0);").unwrap_or_else(|e| panic!("{t}: {e}"));
+        let e = fs(&format!("uniform {t} s;"), "o = vec4(1.0);").expect_err("no default precision");
+        assert!(e.contains(&format!("type `{t}'")), "{t}: {e}");
+        let e = fs(&format!("uniform highp {t} s;"), "o = vec4(float(textureSize(s, 0).x));").expect_err("sampled");
+        assert!(e.contains("not supported yet"), "{t}: {e}");
+    }
+    // GLSL ES 1.00 knows none of them.
+    let e = compile(Stage::Fragment, "precision mediump float; precision lowp sampler2DArray; void main() {}")
+        .expect_err("ES 1.00");
+    assert!(e.contains("default precision statements apply only"), "{e}");
+}
+
+/// GLSL ES 3.00's own built-in constants fold in array sizes and as values; GLSL ES 1.00 has
+/// none of them; texture units are ES 3.0's minimums: 16 a stage, 32 combined.
+#[test]
+fn es3_built_in_constants() {
+    let vs = |version: &str, body: &str| compile(Stage::Vertex, &format!("{version}\n{body}"));
+    let body = "uniform float a[gl_MaxProgramTexelOffset - gl_MinProgramTexelOffset];
+        uniform float b[gl_MaxVertexOutputVectors + gl_MaxFragmentInputVectors];
+        uniform float c[gl_MaxCombinedTextureImageUnits - gl_MaxTextureImageUnits];
+        void main() { float d[gl_MaxVertexTextureImageUnits]; d[0] = 1.0;
+            gl_Position = vec4(a[14] + b[30] + c[15] + d[0] + float(gl_MaxProgramTexelOffset)); }";
+    let v = vs("#version 300 es", body).expect("3.00");
+    let lens: Vec<_> = v.uniforms.iter().map(|u| u.array).collect();
+    assert_eq!(lens, [Some(15), Some(31), Some(16)]);
+    let e = vs("", "uniform float a[gl_MaxProgramTexelOffset];\nvoid main() {}").expect_err("1.00");
+    assert!(e.contains("constant valued"), "{e}");
+    assert!(vs("", "void main() { gl_Position = vec4(float(gl_MaxVertexOutputVectors)); }").is_err(), "1.00");
+}
+
 #[test]
 fn uniform_blocks_link_with_std140_offsets() {
     let vs = compile(

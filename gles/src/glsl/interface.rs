@@ -106,7 +106,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         facts,
         line_starts: std::iter::once(0).chain(parsed.text.match_indices('\n').map(|(i, _)| i + 1)).collect(),
     };
-    let mut consts: HashMap<String, Val> = HashMap::new();
+    let mut consts = crate::glsl::consts::seeded(version);
     for decl in parsed.tu.0 {
         let list = match &decl.content {
             ast::ExternalDeclarationData::Preprocessor(_) => continue,
@@ -162,9 +162,18 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             _ => {}
         }
         let (location, flat) = (location_of(qualifier, &consts)?, is_flat(qualifier));
-        let ty = Ty::from_spec(&list.head.ty.ty.ty.content).ok_or_else(|| {
-            format!("0: interface variables of type '{}' are not supported", type_name(&list.head.ty.ty))
-        })?;
+        let Some(ty) = Ty::from_spec(&list.head.ty.ty.ty.content) else {
+            // GLSL ES 3.00's shadow, array and integer samplers are declared and linked (an
+            // unused uniform is inactive, and Mesa too drops it); sampling them is still to come.
+            let names = list.head.name.iter().chain(list.tail.iter().map(|t| &t.ident.ident));
+            let unused = !names.into_iter().any(|n| shader.facts.used.contains(n.0.as_str()));
+            let sampler = crate::glsl::precision::ES3_SAMPLERS.contains(&list.head.ty.ty.ty.content);
+            if sampler && unused && storage == Storage::Uniform {
+                continue;
+            }
+            let not = if sampler { "not supported yet" } else { "not supported" };
+            return Err(format!("0: interface variables of type '{}' are {not}", type_name(&list.head.ty.ty)));
+        };
         let base_array = array_len(list.head.ty.ty.array_specifier.as_ref(), &consts)?;
         let mut vars = Vec::new();
         if let Some(name) = &list.head.name {

@@ -33,9 +33,30 @@ fn is_float(t: &T) -> bool {
     )
 }
 
-/// Whether a type may carry a precision qualifier (§4.5.2).
-fn takes_precision(t: &T) -> bool {
-    is_float(t) || is_int(t) || matches!(t, T::Sampler2D | T::SamplerCube | T::Sampler2DRect | T::Sampler3D)
+/// GLSL ES 3.00's sampler types beyond `sampler2D`, `samplerCube` and `sampler3D` (§4.1.7);
+/// like `sampler3D`, none has a default precision (§4.5.4).
+pub(super) const ES3_SAMPLERS: [T; 12] = [
+    T::Sampler2DShadow,
+    T::SamplerCubeShadow,
+    T::Sampler2DArray,
+    T::Sampler2DArrayShadow,
+    T::ISampler2D,
+    T::ISampler3D,
+    T::ISamplerCube,
+    T::ISampler2DArray,
+    T::USampler2D,
+    T::USampler3D,
+    T::USamplerCube,
+    T::USampler2DArray,
+];
+
+/// Whether a type may carry a precision qualifier (§4.5.2) in a shader of GLSL ES 3.00
+/// (`es3`) or 1.00.
+fn takes_precision(t: &T, es3: bool) -> bool {
+    is_float(t)
+        || is_int(t)
+        || matches!(t, T::Sampler2D | T::SamplerCube | T::Sampler2DRect | T::Sampler3D)
+        || (es3 && ES3_SAMPLERS.contains(t))
 }
 
 fn explicit(q: Option<&ast::TypeQualifier>) -> Option<P> {
@@ -48,15 +69,18 @@ fn explicit(q: Option<&ast::TypeQualifier>) -> Option<P> {
 struct Walk<'a> {
     /// Default float precision per open scope (innermost last).
     scopes: Vec<Option<P>>,
-    /// The depths of the open scopes with a `precision … sampler3D` statement: `sampler3D`
-    /// has no default precision (`GL_OES_texture_3D`).
-    sampler_3d: Vec<usize>,
+    /// The sampler types given a default precision by a `precision` statement, with the
+    /// depth of its scope: `sampler3D` (`GL_OES_texture_3D`) and GLSL ES 3.00's other sampler
+    /// types have none of their own.
+    sampler_defaults: Vec<(T, usize)>,
     at: At<'a>,
     /// The stage checked.
     stage: Stage,
     /// Whether the shader enables `GL_OES_texture_3D` (only then does a `precision`
     /// statement take `sampler3D`, as on Mesa).
     texture_3d: bool,
+    /// Whether the shader is GLSL ES 3.00 (with its sampler types).
+    es3: bool,
     /// Precision of each float or int uniform.
     uniforms: HashMap<String, P>,
     varyings: HashMap<String, P>,
@@ -81,7 +105,7 @@ impl Walk<'_> {
     fn pop_scope(&mut self) {
         self.scopes.pop();
         let depth = self.scopes.len();
-        self.sampler_3d.retain(|d| *d <= depth);
+        self.sampler_defaults.retain(|(_, d)| *d <= depth);
     }
 
     fn default_float(&self) -> Option<P> {
@@ -96,11 +120,21 @@ impl Walk<'_> {
         ty: &ast::TypeSpecifier,
         span: Option<ast::NodeSpan>,
     ) -> Result<Option<P>, String> {
-        if explicit(q).is_some() && !takes_precision(&ty.ty.content) {
+        let t = &ty.ty.content;
+        if explicit(q).is_some() && !takes_precision(t, self.es3) {
             return Err((self.at)(span, "precision qualifiers apply only to float, int and sampler types"));
         }
-        if ty.ty.content == T::Sampler3D && explicit(q).is_none() && self.sampler_3d.is_empty() {
-            return Err((self.at)(span, "No precision specified in this scope for type `sampler3D'"));
+        let undefaulted = *t == T::Sampler3D || ES3_SAMPLERS.contains(t);
+        if undefaulted && explicit(q).is_none() && !self.sampler_defaults.iter().any(|(d, _)| d == t) {
+            let name = ast::TypeSpecifierNonArray::from(t.clone());
+            let mut spelled = String::new();
+            glsl_lang::transpiler::glsl::show_type_specifier_non_array(
+                &mut spelled,
+                &name,
+                &mut glsl_lang::transpiler::glsl::FormattingState::default(),
+            )
+            .map_err(|e| e.to_string())?;
+            return Err((self.at)(span, &format!("No precision specified in this scope for type `{spelled}'")));
         }
         if !is_float(&ty.ty.content) {
             return Ok(None);
@@ -116,7 +150,10 @@ impl Walk<'_> {
             ast::DeclarationData::Precision(p, ty) => {
                 let t = &ty.ty.content;
                 let sampler_3d = *t == T::Sampler3D && self.texture_3d;
-                if !(matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube | T::Sampler2DRect) || sampler_3d)
+                let es3_sampler = self.es3 && ES3_SAMPLERS.contains(t);
+                if !(matches!(t, T::Float | T::Int | T::Sampler2D | T::SamplerCube | T::Sampler2DRect)
+                    || sampler_3d
+                    || es3_sampler)
                     || ty.array_specifier.is_some()
                 {
                     return Err((self.at)(
@@ -129,8 +166,8 @@ impl Walk<'_> {
                         *top = Some(p.content.clone());
                     }
                 }
-                if *t == T::Sampler3D {
-                    self.sampler_3d.push(self.scopes.len());
+                if *t == T::Sampler3D || es3_sampler {
+                    self.sampler_defaults.push((t.clone(), self.scopes.len()));
                 }
             }
             ast::DeclarationData::InitDeclaratorList(list) => {
@@ -239,16 +276,18 @@ pub(crate) fn check(
     stage: Stage,
     tu: &ast::TranslationUnit,
     texture_3d: bool,
+    es3: bool,
     at: At<'_>,
 ) -> Result<Precisions, String> {
     // The vertex language's default float precision is highp.
     let global = if stage == Stage::Vertex { Some(P::High) } else { None };
     let mut w = Walk {
         scopes: vec![global],
-        sampler_3d: Vec::new(),
+        sampler_defaults: Vec::new(),
         at,
         stage,
         texture_3d,
+        es3,
         uniforms: HashMap::new(),
         varyings: HashMap::new(),
     };

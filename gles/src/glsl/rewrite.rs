@@ -343,7 +343,9 @@ impl VisitorMut for Rewrite {
                     // One colour per draw buffer, written out by the generated `main` (`link`).
                     self.frag_data = true;
                     Some(var("strata_FragData"))
-                } else if let Some(v) = crate::glsl::consts::builtin(name) {
+                } else if let Some(v) = crate::glsl::consts::builtin(name)
+                    .or_else(|| crate::glsl::consts::builtin_es3(name).filter(|_| self.version == 300))
+                {
                     // The built-in constants (§7.4), which naga does not know.
                     Some(ExprData::IntConst(v as i32).into())
                 } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
