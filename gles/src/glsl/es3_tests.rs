@@ -179,6 +179,23 @@ fn es3_built_in_constants() {
     assert!(vs("", "void main() { gl_Position = vec4(float(gl_MaxVertexOutputVectors)); }").is_err(), "1.00");
 }
 
+/// A name after `.` is a member even where a structure of that name is declared (a block's
+/// instance name scopes its members, §4.3.7).
+#[test]
+fn a_member_may_share_a_structure_s_name() {
+    let vs = compile(
+        Stage::Vertex,
+        "#version 300 es
+        uniform Data { mat4 mvp; float k; } camera;
+        struct mvp { mat4 m; };
+        struct k { float f; };
+        in vec4 p;
+        void main() { mvp x = mvp(camera.mvp); k y = k(camera.k); gl_Position = x.m * p * y.f; }",
+    )
+    .expect("compiles");
+    assert_eq!(vs.blocks[0].members.iter().map(|m| m.name.as_str()).collect::<Vec<_>>(), ["mvp", "k"]);
+}
+
 #[test]
 fn uniform_blocks_link_with_std140_offsets() {
     let vs = compile(

@@ -26,6 +26,7 @@ pub mod capture;
 mod checks;
 mod consts;
 mod es3_rules;
+mod fields;
 mod interface;
 mod link;
 pub mod linked;

@@ -8,7 +8,6 @@ use std::sync::LazyLock;
 
 use glsl_lang::ast;
 use glsl_lang::lexer::full::fs::PreprocessorExt;
-use glsl_lang::parse::IntoParseBuilderExt;
 use glsl_lang_pp::exts::{names::ExtNameAtom, ExtensionSpec, Registry};
 use glsl_lang_pp::processor::nodes::{Define, DefineObject};
 use glsl_lang_pp::processor::ProcessorState;
@@ -359,9 +358,9 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     }
     let state = initial_state(stage)?;
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
-    let parsed = pp.open_source(&text, ".").with_state(state).builder::<ast::TranslationUnit>().parse();
+    let parsed = crate::glsl::fields::parse(pp.open_source(&text, ".").with_state(state));
     match parsed {
-        Ok((tu, _, _)) => Ok(Parsed { tu, text, enabled, warnings, version }),
+        Ok(tu) => Ok(Parsed { tu, text, enabled, warnings, version }),
         // Mesa's form, `0:LINE(COL): error: …`, from the parser's 0-based position.
         Err(e) => Err(error_at(e.line() as usize + 1, e.col() as usize + 1, &e.inner().to_string())),
     }
