@@ -49,9 +49,15 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
         })
         .collect();
     for (b, lb) in info.blocks.iter().enumerate() {
+        // The members of an array of blocks are listed once, under the block's name without
+        // an index, as its first element's (as on Mesa).
+        if listed_block(info, b as u32) != b as u32 {
+            continue;
+        }
+        let block_name = lb.block.base_name();
         for m in &lb.block.members {
             let name = match &lb.block.instance {
-                Some(_) => format!("{}.{}", lb.block.name, m.name),
+                Some(_) => format!("{block_name}.{}", m.name),
                 None => m.name.clone(),
             };
             out.push(Active {
@@ -165,10 +171,23 @@ impl GlesExecutor {
 /// The indices of block `block`'s members in `info`'s active uniforms
 /// (`GL_UNIFORM_BLOCK_ACTIVE_UNIFORM_INDICES`).
 pub(crate) fn block_members(info: &Linked, block: u32) -> Vec<i32> {
+    let listed = listed_block(info, block);
     active(info)
         .iter()
         .enumerate()
-        .filter(|(_, a)| a.block.is_some_and(|b| b.0 == block))
+        .filter(|(_, a)| a.block.is_some_and(|b| b.0 == listed))
         .map(|(i, _)| i as i32)
         .collect()
+}
+
+/// The block whose members stand for `block`'s in the active uniforms: the first element of
+/// an array of blocks (the program's first block of that array), else `block` itself.
+fn listed_block(info: &Linked, block: u32) -> u32 {
+    let Some(b) = info.blocks.get(block as usize) else { return block };
+    if b.block.element.is_none() {
+        return block;
+    }
+    let first =
+        info.blocks.iter().position(|o| o.block.element.is_some() && o.block.base_name() == b.block.base_name());
+    first.map_or(block, |i| i as u32)
 }

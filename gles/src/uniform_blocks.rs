@@ -153,7 +153,12 @@ impl GlesExecutor {
 
     pub(super) fn glGetUniformBlockIndex(&mut self, ctx: &mut Context, program: u32, name: Text<'_>) -> u32 {
         match ctx.objects.programs.get(&program) {
-            Some(p) => p.linked.as_ref().and_then(|l| l.info.blocks.iter().position(|b| b.block.name == name.as_str())),
+            // An array of blocks' name alone names its first element (as ES 3.1's resource
+            // queries have it, and Mesa).
+            Some(p) => p.linked.as_ref().and_then(|l| {
+                let first = format!("{}[0]", name.as_str());
+                l.info.blocks.iter().position(|b| b.block.name == name.as_str() || b.block.name == first)
+            }),
             None => {
                 let e = ctx.objects.shader_or_program_error(program);
                 ctx.record(e);

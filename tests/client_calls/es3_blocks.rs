@@ -28,6 +28,17 @@ const VS: &str = "#version 300 es
     }";
 const FS: &str = "#version 300 es
     precision mediump float; in vec4 c; out vec4 o; void main() { o = c; }";
+/// An array of blocks, its elements indexed in one stage or the other.
+const VS_ARRAY: &str = "#version 300 es
+    layout(location = 0) in vec4 pos;
+    uniform Light { vec4 color; float k[2]; } lights[3];
+    out vec4 c;
+    void main() { c = lights[0].color * lights[2].k[1]; gl_Position = pos; }";
+const FS_ARRAY: &str = "#version 300 es
+    precision mediump float;
+    uniform Light { vec4 color; float k[2]; } lights[3];
+    in vec4 c; out vec4 o;
+    void main() { o = c + lights[1].color; }";
 
 /// The name of active uniform `i` of `p`, with its type and size.
 fn active(r: &Run, p: u32, i: u32) -> String {
@@ -106,5 +117,21 @@ pub fn sequence(r: &mut Run) {
         let mut v1 = -7;
         (gl.get_active_uniformsiv)(0xBEEF, 1, bad.as_ptr(), 0x8A37, &mut v1);
         r.note("glGetActiveUniformsiv of no program");
+
+        // An array of blocks: its members' names, and each element's.
+        let q = r.program(VS_ARRAY, FS_ARRAY);
+        (gl.get_programiv)(q, ACTIVE_UNIFORMS, &mut n);
+        let mut listed: Vec<String> = (0..n.max(0) as u32).map(|i| active(r, q, i)).collect();
+        listed.sort();
+        r.note(&format!("an array of blocks: {n} active uniforms {listed:?}"));
+        for block in 0..3u32 {
+            let mut count = -1;
+            (gl.get_active_uniform_blockiv)(q, block, UNIFORM_BLOCK_ACTIVE_UNIFORMS, &mut count);
+            let mut members = vec![-7i32; count.max(0) as usize];
+            (gl.get_active_uniform_blockiv)(q, block, UNIFORM_BLOCK_ACTIVE_UNIFORM_INDICES, members.as_mut_ptr());
+            let mut named: Vec<String> = members.iter().map(|&i| active(r, q, i as u32)).collect();
+            named.sort();
+            r.note(&format!("element {block}: {count} members {named:?}"));
+        }
     }
 }

@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 
 use glsl_lang::ast::{self, TypeQualifierSpecData};
 
+use crate::glsl::block_arrays::Elements;
 use crate::glsl::consts::Val;
 use crate::glsl::linked::LinkedBlock;
 use crate::glsl::types::{Block, BlockMember, Scalar, Shader, Ty};
@@ -58,8 +59,13 @@ pub(super) fn default_layout(q: &ast::TypeQualifier) -> Result<bool, String> {
     Ok(uniform)
 }
 
-/// Lifts a `uniform` block declaration; `None` if the block is not a uniform block.
-pub(super) fn lift(b: &ast::Block, consts: &HashMap<String, Val>) -> Result<Option<Block>, String> {
+/// Lifts a `uniform` block declaration (perhaps an element of an array of blocks, as
+/// `block_arrays` made it); `None` if the block is not a uniform block.
+pub(super) fn lift(
+    b: &ast::Block,
+    consts: &HashMap<String, Val>,
+    elements: &Elements,
+) -> Result<Option<Block>, String> {
     let uniform = b.qualifier.qualifiers.iter().any(|s| {
         matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
     });
@@ -67,11 +73,7 @@ pub(super) fn lift(b: &ast::Block, consts: &HashMap<String, Val>) -> Result<Opti
         return Ok(None);
     }
     check_layout(Some(&b.qualifier))?;
-    let instance = match &b.identifier {
-        Some(id) if id.array_spec.is_some() => return Err("0: arrays of uniform blocks are not supported yet".into()),
-        Some(id) => Some(id.ident.0.to_string()),
-        None => None,
-    };
+    let instance = b.identifier.as_ref().map(|id| id.ident.0.to_string());
     let mut members = Vec::new();
     for f in &b.fields {
         check_layout(f.qualifier.as_ref())?;
@@ -87,7 +89,11 @@ pub(super) fn lift(b: &ast::Block, consts: &HashMap<String, Val>) -> Result<Opti
             members.push(BlockMember { name: id.ident.0.to_string(), ty, array, offset: 0, stride: 0 });
         }
     }
-    let mut block = Block { name: b.name.0.to_string(), instance, members, size: 0 };
+    let (name, element, referenced) = match elements.get(b.name.0.as_str()) {
+        Some(e) => (format!("{}[{}]", e.base, e.index), Some(e.index), e.referenced),
+        None => (b.name.0.to_string(), None, true),
+    };
+    let mut block = Block { name, instance, element, referenced, members, size: 0 };
     lay_out(&mut block)?;
     Ok(Some(block))
 }
@@ -119,7 +125,12 @@ fn lay_out(block: &mut Block) -> Result<(), String> {
 
 /// The generated declaration of `block` at `binding`.
 pub(super) fn declaration(block: &Block, binding: u32) -> String {
-    let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {} {{\n", block.name);
+    // An element of an array of blocks is declared under the name `block_arrays` gave it.
+    let ident = match block.element {
+        Some(k) => crate::glsl::block_arrays::element_name(block.base_name(), k),
+        None => block.name.clone(),
+    };
+    let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {ident} {{\n");
     for m in &block.members {
         let array = m.array.map_or(String::new(), |n| format!("[{n}]"));
         let _ = writeln!(out, "    {} {}{array};", m.ty.glsl(true), m.name);
@@ -142,12 +153,12 @@ pub(super) fn link_blocks(vs: &Shader, fs: &Shader) -> Result<Vec<LinkedBlock>, 
             Some(l) if l.block.members != b.members || l.block.instance.is_some() != b.instance.is_some() => {
                 return Err(format!("error: uniform block `{}' is declared differently in the two stages", b.name))
             }
-            Some(l) => l.fragment = true,
+            Some(l) => l.fragment = b.referenced,
             None => blocks.push(LinkedBlock {
                 block: b.clone(),
                 binding: FIRST_BLOCK_BINDING + blocks.len() as u32,
-                vertex,
-                fragment: !vertex,
+                vertex: vertex && b.referenced,
+                fragment: !vertex && b.referenced,
             }),
         }
     }

@@ -196,6 +196,42 @@ fn a_member_may_share_a_structure_s_name() {
     assert_eq!(vs.blocks[0].members.iter().map(|m| m.name.as_str()).collect::<Vec<_>>(), ["mvp", "k"]);
 }
 
+/// An array of blocks is one block per element, `B[k]`, referenced by a stage only where it
+/// indexes it; indices must be constant and within the array.
+#[test]
+fn arrays_of_uniform_blocks() {
+    let vs = compile(
+        Stage::Vertex,
+        "#version 300 es
+        const int N = 3;
+        uniform Light { vec4 color; } lights[N];
+        void main() { gl_Position = lights[0].color + lights[N - 1].color; }",
+    )
+    .expect("vs");
+    let fs = compile(
+        Stage::Fragment,
+        "#version 300 es
+        precision mediump float;
+        uniform Light { vec4 color; } lights[3];
+        out vec4 o;
+        void main() { o = lights[1].color; }",
+    )
+    .expect("fs");
+    let l = link(&vs, &fs, &HashMap::new(), 16).expect("link");
+    let blocks: Vec<(&str, bool, bool)> =
+        l.blocks.iter().map(|b| (b.block.name.as_str(), b.vertex, b.fragment)).collect();
+    assert_eq!(blocks, [("Light[0]", true, false), ("Light[1]", false, true), ("Light[2]", true, false)]);
+    let vs = |body: &str| {
+        compile(Stage::Vertex, &format!("#version 300 es\nuniform B {{ vec4 v; }} b[2];\nuniform int k;\n{body}"))
+    };
+    let e = vs("void main() { gl_Position = b[k].v; }").expect_err("not constant");
+    assert!(e.contains("constant integral expression"), "{e}");
+    let e = vs("void main() { gl_Position = b[2].v; }").expect_err("past the end");
+    assert!(e.contains("out of bounds"), "{e}");
+    let e = vs("void main() { gl_Position = b.length() > 1 ? vec4(1.0) : vec4(0.0); }").expect_err("whole array");
+    assert!(e.contains("may only be indexed"), "{e}");
+}
+
 #[test]
 fn uniform_blocks_link_with_std140_offsets() {
     let vs = compile(

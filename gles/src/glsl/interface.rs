@@ -78,9 +78,11 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
     let mut parsed = parse(stage, source)?;
     let version = parsed.version;
     let facts = checks::check(stage, &parsed)?;
+    let mut elements = crate::glsl::block_arrays::Elements::new();
     if version == 300 {
         crate::glsl::es3_rules::check(stage, &parsed.text, &parsed.tu)?;
         crate::glsl::sized_arrays::size(&mut parsed.tu);
+        elements = crate::glsl::block_arrays::split(&mut parsed.tu, version)?;
         crate::glsl::struct_varyings::flatten(stage, &mut parsed.tu)?;
     }
     let mut shader = Shader {
@@ -115,7 +117,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 ast::DeclarationData::Precision(..) | ast::DeclarationData::Invariant(_) => continue,
                 ast::DeclarationData::InitDeclaratorList(list) => Some(list.clone()),
                 ast::DeclarationData::Block(b) if version == 300 => {
-                    if let Some(block) = crate::glsl::blocks::lift(b, &consts)? {
+                    if let Some(block) = crate::glsl::blocks::lift(b, &consts, &elements)? {
                         shader.blocks.push(block);
                         continue;
                     }

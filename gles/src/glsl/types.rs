@@ -290,14 +290,29 @@ pub struct BlockMember {
 /// A GLSL ES 3.00 uniform block, laid out by std140.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Block {
-    /// The block's name (what `glGetUniformBlockIndex` takes).
+    /// The block's name (what `glGetUniformBlockIndex` takes; `B[k]` for an array's element).
     pub name: String,
     /// The instance name, if the block has one (its members are then `instance.member`).
     pub instance: Option<String>,
+    /// Its index in an array of blocks (whose element `k` GL names `name[k]`).
+    pub element: Option<u32>,
+    /// Whether the stage's code uses it: an array's element only where indexed (a block of its
+    /// own counts as used wherever declared).
+    pub referenced: bool,
     /// Its members, in order.
     pub members: Vec<BlockMember>,
     /// Its data size in bytes (`GL_UNIFORM_BLOCK_DATA_SIZE`).
     pub size: u32,
+}
+
+impl Block {
+    /// Its name without an array element's index (`B` of `B[k]`).
+    pub fn base_name(&self) -> &str {
+        match self.element {
+            Some(k) => self.name.strip_suffix(&format!("[{k}]")).unwrap_or(&self.name),
+            None => &self.name,
+        }
+    }
 }
 
 /// A successfully compiled shader, kept for linking.

@@ -15,6 +15,8 @@ const UNIFORM_BUFFER_SIZE: u32 = 0x8A2A;
 const MAX_UNIFORM_BUFFER_BINDINGS: u32 = 0x8A2F;
 const BLOCK_PNAMES: [u32; 6] = [0x8A3F, 0x8A40, 0x8A41, 0x8A42, 0x8A44, 0x8A46];
 const DYNAMIC_DRAW: u32 = 0x88E8;
+const ACTIVE_UNIFORM_BLOCKS: u32 = 0x8A36;
+const VERTEX_SHADER: u32 = 0x8B31;
 
 const VS: &str = "#version 300 es
     layout(location = 0) in vec2 pos;
@@ -125,5 +127,75 @@ pub fn uniform_blocks(gl: Gl<'_>, n: &mut Names) -> R {
     marks.push(gl.glGetError()?);
     gl.glBindBufferBase(ARRAY_BUFFER, 0, a)?;
     marks.push(gl.glGetError()?);
+    mark_all(gl, &marks)
+}
+
+const VS_ARRAY: &str = "#version 300 es
+    layout(location = 0) in vec2 pos;
+    const int LAST = 2;
+    uniform Light { vec4 color; vec2 shift; } lights[LAST + 1];
+    out vec4 c;
+    void main() {
+        c = lights[0].color * 0.5 + lights[LAST].color * 0.5;
+        gl_Position = vec4(pos * 0.4 + lights[1].shift, 0.0, 1.0);
+    }";
+const FS_ARRAY: &str = "#version 300 es
+    precision mediump float;
+    uniform Light { vec4 color; vec2 shift; } lights[3];
+    in vec4 c; out vec4 o;
+    void main() { o = c + lights[1].color; }";
+
+/// An array of three uniform blocks, each element bound to its own binding: drawn twice,
+/// re-bound between; what `glGetUniformBlockIndex` finds (`Light[k]`, `Light` for the first,
+/// not past the end or by the instance name), each element's name, size, binding and the
+/// stages that index it; and indexing that is not constant, or out of bounds, failing to
+/// compile.
+pub fn uniform_block_arrays(gl: Gl<'_>, n: &mut Names) -> R {
+    let p = super::language::screen(gl, n, VS_ARRAY, FS_ARRAY)?;
+    let mut marks = Vec::new();
+    let mut index = Vec::new();
+    for name in ["Light[0]", "Light[1]", "Light[2]", "Light", "Light[3]", "lights[0]"] {
+        index.push(gl.glGetUniformBlockIndex(p, Text::borrowed(name))?);
+    }
+    marks.extend(index.iter().map(|&i| u32::from(i != u32::MAX)));
+    // Elements 0, 1 and 2 at bindings 4, 1 and 7, from three ranges of one buffer 256 apart.
+    let element = |color: [f32; 4], shift: [f32; 2]| words(&[&color[..], &shift[..], &[0.0, 0.0]].concat());
+    let mut bytes = Vec::new();
+    for (color, shift) in
+        [([0.8, 0.0, 0.0, 1.0], [-0.5, -0.4]), ([0.0, 0.3, 0.0, 0.0], [0.45, 0.5]), ([0.0, 0.0, 0.6, 1.0], [0.0, 0.0])]
+    {
+        bytes.extend(element(color, shift));
+        bytes.resize(bytes.len().next_multiple_of(256), 0);
+    }
+    let b = buffer(gl, n, UNIFORM_BUFFER, &bytes)?;
+    for (k, binding) in [4u32, 1, 7].into_iter().enumerate() {
+        gl.glUniformBlockBinding(p, index[k], binding)?;
+        gl.glBindBufferRange(UNIFORM_BUFFER, binding, b, 256 * k as i64, 32)?;
+    }
+    gl.glBindBuffer(ARRAY_BUFFER, 0)?;
+    gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
+    // Elements 0 and 2 swap bindings: the colours swap, the position stays.
+    gl.glUniformBlockBinding(p, index[0], 7)?;
+    gl.glUniformBlockBinding(p, index[2], 4)?;
+    gl.glBindBufferRange(UNIFORM_BUFFER, 1, b, 0, 32)?;
+    gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
+    marks.push(gl.glGetProgramiv(p, ACTIVE_UNIFORM_BLOCKS)? as u32);
+    for &i in &index[..3] {
+        for pname in BLOCK_PNAMES {
+            marks.extend(gl.glGetActiveUniformBlockiv(p, i, pname)?.iter().map(|&v| v as u32));
+        }
+        let name = gl.glGetActiveUniformBlockName(p, i)?.unwrap_or_default();
+        marks.push(u32::from(index.iter().position(|&j| j == i).is_some_and(|k| name == format!("Light[{k}]"))));
+    }
+    // Indexing by a uniform, and past the end.
+    let by_uniform = "#version 300 es
+        uniform int k; uniform Light { vec4 color; vec2 shift; } lights[3];
+        void main() { gl_Position = lights[k].color; }";
+    let past = "#version 300 es
+        uniform Light { vec4 color; vec2 shift; } lights[3];
+        void main() { gl_Position = lights[3].color; }";
+    for vs in [by_uniform, past] {
+        marks.push(super::super::draw_buffers::compiles(gl, n, VERTEX_SHADER, vs)?);
+    }
     mark_all(gl, &marks)
 }

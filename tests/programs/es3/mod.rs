@@ -24,6 +24,7 @@ pub fn all() -> Vec<Case> {
         c("es3_frag_depth", language::frag_depth),
         c("es3_uniforms", uniforms::uniforms),
         c("es3_uniform_blocks", blocks::uniform_blocks),
+        c("es3_uniform_block_arrays", blocks::uniform_block_arrays),
         c("es3_divisors", divisors::divisors),
         c("es3_int_attributes", int_attributes::int_attributes),
         c("es3_primitive_restart", restart::primitive_restart),
