@@ -9,27 +9,8 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, ExprData, TypeQualifierSpecData};
 use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
-use crate::glsl::blocks::MAX_COMBINED_UNIFORM_BLOCKS;
+use crate::glsl::blocks::{element_name, Element, Elements, MAX_COMBINED_UNIFORM_BLOCKS};
 use crate::glsl::consts::{fold, Val};
-
-/// One element block made by [`split`].
-#[derive(Debug, Clone)]
-pub(super) struct Element {
-    /// The array's block name (`B`).
-    pub(super) base: String,
-    /// The element's index.
-    pub(super) index: u32,
-    /// Whether the shader's code indexes it (`GL_UNIFORM_BLOCK_REFERENCED_BY_*`).
-    pub(super) referenced: bool,
-}
-
-/// The element blocks made by [`split`], by their declared name (`B__k`).
-pub(super) type Elements = HashMap<String, Element>;
-
-/// The declared name of element `index` of block or instance `name`.
-pub(super) fn element_name(name: &str, index: u32) -> String {
-    format!("{name}__{index}")
-}
 
 /// An identifier node.
 fn ident(name: &str) -> ast::Identifier {

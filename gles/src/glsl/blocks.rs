@@ -7,7 +7,6 @@ use std::fmt::Write as _;
 
 use glsl_lang::ast::{self, TypeQualifierSpecData};
 
-use crate::glsl::block_arrays::Elements;
 use crate::glsl::consts::Val;
 use crate::glsl::linked::LinkedBlock;
 use crate::glsl::types::{Block, BlockMember, Scalar, Shader, Ty};
@@ -25,6 +24,25 @@ pub const ACTIVE_UNIFORM_BLOCKS: u32 = 0x8A36;
 /// The binding of a program's first block in its bind group, after the default block (0) and
 /// the samplers (1 + 3k).
 pub const FIRST_BLOCK_BINDING: u32 = 100;
+
+/// One element block of an array of blocks, as `block_arrays` made it.
+#[derive(Debug, Clone)]
+pub(super) struct Element {
+    /// The array's block name (`B`).
+    pub(super) base: String,
+    /// The element's index.
+    pub(super) index: u32,
+    /// Whether the shader's code indexes it (`GL_UNIFORM_BLOCK_REFERENCED_BY_*`).
+    pub(super) referenced: bool,
+}
+
+/// The element blocks `block_arrays` made, by their declared name (`B__k`).
+pub(super) type Elements = HashMap<String, Element>;
+
+/// The declared name of element `index` of block or instance `name`.
+pub(super) fn element_name(name: &str, index: u32) -> String {
+    format!("{name}__{index}")
+}
 
 /// The layout qualifiers a block (or `layout(…) uniform;`) may carry: std140 and its
 /// stand-ins, and column-major matrices. `shared` reaches here renamed (`preprocess`).
@@ -127,7 +145,7 @@ fn lay_out(block: &mut Block) -> Result<(), String> {
 pub(super) fn declaration(block: &Block, binding: u32) -> String {
     // An element of an array of blocks is declared under the name `block_arrays` gave it.
     let ident = match block.element {
-        Some(k) => crate::glsl::block_arrays::element_name(block.base_name(), k),
+        Some(k) => element_name(block.base_name(), k),
         None => block.name.clone(),
     };
     let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {ident} {{\n");

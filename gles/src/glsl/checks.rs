@@ -66,6 +66,7 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
     }
     globals(&parsed.tu, &at)?;
     crate::glsl::writes::check(stage, parsed.version, &parsed.tu, &at)?;
+    crate::glsl::conversions::check(&parsed.tu, &at)?;
     // `sampler3D` is core in GLSL ES 3.00 (without a default precision, as with the extension).
     let texture_3d = parsed.enabled.texture_3d || parsed.version == 300;
     let precisions = precision::check(stage, &parsed.tu, texture_3d, parsed.version == 300, &at)?;

@@ -232,6 +232,46 @@ fn arrays_of_uniform_blocks() {
     assert!(e.contains("may only be indexed"), "{e}");
 }
 
+/// No implicit conversions (§4.1.10), in either version; what is certain is checked, the rest
+/// (built-in functions, shadowed names) left alone.
+#[test]
+fn no_implicit_conversions() {
+    let vs = |version: &str, body: &str| {
+        compile(
+            Stage::Vertex,
+            &format!(
+                "{version}\nuniform vec4 a[7];\nuniform int i;\nstruct S {{ float f; int n; }};\n\
+                 int twice(int x) {{ return 2 * x; }}\n{body}"
+            ),
+        )
+    };
+    let refused = [
+        ("#version 300 es", "void main() { gl_Position = vec4(a[i].x + a.length()); }", "arithmetic"),
+        ("#version 300 es", "void main() { gl_Position = vec4(uint(a[i].x) + a.length()); }", "arithmetic"),
+        ("", "void main() { S s = S(1.0, i); gl_Position = vec4(s.f * s.n); }", "arithmetic"),
+        ("", "void main() { float f; f = twice(i); gl_Position = vec4(f); }", "cannot be assigned"),
+        ("", "void main() { gl_Position = vec4(i < 1.0 ? 1.0 : 0.0); }", "relational"),
+        ("", "void main() { gl_Position = vec4(i > 0 ? 1.0 : 0); }", "?:"),
+        ("", "float f() { return i; }\nvoid main() { gl_Position = vec4(f()); }", "`return' with wrong type int"),
+        ("", "void main() { float x = a[0].y + 1.0; int y = twice(1) + x; gl_Position = vec4(y); }", "arithmetic"),
+        ("#version 300 es", "void main() { uint u = 1u; u = u & i; gl_Position = vec4(u); }", "bitwise"),
+    ];
+    for (version, body, want) in refused {
+        let e = vs(version, body).expect_err(body);
+        assert!(e.contains(want), "{body}: {e}");
+    }
+    let accepted = [
+        ("#version 300 es", "void main() { uint u = 3u << i; int n = i >> 1u; gl_Position = vec4(float(u) + float(n)); }"),
+        ("", "void main() { float i = 1.0; gl_Position = vec4(i * 2.0); }"),
+        ("", "void main() { gl_Position = vec4(max(i, 1) + 1.0); }"),
+        ("", "void main() { S s = S(1.0, i); vec3 v = a[0].xyz * s.f; gl_Position = vec4(v.x, v.yz, float(twice(s.n))); }"),
+        ("", "void main() { bool b = a[0].x > 0.0 && i == 2; gl_Position = vec4(b ? 1.0 : 0.0); }"),
+    ];
+    for (version, body) in accepted {
+        vs(version, body).unwrap_or_else(|e| panic!("{body}: {e}"));
+    }
+}
+
 #[test]
 fn uniform_blocks_link_with_std140_offsets() {
     let vs = compile(

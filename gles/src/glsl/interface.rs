@@ -78,7 +78,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
     let mut parsed = parse(stage, source)?;
     let version = parsed.version;
     let facts = checks::check(stage, &parsed)?;
-    let mut elements = crate::glsl::block_arrays::Elements::new();
+    let mut elements = crate::glsl::blocks::Elements::new();
     if version == 300 {
         crate::glsl::es3_rules::check(stage, &parsed.text, &parsed.tu)?;
         crate::glsl::sized_arrays::size(&mut parsed.tu);

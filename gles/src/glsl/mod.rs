@@ -26,6 +26,7 @@ pub mod blocks;
 pub mod capture;
 mod checks;
 mod consts;
+mod conversions;
 mod es3_rules;
 mod fields;
 mod interface;

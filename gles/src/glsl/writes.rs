@@ -1,8 +1,8 @@
 //! GLSL ES rules on expressions that the parser accepts: in GLSL ES 1.00 the reserved operators
 //! (§5.1: `%`, `~`, `<<`, `>>`, `&`, `|`, `^` and their assignments) and assignment to a whole
 //! array (§5.8), which GLSL ES 3.00 allows; in either, writes to read-only variables (§4.3.3 attributes, §4.3.4 uniforms, §4.3.5 varyings
-//! in fragment shaders, constants), including passing them as `out`/`inout` arguments, and
-//! scalar initialisers of the wrong literal type (§4.1.10: no implicit conversions).
+//! in fragment shaders, constants), including passing them as `out`/`inout` arguments
+//! (`conversions` checks basic types).
 //!
 //! Names are resolved per function: a parameter or a local of a name hides the global of that
 //! name anywhere in the function (a simplification that can only accept more shaders).
@@ -11,7 +11,7 @@ use std::collections::{HashMap, HashSet};
 
 use glsl_lang::ast::{
     self, AssignmentOpData as A, BinaryOpData as B, ExprData, FunIdentifierData, StorageQualifierData as S,
-    TypeQualifierSpecData, TypeSpecifierNonArrayData as T, UnaryOpData as U,
+    TypeQualifierSpecData, UnaryOpData as U,
 };
 use glsl_lang::visitor::{Host, Visit, Visitor};
 
@@ -109,11 +109,6 @@ pub(super) fn check(stage: Stage, version: u16, tu: &ast::TranslationUnit, at: A
             }
             _ => {}
         }
-    }
-    let mut literals = Literals { error: None };
-    tu.visit(&mut literals);
-    if let Some((span, msg)) = literals.error {
-        return Err(at(span, &msg));
     }
     for decl in &tu.0 {
         let ast::ExternalDeclarationData::FunctionDefinition(f) = &decl.content else { continue };
@@ -274,39 +269,4 @@ fn reserved_assignment(op: &A) -> Option<&'static str> {
         A::Or => "|=",
         _ => return None,
     })
-}
-
-/// Scalar declarations initialised with a literal of another basic type.
-struct Literals {
-    error: Option<(Option<ast::NodeSpan>, String)>,
-}
-
-impl Visitor for Literals {
-    fn visit_init_declarator_list(&mut self, list: &ast::InitDeclaratorList) -> Visit {
-        if list.head.ty.ty.array_specifier.is_some() {
-            return Visit::Children;
-        }
-        let want = match list.head.ty.ty.ty.content {
-            T::Float => "float",
-            T::Int => "int",
-            T::Bool => "bool",
-            _ => return Visit::Children,
-        };
-        let inits =
-            std::iter::once(list.head.initializer.as_ref()).chain(list.tail.iter().map(|t| t.initializer.as_ref()));
-        for init in inits.flatten() {
-            let ast::InitializerData::Simple(e) = &init.content else { continue };
-            let got = match e.content {
-                ExprData::IntConst(_) => "int",
-                ExprData::FloatConst(_) => "float",
-                ExprData::BoolConst(_) => "bool",
-                _ => continue,
-            };
-            if got != want && self.error.is_none() {
-                self.error =
-                    Some((e.span, format!("cannot initialise a `{want}' with a `{got}' (no implicit conversions)")));
-            }
-        }
-        Visit::Children
-    }
 }
