@@ -34,6 +34,8 @@ pub(crate) struct Active {
     /// Its uniform block, and its offset and array stride there (`None` in the default block,
     /// whose layout is Strata's own).
     pub(crate) block: Option<(u32, u32, u32)>,
+    /// A matrix in a block laid out row by row.
+    pub(crate) row_major: bool,
 }
 
 /// `info`'s active uniforms, in the order their indices count.
@@ -46,6 +48,7 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
             ty: u.ty,
             size: u.len,
             block: None,
+            row_major: false,
         })
         .collect();
     for (b, lb) in info.blocks.iter().enumerate() {
@@ -65,6 +68,7 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
                 ty: m.ty,
                 size: m.array.unwrap_or(1),
                 block: Some((b as u32, m.offset, m.stride)),
+                row_major: m.row_major,
             });
         }
     }
@@ -88,13 +92,13 @@ fn property(a: &Active, pname: u32) -> Option<i32> {
         UNIFORM_BLOCK_INDEX => in_block.map_or(-1, |b| b.0 as i32),
         UNIFORM_OFFSET => in_block.map_or(-1, |b| b.1 as i32),
         UNIFORM_ARRAY_STRIDE => in_block.map_or(-1, |b| b.2 as i32),
-        // std140 lays a matrix's columns out 16 bytes apart.
+        // std140 lays a matrix's columns (rows, row-major) out 16 bytes apart.
         UNIFORM_MATRIX_STRIDE => match in_block {
             Some(_) if a.ty.columns() > 0 => 16,
             Some(_) => 0,
             None => -1,
         },
-        UNIFORM_IS_ROW_MAJOR => 0,
+        UNIFORM_IS_ROW_MAJOR => i32::from(a.row_major),
         _ => return None,
     })
 }

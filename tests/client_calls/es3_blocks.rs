@@ -28,6 +28,18 @@ const VS: &str = "#version 300 es
     }";
 const FS: &str = "#version 300 es
     precision mediump float; in vec4 c; out vec4 o; void main() { o = c; }";
+/// Members laid out otherwise than naga would: booleans, two-row and row-major matrices.
+const VS_TYPES: &str = "#version 300 es
+    layout(location = 0) in vec4 pos;
+    layout(std140, row_major) uniform Mixed {
+        bool flag; bvec3 flags; layout(column_major) mat3x2 a; mat2x3 b; mat4x3 c; mat2 d[2]; bool e[3]; mat3 f;
+    } mixed;
+    out vec4 c;
+    void main() {
+        c = vec4(float(mixed.flag) + float(mixed.flags.x) + float(mixed.e[2]), mixed.a[1], 1.0)
+            + vec4(mixed.b[1] + mixed.c[3] + mixed.f[2], mixed.d[1][0].x);
+        gl_Position = pos;
+    }";
 /// An array of blocks, its elements indexed in one stage or the other.
 const VS_ARRAY: &str = "#version 300 es
     layout(location = 0) in vec4 pos;
@@ -117,6 +129,23 @@ pub fn sequence(r: &mut Run) {
         let mut v1 = -7;
         (gl.get_active_uniformsiv)(0xBEEF, 1, bad.as_ptr(), 0x8A37, &mut v1);
         r.note("glGetActiveUniformsiv of no program");
+
+        // Booleans and matrices: each member's type, size, offset, strides and layout.
+        let t = r.program(VS_TYPES, FS);
+        (gl.get_programiv)(t, ACTIVE_UNIFORMS, &mut n);
+        let all: Vec<u32> = (0..n.max(0) as u32).collect();
+        let mut described = Vec::new();
+        for &i in &all {
+            let mut props = Vec::new();
+            for pname in PROPERTIES {
+                let mut v = -7i32;
+                (gl.get_active_uniformsiv)(t, 1, &i, pname, &mut v);
+                props.push(v);
+            }
+            described.push(format!("{} {props:?}", active(r, t, i)));
+        }
+        described.sort();
+        r.note(&format!("booleans and matrices: {described:?}"));
 
         // An array of blocks: its members' names, and each element's.
         let q = r.program(VS_ARRAY, FS_ARRAY);

@@ -9,7 +9,7 @@ use glsl_lang::ast::{self, TypeQualifierSpecData};
 
 use crate::glsl::consts::Val;
 use crate::glsl::linked::LinkedBlock;
-use crate::glsl::types::{Block, BlockMember, Scalar, Shader, Ty};
+use crate::glsl::types::{Block, BlockMember, Shader, Ty};
 
 /// `GL_MAX_UNIFORM_BLOCK_SIZE`: the bytes one block may hold (ES 3.0's minimum).
 pub const MAX_UNIFORM_BLOCK_SIZE: u32 = 16384;
@@ -44,18 +44,22 @@ pub(super) fn element_name(name: &str, index: u32) -> String {
     format!("{name}__{index}")
 }
 
-/// The layout qualifiers a block (or `layout(…) uniform;`) may carry: std140 and its
-/// stand-ins, and column-major matrices. `shared` reaches here renamed (`preprocess`).
-fn check_layout(q: Option<&ast::TypeQualifier>) -> Result<(), String> {
+/// The layout qualifiers a block (or `layout(…) uniform;`, or a member) may carry: std140 and
+/// its stand-ins, and the matrix layout, which it returns (`Some(true)`: `row_major`, the last
+/// one given winning). `shared` reaches here renamed (`preprocess`).
+fn check_layout(q: Option<&ast::TypeQualifier>) -> Result<Option<bool>, String> {
+    let mut row_major = None;
     for s in q.iter().flat_map(|q| q.qualifiers.iter()) {
         let TypeQualifierSpecData::Layout(l) = &s.content else { continue };
         for id in &l.ids {
             match &id.content {
                 ast::LayoutQualifierSpecData::Shared => {}
                 ast::LayoutQualifierSpecData::Identifier(name, None)
-                    if matches!(name.0.as_str(), "std140" | "packed" | "shar__" | "column_major") => {}
-                ast::LayoutQualifierSpecData::Identifier(name, None) if name.0 == "row_major" => {
-                    return Err("0: row_major uniform block members are not supported yet".into())
+                    if matches!(name.0.as_str(), "std140" | "packed" | "shar__") => {}
+                ast::LayoutQualifierSpecData::Identifier(name, None)
+                    if matches!(name.0.as_str(), "row_major" | "column_major") =>
+                {
+                    row_major = Some(name.0 == "row_major");
                 }
                 ast::LayoutQualifierSpecData::Identifier(name, _) => {
                     return Err(format!("0: layout qualifier `{}' is not allowed on a uniform block", name.0))
@@ -63,26 +67,31 @@ fn check_layout(q: Option<&ast::TypeQualifier>) -> Result<(), String> {
             }
         }
     }
-    Ok(())
+    Ok(row_major)
 }
 
-/// Whether `decl` is `layout(…) uniform;`, the default layout of later blocks (checked).
-pub(super) fn default_layout(q: &ast::TypeQualifier) -> Result<bool, String> {
+/// Whether `decl` is `layout(…) uniform;`, the default layout of later blocks (checked); a
+/// matrix layout it gives becomes `row_major`, the default.
+pub(super) fn default_layout(q: &ast::TypeQualifier, row_major: &mut bool) -> Result<bool, String> {
     let uniform = q.qualifiers.iter().any(|s| {
         matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
     });
     if uniform {
-        check_layout(Some(q))?;
+        if let Some(r) = check_layout(Some(q))? {
+            *row_major = r;
+        }
     }
     Ok(uniform)
 }
 
 /// Lifts a `uniform` block declaration (perhaps an element of an array of blocks, as
-/// `block_arrays` made it); `None` if the block is not a uniform block.
+/// `block_arrays` made it), its matrices row-major by default where `row_major`; `None` if the
+/// block is not a uniform block.
 pub(super) fn lift(
     b: &ast::Block,
     consts: &HashMap<String, Val>,
     elements: &Elements,
+    row_major: bool,
 ) -> Result<Option<Block>, String> {
     let uniform = b.qualifier.qualifiers.iter().any(|s| {
         matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
@@ -90,21 +99,19 @@ pub(super) fn lift(
     if !uniform {
         return Ok(None);
     }
-    check_layout(Some(&b.qualifier))?;
+    let block_major = check_layout(Some(&b.qualifier))?.unwrap_or(row_major);
     let instance = b.identifier.as_ref().map(|id| id.ident.0.to_string());
     let mut members = Vec::new();
     for f in &b.fields {
-        check_layout(f.qualifier.as_ref())?;
+        let major = check_layout(f.qualifier.as_ref())?.unwrap_or(block_major);
         let ty = Ty::from_spec(&f.ty.ty).filter(|t| !t.is_sampler()).ok_or_else(|| {
             "0: uniform block members of this type (structures, samplers) are not supported yet".to_string()
         })?;
-        if ty.scalar() == Scalar::Bool || ty.rows() == 2 {
-            return Err("0: boolean and two-row matrix uniform block members are not supported yet".into());
-        }
         for id in &f.identifiers {
             let spec = id.array_spec.as_ref().or(f.ty.array_specifier.as_ref());
             let array = crate::glsl::consts::array_len(spec, consts)?;
-            members.push(BlockMember { name: id.ident.0.to_string(), ty, array, offset: 0, stride: 0 });
+            let row_major = major && ty.columns() > 0;
+            members.push(BlockMember { name: id.ident.0.to_string(), ty, array, row_major, offset: 0, stride: 0 });
         }
     }
     let (name, element, referenced) = match elements.get(b.name.0.as_str()) {
@@ -120,7 +127,8 @@ pub(super) fn lift(
 fn lay_out(block: &mut Block) -> Result<(), String> {
     let mut offset = 0u32;
     for m in &mut block.members {
-        let (size, align) = m.ty.std140();
+        // A row-major matrix is laid out as its transpose (one row per 16 bytes).
+        let (size, align) = crate::glsl::block_members::storage(m).std140();
         let (align, stride, total) = match m.array {
             // An array's elements (and a matrix's columns) are 16 bytes apart at least.
             Some(n) => {
@@ -150,8 +158,7 @@ pub(super) fn declaration(block: &Block, binding: u32) -> String {
     };
     let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {ident} {{\n");
     for m in &block.members {
-        let array = m.array.map_or(String::new(), |n| format!("[{n}]"));
-        let _ = writeln!(out, "    {} {}{array};", m.ty.glsl(true), m.name);
+        let _ = writeln!(out, "    {}", crate::glsl::block_members::declaration(m));
     }
     let _ = writeln!(out, "}}{};", block.instance.as_deref().map_or(String::new(), |i| format!(" {i}")));
     out

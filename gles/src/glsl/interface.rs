@@ -109,6 +109,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         line_starts: std::iter::once(0).chain(parsed.text.match_indices('\n').map(|(i, _)| i + 1)).collect(),
     };
     let mut consts = crate::glsl::consts::seeded(version);
+    // The blocks' default matrix layout (`layout(row_major) uniform;`).
+    let mut row_major = false;
     for decl in parsed.tu.0 {
         let list = match &decl.content {
             ast::ExternalDeclarationData::Preprocessor(_) => continue,
@@ -117,14 +119,16 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 ast::DeclarationData::Precision(..) | ast::DeclarationData::Invariant(_) => continue,
                 ast::DeclarationData::InitDeclaratorList(list) => Some(list.clone()),
                 ast::DeclarationData::Block(b) if version == 300 => {
-                    if let Some(block) = crate::glsl::blocks::lift(b, &consts, &elements)? {
+                    if let Some(block) = crate::glsl::blocks::lift(b, &consts, &elements, row_major)? {
                         shader.blocks.push(block);
                         continue;
                     }
                     None
                 }
                 // `layout(std140) uniform;`: the default layout of later blocks, std140 here.
-                ast::DeclarationData::TypeOnly(q) if version == 300 && crate::glsl::blocks::default_layout(q)? => {
+                ast::DeclarationData::TypeOnly(q)
+                    if version == 300 && crate::glsl::blocks::default_layout(q, &mut row_major)? =>
+                {
                     continue
                 }
                 _ => None,
@@ -355,6 +359,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         secondary_color: false,
         secondary_data: false,
     };
+    crate::glsl::block_members::rewrite(&mut shader.body, &shader.blocks)?;
     shader.body.visit_mut(&mut rewrite);
     crate::glsl::rewrite::hoist_global_initializers(&mut shader.body);
     shader.point_coord = rewrite.point_coord;

@@ -22,6 +22,7 @@
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
 mod block_arrays;
+mod block_members;
 pub mod blocks;
 pub mod capture;
 mod checks;

@@ -74,30 +74,7 @@ fn var(name: &str) -> ast::Expr {
 /// `matCx2(strata_m2_NAME[i].xy, …, strata_m2_NAME[i + C - 1].xy)` where `i` is `C * index` or
 /// 0, for a `matCx2` uniform of type `ty`.
 fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
-    let columns = ty.columns() as i32;
-    let column = |k: i32| -> ast::Expr {
-        let i: ast::Expr = match index {
-            Some(idx) => {
-                let twice: ast::Expr = ExprData::Binary(
-                    ast::BinaryOpData::Mult.into(),
-                    Box::new(ExprData::IntConst(columns).into()),
-                    Box::new(idx.clone()),
-                )
-                .into();
-                ExprData::Binary(ast::BinaryOpData::Add.into(), Box::new(twice), Box::new(ExprData::IntConst(k).into()))
-                    .into()
-            }
-            None => ExprData::IntConst(k).into(),
-        };
-        let elem: ast::Expr = ExprData::Bracket(Box::new(var(&format!("strata_m2_{name}"))), Box::new(i)).into();
-        ExprData::Dot(Box::new(elem), ast::IdentifierData("xy".into()).into()).into()
-    };
-    let spec = match ty {
-        Ty::Mat3x2 => T::Mat32,
-        Ty::Mat4x2 => T::Mat42,
-        _ => T::Mat2,
-    };
-    ctor(spec, (0..columns).map(column).collect())
+    crate::glsl::block_members::two_rows(var(&format!("strata_m2_{name}")), ty, index)
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -119,7 +96,8 @@ fn sampler_array_arg(arrays: &HashMap<String, u32>, args: &[ast::Expr]) -> Optio
     })
 }
 
-fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
+/// A constructor call of type `ty`.
+pub(super) fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
     let spec: ast::TypeSpecifier = ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
     ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec)).into(), args).into()
 }

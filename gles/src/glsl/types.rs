@@ -281,6 +281,8 @@ pub struct BlockMember {
     pub ty: Ty,
     /// Array length, if an array.
     pub array: Option<u32>,
+    /// A matrix laid out row by row (`layout(row_major)`).
+    pub row_major: bool,
     /// Byte offset in the block.
     pub offset: u32,
     /// Bytes between array elements (0 for a non-array).

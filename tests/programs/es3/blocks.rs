@@ -199,3 +199,60 @@ pub fn uniform_block_arrays(gl: Gl<'_>, n: &mut Names) -> R {
     }
     mark_all(gl, &marks)
 }
+
+/// Members std140 lays out as naga would not: booleans, two-row and row-major matrices, arrays
+/// of them, the default layout changed by `layout(row_major) uniform;` and a member's own.
+const BLOCK_TYPES_FS: &str = "#version 300 es
+    precision highp float;
+    layout(std140, row_major) uniform Mixed {
+        bool flag;
+        bvec3 flags;
+        layout(column_major) mat3x2 a;
+        mat2x3 b;
+        mat4x3 c;
+        mat2 d[2];
+        bool e[3];
+        mat3 f;
+    } mixed;
+    layout(row_major) uniform;
+    uniform Plain { mat3x2 p; bvec2 q; };
+    out vec4 o;
+    void main() {
+        int k = int(gl_FragCoord.x) / 7;
+        if (k == 0) o = vec4(float(mixed.flag), float(mixed.flags.y), float(mixed.flags.z), 1.0);
+        else if (k == 1) o = vec4(mixed.a[1], mixed.a[2].x, 1.0);
+        else if (k == 2) o = vec4(mixed.b[1], 1.0);
+        else if (k == 3) o = vec4(mixed.c[3], 1.0);
+        else if (k == 4) o = vec4(mixed.d[1][0], mixed.d[0][1]);
+        else if (k == 5) o = vec4(float(mixed.e[0]), float(mixed.e[1]), float(mixed.e[2]), 1.0);
+        else if (k == 6) o = vec4(p[2], float(q.x), float(q.y));
+        else if (k == 7) o = vec4(mixed.f[0].yz, mixed.f[2].x, 1.0);
+        else o = vec4((mixed.c * vec4(0.25)) * 0.5 + (vec3(0.3) * mixed.b).xyx * 0.5, 1.0);
+    }";
+
+/// Words of a block: fractions in [0, 1], every fifth word zero (a false boolean).
+fn block_words(n: usize) -> Vec<u8> {
+    let w: Vec<f32> = (0..n).map(|i| if i % 5 == 3 { 0.0 } else { (i * 7 % 23) as f32 / 23.0 }).collect();
+    words(&w)
+}
+
+/// Each kind of member read in a strip of its own, from buffers of known words; the layouts
+/// are the specification's, so Mesa's image is the same only where the offsets are.
+pub fn uniform_block_types(gl: Gl<'_>, n: &mut Names) -> R {
+    let p = super::language::screen(gl, n, super::language::VS_SCREEN, BLOCK_TYPES_FS)?;
+    let mixed = gl.glGetUniformBlockIndex(p, Text::borrowed("Mixed"))?;
+    let plain = gl.glGetUniformBlockIndex(p, Text::borrowed("Plain"))?;
+    gl.glUniformBlockBinding(p, mixed, 3)?;
+    gl.glUniformBlockBinding(p, plain, 6)?;
+    let a = buffer(gl, n, UNIFORM_BUFFER, &block_words(84))?;
+    gl.glBindBufferBase(UNIFORM_BUFFER, 3, a)?;
+    let b = buffer(gl, n, UNIFORM_BUFFER, &block_words(12))?;
+    gl.glBindBufferBase(UNIFORM_BUFFER, 6, b)?;
+    gl.glBindBuffer(ARRAY_BUFFER, 0)?;
+    gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
+    let mut marks = Vec::new();
+    for index in [mixed, plain] {
+        marks.extend(gl.glGetActiveUniformBlockiv(p, index, 0x8A40)?.iter().map(|&v| v as u32));
+    }
+    mark_all(gl, &marks)
+}

@@ -25,6 +25,7 @@ pub fn all() -> Vec<Case> {
         c("es3_uniforms", uniforms::uniforms),
         c("es3_uniform_blocks", blocks::uniform_blocks),
         c("es3_uniform_block_arrays", blocks::uniform_block_arrays),
+        c("es3_uniform_block_types", blocks::uniform_block_types),
         c("es3_divisors", divisors::divisors),
         c("es3_int_attributes", int_attributes::int_attributes),
         c("es3_primitive_restart", restart::primitive_restart),
