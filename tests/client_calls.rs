@@ -43,6 +43,8 @@
 //!
 //! Its own test binary: it points the library at the daemon through the process environment.
 //! `tests/client_calls_es3.rs` builds it again as `client_calls_es3`, which runs `es3_core`,
+//! `pixel_buffer`, `mapping` and `pack` (pack and unpack buffers, mapped ranges and pixel
+//! storage, core in ES 3.0),
 //! `es3_clears` (`glClearBuffer*`, `glGetFragDataLocation`), `es3_sync` (sync objects),
 //! `es3_xfb` (transform feedback) and `es3_blocks` (active uniforms with blocks) instead, in ES 3.0 contexts on both sides (Mesa held to ES 3.0, the daemon started with
 //! `--es3`): Mesa reads its version override once per process, so each version needs a process
@@ -290,8 +292,11 @@ fn run_all((gl, egl): (Api, Binding)) -> Vec<String> {
         ("base_vertex", base_vertex::sequence),
         ("versions", versions::sequence),
     ];
-    let es3: [Sequence; 5] = [
+    let es3: [Sequence; 8] = [
         ("es3_core", es3_core::sequence),
+        ("pixel_buffer", pixel_buffer::sequence),
+        ("mapping", mapping::sequence),
+        ("pack", pack::sequence),
         ("es3_clears", es3_clears::sequence),
         ("es3_sync", es3_sync::sequence),
         ("es3_xfb", es3_xfb::sequence),

@@ -119,6 +119,8 @@ pub fn sequence(r: &mut Run) {
         let p = r.program(VS_Z, FS_BLUE);
         let z = (gl.get_uniform_location)(p, c"z".as_ptr());
         let quad: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
+        // A client array: no buffer bound (an earlier sequence may have left one).
+        (gl.bind_buffer)(ARRAY, 0);
         (gl.vertex_attrib_pointer)(0, 2, FLOAT, 0, 0, quad.as_ptr().cast());
         (gl.enable_vertex_attrib_array)(0);
         (gl.enable)(DEPTH_TEST);

@@ -119,6 +119,8 @@ pub fn sequence(r: &mut Run) {
         (gl.framebuffer_texture_2d)(0x8D40, 0x8CE0, 0x0DE1, tex, 0);
         (gl.viewport)(0, 0, 256, 256);
         let quad: [f32; 8] = [-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
+        // A client array: no buffer bound (an earlier sequence may have left one).
+        (gl.bind_buffer)(ARRAY, 0);
         (gl.vertex_attrib_pointer)(0, 2, 0x1406, 0, 0, quad.as_ptr().cast());
         (gl.enable_vertex_attrib_array)(0);
         (gl.finish)();
