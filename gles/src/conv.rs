@@ -235,8 +235,8 @@ pub fn native_format(ty: u32, size: i32, normalized: bool) -> Option<wgpu::Verte
         (FLOAT, 2, _) => F::Float32x2,
         (FLOAT, 3, _) => F::Float32x3,
         (FLOAT, 4, _) => F::Float32x4,
-        (HALF_FLOAT_OES, 2, _) => F::Float16x2,
-        (HALF_FLOAT_OES, 4, _) => F::Float16x4,
+        (HALF_FLOAT_OES | HALF_FLOAT, 2, _) => F::Float16x2,
+        (HALF_FLOAT_OES | HALF_FLOAT, 4, _) => F::Float16x4,
         (UNSIGNED_BYTE, 4, true) => F::Unorm8x4,
         (BYTE, 4, true) => F::Snorm8x4,
         (UNSIGNED_SHORT, 2, true) => F::Unorm16x2,
@@ -247,44 +247,89 @@ pub fn native_format(ty: u32, size: i32, normalized: bool) -> Option<wgpu::Verte
     })
 }
 
-/// Reads one attribute component as GL converts it to float (ES 2.0 §2.1.2, table 2.7).
-pub fn component(bytes: &[u8], ty: u32, normalized: bool) -> f32 {
+/// `GL_INT_2_10_10_10_REV` (ES 3.0): four signed components packed in 32 bits.
+pub const INT_2_10_10_10_REV: u32 = 0x8D9F;
+
+/// Whether `ty` may type a float attribute's array: ES 2.0's types and `GL_HALF_FLOAT` (Mesa
+/// takes ES 3.0's value for the OES one in ES 2.0 contexts too), and in an ES 3.0 context
+/// (`es3`) its 32-bit integers and the two packed types.
+pub fn attrib_type(ty: u32, es3: bool) -> bool {
+    type_size(ty).is_some()
+        || ty == HALF_FLOAT
+        || (es3 && matches!(ty, INT | UNSIGNED_INT | INT_2_10_10_10_REV | UNSIGNED_INT_2_10_10_10_REV_EXT))
+}
+
+/// Whether `ty` packs a whole element into 32 bits (size 4 only).
+pub fn packed(ty: u32) -> bool {
+    matches!(ty, INT_2_10_10_10_REV | UNSIGNED_INT_2_10_10_10_REV_EXT)
+}
+
+/// Bytes of one element of `size` components of `ty`.
+pub fn element_size(ty: u32, size: i32) -> usize {
     match ty {
-        FLOAT => f32::from_ne_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]),
-        FIXED => i32::from_ne_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]) as f32 / 65536.0,
-        HALF_FLOAT_OES => half::f16::from_bits(u16::from_ne_bytes([bytes[0], bytes[1]])).to_f32(),
-        UNSIGNED_BYTE => {
-            let v = f32::from(bytes[0]);
-            if normalized {
-                v / 255.0
+        _ if packed(ty) => 4,
+        INT | UNSIGNED_INT => 4 * size as usize,
+        HALF_FLOAT => 2 * size as usize,
+        _ => type_size(ty).unwrap_or(4) * size as usize,
+    }
+}
+
+/// A signed integer of `bits` bits as GL converts it to float (ES 3.0 §2.1.6.1): as it is, or
+/// normalized to [-1, 1] by `max(c / (2^(bits-1) - 1), -1)`, as the device's snorm formats do.
+fn signed(v: i64, bits: u32, normalized: bool) -> f32 {
+    if normalized {
+        (v as f64 / ((1i64 << (bits - 1)) - 1) as f64).max(-1.0) as f32
+    } else {
+        v as f32
+    }
+}
+
+/// An unsigned integer of `bits` bits as GL converts it to float: as it is, or `c / (2^bits - 1)`.
+fn unsigned(v: u64, bits: u32, normalized: bool) -> f32 {
+    if normalized {
+        (v as f64 / ((1u64 << bits) - 1) as f64) as f32
+    } else {
+        v as f32
+    }
+}
+
+/// Reads one attribute component as GL converts it to float (ES 3.0 §2.9, table 2.2).
+pub fn component(bytes: &[u8], ty: u32, normalized: bool) -> f32 {
+    let word = || [bytes[0], bytes[1], bytes[2], bytes[3]];
+    match ty {
+        FLOAT => f32::from_ne_bytes(word()),
+        FIXED => i32::from_ne_bytes(word()) as f32 / 65536.0,
+        HALF_FLOAT_OES | HALF_FLOAT => half::f16::from_bits(u16::from_ne_bytes([bytes[0], bytes[1]])).to_f32(),
+        UNSIGNED_BYTE => unsigned(u64::from(bytes[0]), 8, normalized),
+        BYTE => signed(i64::from(bytes[0] as i8), 8, normalized),
+        UNSIGNED_SHORT => unsigned(u64::from(u16::from_ne_bytes([bytes[0], bytes[1]])), 16, normalized),
+        INT => signed(i64::from(i32::from_ne_bytes(word())), 32, normalized),
+        UNSIGNED_INT => unsigned(u64::from(u32::from_ne_bytes(word())), 32, normalized),
+        _ => signed(i64::from(i16::from_ne_bytes([bytes[0], bytes[1]])), 16, normalized),
+    }
+}
+
+/// Appends one element of `size` components of `ty` at the start of `bytes` as floats.
+pub fn element(bytes: &[u8], ty: u32, size: i32, normalized: bool, out: &mut Vec<u8>) {
+    if packed(ty) {
+        // x in bits 0-9, y 10-19, z 20-29, w 30-31.
+        let v = u32::from_ne_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+        for (shift, bits) in [(0, 10), (10, 10), (20, 10), (30, 2)] {
+            let raw = (v >> shift) & ((1 << bits) - 1);
+            let f = if ty == INT_2_10_10_10_REV {
+                // Sign-extended from `bits` bits.
+                let s = (i64::from(raw) << (64 - bits)) >> (64 - bits);
+                signed(s, bits, normalized)
             } else {
-                v
-            }
+                unsigned(u64::from(raw), bits, normalized)
+            };
+            out.extend_from_slice(&f.to_ne_bytes());
         }
-        BYTE => {
-            let v = f32::from(bytes[0] as i8);
-            if normalized {
-                (2.0 * v + 1.0) / 255.0
-            } else {
-                v
-            }
-        }
-        UNSIGNED_SHORT => {
-            let v = f32::from(u16::from_ne_bytes([bytes[0], bytes[1]]));
-            if normalized {
-                v / 65535.0
-            } else {
-                v
-            }
-        }
-        _ => {
-            let v = f32::from(i16::from_ne_bytes([bytes[0], bytes[1]]));
-            if normalized {
-                (2.0 * v + 1.0) / 65535.0
-            } else {
-                v
-            }
-        }
+        return;
+    }
+    let ts = element_size(ty, 1);
+    for c in 0..size as usize {
+        out.extend_from_slice(&component(&bytes[c * ts..c * ts + ts], ty, normalized).to_ne_bytes());
     }
 }
 

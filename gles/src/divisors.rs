@@ -4,7 +4,7 @@
 //! element per instance drawn (element ⌊i / d⌋ for instance i), and converted to floats.
 
 use crate::context::Context;
-use crate::conv::{component, float_format, native_format, type_size};
+use crate::conv::{element_size, float_format, native_format};
 use crate::error::{GlError, GlResult};
 use crate::limits::MAX_CONVERTED;
 use crate::objects::vertex_array::Attrib;
@@ -29,8 +29,7 @@ pub(crate) fn plan_divided(ctx: &Context, a: &Attrib, location: u32, reads: Inst
         let buf = ctx.objects.buffers.get(&a.buffer).ok_or(GlError::InvalidOperation)?;
         (&buf.data, buf.gpu.as_ref(), a.offset)
     };
-    let ts = type_size(a.ty).unwrap_or(4);
-    let elem = ts * a.size as usize;
+    let elem = element_size(a.ty, a.size);
     let stride = if a.stride == 0 { elem as u64 } else { a.stride as u64 };
     // The elements the draw reads: ⌈instances / d⌉, or the one instance's.
     let (first, elements) = match reads {
@@ -70,10 +69,7 @@ pub(crate) fn plan_divided(ctx: &Context, a: &Attrib, location: u32, reads: Inst
         };
         let base = (element * stride + offset) as usize;
         debug_assert!(base as u64 + elem as u64 <= end);
-        for c in 0..a.size as usize {
-            let at = base + c * ts;
-            out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
-        }
+        crate::conv::element(&data[base..base + elem], a.ty, a.size, a.normalized, &mut out);
     }
     let stride = match reads {
         InstanceReads::Drawn(_) => a.size as u64 * 4,

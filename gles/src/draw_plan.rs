@@ -6,7 +6,7 @@
 use std::borrow::Cow;
 
 use crate::context::Context;
-use crate::conv::{clip_rect, component, float_format, native_format, reads_src1, type_size, viewport, Mirror};
+use crate::conv::{clip_rect, element, element_size, float_format, native_format, reads_src1, viewport, Mirror};
 use crate::divisors::{plan_divided, InstanceReads};
 use crate::draw_state::{bound_textures, raster_state};
 use crate::enums::*;
@@ -65,7 +65,7 @@ pub(crate) fn plan_inputs(
             let buf = ctx.objects.buffers.get(&a.buffer).ok_or(GlError::InvalidOperation)?;
             (&buf.data, buf.gpu.as_ref(), a.offset)
         };
-        let elem = type_size(a.ty).unwrap_or(4) * a.size as usize;
+        let elem = element_size(a.ty, a.size);
         let stride = if a.stride == 0 { elem } else { a.stride as usize };
         // The pointer and the stride are the client's: a sum past u64 reads past any buffer.
         let need = vertex_count
@@ -95,7 +95,6 @@ pub(crate) fn plan_inputs(
                 });
             }
             _ => {
-                let ts = type_size(a.ty).unwrap_or(4);
                 let rows = order.map_or(vertex_count as usize, <[u32]>::len);
                 // Overlapping elements (a stride below their size) can ask for more floats
                 // than the buffer has bytes; beyond a bound that is an allocation failure.
@@ -104,12 +103,7 @@ pub(crate) fn plan_inputs(
                 let mut convert = |v: usize| {
                     let base = v.checked_mul(stride).and_then(|x| x.checked_add(offset));
                     match base.filter(|b| b.checked_add(elem).is_some_and(|end| end <= data.len())) {
-                        Some(base) => {
-                            for c in 0..a.size as usize {
-                                let at = base + c * ts;
-                                out.extend_from_slice(&component(&data[at..at + ts], a.ty, a.normalized).to_ne_bytes());
-                            }
-                        }
+                        Some(base) => element(&data[base..base + elem], a.ty, a.size, a.normalized, &mut out),
                         // Past the array: zeros, the components it lacks filled as for any.
                         None => out.extend(std::iter::repeat_n(0u8, a.size as usize * 4)),
                     }

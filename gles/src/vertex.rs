@@ -11,7 +11,6 @@
 //! (`glVertexAttrib*`) are context state, not vertex array state, so they stay where they are.
 
 use crate::context::Context;
-use crate::conv::type_size;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::limits::MAX_ATTRIBS;
@@ -63,10 +62,14 @@ pub(crate) fn set_array(ctx: &mut Context, p: ArrayPointer) -> GlResult {
     }
     let typed = match p.integer {
         true => matches!(p.ty, BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT | UNSIGNED_INT | INT),
-        false => type_size(p.ty).is_some(),
+        false => crate::conv::attrib_type(p.ty, ctx.es3()),
     };
     if !typed {
         return Err(GlError::InvalidEnum);
+    }
+    // The packed types hold four components (ES 3.0 §2.9).
+    if crate::conv::packed(p.ty) && p.size != 4 {
+        return Err(GlError::InvalidOperation);
     }
     // With no array buffer bound the pointer names a client-side array, whose bytes arrive with
     // `strataVertexAttribData` before each draw. A vertex array object cannot hold one

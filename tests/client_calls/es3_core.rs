@@ -24,6 +24,7 @@ const QUERY_RESULT: u32 = 0x8866;
 const MAJOR_VERSION: u32 = 0x821B;
 const COPY_READ: u32 = 0x8F36;
 const COPY_WRITE: u32 = 0x8F37;
+const UNSIGNED_INT_2_10_10_10_REV: u32 = 0x8368;
 
 /// Instances side by side, coloured by their number; vertex positions from attribute 0.
 const VS_INSTANCES: &str = "#version 300 es
@@ -35,6 +36,10 @@ const VS_INSTANCES: &str = "#version 300 es
     }";
 const FS_VARY: &str = "#version 300 es
     precision mediump float; in vec4 c; out vec4 o; void main() { o = c; }";
+/// A colour per vertex from location 1.
+const VS_COLORED: &str = "#version 300 es
+    layout(location = 0) in vec2 pos; layout(location = 1) in vec4 col; out vec4 c;
+    void main() { c = col; gl_Position = vec4(pos, 0.0, 1.0); }";
 /// Instances placed by a per-instance attribute (location 1) rather than by their number.
 const VS_PLACED: &str = "#version 300 es
     layout(location = 0) in vec2 pos;
@@ -264,6 +269,19 @@ pub fn sequence(r: &mut Run) {
         (gl.core_get_query_object_uiv)(q, QUERY_RESULT, &mut result);
         r.note(&format!("glGetQueryObjectuiv(GL_QUERY_RESULT) = {result}, glIsQuery {}", (gl.core_is_query)(q)));
         (gl.core_delete_queries)(1, &q);
+
+        // A colour from a client array of a packed type: the library sends four bytes a vertex.
+        program(r, VS_COLORED, FS_VARY);
+        let packed: Vec<u8> = [(1023u32, 300u32, 0u32, 3u32), (0, 700, 1023, 1), (512, 512, 512, 2), (90, 0, 900, 0)]
+            .iter()
+            .flat_map(|&(x, y, z, w)| (x | (y << 10) | (z << 20) | (w << 30)).to_ne_bytes())
+            .collect();
+        (gl.vertex_attrib_pointer)(0, 2, FLOAT, 0, 0, quad.as_ptr().cast());
+        (gl.vertex_attrib_pointer)(1, 4, UNSIGNED_INT_2_10_10_10_REV, 1, 0, packed.as_ptr().cast());
+        (gl.enable_vertex_attrib_array)(1);
+        (gl.draw_arrays)(0x0005, 0, 4);
+        pixels(r, "a packed client array's colours");
+        (gl.disable_vertex_attrib_array)(1);
         let _ = indices;
     }
 }

@@ -39,6 +39,12 @@ pub fn sequence(r: &mut Run) {
         r.note("glEnable(GL_RASTERIZER_DISCARD) in an ES 2.0 context");
         (gl.begin_transform_feedback)(0x0004);
         r.note("glBeginTransformFeedback in an ES 2.0 context");
+        // ES 3.0's attribute types: GL_INT, GL_UNSIGNED_INT, GL_HALF_FLOAT, the packed two.
+        (gl.bind_buffer)(ARRAY, 0);
+        for ty in [0x1404u32, 0x1405, 0x140B, 0x8D9F, 0x8368] {
+            (gl.vertex_attrib_pointer)(1, 4, ty, 0, 0, std::ptr::null());
+            r.note(&format!("glVertexAttribPointer of type {ty:#x} in an ES 2.0 context"));
+        }
         let s = (gl.fence_sync)(0x9117, 0);
         r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
         let w = (gl.client_wait_sync)(s, 0, 0);

@@ -165,10 +165,19 @@ fn check_errors() -> bool {
 fn type_size(ty: GLenum) -> Option<usize> {
     Some(match ty {
         0x1400 | 0x1401 => 1,                   // BYTE, UNSIGNED_BYTE
-        0x1402 | 0x1403 | 0x8D61 => 2,          // SHORT, UNSIGNED_SHORT, HALF_FLOAT_OES
+        0x1402 | 0x1403 | 0x8D61 | 0x140B => 2, // SHORT, UNSIGNED_SHORT, HALF_FLOAT_OES, HALF_FLOAT
         0x1404 | 0x1405 | 0x1406 | 0x140C => 4, // INT, UNSIGNED_INT, FLOAT, FIXED
         _ => return None,
     })
+}
+
+/// Bytes of one element of `size` components of a vertex attribute's `ty`: ES 3.0's packed
+/// `GL_INT_2_10_10_10_REV` and `GL_UNSIGNED_INT_2_10_10_10_REV` hold four in 32 bits.
+fn element_size(ty: GLenum, size: i32) -> Option<usize> {
+    match ty {
+        0x8D9F | 0x8368 => Some(4),
+        _ => Some(type_size(ty)? * size.clamp(1, 4) as usize),
+    }
 }
 
 /// Borrows `len` bytes of application memory (empty for a null pointer).
@@ -305,8 +314,7 @@ fn send_client_arrays(gl: &mut Gl<'_>, vertices: u64, instances: u64) -> Result<
             0 => vertices,
             d => instances.max(1).div_ceil(u64::from(d)),
         };
-        let Some(component) = type_size(ty) else { continue };
-        let element = component * size.clamp(1, 4) as usize;
+        let Some(element) = element_size(ty, size) else { continue };
         let stride = if stride > 0 { stride as usize } else { element };
         let Some(len) = (vertices - 1).checked_mul(stride as u64).and_then(|n| n.checked_add(element as u64)) else {
             continue;

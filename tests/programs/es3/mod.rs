@@ -3,6 +3,7 @@
 
 use super::{Case, DEFAULT};
 
+mod attrib_types;
 mod blocks;
 mod divisors;
 mod int_attributes;
@@ -28,6 +29,7 @@ pub fn all() -> Vec<Case> {
         c("es3_uniform_block_types", blocks::uniform_block_types),
         c("es3_divisors", divisors::divisors),
         c("es3_int_attributes", int_attributes::int_attributes),
+        c("es3_attrib_types", attrib_types::attrib_types),
         c("es3_primitive_restart", restart::primitive_restart),
         c("es3_provoking_vertex", restart::provoking_vertex),
         c("es3_transform_feedback", xfb::transform_feedback),
