@@ -32,6 +32,8 @@ impl<I: LangLexerIterator> Iterator for Fields<'_, I> {
 }
 
 /// Parses a preprocessed file as a translation unit, field selections read as above.
+// The error is glsl-lang's own, returned as its parser gives it.
+#[allow(clippy::result_large_err)]
 pub(super) fn parse<'r, 'p, F: FileSystem>(
     file: File<'r, 'p, F>,
 ) -> Result<ast::TranslationUnit, glsl_lang::parse::ParseError<<Lexer<'r, 'p, F> as HasLexerError>::Error>> {
