@@ -248,3 +248,45 @@ fn three_d_images_count_every_slice() {
     assert!(draws(&mut gl, [40, 80, 120]));
     daemon.assert_running();
 }
+
+/// Immutable storage (`glTexStorage3D`) reserves every level of every slice before it
+/// allocates: two levels of a 128×128×64 RGBA8 image (about 5 MiB) fit in 8 MiB, a second
+/// such texture does not and is left without storage (a sub-image into it is refused), and
+/// one whose size the device could never hold is refused the same way, the first still a
+/// framebuffer attachment that draws.
+#[test]
+fn immutable_storage_counts_every_level_and_slice_first() {
+    const TEXTURE_3D: u32 = 0x806F;
+    const RGBA8: u32 = 0x8058;
+    const RGBA32F: u32 = 0x8814;
+    let mut daemon = Daemon::start("quota-storage", &["--es3", "--quota-gpu-bytes", "8M"]);
+    let mut gl = Connection::connect(&ConnectOptions {
+        socket: daemon.socket.clone(),
+        name: "storage".into(),
+        ..Default::default()
+    })
+    .expect("connect");
+    let _cur = strata_client::setup::egl_context_es3(&mut gl, 0, 0, SurfaceKind::Pbuffer { width: 16, height: 16 })
+        .expect("an ES 3.0 context");
+    let storage = |gl: &mut Connection, name: u32, format: u32, size: i32| {
+        gl.glBindTexture(TEXTURE_3D, name).expect("io");
+        gl.glTexStorage3D(TEXTURE_3D, 2, format, size, size, 64).expect("io");
+        error(gl)
+    };
+    assert_eq!(storage(&mut gl, 1, RGBA8, 128), GL_NO_ERROR);
+    let s = support::stats(&daemon.socket);
+    let c = s.clients.iter().find(|c| c.name == "storage").expect("listed");
+    let levels: u64 = 128 * 128 * 64 * 4 + 64 * 64 * 32 * 4;
+    assert!(c.gpu_bytes >= levels && c.gpu_bytes < levels + (1 << 20), "holds {} bytes for {levels}", c.gpu_bytes);
+    assert_eq!(storage(&mut gl, 2, RGBA8, 128), GL_OUT_OF_MEMORY, "a second is beyond 8 MiB");
+    gl.glTexSubImage3DOES(TEXTURE_3D, 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, Blob::borrowed(&[0; 4]))
+        .expect("io");
+    assert_eq!(error(&mut gl), 0x0502, "the refused texture has no levels to write");
+    assert_eq!(storage(&mut gl, 3, RGBA32F, 2048), GL_OUT_OF_MEMORY, "2048×2048×64 float texels");
+    gl.glBindFramebuffer(0x8D40, 3).expect("io");
+    gl.glFramebufferTexture3DOES(0x8D40, 0x8CE0, TEXTURE_3D, 1, 1, 31).expect("io");
+    assert_eq!(gl.glCheckFramebufferStatus(0x8D40).expect("io"), 0x8CD5, "the last slice of the second level");
+    gl.glBindFramebuffer(0x8D40, 0).expect("io");
+    assert!(draws(&mut gl, [40, 80, 120]));
+    daemon.assert_running();
+}

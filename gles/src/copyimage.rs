@@ -79,6 +79,9 @@ impl GlesExecutor {
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         let level = level as u32;
+        if internal.is_some() {
+            crate::texstorage::mutable(t)?;
+        }
         if let Some(f) = internal {
             if level == 0 {
                 t.ensure_image(gpu, &account, uid, w as u32, h as u32, Storage::Rgba8)?;

@@ -220,6 +220,36 @@ pub const RGBA16F_EXT: u32 = 0x881A;
 pub const RGB16F_EXT: u32 = 0x881B;
 /// `GL_RG16F_EXT`.
 pub const RG16F_EXT: u32 = 0x822F;
+/// `GL_RGBA32F` (ES 3.0; `GL_EXT_texture_storage`'s `GL_RGBA32F_EXT`).
+pub const RGBA32F: u32 = 0x8814;
+/// `GL_RGB32F`.
+pub const RGB32F: u32 = 0x8815;
+/// `GL_RG32F`.
+pub const RG32F: u32 = 0x8230;
+/// `GL_R32F`.
+pub const R32F: u32 = 0x822E;
+/// `GL_ALPHA32F_EXT` (`GL_EXT_texture_storage`).
+pub const ALPHA32F_EXT: u32 = 0x8816;
+/// `GL_LUMINANCE32F_EXT`.
+pub const LUMINANCE32F_EXT: u32 = 0x8818;
+/// `GL_LUMINANCE_ALPHA32F_EXT`.
+pub const LUMINANCE_ALPHA32F_EXT: u32 = 0x8819;
+/// `GL_ALPHA16F_EXT`.
+pub const ALPHA16F_EXT: u32 = 0x881C;
+/// `GL_LUMINANCE16F_EXT`.
+pub const LUMINANCE16F_EXT: u32 = 0x881E;
+/// `GL_LUMINANCE_ALPHA16F_EXT`.
+pub const LUMINANCE_ALPHA16F_EXT: u32 = 0x881F;
+/// `GL_BGRA8_EXT` (`GL_EXT_texture_format_BGRA8888` with texture storage).
+pub const BGRA8_EXT: u32 = 0x93A1;
+/// `GL_DEPTH_COMPONENT32F` (ES 3.0).
+pub const DEPTH_COMPONENT32F: u32 = 0x8CAC;
+/// `GL_DEPTH32F_STENCIL8` (ES 3.0).
+pub const DEPTH32F_STENCIL8: u32 = 0x8CAD;
+/// `GL_TEXTURE_IMMUTABLE_FORMAT` (ES 3.0): whether `glTexStorage*` made the texture's levels.
+pub const TEXTURE_IMMUTABLE_FORMAT: u32 = 0x912F;
+/// `GL_TEXTURE_IMMUTABLE_LEVELS` (ES 3.0): how many levels `glTexStorage*` made.
+pub const TEXTURE_IMMUTABLE_LEVELS: u32 = 0x82DF;
 /// `GL_R16F_EXT`.
 pub const R16F_EXT: u32 = 0x822D;
 /// `GL_HALF_FLOAT`: the type Mesa names as the implementation read type of a half-float

@@ -432,6 +432,48 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
     })
 }
 
+/// How a texture that `glTexStorage*` makes in sized internal format `internal` is kept: the
+/// unsized format whose image it behaves as (as `GL_OES_required_internalformat`'s images do),
+/// its storage, and whether its data counts as half-float (renderable, as
+/// `GL_EXT_color_buffer_half_float` has it). `None` for a format that is not sized, and for
+/// the sized formats Strata cannot keep yet (integer, sRGB, signed normalized, the packed
+/// 10-bit and shared-exponent formats, compressed formats).
+pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
+    Some(match internal {
+        RGBA8_OES | RGBA4 | RGB5_A1 => (RGBA, Storage::Rgba8, false),
+        RGB8_OES | RGB565 => (RGB, Storage::Rgba8, false),
+        BGRA8_EXT => (BGRA_EXT, Storage::Rgba8, false),
+        R8_EXT => (RED_EXT, Storage::Rgba8, false),
+        RG8_EXT => (RG_EXT, Storage::Rgba8, false),
+        ALPHA8_OES => (ALPHA, Storage::Rgba8, false),
+        LUMINANCE8_OES => (LUMINANCE, Storage::Rgba8, false),
+        LUMINANCE8_ALPHA8_OES => (LUMINANCE_ALPHA, Storage::Rgba8, false),
+        RGBA16F_EXT => (RGBA, Storage::Half, true),
+        RGB16F_EXT => (RGB, Storage::Half, true),
+        RG16F_EXT => (RG_EXT, Storage::Half, true),
+        R16F_EXT => (RED_EXT, Storage::Half, true),
+        ALPHA16F_EXT => (ALPHA, Storage::Half, true),
+        LUMINANCE16F_EXT => (LUMINANCE, Storage::Half, true),
+        LUMINANCE_ALPHA16F_EXT => (LUMINANCE_ALPHA, Storage::Half, true),
+        RGBA32F => (RGBA, Storage::Float, false),
+        RGB32F => (RGB, Storage::Float, false),
+        RG32F => (RG_EXT, Storage::Float, false),
+        R32F => (RED_EXT, Storage::Float, false),
+        ALPHA32F_EXT => (ALPHA, Storage::Float, false),
+        LUMINANCE32F_EXT => (LUMINANCE, Storage::Float, false),
+        LUMINANCE_ALPHA32F_EXT => (LUMINANCE_ALPHA, Storage::Float, false),
+        DEPTH_COMPONENT16 | DEPTH_COMPONENT24_OES | DEPTH_COMPONENT32F => (DEPTH_COMPONENT, Storage::Depth, false),
+        DEPTH24_STENCIL8_OES | DEPTH32F_STENCIL8 => (DEPTH_STENCIL_OES, Storage::DepthStencil, false),
+        _ => return None,
+    })
+}
+
+/// Whether `internal` is an unsized format, which `glTexStorage*` refuses: the base colour
+/// formats, depth and depth-stencil.
+pub fn is_unsized(internal: u32) -> bool {
+    is_color_format(internal) || matches!(internal, DEPTH_COMPONENT | DEPTH_STENCIL_OES)
+}
+
 /// The unsized colour format a sized colour internal format stores as
 /// (`GL_OES_required_internalformat`), for `glCopyTexImage2D`; `None` for any other format.
 pub fn sized_color_base(internal: u32) -> Option<u32> {

@@ -55,6 +55,7 @@ mod shaders;
 mod state;
 mod surface;
 mod teximage;
+mod texstorage;
 mod textures;
 mod transform_feedback;
 mod typed;

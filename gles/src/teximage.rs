@@ -19,6 +19,7 @@ use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, 
 use crate::limits::{max_3d_level, max_3d_size, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::{Region, TextureImage};
 use crate::objects::texture::Texture;
+use crate::texstorage::{mutable, sized_accepts};
 use crate::typed::ImageTarget;
 use crate::unpack::{depth_stencil_values, to_storage, Unpack};
 use crate::GlesExecutor;
@@ -231,6 +232,7 @@ impl GlesExecutor {
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        mutable(t)?;
         let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
         // Layers are read one after another: ES 2.0 has no image height to unpack them by.
         let texels = match &pixels {
@@ -285,6 +287,7 @@ impl GlesExecutor {
         };
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        mutable(t)?;
         t.ensure_image(gpu, &account, uid, w, h, storage)?;
         if image.cube {
             t.defined[image.face as usize] = 1;
@@ -315,6 +318,11 @@ impl GlesExecutor {
         pixel_type: u32,
         pixels: Blob<'_>,
     ) -> GlResult {
+        // ES 3.0's GL_HALF_FLOAT is GL_HALF_FLOAT_OES's data; only images made by
+        // glTexStorage* in a half-float format take it yet (`sized_accepts`).
+        let es3_half = ctx.es3() && pixel_type == HALF_FLOAT;
+        let given_type = pixel_type;
+        let pixel_type = if es3_half { HALF_FLOAT_OES } else { pixel_type };
         let storage = upload_storage(format, pixel_type)?;
         let uid = self.next_uid();
         let account = self.account.clone();
@@ -322,6 +330,9 @@ impl GlesExecutor {
         let unpack = Unpack::of(&ctx.pixel_store);
         let fits = |t: &Texture, img: &TextureImage| {
             let fits = match Compressed::from_gl(t.format) {
+                // An image made by glTexStorage* takes what ES 3.0's table gives its format,
+                // converted to its storage.
+                None if t.sized != 0 => sized_accepts(t.sized, format, given_type),
                 Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
                 // ASTC images take no uncompressed data: Mesa finds no format to convert it
                 // to, which is GL_INVALID_VALUE.
@@ -331,7 +342,7 @@ impl GlesExecutor {
                 Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
                 // ES 2.0: the format must be the image's (RGBA and BGRA count as one,
                 // MESA_bgra); the type must give the same storage.
-                None => same_layout(t.format, format) && storage == img.storage,
+                None => !es3_half && same_layout(t.format, format) && storage == img.storage,
             };
             if fits {
                 Ok(())

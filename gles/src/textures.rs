@@ -100,6 +100,14 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
             return t.border.to_vec();
         }
     }
+    // Mesa answers the format's query in ES 2.0 contexts too (where it is always false), the
+    // levels' only in ES 3.0 ones.
+    if pname == TEXTURE_IMMUTABLE_FORMAT || (ctx.es3() && pname == TEXTURE_IMMUTABLE_LEVELS) {
+        if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
+            let levels = t.immutable_levels as f32;
+            return vec![if pname == TEXTURE_IMMUTABLE_LEVELS { levels } else { f32::from(u8::from(levels > 0.0)) }];
+        }
+    }
     let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
         TEXTURE_MIN_FILTER => Some(s.min as f32),
         TEXTURE_MAG_FILTER => Some(s.mag as f32),

@@ -310,6 +310,9 @@ command_set! {
         glResumeTransformFeedback [Context, Es3] => ResumeTransformFeedback {};
         /// `names`: the `count` varyings' names, each ended by a newline.
         glTransformFeedbackVaryings [Context, Es3] => TransformFeedbackVaryings { program: GLuint, count: GLsizei, names: Text<'a>, buffer_mode: GLenum };
+        /// Immutable storage: every level of the bound texture at once, its contents undefined.
+        glTexStorage2D [Context, Es3] => TexStorage2D { target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei };
+        glTexStorage3D [Context, Es3] => TexStorage3D { target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

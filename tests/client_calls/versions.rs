@@ -45,6 +45,17 @@ pub fn sequence(r: &mut Run) {
             (gl.vertex_attrib_pointer)(1, 4, ty, 0, 0, std::ptr::null());
             r.note(&format!("glVertexAttribPointer of type {ty:#x} in an ES 2.0 context"));
         }
+        // Immutable texture storage, and its queries.
+        let mut tex = 0;
+        (gl.gen_textures)(1, &mut tex);
+        (gl.bind_texture)(0x0DE1, tex);
+        (gl.tex_storage_2d)(0x0DE1, 1, 0x8058, 4, 4);
+        r.note("glTexStorage2D in an ES 2.0 context");
+        for pname in [0x912Fu32, 0x82DF] {
+            let mut v = -7;
+            (gl.get_tex_parameteriv)(0x0DE1, pname, &mut v);
+            r.note(&format!("glGetTexParameteriv({pname:#x}) = {v}"));
+        }
         let s = (gl.fence_sync)(0x9117, 0);
         r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
         let w = (gl.client_wait_sync)(s, 0, 0);

@@ -66,6 +66,7 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        crate::texstorage::mutable(t)?;
         if level == 0 {
             // Blocks go up as they are only into a 2D image of whole blocks.
             let (bw, bh) = c.block_size();

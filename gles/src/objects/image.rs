@@ -91,14 +91,31 @@ impl TextureImage {
         gpu: &Gpu,
         account: &Arc<Account>,
         target: u32,
+        size: (u32, u32, u32),
+        storage: Storage,
+    ) -> GlResult<Self> {
+        Self::with_levels(gpu, account, target, size, storage, None)
+    }
+
+    /// [`Self::new`] with `levels` levels where given (immutable storage: exactly those levels
+    /// are allocated, and they are the chain completeness is judged against), else GL's full
+    /// chain (one level for depth).
+    pub(crate) fn with_levels(
+        gpu: &Gpu,
+        account: &Arc<Account>,
+        target: u32,
         (width, height, depth): (u32, u32, u32),
         storage: Storage,
+        levels: Option<u32>,
     ) -> GlResult<Self> {
         let three_d = target == TEXTURE_3D_OES;
         let depth = if three_d { depth.max(1) } else { 1 };
         let layers = if target == TEXTURE_CUBE_MAP { 6 } else { depth };
-        let levels = 32 - width.max(height).max(depth).max(1).leading_zeros();
-        let mips = if storage.is_depth() { 1 } else { levels };
+        let full = 32 - width.max(height).max(depth).max(1).leading_zeros();
+        let (levels, mips) = match levels {
+            Some(n) => (n, n),
+            None => (full, if storage.is_depth() { 1 } else { full }),
+        };
         let bytes = if three_d {
             crate::objects::image::volume_bytes(width, height, depth, mips, storage)
         } else {

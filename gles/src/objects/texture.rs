@@ -94,6 +94,12 @@ pub struct Texture {
     /// `GL_TEXTURE_BORDER_COLOR_EXT` (`GL_EXT_texture_border_clamp`), as set: kept out of
     /// [`SamplerState`], which keys the device's samplers, since the shader applies it.
     pub border: [f32; 4],
+    /// `GL_TEXTURE_IMMUTABLE_LEVELS`: the levels `glTexStorage*` made; 0 while the texture's
+    /// images may still be respecified (`GL_TEXTURE_IMMUTABLE_FORMAT` false).
+    pub immutable_levels: u32,
+    /// The sized internal format `glTexStorage*` gave, which decides the data its images take;
+    /// 0 for a texture whose images were specified one by one.
+    pub sized: u32,
 }
 
 impl Texture {

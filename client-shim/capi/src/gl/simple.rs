@@ -161,4 +161,6 @@ simple_calls! {
     fn glPauseTransformFeedback();
     fn glResumeTransformFeedback();
     fn glIsTransformFeedback(id: GLuint) -> GLboolean;
+    fn glTexStorage2D(target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei);
+    fn glTexStorage3D(target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei);
 }
