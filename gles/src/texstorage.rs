@@ -49,6 +49,7 @@ impl GlesExecutor {
         self.tex_storage(ctx, target, levels, internalformat, [width, height, 1])
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn glTexStorage3D(
         &mut self,
         ctx: &mut Context,

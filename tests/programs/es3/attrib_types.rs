@@ -30,6 +30,10 @@ fn pack(x: i32, y: i32, z: i32, w: i32) -> [u8; 4] {
     v.to_ne_bytes()
 }
 
+/// One case: type, size, normalized, one element, scale and bias into [0, 1], from a client
+/// array.
+type AttribCase = (u32, i32, bool, Vec<u8>, [f32; 2], bool);
+
 /// One strip per type; each strip's four vertices carry one element.
 pub fn attrib_types(gl: Gl<'_>, n: &mut Names) -> R {
     let p = program(gl, n, VS, FS, &[])?;
@@ -46,7 +50,7 @@ pub fn attrib_types(gl: Gl<'_>, n: &mut Names) -> R {
     let halfs = |v: &[f32]| v.iter().flat_map(|x| half::f16::from_f32(*x).to_bits().to_ne_bytes()).collect::<Vec<u8>>();
     let max = i32::MAX;
     // (type, size, normalized, one element, scale and bias into [0, 1], from a client array)
-    let cases: [(u32, i32, bool, Vec<u8>, [f32; 2], bool); 9] = [
+    let cases: [AttribCase; 9] = [
         (INT, 4, true, words(&[(max / 2) as u32, (-max / 3) as u32, max as u32, (-max) as u32]), [0.5, 0.5], false),
         (INT, 4, false, words(&[1, 2, (-3i32) as u32, 4]), [0.125, 0.5], false),
         (UNSIGNED_INT, 4, true, words(&[u32::MAX / 4, u32::MAX / 2, u32::MAX, 0]), [1.0, 0.0], false),

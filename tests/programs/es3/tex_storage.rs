@@ -46,8 +46,8 @@ struct Sampling([i32; 4]);
 
 impl Sampling {
     /// Draws cell `k` (8 across, 8×8 pixels each, from the bottom left) sampling in `mode` at
-    /// `coord` and `lod`, scaled by `scale`.
-    fn cell(&self, gl: Gl<'_>, n: &mut Names, k: usize, mode: i32, coord: [f32; 3], lod: f32, scale: f32) -> R {
+    /// `coord` and level of detail `lod`, scaled by `scale`.
+    fn cell(&self, gl: Gl<'_>, n: &mut Names, k: usize, mode: i32, coord: [f32; 3], [lod, scale]: [f32; 2]) -> R {
         let [m, c, l, s] = self.0;
         gl.glUniform1i(m, mode)?;
         gl.glUniform3f(c, coord[0], coord[1], coord[2])?;
@@ -101,7 +101,7 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
         fill_level(gl, TEXTURE_2D, level as i32, 8 >> level, *c)?;
     }
     for lod in 0..4 {
-        sampling.cell(gl, n, lod, 0, [0.5, 0.5, 0.0], lod as f32, 1.0)?;
+        sampling.cell(gl, n, lod, 0, [0.5, 0.5, 0.0], [lod as f32, 1.0])?;
     }
     for pname in [TEXTURE_IMMUTABLE_FORMAT, TEXTURE_IMMUTABLE_LEVELS] {
         marks.push(gl.glGetTexParameteriv(TEXTURE_2D, pname)?.first().copied().unwrap_or(-1) as u32);
@@ -158,7 +158,7 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
     for (face, dir) in dirs.iter().enumerate() {
         let c = [40 * face as u8 + 30, 250 - 40 * face as u8, 128, 255];
         fill_level(gl, TEXTURE_CUBE_MAP_POSITIVE_X + face as u32, 0, 4, c)?;
-        sampling.cell(gl, n, 8 + face, 1, *dir, 0.0, 1.0)?;
+        sampling.cell(gl, n, 8 + face, 1, *dir, [0.0, 1.0])?;
     }
     let square = n.next();
     gl.glBindTexture(TEXTURE_CUBE_MAP, square)?;
@@ -172,11 +172,11 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
     for z in 0..4u8 {
         let slice = solid([60 * z + 10, 90, 250 - 60 * z, 255], 16);
         gl.glTexSubImage3DOES(TEXTURE_3D, 0, 0, 0, z as i32, 4, 4, 1, RGBA, UNSIGNED_BYTE, Blob::borrowed(&slice))?;
-        sampling.cell(gl, n, 16 + z as usize, 2, [0.5, 0.5, (f32::from(z) + 0.5) / 4.0], 0.0, 1.0)?;
+        sampling.cell(gl, n, 16 + z as usize, 2, [0.5, 0.5, (f32::from(z) + 0.5) / 4.0], [0.0, 1.0])?;
     }
     let last = solid([70, 140, 210, 255], 8);
     gl.glTexSubImage3DOES(TEXTURE_3D, 1, 0, 0, 0, 2, 2, 2, RGBA, UNSIGNED_BYTE, Blob::borrowed(&last))?;
-    sampling.cell(gl, n, 20, 2, [0.5, 0.5, 0.5], 1.0, 1.0)?;
+    sampling.cell(gl, n, 20, 2, [0.5, 0.5, 0.5], [1.0, 1.0])?;
     let volume = n.next();
     gl.glBindTexture(TEXTURE_3D, volume)?;
     gl.glTexStorage3D(TEXTURE_3D, 1, DEPTH_COMPONENT16, 4, 4, 4)?;
@@ -193,20 +193,20 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
     let halves: Vec<u8> =
         [1.0f32, 3.0, 0.5, 2.0].iter().flat_map(|v| half::f16::from_f32(*v).to_bits().to_ne_bytes()).collect();
     gl.glTexSubImage2D(TEXTURE_2D, 0, 1, 0, 1, 1, RGBA, HALF_FLOAT, Blob::borrowed(&halves))?;
-    sampling.cell(gl, n, 24, 0, [0.25, 0.5, 0.0], 0.0, 0.25)?;
-    sampling.cell(gl, n, 25, 0, [0.75, 0.5, 0.0], 0.0, 0.25)?;
+    sampling.cell(gl, n, 24, 0, [0.25, 0.5, 0.0], [0.0, 0.25])?;
+    sampling.cell(gl, n, 25, 0, [0.75, 0.5, 0.0], [0.0, 0.25])?;
     new_texture(gl, n, TEXTURE_2D, false)?;
     gl.glTexStorage2D(TEXTURE_2D, 1, R32F, 1, 1)?;
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 1, 1, RED, FLOAT, Blob::borrowed(&f32s(&[0.75])))?;
-    sampling.cell(gl, n, 26, 0, [0.5, 0.5, 0.0], 0.0, 1.0)?;
+    sampling.cell(gl, n, 26, 0, [0.5, 0.5, 0.0], [0.0, 1.0])?;
     new_texture(gl, n, TEXTURE_2D, false)?;
     gl.glTexStorage2D(TEXTURE_2D, 1, RG8, 1, 1)?;
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 1, 1, RG, UNSIGNED_BYTE, Blob::borrowed(&[30, 220]))?;
-    sampling.cell(gl, n, 27, 0, [0.5, 0.5, 0.0], 0.0, 1.0)?;
+    sampling.cell(gl, n, 27, 0, [0.5, 0.5, 0.0], [0.0, 1.0])?;
     new_texture(gl, n, TEXTURE_2D, false)?;
     gl.glTexStorage2D(TEXTURE_2D, 1, LUMINANCE8_ALPHA8, 1, 1)?;
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 1, 1, LUMINANCE_ALPHA, UNSIGNED_BYTE, Blob::borrowed(&[200, 100]))?;
-    sampling.cell(gl, n, 28, 0, [0.5, 0.5, 0.0], 0.0, 1.0)?;
+    sampling.cell(gl, n, 28, 0, [0.5, 0.5, 0.0], [0.0, 1.0])?;
     // Float data into a normalized image is refused.
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 1, 1, LUMINANCE_ALPHA, FLOAT, Blob::borrowed(&f32s(&[0.5, 0.5])))?;
     marks.push(gl.glGetError()?);
@@ -217,7 +217,7 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
     let depths: Vec<u8> = [0x2000u16, 0x8000, 0xC000, 0xFFFF].iter().flat_map(|d| d.to_ne_bytes()).collect();
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 2, 2, DEPTH_COMPONENT, UNSIGNED_SHORT, Blob::borrowed(&depths))?;
     for (k, (x, y)) in [(0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)].iter().enumerate() {
-        sampling.cell(gl, n, 29 + k, 3, [*x, *y, 0.0], 0.0, 1.0)?;
+        sampling.cell(gl, n, 29 + k, 3, [*x, *y, 0.0], [0.0, 1.0])?;
     }
 
     // A level of an immutable texture rendered to, and mipmaps generated in one.
@@ -234,17 +234,17 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glClear(COLOR_BUFFER_BIT)?;
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glViewport(0, 0, W, H)?;
-    sampling.cell(gl, n, 33, 0, [0.5, 0.5, 0.0], 1.0, 1.0)?;
+    sampling.cell(gl, n, 33, 0, [0.5, 0.5, 0.0], [1.0, 1.0])?;
     new_texture(gl, n, TEXTURE_2D, true)?;
     gl.glTexStorage2D(TEXTURE_2D, 3, RGBA8, 4, 4)?;
     let checker: Vec<u8> =
         (0..16).flat_map(|i| if (i % 4 + i / 4) % 2 == 0 { [0, 0, 0, 255] } else { [200, 100, 50, 255] }).collect();
     gl.glTexSubImage2D(TEXTURE_2D, 0, 0, 0, 4, 4, RGBA, UNSIGNED_BYTE, Blob::borrowed(&checker))?;
     gl.glGenerateMipmap(TEXTURE_2D)?;
-    sampling.cell(gl, n, 34, 0, [0.5, 0.5, 0.0], 2.0, 1.0)?;
+    sampling.cell(gl, n, 34, 0, [0.5, 0.5, 0.0], [2.0, 1.0])?;
     // The last level caps what TEXTURE_MAX_LEVEL asks beyond it.
     gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAX_LEVEL, 7)?;
-    sampling.cell(gl, n, 35, 0, [0.5, 0.5, 0.0], 5.0, 1.0)?;
+    sampling.cell(gl, n, 35, 0, [0.5, 0.5, 0.0], [5.0, 1.0])?;
     marks.push(gl.glGetError()?);
     mark_all(gl, &marks)
 }
