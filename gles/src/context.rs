@@ -38,6 +38,8 @@ pub struct Objects {
     pub vertex_arrays: Names<VertexArray>,
     /// Program pipeline objects (`GL_EXT_separate_shader_objects`).
     pub pipelines: Names<crate::objects::pipeline::Pipeline>,
+    /// Sampler objects (ES 3.0), shared as textures are.
+    pub samplers: Names<crate::objects::sampler::Sampler>,
     /// `GL_KHR_debug` object labels by (namespace, name).
     pub labels: HashMap<(u32, u32), Vec<u8>>,
 }
@@ -50,6 +52,7 @@ impl Objects {
     pub fn take_shared(&mut self, from: &mut Objects) {
         std::mem::swap(&mut self.buffers, &mut from.buffers);
         std::mem::swap(&mut self.textures, &mut from.textures);
+        std::mem::swap(&mut self.samplers, &mut from.samplers);
         std::mem::swap(&mut self.renderbuffers, &mut from.renderbuffers);
         std::mem::swap(&mut self.framebuffers, &mut from.framebuffers);
         std::mem::swap(&mut self.shaders, &mut from.shaders);
@@ -83,6 +86,8 @@ pub struct Bindings {
     /// Per texture unit: the 2D, the cube map, the external (`GL_OES_EGL_image_external`)
     /// and the 3D (`GL_OES_texture_3D`) texture.
     pub units: [[u32; 4]; MAX_UNITS],
+    /// Per texture unit: the sampler object bound (ES 3.0's `glBindSampler`), 0 for none.
+    pub samplers: [u32; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.
     pub program: u32,
     /// `GL_PROGRAM_PIPELINE_BINDING_EXT`: the pipeline that draws while no program is in use.

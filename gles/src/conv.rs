@@ -368,6 +368,17 @@ pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescript
         wgpu::MipmapFilterMode::Nearest
     };
     let all_linear = s.mag == LINEAR && s.min == LINEAR_MIPMAP_LINEAR;
+    // Levels of detail count from the base level (the view's first); levels past
+    // TEXTURE_MAX_LEVEL are never sampled; GL_TEXTURE_MIN_LOD and _MAX_LOD clamp within that
+    // (a negative least level is the base level's).
+    let lod_max = if s.uses_mipmaps() {
+        let levels = s.max_level.saturating_sub(s.base_level) as f32;
+        levels.min(f32::from_bits(s.max_lod)).clamp(0.0, 32.0)
+    } else {
+        0.0
+    };
+    let least = f32::from_bits(s.min_lod);
+    let lod_min = if least.is_nan() { 0.0 } else { least.clamp(0.0, lod_max) };
     wgpu::SamplerDescriptor {
         label: None,
         address_mode_u: wrap(s.wrap_s),
@@ -376,9 +387,8 @@ pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescript
         mag_filter: filter(s.mag),
         min_filter: filter(s.min),
         mipmap_filter: mip,
-        lod_min_clamp: 0.0,
-        // Levels past TEXTURE_MAX_LEVEL_APPLE are never sampled.
-        lod_max_clamp: if s.uses_mipmaps() { (s.max_level as f32).min(32.0) } else { 0.0 },
+        lod_min_clamp: lod_min,
+        lod_max_clamp: lod_max,
         compare: None,
         // wgpu filters anisotropically only with every filter linear: GL's anisotropy with
         // another filter is left out.

@@ -211,6 +211,7 @@ fn check_object(objects: &Objects, current_vao: u32, identifier: u32, name: u32)
         TEXTURE => name != 0 && objects.textures.contains_key(&name),
         RENDERBUFFER => name != 0 && objects.renderbuffers.contains_key(&name),
         FRAMEBUFFER => name != 0 && objects.framebuffers.contains_key(&name),
+        SAMPLER => name != 0 && objects.samplers.contains_key(&name),
         _ => return Err(GlError::InvalidEnum),
     };
     if exists {

@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use crate::context::Context;
 use crate::conv::{clip_rect, element, element_size, float_format, native_format, reads_src1, viewport, Mirror};
 use crate::divisors::{plan_divided, InstanceReads};
-use crate::draw_state::{bound_textures, raster_state};
+use crate::draw_state::{bound_textures, raster_state, Bound};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{border_color, Storage};
@@ -18,7 +18,7 @@ use crate::int_attribs::plan_integer;
 use crate::limits::MAX_CONVERTED;
 use crate::objects::program::LinkedProgram;
 use crate::objects::surface::ReversedZ;
-use crate::objects::texture::Texture;
+use crate::objects::texture::SamplerState;
 use crate::render::{DrawSpec, Source, Target, VertexInput};
 use crate::typed::{IndexType, Primitive};
 
@@ -171,21 +171,21 @@ pub(crate) fn plan_points(
 /// `GL_CLAMP_TO_BORDER_EXT`; copied only where one does.
 pub(crate) fn with_sampler_params<'c>(
     mut data: Cow<'c, [u8]>,
-    bound: &[Option<&Texture>],
+    bound: &[Option<Bound<'_>>],
     offsets: &[u32],
 ) -> Cow<'c, [u8]> {
-    for (t, &at) in bound.iter().zip(offsets) {
-        let Some(t) = t else { continue };
+    for (b, &at) in bound.iter().zip(offsets) {
+        let Some(Bound { texture: t, state, border: colour }) = b else { continue };
         // The r wrap counts only for 3D textures, whose lookup helpers read flag w.
         let three_d = t.target == TEXTURE_3D_OES;
-        let [ms, mt, mr] = t.sampler.mirror_clamp();
+        let [ms, mt, mr] = state.mirror_clamp();
         let mr = mr && three_d;
-        let border = t.sampler.clamps_to_border(three_d);
+        let border = state.clamps_to_border(three_d);
         if !(ms || mt || mr || border) {
             continue;
         }
         let float = t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float));
-        let color = if border { border_color(t.format, float, t.border) } else { [0.0; 4] };
+        let color = if border { border_color(t.format, float, *colour) } else { [0.0; 4] };
         let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
         let values = [flag(ms), flag(mt), flag(border), flag(mr), color[0], color[1], color[2], color[3]];
         let at = at as usize;
@@ -283,7 +283,14 @@ pub(crate) fn plan_draw<'c>(
     let bound = bound_textures(ctx, &program, &exe.units);
     let textures = bound
         .iter()
-        .map(|t| t.and_then(|t| t.gpu.as_ref().map(|img| (img.view.clone(), t.uid, t.sampler, !img.filterable))))
+        .map(|b| {
+            let b = b.as_ref()?;
+            let img = b.texture.gpu.as_ref()?;
+            let (base, _) = b.texture.level_range(&b.state);
+            // The sampler counts levels of detail from the base level, as the view does.
+            let state = SamplerState { base_level: base, ..b.state };
+            Some((img.view_from(base), b.texture.uid, state, !img.filterable))
+        })
         .collect();
     let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);
     let blocks = crate::uniform_blocks::block_buffers(ctx, &program, &exe.block_bindings);

@@ -20,7 +20,7 @@ use crate::linking::link_shaders;
 use crate::objects::pipeline::{Combined, Ready};
 use crate::objects::program::{create_gpu_program, shader_module, LinkedProgram, LinkedStages, Stages};
 use crate::objects::surface::ReversedZ;
-use crate::objects::texture::Texture;
+use crate::objects::texture::{SamplerState, Texture};
 use crate::pipelines::{linked, validate};
 use crate::render::{RasterState, Target};
 use crate::typed::{ClipControl, TextureTarget};
@@ -331,10 +331,21 @@ pub(crate) fn raster_state(
     }
 }
 
+/// A texture a sampler reads, with the state it is read with.
+pub(crate) struct Bound<'c> {
+    /// The texture.
+    pub texture: &'c Texture,
+    /// Its sampling state, or the sampler object's bound to the unit over it (ES 3.0).
+    pub state: SamplerState,
+    /// The border colour (`GL_EXT_texture_border_clamp`), the sampler object's where one is
+    /// bound.
+    pub border: [f32; 4],
+}
+
 /// The texture each of `program`'s samplers reads through its unit in `units`: the one bound
-/// there for the sampler's target where it is complete and has an image; `None` where the
-/// sampler reads black.
-pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, units: &[u32]) -> Vec<Option<&'c Texture>> {
+/// there for the sampler's target where it is complete (read with the unit's sampler object,
+/// if one is bound) and has an image; `None` where the sampler reads black.
+pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, units: &[u32]) -> Vec<Option<Bound<'c>>> {
     program
         .info
         .samplers
@@ -349,7 +360,16 @@ pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, unit
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];
             let t = ctx.objects.textures.get(&name)?;
-            (t.target == target.as_gl() && t.complete() && t.gpu.is_some()).then_some(t)
+            let object = ctx.bindings.samplers.get(*unit as usize).and_then(|s| ctx.objects.samplers.get(s));
+            let (state, border) = match object {
+                Some(s) => (s.state.over(&t.sampler), s.border),
+                None => (t.sampler, t.border),
+            };
+            (t.target == target.as_gl() && t.complete_with(&state) && t.gpu.is_some()).then_some(Bound {
+                texture: t,
+                state,
+                border,
+            })
         })
         .collect()
 }

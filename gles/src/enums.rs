@@ -250,6 +250,8 @@ pub const DEPTH32F_STENCIL8: u32 = 0x8CAD;
 pub const TEXTURE_IMMUTABLE_FORMAT: u32 = 0x912F;
 /// `GL_TEXTURE_IMMUTABLE_LEVELS` (ES 3.0): how many levels `glTexStorage*` made.
 pub const TEXTURE_IMMUTABLE_LEVELS: u32 = 0x82DF;
+/// `GL_SAMPLER` (`GL_KHR_debug`): the namespace of sampler objects' labels.
+pub const SAMPLER: u32 = 0x82E6;
 /// `GL_R16F_EXT`.
 pub const R16F_EXT: u32 = 0x822D;
 /// `GL_HALF_FLOAT`: the type Mesa names as the implementation read type of a half-float

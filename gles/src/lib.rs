@@ -51,6 +51,8 @@ mod queries;
 mod query_objects;
 mod render;
 mod resolve;
+mod samplers;
+mod sampling;
 mod shaders;
 mod state;
 mod surface;

@@ -8,7 +8,7 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::Compressed;
-use crate::limits::MAX_ANISOTROPY;
+use crate::sampling::{self, Allowed, Owner};
 use crate::typed::TextureTarget;
 use crate::GlesExecutor;
 
@@ -40,54 +40,10 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
         }
     }
     let name = ctx.bindings.texture(target);
-    if pname == TEXTURE_MAX_ANISOTROPY_EXT {
-        // Below 1 is an error; above the largest is that, as Mesa stores it.
-        if v.is_nan() || v < 1.0 {
-            return Err(GlError::InvalidValue);
-        }
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        t.sampler.anisotropy = v.min(MAX_ANISOTROPY).to_bits();
-        return Ok(());
-    }
-    if pname == TEXTURE_MAX_LEVEL_APPLE {
-        // Rounded as Mesa rounds a float; a negative level is an error.
-        let level = v.round();
-        if level.is_nan() || level < 0.0 {
-            return Err(GlError::InvalidValue);
-        }
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-        t.sampler.max_level = level as u32;
-        return Ok(());
-    }
-    let v = v as u32;
-    let ok = match pname {
-        TEXTURE_MIN_FILTER => matches!(
-            v,
-            NEAREST
-                | LINEAR
-                | NEAREST_MIPMAP_NEAREST
-                | LINEAR_MIPMAP_NEAREST
-                | NEAREST_MIPMAP_LINEAR
-                | LINEAR_MIPMAP_LINEAR
-        ),
-        TEXTURE_MAG_FILTER => matches!(v, NEAREST | LINEAR),
-        TEXTURE_WRAP_S | TEXTURE_WRAP_T | TEXTURE_WRAP_R_OES => {
-            matches!(v, REPEAT | CLAMP_TO_EDGE | MIRRORED_REPEAT | MIRROR_CLAMP_TO_EDGE_EXT)
-                || (border && v == CLAMP_TO_BORDER_EXT)
-        }
-        _ => false,
-    };
-    if !ok {
-        return Err(GlError::InvalidEnum);
-    }
+    let allowed = Allowed { es3: ctx.es3(), border };
+    let setting = sampling::setting(Owner::Texture, allowed, pname, v)?;
     let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
-    match pname {
-        TEXTURE_MIN_FILTER => t.sampler.min = v,
-        TEXTURE_MAG_FILTER => t.sampler.mag = v,
-        TEXTURE_WRAP_S => t.sampler.wrap_s = v,
-        TEXTURE_WRAP_T => t.sampler.wrap_t = v,
-        _ => t.sampler.wrap_r = v,
-    }
+    setting.apply(&mut t.sampler);
     Ok(())
 }
 
@@ -108,17 +64,11 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
             return vec![if pname == TEXTURE_IMMUTABLE_LEVELS { levels } else { f32::from(u8::from(levels > 0.0)) }];
         }
     }
+    let es3 = ctx.es3();
     let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
-        TEXTURE_MIN_FILTER => Some(s.min as f32),
-        TEXTURE_MAG_FILTER => Some(s.mag as f32),
-        TEXTURE_WRAP_S => Some(s.wrap_s as f32),
-        TEXTURE_WRAP_T => Some(s.wrap_t as f32),
-        TEXTURE_WRAP_R_OES => Some(s.wrap_r as f32),
-        TEXTURE_MAX_ANISOTROPY_EXT => Some(f32::from_bits(s.anisotropy)),
-        TEXTURE_MAX_LEVEL_APPLE => Some(s.max_level as f32),
         // Every texture takes one unit (Mesa answers for every target).
         REQUIRED_TEXTURE_IMAGE_UNITS_OES => Some(1.0),
-        _ => None,
+        _ => sampling::value(Owner::Texture, es3, &s, pname),
     });
     match v {
         Some(v) => vec![v],
@@ -199,7 +149,7 @@ impl GlesExecutor {
     ) -> GlResult {
         if pname == TEXTURE_BORDER_COLOR_EXT {
             // Normalised as GL converts a signed integer colour (Mesa's arithmetic, in f32).
-            let v: Vec<f32> = params.iter().map(|i| (2.0 * i as f32 + 1.0) * (1.0 / 4_294_967_294.0)).collect();
+            let v: Vec<f32> = params.iter().map(sampling::normalized).collect();
             return set_border(ctx, target, &v);
         }
         let v = params.get(0).ok_or(GlError::InvalidValue)?;
@@ -221,13 +171,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGetTexParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<i32> {
-        let v = get_tex_parameter(ctx, target, pname).into_iter();
-        if pname == TEXTURE_BORDER_COLOR_EXT {
-            // A colour as normalised integers, clamped to [0, 1] first (as Mesa answers).
-            return v.map(|x| (f64::from(x.clamp(0.0, 1.0)) * 2_147_483_647.0) as i32).collect();
-        }
-        // Rounded to the nearest integer, as GL converts a float state to an integer.
-        v.map(|x| x.round() as i32).collect()
+        sampling::as_ints(pname, get_tex_parameter(ctx, target, pname))
     }
 
     pub(super) fn glGetTexParameterfv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {

@@ -82,6 +82,8 @@ impl GlesExecutor {
             NUM_EXTENSIONS => self.extensions().split_whitespace().count() as i32,
             // Server waits (`glWaitSync`) take no timeout: the daemon runs commands in order.
             MAX_SERVER_WAIT_TIMEOUT => 0,
+            // GL_SAMPLER_BINDING: the active unit's sampler object.
+            0x8919 => ctx.bindings.samplers[ctx.bindings.active_unit] as i32,
             _ => return None,
         }])
     }

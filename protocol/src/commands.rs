@@ -313,6 +313,14 @@ command_set! {
         /// Immutable storage: every level of the bound texture at once, its contents undefined.
         glTexStorage2D [Context, Es3] => TexStorage2D { target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei };
         glTexStorage3D [Context, Es3] => TexStorage3D { target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei };
+        /// `names` are the sampler names the client allocated.
+        glGenSamplers [Context, Es3] => GenSamplers { names: Slice<'a, GLuint> };
+        glDeleteSamplers [Context, Es3] => DeleteSamplers { names: Slice<'a, GLuint> };
+        glBindSampler [Context, Es3] => BindSampler { unit: GLuint, sampler: GLuint };
+        glSamplerParameteri [Context, Es3] => SamplerParameteri { sampler: GLuint, pname: GLenum, param: GLint };
+        glSamplerParameterf [Context, Es3] => SamplerParameterf { sampler: GLuint, pname: GLenum, param: GLfloat };
+        glSamplerParameteriv [Context, Es3] => SamplerParameteriv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLint> };
+        glSamplerParameterfv [Context, Es3] => SamplerParameterfv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLfloat> };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;
@@ -471,6 +479,11 @@ command_set! {
         glGetActiveUniformsiv [Context, Es3] => GetActiveUniformsiv { program: GLuint, indices: Slice<'a, GLuint>, pname: GLenum } -> Vec<GLint>;
         /// A captured varying's size, type and name (`None` on error).
         glGetTransformFeedbackVarying [Context, Es3] => GetTransformFeedbackVarying { program: GLuint, index: GLuint } -> Option<ActiveVariable>;
+        glIsSampler [Context, Es3] => IsSampler { sampler: GLuint } -> bool;
+        /// The parameter's values (nothing on error).
+        glGetSamplerParameteriv [Context, Es3] => GetSamplerParameteriv { sampler: GLuint, pname: GLenum } -> Vec<GLint>;
+        /// The parameter's values (nothing on error).
+        glGetSamplerParameterfv [Context, Es3] => GetSamplerParameterfv { sampler: GLuint, pname: GLenum } -> Vec<GLfloat>;
     }
 }
 

@@ -247,6 +247,8 @@ api! {
     transform_feedback_varyings = "glTransformFeedbackVaryings": fn(u32, i32, *const *const i8, u32);
     get_transform_feedback_varying = "glGetTransformFeedbackVarying": fn(u32, u32, i32, *mut i32, *mut i32, *mut u32, *mut i8);
     tex_storage_2d = "glTexStorage2D": fn(u32, i32, u32, i32, i32);
+    gen_samplers = "glGenSamplers": fn(i32, *mut u32);
+    bind_sampler = "glBindSampler": fn(u32, u32);
     bind_buffer_base = "glBindBufferBase": fn(u32, u32, u32);
     bind_buffer_range = "glBindBufferRange": fn(u32, u32, u32, isize, isize);
     get_integeri_v = "glGetIntegeri_v": fn(u32, u32, *mut i32);

@@ -51,11 +51,20 @@ pub fn sequence(r: &mut Run) {
         (gl.bind_texture)(0x0DE1, tex);
         (gl.tex_storage_2d)(0x0DE1, 1, 0x8058, 4, 4);
         r.note("glTexStorage2D in an ES 2.0 context");
-        for pname in [0x912Fu32, 0x82DF] {
+        // ES 3.0's texture parameters: base level, levels of detail, comparison, immutability.
+        for pname in [0x912Fu32, 0x82DF, 0x813C, 0x813A, 0x813B, 0x884C, 0x884D] {
             let mut v = -7;
             (gl.get_tex_parameteriv)(0x0DE1, pname, &mut v);
             r.note(&format!("glGetTexParameteriv({pname:#x}) = {v}"));
+            (gl.tex_parameteri)(0x0DE1, pname, 0);
+            r.note(&format!("glTexParameteri({pname:#x})"));
         }
+        // Sampler objects.
+        let mut sampler = 0;
+        (gl.gen_samplers)(1, &mut sampler);
+        r.note("glGenSamplers in an ES 2.0 context");
+        (gl.bind_sampler)(0, sampler);
+        r.note("glBindSampler in an ES 2.0 context");
         let s = (gl.fence_sync)(0x9117, 0);
         r.note(&format!("glFenceSync in an ES 2.0 context: null {}", s.is_null()));
         let w = (gl.client_wait_sync)(s, 0, 0);

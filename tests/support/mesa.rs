@@ -53,6 +53,8 @@ pub struct MesaGl {
     pipelines: HashMap<u32, u32>,
     /// The client's transform feedback names and Mesa's.
     xfbs: HashMap<u32, u32>,
+    /// The client's sampler names and Mesa's.
+    samplers: HashMap<u32, u32>,
     /// Per attribute: the last pointer parameters and the client bytes they point at.
     client: HashMap<u32, (PointerParams, Vec<u8>)>,
     display: Ptr,
@@ -89,6 +91,7 @@ mod programs;
 // After `programs`, whose uniform macros it uses.
 mod es3;
 mod queries;
+mod samplers;
 mod scalars;
 mod state;
 mod texture3d;
@@ -178,6 +181,7 @@ impl MesaGl {
             queries: HashMap::new(),
             pipelines: HashMap::new(),
             xfbs: HashMap::new(),
+            samplers: HashMap::new(),
             client: HashMap::new(),
             display: std::ptr::null(),
             renderer: String::new(),

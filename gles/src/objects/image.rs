@@ -228,6 +228,27 @@ impl TextureImage {
         self.texture.dimension() == wgpu::TextureDimension::D3
     }
 
+    /// The view draws sample from level `base` on (`GL_TEXTURE_BASE_LEVEL`): the whole
+    /// image's view for 0, else one of the levels from `base`.
+    pub fn view_from(&self, base: u32) -> wgpu::TextureView {
+        if base == 0 || base >= self.mips {
+            return self.view.clone();
+        }
+        let dimension = match self.layers() {
+            _ if self.three_d() => wgpu::TextureViewDimension::D3,
+            6 => wgpu::TextureViewDimension::Cube,
+            _ => wgpu::TextureViewDimension::D2,
+        };
+        let aspect = if self.storage.is_depth() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
+        self.texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(dimension),
+            aspect,
+            base_mip_level: base,
+            mip_level_count: Some(self.mips - base),
+            ..Default::default()
+        })
+    }
+
     /// A view for rendering into `level` of `face` (a 2D image's or cube face's), or into
     /// slice `face` of a 3D image's level, with the slice the render pass must name.
     pub fn attach_view(&self, face: u32, level: u32) -> (wgpu::TextureView, Option<u32>) {

@@ -10,6 +10,7 @@ pub mod image;
 pub mod pipeline;
 pub mod program;
 pub mod query;
+pub mod sampler;
 pub mod surface;
 pub mod texture;
 pub mod vertex_array;

@@ -28,9 +28,19 @@ pub struct SamplerState {
     /// `TEXTURE_MAX_ANISOTROPY_EXT` (`GL_EXT_texture_filter_anisotropic`), as `f32` bits:
     /// from 1 to [`MAX_ANISOTROPY`].
     pub anisotropy: u32,
-    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`): the last level sampled, and
-    /// the last a mipmapped texture needs.
+    /// `TEXTURE_MAX_LEVEL_APPLE` (`GL_APPLE_texture_max_level`, core in ES 3.0): the last level
+    /// sampled, and the last a mipmapped texture needs. A texture's, never a sampler object's.
     pub max_level: u32,
+    /// `GL_TEXTURE_BASE_LEVEL` (ES 3.0): the first level sampled. A texture's.
+    pub base_level: u32,
+    /// `GL_TEXTURE_MIN_LOD` (ES 3.0), as `f32` bits: the least level of detail sampled.
+    pub min_lod: u32,
+    /// `GL_TEXTURE_MAX_LOD` (ES 3.0), as `f32` bits: the greatest level of detail sampled.
+    pub max_lod: u32,
+    /// `GL_TEXTURE_COMPARE_MODE` (ES 3.0): `GL_NONE` or `GL_COMPARE_REF_TO_TEXTURE`.
+    pub compare_mode: u32,
+    /// `GL_TEXTURE_COMPARE_FUNC` (ES 3.0).
+    pub compare_func: u32,
 }
 
 impl Default for SamplerState {
@@ -43,6 +53,11 @@ impl Default for SamplerState {
             wrap_r: REPEAT,
             anisotropy: 1.0f32.to_bits(),
             max_level: 1000,
+            base_level: 0,
+            min_lod: (-1000.0f32).to_bits(),
+            max_lod: 1000.0f32.to_bits(),
+            compare_mode: 0,
+            compare_func: LEQUAL,
         }
     }
 }
@@ -112,18 +127,44 @@ impl Texture {
         self.defined[..faces].iter().all(|d| d & all == all)
     }
 
-    /// Whether sampling would read defined data (GL ES 2.0 §3.7.10 completeness); a float
+    /// The first and last level `s` reads (its base and max level; ES 3.0 §3.8.10 clamps an
+    /// immutable texture's to the levels it has).
+    pub fn level_range(&self, s: &SamplerState) -> (u32, u32) {
+        match self.immutable_levels.checked_sub(1) {
+            Some(last) => {
+                let base = s.base_level.min(last);
+                (base, s.max_level.max(base).min(last))
+            }
+            None => (s.base_level, s.max_level),
+        }
+    }
+
+    /// Whether sampling with `s` (the texture's state, or a sampler object's over it) would
+    /// read defined data (GL ES 2.0 §3.7.10, ES 3.0 §3.8.13 completeness): the base level, and
+    /// with a mipmap filter every level from it to the max level or the chain's end; a float
     /// image the device cannot filter is incomplete with a linear filter
     /// (`OES_texture_float_linear` not offered).
-    pub fn complete(&self) -> bool {
+    pub fn complete_with(&self, s: &SamplerState) -> bool {
         let Some(img) = &self.gpu else { return false };
-        if img.storage == Storage::Float && !img.filterable && self.sampler.filters_linearly() {
+        if img.storage == Storage::Float && !img.filterable && s.filters_linearly() {
             return false;
         }
         let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
-        let levels = img.levels.min(self.sampler.max_level.saturating_add(1));
-        let need = if self.sampler.uses_mipmaps() { ((1u64 << levels) - 1) as u32 } else { 1 };
+        let (base, max) = self.level_range(s);
+        let last = if s.uses_mipmaps() { max.min(img.levels.saturating_sub(1)) } else { base };
+        if base >= img.levels || base > last {
+            return false;
+        }
+        let need = ((1u64 << (last + 1)) - (1u64 << base)) as u32;
         self.defined[..faces].iter().all(|d| d & need == need)
+    }
+}
+
+impl SamplerState {
+    /// A sampler object's state (this) over a texture's (`texture`): everything from the
+    /// object but the levels, which are the texture's.
+    pub fn over(self, texture: &SamplerState) -> SamplerState {
+        SamplerState { max_level: texture.max_level, base_level: texture.base_level, ..self }
     }
 }
 

@@ -9,6 +9,7 @@ mod divisors;
 mod int_attributes;
 mod language;
 mod restart;
+mod samplers;
 mod tex_storage;
 mod uniforms;
 mod xfb;
@@ -35,5 +36,6 @@ pub fn all() -> Vec<Case> {
         c("es3_provoking_vertex", restart::provoking_vertex),
         c("es3_transform_feedback", xfb::transform_feedback),
         c("es3_tex_storage", tex_storage::tex_storage),
+        c("es3_samplers", samplers::samplers),
     ]
 }

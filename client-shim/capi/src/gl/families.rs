@@ -277,6 +277,7 @@ pub mod names {
         glGenQueriesEXT;
         glGenProgramPipelinesEXT;
         glGenTransformFeedbacks;
+        glGenSamplers;
     }
 }
 
@@ -290,6 +291,7 @@ pub mod delete {
         glDeleteQueriesEXT;
         glDeleteProgramPipelinesEXT;
         glDeleteTransformFeedbacks;
+        glDeleteSamplers;
     }
 }
 
@@ -312,6 +314,8 @@ pub mod get_arrays {
         glGetIntegerv(pname: GLenum) -> GLint;
         glGetTexParameterfv(target: GLenum, pname: GLenum) -> GLfloat;
         glGetTexParameteriv(target: GLenum, pname: GLenum) -> GLint;
+        glGetSamplerParameterfv(sampler: GLuint, pname: GLenum) -> GLfloat;
+        glGetSamplerParameteriv(sampler: GLuint, pname: GLenum) -> GLint;
         glGetUniformfv(program: GLuint, location: GLint) -> GLfloat;
         glGetUniformiv(program: GLuint, location: GLint) -> GLint;
         glGetUniformuiv(program: GLuint, location: GLint) -> GLuint;

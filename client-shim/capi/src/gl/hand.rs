@@ -530,6 +530,24 @@ crate::entry::entry_points! {
         })
     }
 
+    /// One value, or four for `GL_TEXTURE_BORDER_COLOR_EXT`.
+    fn glSamplerParameterfv(sampler: GLuint, pname: GLenum, params: *const GLfloat) {
+        with_gl("glSamplerParameterfv", (), |gl| {
+            // SAFETY: `params` holds as many values as `pname` takes.
+            let v = unsafe { values(params, tex_parameter_count(pname)) };
+            gl.conn.glSamplerParameterfv(sampler, pname, Slice::new(v))
+        })
+    }
+
+    /// One value, or four for `GL_TEXTURE_BORDER_COLOR_EXT`.
+    fn glSamplerParameteriv(sampler: GLuint, pname: GLenum, params: *const GLint) {
+        with_gl("glSamplerParameteriv", (), |gl| {
+            // SAFETY: `params` holds as many values as `pname` takes.
+            let v = unsafe { values(params, tex_parameter_count(pname)) };
+            gl.conn.glSamplerParameteriv(sampler, pname, Slice::new(v))
+        })
+    }
+
     /// Writes the rows the daemon returns, already laid out with `GL_PACK_ALIGNMENT`.
     fn glReadPixels(
         x: GLint,
@@ -550,7 +568,7 @@ crate::entry::entry_points! {
     }
 }
 
-/// How many values `glTexParameter{f,i}v` read for `pname`.
+/// How many values `glTexParameter{f,i}v` and `glSamplerParameter{f,i}v` read for `pname`.
 fn tex_parameter_count(pname: GLenum) -> i64 {
     if pname == 0x1004 {
         4 // GL_TEXTURE_BORDER_COLOR_EXT

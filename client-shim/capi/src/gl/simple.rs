@@ -161,6 +161,10 @@ simple_calls! {
     fn glPauseTransformFeedback();
     fn glResumeTransformFeedback();
     fn glIsTransformFeedback(id: GLuint) -> GLboolean;
+    fn glBindSampler(unit: GLuint, sampler: GLuint);
+    fn glSamplerParameteri(sampler: GLuint, pname: GLenum, param: GLint);
+    fn glSamplerParameterf(sampler: GLuint, pname: GLenum, param: GLfloat);
+    fn glIsSampler(sampler: GLuint) -> GLboolean;
     fn glTexStorage2D(target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei);
     fn glTexStorage3D(target: GLenum, levels: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei);
 }
