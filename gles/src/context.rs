@@ -83,9 +83,9 @@ pub struct Bindings {
     pub pixel_unpack: u32,
     /// `GL_ACTIVE_TEXTURE` − `GL_TEXTURE0`.
     pub active_unit: usize,
-    /// Per texture unit: the 2D, the cube map, the external (`GL_OES_EGL_image_external`)
-    /// and the 3D (`GL_OES_texture_3D`) texture.
-    pub units: [[u32; 4]; MAX_UNITS],
+    /// Per texture unit: the 2D, the cube map, the external (`GL_OES_EGL_image_external`),
+    /// the 3D (`GL_OES_texture_3D`) and the 2D array (ES 3.0) texture.
+    pub units: [[u32; 5]; MAX_UNITS],
     /// Per texture unit: the sampler object bound (ES 3.0's `glBindSampler`), 0 for none.
     pub samplers: [u32; MAX_UNITS],
     /// `GL_CURRENT_PROGRAM`.

@@ -356,6 +356,7 @@ pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, unit
                 Ty::SamplerCube => TextureTarget::CubeMap,
                 Ty::SamplerExternal => TextureTarget::External,
                 Ty::Sampler3D => TextureTarget::ThreeD,
+                Ty::Sampler2DArray => TextureTarget::TwoDArray,
                 _ => TextureTarget::TwoD,
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];

@@ -252,6 +252,44 @@ impl GlesExecutor {
         set_attachment(ctx, attachment, Attachment::Texture { name: texture, level: level as u32, face })
     }
 
+    /// ES 3.0's attachment of one layer of a 2D array or one slice of a 3D texture, the
+    /// texture's own target deciding which.
+    pub(super) fn glFramebufferTextureLayer(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        attachment: u32,
+        texture: u32,
+        level: i32,
+        layer: i32,
+    ) -> GlResult {
+        if target != FRAMEBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        // Framebuffer 0 has no attachments to set, whatever the texture (Mesa's first check).
+        if ctx.bindings.framebuffer == 0 {
+            return Err(GlError::InvalidOperation);
+        }
+        if texture == 0 {
+            return set_attachment(ctx, attachment, Attachment::None);
+        }
+        let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
+        match t.target {
+            TEXTURE_3D_OES => {
+                self.framebuffer_texture(ctx, target, attachment, TEXTURE_3D_OES, texture, level, Some(layer))
+            }
+            TEXTURE_2D_ARRAY => {
+                let layers = crate::limits::max_array_layers(&self.gpu) as i32;
+                if !(0..layers).contains(&layer) || !(0..=crate::limits::MAX_LEVEL).contains(&level) {
+                    return Err(GlError::InvalidValue);
+                }
+                let a = Attachment::Texture { name: texture, level: level as u32, face: layer as u32 };
+                set_attachment(ctx, attachment, a)
+            }
+            _ => Err(GlError::InvalidOperation),
+        }
+    }
+
     pub(super) fn glFramebufferRenderbuffer(
         &mut self,
         ctx: &mut Context,

@@ -31,6 +31,7 @@ pub mod egl;
 mod egl_config;
 mod egl_image;
 pub mod enums;
+mod enums_es3;
 mod error;
 mod flushed;
 mod formats;

@@ -40,6 +40,11 @@ pub fn max_3d_level(gpu: &Gpu) -> i32 {
     31 - max_3d_size(gpu).max(1).leading_zeros() as i32
 }
 
+/// `GL_MAX_ARRAY_TEXTURE_LAYERS` (ES 3.0): ES 3.0's least, 256, where the device has that many.
+pub fn max_array_layers(gpu: &Gpu) -> u32 {
+    256.min(gpu.limits.max_texture_array_layers)
+}
+
 // Objects one context (or client) may hold beyond its quota's counts.
 
 /// Query objects one context may hold: each may hold device query sets, so a client that

@@ -53,7 +53,7 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
             // A level above 0 is attachable only while the texture's levels are complete (as
             // Mesa decides with GL_OES_fbo_render_mipmap). A 3D image's `face` is the slice,
             // which must lie in the level.
-            let defined = if img.three_d() { 0 } else { face };
+            let defined = if img.three_d() || img.array { 0 } else { face };
             // A slice of a 3D texture whose name now holds another texture is no face of it.
             let Some(levels) = t.defined.get(defined as usize).filter(|_| img.three_d() || face < img.layers()) else {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);

@@ -16,7 +16,7 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
-use crate::limits::{max_3d_level, max_3d_size, MAX_LEVEL, MAX_TEXTURE};
+use crate::limits::{max_3d_level, max_3d_size, max_array_layers, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::{Region, TextureImage};
 use crate::objects::texture::Texture;
 use crate::texstorage::{mutable, sized_accepts};
@@ -47,7 +47,9 @@ pub fn validate_size(gpu: &Gpu, image: ImageTarget, level: i32, size: [i32; 3], 
         return Err(GlError::InvalidValue);
     }
     let most = if image.three_d { (max_3d_size(gpu) >> level) as i32 } else { MAX_TEXTURE as i32 };
-    if size.iter().any(|&n| !(0..=most).contains(&n)) || (image.cube && size[0] != size[1]) {
+    let layers = if image.array { max_array_layers(gpu) as i32 } else { most };
+    let [w, h, d] = size;
+    if ![w, h].iter().all(|n| (0..=most).contains(n)) || !(0..=layers).contains(&d) || (image.cube && w != h) {
         return Err(GlError::InvalidValue);
     }
     Ok(())
@@ -175,9 +177,19 @@ pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
 /// A 3D image's target: `GL_TEXTURE_3D_OES` (anything else is `GL_INVALID_ENUM`).
 pub(super) fn volume_target(target: u32) -> GlResult<ImageTarget> {
     if target == TEXTURE_3D_OES {
-        Ok(ImageTarget { face: 0, cube: false, three_d: true })
+        Ok(ImageTarget { face: 0, cube: false, three_d: true, array: false })
     } else {
         Err(GlError::InvalidEnum)
+    }
+}
+
+/// The target of an image with layers: a 3D image's, or in an ES 3.0 context (`es3`) a 2D
+/// array's, `GL_TEXTURE_2D_ARRAY` (anything else is `GL_INVALID_ENUM`).
+pub(super) fn layered_target(target: u32, es3: bool) -> GlResult<ImageTarget> {
+    if es3 && target == TEXTURE_2D_ARRAY {
+        Ok(ImageTarget { face: 0, cube: false, three_d: false, array: true })
+    } else {
+        volume_target(target)
     }
 }
 
@@ -215,6 +227,11 @@ impl GlesExecutor {
             // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
             // images and cube faces (OES_depth_texture_cube_map) only.
             if image.three_d || internal != format || level != 0 {
+                return Err(GlError::InvalidOperation);
+            }
+            if image.array {
+                // ES 3.0 has depth arrays; Strata writes depth images by a draw into one layer.
+                tracing::warn!("glTexImage3D: 2D arrays of depth images are not supported yet");
                 return Err(GlError::InvalidOperation);
             }
             validate_size(&self.gpu, image, level, [width, height, depth], border)?;

@@ -1,5 +1,5 @@
-//! Immutable texture storage (ES 3.0's `glTexStorage2D` and `glTexStorage3D`): every level of
-//! the bound texture allocated at once in a sized internal format, after which the texture's
+//! Immutable texture storage (ES 3.0's `glTexStorage2D` and `glTexStorage3D`, for 2D, cube, 3D
+//! and 2D array textures): every level of the bound texture allocated at once in a sized internal format, after which the texture's
 //! images cannot be respecified (`glTexImage*`, `glCopyTexImage2D` and
 //! `glCompressedTexImage*` on it are `GL_INVALID_OPERATION`), only written. Checked in the
 //! order of Mesa's `texstorage.c`; the memory of every level and layer is reserved against the
@@ -9,7 +9,7 @@ use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{immutable_storage, is_unsized};
-use crate::limits::{max_3d_level, max_3d_size, MAX_LEVEL, MAX_TEXTURE};
+use crate::limits::{max_3d_level, max_3d_size, max_array_layers, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::TextureImage;
 use crate::objects::texture::Texture;
 use crate::typed::TextureTarget;
@@ -60,14 +60,12 @@ impl GlesExecutor {
         height: i32,
         depth: i32,
     ) -> GlResult {
-        // GL_TEXTURE_2D_ARRAY is not offered yet: glBindTexture refuses it too.
-        if target != TEXTURE_3D_OES {
-            if target == 0x8C1A {
-                tracing::warn!("glTexStorage3D: 2D array textures are not supported yet");
-            }
-            return Err(GlError::InvalidEnum);
-        }
-        self.tex_storage(ctx, TextureTarget::ThreeD, levels, internalformat, [width, height, depth])
+        let target = match target {
+            TEXTURE_3D_OES => TextureTarget::ThreeD,
+            TEXTURE_2D_ARRAY => TextureTarget::TwoDArray,
+            _ => return Err(GlError::InvalidEnum),
+        };
+        self.tex_storage(ctx, target, levels, internalformat, [width, height, depth])
     }
 
     /// Gives the texture bound to `target` `levels` immutable levels of `internal`, level 0
@@ -101,8 +99,13 @@ impl GlesExecutor {
             return Err(GlError::InvalidOperation);
         }
         let most = if three_d { max_3d_size(&self.gpu) } else { MAX_TEXTURE } as i32;
-        if width > most || height > most || depth > most || (cube && width != height) {
+        let most_layers = if three_d { most } else { max_array_layers(&self.gpu) as i32 };
+        if width > most || height > most || depth > most_layers || (cube && width != height) {
             return Err(GlError::InvalidValue);
+        }
+        if storage.is_depth() && target == TextureTarget::TwoDArray {
+            tracing::warn!("glTexStorage3D: 2D arrays of depth images are not supported yet");
+            return Err(GlError::InvalidOperation);
         }
         if storage.is_depth() && levels > 1 {
             // Depth images are written by a draw into their first level only.

@@ -17,7 +17,7 @@ const REQUIRED_TEXTURE_IMAGE_UNITS_OES: u32 = 0x8D68;
 
 /// Sets `GL_TEXTURE_BORDER_COLOR_EXT` of the texture bound to `target` (four values).
 fn set_border(ctx: &mut Context, target: u32, v: &[f32]) -> GlResult {
-    let target = TextureTarget::from_gl(target)?;
+    let target = TextureTarget::from_gl_in(target, ctx.es3())?;
     let [r, g, b, a] = *v else { return Err(GlError::InvalidValue) };
     let name = ctx.bindings.texture(target);
     let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
@@ -27,7 +27,7 @@ fn set_border(ctx: &mut Context, target: u32, v: &[f32]) -> GlResult {
 
 /// Sets one sampling parameter of the texture bound to `target`.
 fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f32) -> GlResult {
-    let target = TextureTarget::from_gl(target)?;
+    let target = TextureTarget::from_gl_in(target, ctx.es3())?;
     // GL_OES_EGL_image_external: external textures have no mipmaps and only clamp.
     if target == TextureTarget::External {
         let ok = match pname {
@@ -50,7 +50,7 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
 /// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
 /// answering nothing) for a bad target or name, or when nothing is bound.
 fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
-    let bound = TextureTarget::from_gl(target).ok().map(|t| ctx.bindings.texture(t));
+    let bound = TextureTarget::from_gl_in(target, ctx.es3()).ok().map(|t| ctx.bindings.texture(t));
     if pname == TEXTURE_BORDER_COLOR_EXT {
         if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
             return t.border.to_vec();
@@ -110,7 +110,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glBindTexture(&mut self, ctx: &mut Context, target: u32, texture: u32) -> GlResult {
-        let target = TextureTarget::from_gl(target)?;
+        let target = TextureTarget::from_gl_in(target, ctx.es3())?;
         self.admit(ctx, strata_device::account::Kind::Texture, ctx.objects.textures.fresh([texture]))?;
         if let Some(t) = ctx.objects.textures.bind(texture) {
             // A texture takes the target it is first bound to, and keeps it.
@@ -179,7 +179,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glGenerateMipmap(&mut self, ctx: &mut Context, flushed: &Flushed, target: u32) -> GlResult {
-        let target = TextureTarget::from_gl(target)?;
+        let target = TextureTarget::from_gl_in(target, ctx.es3())?;
         if target == TextureTarget::External {
             return Err(GlError::InvalidEnum);
         }
@@ -187,6 +187,8 @@ impl GlesExecutor {
         let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
         let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
         let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
+        // A 2D array's layers are generated one by one; its levels are defined for all at once.
+        let image_layers = if img.array { img.depth } else { layers as u32 };
         // Depth and compressed images have no mipmaps to generate; nor do images that cannot
         // be filtered (ES 3.0 §3.8.10 spells out the rule ES 2.0 leaves implicit).
         if img.storage.is_depth() || Compressed::from_gl(t.format).is_some() || !img.filterable {
@@ -202,7 +204,7 @@ impl GlesExecutor {
         if t.target == TEXTURE_3D_OES {
             self.r.generate_volume_mipmaps(flushed, &tex, mips, format);
         } else {
-            self.r.generate_mipmaps(flushed, &tex, mips, layers as u32, format);
+            self.r.generate_mipmaps(flushed, &tex, mips, image_layers, format);
         }
         Ok(())
     }

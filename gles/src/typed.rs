@@ -67,10 +67,22 @@ pub enum TextureTarget {
     External,
     /// `GL_TEXTURE_3D_OES` (`GL_OES_texture_3D`).
     ThreeD,
+    /// `GL_TEXTURE_2D_ARRAY` (ES 3.0).
+    TwoDArray,
 }
 
 impl TextureTarget {
-    /// Parses a texture target; anything else is `GL_INVALID_ENUM`.
+    /// Parses a texture target of a context of ES 3.0 (`es3`, which adds 2D arrays) or 2.0;
+    /// anything else is `GL_INVALID_ENUM`.
+    pub fn from_gl_in(target: u32, es3: bool) -> GlResult<Self> {
+        if es3 && target == TEXTURE_2D_ARRAY {
+            return Ok(TextureTarget::TwoDArray);
+        }
+        Self::from_gl(target)
+    }
+
+    /// Parses a texture target of ES 2.0 and its extensions; anything else is
+    /// `GL_INVALID_ENUM`.
     pub fn from_gl(target: u32) -> GlResult<Self> {
         match target {
             TEXTURE_2D => Ok(TextureTarget::TwoD),
@@ -88,6 +100,7 @@ impl TextureTarget {
             TextureTarget::CubeMap => TEXTURE_CUBE_MAP,
             TextureTarget::External => crate::enums::TEXTURE_EXTERNAL_OES,
             TextureTarget::ThreeD => TEXTURE_3D_OES,
+            TextureTarget::TwoDArray => TEXTURE_2D_ARRAY,
         }
     }
 
@@ -98,6 +111,7 @@ impl TextureTarget {
             TextureTarget::CubeMap => 1,
             TextureTarget::External => 2,
             TextureTarget::ThreeD => 3,
+            TextureTarget::TwoDArray => 4,
         }
     }
 }
@@ -111,15 +125,18 @@ pub struct ImageTarget {
     pub cube: bool,
     /// Whether this is a 3D image (`GL_OES_texture_3D`).
     pub three_d: bool,
+    /// Whether this is a 2D array's image (ES 3.0), whose layers take the place of a 3D
+    /// image's slices but keep their number at every level.
+    pub array: bool,
 }
 
 impl ImageTarget {
     /// Parses `GL_TEXTURE_2D` or `GL_TEXTURE_CUBE_MAP_*`; anything else is `GL_INVALID_ENUM`.
     pub fn from_gl(target: u32) -> GlResult<Self> {
         match target {
-            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false, three_d: false }),
+            TEXTURE_2D => Ok(ImageTarget { face: 0, cube: false, three_d: false, array: false }),
             t if (TEXTURE_CUBE_MAP_POSITIVE_X..TEXTURE_CUBE_MAP_POSITIVE_X + 6).contains(&t) => {
-                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true, three_d: false })
+                Ok(ImageTarget { face: t - TEXTURE_CUBE_MAP_POSITIVE_X, cube: true, three_d: false, array: false })
             }
             _ => Err(GlError::InvalidEnum),
         }
@@ -127,9 +144,10 @@ impl ImageTarget {
 
     /// The binding point whose texture holds this image.
     pub fn binding(self) -> TextureTarget {
-        match (self.cube, self.three_d) {
-            (true, _) => TextureTarget::CubeMap,
-            (_, true) => TextureTarget::ThreeD,
+        match (self.cube, self.three_d, self.array) {
+            (true, _, _) => TextureTarget::CubeMap,
+            (_, true, _) => TextureTarget::ThreeD,
+            (_, _, true) => TextureTarget::TwoDArray,
             _ => TextureTarget::TwoD,
         }
     }

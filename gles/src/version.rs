@@ -6,6 +6,7 @@
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
+use crate::typed::TextureTarget;
 use crate::GlesExecutor;
 
 /// `GL_MAJOR_VERSION`, `GL_MINOR_VERSION` and `GL_NUM_EXTENSIONS` (ES 3.0).
@@ -84,6 +85,10 @@ impl GlesExecutor {
             MAX_SERVER_WAIT_TIMEOUT => 0,
             // GL_SAMPLER_BINDING: the active unit's sampler object.
             0x8919 => ctx.bindings.samplers[ctx.bindings.active_unit] as i32,
+            // GL_TEXTURE_BINDING_2D_ARRAY: the active unit's 2D array.
+            0x8C1D => ctx.bindings.units[ctx.bindings.active_unit][TextureTarget::TwoDArray.slot()] as i32,
+            // GL_MAX_ARRAY_TEXTURE_LAYERS.
+            0x88FF => crate::limits::max_array_layers(&self.gpu) as i32,
             _ => return None,
         }])
     }

@@ -321,6 +321,7 @@ command_set! {
         glSamplerParameterf [Context, Es3] => SamplerParameterf { sampler: GLuint, pname: GLenum, param: GLfloat };
         glSamplerParameteriv [Context, Es3] => SamplerParameteriv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLint> };
         glSamplerParameterfv [Context, Es3] => SamplerParameterfv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLfloat> };
+        glFramebufferTextureLayer [Context, Es3] => FramebufferTextureLayer { target: GLenum, attachment: GLenum, texture: GLuint, level: GLint, layer: GLint };
     }
     sync {
         glCheckFramebufferStatus [Context] => CheckFramebufferStatus { target: GLenum } -> GLenum;

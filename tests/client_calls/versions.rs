@@ -59,6 +59,12 @@ pub fn sequence(r: &mut Run) {
             (gl.tex_parameteri)(0x0DE1, pname, 0);
             r.note(&format!("glTexParameteri({pname:#x})"));
         }
+        // 2D array textures.
+        (gl.bind_texture)(0x8C1A, tex);
+        r.note("glBindTexture(GL_TEXTURE_2D_ARRAY) in an ES 2.0 context");
+        let mut v = -7;
+        (gl.get_integerv)(0x8C1D, &mut v);
+        r.note(&format!("GL_TEXTURE_BINDING_2D_ARRAY in an ES 2.0 context: {v}"));
         // Sampler objects.
         let mut sampler = 0;
         (gl.gen_samplers)(1, &mut sampler);

@@ -70,7 +70,7 @@ impl GlesExecutor {
         if level == 0 {
             // Blocks go up as they are only into a 2D image of whole blocks.
             let (bw, bh) = c.block_size();
-            let whole_blocks = !image.three_d && w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
+            let whole_blocks = !image.three_d && !image.array && w > 0 && h > 0 && w % bw == 0 && h % bh == 0;
             let native = whole_blocks && c.native_on(gpu.features).is_some();
             let storage = if native { Storage::Native(c) } else { c.decoded_storage() };
             t.ensure_volume(gpu, &account, uid, (w, h, d), storage)?;

@@ -10,7 +10,6 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
-use crate::glsl::rewrite::ctor;
 use crate::glsl::types::{Block, BlockMember, Scalar, Ty};
 
 /// The column-major matrix holding the same numbers as `ty` read row by row.
@@ -82,6 +81,12 @@ fn spec(ty: Ty) -> T {
         Ty::BVec4 => T::BVec4,
         _ => T::Bool,
     }
+}
+
+/// A constructor call of type `ty`.
+pub(super) fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
+    let spec: ast::TypeSpecifier = ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
+    ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec)).into(), args).into()
 }
 
 fn var(name: &str) -> ast::Expr {

@@ -8,6 +8,7 @@ use std::collections::HashMap;
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
 
+use crate::glsl::block_members::{ctor, two_rows};
 use crate::glsl::types::{Stage, Ty};
 use crate::limits::MAX_DRAW_BUFFERS;
 
@@ -74,7 +75,7 @@ fn var(name: &str) -> ast::Expr {
 /// `matCx2(strata_m2_NAME[i].xy, …, strata_m2_NAME[i + C - 1].xy)` where `i` is `C * index` or
 /// 0, for a `matCx2` uniform of type `ty`.
 fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
-    crate::glsl::block_members::two_rows(var(&format!("strata_m2_{name}")), ty, index)
+    two_rows(var(&format!("strata_m2_{name}")), ty, index)
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -94,12 +95,6 @@ fn sampler_array_arg(arrays: &HashMap<String, u32>, args: &[ast::Expr]) -> Optio
         },
         _ => None,
     })
-}
-
-/// A constructor call of type `ty`.
-pub(super) fn ctor(ty: T, args: Vec<ast::Expr>) -> ast::Expr {
-    let spec: ast::TypeSpecifier = ast::TypeSpecifierData { ty: ty.into(), array_specifier: None }.into();
-    ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec)).into(), args).into()
 }
 
 /// `+(a, b)` for a sequence `(a, b)`: the transpiler writes a sequence without parentheses, which
@@ -199,7 +194,12 @@ impl Rewrite {
     fn lookup_helper(&mut self, id: &mut ast::Identifier, args: &mut Vec<ast::Expr>) {
         let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) else { return };
         let sampler = v.0.to_string();
-        let Some(ty) = self.samplers.get(&sampler).copied().filter(|t| *t != Ty::SamplerCube) else { return };
+        // Cube maps and 2D arrays have no generated wraps (arrays' wraps are the sampler's).
+        let Some(ty) =
+            self.samplers.get(&sampler).copied().filter(|t| !matches!(t, Ty::SamplerCube | Ty::Sampler2DArray))
+        else {
+            return;
+        };
         let three_d = ty == Ty::Sampler3D;
         let function = id.0.to_string();
         let name = if self.sampler_params.contains(&sampler) {
@@ -261,6 +261,7 @@ impl VisitorMut for Rewrite {
                         let tex = match t {
                             Ty::SamplerCube => T::TextureCube,
                             Ty::Sampler3D => T::Texture3D,
+                            Ty::Sampler2DArray => T::Texture2DArray,
                             _ => T::Texture2D,
                         };
                         for (ty, suffix) in
@@ -344,6 +345,7 @@ impl VisitorMut for Rewrite {
                     let t = match ty {
                         Ty::SamplerCube => T::SamplerCube,
                         Ty::Sampler3D => T::Sampler3D,
+                        Ty::Sampler2DArray => T::Sampler2DArray,
                         _ => T::Sampler2D,
                     };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))

@@ -52,12 +52,17 @@ pub enum Ty {
     SamplerExternal,
     /// `sampler3D` (`GL_OES_texture_3D`).
     Sampler3D,
+    /// `sampler2DArray` (ES 3.0).
+    Sampler2DArray,
 }
 
 /// `GL_UNSIGNED_INT_VEC2`..`4` (ES 3.0), as `glGetActiveUniform` reports them.
 const UNSIGNED_INT_VEC2: u32 = 0x8DC6;
 const UNSIGNED_INT_VEC3: u32 = 0x8DC7;
 const UNSIGNED_INT_VEC4: u32 = 0x8DC8;
+
+/// `GL_SAMPLER_2D_ARRAY` (ES 3.0), as `glGetActiveUniform` reports `sampler2DArray`.
+const SAMPLER_2D_ARRAY: u32 = 0x8DC1;
 
 /// `GL_SAMPLER_EXTERNAL_OES`, the type `glGetActiveUniform` reports for `samplerExternalOES`.
 pub(crate) const SAMPLER_EXTERNAL_OES: u32 = 0x8D66;
@@ -93,6 +98,7 @@ impl Ty {
             T::Sampler2D => Ty::Sampler2D,
             T::SamplerCube => Ty::SamplerCube,
             T::Sampler3D => Ty::Sampler3D,
+            T::Sampler2DArray => Ty::Sampler2DArray,
             // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
             T::Sampler2DRect => Ty::SamplerExternal,
             _ => return None,
@@ -131,6 +137,7 @@ impl Ty {
             Ty::SamplerCube => gl::SAMPLER_CUBE,
             Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
             Ty::Sampler3D => gl::SAMPLER_3D_OES,
+            Ty::Sampler2DArray => SAMPLER_2D_ARRAY,
         }
     }
 
@@ -169,6 +176,7 @@ impl Ty {
             Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
             Ty::SamplerCube => "textureCube",
             Ty::Sampler3D => "texture3D",
+            Ty::Sampler2DArray => "texture2DArray",
         }
     }
 
@@ -182,7 +190,8 @@ impl Ty {
             | Ty::Sampler2D
             | Ty::SamplerCube
             | Ty::SamplerExternal
-            | Ty::Sampler3D => 1,
+            | Ty::Sampler3D
+            | Ty::Sampler2DArray => 1,
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => 2,
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => 3,
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 | Ty::Mat2 => 4,
@@ -219,7 +228,7 @@ impl Ty {
         match self {
             Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 => Scalar::Int,
             Ty::UInt | Ty::UVec2 | Ty::UVec3 | Ty::UVec4 => Scalar::UInt,
-            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => Scalar::Int,
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray => Scalar::Int,
             Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
             _ => Scalar::Float,
         }
@@ -227,7 +236,7 @@ impl Ty {
 
     /// Whether this is a sampler.
     pub fn is_sampler(self) -> bool {
-        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D)
+        matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray)
     }
 
     /// std140 (size, alignment) of one element that is not in an array.
@@ -237,7 +246,7 @@ impl Ty {
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => (8, 8),
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => (12, 16),
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 => (16, 16),
-            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D => (0, 1),
+            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray => (0, 1),
             // Each column a vector padded to 16 bytes.
             t => (16 * t.columns() as u32, 16),
         }

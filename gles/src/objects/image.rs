@@ -22,8 +22,11 @@ pub struct TextureImage {
     pub width: u32,
     /// Level-0 height.
     pub height: u32,
-    /// Level-0 depth: the slices of a 3D image (`GL_OES_texture_3D`), 1 for others.
+    /// Level-0 depth: the slices of a 3D image (`GL_OES_texture_3D`), the layers of a 2D
+    /// array (ES 3.0), 1 for others.
     pub depth: u32,
+    /// Whether this is a 2D array's image, whose layers do not shrink with the level.
+    pub array: bool,
     /// Mip levels allocated.
     pub mips: u32,
     /// Levels of GL's full mip chain for this size (completeness is judged against these).
@@ -109,9 +112,11 @@ impl TextureImage {
         levels: Option<u32>,
     ) -> GlResult<Self> {
         let three_d = target == TEXTURE_3D_OES;
-        let depth = if three_d { depth.max(1) } else { 1 };
+        let array = target == TEXTURE_2D_ARRAY;
+        let depth = if three_d || array { depth.max(1) } else { 1 };
         let layers = if target == TEXTURE_CUBE_MAP { 6 } else { depth };
-        let full = 32 - width.max(height).max(depth).max(1).leading_zeros();
+        // A 2D array's layers keep their number at every level.
+        let full = 32 - width.max(height).max(if array { 1 } else { depth }).max(1).leading_zeros();
         let (levels, mips) = match levels {
             Some(n) => (n, n),
             None => (full, if storage.is_depth() { 1 } else { full }),
@@ -140,6 +145,7 @@ impl TextureImage {
         });
         let dim = match layers {
             _ if three_d => wgpu::TextureViewDimension::D3,
+            _ if array => wgpu::TextureViewDimension::D2Array,
             6 => wgpu::TextureViewDimension::Cube,
             _ => wgpu::TextureViewDimension::D2,
         };
@@ -156,6 +162,7 @@ impl TextureImage {
             width,
             height,
             depth,
+            array,
             mips,
             levels,
             storage,
@@ -183,6 +190,7 @@ impl TextureImage {
             width,
             height,
             depth: 1,
+            array: false,
             mips: 1,
             levels: 32 - width.max(height).max(1).leading_zeros(),
             storage,
@@ -208,9 +216,13 @@ impl TextureImage {
         ((self.width >> level).max(1), (self.height >> level).max(1))
     }
 
-    /// The slices of `level` (1 but for a 3D image).
+    /// The slices of `level` (1 but for a 3D image), or a 2D array's layers.
     pub fn level_depth(&self, level: u32) -> u32 {
-        (self.depth >> level).max(1)
+        if self.array {
+            self.depth
+        } else {
+            (self.depth >> level).max(1)
+        }
     }
 
     /// The faces of a 2D image (1) or a cube map (6); 1 for an EGLImage's sibling and for a 3D
@@ -236,6 +248,7 @@ impl TextureImage {
         }
         let dimension = match self.layers() {
             _ if self.three_d() => wgpu::TextureViewDimension::D3,
+            _ if self.array => wgpu::TextureViewDimension::D2Array,
             6 => wgpu::TextureViewDimension::Cube,
             _ => wgpu::TextureViewDimension::D2,
         };

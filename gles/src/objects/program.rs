@@ -310,6 +310,7 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
                 view_dimension: match ty {
                     glsl::Ty::SamplerCube => wgpu::TextureViewDimension::Cube,
                     glsl::Ty::Sampler3D => wgpu::TextureViewDimension::D3,
+                    glsl::Ty::Sampler2DArray => wgpu::TextureViewDimension::D2Array,
                     _ => wgpu::TextureViewDimension::D2,
                 },
                 multisampled: false,

@@ -193,7 +193,7 @@ impl Texture {
         (width, height, depth): (u32, u32, u32),
         storage: Storage,
     ) -> GlResult {
-        let depth = if self.target == TEXTURE_3D_OES { depth } else { 1 };
+        let depth = if matches!(self.target, TEXTURE_3D_OES | TEXTURE_2D_ARRAY) { depth } else { 1 };
         // An image an EGLImage shares is left to it: respecifying the texture orphans it.
         if self.gpu.as_ref().is_some_and(|i| {
             (i.width, i.height, i.depth) == (width, height, depth.max(1)) && i.storage == storage && !i.shared()

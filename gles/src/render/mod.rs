@@ -63,7 +63,7 @@ pub struct Renderer {
 }
 
 /// A 1×1 opaque black image (`layers` of them): what an incomplete texture samples as.
-fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
+fn black(gpu: &Gpu, layers: u32, dim: wgpu::TextureViewDimension) -> wgpu::TextureView {
     let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("incomplete texture"),
         size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: layers },
@@ -87,7 +87,6 @@ fn black(gpu: &Gpu, layers: u32) -> wgpu::TextureView {
             wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
         );
     }
-    let dim = if layers == 6 { wgpu::TextureViewDimension::Cube } else { wgpu::TextureViewDimension::D2 };
     tex.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() })
 }
 
@@ -144,6 +143,8 @@ pub struct Fixed {
     black_2d: wgpu::TextureView,
     black_cube: wgpu::TextureView,
     black_3d: wgpu::TextureView,
+    /// What incomplete 2D arrays sample: one opaque black layer.
+    black_array: wgpu::TextureView,
     /// What a uniform block without a large enough buffer reads: zeros, as many as a block
     /// may hold.
     zero_block: wgpu::Buffer,
@@ -200,8 +201,9 @@ impl Fixed {
         });
         let mip3_bgl = mip_layout(gpu, wgpu::TextureViewDimension::D3);
         Fixed {
-            black_2d: black(gpu, 1),
-            black_cube: black(gpu, 6),
+            black_2d: black(gpu, 1, wgpu::TextureViewDimension::D2),
+            black_cube: black(gpu, 6, wgpu::TextureViewDimension::Cube),
+            black_array: black(gpu, 1, wgpu::TextureViewDimension::D2Array),
             black_3d: black_volume(gpu),
             unused_capture: (0..crate::glsl::capture::MAX_SEPARATE_ATTRIBS)
                 .map(|_| {

@@ -88,6 +88,7 @@ impl Renderer {
                     let (view, uid) = match ty {
                         Some(Ty::SamplerCube) => (self.fixed.black_cube.clone(), u64::MAX - 1),
                         Some(Ty::Sampler3D) => (self.fixed.black_3d.clone(), u64::MAX - 2),
+                        Some(Ty::Sampler2DArray) => (self.fixed.black_array.clone(), u64::MAX - 3),
                         _ => (self.fixed.black_2d.clone(), u64::MAX),
                     };
                     let s = SamplerState::default();

@@ -3,6 +3,7 @@
 
 use super::{Case, DEFAULT};
 
+mod arrays;
 mod attrib_types;
 mod blocks;
 mod divisors;
@@ -37,5 +38,6 @@ pub fn all() -> Vec<Case> {
         c("es3_transform_feedback", xfb::transform_feedback),
         c("es3_tex_storage", tex_storage::tex_storage),
         c("es3_samplers", samplers::samplers),
+        c("es3_texture_arrays", arrays::texture_arrays),
     ]
 }

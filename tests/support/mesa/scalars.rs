@@ -44,6 +44,7 @@ scalar_arms! {
     glUniform2ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32);
     glUniform3ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32);
     glUniform4ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32, w: GLuint => u32);
+    glFramebufferTextureLayer(target: GLenum => u32, attachment: GLenum => u32, texture: GLuint => u32, level: GLint => i32, layer: GLint => i32);
     glTexStorage2D(target: GLenum => u32, levels: GLsizei => i32, internalformat: GLenum => u32, width: GLsizei => i32, height: GLsizei => i32);
     glTexStorage3D(target: GLenum => u32, levels: GLsizei => i32, internalformat: GLenum => u32, width: GLsizei => i32, height: GLsizei => i32, depth: GLsizei => i32);
     // state (the rest of the family in mesa/state.rs)

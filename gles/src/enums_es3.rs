@@ -1,0 +1,45 @@
+//! The enums of ES 3.0's image side and of `GL_EXT_texture_storage`: the half-float type, the
+//! image unpack state, the sized float, depth and BGRA formats immutable storage takes, the 2D
+//! array target, immutability, and the sampler namespace. `enums` re-exports them.
+
+/// `GL_TEXTURE_2D_ARRAY` (ES 3.0).
+pub const TEXTURE_2D_ARRAY: u32 = 0x8C1A;
+/// `GL_RGBA32F` (ES 3.0; `GL_EXT_texture_storage`'s `GL_RGBA32F_EXT`).
+pub const RGBA32F: u32 = 0x8814;
+/// `GL_RGB32F`.
+pub const RGB32F: u32 = 0x8815;
+/// `GL_RG32F`.
+pub const RG32F: u32 = 0x8230;
+/// `GL_R32F`.
+pub const R32F: u32 = 0x822E;
+/// `GL_ALPHA32F_EXT` (`GL_EXT_texture_storage`).
+pub const ALPHA32F_EXT: u32 = 0x8816;
+/// `GL_LUMINANCE32F_EXT`.
+pub const LUMINANCE32F_EXT: u32 = 0x8818;
+/// `GL_LUMINANCE_ALPHA32F_EXT`.
+pub const LUMINANCE_ALPHA32F_EXT: u32 = 0x8819;
+/// `GL_ALPHA16F_EXT`.
+pub const ALPHA16F_EXT: u32 = 0x881C;
+/// `GL_LUMINANCE16F_EXT`.
+pub const LUMINANCE16F_EXT: u32 = 0x881E;
+/// `GL_LUMINANCE_ALPHA16F_EXT`.
+pub const LUMINANCE_ALPHA16F_EXT: u32 = 0x881F;
+/// `GL_BGRA8_EXT` (`GL_EXT_texture_format_BGRA8888` with texture storage).
+pub const BGRA8_EXT: u32 = 0x93A1;
+/// `GL_DEPTH_COMPONENT32F` (ES 3.0).
+pub const DEPTH_COMPONENT32F: u32 = 0x8CAC;
+/// `GL_DEPTH32F_STENCIL8` (ES 3.0).
+pub const DEPTH32F_STENCIL8: u32 = 0x8CAD;
+/// `GL_TEXTURE_IMMUTABLE_FORMAT` (ES 3.0): whether `glTexStorage*` made the texture's levels.
+pub const TEXTURE_IMMUTABLE_FORMAT: u32 = 0x912F;
+/// `GL_TEXTURE_IMMUTABLE_LEVELS` (ES 3.0): how many levels `glTexStorage*` made.
+pub const TEXTURE_IMMUTABLE_LEVELS: u32 = 0x82DF;
+/// `GL_SAMPLER` (`GL_KHR_debug`): the namespace of sampler objects' labels.
+pub const SAMPLER: u32 = 0x82E6;
+/// `GL_HALF_FLOAT`: the type Mesa names as the implementation read type of a half-float
+/// colour buffer (the ES 3.0 enum, not `GL_HALF_FLOAT_OES`).
+pub const HALF_FLOAT: u32 = 0x140B;
+/// `GL_UNPACK_SKIP_IMAGES` (ES 3.0 and OES_texture_3D; see `queries`).
+pub const UNPACK_SKIP_IMAGES: u32 = 0x806D;
+/// `GL_UNPACK_IMAGE_HEIGHT` (ES 3.0 and OES_texture_3D; see `queries`).
+pub const UNPACK_IMAGE_HEIGHT: u32 = 0x806E;
