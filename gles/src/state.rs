@@ -112,8 +112,10 @@ impl GlesExecutor {
     }
 
     pub(super) fn glClearColor(&mut self, ctx: &mut Context, red: f32, green: f32, blue: f32, alpha: f32) -> GlResult {
-        // `clampf` parameters are clamped to [0, 1] when specified (ES 2.0 §2.3).
-        ctx.blend.clear_color = [red, green, blue, alpha].map(clampf);
+        // `clampf` parameters are clamped to [0, 1] when specified (ES 2.0 §2.3); ES 3.0 keeps
+        // the colour as given and clamps it for fixed-point buffers only, when clearing.
+        let c = [red, green, blue, alpha];
+        ctx.blend.clear_color = if ctx.es3() { c.map(|x| if x.is_nan() { 0.0 } else { x }) } else { c.map(clampf) };
         Ok(())
     }
 

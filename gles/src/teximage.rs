@@ -15,7 +15,9 @@ use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
-use crate::formats::{internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage};
+use crate::formats::{
+    immutable_storage, internal_accepts, known_internal, same_layout, sized_fits, upload_storage, Compressed, Storage,
+};
 use crate::limits::{max_3d_level, max_3d_size, max_array_layers, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::{Region, TextureImage};
 use crate::objects::texture::Texture;
@@ -211,37 +213,53 @@ impl GlesExecutor {
         pixel_type: u32,
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
-        let storage = upload_storage(format, pixel_type);
-        // Unknown enums first, then an internal format that is none, then the pairing.
-        if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat) {
-            return Err(GlError::InvalidValue);
-        }
-        let storage = storage?;
-        // A sized internal format (GL_OES_required_internalformat) stores as its unsized one.
-        let internal = match sized_fits(internalformat, format, pixel_type) {
-            Some(true) => format,
-            Some(false) => return Err(GlError::InvalidOperation),
-            None => internalformat,
+        // ES 3.0's sized formats that ES 2.0's extensions do not name (the float ones): the
+        // data ES 3.0's table gives the format, kept as the format keeps it.
+        let es3_sized = match ctx.es3() && sized_fits(internalformat, 0, 0).is_none() {
+            true => immutable_storage(internalformat).filter(|(_, s, _)| !s.is_depth()),
+            false => None,
         };
-        if storage.is_depth() {
-            // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
-            // images and cube faces (OES_depth_texture_cube_map) only.
-            if image.three_d || internal != format || level != 0 {
+        let (data_type, storage, internal, half_float, sized) = if let Some((base, kept, half)) = es3_sized {
+            let ty = if pixel_type == HALF_FLOAT { HALF_FLOAT_OES } else { pixel_type };
+            upload_storage(format, ty)?;
+            if !sized_accepts(internalformat, format, pixel_type) {
                 return Err(GlError::InvalidOperation);
             }
-            if image.array {
-                // ES 3.0 has depth arrays; Strata writes depth images by a draw into one layer.
-                tracing::warn!("glTexImage3D: 2D arrays of depth images are not supported yet");
+            (ty, kept, base, half, internalformat)
+        } else {
+            let storage = upload_storage(format, pixel_type);
+            // Unknown enums first, then an internal format that is none, then the pairing.
+            if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat) {
+                return Err(GlError::InvalidValue);
+            }
+            let storage = storage?;
+            // A sized internal format (GL_OES_required_internalformat) stores as its unsized one.
+            let internal = match sized_fits(internalformat, format, pixel_type) {
+                Some(true) => format,
+                Some(false) => return Err(GlError::InvalidOperation),
+                None => internalformat,
+            };
+            if storage.is_depth() {
+                // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
+                // images and cube faces (OES_depth_texture_cube_map) only.
+                if image.three_d || internal != format || level != 0 {
+                    return Err(GlError::InvalidOperation);
+                }
+                if image.array {
+                    // ES 3.0 has depth arrays; Strata writes depth images by a draw into one layer.
+                    tracing::warn!("glTexImage3D: 2D arrays of depth images are not supported yet");
+                    return Err(GlError::InvalidOperation);
+                }
+                validate_size(&self.gpu, image, level, [width, height, depth], border)?;
+                let pixels = pixels.as_ref().map(|p| p.as_bytes());
+                let size = (width as u32, height as u32);
+                return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
+            }
+            if !internal_accepts(internal, format, self.gpu.features) {
                 return Err(GlError::InvalidOperation);
             }
-            validate_size(&self.gpu, image, level, [width, height, depth], border)?;
-            let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            let size = (width as u32, height as u32);
-            return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
-        }
-        if !internal_accepts(internal, format, self.gpu.features) {
-            return Err(GlError::InvalidOperation);
-        }
+            (pixel_type, storage, internal, pixel_type == HALF_FLOAT_OES, 0)
+        };
         validate_size(&self.gpu, image, level, [width, height, depth], border)?;
         let (uid, uid2) = (self.next_uid(), self.next_uid());
         let account = self.account.clone();
@@ -254,7 +272,7 @@ impl GlesExecutor {
         // Layers are read one after another: ES 2.0 has no image height to unpack them by.
         let texels = match &pixels {
             Some(p) => Some(
-                to_storage(p.as_bytes(), w as usize, (h * d) as usize, format, pixel_type, unpack, storage)
+                to_storage(p.as_bytes(), w as usize, (h * d) as usize, format, data_type, unpack, storage)
                     .ok_or(GlError::InvalidOperation)?,
             ),
             None => None,
@@ -262,7 +280,8 @@ impl GlesExecutor {
         if level == 0 {
             t.ensure_volume(gpu, &account, uid, (w, h, d), storage)?;
             t.format = internal;
-            t.half_float = pixel_type == HALF_FLOAT_OES;
+            t.half_float = half_float;
+            t.sized = sized;
         } else if Compressed::from_gl(internal).is_some() && storage == Storage::Rgba8 {
             // Uncompressed data for a level of a natively compressed image.
             t.decompress(gpu, flushed, &account, uid2)?;

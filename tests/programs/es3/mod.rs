@@ -7,6 +7,7 @@ mod arrays;
 mod attrib_types;
 mod blocks;
 mod divisors;
+mod float_textures;
 mod int_attributes;
 mod language;
 mod restart;
@@ -39,5 +40,6 @@ pub fn all() -> Vec<Case> {
         c("es3_tex_storage", tex_storage::tex_storage),
         c("es3_samplers", samplers::samplers),
         c("es3_texture_arrays", arrays::texture_arrays),
+        c("es3_float_textures", float_textures::float_textures),
     ]
 }
