@@ -43,3 +43,11 @@ pub const HALF_FLOAT: u32 = 0x140B;
 pub const UNPACK_SKIP_IMAGES: u32 = 0x806D;
 /// `GL_UNPACK_IMAGE_HEIGHT` (ES 3.0 and OES_texture_3D; see `queries`).
 pub const UNPACK_IMAGE_HEIGHT: u32 = 0x806E;
+/// `GL_SRGB8_ALPHA8` (ES 3.0).
+pub const SRGB8_ALPHA8: u32 = 0x8C43;
+/// `GL_SRGB8` (ES 3.0).
+pub const SRGB8: u32 = 0x8C41;
+/// `GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING` (ES 3.0).
+pub const FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING: u32 = 0x8210;
+/// `GL_SRGB` (ES 3.0): an sRGB colour encoding.
+pub const SRGB: u32 = 0x8C40;

@@ -19,6 +19,9 @@ pub enum Storage {
     /// RGBA8: every 8-bit and packed 16-bit colour upload, BGRA, and compressed images that
     /// are decoded on upload.
     Rgba8,
+    /// RGBA8 holding sRGB-encoded colour (ES 3.0's `SRGB8_ALPHA8` and `SRGB8`): sampled as
+    /// linear, written (and blended) in linear and encoded.
+    Srgb8,
     /// RGBA16F: `HALF_FLOAT_OES` uploads (`OES_texture_half_float`).
     Half,
     /// RGBA32F: `FLOAT` uploads (`OES_texture_float`).
@@ -36,6 +39,7 @@ impl Storage {
     pub fn wgpu(self) -> wgpu::TextureFormat {
         match self {
             Storage::Rgba8 => COLOR_FORMAT,
+            Storage::Srgb8 => wgpu::TextureFormat::Rgba8UnormSrgb,
             Storage::Half => wgpu::TextureFormat::Rgba16Float,
             Storage::Float => wgpu::TextureFormat::Rgba32Float,
             Storage::Depth => wgpu::TextureFormat::Depth32Float,
@@ -63,7 +67,9 @@ impl Storage {
     /// RGBA, RGB, RG and RED ones (`GL_EXT_color_buffer_half_float`; not luminance or alpha,
     /// nor 2_10_10_10 images, as on Mesa); compressed images never.
     pub fn color_renderable(self, f: u32, half: bool) -> bool {
-        self == Storage::Rgba8 || (self == Storage::Half && half && matches!(f, RGBA | RGB | RG_EXT | RED_EXT))
+        self == Storage::Rgba8
+            || (self == Storage::Srgb8 && f == RGBA)
+            || (self == Storage::Half && half && matches!(f, RGBA | RGB | RG_EXT | RED_EXT))
     }
 
     /// Whether the image can be a render attachment in wgpu at all.
@@ -436,11 +442,13 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
 /// unsized format whose image it behaves as (as `GL_OES_required_internalformat`'s images do),
 /// its storage, and whether its data counts as half-float (renderable, as
 /// `GL_EXT_color_buffer_half_float` has it). `None` for a format that is not sized, and for
-/// the sized formats Strata cannot keep yet (integer, sRGB, signed normalized, the packed
+/// the sized formats Strata cannot keep yet (integer, signed normalized, the packed
 /// 10-bit and shared-exponent formats, compressed formats).
 pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
     Some(match internal {
         RGBA8_OES | RGBA4 | RGB5_A1 => (RGBA, Storage::Rgba8, false),
+        SRGB8_ALPHA8 => (RGBA, Storage::Srgb8, false),
+        SRGB8 => (RGB, Storage::Srgb8, false),
         RGB8_OES | RGB565 => (RGB, Storage::Rgba8, false),
         BGRA8_EXT => (BGRA_EXT, Storage::Rgba8, false),
         R8_EXT => (RED_EXT, Storage::Rgba8, false),

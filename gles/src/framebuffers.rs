@@ -16,7 +16,7 @@ use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::{absent_channels, color_bits, is_half_renderbuffer};
-use crate::formats::{COLOR_FORMAT, HALF_FORMAT};
+use crate::formats::{Storage, COLOR_FORMAT, HALF_FORMAT};
 use crate::limits::max_3d_size;
 use crate::limits::MAX_DRAW_BUFFERS;
 use crate::limits::MAX_TEXTURE;
@@ -357,12 +357,23 @@ impl GlesExecutor {
                     _ => 0,
                 }
             }
+            // ES 3.0's GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER: a 2D array's layer too.
             (FRAMEBUFFER_ATTACHMENT_TEXTURE_3D_ZOFFSET_OES, Attachment::Texture { name, face, .. }) => {
                 match ctx.objects.textures.get(&name).map(|t| t.target) {
-                    Some(TEXTURE_3D_OES) => face as i32,
+                    Some(TEXTURE_3D_OES | TEXTURE_2D_ARRAY) => face as i32,
                     _ => 0,
                 }
             }
+            // ES 3.0's GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING: sRGB for an sRGB texture.
+            (FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, Attachment::Texture { name, .. }) if es3 => {
+                let srgb = ctx.objects.textures.get(&name).and_then(|t| t.gpu.as_ref()).map(|i| i.storage);
+                if srgb == Some(Storage::Srgb8) {
+                    SRGB as i32
+                } else {
+                    LINEAR as i32
+                }
+            }
+            (FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, Attachment::Renderbuffer(_)) if es3 => LINEAR as i32,
             _ => {
                 ctx.record(GlError::InvalidEnum);
                 0

@@ -138,7 +138,8 @@ impl GlesExecutor {
 pub(crate) fn sized_accepts(sized: u32, format: u32, ty: u32) -> bool {
     let half_or_float = matches!(ty, HALF_FLOAT | FLOAT);
     match sized {
-        RGBA8_OES => format == RGBA && ty == UNSIGNED_BYTE,
+        RGBA8_OES | SRGB8_ALPHA8 => format == RGBA && ty == UNSIGNED_BYTE,
+        SRGB8 => format == RGB && ty == UNSIGNED_BYTE,
         BGRA8_EXT => format == BGRA_EXT && ty == UNSIGNED_BYTE,
         RGB8_OES => format == RGB && ty == UNSIGNED_BYTE,
         RGB565 => format == RGB && matches!(ty, UNSIGNED_BYTE | UNSIGNED_SHORT_5_6_5),

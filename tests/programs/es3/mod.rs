@@ -12,6 +12,7 @@ mod int_attributes;
 mod language;
 mod restart;
 mod samplers;
+mod srgb;
 mod tex_storage;
 mod uniforms;
 mod xfb;
@@ -41,5 +42,6 @@ pub fn all() -> Vec<Case> {
         c("es3_samplers", samplers::samplers),
         c("es3_texture_arrays", arrays::texture_arrays),
         c("es3_float_textures", float_textures::float_textures),
+        c("es3_srgb", srgb::srgb),
     ]
 }
