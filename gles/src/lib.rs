@@ -13,6 +13,7 @@
 
 mod account;
 mod active_uniforms;
+mod blit;
 mod buffer_copies;
 mod buffers;
 mod clear_buffers;

@@ -11,6 +11,7 @@
 //! | `mipmaps` | `glGenerateMipmap` as a chain of box-filter passes |
 //! | `readback` | reads, depth uploads and waiting for the GPU |
 
+mod blit;
 mod clears;
 mod draw_spec;
 mod keys;
@@ -25,6 +26,7 @@ mod targets;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+pub use blit::Blit;
 pub use draw_spec::{DrawSpec, RasterState, Source, VertexInput};
 pub use targets::Target;
 
@@ -163,6 +165,11 @@ pub struct Fixed {
     /// Mipmap pipelines by format and whether they filter 3D images, compiled once for all
     /// clients.
     mip_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>>,
+    /// The blit shader and its layout (`glBlitFramebuffer`), made on the first blit.
+    blit: std::sync::OnceLock<(wgpu::ShaderModule, wgpu::BindGroupLayout)>,
+    /// Blit pipelines by destination format and written channels, compiled once for all
+    /// clients.
+    blit_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, u32), wgpu::RenderPipeline>>,
 }
 
 impl Fixed {
@@ -230,6 +237,8 @@ impl Fixed {
             mip3_bgl,
             clear_pipelines: Default::default(),
             mip_pipelines: Default::default(),
+            blit: Default::default(),
+            blit_pipelines: Default::default(),
         }
     }
 }

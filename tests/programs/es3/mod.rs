@@ -5,6 +5,7 @@ use super::{Case, DEFAULT};
 
 mod arrays;
 mod attrib_types;
+mod blit;
 mod blocks;
 mod divisors;
 mod float_textures;
@@ -43,5 +44,6 @@ pub fn all() -> Vec<Case> {
         c("es3_texture_arrays", arrays::texture_arrays),
         c("es3_float_textures", float_textures::float_textures),
         c("es3_srgb", srgb::srgb),
+        c("es3_blit", blit::blit),
     ]
 }

@@ -1,0 +1,107 @@
+//! ES 3.0's `glBlitFramebuffer`, colour only: checked in the order of Mesa's `blit.c`, the
+//! rectangles clipped to the pixels whose centres map inside the read buffer and fall inside
+//! the draw framebuffer and the scissor, then drawn by the renderer (`render::blit`) into every
+//! draw buffer. Depth and stencil blits are refused for now.
+
+use crate::context::Context;
+use crate::conv::clip_rect;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::flushed::Flushed;
+use crate::render::Blit;
+use crate::GlesExecutor;
+
+/// The destination pixels along one axis whose centres map inside `[0, src_size)` of the
+/// source and lie inside `[lo, hi)`: the first and one past the last. `s` and `d` are the
+/// rectangles' corners on this axis, in the order given.
+fn axis(s: [i32; 2], d: [i32; 2], src_size: u32, [lo, hi]: [i64; 2]) -> [i64; 2] {
+    let (s0, s1, d0, d1) = (f64::from(s[0]), f64::from(s[1]), f64::from(d[0]), f64::from(d[1]));
+    // Where the source's two edges land in the destination.
+    let at = |v: f64| d0 + (v - s0) * (d1 - d0) / (s1 - s0);
+    let (a, b) = (at(0.0), at(f64::from(src_size)));
+    let (inside_lo, inside_hi) = (a.min(b), a.max(b));
+    // Pixel x is drawn when x + 0.5 lies in [inside_lo, inside_hi) and in the destination.
+    let first = ((inside_lo - 0.5).ceil() as i64).max(i64::from(d[0].min(d[1]))).max(lo);
+    let end = ((inside_hi - 0.5).ceil() as i64).min(i64::from(d[0].max(d[1]))).min(hi);
+    [first, end.max(first)]
+}
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn glBlitFramebuffer(
+        &mut self,
+        ctx: &mut Context,
+        flushed: &Flushed,
+        src_x0: i32,
+        src_y0: i32,
+        src_x1: i32,
+        src_y1: i32,
+        dst_x0: i32,
+        dst_y0: i32,
+        dst_x1: i32,
+        dst_y1: i32,
+        mask: u32,
+        filter: u32,
+    ) -> GlResult {
+        let (Ok(read), Ok(draw)) = (self.read_target(ctx), self.draw_target(ctx)) else {
+            return Err(GlError::InvalidFramebufferOperation);
+        };
+        if !matches!(filter, NEAREST | LINEAR) {
+            return Err(GlError::InvalidEnum);
+        }
+        if mask & !(COLOR_BUFFER_BIT | DEPTH_BUFFER_BIT | STENCIL_BUFFER_BIT) != 0 {
+            return Err(GlError::InvalidValue);
+        }
+        let depth_stencil = mask & (DEPTH_BUFFER_BIT | STENCIL_BUFFER_BIT);
+        if depth_stencil != 0 && filter != NEAREST {
+            return Err(GlError::InvalidOperation);
+        }
+        // A buffer missing on either side is left out, silently (as GL says).
+        let depth = mask & DEPTH_BUFFER_BIT != 0 && read.has_depth() && draw.has_depth();
+        let stencil = mask & STENCIL_BUFFER_BIT != 0 && read.has_stencil() && draw.has_stencil();
+        if depth || stencil {
+            tracing::warn!("glBlitFramebuffer: depth and stencil blits are not supported yet");
+            return Err(GlError::InvalidOperation);
+        }
+        let color = mask & COLOR_BUFFER_BIT != 0 && read.color.is_some() && draw.has_color();
+        let Some((src, _)) = read.color.as_ref().filter(|_| color) else { return Ok(()) };
+        let at = read.color_at;
+        // ES 3.0: the read buffer may not be a draw buffer (the same level, layer and face).
+        if draw.color.as_ref().is_some_and(|(t, _)| t == src && draw.color_at == at) {
+            return Err(GlError::InvalidOperation);
+        }
+        let empty = src_x0 == src_x1 || src_y0 == src_y1 || dst_x0 == dst_x1 || dst_y0 == dst_y1;
+        if empty || ctx.conditional == Some(false) {
+            return Ok(());
+        }
+        let size = (read.width, read.height);
+        let [sx, sy, sw, sh] = match ctx.raster.scissor_test {
+            true => clip_rect(ctx.raster.scissor, &draw),
+            false => [0, 0, draw.width, draw.height],
+        };
+        let (x_range, y_range) = ([i64::from(sx), i64::from(sx + sw)], [i64::from(sy), i64::from(sy + sh)]);
+        let [x0, x1] = axis([src_x0, src_x1], [dst_x0, dst_x1], size.0, x_range);
+        let [y0, y1] = axis([src_y0, src_y1], [dst_y0, dst_y1], size.1, y_range);
+        let clip = [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32];
+        let slots = draw.slots();
+        let dst = slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| {
+                let (view, absent, format) = (*s)?;
+                Some((view, format, wgpu::ColorWrites::ALL - absent, draw.slices.get(i).copied().flatten()))
+            })
+            .collect();
+        let blit = Blit {
+            src: (src, at, size),
+            dst,
+            src_rect: [src_x0, src_y0, src_x1, src_y1],
+            dst_rect: [dst_x0, dst_y0, dst_x1, dst_y1],
+            clip,
+            linear: filter == LINEAR,
+        };
+        self.r.blit(flushed, &blit);
+        Ok(())
+    }
+}
