@@ -28,9 +28,20 @@ use crate::GlesExecutor;
 use strata_device::account::Kind;
 use strata_protocol::Slice;
 
-/// Attaches `a` to `attachment` of the bound framebuffer object.
-pub(super) fn set_attachment(ctx: &mut Context, attachment: u32, a: Attachment) -> GlResult {
-    let bound = ctx.bindings.framebuffer;
+/// The framebuffer an attachment call or status query of `target` addresses: the draw
+/// framebuffer for `GL_FRAMEBUFFER` (and ES 3.0's `GL_DRAW_FRAMEBUFFER`), the read framebuffer
+/// for ES 3.0's `GL_READ_FRAMEBUFFER`; `GL_INVALID_ENUM` for another target.
+pub(super) fn framebuffer_of(ctx: &Context, target: u32) -> GlResult<u32> {
+    match target {
+        FRAMEBUFFER => Ok(ctx.bindings.framebuffer),
+        DRAW_FRAMEBUFFER if ctx.es3() => Ok(ctx.bindings.framebuffer),
+        READ_FRAMEBUFFER if ctx.es3() => Ok(ctx.bindings.read_framebuffer),
+        _ => Err(GlError::InvalidEnum),
+    }
+}
+
+/// Attaches `a` to `attachment` of framebuffer object `bound`.
+pub(super) fn set_attachment(ctx: &mut Context, bound: u32, attachment: u32, a: Attachment) -> GlResult {
     let es3 = ctx.es3();
     let fb = ctx.objects.framebuffers.get_mut(&bound).filter(|_| bound != 0).ok_or(GlError::InvalidOperation)?;
     match attachment {
@@ -222,11 +233,9 @@ impl GlesExecutor {
         level: i32,
         layer: Option<i32>,
     ) -> GlResult {
-        if target != FRAMEBUFFER {
-            return Err(GlError::InvalidEnum);
-        }
+        let fb = framebuffer_of(ctx, target)?;
         if texture == 0 {
-            return set_attachment(ctx, attachment, Attachment::None);
+            return set_attachment(ctx, fb, attachment, Attachment::None);
         }
         let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
         // The target named: an unknown one is GL_INVALID_ENUM; one of the other call's shape,
@@ -249,7 +258,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidValue);
         }
         let face = image.face + layer as u32;
-        set_attachment(ctx, attachment, Attachment::Texture { name: texture, level: level as u32, face })
+        set_attachment(ctx, fb, attachment, Attachment::Texture { name: texture, level: level as u32, face })
     }
 
     /// ES 3.0's attachment of one layer of a 2D array or one slice of a 3D texture, the
@@ -263,15 +272,13 @@ impl GlesExecutor {
         level: i32,
         layer: i32,
     ) -> GlResult {
-        if target != FRAMEBUFFER {
-            return Err(GlError::InvalidEnum);
-        }
+        let fb = framebuffer_of(ctx, target)?;
         // Framebuffer 0 has no attachments to set, whatever the texture (Mesa's first check).
-        if ctx.bindings.framebuffer == 0 {
+        if fb == 0 {
             return Err(GlError::InvalidOperation);
         }
         if texture == 0 {
-            return set_attachment(ctx, attachment, Attachment::None);
+            return set_attachment(ctx, fb, attachment, Attachment::None);
         }
         let t = ctx.objects.textures.get(&texture).ok_or(GlError::InvalidOperation)?;
         match t.target {
@@ -284,7 +291,7 @@ impl GlesExecutor {
                     return Err(GlError::InvalidValue);
                 }
                 let a = Attachment::Texture { name: texture, level: level as u32, face: layer as u32 };
-                set_attachment(ctx, attachment, a)
+                set_attachment(ctx, fb, attachment, a)
             }
             _ => Err(GlError::InvalidOperation),
         }
@@ -298,14 +305,15 @@ impl GlesExecutor {
         renderbuffertarget: u32,
         renderbuffer: u32,
     ) -> GlResult {
-        if target != FRAMEBUFFER || renderbuffertarget != RENDERBUFFER {
+        let fb = framebuffer_of(ctx, target)?;
+        if renderbuffertarget != RENDERBUFFER {
             return Err(GlError::InvalidEnum);
         }
         if renderbuffer != 0 && !ctx.objects.renderbuffers.contains_key(&renderbuffer) {
             return Err(GlError::InvalidOperation);
         }
         let a = if renderbuffer == 0 { Attachment::None } else { Attachment::Renderbuffer(renderbuffer) };
-        set_attachment(ctx, attachment, a)
+        set_attachment(ctx, fb, attachment, a)
     }
 
     pub(super) fn glGetFramebufferAttachmentParameteriv(
@@ -316,8 +324,12 @@ impl GlesExecutor {
         pname: u32,
     ) -> i32 {
         let es3 = ctx.es3();
-        let fb = ctx.objects.framebuffers.get(&ctx.bindings.framebuffer);
-        let a = match (target, fb, attachment) {
+        let Ok(bound) = framebuffer_of(ctx, target) else {
+            ctx.record(GlError::InvalidEnum);
+            return 0;
+        };
+        let fb = ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0);
+        let a = match (FRAMEBUFFER, fb, attachment) {
             (FRAMEBUFFER, Some(fb), _) if color_slot(attachment, 16).is_some() => match color_slot(attachment, 16) {
                 Some(Ok(i)) => fb.colors[i],
                 _ => {
@@ -382,11 +394,15 @@ impl GlesExecutor {
     }
 
     pub(super) fn glCheckFramebufferStatus(&mut self, ctx: &mut Context, target: u32) -> u32 {
-        if target != FRAMEBUFFER {
+        if framebuffer_of(ctx, target).is_err() {
             ctx.record(GlError::InvalidEnum);
             return 0;
         }
-        match self.draw_target(ctx) {
+        let status = match target {
+            READ_FRAMEBUFFER => self.read_target(ctx),
+            _ => self.draw_target(ctx),
+        };
+        match status {
             Ok(_) => FRAMEBUFFER_COMPLETE,
             Err(status) => status,
         }

@@ -65,6 +65,15 @@ pub fn sequence(r: &mut Run) {
         let mut v = -7;
         (gl.get_integerv)(0x8C1D, &mut v);
         r.note(&format!("GL_TEXTURE_BINDING_2D_ARRAY in an ES 2.0 context: {v}"));
+        // The draw and read framebuffer targets of attachments and status.
+        let mut fb = 0;
+        (gl.gen_framebuffers)(1, &mut fb);
+        (gl.bind_framebuffer)(0x8D40, fb);
+        (gl.framebuffer_texture_2d)(0x8CA9, 0x8CE0, 0x0DE1, tex, 0);
+        r.note("glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER) in an ES 2.0 context");
+        let status = (gl.check_framebuffer_status)(0x8CA8);
+        r.note(&format!("glCheckFramebufferStatus(GL_READ_FRAMEBUFFER) in an ES 2.0 context: {status:#x}"));
+        (gl.bind_framebuffer)(0x8D40, 0);
         // Sampler objects.
         let mut sampler = 0;
         (gl.gen_samplers)(1, &mut sampler);

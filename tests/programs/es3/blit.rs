@@ -127,6 +127,24 @@ pub fn blit(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBindFramebuffer(READ_FRAMEBUFFER, empty)?;
     gl.glBlitFramebuffer(0, 0, 4, 4, 0, 0, 4, 4, COLOR_BUFFER_BIT, NEAREST as u32)?;
     marks.push(gl.glGetError()?);
+    // Attachments and status through the draw and read targets: a texture attached to the
+    // draw framebuffer, a renderbuffer to the read framebuffer, each checked by its target.
+    let (d, r) = (n.next(), n.next());
+    gl.glGenFramebuffers(Slice::new(&[d, r]))?;
+    gl.glBindFramebuffer(DRAW_FRAMEBUFFER, d)?;
+    gl.glBindFramebuffer(READ_FRAMEBUFFER, r)?;
+    marks.push(gl.glCheckFramebufferStatus(READ_FRAMEBUFFER)?);
+    gl.glFramebufferTexture2D(DRAW_FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_2D, bt, 0)?;
+    marks.push(gl.glCheckFramebufferStatus(DRAW_FRAMEBUFFER)?);
+    let rb = n.next();
+    gl.glGenRenderbuffers(Slice::new(&[rb]))?;
+    gl.glBindRenderbuffer(RENDERBUFFER, rb)?;
+    gl.glRenderbufferStorage(RENDERBUFFER, 0x8058, 4, 4)?;
+    gl.glFramebufferRenderbuffer(READ_FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, rb)?;
+    marks.push(gl.glCheckFramebufferStatus(READ_FRAMEBUFFER)?);
+    marks.push(gl.glGetFramebufferAttachmentParameteriv(READ_FRAMEBUFFER, COLOR_ATTACHMENT0, 0x8CD0)? as u32);
+    marks.push(gl.glGetFramebufferAttachmentParameteriv(DRAW_FRAMEBUFFER, COLOR_ATTACHMENT0, 0x8CD0)? as u32);
+    marks.push(gl.glGetError()?);
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     let _ = c;
     mark_all(gl, &marks)
