@@ -51,3 +51,11 @@ pub const SRGB8: u32 = 0x8C41;
 pub const FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING: u32 = 0x8210;
 /// `GL_SRGB` (ES 3.0): an sRGB colour encoding.
 pub const SRGB: u32 = 0x8C40;
+/// `GL_R8_SNORM` (ES 3.0), and the other signed normalized formats after it.
+pub const R8_SNORM: u32 = 0x8F94;
+/// `GL_RG8_SNORM`.
+pub const RG8_SNORM: u32 = 0x8F95;
+/// `GL_RGB8_SNORM`.
+pub const RGB8_SNORM: u32 = 0x8F96;
+/// `GL_RGBA8_SNORM`.
+pub const RGBA8_SNORM: u32 = 0x8F97;

@@ -442,12 +442,18 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
 /// unsized format whose image it behaves as (as `GL_OES_required_internalformat`'s images do),
 /// its storage, and whether its data counts as half-float (renderable, as
 /// `GL_EXT_color_buffer_half_float` has it). `None` for a format that is not sized, and for
-/// the sized formats Strata cannot keep yet (integer, signed normalized, the packed
+/// the sized formats Strata cannot keep yet (integer, the packed
 /// 10-bit and shared-exponent formats, compressed formats).
 pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
     Some(match internal {
         RGBA8_OES | RGBA4 | RGB5_A1 => (RGBA, Storage::Rgba8, false),
         SRGB8_ALPHA8 => (RGBA, Storage::Srgb8, false),
+        // Signed normalized: half floats hold every value of 8 signed bits within their
+        // precision; none is renderable.
+        R8_SNORM => (RED_EXT, Storage::Half, false),
+        RG8_SNORM => (RG_EXT, Storage::Half, false),
+        RGB8_SNORM => (RGB, Storage::Half, false),
+        RGBA8_SNORM => (RGBA, Storage::Half, false),
         SRGB8 => (RGB, Storage::Srgb8, false),
         RGB8_OES | RGB565 => (RGB, Storage::Rgba8, false),
         BGRA8_EXT => (BGRA_EXT, Storage::Rgba8, false),

@@ -221,9 +221,12 @@ impl GlesExecutor {
         };
         let (data_type, storage, internal, half_float, sized) = if let Some((base, kept, half)) = es3_sized {
             let ty = if pixel_type == HALF_FLOAT { HALF_FLOAT_OES } else { pixel_type };
-            upload_storage(format, ty)?;
             if !sized_accepts(internalformat, format, pixel_type) {
-                return Err(GlError::InvalidOperation);
+                // An unknown enum first (ES 3.0's BYTE is known: its pairing is wrong).
+                match upload_storage(format, ty) {
+                    Err(GlError::InvalidEnum) if ty != BYTE => return Err(GlError::InvalidEnum),
+                    _ => return Err(GlError::InvalidOperation),
+                }
             }
             (ty, kept, base, half, internalformat)
         } else {
@@ -359,7 +362,12 @@ impl GlesExecutor {
         let es3_half = ctx.es3() && pixel_type == HALF_FLOAT;
         let given_type = pixel_type;
         let pixel_type = if es3_half { HALF_FLOAT_OES } else { pixel_type };
-        let storage = upload_storage(format, pixel_type)?;
+        // ES 3.0's signed normalized data (BYTE) goes only to images of its sized formats.
+        let es3_byte = ctx.es3() && pixel_type == BYTE;
+        let storage = match upload_storage(format, pixel_type) {
+            Err(GlError::InvalidEnum) if es3_byte => Storage::Half,
+            s => s?,
+        };
         let uid = self.next_uid();
         let account = self.account.clone();
         let gpu = &self.gpu;
@@ -378,7 +386,7 @@ impl GlesExecutor {
                 Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,
                 // ES 2.0: the format must be the image's (RGBA and BGRA count as one,
                 // MESA_bgra); the type must give the same storage.
-                None => !es3_half && same_layout(t.format, format) && storage == img.storage,
+                None => !es3_half && !es3_byte && same_layout(t.format, format) && storage == img.storage,
             };
             if fits {
                 Ok(())

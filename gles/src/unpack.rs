@@ -107,12 +107,16 @@ fn rgba8_pixel(px: &[u8], format: u32, ty: u32) -> [u8; 4] {
     }
 }
 
-/// One pixel of `FLOAT`, `HALF_FLOAT_OES` or `UNSIGNED_INT_2_10_10_10_REV_EXT` data as RGBA
+/// One pixel of `FLOAT`, `HALF_FLOAT_OES`, `UNSIGNED_INT_2_10_10_10_REV_EXT` or (signed
+/// normalized) `BYTE` data as RGBA
 /// floats (GL's expansion of each format: luminance to R, G and B, missing colour 0, missing
 /// alpha 1).
 fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
     let c = |i: usize| {
-        if ty == FLOAT {
+        if ty == BYTE {
+            // ES 3.0's signed normalized conversion: c / 127, -128 clamped to -1.
+            (f32::from(px[i] as i8) / 127.0).max(-1.0)
+        } else if ty == FLOAT {
             f32::from_ne_bytes([px[4 * i], px[4 * i + 1], px[4 * i + 2], px[4 * i + 3]])
         } else {
             f16::from_bits(u16::from_ne_bytes([px[2 * i], px[2 * i + 1]])).to_f32()

@@ -13,6 +13,7 @@ mod int_attributes;
 mod language;
 mod restart;
 mod samplers;
+mod snorm;
 mod srgb;
 mod tex_storage;
 mod uniforms;
@@ -45,5 +46,6 @@ pub fn all() -> Vec<Case> {
         c("es3_float_textures", float_textures::float_textures),
         c("es3_srgb", srgb::srgb),
         c("es3_blit", blit::blit),
+        c("es3_snorm", snorm::snorm),
     ]
 }
