@@ -99,6 +99,7 @@ impl GlesExecutor {
         if target != RENDERBUFFER {
             return Err(GlError::InvalidEnum);
         }
+        let es3 = ctx.es3();
         let format = match internalformat {
             RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT => COLOR_FORMAT,
             f if is_half_renderbuffer(f) => HALF_FORMAT,
@@ -106,6 +107,16 @@ impl GlesExecutor {
             DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
             DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
             STENCIL_INDEX8 => wgpu::TextureFormat::Stencil8,
+            // ES 3.0's renderable formats beyond ES 2.0's extensions.
+            SRGB8_ALPHA8 if es3 => wgpu::TextureFormat::Rgba8UnormSrgb,
+            DEPTH_COMPONENT32F if es3 => wgpu::TextureFormat::Depth32Float,
+            DEPTH32F_STENCIL8 if es3 => {
+                if !self.gpu.features.contains(wgpu::Features::DEPTH32FLOAT_STENCIL8) {
+                    tracing::warn!("glRenderbufferStorage: the device has no 32-bit float depth with stencil");
+                    return Err(GlError::InvalidEnum);
+                }
+                wgpu::TextureFormat::Depth32FloatStencil8
+            }
             _ => return Err(GlError::InvalidEnum),
         };
         if width < 0 || height < 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
@@ -121,7 +132,7 @@ impl GlesExecutor {
         let texel = match format {
             wgpu::TextureFormat::Stencil8 => 1,
             wgpu::TextureFormat::Depth16Unorm => 2,
-            HALF_FORMAT => 8,
+            HALF_FORMAT | wgpu::TextureFormat::Depth32FloatStencil8 => 8,
             _ => 4,
         };
         let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
@@ -444,6 +455,9 @@ fn renderbuffer_bits(format: u32) -> [i32; 6] {
         DEPTH_COMPONENT16 => [0, 0, 0, 0, 16, 0],
         DEPTH_COMPONENT24_OES => [0, 0, 0, 0, 24, 0],
         DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],
+        SRGB8_ALPHA8 => [8, 8, 8, 8, 0, 0],
+        DEPTH_COMPONENT32F => [0, 0, 0, 0, 32, 0],
+        DEPTH32F_STENCIL8 => [0, 0, 0, 0, 32, 8],
         STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
         _ => [0; 6],
     }

@@ -157,8 +157,10 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
         }
         colors.push(c);
     }
-    let depth = depth_attachment(ctx, fb.depth, &[DEPTH_COMPONENT16, DEPTH_COMPONENT24_OES, DEPTH24_STENCIL8_OES])?;
-    let stencil = depth_attachment(ctx, fb.stencil, &[STENCIL_INDEX8, DEPTH24_STENCIL8_OES])?;
+    let depths =
+        [DEPTH_COMPONENT16, DEPTH_COMPONENT24_OES, DEPTH24_STENCIL8_OES, DEPTH_COMPONENT32F, DEPTH32F_STENCIL8];
+    let depth = depth_attachment(ctx, fb.depth, &depths)?;
+    let stencil = depth_attachment(ctx, fb.stencil, &[STENCIL_INDEX8, DEPTH24_STENCIL8_OES, DEPTH32F_STENCIL8])?;
     let depth = match (depth, stencil) {
         (Some(d), Some(s)) if d.2 != s.2 => return Err(FRAMEBUFFER_UNSUPPORTED),
         (Some(d), _) | (None, Some(d)) => Some(d),

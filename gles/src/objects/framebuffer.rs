@@ -94,7 +94,7 @@ pub struct Renderbuffer {
 impl Renderbuffer {
     /// Whether it holds colour: a colour format of its own, or an EGLImage's colour image.
     pub fn is_color(&self) -> bool {
-        matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT)
+        matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT | SRGB8_ALPHA8)
             || is_half_renderbuffer(self.format)
             || (crate::formats::is_color_format(self.format) && self.gpu.is_some())
     }

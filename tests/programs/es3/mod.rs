@@ -11,6 +11,7 @@ mod divisors;
 mod float_textures;
 mod int_attributes;
 mod language;
+mod renderbuffers;
 mod restart;
 mod samplers;
 mod snorm;
@@ -47,5 +48,6 @@ pub fn all() -> Vec<Case> {
         c("es3_srgb", srgb::srgb),
         c("es3_blit", blit::blit),
         c("es3_snorm", snorm::snorm),
+        c("es3_renderbuffers", renderbuffers::renderbuffers),
     ]
 }
