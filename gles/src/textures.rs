@@ -8,6 +8,7 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::Compressed;
+use crate::objects::texture::Texture;
 use crate::sampling::{self, Allowed, Owner};
 use crate::typed::TextureTarget;
 use crate::GlesExecutor;
@@ -51,21 +52,24 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
 /// answering nothing) for a bad target or name, or when nothing is bound.
 fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
     let bound = TextureTarget::from_gl_in(target, ctx.es3()).ok().map(|t| ctx.bindings.texture(t));
+    // Texture 0 (the default texture) answers with the initial state, as Mesa's does.
+    let default = Texture::default();
+    let texture = |n: u32| if n == 0 { Some(&default) } else { ctx.objects.textures.get(&n) };
     if pname == TEXTURE_BORDER_COLOR_EXT {
-        if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
+        if let Some(t) = bound.and_then(texture) {
             return t.border.to_vec();
         }
     }
     // Mesa answers the format's query in ES 2.0 contexts too (where it is always false), the
     // levels' only in ES 3.0 ones.
     if pname == TEXTURE_IMMUTABLE_FORMAT || (ctx.es3() && pname == TEXTURE_IMMUTABLE_LEVELS) {
-        if let Some(t) = bound.and_then(|n| ctx.objects.textures.get(&n)) {
+        if let Some(t) = bound.and_then(texture) {
             let levels = t.immutable_levels as f32;
             return vec![if pname == TEXTURE_IMMUTABLE_LEVELS { levels } else { f32::from(u8::from(levels > 0.0)) }];
         }
     }
     let es3 = ctx.es3();
-    let v = bound.and_then(|n| ctx.objects.textures.get(&n)).map(|t| t.sampler).and_then(|s| match pname {
+    let v = bound.and_then(texture).map(|t| t.sampler).and_then(|s| match pname {
         // Every texture takes one unit (Mesa answers for every target).
         REQUIRED_TEXTURE_IMAGE_UNITS_OES => Some(1.0),
         _ => sampling::value(Owner::Texture, es3, &s, pname),

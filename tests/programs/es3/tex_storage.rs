@@ -90,6 +90,11 @@ pub fn tex_storage(gl: Gl<'_>, n: &mut Names) -> R {
         gl.glUniform1i(l, k as i32)?;
     }
     let mut marks = Vec::new();
+    // Texture 0 answers with the initial state.
+    gl.glBindTexture(TEXTURE_2D, 0)?;
+    for pname in [TEXTURE_IMMUTABLE_LEVELS, TEXTURE_MIN_FILTER] {
+        marks.push(gl.glGetTexParameteriv(TEXTURE_2D, pname)?.first().copied().unwrap_or(-1) as u32);
+    }
 
     // A 2D texture of three levels of a chain of four: complete with a mipmap filter, and
     // level-of-detail 3 reads the last, level 2.
