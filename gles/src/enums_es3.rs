@@ -59,3 +59,6 @@ pub const RG8_SNORM: u32 = 0x8F95;
 pub const RGB8_SNORM: u32 = 0x8F96;
 /// `GL_RGBA8_SNORM`.
 pub const RGBA8_SNORM: u32 = 0x8F97;
+/// `GL_FLOAT_32_UNSIGNED_INT_24_8_REV` (ES 3.0): a float depth, then a word whose low 8 bits
+/// are the stencil.
+pub const FLOAT_32_UNSIGNED_INT_24_8_REV: u32 = 0x8DAD;

@@ -213,6 +213,29 @@ impl GlesExecutor {
         pixel_type: u32,
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
+        // ES 3.0's float depth formats: level 0 of a 2D image or cube face, as the other
+        // depth images are.
+        // Mesa takes float depths for the unsized depth format too.
+        let unsized_float = (internalformat, format, pixel_type) == (DEPTH_COMPONENT, DEPTH_COMPONENT, FLOAT);
+        if ctx.es3() && (matches!(internalformat, DEPTH_COMPONENT32F | DEPTH32F_STENCIL8) || unsized_float) {
+            if !unsized_float && !sized_accepts(internalformat, format, pixel_type) {
+                // An unknown pairing of format and type first, as Mesa answers.
+                return match upload_storage(format, pixel_type) {
+                    Err(GlError::InvalidEnum) if pixel_type != FLOAT_32_UNSIGNED_INT_24_8_REV => {
+                        Err(GlError::InvalidEnum)
+                    }
+                    _ => Err(GlError::InvalidOperation),
+                };
+            }
+            if image.three_d || image.array || level != 0 {
+                return Err(GlError::InvalidOperation);
+            }
+            validate_size(&self.gpu, image, level, [width, height, depth], border)?;
+            let storage = if format == DEPTH_COMPONENT { Storage::Depth } else { Storage::DepthStencil };
+            let pixels = pixels.as_ref().map(|p| p.as_bytes());
+            let size = (width as u32, height as u32);
+            return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
+        }
         // ES 3.0's sized formats that ES 2.0's extensions do not name (the float ones): the
         // data ES 3.0's table gives the format, kept as the format keeps it.
         let es3_sized = match ctx.es3() && sized_fits(internalformat, 0, 0).is_none() {
@@ -366,6 +389,15 @@ impl GlesExecutor {
         let es3_byte = ctx.es3() && pixel_type == BYTE;
         let storage = match upload_storage(format, pixel_type) {
             Err(GlError::InvalidEnum) if es3_byte => Storage::Half,
+            // ES 3.0's float depths (the images that take them decide by their sized format).
+            Err(GlError::InvalidOperation) if ctx.es3() && (format, pixel_type) == (DEPTH_COMPONENT, FLOAT) => {
+                Storage::Depth
+            }
+            Err(GlError::InvalidEnum)
+                if ctx.es3() && (format, pixel_type) == (DEPTH_STENCIL_OES, FLOAT_32_UNSIGNED_INT_24_8_REV) =>
+            {
+                Storage::DepthStencil
+            }
             s => s?,
         };
         let uid = self.next_uid();

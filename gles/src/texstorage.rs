@@ -165,6 +165,8 @@ pub(crate) fn sized_accepts(sized: u32, format: u32, ty: u32) -> bool {
         DEPTH_COMPONENT16 => format == DEPTH_COMPONENT && matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT),
         DEPTH_COMPONENT24_OES => format == DEPTH_COMPONENT && ty == UNSIGNED_INT,
         DEPTH24_STENCIL8_OES => format == DEPTH_STENCIL_OES && ty == UNSIGNED_INT_24_8_OES,
+        DEPTH_COMPONENT32F => format == DEPTH_COMPONENT && ty == FLOAT,
+        DEPTH32F_STENCIL8 => format == DEPTH_STENCIL_OES && ty == FLOAT_32_UNSIGNED_INT_24_8_REV,
         // The float luminance and alpha formats take their unsized format's data.
         ALPHA16F_EXT | ALPHA32F_EXT => format == ALPHA && half_or_float,
         LUMINANCE16F_EXT | LUMINANCE32F_EXT => format == LUMINANCE && half_or_float,

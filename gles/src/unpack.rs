@@ -184,7 +184,11 @@ pub fn depth_stencil_values(
     ty: u32,
     unpack: Unpack,
 ) -> Option<(Vec<f32>, Vec<u8>)> {
-    let bpp = if ty == UNSIGNED_SHORT { 2 } else { 4 };
+    let bpp = match ty {
+        UNSIGNED_SHORT => 2,
+        FLOAT_32_UNSIGNED_INT_24_8_REV => 8,
+        _ => 4,
+    };
     let rows = unpack.rows(src, width, height, bpp)?;
     let mut depth = Vec::with_capacity(width * height);
     let mut stencil = Vec::new();
@@ -194,6 +198,15 @@ pub fn depth_stencil_values(
             UNSIGNED_INT => {
                 let v = u32::from_ne_bytes([px[0], px[1], px[2], px[3]]);
                 depth.push((f64::from(v) / f64::from(u32::MAX)) as f32);
+            }
+            // ES 3.0's float depths, clamped to [0, 1]; with stencil, the stencil in the low 8
+            // bits of the second word.
+            FLOAT | FLOAT_32_UNSIGNED_INT_24_8_REV => {
+                let d = f32::from_ne_bytes([px[0], px[1], px[2], px[3]]);
+                depth.push(if d.is_nan() { 0.0 } else { d.clamp(0.0, 1.0) });
+                if ty == FLOAT_32_UNSIGNED_INT_24_8_REV {
+                    stencil.push(u32::from_ne_bytes([px[4], px[5], px[6], px[7]]) as u8);
+                }
             }
             _ => {
                 // Depth in the high 24 bits, stencil in the low 8.

@@ -7,6 +7,7 @@ mod arrays;
 mod attrib_types;
 mod blit;
 mod blocks;
+mod depth_textures;
 mod divisors;
 mod float_textures;
 mod int_attributes;
@@ -49,5 +50,6 @@ pub fn all() -> Vec<Case> {
         c("es3_blit", blit::blit),
         c("es3_snorm", snorm::snorm),
         c("es3_renderbuffers", renderbuffers::renderbuffers),
+        c("es3_depth_textures", depth_textures::depth_textures),
     ]
 }
