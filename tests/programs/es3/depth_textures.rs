@@ -64,7 +64,7 @@ pub fn depth_textures(gl: Gl<'_>, n: &mut Names) -> R {
     for (k, c) in corners.iter().enumerate() {
         cell(gl, n, k, *c)?;
     }
-    gl.glTexSubImage2D(TEXTURE_2D, 0, 1, 1, 1, 1, DEPTH_COMPONENT, FLOAT, Blob::borrowed(&f32s(&[0.7071])))?;
+    gl.glTexSubImage2D(TEXTURE_2D, 0, 1, 1, 1, 1, DEPTH_COMPONENT, FLOAT, Blob::borrowed(&f32s(&[0.6875])))?;
     marks.push(gl.glGetError()?);
     cell(gl, n, 4, corners[3])?;
 
