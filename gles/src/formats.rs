@@ -2,7 +2,7 @@
 //! on the GPU, and the compressed formats offered (S3TC, ETC1 and ASTC LDR, sampled natively
 //! where the device has the block format, else decoded on upload).
 
-use crate::compressed::{astc, astc::Astc, etc1, s3tc::S3tc};
+use crate::compressed::{astc, astc::Astc, etc1, etc2::Etc2, s3tc::S3tc};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 
@@ -92,6 +92,10 @@ pub enum Compressed {
     Astc(Astc),
     /// Its sRGB form: the colour channels are sRGB encoded, and read as linear.
     AstcSrgb(Astc),
+    /// An ETC2 or EAC format (ES 3.0 contexts only).
+    Etc2(Etc2),
+    /// Its sRGB form: the colour channels are sRGB encoded, and read as linear.
+    Etc2Srgb(Etc2),
 }
 
 /// The S3TC and ETC1 formats, in the order `GL_COMPRESSED_TEXTURE_FORMATS` lists the offered
@@ -117,6 +121,10 @@ impl Compressed {
             COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT => Compressed::S3tcSrgb(S3tc::Dxt3),
             COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => Compressed::S3tcSrgb(S3tc::Dxt5),
             ETC1_RGB8_OES => Compressed::Etc1,
+            _ if Etc2::from_gl(f).is_some() => match Etc2::from_gl(f)? {
+                (e, false) => Compressed::Etc2(e),
+                (e, true) => Compressed::Etc2Srgb(e),
+            },
             _ => match Astc::from_gl(f)? {
                 (a, false) => Compressed::Astc(a),
                 (a, true) => Compressed::AstcSrgb(a),
@@ -129,6 +137,7 @@ impl Compressed {
         match self {
             Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => d.block_bytes(),
             Compressed::Etc1 => 8,
+            Compressed::Etc2(e) | Compressed::Etc2Srgb(e) => e.block_bytes(),
             Compressed::Astc(_) | Compressed::AstcSrgb(_) => astc::BLOCK_BYTES,
         }
     }
@@ -143,7 +152,7 @@ impl Compressed {
 
     /// Whether the colour channels are sRGB encoded.
     pub fn is_srgb(self) -> bool {
-        matches!(self, Compressed::S3tcSrgb(_) | Compressed::AstcSrgb(_))
+        matches!(self, Compressed::S3tcSrgb(_) | Compressed::AstcSrgb(_) | Compressed::Etc2Srgb(_))
     }
 
     /// Blocks across and down a `width`×`height` image: one per started block.
@@ -175,21 +184,34 @@ impl Compressed {
             Compressed::Etc1 => Some(F::Etc2Rgb8Unorm),
             Compressed::Astc(a) => Some(a.native(false)),
             Compressed::AstcSrgb(a) => Some(a.native(true)),
+            Compressed::Etc2(e) => Some(e.native(false)),
+            Compressed::Etc2Srgb(e) => Some(e.native(true)),
         }
     }
 
-    /// Whether a device with `features` offers this format: ETC1 and ASTC everywhere (decoded
-    /// where the device lacks them), S3TC where the device has BC formats.
-    pub fn offered(self, features: wgpu::Features) -> bool {
+    /// Whether a device with `features` offers this format to a context of ES 3.0 (`es3`) or
+    /// 2.0: ETC1 and ASTC everywhere (decoded where the device lacks them), S3TC where the
+    /// device has BC formats, ETC2 and EAC in ES 3.0 (decoded likewise).
+    pub fn offered(self, features: wgpu::Features, es3: bool) -> bool {
         match self {
             Compressed::S3tc(_) | Compressed::S3tcSrgb(_) => features.contains(wgpu::Features::TEXTURE_COMPRESSION_BC),
             Compressed::Etc1 | Compressed::Astc(_) | Compressed::AstcSrgb(_) => true,
+            Compressed::Etc2(_) | Compressed::Etc2Srgb(_) => es3,
         }
     }
 
-    /// The compressed format `f` names, if a device with `features` offers it.
-    pub fn offered_gl(f: u32, features: wgpu::Features) -> Option<Self> {
-        Self::from_gl(f).filter(|c| c.offered(features))
+    /// The compressed format `f` names, if a device with `features` offers it to a context of
+    /// ES 3.0 (`es3`) or 2.0.
+    pub fn offered_gl(f: u32, features: wgpu::Features, es3: bool) -> Option<Self> {
+        Self::from_gl(f).filter(|c| c.offered(features, es3))
+    }
+
+    /// The EAC format this is, if it is one: decoded to float.
+    fn eac(self) -> Option<Etc2> {
+        match self {
+            Compressed::Etc2(e) if e.is_eac() => Some(e),
+            _ => None,
+        }
     }
 
     /// The native format if `features` make it available.
@@ -201,7 +223,7 @@ impl Compressed {
     /// sRGB formats RGBA16F holding the linear values ([`Self::decode_for`]), which filter as
     /// GL filters an sRGB image, after the conversion.
     pub fn decoded_storage(self) -> Storage {
-        if self.is_srgb() {
+        if self.is_srgb() || self.eac().is_some() {
             Storage::Half
         } else {
             Storage::Rgba8
@@ -210,6 +232,10 @@ impl Compressed {
 
     /// Decodes a `width`×`height` image to texels of [`Self::decoded_storage`].
     pub fn decode_for(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
+        if let Some(e) = self.eac() {
+            let texels = self.place(data, width, height, |b| e.decode_eac_block(b).to_vec());
+            return texels.iter().flatten().flat_map(|&v| half::f16::from_f32(v).to_bits().to_ne_bytes()).collect();
+        }
         let rgba = self.decode(data, width, height);
         match self.is_srgb() {
             true => rgba
@@ -228,24 +254,36 @@ impl Compressed {
     /// Decodes a `width`×`height` image (blocks in row order) to tightly packed RGBA8 rows.
     /// `data` must hold [`Self::image_size`] bytes.
     pub fn decode(self, data: &[u8], width: u32, height: u32) -> Vec<u8> {
+        let texels = self.place(data, width, height, |block| match self {
+            Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => crate::compressed::s3tc::decode_block(d, block).to_vec(),
+            Compressed::Etc1 => etc1::decode_block(block).to_vec(),
+            Compressed::Etc2(e) | Compressed::Etc2Srgb(e) => e.decode_block(block).to_vec(),
+            Compressed::Astc(a) | Compressed::AstcSrgb(a) => a.decode_block(block),
+        });
+        texels.into_iter().flatten().collect()
+    }
+
+    /// The texels of a `width`×`height` image (blocks in row order), row by row, each block
+    /// decoded by `decode` to its texels row by row; texels of blocks past the image's edge are
+    /// dropped.
+    fn place<T: Copy + Default>(
+        self,
+        data: &[u8],
+        width: u32,
+        height: u32,
+        decode: impl Fn(&[u8]) -> Vec<T>,
+    ) -> Vec<T> {
         let (w, h) = (width as usize, height as usize);
-        let mut out = vec![0u8; w * h * 4];
+        let mut out = vec![T::default(); w * h];
         let (across, down) = self.blocks(width, height);
         let (bw, bh) = self.block_size();
         let (across, bw, bh) = (across as usize, bw as usize, bh as usize);
         for (i, block) in data.chunks_exact(self.block_bytes()).take(across * down as usize).enumerate() {
-            let texels = match self {
-                Compressed::S3tc(d) | Compressed::S3tcSrgb(d) => {
-                    crate::compressed::s3tc::decode_block(d, block).to_vec()
-                }
-                Compressed::Etc1 => etc1::decode_block(block).to_vec(),
-                Compressed::Astc(a) | Compressed::AstcSrgb(a) => a.decode_block(block),
-            };
             let (x0, y0) = ((i % across) * bw, (i / across) * bh);
-            for (t, px) in texels.iter().enumerate() {
+            for (t, px) in decode(block).into_iter().enumerate() {
                 let (x, y) = (x0 + t % bw, y0 + t / bw);
                 if x < w && y < h {
-                    out[(y * w + x) * 4..][..4].copy_from_slice(px);
+                    out[y * w + x] = px;
                 }
             }
         }
@@ -264,11 +302,12 @@ fn srgb_to_linear(v: u8) -> f32 {
 }
 
 /// The compressed formats a device with `features` offers (`GL_COMPRESSED_TEXTURE_FORMATS`).
-pub fn offered_compressed(features: wgpu::Features) -> Vec<u32> {
+pub fn offered_compressed(features: wgpu::Features, es3: bool) -> Vec<u32> {
     COMPRESSED_FORMATS
         .into_iter()
+        .chain(Etc2::all_gl())
         .chain(Astc::all_gl())
-        .filter(|&f| Compressed::offered_gl(f, features).is_some())
+        .filter(|&f| Compressed::offered_gl(f, features, es3).is_some())
         .collect()
 }
 
@@ -505,9 +544,9 @@ pub fn sized_color_base(internal: u32) -> Option<u32> {
 /// S3TC internal format takes RGB or RGBA data, which is kept uncompressed (as RGBA8).
 pub fn internal_accepts(internal: u32, format: u32, features: wgpu::Features) -> bool {
     match Compressed::from_gl(internal) {
-        Some(c @ Compressed::S3tc(_)) => c.offered(features) && matches!(format, RGB | RGBA),
-        // As on Mesa: the sRGB forms and ASTC take compressed data only.
-        Some(Compressed::Etc1 | Compressed::S3tcSrgb(_) | Compressed::Astc(_) | Compressed::AstcSrgb(_)) => false,
+        Some(c @ Compressed::S3tc(_)) => c.offered(features, false) && matches!(format, RGB | RGBA),
+        // As on Mesa: the sRGB forms, ETC and ASTC take compressed data only.
+        Some(_) => false,
         None => same_layout(internal, format),
     }
 }

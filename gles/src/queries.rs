@@ -228,8 +228,10 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
             _ => RGBA,
         }),
         IMPLEMENTATION_COLOR_READ_TYPE => u(if framebuffer_bits(ctx)[0] == 16 { HALF_FLOAT } else { UNSIGNED_BYTE }),
-        NUM_COMPRESSED_TEXTURE_FORMATS => i(offered_compressed(gpu.features).len() as i32),
-        COMPRESSED_TEXTURE_FORMATS => Ints(offered_compressed(gpu.features).into_iter().map(|f| f as i32).collect()),
+        NUM_COMPRESSED_TEXTURE_FORMATS => i(offered_compressed(gpu.features, ctx.es3()).len() as i32),
+        COMPRESSED_TEXTURE_FORMATS => {
+            Ints(offered_compressed(gpu.features, ctx.es3()).into_iter().map(|f| f as i32).collect())
+        }
         NUM_SHADER_BINARY_FORMATS => i(0),
         SHADER_BINARY_FORMATS => Ints(vec![]),
         NUM_PROGRAM_BINARY_FORMATS_OES => i(1),

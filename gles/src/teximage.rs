@@ -410,9 +410,11 @@ impl GlesExecutor {
                 // converted to its storage.
                 None if t.sized != 0 => sized_accepts(t.sized, format, given_type),
                 Some(Compressed::S3tc(_)) => internal_accepts(t.format, format, gpu.features),
-                // ASTC images take no uncompressed data: Mesa finds no format to convert it
-                // to, which is GL_INVALID_VALUE.
-                Some(Compressed::Astc(_) | Compressed::AstcSrgb(_)) => return Err(GlError::InvalidValue),
+                // ASTC and ETC2 images take no uncompressed data: Mesa finds no format to
+                // convert it to, which is GL_INVALID_VALUE.
+                Some(Compressed::Astc(_) | Compressed::AstcSrgb(_) | Compressed::Etc2(_) | Compressed::Etc2Srgb(_)) => {
+                    return Err(GlError::InvalidValue)
+                }
                 // ETC1 images cannot be updated in part (OES_compressed_ETC1_RGB8_texture), nor
                 // sRGB S3TC images by uncompressed data.
                 Some(Compressed::Etc1 | Compressed::S3tcSrgb(_)) => false,

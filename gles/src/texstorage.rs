@@ -8,7 +8,7 @@
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::formats::{immutable_storage, is_unsized};
+use crate::formats::{immutable_storage, is_unsized, Compressed, Storage};
 use crate::limits::{max_3d_level, max_3d_size, max_array_layers, MAX_LEVEL, MAX_TEXTURE};
 use crate::objects::image::TextureImage;
 use crate::objects::texture::Texture;
@@ -78,7 +78,11 @@ impl GlesExecutor {
         internal: u32,
         [width, height, depth]: [i32; 3],
     ) -> GlResult {
-        let Some((format, storage, half_float)) = immutable_storage(internal) else {
+        // A compressed image keeps its format as its own ("format"), decoded on upload where the
+        // device lacks it (its blocks' storage is chosen below).
+        let compressed = Compressed::offered_gl(internal, self.gpu.features, ctx.es3());
+        let sized = immutable_storage(internal).or(compressed.map(|c| (internal, c.decoded_storage(), false)));
+        let Some((format, mut storage, half_float)) = sized else {
             if !is_unsized(internal) {
                 tracing::warn!(internal, "glTexStorage: this sized internal format is not supported yet");
             }
@@ -95,7 +99,9 @@ impl GlesExecutor {
         let name = ctx.bindings.texture(target);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         mutable(t)?;
-        if storage.is_depth() && three_d {
+        // Of the compressed formats only ASTC's has 3D images (its sliced 3D extension).
+        let flat = compressed.is_some_and(|c| !matches!(c, Compressed::Astc(_) | Compressed::AstcSrgb(_)));
+        if (storage.is_depth() || flat) && three_d {
             return Err(GlError::InvalidOperation);
         }
         let most = if three_d { max_3d_size(&self.gpu) } else { MAX_TEXTURE } as i32;
@@ -114,6 +120,15 @@ impl GlesExecutor {
         }
         let size = (width as u32, height as u32, depth as u32);
         let levels = levels as u32;
+        if let Some(c) = compressed {
+            // Blocks go up as they are only into a 2D image of whole blocks, as
+            // glCompressedTexImage2D keeps them.
+            let (bw, bh) = c.block_size();
+            let whole_blocks = target == TextureTarget::TwoD && size.0.is_multiple_of(bw) && size.1.is_multiple_of(bh);
+            if whole_blocks && c.native_on(self.gpu.features).is_some() {
+                storage = Storage::Native(c);
+            }
+        }
         // The old image's memory is given back before the new one is reserved.
         t.gpu = None;
         t.defined = [0; 6];

@@ -176,7 +176,8 @@ fn astc_errors(gl: Gl<'_>, n: &mut Names, rng: &mut Lcg, marks: &mut Vec<u32>) -
     marks.push(gl.glGetError()?);
     gl.glCopyTexImage2D(TEXTURE_2D, 0, RGBA_4X4, 0, 0, 4, 4, 0)?;
     marks.push(gl.glGetError()?);
-    for format in [0x93BE, 0x93DE, 0x93CF] {
+    // Unknown ASTC-like enums, and ES 3.0's ETC2 and EAC formats, which ES 2.0 lacks.
+    for format in [0x93BE, 0x93DE, 0x93CF, 0x9270, 0x9274, 0x9279] {
         gl.glCompressedTexImage2D(TEXTURE_2D, 0, format, 4, 4, 0, Blob::borrowed(&one[..16]))?;
         marks.push(gl.glGetError()?);
     }

@@ -10,6 +10,7 @@
 
 pub mod astc;
 pub mod etc1;
+pub mod etc2;
 pub mod s3tc;
 
 use strata_protocol::Blob;
@@ -52,10 +53,16 @@ impl GlesExecutor {
         border: i32,
         data: Blob<'_>,
     ) -> GlResult {
-        // Only ASTC has 3D images (GL_KHR_texture_compression_astc_sliced_3d).
-        let c = Compressed::offered_gl(internalformat, self.gpu.features)
-            .filter(|c| !image.three_d || matches!(c, Compressed::Astc(_) | Compressed::AstcSrgb(_)))
-            .ok_or(GlError::InvalidEnum)?;
+        // Only ASTC has 3D images (GL_KHR_texture_compression_astc_sliced_3d); ES 3.0 makes a
+        // 3D image of its ETC2 formats GL_INVALID_OPERATION, the extensions' formats an
+        // unknown enum.
+        let c = Compressed::offered_gl(internalformat, self.gpu.features, ctx.es3()).ok_or(GlError::InvalidEnum)?;
+        match c {
+            Compressed::Etc2(_) | Compressed::Etc2Srgb(_) if image.three_d => return Err(GlError::InvalidOperation),
+            Compressed::Astc(_) | Compressed::AstcSrgb(_) => {}
+            _ if image.three_d => return Err(GlError::InvalidEnum),
+            _ => {}
+        }
         validate_size(&self.gpu, image, level, [width, height, depth], border)?;
         let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
         if !sized(c, &data, w, h, d) {
@@ -105,7 +112,7 @@ impl GlesExecutor {
     ) -> GlResult {
         // As on Mesa, a format that is not an offered compressed one cannot match the image,
         // whatever the level and the rectangle.
-        let c = Compressed::offered_gl(format, self.gpu.features).ok_or(GlError::InvalidOperation)?;
+        let c = Compressed::offered_gl(format, self.gpu.features, ctx.es3()).ok_or(GlError::InvalidOperation)?;
         let gpu = &self.gpu;
         // An image is updated only by data of its own format (ETC1's too, by
         // `EXT_compressed_ETC1_RGB8_sub_texture`).

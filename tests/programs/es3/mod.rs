@@ -9,6 +9,7 @@ mod blit;
 mod blocks;
 mod depth_textures;
 mod divisors;
+mod etc2;
 mod float_textures;
 mod int_attributes;
 mod language;
@@ -51,5 +52,6 @@ pub fn all() -> Vec<Case> {
         c("es3_snorm", snorm::snorm),
         c("es3_renderbuffers", renderbuffers::renderbuffers),
         c("es3_depth_textures", depth_textures::depth_textures),
+        c("es3_etc2", etc2::etc2),
     ]
 }
