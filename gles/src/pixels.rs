@@ -154,7 +154,8 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidValue);
             return Bytes(Vec::new());
         }
-        let how = match DepthRead::from_gl(format, pixel_type) {
+        let float_depth = ctx.es3().then(|| float_depth(ctx));
+        let how = match DepthRead::from_gl(format, pixel_type, float_depth) {
             Some(depth) => depth.map(Read::Depth),
             None => ReadFormat::from_gl(format, pixel_type).map(Read::Color),
         };
@@ -282,18 +283,34 @@ pub enum DepthRead {
     DepthStencil,
     /// `GL_STENCIL_INDEX_OES`, `GL_UNSIGNED_BYTE`.
     Stencil8,
+    /// `GL_DEPTH_COMPONENT`, `GL_UNSIGNED_INT_24_8` (ES 3.0): depth in the top 24 bits, the
+    /// rest 0.
+    Depth24,
+    /// `GL_DEPTH_COMPONENT`, `GL_FLOAT` (ES 3.0, float depth buffers): the stored value.
+    DepthFloat,
 }
 
 impl DepthRead {
     /// The read `format` and `ty` ask for when `format` is a depth or stencil one, or the error
-    /// for the pair: `None` for other formats.
-    pub fn from_gl(format: u32, ty: u32) -> Option<Result<DepthRead, GlError>> {
-        let read = match (format, ty) {
-            (DEPTH_COMPONENT, UNSIGNED_SHORT) => DepthRead::Depth16,
-            (DEPTH_COMPONENT, UNSIGNED_INT) => DepthRead::Depth32,
-            (DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES) => DepthRead::DepthStencil,
-            (STENCIL_INDEX_OES, UNSIGNED_BYTE) => DepthRead::Stencil8,
-            (DEPTH_COMPONENT | DEPTH_STENCIL_OES | STENCIL_INDEX_OES, _) => {
+    /// for the pair: `None` for other formats. ES 3.0 (`float_depth`: `Some(whether the read
+    /// framebuffer's depth is float)`) adds `GL_UNSIGNED_INT_24_8` and, for float depth alone,
+    /// `GL_FLOAT`; float depth is read as nothing else, as on Mesa.
+    pub fn from_gl(format: u32, ty: u32, float_depth: Option<bool>) -> Option<Result<DepthRead, GlError>> {
+        let read = match (format, ty, float_depth) {
+            (DEPTH_COMPONENT, FLOAT, Some(true)) => DepthRead::DepthFloat,
+            (DEPTH_COMPONENT, UNSIGNED_SHORT | UNSIGNED_INT | UNSIGNED_INT_24_8_OES | FLOAT, Some(f)) => {
+                match (ty, f) {
+                    (UNSIGNED_SHORT, false) => DepthRead::Depth16,
+                    (UNSIGNED_INT, false) => DepthRead::Depth32,
+                    (UNSIGNED_INT_24_8_OES, false) => DepthRead::Depth24,
+                    _ => return Some(Err(GlError::InvalidOperation)),
+                }
+            }
+            (DEPTH_COMPONENT, UNSIGNED_SHORT, None) => DepthRead::Depth16,
+            (DEPTH_COMPONENT, UNSIGNED_INT, None) => DepthRead::Depth32,
+            (DEPTH_STENCIL_OES, UNSIGNED_INT_24_8_OES, _) => DepthRead::DepthStencil,
+            (STENCIL_INDEX_OES, UNSIGNED_BYTE, _) => DepthRead::Stencil8,
+            (DEPTH_COMPONENT | DEPTH_STENCIL_OES | STENCIL_INDEX_OES, _, _) => {
                 let known = type_size(ty).is_some()
                     || matches!(
                         ty,
@@ -316,7 +333,7 @@ impl DepthRead {
     pub fn bytes(self) -> usize {
         match self {
             DepthRead::Depth16 => 2,
-            DepthRead::Depth32 | DepthRead::DepthStencil => 4,
+            DepthRead::Depth32 | DepthRead::DepthStencil | DepthRead::Depth24 | DepthRead::DepthFloat => 4,
             DepthRead::Stencil8 => 1,
         }
     }
@@ -324,7 +341,7 @@ impl DepthRead {
     /// Whether it reads depth, and whether stencil.
     pub fn aspects(self) -> (bool, bool) {
         match self {
-            DepthRead::Depth16 | DepthRead::Depth32 => (true, false),
+            DepthRead::Depth16 | DepthRead::Depth32 | DepthRead::Depth24 | DepthRead::DepthFloat => (true, false),
             DepthRead::DepthStencil => (true, true),
             DepthRead::Stencil8 => (false, true),
         }
@@ -344,8 +361,26 @@ impl DepthRead {
             DepthRead::Depth32 => out.copy_from_slice(&n32.to_ne_bytes()),
             DepthRead::DepthStencil => out.copy_from_slice(&(n24 << 8 | u32::from(stencil)).to_ne_bytes()),
             DepthRead::Stencil8 => out[0] = stencil,
+            DepthRead::Depth24 => out.copy_from_slice(&(n24 << 8).to_ne_bytes()),
+            DepthRead::DepthFloat => out.copy_from_slice(&depth.to_ne_bytes()),
         }
     }
+}
+
+/// Whether the read framebuffer's depth is ES 3.0's float depth (`GL_DEPTH_COMPONENT32F` or
+/// `GL_DEPTH32F_STENCIL8`, a renderbuffer or a texture); framebuffer 0's never is.
+fn float_depth(ctx: &Context) -> bool {
+    use crate::objects::framebuffer::Attachment;
+    let bound = ctx.bindings.read_framebuffer;
+    let Some(fb) = ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0) else { return false };
+    let format = match fb.depth {
+        Attachment::Renderbuffer(n) => ctx.objects.renderbuffers.get(&n).map(|rb| rb.format),
+        Attachment::Texture { name, .. } => {
+            ctx.objects.textures.get(&name).map(|t| if t.sized != 0 { t.sized } else { t.format })
+        }
+        Attachment::None => None,
+    };
+    matches!(format, Some(DEPTH_COMPONENT32F | DEPTH32F_STENCIL8))
 }
 
 /// The depth bits of a depth/stencil image of `format`, as Mesa stores them: 16 for
@@ -386,9 +421,9 @@ mod tests {
 
     #[test]
     fn pairs_are_validated_as_on_mesa() {
-        assert_eq!(DepthRead::from_gl(DEPTH_COMPONENT, UNSIGNED_BYTE), Some(Err(GlError::InvalidOperation)));
-        assert_eq!(DepthRead::from_gl(DEPTH_COMPONENT, FLOAT), Some(Err(GlError::InvalidOperation)));
-        assert_eq!(DepthRead::from_gl(DEPTH_STENCIL_OES, UNSIGNED_INT), Some(Err(GlError::InvalidOperation)));
-        assert_eq!(DepthRead::from_gl(RGBA, UNSIGNED_BYTE), None);
+        assert_eq!(DepthRead::from_gl(DEPTH_COMPONENT, UNSIGNED_BYTE, None), Some(Err(GlError::InvalidOperation)));
+        assert_eq!(DepthRead::from_gl(DEPTH_COMPONENT, FLOAT, None), Some(Err(GlError::InvalidOperation)));
+        assert_eq!(DepthRead::from_gl(DEPTH_STENCIL_OES, UNSIGNED_INT, None), Some(Err(GlError::InvalidOperation)));
+        assert_eq!(DepthRead::from_gl(RGBA, UNSIGNED_BYTE, None), None);
     }
 }

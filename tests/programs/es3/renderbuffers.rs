@@ -1,7 +1,8 @@
 //! ES 3.0's renderbuffer formats beyond ES 2.0's extensions: an `SRGB8_ALPHA8` colour buffer
 //! (cleared and drawn in linear and encoded, read back encoded, blitted to the window decoded),
 //! and `DEPTH_COMPONENT32F` and `DEPTH32F_STENCIL8` depth buffers (a depth test between two
-//! quads, a stencil test); their sizes, as colours and marks.
+//! quads, a stencil test, float depth read back as floats) and 24-bit depth read back as
+//! `GL_UNSIGNED_INT_24_8`; their sizes and the reads refused, as colours and marks.
 
 use super::super::multi_draw::mark_all;
 use super::super::*;
@@ -12,6 +13,9 @@ const SRGB8_ALPHA8: u32 = 0x8C43;
 const RGBA8: u32 = 0x8058;
 const DEPTH_COMPONENT32F: u32 = 0x8CAC;
 const DEPTH32F_STENCIL8: u32 = 0x8CAD;
+const DEPTH_COMPONENT24: u32 = 0x81A6;
+const DEPTH_COMPONENT: u32 = 0x1902;
+const UNSIGNED_INT_24_8: u32 = 0x84FA;
 const DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
 const RENDERBUFFER_RED_SIZE: u32 = 0x8D50;
 const RENDERBUFFER_DEPTH_SIZE: u32 = 0x8D54;
@@ -100,11 +104,34 @@ pub fn renderbuffers(gl: Gl<'_>, n: &mut Names) -> R {
             draw_positions(gl, n, &quad(-1.0, -1.0, 1.0, 1.0, 0.0), TRIANGLES)?;
             gl.glDisable(STENCIL_TEST)?;
         }
+        // NV_read_depth in ES 3.0: float depth read as floats (the near quad's 0.25 at the
+        // left, the far one's 0.625 at the right), and as nothing else.
+        for x in [0, 7] {
+            let px = gl.glReadPixels(x, 7, 1, 1, DEPTH_COMPONENT, FLOAT)?.0;
+            let depth = px.get(..4).map_or(-1.0, |b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]));
+            marks.push((depth * 1000.0).round() as u32);
+        }
+        gl.glReadPixels(0, 0, 1, 1, DEPTH_COMPONENT, UNSIGNED_INT)?;
+        marks.push(gl.glGetError()?);
         gl.glBindFramebuffer(READ_FRAMEBUFFER, fb)?;
         gl.glBindFramebuffer(DRAW_FRAMEBUFFER, 0)?;
         let x = 16 + 16 * k as i32;
         gl.glBlitFramebuffer(0, 0, 8, 8, x, 0, x + 16, 16, COLOR_BUFFER_BIT, NEAREST as u32)?;
     }
+    // 24-bit depth read as GL_UNSIGNED_INT_24_8 (depth in the top 24 bits), not as floats.
+    let fb = n.next();
+    gl.glGenFramebuffers(Slice::new(&[fb]))?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    let d = renderbuffer(gl, n, DEPTH_COMPONENT24)?;
+    gl.glFramebufferRenderbuffer(FRAMEBUFFER, DEPTH_ATTACHMENT, RENDERBUFFER, d)?;
+    gl.glClearDepthf(0.3)?;
+    gl.glClear(DEPTH_BUFFER_BIT)?;
+    let px = gl.glReadPixels(2, 2, 1, 1, DEPTH_COMPONENT, UNSIGNED_INT_24_8)?.0;
+    let v = px.get(..4).map_or(0, |b| u32::from_ne_bytes([b[0], b[1], b[2], b[3]]));
+    marks.extend([v >> 16, v & 0xFFFF]);
+    gl.glReadPixels(2, 2, 1, 1, DEPTH_COMPONENT, FLOAT)?;
+    marks.push(gl.glGetError()?);
+    gl.glClearDepthf(1.0)?;
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glViewport(0, 0, W, H)?;
     marks.push(gl.glGetError()?);

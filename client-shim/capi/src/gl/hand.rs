@@ -473,6 +473,13 @@ crate::entry::entry_points! {
                 let d = Blob::borrowed(&d);
                 return gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, d);
             }
+            if data.is_null() && image_size > 0 {
+                // An image of undefined contents: as many zeros, so that the daemon checks the
+                // size the application gave.
+                let zeros = vec![0; image_size as usize];
+                let d = Blob::borrowed(&zeros);
+                return gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, d);
+            }
             // SAFETY: `data` holds `image_size` bytes.
             let Some(d) = (unsafe { sized_bytes(gl.st, data, image_size as isize) }) else { return Ok(()) };
             gl.conn.glCompressedTexImage2D(target, level, internalformat, width, height, border, Blob::borrowed(d))

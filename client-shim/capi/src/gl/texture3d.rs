@@ -39,13 +39,18 @@ fn volume_bytes(
     tex_image_bytes(gl.st, width, rows, format, ty, pixels).map(<[u8]>::to_vec)
 }
 
-/// The bytes of compressed data the application passes: `image_size` of them.
+/// The bytes of compressed data the application passes: `image_size` of them; for a null
+/// pointer (an image of undefined contents) as many zeros, so that the daemon checks the size
+/// the application gave.
 ///
 /// # Safety
 /// `data` holds `image_size` bytes.
 unsafe fn compressed(gl: &mut Gl<'_>, data: *const c_void, image_size: GLsizei) -> Option<Vec<u8>> {
     if let Some(from) = unpack(gl, data, image_size.max(0) as usize, 1) {
         return from;
+    }
+    if data.is_null() && image_size > 0 {
+        return Some(vec![0; image_size as usize]);
     }
     // SAFETY: see the function's contract.
     unsafe { sized_bytes(gl.st, data, image_size as isize) }.map(<[u8]>::to_vec)
