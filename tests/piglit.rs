@@ -403,15 +403,18 @@ fn the_es3_selection_is_piglits_gles3_build_in_its_areas() {
         "spec@arb_transform_feedback2@change objects while paused (gles3)",
         "spec@glsl-es-3.00@compiler@undefined-macro.vert",
         "spec@glsl-es-3.00@compiler@flat_interpolation@flat-struct-int.frag",
-        // The image side's tests, as they come.
+        // The image side's tests, and NV_read_depth's in ES 3.0.
         "spec@!opengl es 3.0@texture-immutable-levels",
+        "spec@!opengl es 3.0@ext_texture_array-compressed_gles3 teximage",
+        "spec@!opengl es 3.0@oes_compressed_etc2_texture-miptree_gles3 r11",
+        "spec@nv_read_depth@read_depth_gles3",
     ] {
         assert!(names.contains(inside), "{inside} is missing from the selection");
     }
     for outside in [
-        // The rest of the image side, an extension beyond ES 3.0, the GLES 2 build, GLSL ES 1.00.
-        "spec@!opengl es 3.0@ext_texture_array-compressed_gles3 teximage",
+        // Extensions beyond ES 3.0, the GLES 2 build, GLSL ES 1.00.
         "spec@oes_texture_view@formats",
+        "spec@arb_blend_func_extended@arb_blend_func_extended-fbo-extended-blend_gles3",
         "spec@!opengl es 2.0@invalid-es3-queries_gles2",
         "spec@glsl-es-1.00@linker@glsl-fface-invariant",
     ] {

@@ -168,7 +168,8 @@ pub(crate) fn plan_points(
 
 /// The uniform block with each sampler's wrap flags and border colour (`glsl::link`'s wrap
 /// offsets) where its texture wraps by `GL_MIRROR_CLAMP_TO_EDGE_EXT` or
-/// `GL_CLAMP_TO_BORDER_EXT`; copied only where one does.
+/// `GL_CLAMP_TO_BORDER_EXT`, and its swizzle where its texture has one; copied only where one
+/// does.
 pub(crate) fn with_sampler_params<'c>(
     mut data: Cow<'c, [u8]>,
     bound: &[Option<Bound<'_>>],
@@ -176,6 +177,14 @@ pub(crate) fn with_sampler_params<'c>(
 ) -> Cow<'c, [u8]> {
     for (b, &at) in bound.iter().zip(offsets) {
         let Some(Bound { texture: t, state, border: colour }) = b else { continue };
+        let at = at as usize;
+        if t.swizzle != Default::default() {
+            if let Some(dst) = data.to_mut().get_mut(at + 32..at + 48) {
+                for (d, v) in dst.chunks_exact_mut(4).zip(t.swizzle.selectors()) {
+                    d.copy_from_slice(&v.to_ne_bytes());
+                }
+            }
+        }
         // The r wrap counts only for 3D textures, whose lookup helpers read flag w.
         let three_d = t.target == TEXTURE_3D_OES;
         let [ms, mt, mr] = state.mirror_clamp();
@@ -188,7 +197,6 @@ pub(crate) fn with_sampler_params<'c>(
         let color = if border { border_color(t.format, float, *colour) } else { [0.0; 4] };
         let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
         let values = [flag(ms), flag(mt), flag(border), flag(mr), color[0], color[1], color[2], color[3]];
-        let at = at as usize;
         if let Some(dst) = data.to_mut().get_mut(at..at + 32) {
             for (d, v) in dst.chunks_exact_mut(4).zip(values) {
                 d.copy_from_slice(&v.to_ne_bytes());

@@ -1,6 +1,6 @@
 //! The enums of ES 3.0's image side and of `GL_EXT_texture_storage`: the half-float type, the
 //! image unpack state, the sized float, depth and BGRA formats immutable storage takes, the 2D
-//! array target, immutability, and the sampler namespace. `enums` re-exports them.
+//! array target, immutability, the sampler namespace and the swizzles. `enums` re-exports them.
 
 /// `GL_TEXTURE_2D_ARRAY` (ES 3.0).
 pub const TEXTURE_2D_ARRAY: u32 = 0x8C1A;
@@ -62,3 +62,9 @@ pub const RGBA8_SNORM: u32 = 0x8F97;
 /// `GL_FLOAT_32_UNSIGNED_INT_24_8_REV` (ES 3.0): a float depth, then a word whose low 8 bits
 /// are the stencil.
 pub const FLOAT_32_UNSIGNED_INT_24_8_REV: u32 = 0x8DAD;
+/// `GL_GREEN` (ES 3.0: a swizzle source).
+pub const GREEN: u32 = 0x1904;
+/// `GL_BLUE` (ES 3.0: a swizzle source).
+pub const BLUE: u32 = 0x1905;
+/// `GL_TEXTURE_SWIZZLE_R` (ES 3.0); `_G`, `_B` and `_A` follow it.
+pub const TEXTURE_SWIZZLE_R: u32 = 0x8E42;

@@ -41,11 +41,29 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
         }
     }
     let name = ctx.bindings.texture(target);
+    if let Some(channel) = swizzle_channel(ctx, pname) {
+        // ES 3.0's swizzles: a source channel, zero or one (a float rounded, as on Mesa).
+        let source = v.round();
+        if !(0.0..=f32::from(u16::MAX)).contains(&source)
+            || !matches!(source as u32, RED_EXT | GREEN | BLUE | ALPHA | ZERO | ONE)
+        {
+            return Err(GlError::InvalidEnum);
+        }
+        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        t.swizzle.0[channel] = source as u32;
+        return Ok(());
+    }
     let allowed = Allowed { es3: ctx.es3(), border };
     let setting = sampling::setting(Owner::Texture, allowed, pname, v)?;
     let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
     setting.apply(&mut t.sampler);
     Ok(())
+}
+
+/// The channel `GL_TEXTURE_SWIZZLE_R`…`_A` name in an ES 3.0 context.
+fn swizzle_channel(ctx: &Context, pname: u32) -> Option<usize> {
+    let channel = pname.wrapping_sub(TEXTURE_SWIZZLE_R) as usize;
+    (ctx.es3() && channel < 4).then_some(channel)
 }
 
 /// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
@@ -66,6 +84,11 @@ fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
         if let Some(t) = bound.and_then(texture) {
             let levels = t.immutable_levels as f32;
             return vec![if pname == TEXTURE_IMMUTABLE_LEVELS { levels } else { f32::from(u8::from(levels > 0.0)) }];
+        }
+    }
+    if let Some(channel) = swizzle_channel(ctx, pname) {
+        if let Some(t) = bound.and_then(texture) {
+            return vec![t.swizzle.0[channel] as f32];
         }
     }
     let es3 = ctx.es3();

@@ -176,15 +176,23 @@ pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
 }
 
 /// The parts a sampler is passed to a function as (naga takes no combined samplers): its
-/// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, and its
-/// wrap flags and border colour (`link::lookup_helpers`).
-const SAMPLER_PARTS: [(Option<T>, &str); 5] = [
+/// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, its wrap
+/// flags and border colour (`link::lookup_helpers`), and its texture's swizzle
+/// (`link::SWIZZLE_FNS`).
+const SAMPLER_PARTS: [(Option<T>, &str); 6] = [
     (None, "__t"),
     (Some(T::Sampler), "__s"),
     (Some(T::Sampler), "__b"),
     (Some(T::Vec4), "__w"),
     (Some(T::Vec4), "__c"),
+    (Some(T::Vec4), "__z"),
 ];
+
+/// Whether `function` is a lookup that returns texels, which a texture's swizzle rearranges
+/// (every lookup but the size query).
+fn returns_texels(function: &str) -> bool {
+    (function.starts_with("texture") || function.starts_with("texel")) && function != "textureSize"
+}
 
 impl Rewrite {
     /// Makes a 2D or 3D lookup (`id`, already the GLSL 450 function) a call of its generated
@@ -288,6 +296,9 @@ impl VisitorMut for Rewrite {
     }
 
     fn visit_expr(&mut self, e: &mut ast::Expr) -> Visit {
+        // A lookup on a sampler uniform or parameter, rearranged by its texture's swizzle once
+        // rewritten: the sampler's name.
+        let mut swizzled = None;
         let replacement = match &mut e.content {
             ExprData::Variable(id) => {
                 let name = id.0.as_str();
@@ -437,6 +448,12 @@ impl VisitorMut for Rewrite {
                             }
                             *args = expanded;
                         }
+                        if let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) {
+                            let built_in = !self.sampler_fns.contains_key(id.0.as_str());
+                            if built_in && returns_texels(id.0.as_str()) && self.samplers.contains_key(v.0.as_str()) {
+                                swizzled = Some(v.0.to_string());
+                            }
+                        }
                         // A vertex shader has no derivatives: ES defines its implicit-LOD
                         // lookups as level 0, so they become explicit-LOD lookups.
                         let vertex_implicit = self.stage == Stage::Vertex && args.len() == 2;
@@ -481,6 +498,19 @@ impl VisitorMut for Rewrite {
         };
         if let Some(r) = replacement {
             *e = r;
+            return Visit::Parent;
+        }
+        if let Some(sampler) = swizzled {
+            // The call's arguments are rewritten here, as its children would be, and the call
+            // is wrapped: the wrapper is not visited again.
+            if let ExprData::FunCall(_, args) = &mut e.content {
+                args.iter_mut().for_each(|a| {
+                    a.visit_mut(self);
+                });
+            }
+            let call = std::mem::replace(e, ExprData::IntConst(0).into());
+            let swizzle = FunIdentifierData::Expr(Box::new(var("strata_swizzle"))).into();
+            *e = ExprData::FunCall(swizzle, vec![call, var(&format!("{sampler}__z"))]).into();
             return Visit::Parent;
         }
         Visit::Children

@@ -115,6 +115,38 @@ pub struct Texture {
     /// The sized internal format `glTexStorage*` gave, which decides the data its images take;
     /// 0 for a texture whose images were specified one by one.
     pub sized: u32,
+    /// `GL_TEXTURE_SWIZZLE_R`…`_A` (ES 3.0): kept out of [`SamplerState`] too, since the
+    /// shader applies it.
+    pub swizzle: Swizzle,
+}
+
+/// A texture's swizzle: the source of each of red, green, blue and alpha (`GL_RED`,
+/// `GL_GREEN`, `GL_BLUE`, `GL_ALPHA`, `GL_ZERO` or `GL_ONE`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Swizzle(pub [u32; 4]);
+
+impl Default for Swizzle {
+    fn default() -> Self {
+        Swizzle([RED_EXT, GREEN, BLUE, ALPHA])
+    }
+}
+
+impl Swizzle {
+    /// The sources as the shader's swizzle helper reads them (1 to 4 red to alpha, 5 zero, 6
+    /// one), or all 0 where every channel is kept.
+    pub fn selectors(self) -> [f32; 4] {
+        if self == Swizzle::default() {
+            return [0.0; 4];
+        }
+        self.0.map(|s| match s {
+            RED_EXT => 1.0,
+            GREEN => 2.0,
+            BLUE => 3.0,
+            ALPHA => 4.0,
+            ZERO => 5.0,
+            _ => 6.0,
+        })
+    }
 }
 
 impl Texture {

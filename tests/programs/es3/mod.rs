@@ -18,6 +18,7 @@ mod restart;
 mod samplers;
 mod snorm;
 mod srgb;
+mod swizzles;
 mod tex_storage;
 mod uniforms;
 mod xfb;
@@ -53,5 +54,6 @@ pub fn all() -> Vec<Case> {
         c("es3_renderbuffers", renderbuffers::renderbuffers),
         c("es3_depth_textures", depth_textures::depth_textures),
         c("es3_etc2", etc2::etc2),
+        c("es3_swizzles", swizzles::swizzles),
     ]
 }
