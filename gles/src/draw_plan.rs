@@ -178,6 +178,11 @@ pub(crate) fn with_sampler_params<'c>(
     for (b, &at) in bound.iter().zip(offsets) {
         let Some(Bound { texture: t, state, border: colour }) = b else { continue };
         let at = at as usize;
+        if let Some(dst) = data.to_mut().get_mut(at + 48..at + 64).filter(|_| state.compare_mode != 0) {
+            for (d, v) in dst.chunks_exact_mut(4).zip(shadow_params(t, state)) {
+                d.copy_from_slice(&v.to_ne_bytes());
+            }
+        }
         if t.swizzle != Default::default() {
             if let Some(dst) = data.to_mut().get_mut(at + 32..at + 48) {
                 for (d, v) in dst.chunks_exact_mut(4).zip(t.swizzle.selectors()) {
@@ -204,6 +209,17 @@ pub(crate) fn with_sampler_params<'c>(
         }
     }
     data
+}
+
+/// A shadow sampler's comparison as `glsl::link::SHADOW_FNS` reads it: the function (1 to 8,
+/// `GL_NEVER` to `GL_ALWAYS`), the filters (1 where magnification is linear, 2 where
+/// minification is), whether the reference is clamped to [0, 1] (every depth format but the
+/// float ones) and 1 for comparing at all.
+fn shadow_params(t: &crate::objects::texture::Texture, state: &SamplerState) -> [f32; 4] {
+    let linear = |f: u32| f32::from(u8::from(matches!(f, LINEAR | LINEAR_MIPMAP_NEAREST | LINEAR_MIPMAP_LINEAR)));
+    let float = matches!(if t.sized != 0 { t.sized } else { t.format }, DEPTH_COMPONENT32F | DEPTH32F_STENCIL8);
+    let func = state.compare_func.wrapping_sub(NEVER) as f32 + 1.0;
+    [func, linear(state.mag) + 2.0 * linear(state.min), f32::from(u8::from(!float)), 1.0]
 }
 
 /// Which instances one planned draw covers: points draw each instance on its own (`instance`);
@@ -291,13 +307,15 @@ pub(crate) fn plan_draw<'c>(
     let bound = bound_textures(ctx, &program, &exe.units);
     let textures = bound
         .iter()
-        .map(|b| {
+        .zip(&program.info.samplers)
+        .map(|(b, (ty, _))| {
             let b = b.as_ref()?;
             let img = b.texture.gpu.as_ref()?;
             let (base, _) = b.texture.level_range(&b.state);
             // The sampler counts levels of detail from the base level, as the view does.
             let state = SamplerState { base_level: base, ..b.state };
-            Some((img.view_from(base), b.texture.uid, state, !img.filterable))
+            // A shadow sampler fetches texels unfiltered and filters its comparisons itself.
+            Some((img.view_from(base), b.texture.uid, state, !img.filterable || ty.is_shadow()))
         })
         .collect();
     let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);

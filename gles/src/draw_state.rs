@@ -353,10 +353,10 @@ pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, unit
         .zip(units.iter())
         .map(|((ty, _), unit)| {
             let target = match ty {
-                Ty::SamplerCube => TextureTarget::CubeMap,
+                Ty::SamplerCube | Ty::SamplerCubeShadow => TextureTarget::CubeMap,
                 Ty::SamplerExternal => TextureTarget::External,
                 Ty::Sampler3D => TextureTarget::ThreeD,
-                Ty::Sampler2DArray => TextureTarget::TwoDArray,
+                Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => TextureTarget::TwoDArray,
                 _ => TextureTarget::TwoD,
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];

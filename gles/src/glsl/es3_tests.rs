@@ -59,7 +59,9 @@ fn es3_errors_are_mesa_s() {
     assert!(e.contains("reserved word `attribute'"), "{e}");
     let e = fs("in int k; out vec4 o; void main() { o = vec4(k); }").expect_err("integer inputs are flat");
     assert!(e.contains("flat"), "{e}");
-    let vs = compile(Stage::Vertex, "#version 300 es\nin vec4 p; void main() { gl_Position = p; }").expect("vs");
+    let vs =
+        compile(Stage::Vertex, "#version 300 es\nin vec4 p; out vec2 uv; void main() { uv = p.xy; gl_Position = p; }")
+            .expect("vs");
     let two = fs("out vec4 a; out vec4 b; void main() { a = vec4(1.0); b = a; }").expect("compiles");
     let e = link(&vs, &two, &HashMap::new(), 16).expect_err("two outputs need locations");
     assert!(e.contains("location"), "{e}");
@@ -138,7 +140,7 @@ fn sampler3d_is_core_in_300_es() {
 
 /// GLSL ES 3.00's shadow, array and integer samplers take precision qualifiers and default
 /// precision statements, and have no default precision of their own (§4.5.4); an unused one
-/// is dropped as inactive; sampling one but `sampler2DArray` is refused with a log rather than
+/// is dropped as inactive; sampling an integer one is refused with a log rather than
 /// mistranslated.
 #[test]
 fn es3_sampler_types_take_precision() {
@@ -154,7 +156,7 @@ fn es3_sampler_types_take_precision() {
         let e = fs(&format!("uniform {t} s;"), "o = vec4(1.0);").expect_err("no default precision");
         assert!(e.contains(&format!("type `{t}'")), "{t}: {e}");
         let sampled = fs(&format!("uniform highp {t} s;"), "o = vec4(float(textureSize(s, 0).x));");
-        if t == "sampler2DArray" {
+        if matches!(t, "sampler2DArray" | "sampler2DShadow" | "samplerCubeShadow") {
             sampled.unwrap_or_else(|e| panic!("{t} is sampled: {e}"));
         } else {
             let e = sampled.expect_err("sampled");
@@ -314,4 +316,34 @@ fn uniform_blocks_link_with_std140_offsets() {
     .expect("fs");
     let e = link(&vs, &differ, &HashMap::new(), 16).expect_err("declared differently");
     assert!(e.contains("Common"), "{e}");
+}
+
+/// Every shadow lookup of GLSL ES 3.00 compiles, links and validates (as compared helpers).
+#[test]
+fn shadow_lookups_link() {
+    let vs =
+        compile(Stage::Vertex, "#version 300 es\nin vec4 p; out vec2 uv; void main() { uv = p.xy; gl_Position = p; }")
+            .expect("vs");
+    let fs = compile(
+        Stage::Fragment,
+        "#version 300 es
+        precision highp float;
+        uniform highp sampler2DShadow s; uniform highp sampler2DArrayShadow a;
+        uniform highp samplerCubeShadow c;
+        uniform highp int mode; uniform float ref;
+        in vec2 uv;
+        out vec4 o;
+        float look(highp sampler2DShadow t) { return texture(t, vec3(uv, ref)); }
+        void main() {
+            float r = texture(s, vec3(uv, ref)) + textureLod(s, vec3(uv, ref), 0.0)
+                + textureGrad(s, vec3(uv, ref), dFdx(uv), dFdy(uv)) + textureProj(s, vec4(uv, ref, 2.0))
+                + textureOffset(s, vec3(uv, ref), ivec2(1, 0)) + textureProjLod(s, vec4(uv, ref, 4.0), 0.0)
+                + textureLodOffset(s, vec3(uv, ref), 0.0, ivec2(-1, 1)) + texture(s, vec3(uv, ref), 1.0)
+                + texture(a, vec4(uv, 1.0, ref)) + textureGrad(a, vec4(uv, 0.0, ref), dFdx(uv), dFdy(uv))
+                + texture(c, vec4(1.0, uv, ref)) + look(s);
+            o = vec4(r, float(textureSize(s, 0).x), 0.0, 1.0);
+        }",
+    )
+    .expect("fs");
+    link(&vs, &fs, &HashMap::new(), 16).expect("link");
 }

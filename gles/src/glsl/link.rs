@@ -197,12 +197,12 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     if samplers.len() > MAX_SAMPLERS {
         return Err(format!("error: more than {MAX_SAMPLERS} samplers declared"));
     }
-    // Each sampler's wrap flags, border colour and swizzle, after the uniforms.
+    // Each sampler's wrap flags, border colour, swizzle and comparison, after the uniforms.
     let mut wrap_offsets = Vec::with_capacity(samplers.len());
     for _ in &samplers {
         offset = offset.div_ceil(16) * 16;
         wrap_offsets.push(offset);
-        offset = offset.checked_add(48).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
+        offset = offset.checked_add(64).filter(|&o| o <= MAX_BLOCK).ok_or_else(too_big)?;
     }
     let block_size = offset.div_ceil(16) * 16;
     let blocks = crate::glsl::blocks::link_blocks(vs, fs)?;
@@ -269,13 +269,17 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             let _ = writeln!(common, "    {} {name}{arr};", u.ty.glsl(true));
         }
         for name in sampler_names(&uniforms) {
-            let _ = writeln!(common, "    vec4 {name}__w;\n    vec4 {name}__c;\n    vec4 {name}__z;");
+            let _ =
+                writeln!(common, "    vec4 {name}__w;\n    vec4 {name}__c;\n    vec4 {name}__z;\n    vec4 {name}__d;");
         }
         common.push_str("};\n");
     }
     if !samplers.is_empty() {
         common.push_str(WRAP_FNS);
-        common.push_str(SWIZZLE_FNS);
+        common.push_str(crate::glsl::swizzle::SWIZZLE_FNS);
+        if samplers.iter().any(|(t, _)| t.is_shadow()) {
+            common.push_str(crate::glsl::shadow::SHADOW_FNS);
+        }
     }
     for ((ty, binding), name) in samplers.iter().zip(sampler_names(&uniforms)) {
         let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", ty.glsl(true));
@@ -367,6 +371,9 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     ));
 
     let mut fsrc = common;
+    if samplers.iter().any(|(t, _)| t.is_shadow()) {
+        fsrc.push_str(crate::glsl::shadow::SHADOW_IMPLICIT_FNS);
+    }
     fsrc.push_str(&fs_blocks);
     fsrc.push_str(&lookup_helpers(&fs.lookups));
     fsrc.push_str(&crate::glsl::polyfill::definitions(&fs.polyfills));
@@ -523,15 +530,6 @@ pub(super) const WRAP_FNS: &str =
     "vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }\n\
      vec3 strata_wrap(vec3 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xyw, vec3(0.5))); }\n";
 
-/// A texture's swizzle (ES 3.0's `GL_TEXTURE_SWIZZLE_*`), applied to what every lookup but
-/// the size query returns: `z` holds each channel's source (1 to 4 red to alpha, 5 zero, 6
-/// one), or is all 0 where the swizzle keeps every channel, which a uniform branch skips.
-pub(super) const SWIZZLE_FNS: &str = "float strata_pick(vec4 v, float i) {\n\
-     \x20   return i < 2.5 ? (i < 1.5 ? v.x : v.y) : i < 4.5 ? (i < 3.5 ? v.z : v.w) : (i < 5.5 ? 0.0 : 1.0);\n}\n\
-     vec4 strata_swizzle(vec4 v, vec4 z) {\n\
-     \x20   if (z.x == 0.0) { return v; }\n\
-     \x20   return vec4(strata_pick(v, z.x), strata_pick(v, z.y), strata_pick(v, z.z), strata_pick(v, z.w));\n}\n";
-
 /// The helpers the rewrite turns 2D and 3D lookups into (`Shader::lookups`), one per sampler
 /// uniform and function, and one per function for sampler parameters. Each wraps the
 /// coordinate (`WRAP_FNS`), samples, and where a wrap is `GL_CLAMP_TO_BORDER_EXT` (flag z)
@@ -563,7 +561,7 @@ pub(super) fn lookup_helpers(lookups: &std::collections::BTreeSet<(String, Strin
                 if sampler.is_empty() {
                     let _ = writeln!(
                         out,
-                        "vec4 {prefix}{function}({texture} t, sampler s, sampler b, vec4 w, vec4 border, vec4 z, {ty} c{param}) {{\n\
+                        "vec4 {prefix}{function}({texture} t, sampler s, sampler b, vec4 w, vec4 border, vec4 z, vec4 d, {ty} c{param}) {{\n\
                          \x20   {vec} p = strata_wrap({projected}, w);\n\
                          \x20   vec4 v = {base}({combined}(t, s), p{arg});\n\
                          \x20   return v + border * ((({base}({combined}(t, b), p{arg})).a - v.a) * w.z);\n}}"

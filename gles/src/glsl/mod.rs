@@ -38,8 +38,10 @@ mod precision;
 mod preprocess;
 mod rewrite;
 mod separate;
+mod shadow;
 mod sized_arrays;
 mod struct_varyings;
+mod swizzle;
 mod translate;
 pub mod types;
 mod variants;
@@ -95,9 +97,9 @@ mod tests {
         assert_eq!((find("mvp").offset, find("k").offset, find("k").stride), (0, 64, 16));
         assert_eq!(find("flip").offset, 112);
         assert_eq!(find("tint").offset, 128);
-        // The sampler's wrap flags, border colour and swizzle follow the uniforms.
+        // The sampler's wrap flags, border colour, swizzle and comparison follow the uniforms.
         assert_eq!(l.wrap_offsets, vec![144]);
-        assert_eq!(l.block_size, 192);
+        assert_eq!(l.block_size, 208);
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "uv").map(|x| x.1), Some(0));
         assert_eq!(l.attributes.iter().find(|(a, _)| a.name == "position").map(|x| x.1), Some(1));
         assert_eq!(l.samplers, vec![(Ty::Sampler2D, 1)]);

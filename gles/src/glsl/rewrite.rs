@@ -177,22 +177,17 @@ pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
 
 /// The parts a sampler is passed to a function as (naga takes no combined samplers): its
 /// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, its wrap
-/// flags and border colour (`link::lookup_helpers`), and its texture's swizzle
-/// (`link::SWIZZLE_FNS`).
-const SAMPLER_PARTS: [(Option<T>, &str); 6] = [
+/// flags and border colour (`link::lookup_helpers`), its texture's swizzle
+/// (`swizzle::SWIZZLE_FNS`) and its comparison (`shadow::SHADOW_FNS`).
+const SAMPLER_PARTS: [(Option<T>, &str); 7] = [
     (None, "__t"),
     (Some(T::Sampler), "__s"),
     (Some(T::Sampler), "__b"),
     (Some(T::Vec4), "__w"),
     (Some(T::Vec4), "__c"),
     (Some(T::Vec4), "__z"),
+    (Some(T::Vec4), "__d"),
 ];
-
-/// Whether `function` is a lookup that returns texels, which a texture's swizzle rearranges
-/// (every lookup but the size query).
-fn returns_texels(function: &str) -> bool {
-    (function.starts_with("texture") || function.starts_with("texel")) && function != "textureSize"
-}
 
 impl Rewrite {
     /// Makes a 2D or 3D lookup (`id`, already the GLSL 450 function) a call of its generated
@@ -267,9 +262,9 @@ impl VisitorMut for Rewrite {
                 match split {
                     Some((t, name)) => {
                         let tex = match t {
-                            Ty::SamplerCube => T::TextureCube,
+                            Ty::SamplerCube | Ty::SamplerCubeShadow => T::TextureCube,
                             Ty::Sampler3D => T::Texture3D,
-                            Ty::Sampler2DArray => T::Texture2DArray,
+                            Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => T::Texture2DArray,
                             _ => T::Texture2D,
                         };
                         for (ty, suffix) in
@@ -353,10 +348,11 @@ impl VisitorMut for Rewrite {
                     self.instance_id = true;
                     Some(var("strata_InstanceID"))
                 } else if let Some(ty) = self.samplers.get(name) {
+                    // A shadow sampler reads its depth image as floats (`SHADOW_FNS` compares).
                     let t = match ty {
-                        Ty::SamplerCube => T::SamplerCube,
+                        Ty::SamplerCube | Ty::SamplerCubeShadow => T::SamplerCube,
                         Ty::Sampler3D => T::Sampler3D,
-                        Ty::Sampler2DArray => T::Sampler2DArray,
+                        Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => T::Sampler2DArray,
                         _ => T::Sampler2D,
                     };
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
@@ -431,6 +427,32 @@ impl VisitorMut for Rewrite {
                 }
                 if let FunIdentifierData::Expr(f) = &mut fun.content {
                     if let ExprData::Variable(id) = &mut f.content {
+                        let shadow = match args.first().map(|a| &a.content) {
+                            Some(ExprData::Variable(v))
+                                if !self.sampler_fns.contains_key(id.0.as_str()) && id.0.as_str() != "textureSize" =>
+                            {
+                                self.samplers.get(v.0.as_str()).filter(|t| t.is_shadow()).map(|t| (v.0.to_string(), *t))
+                            }
+                            _ => None,
+                        };
+                        if let Some((sampler, ty)) = shadow {
+                            // A shadow lookup: its other arguments rewritten, then the call
+                            // replaced by its comparing helper's.
+                            args.iter_mut().skip(1).for_each(|a| {
+                                a.visit_mut(self);
+                            });
+                            let fragment = self.stage == Stage::Fragment;
+                            if let Some(c) =
+                                crate::glsl::shadow::lookup(id.0.as_str(), &sampler, ty, &args[1..], fragment)
+                            {
+                                *e = c;
+                                return Visit::Parent;
+                            }
+                            self.error.get_or_insert_with(|| {
+                                format!("0: no matching overload of `{}' for a shadow sampler", id.0)
+                            });
+                            return Visit::Parent;
+                        }
                         if let Some(flags) = self.sampler_fns.get(id.0.as_str()) {
                             // Pass a sampler argument as its texture and sampler halves.
                             let mut expanded = Vec::with_capacity(args.len() + 2);
@@ -450,7 +472,10 @@ impl VisitorMut for Rewrite {
                         }
                         if let Some(ExprData::Variable(v)) = args.first().map(|a| &a.content) {
                             let built_in = !self.sampler_fns.contains_key(id.0.as_str());
-                            if built_in && returns_texels(id.0.as_str()) && self.samplers.contains_key(v.0.as_str()) {
+                            if built_in
+                                && crate::glsl::swizzle::returns_texels(id.0.as_str())
+                                && self.samplers.contains_key(v.0.as_str())
+                            {
                                 swizzled = Some(v.0.to_string());
                             }
                         }

@@ -54,6 +54,12 @@ pub enum Ty {
     Sampler3D,
     /// `sampler2DArray` (ES 3.0).
     Sampler2DArray,
+    /// `sampler2DShadow` (ES 3.0): a depth image compared with a reference.
+    Sampler2DShadow,
+    /// `samplerCubeShadow` (ES 3.0).
+    SamplerCubeShadow,
+    /// `sampler2DArrayShadow` (ES 3.0).
+    Sampler2DArrayShadow,
 }
 
 /// `GL_UNSIGNED_INT_VEC2`..`4` (ES 3.0), as `glGetActiveUniform` reports them.
@@ -99,6 +105,9 @@ impl Ty {
             T::SamplerCube => Ty::SamplerCube,
             T::Sampler3D => Ty::Sampler3D,
             T::Sampler2DArray => Ty::Sampler2DArray,
+            T::Sampler2DShadow => Ty::Sampler2DShadow,
+            T::SamplerCubeShadow => Ty::SamplerCubeShadow,
+            T::Sampler2DArrayShadow => Ty::Sampler2DArrayShadow,
             // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
             T::Sampler2DRect => Ty::SamplerExternal,
             _ => return None,
@@ -138,6 +147,9 @@ impl Ty {
             Ty::SamplerExternal => SAMPLER_EXTERNAL_OES,
             Ty::Sampler3D => gl::SAMPLER_3D_OES,
             Ty::Sampler2DArray => SAMPLER_2D_ARRAY,
+            Ty::Sampler2DShadow => 0x8B62,
+            Ty::SamplerCubeShadow => 0x8DC5,
+            Ty::Sampler2DArrayShadow => 0x8DC4,
         }
     }
 
@@ -173,10 +185,10 @@ impl Ty {
             Ty::Mat3x4 => "mat3x4",
             Ty::Mat4x2 => "mat4x2",
             Ty::Mat4x3 => "mat4x3",
-            Ty::Sampler2D | Ty::SamplerExternal => "texture2D",
-            Ty::SamplerCube => "textureCube",
+            Ty::Sampler2D | Ty::SamplerExternal | Ty::Sampler2DShadow => "texture2D",
+            Ty::SamplerCube | Ty::SamplerCubeShadow => "textureCube",
             Ty::Sampler3D => "texture3D",
-            Ty::Sampler2DArray => "texture2DArray",
+            Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => "texture2DArray",
         }
     }
 
@@ -191,7 +203,10 @@ impl Ty {
             | Ty::SamplerCube
             | Ty::SamplerExternal
             | Ty::Sampler3D
-            | Ty::Sampler2DArray => 1,
+            | Ty::Sampler2DArray
+            | Ty::Sampler2DShadow
+            | Ty::SamplerCubeShadow
+            | Ty::Sampler2DArrayShadow => 1,
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => 2,
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => 3,
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 | Ty::Mat2 => 4,
@@ -228,7 +243,7 @@ impl Ty {
         match self {
             Ty::Int | Ty::IVec2 | Ty::IVec3 | Ty::IVec4 => Scalar::Int,
             Ty::UInt | Ty::UVec2 | Ty::UVec3 | Ty::UVec4 => Scalar::UInt,
-            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray => Scalar::Int,
+            t if t.is_sampler() => Scalar::Int,
             Ty::Bool | Ty::BVec2 | Ty::BVec3 | Ty::BVec4 => Scalar::Bool,
             _ => Scalar::Float,
         }
@@ -237,6 +252,12 @@ impl Ty {
     /// Whether this is a sampler.
     pub fn is_sampler(self) -> bool {
         matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray)
+            || self.is_shadow()
+    }
+
+    /// Whether this is a shadow sampler, whose lookups compare (`rewrite`'s shadow helpers).
+    pub fn is_shadow(self) -> bool {
+        matches!(self, Ty::Sampler2DShadow | Ty::SamplerCubeShadow | Ty::Sampler2DArrayShadow)
     }
 
     /// std140 (size, alignment) of one element that is not in an array.
@@ -246,7 +267,7 @@ impl Ty {
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => (8, 8),
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => (12, 16),
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 => (16, 16),
-            Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray => (0, 1),
+            t if t.is_sampler() => (0, 1),
             // Each column a vector padded to 16 bytes.
             t => (16 * t.columns() as u32, 16),
         }

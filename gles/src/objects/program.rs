@@ -308,9 +308,9 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
                 view_dimension: match ty {
-                    glsl::Ty::SamplerCube => wgpu::TextureViewDimension::Cube,
+                    glsl::Ty::SamplerCube | glsl::Ty::SamplerCubeShadow => wgpu::TextureViewDimension::Cube,
                     glsl::Ty::Sampler3D => wgpu::TextureViewDimension::D3,
-                    glsl::Ty::Sampler2DArray => wgpu::TextureViewDimension::D2Array,
+                    glsl::Ty::Sampler2DArray | glsl::Ty::Sampler2DArrayShadow => wgpu::TextureViewDimension::D2Array,
                     _ => wgpu::TextureViewDimension::D2,
                 },
                 multisampled: false,

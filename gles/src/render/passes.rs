@@ -86,9 +86,11 @@ impl Renderer {
                 }
                 None => {
                     let (view, uid) = match ty {
-                        Some(Ty::SamplerCube) => (self.fixed.black_cube.clone(), u64::MAX - 1),
+                        Some(Ty::SamplerCube | Ty::SamplerCubeShadow) => (self.fixed.black_cube.clone(), u64::MAX - 1),
                         Some(Ty::Sampler3D) => (self.fixed.black_3d.clone(), u64::MAX - 2),
-                        Some(Ty::Sampler2DArray) => (self.fixed.black_array.clone(), u64::MAX - 3),
+                        Some(Ty::Sampler2DArray | Ty::Sampler2DArrayShadow) => {
+                            (self.fixed.black_array.clone(), u64::MAX - 3)
+                        }
                         _ => (self.fixed.black_2d.clone(), u64::MAX),
                     };
                     let s = SamplerState::default();

@@ -16,6 +16,7 @@ mod language;
 mod renderbuffers;
 mod restart;
 mod samplers;
+mod shadow;
 mod snorm;
 mod srgb;
 mod swizzles;
@@ -55,5 +56,6 @@ pub fn all() -> Vec<Case> {
         c("es3_depth_textures", depth_textures::depth_textures),
         c("es3_etc2", etc2::etc2),
         c("es3_swizzles", swizzles::swizzles),
+        c("es3_shadow", shadow::shadow),
     ]
 }
