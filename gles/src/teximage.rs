@@ -213,8 +213,8 @@ impl GlesExecutor {
         pixel_type: u32,
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
-        // ES 3.0's float depth formats: level 0 of a 2D image or cube face, as the other
-        // depth images are.
+        // ES 3.0's float depth formats: level 0 of a 2D image, a cube face or a 2D array, as
+        // the other depth images are.
         // Mesa takes float depths for the unsized depth format too.
         let unsized_float = (internalformat, format, pixel_type) == (DEPTH_COMPONENT, DEPTH_COMPONENT, FLOAT);
         if ctx.es3() && (matches!(internalformat, DEPTH_COMPONENT32F | DEPTH32F_STENCIL8) || unsized_float) {
@@ -227,13 +227,13 @@ impl GlesExecutor {
                     _ => Err(GlError::InvalidOperation),
                 };
             }
-            if image.three_d || image.array || level != 0 {
+            if image.three_d || level != 0 {
                 return Err(GlError::InvalidOperation);
             }
             validate_size(&self.gpu, image, level, [width, height, depth], border)?;
             let storage = if format == DEPTH_COMPONENT { Storage::Depth } else { Storage::DepthStencil };
             let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            let size = (width as u32, height as u32);
+            let size = (width as u32, height as u32, depth as u32);
             return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
         }
         // ES 3.0's sized formats that ES 2.0's extensions do not name (the float ones): the
@@ -267,18 +267,13 @@ impl GlesExecutor {
             };
             if storage.is_depth() {
                 // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
-                // images and cube faces (OES_depth_texture_cube_map) only.
+                // images and cube faces (OES_depth_texture_cube_map), and ES 3.0 2D arrays.
                 if image.three_d || internal != format || level != 0 {
-                    return Err(GlError::InvalidOperation);
-                }
-                if image.array {
-                    // ES 3.0 has depth arrays; Strata writes depth images by a draw into one layer.
-                    tracing::warn!("glTexImage3D: 2D arrays of depth images are not supported yet");
                     return Err(GlError::InvalidOperation);
                 }
                 validate_size(&self.gpu, image, level, [width, height, depth], border)?;
                 let pixels = pixels.as_ref().map(|p| p.as_bytes());
-                let size = (width as u32, height as u32);
+                let size = (width as u32, height as u32, depth as u32);
                 return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
             }
             if !internal_accepts(internal, format, self.gpu.features) {
@@ -323,15 +318,15 @@ impl GlesExecutor {
         Ok(())
     }
 
-    /// `glTexImage2D` of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image (level 0 of
-    /// a 2D texture or a cube face).
+    /// `glTexImage2D` (`3D`) of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image
+    /// (level 0 of a 2D texture, a cube face or a 2D array of `d` layers).
     #[allow(clippy::too_many_arguments)]
     fn depth_tex_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
         image: ImageTarget,
-        (w, h): (u32, u32),
+        (w, h, d): (u32, u32, u32),
         format: u32,
         ty: u32,
         storage: Storage,
@@ -341,16 +336,18 @@ impl GlesExecutor {
         let account = self.account.clone();
         let gpu = &self.gpu;
         let unpack = Unpack::of(&ctx.pixel_store);
+        let layers = if image.array { d } else { 1 };
         let values = match pixels {
-            Some(b) => {
-                Some(depth_stencil_values(b, w as usize, h as usize, ty, unpack).ok_or(GlError::InvalidOperation)?)
-            }
+            Some(b) => Some(
+                depth_stencil_values(b, w as usize, (h * layers) as usize, ty, unpack)
+                    .ok_or(GlError::InvalidOperation)?,
+            ),
             None => None,
         };
         let name = image_texture(ctx, image);
         let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
         mutable(t)?;
-        t.ensure_image(gpu, &account, uid, w, h, storage)?;
+        t.ensure_volume(gpu, &account, uid, (w, h, layers), storage)?;
         if image.cube {
             t.defined[image.face as usize] = 1;
         } else {
@@ -360,10 +357,31 @@ impl GlesExecutor {
         let Some(img) = &t.gpu else { return Ok(()) };
         let texture = img.texture.clone();
         if let Some((depths, stencil)) = values.filter(|_| w > 0 && h > 0) {
-            let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
-            self.r.upload_depth(flushed, &texture, image.face, (w, h), [0, 0, w, h], &depths, stencil);
+            self.upload_depth_layers(flushed, &texture, image.face, (w, h), [0, 0, w, h], layers, (&depths, &stencil));
         }
         Ok(())
+    }
+
+    /// Writes `layers` layers of depth (and stencil, where given) values, one after another,
+    /// into the rectangle `rect` of the layers from `first` on of a `size` depth texture.
+    #[allow(clippy::too_many_arguments)]
+    fn upload_depth_layers(
+        &mut self,
+        flushed: &Flushed,
+        texture: &wgpu::Texture,
+        first: u32,
+        size: (u32, u32),
+        rect: [u32; 4],
+        layers: u32,
+        (depths, stencil): (&[f32], &[u8]),
+    ) {
+        let per = (rect[2] * rect[3]) as usize;
+        for k in 0..layers as usize {
+            let (Some(d), s) = (depths.get(k * per..(k + 1) * per), stencil.get(k * per..(k + 1) * per)) else {
+                return;
+            };
+            self.r.upload_depth(flushed, texture, first + k as u32, size, rect, d, s);
+        }
     }
 
     /// Writes `pixels` into the box at `origin` of `extent` of level `level` of `image`.
@@ -436,13 +454,13 @@ impl GlesExecutor {
         }
         let Some(img) = &t.gpu else { return Ok(()) };
         if storage.is_depth() {
-            // Only 2D images and cube faces hold depth (`fits` refuses depth data for others).
-            let (depths, stencil) = depth_stencil_values(pixels.as_bytes(), w as usize, h as usize, pixel_type, unpack)
+            // 2D images, cube faces and 2D arrays hold depth, layer after layer.
+            let rows = (h * layers) as usize;
+            let (depths, stencil) = depth_stencil_values(pixels.as_bytes(), w as usize, rows, pixel_type, unpack)
                 .ok_or(GlError::InvalidOperation)?;
             let texture = img.texture.clone();
-            let stencil = (!stencil.is_empty()).then_some(stencil.as_slice());
             let rect = [region.x, region.y, w, h];
-            self.r.upload_depth(flushed, &texture, image.face, size, rect, &depths, stencil);
+            self.upload_depth_layers(flushed, &texture, region.face, size, rect, layers, (&depths, &stencil));
             return Ok(());
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };

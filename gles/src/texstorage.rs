@@ -109,10 +109,6 @@ impl GlesExecutor {
         if width > most || height > most || depth > most_layers || (cube && width != height) {
             return Err(GlError::InvalidValue);
         }
-        if storage.is_depth() && target == TextureTarget::TwoDArray {
-            tracing::warn!("glTexStorage3D: 2D arrays of depth images are not supported yet");
-            return Err(GlError::InvalidOperation);
-        }
         if storage.is_depth() && levels > 1 {
             // Depth images are written by a draw into their first level only.
             tracing::warn!(levels, "glTexStorage: mipmapped depth textures are not supported yet");

@@ -144,7 +144,6 @@ pub(super) fn lookup(function: &str, sampler: &str, ty: Ty, args: &[ast::Expr], 
         },
         Ty::Sampler2DArrayShadow => match (function, args.len()) {
             ("texture", 1) => implicit("strata_shadowAI", "strata_shadowA", a(0)?, zero(), None),
-            ("textureOffset", 2) => implicit("strata_shadowAI", "strata_shadowA", a(0)?, vec2(&a(1)?), None),
             ("textureGrad", 3) => with("strata_shadowAG", vec![a(0)?, zero(), a(1)?, a(2)?]),
             ("textureGradOffset", 4) => with("strata_shadowAG", vec![a(0)?, vec2(&a(3)?), a(1)?, a(2)?]),
             _ => None,

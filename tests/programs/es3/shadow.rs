@@ -2,13 +2,14 @@
 //! every comparison function, nearest and linear (the comparisons filtered; a cube's only
 //! nearest), through
 //! `texture`, `textureLod`, `textureGrad`, `textureProj`, `textureOffset` and their
-//! combinations on `sampler2DShadow` and `samplerCubeShadow` (a `sampler2DArrayShadow` is
-//! declared and bound to nothing: 2D arrays of depth images are not there yet), the
+//! combinations on `sampler2DShadow`, `sampler2DArrayShadow` (a 2D array of depth images,
+//! specified whole and in part) and `samplerCubeShadow`, the
 //! comparison set on the texture or by a sampler object over it, a fixed-point depth image's
 //! reference clamped; as colours.
 
 use super::super::*;
 
+const TEXTURE_2D_ARRAY: u32 = 0x8C1A;
 const DEPTH_COMPONENT: u32 = 0x1902;
 const DEPTH_COMPONENT32F: u32 = 0x8CAC;
 const DEPTH_COMPONENT24: u32 = 0x81A6;
@@ -37,9 +38,10 @@ const FS: &str = "#version 300 es
         if (mode == 5) return textureProjLod(s, vec4(uv * 4.0, ref * 4.0, 4.0), 0.0);
         if (mode == 6) return textureLodOffset(s, vec3(uv, ref), 0.0, ivec2(-1, 1));
         if (mode == 7) return texture(s, vec3(uv, ref), 1.0);
-        if (mode == 8) return texture(a, vec4(uv, 1.0, ref));
+        if (mode == 8) return texture(a, vec4(uv, 0.6, ref));
         if (mode == 9) return textureGrad(a, vec4(uv, 0.0, ref), dFdx(uv), dFdy(uv));
         if (mode == 11) return textureLod(s, vec3(uv, ref), 1.0);
+        if (mode == 12) return textureGradOffset(a, vec4(uv, 2.0, ref), dFdx(uv), dFdy(uv), ivec2(1, -1));
         return texture(c, vec4(1.0, uv.y * 2.0 - 1.0, uv.x * 2.0 - 1.0, ref));
     }
     void main() {
@@ -108,7 +110,19 @@ pub fn shadow(gl: Gl<'_>, n: &mut Names) -> R {
     let image = f32s(&depths());
     let blob = || Some(Blob::borrowed(&image));
 
-    // The cube (every face the image).
+    // The array (layer 1 the image, layer 0 its reverse, layer 2 half of each), and the cube
+    // (every face the image).
+    depth_texture(gl, n, TEXTURE_2D_ARRAY, 1, LEQUAL, NEAREST)?;
+    let mut layers = depths();
+    layers.reverse();
+    layers.extend(depths());
+    layers.extend(depths().iter().map(|d| d * 0.5));
+    let layers = f32s(&layers);
+    let array = Some(Blob::borrowed(&layers));
+    gl.glTexImage3DOES(TEXTURE_2D_ARRAY, 0, DEPTH_COMPONENT32F, 4, 4, 3, 0, DEPTH_COMPONENT, FLOAT, array)?;
+    // Layer 2 rewritten in part: its top half the reverse.
+    let top = f32s(&depths()[..8]);
+    gl.glTexSubImage3DOES(TEXTURE_2D_ARRAY, 0, 0, 2, 2, 4, 2, 1, DEPTH_COMPONENT, FLOAT, Blob::borrowed(&top))?;
     depth_texture(gl, n, TEXTURE_CUBE_MAP, 2, LEQUAL, NEAREST)?;
     for face in 0..6 {
         gl.glTexImage2D(
@@ -129,12 +143,12 @@ pub fn shadow(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glTexImage2D(TEXTURE_2D, 0, DEPTH_COMPONENT32F as i32, 4, 4, 0, DEPTH_COMPONENT, FLOAT, blob())?;
     let mut k = 0;
     for filter in [NEAREST, LINEAR] {
-        for (unit, target) in [(0, TEXTURE_2D), (2, TEXTURE_CUBE_MAP)] {
+        for (unit, target) in [(0, TEXTURE_2D), (1, TEXTURE_2D_ARRAY), (2, TEXTURE_CUBE_MAP)] {
             gl.glActiveTexture(TEXTURE0 + unit)?;
             gl.glTexParameteri(target, TEXTURE_MIN_FILTER, filter)?;
             gl.glTexParameteri(target, TEXTURE_MAG_FILTER, filter)?;
         }
-        for mode in [0, 1, 2, 3, 4, 5, 6, 7, 10] {
+        for mode in [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12] {
             // A cube's comparisons are not filtered (the nearest texel's is taken).
             if mode == 10 && filter == LINEAR {
                 continue;
