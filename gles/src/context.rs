@@ -42,9 +42,32 @@ pub struct Objects {
     pub samplers: Names<crate::objects::sampler::Sampler>,
     /// `GL_KHR_debug` object labels by (namespace, name).
     pub labels: HashMap<(u32, u32), Vec<u8>>,
+    /// Texture 0 of each target (by [`TextureTarget::slot`]): the context's default textures,
+    /// which take images and parameters as any texture does, and are never shared.
+    pub default_textures: [Texture; 5],
 }
 
 impl Objects {
+    /// The texture `name` bound to `target` is: for 0, the context's default texture of
+    /// `target`.
+    pub fn texture_mut(&mut self, target: TextureTarget, name: u32) -> Option<&mut Texture> {
+        if name != 0 {
+            return self.textures.get_mut(&name);
+        }
+        let t = &mut self.default_textures[target.slot()];
+        t.target = target.as_gl();
+        Some(t)
+    }
+
+    /// [`Self::texture_mut`], to read: a default texture never used has target 0.
+    pub fn texture(&self, target: TextureTarget, name: u32) -> Option<&Texture> {
+        if name == 0 {
+            Some(&self.default_textures[target.slot()])
+        } else {
+            self.textures.get(&name)
+        }
+    }
+
     /// Takes the tables a share group shares (buffers, textures, renderbuffers, framebuffers,
     /// as ES 2.0 and Mesa share them, shaders and programs) from `from`, whose tables are left
     /// as this one's were: a group's tables are kept by one of its contexts at a time (see
@@ -317,6 +340,9 @@ pub struct PixelStore {
     /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE`, kept as the byte Mesa keeps (nonzero: the top row
     /// first).
     pub pack_reverse: u8,
+    /// ES 3.0's `GL_UNPACK_IMAGE_HEIGHT` and `GL_UNPACK_SKIP_IMAGES`: kept and answered; a 3D
+    /// upload with either set is refused (not there yet).
+    pub unpack_images: [i32; 2],
 }
 
 impl Default for PixelStore {
@@ -329,6 +355,7 @@ impl Default for PixelStore {
             unpack_skip_pixels: 0,
             pack_rows: [0; 3],
             pack_reverse: 0,
+            unpack_images: [0; 2],
         }
     }
 }

@@ -77,7 +77,7 @@ impl GlesExecutor {
             validate_size(gpu, image, level, [w, h, 1], border)?;
         }
         let name = image_texture(ctx, image);
-        let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
         let level = level as u32;
         if internal.is_some() {
             crate::texstorage::mutable(t)?;

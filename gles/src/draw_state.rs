@@ -360,7 +360,7 @@ pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, unit
                 _ => TextureTarget::TwoD,
             };
             let name = ctx.bindings.units.get(*unit as usize)?[target.slot()];
-            let t = ctx.objects.textures.get(&name)?;
+            let t = ctx.objects.texture(target, name)?;
             let object = ctx.bindings.samplers.get(*unit as usize).and_then(|s| ctx.objects.samplers.get(s));
             let (state, border) = match object {
                 Some(s) => (s.state.over(&t.sampler), s.border),

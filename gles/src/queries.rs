@@ -241,9 +241,10 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         // Not ES 2.0 state (desktop GL and ES 1.x), answered anyway as Mesa does: piglit's
         // shader_runner asks for it unconditionally. No user clip planes.
         MAX_CLIP_PLANES => i(0),
-        // 3D unpack state, answered as its initial value: apitrace asks for it beside
-        // GL_EXT_unpack_subimage's state to size every traced texture upload.
-        UNPACK_SKIP_IMAGES | UNPACK_IMAGE_HEIGHT => i(0),
+        // 3D unpack state (in ES 2.0 contexts its initial value: apitrace asks for it beside
+        // GL_EXT_unpack_subimage's state to size every traced texture upload).
+        UNPACK_IMAGE_HEIGHT => i(ctx.pixel_store.unpack_images[0]),
+        UNPACK_SKIP_IMAGES => i(ctx.pixel_store.unpack_images[1]),
         SHADER_COMPILER => b(true),
         VERTEX_ARRAY_BINDING_OES => i(bind.vertex_array as i32),
         MAX_LABEL_LENGTH => i(strata_protocol::commands::MAX_LABEL_LENGTH),

@@ -307,6 +307,7 @@ impl GlesExecutor {
     }
 
     pub(super) fn glPixelStorei(&mut self, ctx: &mut Context, pname: u32, param: i32) -> GlResult {
+        let es3 = ctx.es3();
         let store = &mut ctx.pixel_store;
         match pname {
             UNPACK_ALIGNMENT | PACK_ALIGNMENT if matches!(param, 1 | 2 | 4 | 8) => {
@@ -330,6 +331,9 @@ impl GlesExecutor {
                 store.pack_rows[(pname - PACK_ROW_LENGTH) as usize] = param;
             }
             PACK_REVERSE_ROW_ORDER_ANGLE => store.pack_reverse = param as u8,
+            UNPACK_IMAGE_HEIGHT | UNPACK_SKIP_IMAGES if es3 && param < 0 => return Err(GlError::InvalidValue),
+            UNPACK_IMAGE_HEIGHT if es3 => store.unpack_images[0] = param,
+            UNPACK_SKIP_IMAGES if es3 => store.unpack_images[1] = param,
             _ => return Err(GlError::InvalidEnum),
         }
         Ok(())

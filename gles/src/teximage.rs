@@ -101,7 +101,7 @@ pub fn sub_image<'a>(
         return Err(GlError::InvalidValue);
     }
     let name = image_texture(ctx, image);
-    let texture = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    let texture = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
     let (face, level) = (image.face, level as u32);
     let img = texture.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
     if texture.defined[face as usize] & (1 << level) == 0 {
@@ -287,7 +287,7 @@ impl GlesExecutor {
         let gpu = &self.gpu;
         let name = image_texture(ctx, image);
         let unpack = Unpack::of(&ctx.pixel_store);
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
         mutable(t)?;
         let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
         // Layers are read one after another: ES 2.0 has no image height to unpack them by.
@@ -345,7 +345,7 @@ impl GlesExecutor {
             None => None,
         };
         let name = image_texture(ctx, image);
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
         mutable(t)?;
         t.ensure_volume(gpu, &account, uid, (w, h, layers), storage)?;
         if image.cube {

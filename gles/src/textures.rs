@@ -8,7 +8,6 @@ use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
 use crate::formats::Compressed;
-use crate::objects::texture::Texture;
 use crate::sampling::{self, Allowed, Owner};
 use crate::typed::TextureTarget;
 use crate::GlesExecutor;
@@ -21,7 +20,7 @@ fn set_border(ctx: &mut Context, target: u32, v: &[f32]) -> GlResult {
     let target = TextureTarget::from_gl_in(target, ctx.es3())?;
     let [r, g, b, a] = *v else { return Err(GlError::InvalidValue) };
     let name = ctx.bindings.texture(target);
-    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    let t = ctx.objects.texture_mut(target, name).ok_or(GlError::InvalidOperation)?;
     t.border = [r, g, b, a];
     Ok(())
 }
@@ -49,13 +48,13 @@ fn tex_parameter(ctx: &mut Context, border: bool, target: u32, pname: u32, v: f3
         {
             return Err(GlError::InvalidEnum);
         }
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(target, name).ok_or(GlError::InvalidOperation)?;
         t.swizzle.0[channel] = source as u32;
         return Ok(());
     }
     let allowed = Allowed { es3: ctx.es3(), border };
     let setting = sampling::setting(Owner::Texture, allowed, pname, v)?;
-    let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+    let t = ctx.objects.texture_mut(target, name).ok_or(GlError::InvalidOperation)?;
     setting.apply(&mut t.sampler);
     Ok(())
 }
@@ -69,10 +68,10 @@ fn swizzle_channel(ctx: &Context, pname: u32) -> Option<usize> {
 /// One sampling parameter of the texture bound to `target`, recording `GL_INVALID_ENUM` (and
 /// answering nothing) for a bad target or name, or when nothing is bound.
 fn get_tex_parameter(ctx: &mut Context, target: u32, pname: u32) -> Vec<f32> {
-    let bound = TextureTarget::from_gl_in(target, ctx.es3()).ok().map(|t| ctx.bindings.texture(t));
-    // Texture 0 (the default texture) answers with the initial state, as Mesa's does.
-    let default = Texture::default();
-    let texture = |n: u32| if n == 0 { Some(&default) } else { ctx.objects.textures.get(&n) };
+    let target = TextureTarget::from_gl_in(target, ctx.es3()).ok();
+    let bound = target.map(|t| (t, ctx.bindings.texture(t)));
+    // Texture 0 is the context's default texture of the target.
+    let texture = |(t, n): (TextureTarget, u32)| ctx.objects.texture(t, n);
     if pname == TEXTURE_BORDER_COLOR_EXT {
         if let Some(t) = bound.and_then(texture) {
             return t.border.to_vec();
@@ -211,7 +210,7 @@ impl GlesExecutor {
             return Err(GlError::InvalidEnum);
         }
         let name = ctx.bindings.texture(target);
-        let t = ctx.objects.textures.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(target, name).ok_or(GlError::InvalidOperation)?;
         let layers = if t.target == TEXTURE_CUBE_MAP { 6 } else { 1 };
         let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
         // A 2D array's layers are generated one by one; its levels are defined for all at once.

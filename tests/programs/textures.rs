@@ -8,6 +8,7 @@
 
 use half::f16;
 
+use super::multi_draw::mark_all;
 use super::*;
 
 const BGRA_EXT: u32 = 0x80E1;
@@ -390,6 +391,43 @@ fn rgb_alpha_is_one(gl: Gl<'_>, n: &mut Names) -> R {
     Ok(())
 }
 
+/// Texture 0, the default texture of each target: it takes images, sub-images, copies and
+/// parameters as any texture does and is sampled where bound (a 2D image nearest then linear,
+/// a cube face), each context's own; its queries answer what was set, as colours and marks.
+fn default_texture(gl: Gl<'_>, n: &mut Names) -> R {
+    let p = program(
+        gl,
+        n,
+        VS_TEX,
+        "precision mediump float; uniform sampler2D s; varying vec2 t;
+        void main() { gl_FragColor = texture2D(s, t); }",
+        &["pos", "uv"],
+    )?;
+    let _ = p;
+    gl.glActiveTexture(TEXTURE0)?;
+    gl.glBindTexture(TEXTURE_2D, 0)?;
+    let texels: Vec<u8> = (0..16u8).flat_map(|i| [i * 16, 255 - i * 16, 64, 255]).collect();
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 4, 4, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&texels)))?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MIN_FILTER, NEAREST)?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, NEAREST)?;
+    gl.glTexSubImage2D(TEXTURE_2D, 0, 1, 1, 1, 1, RGBA, UNSIGNED_BYTE, Blob::borrowed(&[255, 255, 0, 255]))?;
+    let mut marks = vec![gl.glGetError()?];
+    blit(gl, n, [0, 0, 32, 32])?;
+    gl.glTexParameteri(TEXTURE_2D, TEXTURE_MAG_FILTER, LINEAR)?;
+    marks.push(gl.glGetTexParameteriv(TEXTURE_2D, TEXTURE_MAG_FILTER)?.first().copied().unwrap_or(0) as u32);
+    blit(gl, n, [32, 0, 32, 32])?;
+    // A copy into it, and a named texture bound over it and away again.
+    gl.glCopyTexSubImage2D(TEXTURE_2D, 0, 0, 0, 40, 8, 2, 2)?;
+    marks.push(gl.glGetError()?);
+    let named = new_texture(gl, n, NEAREST, NEAREST)?;
+    gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 1, 1, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&[0, 0, 255, 255])))?;
+    blit(gl, n, [0, 32, 16, 16])?;
+    gl.glBindTexture(TEXTURE_2D, 0)?;
+    blit(gl, n, [16, 32, 16, 16])?;
+    let _ = named;
+    mark_all(gl, &marks)
+}
+
 /// Every program of this file, with its tolerance.
 pub fn all() -> Vec<Case> {
     let c = |name, run, tol| Case { name, run, tol, expects_error: false };
@@ -407,5 +445,6 @@ pub fn all() -> Vec<Case> {
         c("renderbuffer_rgba8_depth24", renderbuffer_rgba8_depth24, DEFAULT),
         c("renderbuffer_rgb8_depth24_stencil8", renderbuffer_rgb8_depth24_stencil8, DEFAULT),
         c("rgb_alpha_is_one", rgb_alpha_is_one, DEFAULT),
+        c("default_texture", default_texture, DEFAULT),
     ]
 }

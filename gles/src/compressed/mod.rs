@@ -72,7 +72,7 @@ impl GlesExecutor {
         let account = self.account.clone();
         let gpu = &self.gpu;
         let name = image_texture(ctx, image);
-        let t = ctx.objects.textures.get_mut(&name).filter(|_| name != 0).ok_or(GlError::InvalidOperation)?;
+        let t = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
         crate::texstorage::mutable(t)?;
         if level == 0 {
             // Blocks go up as they are only into a 2D image of whole blocks.

@@ -184,5 +184,13 @@ pub fn texture_arrays(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glFramebufferTextureLayer(FRAMEBUFFER, COLOR_ATTACHMENT0, a, 0, 0)?;
     marks.push(gl.glGetError()?);
+    // The 3D unpack state: set, answered, a negative value refused; back to 0.
+    for (pname, v) in [(0x806E, 4), (0x806D, 2), (0x806E, -1)] {
+        gl.glPixelStorei(pname, v)?;
+        marks.push(gl.glGetError()?);
+        marks.push(gl.glGetIntegerv(pname)?.first().copied().unwrap_or(-1) as u32);
+    }
+    gl.glPixelStorei(0x806E, 0)?;
+    gl.glPixelStorei(0x806D, 0)?;
     mark_all(gl, &marks)
 }
