@@ -347,3 +347,18 @@ fn shadow_lookups_link() {
     .expect("fs");
     link(&vs, &fs, &HashMap::new(), 16).expect("link");
 }
+
+/// Integer literals of 32 significant bits are their bit patterns (the parser takes only values
+/// up to 2³¹ − 1, so they are respelled); digits beside a '.' are floats', left alone.
+#[test]
+fn literals_of_32_bits() {
+    let fs = |body: &str| {
+        compile(
+            Stage::Fragment,
+            &format!("#version 300 es\nprecision highp float;\nout vec4 o;\nvoid main() {{ {body} }}"),
+        )
+    };
+    fs("int a = int(0xFFFFFFFF) + 0x80000000 + 4294967295 + 020000000000; o = vec4(float(a));").expect("ints");
+    fs("float f = 0.2147483648 + 2147483648.0 + 4294967296.5; o = vec4(f);").expect("floats");
+    fs("int b = 4294967296; o = vec4(float(b));").expect_err("33 bits");
+}

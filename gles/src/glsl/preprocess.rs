@@ -93,25 +93,52 @@ pub(super) struct Parsed {
 /// which GLSL ES reserves, so that it names nothing of the shader's.
 const KEYWORDS_NOT_IN_ES3: [(&str, &str); 3] = [("buffer", "buff__"), ("shared", "shar__"), ("precise", "preci__")];
 
-/// `text` with each of [`KEYWORDS_NOT_IN_ES3`] renamed where it stands as a word.
-fn rename_keywords(text: &str) -> String {
+/// The signed integer an unsuffixed integer literal `word` (decimal, octal or hexadecimal)
+/// names where its bit pattern needs all 32 bits (GLSL ES 3.00 §4.1.3: `0xFFFFFFFF` is -1),
+/// spelled so that the parser (which takes only values up to 2³¹ − 1) reads it.
+fn wrapped_int(word: &str) -> Option<String> {
+    let (digits, radix) = match word.strip_prefix("0x").or_else(|| word.strip_prefix("0X")) {
+        Some(hex) => (hex, 16),
+        None if word.len() > 1 && word.starts_with('0') => (&word[1..], 8),
+        None => (word, 10),
+    };
+    let v = u32::from_str_radix(digits, radix).ok().filter(|&v| v > i32::MAX as u32)?;
+    Some(match v as i32 {
+        i32::MIN => "(-2147483647 - 1)".to_string(),
+        n => format!("({n})"),
+    })
+}
+
+/// `text` with each of [`KEYWORDS_NOT_IN_ES3`] renamed where it stands as a word (in GLSL ES
+/// 3.00, `es3`), and each integer literal of 32 significant bits written as its signed value.
+fn rewrite_words(text: &str, es3: bool) -> String {
     let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
     let mut out = String::with_capacity(text.len());
     let mut word = String::new();
-    let flush = |word: &mut String, out: &mut String| {
-        let renamed = KEYWORDS_NOT_IN_ES3.iter().find(|(k, _)| k == word).map_or(word.as_str(), |(_, r)| r);
-        out.push_str(renamed);
+    // The characters around a word: a literal beside a '.' is part of a float.
+    let mut before = ' ';
+    let flush = |word: &mut String, out: &mut String, before: char, after: char| {
+        let literal = word.starts_with(|c: char| c.is_ascii_digit()) && before != '.' && after != '.';
+        if let Some(n) = wrapped_int(word).filter(|_| literal) {
+            out.push_str(&n);
+        } else if es3 {
+            let renamed = KEYWORDS_NOT_IN_ES3.iter().find(|(k, _)| k == word).map_or(word.as_str(), |(_, r)| r);
+            out.push_str(renamed);
+        } else {
+            out.push_str(word);
+        }
         word.clear();
     };
     for c in text.chars() {
         if ident(c) {
             word.push(c);
         } else {
-            flush(&mut word, &mut out);
+            flush(&mut word, &mut out, before, c);
             out.push(c);
+            before = c;
         }
     }
-    flush(&mut word, &mut out);
+    flush(&mut word, &mut out, before, ' ');
     out
 }
 
@@ -353,9 +380,7 @@ pub(super) fn parse(stage: Stage, source: &str) -> Result<Parsed, String> {
     if enabled.image_external {
         text = spell_external(&text);
     }
-    if version == 300 {
-        text = rename_keywords(&text);
-    }
+    text = rewrite_words(&text, version == 300);
     let state = initial_state(stage)?;
     let mut pp = glsl_lang_pp::processor::fs::StdProcessor::new();
     let parsed = crate::glsl::fields::parse(pp.open_source(&text, ".").with_state(state));

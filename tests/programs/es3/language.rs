@@ -60,8 +60,12 @@ pub fn integers(gl: Gl<'_>, n: &mut Names) -> R {
             int m = (p.x * 7 + p.y) % 11;
             int s = ~p.y & 0x3f | (p.x << 2) & 0xc0;
             uvec2 v = uvec2(p) / 3u;
-            frag = vec4(float(h & 255u) / 255.0, float(m * 23) / 255.0, float(s) / 255.0,
-                        float((v.x ^ v.y) & 15u) / 15.0);
+            // Literals of 32 significant bits are their bit patterns: -1, INT_MIN, -2 (in
+            // decimal and in octal).
+            int w = (int(0xFFFFFFFF) << (p.x & 7)) ^ (0x80000000 >> (p.y & 7)) ^ (4294967294 * p.x)
+                ^ (037777777776 * (p.y & 3));
+            frag = vec4(float(h & 255u) / 255.0, float(m * 23) / 255.0, float(s ^ ((w & 15) << 4)) / 255.0,
+                        float((v.x ^ v.y ^ uint(w >> 26)) & 15u) / 15.0);
         }";
     screen(gl, n, VS_SCREEN, fs)?;
     gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)
