@@ -36,9 +36,16 @@ pub(crate) fn plan_inputs(
     reads: InstanceReads,
 ) -> GlResult<Vec<VertexInput>> {
     let mut inputs = Vec::with_capacity(program.info.attributes.len());
-    for (var, loc) in &program.info.attributes {
-        let a = &ctx.attribs[*loc as usize];
-        if let kind @ (Scalar::Int | Scalar::UInt) = var.ty.scalar() {
+    // A matrix input reads a location per column, each a float vector.
+    let slots = program
+        .info
+        .attributes
+        .iter()
+        .flat_map(|(var, loc)| (0..var.ty.columns().max(1) as u32).map(move |i| (var.ty.scalar(), loc + i)));
+    for (scalar, loc) in slots {
+        let loc = &loc;
+        let a = ctx.attribs.get(*loc as usize).ok_or(GlError::InvalidOperation)?;
+        if let kind @ (Scalar::Int | Scalar::UInt) = scalar {
             let signed = kind == Scalar::Int;
             inputs.push(plan_integer(ctx, a, *loc, signed, (vertex_count, order, robust), reads)?);
             continue;

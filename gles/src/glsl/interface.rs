@@ -236,8 +236,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             Storage::In => return Err("0: internal error: an input left unmapped".into()),
             Storage::Attribute if version == 300 => {
                 let scalar = matches!(ty.scalar(), Scalar::Float | Scalar::Int | Scalar::UInt);
-                if !scalar || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
-                    return Err("0: vertex inputs must be float, int or uint scalars or vectors (matrices and arrays are not supported yet)".into());
+                if !scalar || vars.iter().any(|v| v.array.is_some()) {
+                    return Err("0: vertex inputs must be float, int or uint scalars, vectors or matrices (arrays are not supported yet)".into());
                 }
                 shader.attributes.extend(vars);
             }
@@ -245,8 +245,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 if stage == Stage::Fragment {
                     return Err("0: 'attribute' is not allowed in a fragment shader".into());
                 }
-                if ty.scalar() != Scalar::Float || ty.columns() > 0 || vars.iter().any(|v| v.array.is_some()) {
-                    return Err("0: attributes must be float, vec2, vec3 or vec4".into());
+                if ty.scalar() != Scalar::Float || vars.iter().any(|v| v.array.is_some()) {
+                    return Err("0: attributes must be float, vec2, vec3, vec4, mat2, mat3 or mat4".into());
                 }
                 shader.attributes.extend(vars);
             }

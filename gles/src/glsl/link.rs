@@ -217,28 +217,30 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         .map(|(n, l)| (n.clone(), *l))
         .chain(vs.attributes.iter().filter_map(|a| a.location.map(|l| (a.name.clone(), l))))
         .collect();
+    // A matrix takes a location per column.
+    let width = |a: &Var| a.ty.columns().max(1);
     for a in &vs.attributes {
+        let Some(&loc) = bindings.get(&a.name) else { continue };
+        let slots = loc as usize..loc as usize + width(a);
+        if slots.end > max_attribs as usize {
+            return Err(format!("error: attribute '{}' bound to location {loc} beyond the limit", a.name));
+        }
         // GLSL ES 3.00 §12.46: no two inputs at one location (ES 1.00 allows the aliasing).
-        let at = bindings.get(&a.name).copied().filter(|&l| l < max_attribs);
-        if let (Some(loc), 300) = (at, vs.version) {
-            if used[loc as usize] {
-                return Err(format!("error: vertex shader input '{}' shares location {loc} with another", a.name));
-            }
+        if vs.version == 300 && used[slots.clone()].iter().any(|&u| u) {
+            return Err(format!("error: vertex shader input '{}' shares location {loc} with another", a.name));
         }
-        if let Some(&loc) = bindings.get(&a.name) {
-            if loc >= max_attribs {
-                return Err(format!("error: attribute '{}' bound to location {loc} beyond the limit", a.name));
-            }
-            used[loc as usize] = true;
-            attributes.push((a.clone(), loc));
-        }
+        used[slots].iter_mut().for_each(|u| *u = true);
+        attributes.push((a.clone(), loc));
     }
-    for a in &vs.attributes {
-        if bindings.contains_key(&a.name) {
-            continue;
-        }
-        let loc = used.iter().position(|u| !u).ok_or_else(|| "error: too many vertex attributes".to_string())?;
-        used[loc] = true;
+    // The others take the lowest free locations, the widest first (as on Mesa).
+    let mut free: Vec<&Var> = vs.attributes.iter().filter(|a| !bindings.contains_key(&a.name)).collect();
+    free.sort_by_key(|a| std::cmp::Reverse(width(a)));
+    for a in free {
+        let n = width(a);
+        let loc = (0..used.len().saturating_sub(n - 1))
+            .find(|&l| used[l..l + n].iter().all(|u| !u))
+            .ok_or_else(|| "error: too many vertex attributes".to_string())?;
+        used[loc..loc + n].iter_mut().for_each(|u| *u = true);
         attributes.push((a.clone(), loc as u32));
     }
 
@@ -299,8 +301,21 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     vsrc.push_str(&vs_blocks);
     vsrc.push_str(&lookup_helpers(&vs.lookups));
     vsrc.push_str(&crate::glsl::polyfill::definitions(&vs.polyfills));
+    // A matrix input arrives as its columns, which the generated `main` assembles first.
+    let mut attribute_copy = String::new();
     for (a, loc) in &attributes {
-        let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
+        let columns = a.ty.columns();
+        if columns == 0 {
+            let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
+            continue;
+        }
+        let parts: Vec<String> = (0..columns).map(|i| format!("{}__col{i}", a.name)).collect();
+        for (i, part) in parts.iter().enumerate() {
+            let _ = writeln!(vsrc, "layout(location = {}) in vec{} {part};", loc + i as u32, a.ty.rows());
+        }
+        let ty = a.ty.glsl(false);
+        let _ = writeln!(vsrc, "{ty} {};", a.name);
+        let _ = writeln!(attribute_copy, "    {} = {ty}({});", a.name, parts.join(", "));
     }
     // Varying locations: one per vector, one per column of a matrix, per array element.
     // Matrices and arrays cannot cross stages in naga, so such a varying is a private global in
@@ -354,7 +369,10 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     } else {
         ("", "")
     };
-    let (instance, point_instance) = (format!("{instance}{vertex_id}"), format!("{point_instance}{point_vertex_id}"));
+    let (instance, point_instance) = (
+        format!("{attribute_copy}{instance}{vertex_id}"),
+        format!("{attribute_copy}{point_instance}{point_vertex_id}"),
+    );
     let point_input = used.iter().position(|u| !u).unwrap_or(used.len()) as u32;
     let vs_body = transpile(vs)?;
     let body = &vs_body.text;

@@ -13,6 +13,7 @@ mod etc2;
 mod float_textures;
 mod int_attributes;
 mod language;
+mod matrix_inputs;
 mod renderbuffers;
 mod restart;
 mod samplers;
@@ -57,5 +58,6 @@ pub fn all() -> Vec<Case> {
         c("es3_etc2", etc2::etc2),
         c("es3_swizzles", swizzles::swizzles),
         c("es3_shadow", shadow::shadow),
+        c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
     ]
 }
