@@ -207,42 +207,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let block_size = offset.div_ceil(16) * 16;
     let blocks = crate::glsl::blocks::link_blocks(vs, fs)?;
 
-    // Attributes: locations the shader gives (GLSL ES 3.00), then bound ones, then the lowest
-    // free ones.
-    let mut attributes: Vec<(Var, u32)> = Vec::new();
-    let mut used = vec![false; max_attribs as usize];
-    let bindings: HashMap<String, u32> = bindings
-        .iter()
-        .filter(|(name, _)| !vs.attributes.iter().any(|a| &a.name == *name && a.location.is_some()))
-        .map(|(n, l)| (n.clone(), *l))
-        .chain(vs.attributes.iter().filter_map(|a| a.location.map(|l| (a.name.clone(), l))))
-        .collect();
-    // A matrix takes a location per column.
-    let width = |a: &Var| a.ty.columns().max(1);
-    for a in &vs.attributes {
-        let Some(&loc) = bindings.get(&a.name) else { continue };
-        let slots = loc as usize..loc as usize + width(a);
-        if slots.end > max_attribs as usize {
-            return Err(format!("error: attribute '{}' bound to location {loc} beyond the limit", a.name));
-        }
-        // GLSL ES 3.00 §12.46: no two inputs at one location (ES 1.00 allows the aliasing).
-        if vs.version == 300 && used[slots.clone()].iter().any(|&u| u) {
-            return Err(format!("error: vertex shader input '{}' shares location {loc} with another", a.name));
-        }
-        used[slots].iter_mut().for_each(|u| *u = true);
-        attributes.push((a.clone(), loc));
-    }
-    // The others take the lowest free locations, the widest first (as on Mesa).
-    let mut free: Vec<&Var> = vs.attributes.iter().filter(|a| !bindings.contains_key(&a.name)).collect();
-    free.sort_by_key(|a| std::cmp::Reverse(width(a)));
-    for a in free {
-        let n = width(a);
-        let loc = (0..used.len().saturating_sub(n - 1))
-            .find(|&l| used[l..l + n].iter().all(|u| !u))
-            .ok_or_else(|| "error: too many vertex attributes".to_string())?;
-        used[loc..loc + n].iter_mut().for_each(|u| *u = true);
-        attributes.push((a.clone(), loc as u32));
-    }
+    let (attributes, used) = crate::glsl::attributes::place(vs, bindings, max_attribs)?;
 
     // Varyings: every fragment input must be a vertex output of the same type, and (GLSL ES
     // 3.00 §4.3.9) the same interpolation.
@@ -301,22 +266,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     vsrc.push_str(&vs_blocks);
     vsrc.push_str(&lookup_helpers(&vs.lookups));
     vsrc.push_str(&crate::glsl::polyfill::definitions(&vs.polyfills));
-    // A matrix input arrives as its columns, which the generated `main` assembles first.
-    let mut attribute_copy = String::new();
-    for (a, loc) in &attributes {
-        let columns = a.ty.columns();
-        if columns == 0 {
-            let _ = writeln!(vsrc, "layout(location = {loc}) in {} {};", a.ty.glsl(false), a.name);
-            continue;
-        }
-        let parts: Vec<String> = (0..columns).map(|i| format!("{}__col{i}", a.name)).collect();
-        for (i, part) in parts.iter().enumerate() {
-            let _ = writeln!(vsrc, "layout(location = {}) in vec{} {part};", loc + i as u32, a.ty.rows());
-        }
-        let ty = a.ty.glsl(false);
-        let _ = writeln!(vsrc, "{ty} {};", a.name);
-        let _ = writeln!(attribute_copy, "    {} = {ty}({});", a.name, parts.join(", "));
-    }
+    let attribute_copy = crate::glsl::attributes::declare(&attributes, &mut vsrc);
     // Varying locations: one per vector, one per column of a matrix, per array element.
     // Matrices and arrays cannot cross stages in naga, so such a varying is a private global in
     // each stage, copied through vectors in the generated `main`s.

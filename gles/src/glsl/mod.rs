@@ -21,6 +21,7 @@
 //! | `separate` | one-stage programs, and two programs' stages linked into one executable |
 //! | `translate` | the generated code with its source lines; naga, errors at the shader's line |
 
+mod attributes;
 mod block_arrays;
 mod block_members;
 pub mod blocks;
