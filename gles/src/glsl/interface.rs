@@ -228,9 +228,6 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 if ty.scalar() != Scalar::Float {
                     return Err("0: integer fragment outputs are not supported yet".into());
                 }
-                if vars.iter().any(|v| v.array.is_some()) {
-                    return Err("0: fragment output arrays are not supported yet".into());
-                }
                 shader.outputs.extend(vars);
             }
             Storage::In => return Err("0: internal error: an input left unmapped".into()),

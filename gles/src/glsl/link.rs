@@ -88,8 +88,17 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
         point_input,
         dual: fs.dual,
         blocks,
-        // GLSL ES 3.00's outputs; the link placed a lone one without a location at 0.
-        outputs: fs.outputs.iter().map(|o| (o.name.clone(), o.location.unwrap_or(0))).collect(),
+        // GLSL ES 3.00's outputs; the link placed a lone one without a location at 0; an
+        // array's elements are at the locations after its first.
+        outputs: fs
+            .outputs
+            .iter()
+            .flat_map(|o| {
+                let loc = o.location.unwrap_or(0);
+                let elements = (0..o.array.unwrap_or(0)).map(move |i| (format!("{}[{i}]", o.name), loc + i));
+                std::iter::once((o.name.clone(), loc)).chain(elements)
+            })
+            .collect(),
         flat: fs.varyings.iter().any(|v| interpolation(v) == "flat "),
         capture: None,
     })
@@ -395,6 +404,8 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         let lone = fs.outputs.len() == 1;
         let mut taken = [false; MAX_DRAW_BUFFERS];
         for o in &fs.outputs {
+            // An array takes a location per element.
+            let len = o.array.unwrap_or(1) as usize;
             let loc = match (o.location, lone) {
                 (Some(l), _) => l as usize,
                 (None, true) => 0,
@@ -405,28 +416,30 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
                     ))
                 }
             };
-            if loc >= MAX_DRAW_BUFFERS {
+            if loc + len > MAX_DRAW_BUFFERS {
                 return Err(format!(
                     "error: fragment output '{}' at location {loc} is past GL_MAX_DRAW_BUFFERS",
                     o.name
                 ));
             }
-            if std::mem::replace(&mut taken[loc], true) {
+            if taken[loc..loc + len].iter().any(|&t| t) {
                 return Err(format!("error: fragment outputs share location {loc}"));
             }
-            let _ = writeln!(
-                fsrc,
-                "{} {};\nlayout(location = {loc}) out vec4 strata_FragOut{loc};",
-                o.ty.glsl(false),
-                o.name
-            );
-            let value = match o.ty.components() {
-                1 => format!("vec4({}, 0.0, 0.0, 1.0)", o.name),
-                2 => format!("vec4({}, 0.0, 1.0)", o.name),
-                3 => format!("vec4({}, 1.0)", o.name),
-                _ => o.name.clone(),
-            };
-            let _ = writeln!(color_out, "    strata_FragOut{loc} = {value};");
+            taken[loc..loc + len].iter_mut().for_each(|t| *t = true);
+            let suffix = o.array.map(|n| format!("[{n}]")).unwrap_or_default();
+            let _ = writeln!(fsrc, "{} {}{suffix};", o.ty.glsl(false), o.name);
+            for i in 0..len {
+                let at = loc + i;
+                let element = if o.array.is_some() { format!("{}[{i}]", o.name) } else { o.name.clone() };
+                let _ = writeln!(fsrc, "layout(location = {at}) out vec4 strata_FragOut{at};");
+                let value = match o.ty.components() {
+                    1 => format!("vec4({element}, 0.0, 0.0, 1.0)"),
+                    2 => format!("vec4({element}, 0.0, 1.0)"),
+                    3 => format!("vec4({element}, 1.0)"),
+                    _ => element,
+                };
+                let _ = writeln!(color_out, "    strata_FragOut{at} = {value};");
+            }
         }
     } else if fs.frag_data {
         let _ = writeln!(fsrc, "vec4 strata_FragData[{MAX_DRAW_BUFFERS}];");

@@ -217,7 +217,7 @@ pub fn outputs(gl: Gl<'_>, n: &mut Names) -> R {
         gl.glFramebufferTexture2D(FRAMEBUFFER, COLOR_ATTACHMENT0 + k as u32, TEXTURE_2D, t, 0)?;
     }
     gl.glDrawBuffersEXT(Slice::new(&[COLOR_ATTACHMENT0, COLOR_ATTACHMENT0 + 1]))?;
-    gl.glViewport(0, 0, W / 2, H)?;
+    gl.glViewport(0, H / 2, W / 2, H / 2)?;
     let fs = "#version 300 es
         precision mediump float;
         in vec2 uv;
@@ -229,20 +229,38 @@ pub fn outputs(gl: Gl<'_>, n: &mut Names) -> R {
         }";
     screen(gl, n, VS_SCREEN, fs)?;
     gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
+    // An array of outputs: element i at location i (a lone array without a location at 0).
+    gl.glViewport(0, 0, W / 2, H / 2)?;
+    let array = "#version 300 es
+        precision mediump float;
+        in vec2 uv;
+        out vec3 o[2];
+        void main() {
+            o[0] = vec3(uv.y, 0.75, uv.x);
+            o[1] = vec3(0.125, uv.x, 1.0 - uv.y);
+        }";
+    let p = screen(gl, n, VS_SCREEN, array)?;
+    gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
+    let mut marks = Vec::new();
+    for name in ["o", "o[0]", "o[1]", "o[2]"] {
+        marks.push(gl.glGetFragDataLocation(p, Text::borrowed(name))? as u32 & 0xFFFF);
+    }
     let show = "#version 300 es
         precision mediump float;
         uniform sampler2D tex;
         in vec2 uv;
         out vec4 frag;
-        void main() { frag = texture(tex, uv); }";
+        // The alpha of a vec3 output is undefined (ES 3.0 §4.2.1): shown as 1.
+        void main() { frag = vec4(texture(tex, uv).rgb, 1.0); }";
     screen(gl, n, VS_SCREEN, show)?;
     for (k, &t) in textures.iter().enumerate() {
         gl.glViewport(k as i32 * W / 2, 0, W / 2, H)?;
         gl.glBindTexture(TEXTURE_2D, t)?;
         gl.glDrawArrays(TRIANGLE_STRIP, 0, 4)?;
     }
-    gl.glViewport(0, 0, W, H)
+    gl.glViewport(0, 0, W, H)?;
+    super::super::multi_draw::mark_all(gl, &marks)
 }
 
 /// `gl_FragDepth` (core in GLSL ES 3.00) decides which of two crossing quads is in front.
