@@ -3,9 +3,9 @@
 //! load operations as `glClear` (honouring the scissor, the write masks, a conditional render
 //! and `GL_RASTERIZER_DISCARD`, under which clears do nothing). Checked in Mesa's order: the buffer, then the draw buffer's number.
 //!
-//! Colour images are all of floating-point or normalized formats until integer formats come:
-//! clearing one with integers (`glClearBufferiv`/`uiv` of `GL_COLOR`) is undefined in ES 3.0,
-//! and does nothing here.
+//! `glClearBufferiv` clears a signed integer colour buffer, `glClearBufferuiv` an unsigned
+//! one, `glClearBufferfv` any other; a clear of the wrong kind is undefined in ES 3.0 and
+//! does nothing here.
 
 use strata_protocol::Slice;
 
@@ -25,10 +25,11 @@ const DEPTH_STENCIL: u32 = 0x84F9;
 enum Cleared {
     /// Draw buffer `slot`'s colour, to these values.
     Color { slot: usize, value: [f32; 4] },
+    /// Draw buffer `slot`'s integer colour, to these values' bits, if it is signed (`signed`)
+    /// or unsigned.
+    IntColor { slot: usize, value: [u32; 4], signed: bool },
     /// The depth, the stencil, or both.
     DepthStencil { depth: Option<f32>, stencil: Option<i32> },
-    /// Nothing (an integer clear of a colour image).
-    Nothing,
 }
 
 /// The draw buffer number of a colour clear (`GL_INVALID_VALUE` past the last).
@@ -84,8 +85,8 @@ impl GlesExecutor {
     ) -> GlResult {
         let cleared = match buffer {
             COLOR => {
-                color_slot(drawbuffer)?;
-                Cleared::Nothing
+                let value = first::<i32, 4>(&values)?.map(|v| v as u32);
+                Cleared::IntColor { slot: color_slot(drawbuffer)?, value, signed: true }
             }
             STENCIL => {
                 zero(drawbuffer)?;
@@ -101,13 +102,13 @@ impl GlesExecutor {
         ctx: &mut Context,
         buffer: u32,
         drawbuffer: i32,
-        _values: Slice<'_, u32>,
+        values: Slice<'_, u32>,
     ) -> GlResult {
         if buffer != COLOR {
             return Err(GlError::InvalidEnum);
         }
-        color_slot(drawbuffer)?;
-        self.clear_buffer(ctx, Cleared::Nothing)
+        let slot = color_slot(drawbuffer)?;
+        self.clear_buffer(ctx, Cleared::IntColor { slot, value: first::<u32, 4>(&values)?, signed: false })
     }
 
     pub(super) fn glClearBufferfi(
@@ -127,7 +128,7 @@ impl GlesExecutor {
 
     /// Clears what `cleared` names in the draw framebuffer, as `glClear` would with those values.
     fn clear_buffer(&mut self, ctx: &mut Context, cleared: Cleared) -> GlResult {
-        if matches!(cleared, Cleared::Nothing) || ctx.conditional == Some(false) || ctx.raster.discard {
+        if ctx.conditional == Some(false) || ctx.raster.discard {
             return Ok(());
         }
         let target = self.draw_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
@@ -137,9 +138,22 @@ impl GlesExecutor {
         match cleared {
             Cleared::Color { slot, value } => {
                 let writes = color_writes(blend.color_mask);
-                let has_image = target.slots().get(slot).is_some_and(Option::is_some);
-                if has_image && !writes.is_empty() {
+                let kind = target.slots().get(slot).copied().flatten().map(|s| s.2.sample_type(None, None));
+                let float = matches!(kind, Some(Some(wgpu::TextureSampleType::Float { .. })));
+                if float && !writes.is_empty() {
                     color = Some((value.map(|c| c.clamp(0.0, 1.0)), writes, Some(slot)));
+                }
+            }
+            Cleared::IntColor { slot, value, signed } => {
+                let writes = color_writes(blend.color_mask);
+                let kind = target.slots().get(slot).copied().flatten().and_then(|s| s.2.sample_type(None, None));
+                let fits = match kind {
+                    Some(wgpu::TextureSampleType::Sint) => signed,
+                    Some(wgpu::TextureSampleType::Uint) => !signed,
+                    _ => false,
+                };
+                if fits && !writes.is_empty() {
+                    color = Some((value.map(f32::from_bits), writes, Some(slot)));
                 }
             }
             Cleared::DepthStencil { depth: d, stencil: s } => {
@@ -152,7 +166,6 @@ impl GlesExecutor {
                     stencil = Some((s as u32 & 0xff, write));
                 }
             }
-            Cleared::Nothing => {}
         }
         if color.is_none() && depth.is_none() && stencil.is_none() {
             return Ok(());

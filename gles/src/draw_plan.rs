@@ -5,13 +5,14 @@
 
 use std::borrow::Cow;
 
+use crate::channels::border_color;
 use crate::context::Context;
 use crate::conv::{clip_rect, element, element_size, float_format, native_format, reads_src1, viewport, Mirror};
 use crate::divisors::{plan_divided, InstanceReads};
 use crate::draw_state::{bound_textures, raster_state, Bound};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::formats::{border_color, Storage};
+use crate::formats::Storage;
 use crate::glsl::Scalar;
 use crate::indices::{index_values, plan_indices, robust_order, unrolled, IndexPlan, Indices};
 use crate::int_attribs::plan_integer;
@@ -317,7 +318,9 @@ pub(crate) fn plan_draw<'c>(
         .zip(&program.info.samplers)
         .map(|(b, (ty, _))| {
             let b = b.as_ref()?;
-            let img = b.texture.gpu.as_ref()?;
+            // Integers read by a float sampler are undefined (ES 3.0 §3.8.14): the sampler
+            // reads as if no texture were there.
+            let img = b.texture.gpu.as_ref().filter(|img| !img.storage.is_int())?;
             let (base, _) = b.texture.level_range(&b.state);
             // The sampler counts levels of detail from the base level, as the view does.
             let state = SamplerState { base_level: base, ..b.state };
@@ -352,6 +355,14 @@ pub(crate) fn plan_draw<'c>(
     let Some(viewport) = viewport(ctx.raster.viewport, depth_range) else {
         return Ok(None);
     };
+    // Floats written to an integer colour buffer, or integers to another, are undefined in
+    // ES 3.0: such a draw does nothing (a pipeline could not be made for it).
+    let kinds = &program.info.output_kinds;
+    let unfit = target.slots().iter().zip(kinds).any(|(s, k)| s.is_some_and(|s| !k.fits(s.2)));
+    if unfit {
+        tracing::warn!("draw skipped: the program's output types do not fit the colour buffers' formats");
+        return Ok(None);
+    }
     let scissor = if ctx.raster.scissor_test {
         clip_rect(ctx.raster.scissor, target)
     } else {

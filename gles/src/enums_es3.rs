@@ -68,3 +68,41 @@ pub const GREEN: u32 = 0x1904;
 pub const BLUE: u32 = 0x1905;
 /// `GL_TEXTURE_SWIZZLE_R` (ES 3.0); `_G`, `_B` and `_A` follow it.
 pub const TEXTURE_SWIZZLE_R: u32 = 0x8E42;
+/// `GL_RED_INTEGER` (ES 3.0): integer data of one channel.
+pub const RED_INTEGER: u32 = 0x8D94;
+/// `GL_RG_INTEGER` (ES 3.0).
+pub const RG_INTEGER: u32 = 0x8228;
+/// `GL_RGB_INTEGER` (ES 3.0).
+pub const RGB_INTEGER: u32 = 0x8D98;
+/// `GL_RGBA_INTEGER` (ES 3.0).
+pub const RGBA_INTEGER: u32 = 0x8D99;
+/// `GL_R8I` (ES 3.0); `R8UI`, `R16I`, `R16UI`, `R32I`, `R32UI` and the RG ones follow it.
+pub const R8I: u32 = 0x8231;
+/// `GL_RG32UI`, the last of the R and RG integer formats.
+pub const RG32UI: u32 = 0x823C;
+/// `GL_RGBA32UI` (ES 3.0).
+pub const RGBA32UI: u32 = 0x8D70;
+/// `GL_RGB32UI`.
+pub const RGB32UI: u32 = 0x8D71;
+/// `GL_RGBA16UI`.
+pub const RGBA16UI: u32 = 0x8D76;
+/// `GL_RGB16UI`.
+pub const RGB16UI: u32 = 0x8D77;
+/// `GL_RGBA8UI`.
+pub const RGBA8UI: u32 = 0x8D7C;
+/// `GL_RGB8UI`.
+pub const RGB8UI: u32 = 0x8D7D;
+/// `GL_RGBA32I`.
+pub const RGBA32I: u32 = 0x8D82;
+/// `GL_RGB32I`.
+pub const RGB32I: u32 = 0x8D83;
+/// `GL_RGBA16I`.
+pub const RGBA16I: u32 = 0x8D88;
+/// `GL_RGB16I`.
+pub const RGB16I: u32 = 0x8D89;
+/// `GL_RGBA8I`.
+pub const RGBA8I: u32 = 0x8D8E;
+/// `GL_RGB8I`.
+pub const RGB8I: u32 = 0x8D8F;
+/// `GL_RGB10_A2UI` (ES 3.0): unsigned integers of 10, 10, 10 and 2 bits.
+pub const RGB10_A2UI: u32 = 0x906F;

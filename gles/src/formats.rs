@@ -32,6 +32,14 @@ pub enum Storage {
     DepthStencil,
     /// The compressed blocks as they were uploaded, in the device's matching block format.
     Native(Compressed),
+    /// Integers (ES 3.0's `*I` and `*UI` formats): RGBA of `bits`-bit components, signed or
+    /// unsigned; `bits` 10 is `RGB10_A2UI`'s packed layout ([`crate::integer`]).
+    Int {
+        /// Whether the components are signed.
+        signed: bool,
+        /// Bits per component (10: 10/10/10/2).
+        bits: u8,
+    },
 }
 
 impl Storage {
@@ -45,6 +53,7 @@ impl Storage {
             Storage::Depth => wgpu::TextureFormat::Depth32Float,
             Storage::DepthStencil => wgpu::TextureFormat::Depth24PlusStencil8,
             Storage::Native(c) => c.native_format().unwrap_or(COLOR_FORMAT),
+            Storage::Int { signed, bits } => crate::integer::int_wgpu(signed, bits),
         }
     }
 
@@ -53,8 +62,14 @@ impl Storage {
         match self {
             Storage::Half => 8,
             Storage::Float => 16,
+            Storage::Int { bits, .. } => crate::integer::texel_bytes(bits),
             _ => 4,
         }
+    }
+
+    /// An integer image.
+    pub fn is_int(self) -> bool {
+        matches!(self, Storage::Int { .. })
     }
 
     /// A depth or depth-stencil image.
@@ -68,6 +83,7 @@ impl Storage {
     /// nor 2_10_10_10 images, as on Mesa); compressed images never.
     pub fn color_renderable(self, f: u32, half: bool) -> bool {
         self == Storage::Rgba8
+            || (self.is_int() && f != RGB)
             || (self == Storage::Srgb8 && f == RGBA)
             || (self == Storage::Half && half && matches!(f, RGBA | RGB | RG_EXT | RED_EXT))
     }
@@ -317,78 +333,12 @@ pub fn is_color_format(f: u32) -> bool {
     matches!(f, RGBA | RGB | LUMINANCE | ALPHA | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT)
 }
 
-/// Red, green, blue and alpha bits of a colour texture's or renderbuffer's format `f`: colour
-/// is stored as 8 bits per channel whatever the format, and a channel the format lacks has
-/// none (RGB and luminance have no alpha bits; `GL_EXT_texture_rg`'s RED and RG no blue).
-pub fn color_bits(f: u32) -> [i32; 4] {
-    match f {
-        RGBA16F_EXT => [16; 4],
-        RGB16F_EXT => [16, 16, 16, 0],
-        RG16F_EXT => [16, 16, 0, 0],
-        R16F_EXT => [16, 0, 0, 0],
-        RGB | LUMINANCE | RGB565 | RGB8_OES => [8, 8, 8, 0],
-        RED_EXT | R8_EXT => [8, 0, 0, 0],
-        RG_EXT | RG8_EXT => [8, 8, 0, 0],
-        _ => [8; 4],
-    }
-}
-
-/// The bits of a colour texture of format `f` stored as `storage`: half-float images hold 16
-/// per channel their format has.
-pub fn texture_color_bits(f: u32, storage: Option<Storage>) -> [i32; 4] {
-    let bits = color_bits(f);
-    match storage {
-        Some(Storage::Half) => bits.map(|b| if b == 0 { 0 } else { 16 }),
-        _ => bits,
-    }
-}
-
-/// Whether `f` is a half-float renderbuffer format (`GL_EXT_color_buffer_half_float`).
-pub fn is_half_renderbuffer(f: u32) -> bool {
-    matches!(f, RGBA16F_EXT | RGB16F_EXT | RG16F_EXT | R16F_EXT)
-}
-
-/// The channels a colour attachment of format `f` lacks (see [`color_bits`]); luminance is
-/// never attached, so only its alpha counts.
-pub fn absent_channels(f: u32) -> wgpu::ColorWrites {
-    let bits = color_bits(f);
-    let mut absent = wgpu::ColorWrites::empty();
-    for (b, ch) in bits.iter().zip([
-        wgpu::ColorWrites::RED,
-        wgpu::ColorWrites::GREEN,
-        wgpu::ColorWrites::BLUE,
-        wgpu::ColorWrites::ALPHA,
-    ]) {
-        if *b == 0 {
-            absent |= ch;
-        }
-    }
-    absent
-}
-
-/// The border colour (`GL_EXT_texture_border_clamp`) a texture of internal format `f` shows:
-/// `c` as a texel of that format (a colour channel it lacks 0, a lacking alpha 1, luminance
-/// and depth from red, an alpha image black), clamped to [0, 1] unless the image is `float`.
-pub fn border_color(f: u32, float: bool, c: [f32; 4]) -> [f32; 4] {
-    let [r, g, b, a] = if float { c } else { c.map(|v| v.clamp(0.0, 1.0)) };
-    match f {
-        LUMINANCE | LUMINANCE8_OES | DEPTH_COMPONENT | DEPTH_STENCIL_OES => [r, r, r, 1.0],
-        LUMINANCE_ALPHA | LUMINANCE8_ALPHA8_OES | LUMINANCE4_ALPHA4_OES => [r, r, r, a],
-        ALPHA | ALPHA8_OES => [0.0, 0.0, 0.0, a],
-        // ETC1 and the opaque DXT1 formats have no alpha.
-        0x8D64 | 0x83F0 | 0x8C4C => [r, g, b, 1.0],
-        _ => {
-            let bits = color_bits(f);
-            let keep = |i: usize, v: f32, absent: f32| if bits[i] == 0 { absent } else { v };
-            [keep(0, r, 0.0), keep(1, g, 0.0), keep(2, b, 0.0), keep(3, a, 1.0)]
-        }
-    }
-}
-
 /// Whether `f` is a format enum uploads know at all (`MESA_bgra`'s `BGR_EXT` included, which
 /// no type uploads on an ES 2.0 context, as on Mesa).
 fn known_format(f: u32) -> bool {
-    is_color_format(f) || matches!(f, DEPTH_COMPONENT | DEPTH_STENCIL_OES | BGR_EXT)
+    is_color_format(f)
+        || crate::integer::is_integer_format(f)
+        || matches!(f, DEPTH_COMPONENT | DEPTH_STENCIL_OES | BGR_EXT)
 }
 
 /// Whether data in `format` fits an image of internal format `internal` without compression:
@@ -481,8 +431,8 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
 /// unsized format whose image it behaves as (as `GL_OES_required_internalformat`'s images do),
 /// its storage, and whether its data counts as half-float (renderable, as
 /// `GL_EXT_color_buffer_half_float` has it). `None` for a format that is not sized, and for
-/// the sized formats Strata cannot keep yet (integer, the packed
-/// 10-bit and shared-exponent formats, compressed formats).
+/// the sized formats Strata cannot keep yet (the packed 10-bit and shared-exponent formats,
+/// compressed formats).
 pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
     Some(match internal {
         RGBA8_OES | RGBA4 | RGB5_A1 => (RGBA, Storage::Rgba8, false),
@@ -517,7 +467,10 @@ pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
         LUMINANCE_ALPHA32F_EXT => (LUMINANCE_ALPHA, Storage::Float, false),
         DEPTH_COMPONENT16 | DEPTH_COMPONENT24_OES | DEPTH_COMPONENT32F => (DEPTH_COMPONENT, Storage::Depth, false),
         DEPTH24_STENCIL8_OES | DEPTH32F_STENCIL8 => (DEPTH_STENCIL_OES, Storage::DepthStencil, false),
-        _ => return None,
+        _ => {
+            let f = crate::integer::IntFormat::from_gl(internal)?;
+            (f.base, Storage::Int { signed: f.signed, bits: f.bits }, false)
+        }
     })
 }
 

@@ -12,10 +12,11 @@
 //! each of which keeps its own. It applies to the framebuffer bound for reading. Reading with `GL_NONE` selected, or from an attachment with
 //! no image, is `GL_INVALID_OPERATION`, as on Mesa.
 
+use crate::attachment_info as info;
+use crate::channels::{absent_channels, color_bits, is_half_renderbuffer};
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::formats::{absent_channels, color_bits, is_half_renderbuffer};
 use crate::formats::{Storage, COLOR_FORMAT, HALF_FORMAT};
 use crate::limits::max_3d_size;
 use crate::limits::MAX_DRAW_BUFFERS;
@@ -117,6 +118,10 @@ impl GlesExecutor {
                 }
                 wgpu::TextureFormat::Depth32FloatStencil8
             }
+            // ES 3.0's integer formats but the RGB ones.
+            f if es3 && crate::integer::IntFormat::from_gl(f).is_some_and(|f| f.renderable()) => {
+                crate::integer::IntFormat::from_gl(f).map_or(COLOR_FORMAT, |f| f.wgpu())
+            }
             _ => return Err(GlError::InvalidEnum),
         };
         if width < 0 || height < 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
@@ -133,7 +138,7 @@ impl GlesExecutor {
             wgpu::TextureFormat::Stencil8 => 1,
             wgpu::TextureFormat::Depth16Unorm => 2,
             HALF_FORMAT | wgpu::TextureFormat::Depth32FloatStencil8 => 8,
-            _ => 4,
+            f => f.block_copy_size(None).map_or(4, u64::from),
         };
         let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
         let reserved = Some(self.reserve(bytes)?);
@@ -397,6 +402,31 @@ impl GlesExecutor {
                 }
             }
             (FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, Attachment::Renderbuffer(_)) if es3 => LINEAR as i32,
+            // ES 3.0: the image's bits and the kind of its components; nothing to ask of no
+            // image.
+            (FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, Attachment::None) if es3 => 0,
+            (
+                FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL
+                | FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE
+                | FRAMEBUFFER_ATTACHMENT_TEXTURE_3D_ZOFFSET_OES
+                | FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING
+                | info::COMPONENT_TYPE..=info::STENCIL_SIZE,
+                Attachment::None,
+            ) if es3 => {
+                ctx.record(GlError::InvalidOperation);
+                0
+            }
+            (info::COMPONENT_TYPE, a) if es3 => {
+                if attachment == DEPTH_STENCIL_ATTACHMENT {
+                    // Two images' kinds have no one answer.
+                    ctx.record(GlError::InvalidOperation);
+                    return 0;
+                }
+                info::component_type(ctx, a, attachment == STENCIL_ATTACHMENT) as i32
+            }
+            (info::RED_SIZE..=info::STENCIL_SIZE, a) if es3 => {
+                info::attachment_bits(ctx, a, renderbuffer_bits)[(pname - info::RED_SIZE) as usize]
+            }
             _ => {
                 ctx.record(GlError::InvalidEnum);
                 0
@@ -459,7 +489,13 @@ fn renderbuffer_bits(format: u32) -> [i32; 6] {
         DEPTH_COMPONENT32F => [0, 0, 0, 0, 32, 0],
         DEPTH32F_STENCIL8 => [0, 0, 0, 0, 32, 8],
         STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
-        _ => [0; 6],
+        f => match crate::integer::IntFormat::from_gl(f) {
+            Some(i) => {
+                let [r, g, b, a] = i.color_bits();
+                [r, g, b, a, 0, 0]
+            }
+            None => [0; 6],
+        },
     }
 }
 

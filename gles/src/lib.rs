@@ -13,9 +13,11 @@
 
 mod account;
 mod active_uniforms;
+mod attachment_info;
 mod blit;
 mod buffer_copies;
 mod buffers;
+mod channels;
 mod clear_buffers;
 mod compressed;
 mod context;
@@ -41,6 +43,7 @@ pub mod glsl;
 mod image_calls;
 mod indices;
 mod int_attribs;
+mod integer;
 mod invalidate;
 pub mod limits;
 mod linking;

@@ -56,12 +56,25 @@ enum ReadFormat {
     /// of a half-float colour buffer (`GL_EXT_color_buffer_half_float`), its implementation
     /// read format.
     Half(usize),
+    /// Integers (ES 3.0): `GL_RGBA_INTEGER` as `GL_INT` or `GL_UNSIGNED_INT` from an integer
+    /// colour buffer of the same signedness, or the buffer's own format and type (its
+    /// implementation read format).
+    Int {
+        /// The `GL_*_INTEGER` format.
+        format: u32,
+        /// The type.
+        ty: u32,
+    },
 }
 
 impl ReadFormat {
     /// The pair's way of writing, or the error `glReadPixels` raises for it.
-    fn from_gl(format: u32, ty: u32) -> Result<ReadFormat, GlError> {
+    fn from_gl(format: u32, ty: u32, es3: bool) -> Result<ReadFormat, GlError> {
         match (format, ty) {
+            (
+                f,
+                BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT | INT | UNSIGNED_INT | UNSIGNED_INT_2_10_10_10_REV_EXT,
+            ) if es3 && crate::integer::is_integer_format(f) => Ok(ReadFormat::Int { format, ty }),
             (RGBA, UNSIGNED_BYTE) => Ok(ReadFormat::Rgba8),
             (BGRA_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Bgra8),
             (BGRA_EXT, UNSIGNED_SHORT_4_4_4_4_REV_EXT) => Ok(ReadFormat::Bgra4444Rev),
@@ -73,7 +86,8 @@ impl ReadFormat {
             (RED_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(1)),
             _ => {
                 let format_known =
-                    matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT);
+                    matches!(format, RGBA | RGB | ALPHA | LUMINANCE | LUMINANCE_ALPHA | BGRA_EXT | RED_EXT | RG_EXT)
+                        || (es3 && crate::integer::is_integer_format(format));
                 let type_known = type_size(ty).is_some()
                     || matches!(
                         ty,
@@ -95,6 +109,7 @@ impl ReadFormat {
             ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev | ReadFormat::Rg8 => 2,
             ReadFormat::R8 => 1,
             ReadFormat::Half(n) => 2 * n,
+            ReadFormat::Int { format, ty } => crate::integer::pixel_bytes(format, ty),
         }
     }
 
@@ -110,8 +125,9 @@ impl ReadFormat {
             ReadFormat::Bgra8 => out.copy_from_slice(&[p[2], p[1], p[0], p[3]]),
             ReadFormat::R8 => out.copy_from_slice(&p[..1]),
             ReadFormat::Rg8 => out.copy_from_slice(&p[..2]),
-            // Half-float pixels are written from the image's own bytes (`glReadPixels`).
-            ReadFormat::Half(_) => {}
+            // Half-float and integer pixels are written from the image's own bytes
+            // (`glReadPixels`).
+            ReadFormat::Half(_) | ReadFormat::Int { .. } => {}
             ReadFormat::Bgra4444Rev => {
                 let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
                 out.copy_from_slice(&v.to_ne_bytes());
@@ -157,7 +173,7 @@ impl GlesExecutor {
         let float_depth = ctx.es3().then(|| float_depth(ctx));
         let how = match DepthRead::from_gl(format, pixel_type, float_depth) {
             Some(depth) => depth.map(Read::Depth),
-            None => ReadFormat::from_gl(format, pixel_type).map(Read::Color),
+            None => ReadFormat::from_gl(format, pixel_type, ctx.es3()).map(Read::Color),
         };
         let how = match how {
             Ok(how) => how,
@@ -178,6 +194,22 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
         };
+        // An integer colour buffer reads only as integers of its signedness, and integers
+        // only from one.
+        if let Read::Color(c) = how {
+            let fits = match (c, read_buffer_int(ctx)) {
+                (ReadFormat::Int { format, ty }, Some(f)) => {
+                    (format, ty) == (RGBA_INTEGER, if f.signed { INT } else { UNSIGNED_INT })
+                        || (format, ty) == f.upload()
+                }
+                (ReadFormat::Int { .. }, None) | (_, Some(_)) => false,
+                _ => true,
+            };
+            if !fits {
+                ctx.record(GlError::InvalidOperation);
+                return Bytes(Vec::new());
+            }
+        }
         // GL_HALF_FLOAT reads only the implementation read format of a half-float buffer.
         if let Read::Color(ReadFormat::Half(n)) = how {
             let absent = target.absent;
@@ -232,6 +264,20 @@ impl GlesExecutor {
                             let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
                             for (i, p) in px[r * rw * 8..(r + 1) * rw * 8].chunks_exact(8).enumerate() {
                                 out[dst + i * bpp..dst + (i + 1) * bpp].copy_from_slice(&p[..bpp]);
+                            }
+                        }
+                    }
+                }
+                Read::Color(ReadFormat::Int { format: to, ty }) => {
+                    let format = target.color.as_ref().map(|(t, _)| t.format());
+                    let texel = format.and_then(|f| f.block_copy_size(None)).unwrap_or(16) as usize;
+                    if let (Some(px), Some(format)) = (self.r.read_stored(&target, rect), format) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            for (i, t) in px[r * rw * texel..(r + 1) * rw * texel].chunks_exact(texel).enumerate() {
+                                let v = crate::integer::widen(t, format);
+                                let v = crate::integer::present(v, target.absent);
+                                crate::integer::pack(v, to, ty, &mut out[dst + i * bpp..dst + (i + 1) * bpp]);
                             }
                         }
                     }
@@ -381,6 +427,20 @@ fn float_depth(ctx: &Context) -> bool {
         Attachment::None => None,
     };
     matches!(format, Some(DEPTH_COMPONENT32F | DEPTH32F_STENCIL8))
+}
+
+/// The integer format of the read framebuffer's read buffer, if it holds integers: what
+/// `GL_IMPLEMENTATION_COLOR_READ_FORMAT` and `_TYPE` answer for.
+pub(crate) fn read_buffer_int(ctx: &Context) -> Option<crate::integer::IntFormat> {
+    use crate::objects::framebuffer::Attachment;
+    let bound = ctx.bindings.read_framebuffer;
+    let fb = ctx.objects.framebuffers.get(&bound).filter(|_| bound != 0)?;
+    let slot = fb.read.checked_sub(COLOR_ATTACHMENT0)? as usize;
+    match *fb.colors.get(slot)? {
+        Attachment::Renderbuffer(n) => crate::integer::IntFormat::from_gl(ctx.objects.renderbuffers.get(&n)?.format),
+        Attachment::Texture { name, .. } => crate::integer::IntFormat::from_gl(ctx.objects.textures.get(&name)?.sized),
+        Attachment::None => None,
+    }
 }
 
 /// The depth bits of a depth/stencil image of `format`, as Mesa stores them: 16 for

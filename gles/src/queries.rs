@@ -3,9 +3,10 @@
 
 use crate::context::Context;
 
+use crate::channels::{color_bits, texture_color_bits};
 use crate::enums::*;
 use crate::error::GlError;
-use crate::formats::{color_bits, offered_compressed, texture_color_bits};
+use crate::formats::offered_compressed;
 use crate::limits::{MAX_ATTRIBS, MAX_DRAW_BUFFERS as MAX_DRAW_BUFFERS_COUNT, MAX_POINT_SIZE, MAX_TEXTURE, MAX_UNITS};
 use crate::objects::framebuffer::Attachment;
 use crate::typed::Capability;
@@ -222,6 +223,13 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
         SAMPLE_BUFFERS | SAMPLES => i(0),
         // RGBA, or for GL_EXT_texture_rg's framebuffers RED or RG, as Mesa answers; half-float
         // buffers (GL_EXT_color_buffer_half_float) read as GL_HALF_FLOAT.
+        // Integer buffers read in their own format and type, as Mesa answers.
+        IMPLEMENTATION_COLOR_READ_FORMAT | IMPLEMENTATION_COLOR_READ_TYPE
+            if crate::pixels::read_buffer_int(ctx).is_some() =>
+        {
+            let (format, ty) = crate::pixels::read_buffer_int(ctx).map_or((0, 0), |f| f.upload());
+            u(if pname == IMPLEMENTATION_COLOR_READ_FORMAT { format } else { ty })
+        }
         IMPLEMENTATION_COLOR_READ_FORMAT => u(match framebuffer_bits(ctx) {
             [8 | 16, 0, 0, ..] => RED_EXT,
             [8 | 16, 8 | 16, 0, ..] => RG_EXT,

@@ -5,9 +5,10 @@
 
 use std::hash::{Hash, Hasher};
 
+use crate::channels::absent_channels;
 use crate::context::Context;
 use crate::enums::*;
-use crate::formats::{absent_channels, Compressed, Storage};
+use crate::formats::{Compressed, Storage};
 use crate::objects::framebuffer::{Attachment, Purpose};
 use crate::objects::image::Subresource;
 use crate::render::Target;

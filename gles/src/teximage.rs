@@ -169,6 +169,7 @@ pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
     let alpha: f32 = if matches!(format, RGB | LUMINANCE | RED_EXT | RG_EXT) { 1.0 } else { 0.0 };
     let rgba = [0.0, 0.0, 0.0, alpha];
     let texel: Vec<u8> = match storage {
+        Storage::Int { bits, .. } => crate::integer::blank_texel(bits),
         Storage::Half => rgba.iter().flat_map(|v| half::f16::from_f32(*v).to_bits().to_ne_bytes()).collect(),
         Storage::Float => rgba.iter().flat_map(|v| v.to_ne_bytes()).collect(),
         _ => vec![0, 0, 0, (alpha * 255.0) as u8],
@@ -245,9 +246,10 @@ impl GlesExecutor {
         let (data_type, storage, internal, half_float, sized) = if let Some((base, kept, half)) = es3_sized {
             let ty = if pixel_type == HALF_FLOAT { HALF_FLOAT_OES } else { pixel_type };
             if !sized_accepts(internalformat, format, pixel_type) {
-                // An unknown enum first (ES 3.0's BYTE is known: its pairing is wrong).
+                // An unknown enum first (ES 3.0's signed types are known: their pairing is
+                // wrong).
                 match upload_storage(format, ty) {
-                    Err(GlError::InvalidEnum) if ty != BYTE => return Err(GlError::InvalidEnum),
+                    Err(GlError::InvalidEnum) if !matches!(ty, BYTE | SHORT | INT) => return Err(GlError::InvalidEnum),
                     _ => return Err(GlError::InvalidOperation),
                 }
             }
@@ -405,7 +407,15 @@ impl GlesExecutor {
         let pixel_type = if es3_half { HALF_FLOAT_OES } else { pixel_type };
         // ES 3.0's signed normalized data (BYTE) goes only to images of its sized formats.
         let es3_byte = ctx.es3() && pixel_type == BYTE;
+        // ES 3.0's integer data goes only to images of integer formats (`sized_accepts`).
+        let int_data = ctx.es3()
+            && crate::integer::is_integer_format(format)
+            && matches!(
+                pixel_type,
+                BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT | INT | UNSIGNED_INT | UNSIGNED_INT_2_10_10_10_REV_EXT
+            );
         let storage = match upload_storage(format, pixel_type) {
+            _ if int_data => Storage::Int { signed: false, bits: 32 },
             Err(GlError::InvalidEnum) if es3_byte => Storage::Half,
             // ES 3.0's float depths (the images that take them decide by their sized format).
             Err(GlError::InvalidOperation) if ctx.es3() && (format, pixel_type) == (DEPTH_COMPONENT, FLOAT) => {

@@ -59,6 +59,7 @@ impl Unpack {
 /// Components per pixel of a colour format.
 fn components(format: u32) -> usize {
     match format {
+        _ if crate::integer::is_integer_format(format) => crate::integer::components(format),
         RGBA | BGRA_EXT => 4,
         RGB => 3,
         LUMINANCE_ALPHA | RG_EXT => 2,
@@ -69,8 +70,11 @@ fn components(format: u32) -> usize {
 /// Bytes per pixel of client data in `format`/`ty` (a pair `formats::upload_storage` accepts).
 pub fn bytes_per_pixel(format: u32, ty: u32) -> usize {
     match ty {
-        UNSIGNED_SHORT_5_6_5 | UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1 | UNSIGNED_SHORT => 2,
-        UNSIGNED_INT | UNSIGNED_INT_24_8_OES | UNSIGNED_INT_2_10_10_10_REV_EXT => 4,
+        UNSIGNED_SHORT_5_6_5 | UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1 => 2,
+        UNSIGNED_INT_24_8_OES | UNSIGNED_INT_2_10_10_10_REV_EXT => 4,
+        // Depth, and ES 3.0's integer data.
+        UNSIGNED_SHORT | SHORT => 2 * components(format),
+        UNSIGNED_INT | INT => 4 * components(format),
         FLOAT => 4 * components(format),
         HALF_FLOAT_OES => 2 * components(format),
         _ => components(format),
@@ -158,6 +162,7 @@ pub fn to_storage(
     for row in rows {
         for px in row.chunks_exact(bpp) {
             match storage {
+                Storage::Int { bits, .. } => crate::integer::push_texel(px, format, ty, bits, &mut out),
                 Storage::Float => {
                     float_pixel(px, format, ty).iter().for_each(|v| out.extend_from_slice(&v.to_ne_bytes()))
                 }

@@ -225,9 +225,6 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 if !matches!(ty.scalar(), Scalar::Float | Scalar::Int | Scalar::UInt) || ty.columns() > 0 {
                     return Err("0: fragment outputs must be float, int or uint scalars or vectors".into());
                 }
-                if ty.scalar() != Scalar::Float {
-                    return Err("0: integer fragment outputs are not supported yet".into());
-                }
                 shader.outputs.extend(vars);
             }
             Storage::In => return Err("0: internal error: an input left unmapped".into()),

@@ -99,6 +99,7 @@ fn link_inner(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_att
                 std::iter::once((o.name.clone(), loc)).chain(elements)
             })
             .collect(),
+        output_kinds: crate::glsl::linked::output_kinds(fs),
         flat: fs.varyings.iter().any(|v| interpolation(v) == "flat "),
         capture: None,
     })
@@ -431,11 +432,17 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             for i in 0..len {
                 let at = loc + i;
                 let element = if o.array.is_some() { format!("{}[{i}]", o.name) } else { o.name.clone() };
-                let _ = writeln!(fsrc, "layout(location = {at}) out vec4 strata_FragOut{at};");
+                // Integer outputs stay integers, for integer colour buffers.
+                let (v4, zero, one) = match o.ty.scalar() {
+                    Scalar::Int => ("ivec4", "0", "1"),
+                    Scalar::UInt => ("uvec4", "0u", "1u"),
+                    _ => ("vec4", "0.0", "1.0"),
+                };
+                let _ = writeln!(fsrc, "layout(location = {at}) out {v4} strata_FragOut{at};");
                 let value = match o.ty.components() {
-                    1 => format!("vec4({element}, 0.0, 0.0, 1.0)"),
-                    2 => format!("vec4({element}, 0.0, 1.0)"),
-                    3 => format!("vec4({element}, 1.0)"),
+                    1 => format!("{v4}({element}, {zero}, {zero}, {one})"),
+                    2 => format!("{v4}({element}, {zero}, {one})"),
+                    3 => format!("{v4}({element}, {one})"),
                     _ => element,
                 };
                 let _ = writeln!(color_out, "    strata_FragOut{at} = {value};");

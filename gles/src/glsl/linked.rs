@@ -1,7 +1,8 @@
 //! A linked program's interface as the linker leaves it (uniform slots, attributes, samplers,
 //! the translated stages), and the conventions every generated stage follows.
 
-use crate::glsl::types::{Block, Ty, Var};
+use crate::glsl::types::{Block, Scalar, Shader, Ty, Var};
+use crate::limits::MAX_DRAW_BUFFERS;
 
 /// A uniform's place in the program's block (or, for samplers, its binding).
 #[derive(Debug, Clone)]
@@ -75,6 +76,8 @@ pub struct Linked {
     pub blocks: Vec<LinkedBlock>,
     /// GLSL ES 3.00 fragment outputs by name, with their locations (`glGetFragDataLocation`).
     pub outputs: Vec<(String, u32)>,
+    /// What the fragment shader writes at each location (draw buffer).
+    pub output_kinds: [OutputKind; crate::limits::MAX_DRAW_BUFFERS],
     /// Whether a varying reaches the fragment stage `flat`: its value is then the last
     /// vertex's of each primitive, as GL takes it (wgpu takes the first's).
     pub flat: bool,
@@ -101,4 +104,55 @@ pub(crate) const FRAG_DEPTH_OUT: &str = "    gl_FragDepth = clamp(strata_FragDep
 /// The declarator suffix of a variable: `[n]` for an array of n, else nothing.
 pub(crate) fn array_suffix(v: &Var) -> String {
     v.array.map_or(String::new(), |n| format!("[{n}]"))
+}
+
+/// What a fragment shader writes at one location: nothing, floats (to a normalized or float
+/// colour buffer), or signed or unsigned integers (to an integer one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputKind {
+    /// No output there.
+    None,
+    /// Floating-point colour.
+    Float,
+    /// Signed integers (`int`, `ivecN`).
+    Int,
+    /// Unsigned integers (`uint`, `uvecN`).
+    UInt,
+}
+
+impl OutputKind {
+    /// Whether a colour buffer of `format` takes what is written here: any buffer when
+    /// nothing is, else a buffer of the same kind of values.
+    pub fn fits(self, format: wgpu::TextureFormat) -> bool {
+        use wgpu::TextureSampleType as T;
+        matches!(
+            (self, format.sample_type(None, None)),
+            (OutputKind::None, _)
+                | (OutputKind::Float, Some(T::Float { .. }))
+                | (OutputKind::Int, Some(T::Sint))
+                | (OutputKind::UInt, Some(T::Uint))
+        )
+    }
+}
+
+/// What the fragment shader `fs` writes at each location (see [`Linked::output_kinds`]):
+/// GLSL ES 3.00's outputs at theirs (a lone one without a location at 0), GLSL ES 1.00's
+/// colour floats at every location.
+pub(super) fn output_kinds(fs: &Shader) -> [OutputKind; MAX_DRAW_BUFFERS] {
+    if fs.version != 300 || fs.dual {
+        return [OutputKind::Float; MAX_DRAW_BUFFERS];
+    }
+    let mut kinds = [OutputKind::None; MAX_DRAW_BUFFERS];
+    for o in &fs.outputs {
+        let kind = match o.ty.scalar() {
+            Scalar::Int => OutputKind::Int,
+            Scalar::UInt => OutputKind::UInt,
+            _ => OutputKind::Float,
+        };
+        let loc = o.location.unwrap_or(0) as usize;
+        for k in kinds.iter_mut().skip(loc).take(o.array.unwrap_or(1) as usize) {
+            *k = kind;
+        }
+    }
+    kinds
 }

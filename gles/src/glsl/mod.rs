@@ -49,7 +49,7 @@ mod variants;
 mod writes;
 
 pub use link::{link, points_vertex};
-pub use linked::{Linked, UniformSlot};
+pub use linked::{Linked, OutputKind, UniformSlot};
 pub use separate::{fragment_uniform_name, interfaces_match, link_alone, rename_uniforms};
 pub use types::{Block, BlockMember, Scalar, Shader, Stage, Ty, Var};
 pub use variants::ClipZ;

@@ -1,9 +1,9 @@
 //! Framebuffer and renderbuffer objects: what each attachment point holds, the draw and read
 //! buffers, and a renderbuffer's image.
 
+use crate::channels::is_half_renderbuffer;
 use crate::enums::*;
 use crate::error::GlError;
-use crate::formats::is_half_renderbuffer;
 use crate::limits::MAX_DRAW_BUFFERS;
 
 /// Where one attachment of a framebuffer object comes from.
@@ -96,6 +96,7 @@ impl Renderbuffer {
     pub fn is_color(&self) -> bool {
         matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT | SRGB8_ALPHA8)
             || is_half_renderbuffer(self.format)
+            || crate::integer::IntFormat::from_gl(self.format).is_some()
             || (crate::formats::is_color_format(self.format) && self.gpu.is_some())
     }
 }

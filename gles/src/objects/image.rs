@@ -154,7 +154,7 @@ impl TextureImage {
             texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), aspect, ..Default::default() });
         let filterable = match storage {
             Storage::Float => gpu.features.contains(wgpu::Features::FLOAT32_FILTERABLE),
-            s => !s.is_depth(),
+            s => !s.is_depth() && !s.is_int(),
         };
         Ok(TextureImage {
             texture,

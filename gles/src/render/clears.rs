@@ -25,8 +25,10 @@ impl Renderer {
         let full_depth = depth.is_none_or(|(_, w)| w);
         let full_stencil = stencil.is_none_or(|(_, m)| m & 0xff == 0xff);
         let whole = scissor.is_none_or(|s| s == [0, 0, target.width, target.height]);
+        // Integer colour buffers clear only through the quad, which writes them integers.
+        let int_slots = target.slots().iter().any(|s| s.is_some_and(|s| is_int(s.2)));
         let pass = self.pass_for(target);
-        if pass.draws.is_empty() && full_color && full_depth && full_stencil && whole {
+        if pass.draws.is_empty() && full_color && full_depth && full_stencil && whole && !int_slots {
             if let Some((c, _, _)) = color {
                 pass.clear_color = Some(c);
             }
@@ -55,7 +57,12 @@ impl Renderer {
         let mut params = [0u8; CLEAR_PARAMS as usize];
         let c = color.map(|(c, _, _)| c).unwrap_or([0.0; 4]);
         for (slot, s) in target.slots().iter().enumerate() {
-            let c = stored(s.map_or(wgpu::ColorWrites::empty(), |s| s.1), c);
+            let absent = s.map_or(wgpu::ColorWrites::empty(), |s| s.1);
+            // An integer clear's value is the integers' bits (`glClearBuffer{i,ui}v`).
+            let c = match s.is_some_and(|s| is_int(s.2)) {
+                true => crate::integer::present(c.map(f32::to_bits), absent).map(f32::from_bits),
+                false => stored(absent, c),
+            };
             for (i, v) in c.iter().enumerate() {
                 let at = slot * 16 + i * 4;
                 params[at..at + 4].copy_from_slice(&v.to_ne_bytes());
@@ -97,7 +104,10 @@ impl Renderer {
             .iter()
             .enumerate()
             .map(|(i, s)| {
-                let write_mask = if key.only.is_none_or(|o| o == i) { write_mask } else { wgpu::ColorWrites::empty() };
+                // `glClear` leaves integer buffers alone (their clear is undefined in ES 3.0).
+                let int = s.is_some_and(is_int);
+                let cleared = if int { key.only == Some(i) } else { key.only.is_none_or(|o| o == i) };
+                let write_mask = if cleared { write_mask } else { wgpu::ColorWrites::empty() };
                 s.map(|format| wgpu::ColorTargetState { format, blend: None, write_mask })
             })
             .collect();
@@ -119,11 +129,19 @@ impl Renderer {
                 bias: Default::default(),
             }
         });
+        // Integer buffers need outputs of their own kind.
+        let module = match key.slots.iter().any(|s| s.is_some_and(is_int)) {
+            true => self.gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("integer clear"),
+                source: wgpu::ShaderSource::Wgsl(int_clear_source(&key.slots).into()),
+            }),
+            false => self.fixed.clear_module.clone(),
+        };
         let p = self.gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("clear"),
             layout: Some(&self.fixed.clear_layout),
             vertex: wgpu::VertexState {
-                module: &self.fixed.clear_module,
+                module: &module,
                 entry_point: Some("vs"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -132,7 +150,7 @@ impl Renderer {
             depth_stencil,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &self.fixed.clear_module,
+                module: &module,
                 entry_point: Some("fs"),
                 compilation_options: Default::default(),
                 targets: if key.slots.iter().any(Option::is_some) { &targets } else { &[] },
@@ -146,4 +164,31 @@ impl Renderer {
         }
         p
     }
+}
+
+/// Whether a colour buffer of `format` holds integers.
+fn is_int(format: wgpu::TextureFormat) -> bool {
+    matches!(format.sample_type(None, None), Some(wgpu::TextureSampleType::Sint | wgpu::TextureSampleType::Uint))
+}
+
+/// The clear shader (`shaders/clear.wgsl`) with each colour slot's output of its buffer's
+/// kind: an integer buffer's the clear value's bits as integers.
+fn int_clear_source(slots: &[Option<wgpu::TextureFormat>]) -> String {
+    let base = include_str!("../../../shaders/clear.wgsl");
+    let mut fields = String::new();
+    let mut values = Vec::new();
+    for i in 0..8 {
+        let ty = match slots.get(i).copied().flatten().and_then(|f| f.sample_type(None, None)) {
+            Some(wgpu::TextureSampleType::Sint) => "vec4<i32>",
+            Some(wgpu::TextureSampleType::Uint) => "vec4<u32>",
+            _ => "vec4<f32>",
+        };
+        fields.push_str(&format!("    @location({i}) c{i}: {ty},\n"));
+        values.push(if ty == "vec4<f32>" { format!("c[{i}]") } else { format!("bitcast<{ty}>(c[{i}])") });
+    }
+    let start = base.find("struct Out {").unwrap_or(0);
+    let end = base[start..].find("};").map_or(base.len(), |e| start + e + 2);
+    let out = format!("struct Out {{\n{fields}}};");
+    let source = format!("{}{out}{}", &base[..start], &base[end..]);
+    source.replace("Out(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7])", &format!("Out({})", values.join(", ")))
 }

@@ -109,7 +109,10 @@ impl Renderer {
             .map(|s| {
                 s.map(|(absent, format)| wgpu::ColorTargetState {
                     format,
-                    blend: r.blend,
+                    // Integer colour buffers are never blended (ES 3.0 §4.1.7).
+                    blend: r.blend.filter(|_| {
+                        matches!(format.sample_type(None, None), Some(wgpu::TextureSampleType::Float { .. }))
+                    }),
                     write_mask: r.write_mask - absent,
                 })
             })

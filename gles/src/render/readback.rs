@@ -26,10 +26,17 @@ impl Renderer {
     /// Reads `[x, y, w, h]` of a half-float colour image (`GL_EXT_color_buffer_half_float`)
     /// as four half floats per pixel, rows bottom first.
     pub fn read_half(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
+        self.read_stored(target, rect)
+    }
+
+    /// Reads `[x, y, w, h]` of the target's colour image as its texels are stored (integer
+    /// images among them), rows bottom first.
+    pub fn read_stored(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
         self.flush();
         let (tex, _) = target.color.as_ref()?;
         let at = target.color_at;
-        self.gpu.read_texels(&self.lane, tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, 8)
+        let bytes = tex.format().block_copy_size(None)?;
+        self.gpu.read_texels(&self.lane, tex, (at.layer, at.level), rect, wgpu::TextureAspect::All, bytes)
     }
 
     /// Reads `[x, y, w, h]` of the target's depth (through the depth reader, as floats in

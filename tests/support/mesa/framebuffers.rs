@@ -83,16 +83,19 @@ impl Arms<'_> {
         // pack alignment, the last row unpadded.
         let (w, h) = ((*width).max(0) as usize, (*height).max(0) as usize);
         let components = match *format {
-            0x1908 | 0x80E1 => 4,
-            0x1907 => 3,
-            0x190A | 0x8227 => 2,
+            // RGBA, BGRA, RGBA_INTEGER.
+            0x1908 | 0x80E1 | 0x8D99 => 4,
+            0x1907 | 0x8D98 => 3,
+            0x190A | 0x8227 | 0x8228 => 2,
             _ => 1,
         };
         let bpp = match *pixel_type {
-            0x1401 => components,
+            0x1400 | 0x1401 => components,
             0x8363 | 0x8033 | 0x8034 | 0x8365 | 0x8366 => 2,
             // SHORT, UNSIGNED_SHORT (depth: GL_NV_read_depth), HALF_FLOAT_OES, HALF_FLOAT.
             0x1402 | 0x1403 | 0x8D61 | 0x140B => components * 2,
+            // UNSIGNED_INT_2_10_10_10_REV, UNSIGNED_INT_24_8: one word.
+            0x8368 | 0x84FA => 4,
             _ => components * 4,
         };
         let mut align = 4i32;
