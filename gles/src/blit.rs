@@ -71,6 +71,17 @@ impl GlesExecutor {
         if draw.color.as_ref().is_some_and(|(t, _)| t == src && draw.color_at == at) {
             return Err(GlError::InvalidOperation);
         }
+        // ES 3.0 §4.3.3: integer colour goes only to integer buffers of its signedness, and is
+        // never filtered linearly.
+        let kind = |f: wgpu::TextureFormat| match f.sample_type(None, None) {
+            Some(wgpu::TextureSampleType::Sint) => Some(true),
+            Some(wgpu::TextureSampleType::Uint) => Some(false),
+            _ => None,
+        };
+        let src_kind = kind(src.format());
+        if draw.slots().iter().flatten().any(|s| kind(s.2) != src_kind) || (src_kind.is_some() && filter == LINEAR) {
+            return Err(GlError::InvalidOperation);
+        }
         let empty = src_x0 == src_x1 || src_y0 == src_y1 || dst_x0 == dst_x1 || dst_y0 == dst_y1;
         if empty || ctx.conditional == Some(false) {
             return Ok(());

@@ -198,6 +198,30 @@ pub(crate) fn with_sampler_params<'c>(
                 }
             }
         }
+        if let Some(img) = t.gpu.as_ref().filter(|img| img.storage.is_int()) {
+            // Integer lookups fetch texel by texel (`glsl::int_samplers`): the wraps and the
+            // levels they choose among (none but the base without a mipmap filter), and the
+            // level-of-detail clamps.
+            let code = |w: u32| match w {
+                REPEAT => 0.0f32,
+                MIRRORED_REPEAT => 2.0,
+                MIRROR_CLAMP_TO_EDGE_EXT => 3.0,
+                _ => 1.0,
+            };
+            let (base, max) = t.level_range(state);
+            let last = max.min(img.levels.saturating_sub(1));
+            let levels = if state.uses_mipmaps() { (last + 1).saturating_sub(base) as f32 } else { 0.0 };
+            let k = [code(state.wrap_s), code(state.wrap_t), code(state.wrap_r), levels];
+            let c = [f32::from_bits(state.min_lod), f32::from_bits(state.max_lod), 0.0, 0.0];
+            for (range, values) in [(at + 48..at + 64, k), (at + 16..at + 32, c)] {
+                if let Some(dst) = data.to_mut().get_mut(range) {
+                    for (d, v) in dst.chunks_exact_mut(4).zip(values) {
+                        d.copy_from_slice(&v.to_ne_bytes());
+                    }
+                }
+            }
+            continue;
+        }
         // The r wrap counts only for 3D textures, whose lookup helpers read flag w.
         let three_d = t.target == TEXTURE_3D_OES;
         let [ms, mt, mr] = state.mirror_clamp();
@@ -318,14 +342,26 @@ pub(crate) fn plan_draw<'c>(
         .zip(&program.info.samplers)
         .map(|(b, (ty, _))| {
             let b = b.as_ref()?;
-            // Integers read by a float sampler are undefined (ES 3.0 §3.8.14): the sampler
-            // reads as if no texture were there.
-            let img = b.texture.gpu.as_ref().filter(|img| !img.storage.is_int())?;
+            // Integers read by a float sampler, or floats by an integer one, are undefined
+            // (ES 3.0 §3.8.14): the sampler reads as if no texture were there.
+            let img = b.texture.gpu.as_ref()?;
+            let kind = match img.storage {
+                Storage::Int { signed, .. } => Some(signed),
+                _ => None,
+            };
+            if kind != ty.int_sampler() {
+                return None;
+            }
             let (base, _) = b.texture.level_range(&b.state);
             // The sampler counts levels of detail from the base level, as the view does.
             let state = SamplerState { base_level: base, ..b.state };
+            // Integer cube maps are fetched from their faces as a 2D array.
+            let view = match ty.int_sampler().is_some() && img.layers() == 6 && !img.array {
+                true => img.faces_view_from(base),
+                false => img.view_from(base),
+            };
             // A shadow sampler fetches texels unfiltered and filters its comparisons itself.
-            Some((img.view_from(base), b.texture.uid, state, !img.filterable || ty.is_shadow()))
+            Some((view, b.texture.uid, state, !img.filterable || ty.is_shadow()))
         })
         .collect();
     let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);

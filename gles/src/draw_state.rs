@@ -352,7 +352,7 @@ pub(crate) fn bound_textures<'c>(ctx: &'c Context, program: &LinkedProgram, unit
         .iter()
         .zip(units.iter())
         .map(|((ty, _), unit)| {
-            let target = match ty {
+            let target = match ty.sampler_base() {
                 Ty::SamplerCube | Ty::SamplerCubeShadow => TextureTarget::CubeMap,
                 Ty::SamplerExternal => TextureTarget::External,
                 Ty::Sampler3D => TextureTarget::ThreeD,

@@ -55,6 +55,7 @@ mod programs;
 mod queries;
 mod query_objects;
 mod render;
+mod renderbuffers;
 mod resolve;
 mod samplers;
 mod sampling;

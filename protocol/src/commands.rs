@@ -321,6 +321,7 @@ command_set! {
         glSamplerParameterf [Context, Es3] => SamplerParameterf { sampler: GLuint, pname: GLenum, param: GLfloat };
         glSamplerParameteriv [Context, Es3] => SamplerParameteriv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLint> };
         glSamplerParameterfv [Context, Es3] => SamplerParameterfv { sampler: GLuint, pname: GLenum, params: Slice<'a, GLfloat> };
+        glRenderbufferStorageMultisample [Context, Es3] => RenderbufferStorageMultisample { target: GLenum, samples: GLsizei, internalformat: GLenum, width: GLsizei, height: GLsizei };
         glFramebufferTextureLayer [Context, Es3] => FramebufferTextureLayer { target: GLenum, attachment: GLenum, texture: GLuint, level: GLint, layer: GLint };
         glBlitFramebuffer [Context, Flush, Es3] => BlitFramebuffer { src_x0: GLint, src_y0: GLint, src_x1: GLint, src_y1: GLint, dst_x0: GLint, dst_y0: GLint, dst_x1: GLint, dst_y1: GLint, mask: GLbitfield, filter: GLenum };
     }

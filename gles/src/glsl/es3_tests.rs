@@ -139,9 +139,8 @@ fn sampler3d_is_core_in_300_es() {
 }
 
 /// GLSL ES 3.00's shadow, array and integer samplers take precision qualifiers and default
-/// precision statements, and have no default precision of their own (§4.5.4); an unused one
-/// is dropped as inactive; sampling an integer one is refused with a log rather than
-/// mistranslated.
+/// precision statements, and have no default precision of their own (§4.5.4); each is
+/// sampled.
 #[test]
 fn es3_sampler_types_take_precision() {
     let fs = |decl: &str, body: &str| {
@@ -156,12 +155,7 @@ fn es3_sampler_types_take_precision() {
         let e = fs(&format!("uniform {t} s;"), "o = vec4(1.0);").expect_err("no default precision");
         assert!(e.contains(&format!("type `{t}'")), "{t}: {e}");
         let sampled = fs(&format!("uniform highp {t} s;"), "o = vec4(float(textureSize(s, 0).x));");
-        if matches!(t, "sampler2DArray" | "sampler2DShadow" | "samplerCubeShadow") {
-            sampled.unwrap_or_else(|e| panic!("{t} is sampled: {e}"));
-        } else {
-            let e = sampled.expect_err("sampled");
-            assert!(e.contains("not supported yet"), "{t}: {e}");
-        }
+        sampled.unwrap_or_else(|e| panic!("{t} is sampled: {e}"));
     }
     // GLSL ES 1.00 knows none of them.
     let e = compile(Stage::Fragment, "precision mediump float; precision lowp sampler2DArray; void main() {}")
@@ -361,4 +355,47 @@ fn literals_of_32_bits() {
     fs("int a = int(0xFFFFFFFF) + 0x80000000 + 4294967295 + 020000000000; o = vec4(float(a));").expect("ints");
     fs("float f = 0.2147483648 + 2147483648.0 + 4294967296.5; o = vec4(f);").expect("floats");
     fs("int b = 4294967296; o = vec4(float(b));").expect_err("33 bits");
+}
+
+/// Every kind of integer lookup becomes GLSL that naga takes: each lookup form on each integer
+/// sampler type (the helpers of `int_samplers`), linked.
+#[test]
+fn integer_sampler_lookups_compile_and_link() {
+    let vs = compile(
+        Stage::Vertex,
+        "#version 300 es
+layout(location = 0) in vec2 pos;
+out vec2 uv;
+void main() { uv = pos * 0.5 + 0.5; gl_Position = vec4(pos, 0.0, 1.0); }",
+    )
+    .expect("vs");
+    for (decl, expr) in [
+        ("uniform highp usampler2D s;", "texture(s, p)"),
+        ("uniform highp usampler2D s;", "textureProj(s, vec3(p, 1.0) * 2.0)"),
+        ("uniform highp usampler2D s;", "uvec4(textureSize(s, 1), textureSize(s, 0))"),
+        ("uniform highp usampler2D s;", "texelFetch(s, ivec2(uv * 4.0), 1)"),
+        ("uniform highp isampler3D s;", "texture(s, vec3(p, p.x * 2.0))"),
+        ("uniform highp isamplerCube s;", "texture(s, vec3(p, 1.0))"),
+        ("uniform highp usampler2DArray s;", "texture(s, vec3(p, 0.0))"),
+        ("uniform highp isampler2D s;", "textureGradOffset(s, p, vec2(1.0), vec2(0.5), ivec2(1))"),
+        ("uniform highp isampler2D s;", "textureProjLod(s, vec4(p, 0.0, 2.0), 1.0)"),
+        ("uniform highp usampler3D s;", "textureProjGrad(s, vec4(p, 0.0, 2.0), vec3(1.0), vec3(0.0))"),
+        (
+            "uniform highp usamplerCube s;",
+            "textureGrad(s, vec3(p, 1.0), vec3(1.0), vec3(0.0)) + uvec4(textureSize(s, 0), 0, 0)",
+        ),
+        ("uniform highp isampler2DArray s;", "textureLodOffset(s, vec3(p, 1.0), 1.0, ivec2(-1))"),
+    ] {
+        let src = format!(
+            "#version 300 es
+precision highp float;
+precision highp int;
+{decl}
+in vec2 uv;
+out vec4 o;
+void main() {{ vec2 p = uv * 3.0 - 1.0; vec4 v = vec4({expr}); o = v; }}"
+        );
+        let fs = compile(Stage::Fragment, &src).map_err(|e| format!("{expr}: {e}")).expect("fs");
+        link(&vs, &fs, &HashMap::new(), 16).map_err(|e| format!("{expr}: {e}")).expect("link");
+    }
 }

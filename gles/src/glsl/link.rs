@@ -257,6 +257,9 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
         if samplers.iter().any(|(t, _)| t.is_shadow()) {
             common.push_str(crate::glsl::shadow::SHADOW_FNS);
         }
+        if samplers.iter().any(|(t, _)| t.int_sampler().is_some()) {
+            common.push_str(&crate::glsl::int_samplers::helpers());
+        }
     }
     for ((ty, binding), name) in samplers.iter().zip(sampler_names(&uniforms)) {
         let _ = writeln!(common, "layout(set = 0, binding = {binding}) uniform {} {name}__t;", ty.glsl(true));
@@ -351,6 +354,9 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
     let mut fsrc = common;
     if samplers.iter().any(|(t, _)| t.is_shadow()) {
         fsrc.push_str(crate::glsl::shadow::SHADOW_IMPLICIT_FNS);
+    }
+    if samplers.iter().any(|(t, _)| t.int_sampler().is_some()) {
+        fsrc.push_str(&crate::glsl::int_samplers::implicit_helpers());
     }
     fsrc.push_str(&fs_blocks);
     fsrc.push_str(&lookup_helpers(&fs.lookups));

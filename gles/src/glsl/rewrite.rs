@@ -262,6 +262,9 @@ impl VisitorMut for Rewrite {
                 match split {
                     Some((t, name)) => {
                         let tex = match t {
+                            _ if t.int_sampler().is_some() => {
+                                crate::glsl::int_samplers::texture_type(t).unwrap_or(T::Texture2D)
+                            }
                             Ty::SamplerCube | Ty::SamplerCubeShadow => T::TextureCube,
                             Ty::Sampler3D => T::Texture3D,
                             Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => T::Texture2DArray,
@@ -350,6 +353,9 @@ impl VisitorMut for Rewrite {
                 } else if let Some(ty) = self.samplers.get(name) {
                     // A shadow sampler reads its depth image as floats (`SHADOW_FNS` compares).
                     let t = match ty {
+                        _ if ty.int_sampler().is_some() => {
+                            crate::glsl::int_samplers::sampler_type(*ty).unwrap_or(T::Sampler2D)
+                        }
                         Ty::SamplerCube | Ty::SamplerCubeShadow => T::SamplerCube,
                         Ty::Sampler3D => T::Sampler3D,
                         Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => T::Sampler2DArray,
@@ -427,6 +433,50 @@ impl VisitorMut for Rewrite {
                 }
                 if let FunIdentifierData::Expr(f) = &mut fun.content {
                     if let ExprData::Variable(id) = &mut f.content {
+                        let int = match args.first().map(|a| &a.content) {
+                            Some(ExprData::Variable(v)) if !self.sampler_fns.contains_key(id.0.as_str()) => self
+                                .samplers
+                                .get(v.0.as_str())
+                                .filter(|t| t.int_sampler().is_some())
+                                .map(|t| (v.0.to_string(), *t)),
+                            _ => None,
+                        };
+                        if let Some((sampler, ty)) = int {
+                            // An integer lookup: its other arguments rewritten, then the call
+                            // replaced by its fetching helper's (texelFetch and most size
+                            // queries stay as they are).
+                            args.iter_mut().skip(1).for_each(|a| {
+                                a.visit_mut(self);
+                            });
+                            let fragment = self.stage == Stage::Fragment;
+                            let function = id.0.to_string();
+                            let helper =
+                                crate::glsl::int_samplers::lookup(&function, &sampler, ty, &args[1..], fragment);
+                            let texels = crate::glsl::swizzle::returns_texels(&function);
+                            let c = match helper {
+                                Some(c) => c,
+                                None if texels && !function.starts_with("texelFetch") => {
+                                    self.error.get_or_insert_with(|| {
+                                        format!("0: no matching overload of `{function}' for an integer sampler")
+                                    });
+                                    return Visit::Parent;
+                                }
+                                None => {
+                                    // Only the sampler itself is left to rewrite.
+                                    if let Some(first) = args.first_mut() {
+                                        first.visit_mut(self);
+                                    }
+                                    std::mem::replace(e, ExprData::IntConst(0).into())
+                                }
+                            };
+                            *e = if texels {
+                                let swizzle = FunIdentifierData::Expr(Box::new(var("strata_swizzle"))).into();
+                                ExprData::FunCall(swizzle, vec![c, var(&format!("{sampler}__z"))]).into()
+                            } else {
+                                c
+                            };
+                            return Visit::Parent;
+                        }
                         let shadow = match args.first().map(|a| &a.content) {
                             Some(ExprData::Variable(v))
                                 if !self.sampler_fns.contains_key(id.0.as_str()) && id.0.as_str() != "textureSize" =>

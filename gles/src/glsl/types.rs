@@ -60,6 +60,22 @@ pub enum Ty {
     SamplerCubeShadow,
     /// `sampler2DArrayShadow` (ES 3.0).
     Sampler2DArrayShadow,
+    /// `isampler2D` (ES 3.0): signed integers, fetched texel by texel (`glsl::int_samplers`).
+    ISampler2D,
+    /// `isampler3D`.
+    ISampler3D,
+    /// `isamplerCube`.
+    ISamplerCube,
+    /// `isampler2DArray`.
+    ISampler2DArray,
+    /// `usampler2D` (ES 3.0): unsigned integers.
+    USampler2D,
+    /// `usampler3D`.
+    USampler3D,
+    /// `usamplerCube`.
+    USamplerCube,
+    /// `usampler2DArray`.
+    USampler2DArray,
 }
 
 /// `GL_UNSIGNED_INT_VEC2`..`4` (ES 3.0), as `glGetActiveUniform` reports them.
@@ -108,6 +124,14 @@ impl Ty {
             T::Sampler2DShadow => Ty::Sampler2DShadow,
             T::SamplerCubeShadow => Ty::SamplerCubeShadow,
             T::Sampler2DArrayShadow => Ty::Sampler2DArrayShadow,
+            T::ISampler2D => Ty::ISampler2D,
+            T::ISampler3D => Ty::ISampler3D,
+            T::ISamplerCube => Ty::ISamplerCube,
+            T::ISampler2DArray => Ty::ISampler2DArray,
+            T::USampler2D => Ty::USampler2D,
+            T::USampler3D => Ty::USampler3D,
+            T::USamplerCube => Ty::USamplerCube,
+            T::USampler2DArray => Ty::USampler2DArray,
             // The preprocessor spells `samplerExternalOES` so (see `preprocess::EXTERNAL_SPELLING`).
             T::Sampler2DRect => Ty::SamplerExternal,
             _ => return None,
@@ -150,6 +174,15 @@ impl Ty {
             Ty::Sampler2DShadow => 0x8B62,
             Ty::SamplerCubeShadow => 0x8DC5,
             Ty::Sampler2DArrayShadow => 0x8DC4,
+            // GL_INT_SAMPLER_* and GL_UNSIGNED_INT_SAMPLER_*.
+            Ty::ISampler2D => 0x8DCA,
+            Ty::ISampler3D => 0x8DCB,
+            Ty::ISamplerCube => 0x8DCC,
+            Ty::ISampler2DArray => 0x8DCF,
+            Ty::USampler2D => 0x8DD2,
+            Ty::USampler3D => 0x8DD3,
+            Ty::USamplerCube => 0x8DD4,
+            Ty::USampler2DArray => 0x8DD7,
         }
     }
 
@@ -189,6 +222,13 @@ impl Ty {
             Ty::SamplerCube | Ty::SamplerCubeShadow => "textureCube",
             Ty::Sampler3D => "texture3D",
             Ty::Sampler2DArray | Ty::Sampler2DArrayShadow => "texture2DArray",
+            Ty::ISampler2D => "itexture2D",
+            Ty::ISampler3D => "itexture3D",
+            // Integer cube maps are fetched as their six faces (`glsl::int_samplers`).
+            Ty::ISamplerCube | Ty::ISampler2DArray => "itexture2DArray",
+            Ty::USampler2D => "utexture2D",
+            Ty::USampler3D => "utexture3D",
+            Ty::USamplerCube | Ty::USampler2DArray => "utexture2DArray",
         }
     }
 
@@ -206,7 +246,15 @@ impl Ty {
             | Ty::Sampler2DArray
             | Ty::Sampler2DShadow
             | Ty::SamplerCubeShadow
-            | Ty::Sampler2DArrayShadow => 1,
+            | Ty::Sampler2DArrayShadow
+            | Ty::ISampler2D
+            | Ty::ISampler3D
+            | Ty::ISamplerCube
+            | Ty::ISampler2DArray
+            | Ty::USampler2D
+            | Ty::USampler3D
+            | Ty::USamplerCube
+            | Ty::USampler2DArray => 1,
             Ty::Vec2 | Ty::IVec2 | Ty::UVec2 | Ty::BVec2 => 2,
             Ty::Vec3 | Ty::IVec3 | Ty::UVec3 | Ty::BVec3 => 3,
             Ty::Vec4 | Ty::IVec4 | Ty::UVec4 | Ty::BVec4 | Ty::Mat2 => 4,
@@ -253,11 +301,32 @@ impl Ty {
     pub fn is_sampler(self) -> bool {
         matches!(self, Ty::Sampler2D | Ty::SamplerCube | Ty::SamplerExternal | Ty::Sampler3D | Ty::Sampler2DArray)
             || self.is_shadow()
+            || self.int_sampler().is_some()
     }
 
     /// Whether this is a shadow sampler, whose lookups compare (`rewrite`'s shadow helpers).
     pub fn is_shadow(self) -> bool {
         matches!(self, Ty::Sampler2DShadow | Ty::SamplerCubeShadow | Ty::Sampler2DArrayShadow)
+    }
+
+    /// Whether this is an integer sampler: `Some(signed)`.
+    pub fn int_sampler(self) -> Option<bool> {
+        match self {
+            Ty::ISampler2D | Ty::ISampler3D | Ty::ISamplerCube | Ty::ISampler2DArray => Some(true),
+            Ty::USampler2D | Ty::USampler3D | Ty::USamplerCube | Ty::USampler2DArray => Some(false),
+            _ => None,
+        }
+    }
+
+    /// The float sampler of the same dimensions: the sampler itself for every other.
+    pub fn sampler_base(self) -> Ty {
+        match self {
+            Ty::ISampler2D | Ty::USampler2D => Ty::Sampler2D,
+            Ty::ISampler3D | Ty::USampler3D => Ty::Sampler3D,
+            Ty::ISamplerCube | Ty::USamplerCube => Ty::SamplerCube,
+            Ty::ISampler2DArray | Ty::USampler2DArray => Ty::Sampler2DArray,
+            t => t,
+        }
     }
 
     /// std140 (size, alignment) of one element that is not in an array.

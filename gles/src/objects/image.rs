@@ -262,6 +262,17 @@ impl TextureImage {
         })
     }
 
+    /// A view of its faces as a 2D array from level `base` on: how integer cube maps are
+    /// fetched texel by texel (`glsl::int_samplers`).
+    pub fn faces_view_from(&self, base: u32) -> wgpu::TextureView {
+        self.texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            base_mip_level: base.min(self.mips.saturating_sub(1)),
+            mip_level_count: Some(self.mips - base.min(self.mips.saturating_sub(1))),
+            ..Default::default()
+        })
+    }
+
     /// A view for rendering into `level` of `face` (a 2D image's or cube face's), or into
     /// slice `face` of a 3D image's level, with the slice the render pass must name.
     pub fn attach_view(&self, face: u32, level: u32) -> (wgpu::TextureView, Option<u32>) {

@@ -301,12 +301,23 @@ pub fn layout_entries(info: &glsl::Linked, depth_mask: u32) -> Vec<wgpu::BindGro
         });
     }
     for (i, (ty, b)) in info.samplers.iter().enumerate() {
-        let depth = depth_mask & (1 << i) != 0;
+        // Integer samplers fetch unfiltered texels; their cube maps as a 2D array of faces.
+        let int = ty.int_sampler();
+        let depth = depth_mask & (1 << i) != 0 || int.is_some();
+        let sample_type = match int {
+            Some(true) => wgpu::TextureSampleType::Sint,
+            Some(false) => wgpu::TextureSampleType::Uint,
+            None => wgpu::TextureSampleType::Float { filterable: !depth },
+        };
+        let ty = match ty.sampler_base() {
+            glsl::Ty::SamplerCube if int.is_some() => glsl::Ty::Sampler2DArray,
+            t => t,
+        };
         entries.push(wgpu::BindGroupLayoutEntry {
             binding: *b,
             visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
             ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: !depth },
+                sample_type,
                 view_dimension: match ty {
                     glsl::Ty::SamplerCube | glsl::Ty::SamplerCubeShadow => wgpu::TextureViewDimension::Cube,
                     glsl::Ty::Sampler3D => wgpu::TextureViewDimension::D3,

@@ -175,10 +175,14 @@ impl Texture {
     /// read defined data (GL ES 2.0 §3.7.10, ES 3.0 §3.8.13 completeness): the base level, and
     /// with a mipmap filter every level from it to the max level or the chain's end; a float
     /// image the device cannot filter is incomplete with a linear filter
-    /// (`OES_texture_float_linear` not offered).
+    /// (`OES_texture_float_linear` not offered), and an integer image always is.
     pub fn complete_with(&self, s: &SamplerState) -> bool {
         let Some(img) = &self.gpu else { return false };
         if img.storage == Storage::Float && !img.filterable && s.filters_linearly() {
+            return false;
+        }
+        // ES 3.0 §3.8.13: an integer image with a linear filter.
+        if img.storage.is_int() && s.filters_linearly() {
             return false;
         }
         let faces = if self.target == TEXTURE_CUBE_MAP { 6 } else { 1 };

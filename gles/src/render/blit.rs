@@ -26,13 +26,24 @@ pub struct Blit<'a> {
 }
 
 impl Renderer {
-    /// The blit shader and layout, made once.
-    fn blit_shader(&self) -> &(wgpu::ShaderModule, wgpu::BindGroupLayout) {
-        self.fixed.blit.get_or_init(|| {
+    /// The blit shader and layout for a source of floats (`kind` `None`), or of signed or
+    /// unsigned integers, made once.
+    fn blit_shader(&self, kind: Option<bool>) -> &(wgpu::ShaderModule, wgpu::BindGroupLayout) {
+        let slot = match kind {
+            None => &self.fixed.blit[0],
+            Some(false) => &self.fixed.blit[1],
+            Some(true) => &self.fixed.blit[2],
+        };
+        slot.get_or_init(|| {
             let d = &self.gpu.device;
+            let source = include_str!("../../../shaders/framebuffer_blit.wgsl");
+            let source = match kind {
+                None => source.to_string(),
+                Some(signed) => int_blit_source(source, if signed { "i32" } else { "u32" }),
+            };
             let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("blit"),
-                source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/framebuffer_blit.wgsl").into()),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
             });
             let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -41,7 +52,11 @@ impl Renderer {
                 count: None,
             };
             let texture = wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                sample_type: match kind {
+                    None => wgpu::TextureSampleType::Float { filterable: true },
+                    Some(true) => wgpu::TextureSampleType::Sint,
+                    Some(false) => wgpu::TextureSampleType::Uint,
+                },
                 view_dimension: wgpu::TextureViewDimension::D2,
                 multisampled: false,
             };
@@ -54,7 +69,13 @@ impl Renderer {
                 label: Some("blit"),
                 entries: &[
                     entry(0, texture),
-                    entry(1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)),
+                    entry(
+                        1,
+                        wgpu::BindingType::Sampler(match kind {
+                            None => wgpu::SamplerBindingType::Filtering,
+                            Some(_) => wgpu::SamplerBindingType::NonFiltering,
+                        }),
+                    ),
                     entry(2, uniform),
                 ],
             });
@@ -65,7 +86,7 @@ impl Renderer {
     /// The blit pipeline writing the `writes` channels of `format`, compiled once for all
     /// clients.
     fn blit_pipeline(&self, format: wgpu::TextureFormat, writes: wgpu::ColorWrites) -> wgpu::RenderPipeline {
-        let (module, bgl) = self.blit_shader();
+        let (module, bgl) = self.blit_shader(int_kind(format));
         let mut shared = self.fixed.blit_pipelines.lock().unwrap_or_else(|e| e.into_inner());
         shared
             .entry((format, writes.bits()))
@@ -161,7 +182,7 @@ impl Renderer {
         };
         let sampler = self.sampler(state, false);
         let view = copy.create_view(&Default::default());
-        let (_, bgl) = self.blit_shader();
+        let (_, bgl) = self.blit_shader(int_kind(tex.format()));
         let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("blit"),
             layout: bgl,
@@ -193,4 +214,29 @@ impl Renderer {
         }
         self.gpu.submit(&self.lane, vec![enc.finish()]);
     }
+}
+
+/// Whether `format` holds integers: `Some(signed)`.
+fn int_kind(format: wgpu::TextureFormat) -> Option<bool> {
+    match format.sample_type(None, None) {
+        Some(wgpu::TextureSampleType::Sint) => Some(true),
+        Some(wgpu::TextureSampleType::Uint) => Some(false),
+        _ => None,
+    }
+}
+
+/// The blit shader for integer texels of `scalar` (`i32` or `u32`): the nearest texel
+/// fetched, as integer images are never filtered.
+fn int_blit_source(source: &str, scalar: &str) -> String {
+    let body_at = source.find("@fragment").unwrap_or(source.len());
+    let head = source[..body_at].replace("texture_2d<f32>", &format!("texture_2d<{scalar}>"));
+    format!(
+        "{head}@fragment
+fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<{scalar}> {{
+    let s = p.src0 + (pos.xy - p.dst0) * p.scale;
+    let size = vec2<i32>(textureDimensions(src));
+    return textureLoad(src, clamp(vec2<i32>(floor(s)), vec2<i32>(0), size - 1), 0);
+}}
+"
+    )
 }

@@ -113,6 +113,32 @@ fn black_volume(gpu: &Gpu) -> wgpu::TextureView {
     tex.create_view(&Default::default())
 }
 
+/// A 1×1 (×1) integer image holding (0, 0, 0, 1), signed or not, of `dim` (2D, 3D or a 2D
+/// array): what incomplete textures read through integer samplers.
+fn black_int(gpu: &Gpu, signed: bool, dim: wgpu::TextureViewDimension) -> wgpu::TextureView {
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("incomplete integer texture"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: if dim == wgpu::TextureViewDimension::D3 {
+            wgpu::TextureDimension::D3
+        } else {
+            wgpu::TextureDimension::D2
+        },
+        format: if signed { wgpu::TextureFormat::Rgba8Sint } else { wgpu::TextureFormat::Rgba8Uint },
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    gpu.write_texture(
+        tex.as_image_copy(),
+        &[0, 0, 0, 1],
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4), rows_per_image: None },
+        wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+    );
+    tex.create_view(&wgpu::TextureViewDescriptor { dimension: Some(dim), ..Default::default() })
+}
+
 /// The bind group layout of the mipmap shaders: the level above, of `dim`, and a sampler.
 fn mip_layout(gpu: &Gpu, dim: wgpu::TextureViewDimension) -> wgpu::BindGroupLayout {
     gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -147,6 +173,9 @@ pub struct Fixed {
     black_3d: wgpu::TextureView,
     /// What incomplete 2D arrays sample: one opaque black layer.
     black_array: wgpu::TextureView,
+    /// What incomplete textures read through integer samplers, unsigned then signed: 2D, 3D,
+    /// and 2D arrays (integer cube maps too, which are fetched as arrays).
+    black_int: [[wgpu::TextureView; 3]; 2],
     /// What a uniform block without a large enough buffer reads: zeros, as many as a block
     /// may hold.
     zero_block: wgpu::Buffer,
@@ -165,8 +194,9 @@ pub struct Fixed {
     /// Mipmap pipelines by format and whether they filter 3D images, compiled once for all
     /// clients.
     mip_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>>,
-    /// The blit shader and its layout (`glBlitFramebuffer`), made on the first blit.
-    blit: std::sync::OnceLock<(wgpu::ShaderModule, wgpu::BindGroupLayout)>,
+    /// The blit shaders and their layouts (`glBlitFramebuffer`) for float, unsigned and signed
+    /// integer sources, each made on its first blit.
+    blit: [std::sync::OnceLock<(wgpu::ShaderModule, wgpu::BindGroupLayout)>; 3],
     /// Blit pipelines by destination format and written channels, compiled once for all
     /// clients.
     blit_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, u32), wgpu::RenderPipeline>>,
@@ -212,6 +242,10 @@ impl Fixed {
             black_cube: black(gpu, 6, wgpu::TextureViewDimension::Cube),
             black_array: black(gpu, 1, wgpu::TextureViewDimension::D2Array),
             black_3d: black_volume(gpu),
+            black_int: [false, true].map(|signed| {
+                [wgpu::TextureViewDimension::D2, wgpu::TextureViewDimension::D3, wgpu::TextureViewDimension::D2Array]
+                    .map(|dim| black_int(gpu, signed, dim))
+            }),
             unused_capture: (0..crate::glsl::capture::MAX_SEPARATE_ATTRIBS)
                 .map(|_| {
                     d.create_buffer(&wgpu::BufferDescriptor {

@@ -85,7 +85,20 @@ impl Renderer {
                     textures.push((view.clone(), *uid, self.sampler(state, false), state, self.sampler(state, true)))
                 }
                 None => {
-                    let (view, uid) = match ty {
+                    let int = ty.and_then(Ty::int_sampler);
+                    let (view, uid) = match ty.map(Ty::sampler_base) {
+                        Some(t) if int.is_some() => {
+                            let signed = int == Some(true);
+                            let dim = match t {
+                                Ty::Sampler2D => 0,
+                                Ty::Sampler3D => 1,
+                                _ => 2,
+                            };
+                            (
+                                self.fixed.black_int[usize::from(signed)][dim].clone(),
+                                u64::MAX - 4 - 3 * u64::from(signed) - dim as u64,
+                            )
+                        }
                         Some(Ty::SamplerCube | Ty::SamplerCubeShadow) => (self.fixed.black_cube.clone(), u64::MAX - 1),
                         Some(Ty::Sampler3D) => (self.fixed.black_3d.clone(), u64::MAX - 2),
                         Some(Ty::Sampler2DArray | Ty::Sampler2DArrayShadow) => {
@@ -93,7 +106,11 @@ impl Renderer {
                         }
                         _ => (self.fixed.black_2d.clone(), u64::MAX),
                     };
-                    let s = SamplerState::default();
+                    // Integer samplers bind non-filtering samplers.
+                    let s = match int {
+                        Some(_) => SamplerState { min: NEAREST, mag: NEAREST, ..SamplerState::default() },
+                        None => SamplerState::default(),
+                    };
                     textures.push((view, uid, self.sampler(s, false), s, self.sampler(s, true)));
                 }
             }

@@ -1,8 +1,8 @@
 //! ES 3.0's integer colour formats: textures of eight of them uploaded from integer data and
 //! read back through a framebuffer as `GL_RGBA_INTEGER`, drawn into by integer fragment
 //! outputs (two buffers of different kinds at once), cleared by `glClearBufferiv`/`uiv` under
-//! a scissor, integer renderbuffers, the attachment queries, and the errors of reads, uploads,
-//! mipmaps and renderbuffers that mix integers with other data; all as marks.
+//! a scissor, integer renderbuffers, blits, the attachment queries, and the errors of reads,
+//! uploads, mipmaps, blits and renderbuffers that mix integers with other data; all as marks.
 
 use super::super::multi_draw::mark_all;
 use super::super::*;
@@ -26,6 +26,8 @@ const RGB8UI: u32 = 0x8D7D;
 const RGB10_A2UI: u32 = 0x906F;
 const UNSIGNED_INT_2_10_10_10_REV: u32 = 0x8368;
 const COLOR: u32 = 0x1800;
+const READ_FRAMEBUFFER: u32 = 0x8CA8;
+const DRAW_FRAMEBUFFER: u32 = 0x8CA9;
 const IMPLEMENTATION_COLOR_READ_TYPE: u32 = 0x8B9A;
 const IMPLEMENTATION_COLOR_READ_FORMAT: u32 = 0x8B9B;
 const COMPONENT_TYPE: u32 = 0x8211;
@@ -180,6 +182,37 @@ pub fn integers(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glReadBufferNV(COLOR_ATTACHMENT0 + 1)?;
     read(gl, 3, 1, false, &mut marks)?;
     marks.push(gl.glGetFramebufferAttachmentParameteriv(FRAMEBUFFER, COLOR_ATTACHMENT0, COMPONENT_TYPE)? as u32);
+
+    // Integer blits: scaled and flipped into a signed buffer; linear filtering, and a float
+    // buffer, refused.
+    let src_fb = n.next();
+    gl.glGenFramebuffers(Slice::new(&[src_fb]))?;
+    gl.glBindFramebuffer(FRAMEBUFFER, src_fb)?;
+    let src = n.next();
+    gl.glGenTextures(Slice::new(&[src]))?;
+    gl.glBindTexture(TEXTURE_2D, src)?;
+    let data: Vec<u8> = (0..16i32).flat_map(|i| (i * 1000 - 7000).to_ne_bytes()).collect();
+    gl.glTexImage2D(TEXTURE_2D, 0, R32I as i32, 4, 4, 0, RED_INTEGER, INT, Some(Blob::borrowed(&data)))?;
+    gl.glFramebufferTexture2D(FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_2D, src, 0)?;
+    let dst_fb = n.next();
+    gl.glGenFramebuffers(Slice::new(&[dst_fb]))?;
+    gl.glBindFramebuffer(FRAMEBUFFER, dst_fb)?;
+    let big = n.next();
+    gl.glGenRenderbuffers(Slice::new(&[big]))?;
+    gl.glBindRenderbuffer(RENDERBUFFER, big)?;
+    gl.glRenderbufferStorage(RENDERBUFFER, RGBA32I, 8, 8)?;
+    gl.glFramebufferRenderbuffer(FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, big)?;
+    gl.glBindFramebuffer(READ_FRAMEBUFFER, src_fb)?;
+    gl.glBlitFramebuffer(0, 0, 4, 4, 8, 8, 0, 0, COLOR_BUFFER_BIT, NEAREST as u32)?;
+    gl.glBlitFramebuffer(0, 0, 4, 4, 0, 0, 8, 8, COLOR_BUFFER_BIT, LINEAR as u32)?;
+    marks.push(gl.glGetError()?);
+    gl.glBindFramebuffer(READ_FRAMEBUFFER, dst_fb)?;
+    read(gl, 1, 1, true, &mut marks)?;
+    read(gl, 6, 3, true, &mut marks)?;
+    gl.glBindFramebuffer(DRAW_FRAMEBUFFER, 0)?;
+    gl.glBlitFramebuffer(0, 0, 8, 8, 0, 0, 8, 8, COLOR_BUFFER_BIT, NEAREST as u32)?;
+    marks.push(gl.glGetError()?);
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
 
     // An RGB integer image cannot be rendered to; RGB integer renderbuffers do not exist.
     let rgb = n.next();

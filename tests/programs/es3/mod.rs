@@ -12,6 +12,7 @@ mod divisors;
 mod etc2;
 mod float_textures;
 mod int_attributes;
+mod int_samplers;
 mod integers;
 mod language;
 mod matrix_inputs;
@@ -61,5 +62,6 @@ pub fn all() -> Vec<Case> {
         c("es3_shadow", shadow::shadow),
         c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
         c("es3_integer_formats", integers::integers),
+        c("es3_int_samplers", int_samplers::int_samplers),
     ]
 }

@@ -44,6 +44,7 @@ scalar_arms! {
     glUniform2ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32);
     glUniform3ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32);
     glUniform4ui(location: GLint => i32, x: GLuint => u32, y: GLuint => u32, z: GLuint => u32, w: GLuint => u32);
+    glRenderbufferStorageMultisample(target: GLenum => u32, samples: GLsizei => i32, internalformat: GLenum => u32, width: GLsizei => i32, height: GLsizei => i32);
     glFramebufferTextureLayer(target: GLenum => u32, attachment: GLenum => u32, texture: GLuint => u32, level: GLint => i32, layer: GLint => i32);
     glBlitFramebuffer(src_x0: GLint => i32, src_y0: GLint => i32, src_x1: GLint => i32, src_y1: GLint => i32, dst_x0: GLint => i32, dst_y0: GLint => i32, dst_x1: GLint => i32, dst_y1: GLint => i32, mask: GLbitfield => u32, filter: GLenum => u32);
     glTexStorage2D(target: GLenum => u32, levels: GLsizei => i32, internalformat: GLenum => u32, width: GLsizei => i32, height: GLsizei => i32);

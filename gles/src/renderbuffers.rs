@@ -1,0 +1,204 @@
+//! Renderbuffer objects: names, bindings, storage of each renderable format (ES 2.0's and its
+//! extensions', ES 3.0's sRGB, float depth and integer ones), and their parameters.
+
+use crate::channels::{absent_channels, color_bits, is_half_renderbuffer};
+use crate::context::Context;
+use crate::enums::*;
+use crate::error::{GlError, GlResult};
+use crate::formats::{COLOR_FORMAT, HALF_FORMAT};
+use crate::limits::MAX_TEXTURE;
+use crate::objects::framebuffer::Renderbuffer;
+use crate::render::Target;
+use crate::GlesExecutor;
+use strata_device::account::Kind;
+use strata_protocol::Slice;
+
+#[allow(non_snake_case)]
+impl GlesExecutor {
+    pub(super) fn glGenRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh(names.iter()))?;
+        ctx.objects.renderbuffers.generate(names.iter());
+        Ok(())
+    }
+
+    pub(super) fn glDeleteRenderbuffers(&mut self, ctx: &mut Context, names: Slice<'_, u32>) -> GlResult {
+        for n in ctx.objects.renderbuffers.delete(names.iter()) {
+            ctx.objects.forget_label(RENDERBUFFER, n);
+            if ctx.bindings.renderbuffer == n {
+                ctx.bindings.renderbuffer = 0;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn glBindRenderbuffer(&mut self, ctx: &mut Context, target: u32, renderbuffer: u32) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        self.admit(ctx, Kind::Renderbuffer, ctx.objects.renderbuffers.fresh([renderbuffer]))?;
+        ctx.objects.renderbuffers.bind(renderbuffer);
+        ctx.bindings.renderbuffer = renderbuffer;
+        Ok(())
+    }
+
+    pub(super) fn glIsRenderbuffer(&mut self, ctx: &mut Context, name: u32) -> bool {
+        ctx.objects.renderbuffers.is(name)
+    }
+
+    pub(super) fn glRenderbufferStorage(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        internalformat: u32,
+        width: i32,
+        height: i32,
+    ) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        let es3 = ctx.es3();
+        let format = match internalformat {
+            RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT => COLOR_FORMAT,
+            f if is_half_renderbuffer(f) => HALF_FORMAT,
+            DEPTH_COMPONENT16 => wgpu::TextureFormat::Depth16Unorm,
+            DEPTH_COMPONENT24_OES => wgpu::TextureFormat::Depth24Plus,
+            DEPTH24_STENCIL8_OES => wgpu::TextureFormat::Depth24PlusStencil8,
+            STENCIL_INDEX8 => wgpu::TextureFormat::Stencil8,
+            // ES 3.0's renderable formats beyond ES 2.0's extensions.
+            SRGB8_ALPHA8 if es3 => wgpu::TextureFormat::Rgba8UnormSrgb,
+            DEPTH_COMPONENT32F if es3 => wgpu::TextureFormat::Depth32Float,
+            DEPTH32F_STENCIL8 if es3 => {
+                if !self.gpu.features.contains(wgpu::Features::DEPTH32FLOAT_STENCIL8) {
+                    tracing::warn!("glRenderbufferStorage: the device has no 32-bit float depth with stencil");
+                    return Err(GlError::InvalidEnum);
+                }
+                wgpu::TextureFormat::Depth32FloatStencil8
+            }
+            // ES 3.0's integer formats but the RGB ones.
+            f if es3 && crate::integer::IntFormat::from_gl(f).is_some_and(|f| f.renderable()) => {
+                crate::integer::IntFormat::from_gl(f).map_or(COLOR_FORMAT, |f| f.wgpu())
+            }
+            _ => return Err(GlError::InvalidEnum),
+        };
+        if width < 0 || height < 0 || width as u32 > MAX_TEXTURE || height as u32 > MAX_TEXTURE {
+            return Err(GlError::InvalidValue);
+        }
+        let uid = self.next_uid();
+        let name = ctx.bindings.renderbuffer;
+        let Some(rb) = ctx.objects.renderbuffers.get_mut(&name).filter(|_| name != 0) else {
+            return Err(GlError::InvalidOperation);
+        };
+        // The old image's memory is given back before the new one's is reserved.
+        *rb = Renderbuffer::default();
+        let texel = match format {
+            wgpu::TextureFormat::Stencil8 => 1,
+            wgpu::TextureFormat::Depth16Unorm => 2,
+            HALF_FORMAT | wgpu::TextureFormat::Depth32FloatStencil8 => 8,
+            f => f.block_copy_size(None).map_or(4, u64::from),
+        };
+        let bytes = u64::from((width as u32).max(1)) * u64::from((height as u32).max(1)) * texel;
+        let reserved = Some(self.reserve(bytes)?);
+        let gpu = &self.gpu;
+        let size = ((width as u32).max(1), (height as u32).max(1));
+        // Sampled too: depth reads (GL_NV_read_depth) pass through the depth reader.
+        // Written to as well: a texture made from it through an EGLImage takes uploads.
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::TEXTURE_BINDING;
+        let tex = gpu.texture_2d("renderbuffer", format, size, usage);
+        let view = tex.create_view(&Default::default());
+        let absent = absent_channels(internalformat);
+        if !absent.is_empty() && matches!(format, COLOR_FORMAT | HALF_FORMAT) && width > 0 && height > 0 {
+            // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
+            let (w, h) = (width as u32, height as u32);
+            let color = (tex.clone(), view.clone());
+            let t = Target::color_only((uid, 2), color, (w, h), absent);
+            self.r.clear(&t, Some((t.stored([0.0; 4]), wgpu::ColorWrites::ALL, None)), None, None, None);
+        }
+        let rb = ctx.objects.renderbuffers.get_mut(&name).ok_or(GlError::InvalidOperation)?;
+        *rb = Renderbuffer {
+            format: internalformat,
+            width: width as u32,
+            height: height as u32,
+            gpu: Some((tex, view)),
+            uid,
+            reserved: reserved.map(std::sync::Arc::new),
+            at: Default::default(),
+        };
+        Ok(())
+    }
+
+    /// ES 3.0's multisample renderbuffers: a count of 0 is `glRenderbufferStorage`; more
+    /// samples are refused (`GL_INVALID_OPERATION`, with a warning) until multisampling comes.
+    pub(super) fn glRenderbufferStorageMultisample(
+        &mut self,
+        ctx: &mut Context,
+        target: u32,
+        samples: i32,
+        internalformat: u32,
+        width: i32,
+        height: i32,
+    ) -> GlResult {
+        if target != RENDERBUFFER {
+            return Err(GlError::InvalidEnum);
+        }
+        if samples < 0 {
+            return Err(GlError::InvalidValue);
+        }
+        if samples > 0 {
+            tracing::warn!(
+                "glRenderbufferStorageMultisample: {samples} samples asked; multisampling is not supported yet"
+            );
+            return Err(GlError::InvalidOperation);
+        }
+        self.glRenderbufferStorage(ctx, target, internalformat, width, height)
+    }
+
+    pub(super) fn glGetRenderbufferParameteriv(&mut self, ctx: &mut Context, target: u32, pname: u32) -> i32 {
+        let rb = ctx.objects.renderbuffers.get(&ctx.bindings.renderbuffer);
+        let v = match (target, pname, rb) {
+            (RENDERBUFFER, RENDERBUFFER_WIDTH, Some(rb)) => Ok(rb.width as i32),
+            (RENDERBUFFER, RENDERBUFFER_HEIGHT, Some(rb)) => Ok(rb.height as i32),
+            (RENDERBUFFER, RENDERBUFFER_INTERNAL_FORMAT, Some(rb)) => {
+                Ok(if rb.format == 0 { RGBA4 as i32 } else { rb.format as i32 })
+            }
+            (RENDERBUFFER, RENDERBUFFER_RED_SIZE..=RENDERBUFFER_STENCIL_SIZE, Some(rb)) => {
+                Ok(renderbuffer_bits(rb.format)[(pname - RENDERBUFFER_RED_SIZE) as usize])
+            }
+            (RENDERBUFFER, _, None) => Err(GlError::InvalidOperation),
+            _ => Err(GlError::InvalidEnum),
+        };
+        v.unwrap_or_else(|e| {
+            ctx.record(e);
+            0
+        })
+    }
+}
+
+/// Red, green, blue, alpha, depth and stencil bits a renderbuffer of `format` stores: colour is
+/// stored as RGBA8 whatever the format (a format without alpha has none), depth and stencil as
+/// their formats name (none before storage is given).
+pub(super) fn renderbuffer_bits(format: u32) -> [i32; 6] {
+    match format {
+        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT | RGBA16F_EXT | RGB16F_EXT | RG16F_EXT
+        | R16F_EXT => {
+            let [r, g, b, a] = color_bits(format);
+            [r, g, b, a, 0, 0]
+        }
+        DEPTH_COMPONENT16 => [0, 0, 0, 0, 16, 0],
+        DEPTH_COMPONENT24_OES => [0, 0, 0, 0, 24, 0],
+        DEPTH24_STENCIL8_OES => [0, 0, 0, 0, 24, 8],
+        SRGB8_ALPHA8 => [8, 8, 8, 8, 0, 0],
+        DEPTH_COMPONENT32F => [0, 0, 0, 0, 32, 0],
+        DEPTH32F_STENCIL8 => [0, 0, 0, 0, 32, 8],
+        STENCIL_INDEX8 => [0, 0, 0, 0, 0, 8],
+        f => match crate::integer::IntFormat::from_gl(f) {
+            Some(i) => {
+                let [r, g, b, a] = i.color_bits();
+                [r, g, b, a, 0, 0]
+            }
+            None => [0; 6],
+        },
+    }
+}
