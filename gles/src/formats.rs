@@ -467,6 +467,8 @@ pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
         LUMINANCE_ALPHA32F_EXT => (LUMINANCE_ALPHA, Storage::Float, false),
         DEPTH_COMPONENT16 | DEPTH_COMPONENT24_OES | DEPTH_COMPONENT32F => (DEPTH_COMPONENT, Storage::Depth, false),
         DEPTH24_STENCIL8_OES | DEPTH32F_STENCIL8 => (DEPTH_STENCIL_OES, Storage::DepthStencil, false),
+        // Every value of the packed float formats is a half float (`packed_float`).
+        crate::packed_float::R11F_G11F_B10F | crate::packed_float::RGB9_E5 => (RGB, Storage::Half, false),
         _ => {
             let f = crate::integer::IntFormat::from_gl(internal)?;
             (f.base, Storage::Int { signed: f.signed, bits: f.bits }, false)

@@ -49,6 +49,7 @@ pub mod limits;
 mod linking;
 mod names;
 mod objects;
+mod packed_float;
 mod pipelines;
 mod pixels;
 mod programs;

@@ -23,7 +23,7 @@ use crate::objects::image::{Region, TextureImage};
 use crate::objects::texture::Texture;
 use crate::texstorage::{mutable, sized_accepts};
 use crate::typed::ImageTarget;
-use crate::unpack::{depth_stencil_values, to_storage, Unpack};
+use crate::unpack::{depth_stencil_values, to_storage_rounded, Unpack};
 use crate::GlesExecutor;
 
 /// The texture name an image of `target` goes to: the one bound to its binding point.
@@ -249,13 +249,23 @@ impl GlesExecutor {
                 // An unknown enum first (ES 3.0's signed types are known: their pairing is
                 // wrong).
                 match upload_storage(format, ty) {
-                    Err(GlError::InvalidEnum) if !matches!(ty, BYTE | SHORT | INT) => return Err(GlError::InvalidEnum),
+                    Err(GlError::InvalidEnum)
+                        if !matches!(ty, BYTE | SHORT | INT) && !crate::packed_float::is_packed_float_type(ty) =>
+                    {
+                        return Err(GlError::InvalidEnum)
+                    }
                     _ => return Err(GlError::InvalidOperation),
                 }
             }
             (ty, kept, base, half, internalformat)
         } else {
-            let storage = upload_storage(format, pixel_type);
+            let storage = match upload_storage(format, pixel_type) {
+                // ES 3.0's packed float data pairs only with its sized formats.
+                Err(GlError::InvalidEnum) if ctx.es3() && crate::packed_float::is_packed_float_type(pixel_type) => {
+                    Err(GlError::InvalidOperation)
+                }
+                s => s,
+            };
             // Unknown enums first, then an internal format that is none, then the pairing.
             if !matches!(storage, Err(GlError::InvalidEnum)) && !known_internal(internalformat) {
                 return Err(GlError::InvalidValue);
@@ -293,10 +303,19 @@ impl GlesExecutor {
         mutable(t)?;
         let (w, h, d, level) = (width as u32, height as u32, depth as u32, level as u32);
         // Layers are read one after another: ES 2.0 has no image height to unpack them by.
+        let round = crate::packed_float::rounding(sized);
         let texels = match &pixels {
             Some(p) => Some(
-                to_storage(p.as_bytes(), w as usize, (h * d) as usize, format, data_type, unpack, storage)
-                    .ok_or(GlError::InvalidOperation)?,
+                to_storage_rounded(
+                    p.as_bytes(),
+                    w as usize,
+                    (h * d) as usize,
+                    (format, data_type),
+                    unpack,
+                    storage,
+                    round,
+                )
+                .ok_or(GlError::InvalidOperation)?,
             ),
             None => None,
         };
@@ -416,6 +435,8 @@ impl GlesExecutor {
             );
         let storage = match upload_storage(format, pixel_type) {
             _ if int_data => Storage::Int { signed: false, bits: 32 },
+            // ES 3.0's packed float data goes only to images of their formats.
+            _ if ctx.es3() && crate::packed_float::is_packed_float_type(pixel_type) => Storage::Half,
             Err(GlError::InvalidEnum) if es3_byte => Storage::Half,
             // ES 3.0's float depths (the images that take them decide by their sized format).
             Err(GlError::InvalidOperation) if ctx.es3() && (format, pixel_type) == (DEPTH_COMPONENT, FLOAT) => {
@@ -475,8 +496,17 @@ impl GlesExecutor {
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };
         let rows = (h * layers) as usize;
-        let data = to_storage(pixels.as_bytes(), w as usize, rows, format, pixel_type, unpack, target_storage)
-            .ok_or(GlError::InvalidOperation)?;
+        let round = crate::packed_float::rounding(t.sized);
+        let data = to_storage_rounded(
+            pixels.as_bytes(),
+            w as usize,
+            rows,
+            (format, pixel_type),
+            unpack,
+            target_storage,
+            round,
+        )
+        .ok_or(GlError::InvalidOperation)?;
         t.decompress(gpu, flushed, &account, uid)?;
         if let Some(img) = &t.gpu {
             write_layers(img, gpu, flushed, region, layers, &data);

@@ -182,6 +182,7 @@ pub(crate) fn sized_accepts(sized: u32, format: u32, ty: u32) -> bool {
         ALPHA16F_EXT | ALPHA32F_EXT => format == ALPHA && half_or_float,
         LUMINANCE16F_EXT | LUMINANCE32F_EXT => format == LUMINANCE && half_or_float,
         LUMINANCE_ALPHA16F_EXT | LUMINANCE_ALPHA32F_EXT => format == LUMINANCE_ALPHA && half_or_float,
-        _ => crate::integer::IntFormat::from_gl(sized).is_some_and(|f| f.upload() == (format, ty)),
+        _ => crate::packed_float::accepts(sized, format, ty)
+            .unwrap_or_else(|| crate::integer::IntFormat::from_gl(sized).is_some_and(|f| f.upload() == (format, ty))),
     }
 }

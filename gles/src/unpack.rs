@@ -72,6 +72,7 @@ pub fn bytes_per_pixel(format: u32, ty: u32) -> usize {
     match ty {
         UNSIGNED_SHORT_5_6_5 | UNSIGNED_SHORT_4_4_4_4 | UNSIGNED_SHORT_5_5_5_1 => 2,
         UNSIGNED_INT_24_8_OES | UNSIGNED_INT_2_10_10_10_REV_EXT => 4,
+        t if crate::packed_float::is_packed_float_type(t) => 4,
         // Depth, and ES 3.0's integer data.
         UNSIGNED_SHORT | SHORT => 2 * components(format),
         UNSIGNED_INT | INT => 4 * components(format),
@@ -126,6 +127,14 @@ fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
             f16::from_bits(u16::from_ne_bytes([px[2 * i], px[2 * i + 1]])).to_f32()
         }
     };
+    if crate::packed_float::is_packed_float_type(ty) {
+        let v = u32::from_ne_bytes([px[0], px[1], px[2], px[3]]);
+        let [r, g, b] = match ty {
+            crate::packed_float::UNSIGNED_INT_10F_11F_11F_REV => crate::packed_float::decode_11_11_10(v),
+            _ => crate::packed_float::decode_rgb9e5(v),
+        };
+        return [r, g, b, 1.0];
+    }
     if ty == UNSIGNED_INT_2_10_10_10_REV_EXT {
         // Red in the low 10 bits, then green and blue, alpha in the top 2; RGB ignores alpha.
         let v = u32::from_ne_bytes([px[0], px[1], px[2], px[3]]);
@@ -146,6 +155,7 @@ fn float_pixel(px: &[u8], format: u32, ty: u32) -> [f32; 4] {
 
 /// Converts a colour upload to tightly packed texels of `storage` (`Rgba8`, `Half` or
 /// `Float`), or `None` if `src` is too short.
+#[cfg(test)]
 pub fn to_storage(
     src: &[u8],
     width: usize,
@@ -155,20 +165,38 @@ pub fn to_storage(
     unpack: Unpack,
     storage: Storage,
 ) -> Option<Vec<u8>> {
+    to_storage_rounded(src, width, height, (format, ty), unpack, storage, None)
+}
+
+/// [`to_storage`], float colour first rounded by `round` where given (the precision of a
+/// packed float format, `packed_float::rounding`).
+pub fn to_storage_rounded(
+    src: &[u8],
+    width: usize,
+    height: usize,
+    (format, ty): (u32, u32),
+    unpack: Unpack,
+    storage: Storage,
+    round: Option<fn([f32; 3]) -> [f32; 3]>,
+) -> Option<Vec<u8>> {
+    let pixel = |px: &[u8]| {
+        let [r, g, b, a] = float_pixel(px, format, ty);
+        let [r, g, b] = round.map_or([r, g, b], |f| f([r, g, b]));
+        [r, g, b, a]
+    };
     let bpp = bytes_per_pixel(format, ty);
     let rows = unpack.rows(src, width, height, bpp)?;
     let mut out = Vec::with_capacity(width * height * storage.texel_bytes() as usize);
-    let float_input = matches!(ty, FLOAT | HALF_FLOAT_OES | UNSIGNED_INT_2_10_10_10_REV_EXT);
+    let float_input = matches!(ty, FLOAT | HALF_FLOAT_OES | UNSIGNED_INT_2_10_10_10_REV_EXT)
+        || crate::packed_float::is_packed_float_type(ty);
     for row in rows {
         for px in row.chunks_exact(bpp) {
             match storage {
                 Storage::Int { bits, .. } => crate::integer::push_texel(px, format, ty, bits, &mut out),
-                Storage::Float => {
-                    float_pixel(px, format, ty).iter().for_each(|v| out.extend_from_slice(&v.to_ne_bytes()))
+                Storage::Float => pixel(px).iter().for_each(|v| out.extend_from_slice(&v.to_ne_bytes())),
+                Storage::Half => {
+                    pixel(px).iter().for_each(|v| out.extend_from_slice(&f16::from_f32(*v).to_bits().to_ne_bytes()))
                 }
-                Storage::Half => float_pixel(px, format, ty)
-                    .iter()
-                    .for_each(|v| out.extend_from_slice(&f16::from_f32(*v).to_bits().to_ne_bytes())),
                 _ if float_input => {
                     out.extend(float_pixel(px, format, ty).map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
                 }

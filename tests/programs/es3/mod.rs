@@ -16,6 +16,7 @@ mod int_samplers;
 mod integers;
 mod language;
 mod matrix_inputs;
+mod packed_floats;
 mod renderbuffers;
 mod restart;
 mod samplers;
@@ -63,5 +64,6 @@ pub fn all() -> Vec<Case> {
         c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
         c("es3_integer_formats", integers::integers),
         c("es3_int_samplers", int_samplers::int_samplers),
+        c("es3_packed_floats", packed_floats::packed_floats),
     ]
 }
