@@ -44,7 +44,7 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
         .uniforms
         .iter()
         .map(|u| Active {
-            name: if u.is_array { format!("{}[0]", u.name) } else { u.name.clone() },
+            name: if u.is_array { format!("{}[0]", u.gl_name) } else { u.gl_name.clone() },
             ty: u.ty,
             size: u.len,
             block: None,

@@ -20,6 +20,7 @@ mod samplers;
 mod shadow;
 mod snorm;
 mod srgb;
+mod structs;
 mod swizzles;
 mod tex_storage;
 mod uniforms;
@@ -59,5 +60,7 @@ pub fn all() -> Vec<Case> {
         c("es3_swizzles", swizzles::swizzles),
         c("es3_shadow", shadow::shadow),
         c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
+        c("es3_struct_uniforms", structs::struct_uniforms),
+        c("es3_block_structs", structs::block_structs),
     ]
 }
