@@ -88,7 +88,8 @@ pub(super) fn link_status(gl: Gl<'_>, n: &mut Names, vs: &str, fs: &str) -> Resu
     Ok(gl.glGetProgramiv(p, LINK_STATUS)? as u32)
 }
 
-/// A 2×2 texture of `px` on unit `unit`.
+/// A 2×2 texture of `px` on unit `unit` (made on unit 0, which it is left bound to as well:
+/// unit 0's comes last).
 pub(super) fn unit_texture(gl: Gl<'_>, n: &mut Names, unit: u32, px: &[u8; 16]) -> R {
     let t = texture(gl, n, 2, 2, RGBA, UNSIGNED_BYTE, px, NEAREST, CLAMP_TO_EDGE)?;
     gl.glActiveTexture(TEXTURE0 + unit)?;
@@ -97,8 +98,8 @@ pub(super) fn unit_texture(gl: Gl<'_>, n: &mut Names, unit: u32, px: &[u8; 16]) 
 }
 
 fn struct_uniforms(gl: Gl<'_>, n: &mut Names) -> R {
-    unit_texture(gl, n, 0, &[200, 40, 0, 255, 0, 180, 60, 255, 90, 90, 250, 255, 255, 255, 0, 255])?;
     unit_texture(gl, n, 1, &[10, 20, 30, 255, 60, 0, 120, 255, 0, 0, 0, 255, 30, 200, 90, 255])?;
+    unit_texture(gl, n, 0, &[200, 40, 0, 255, 0, 180, 60, 255, 90, 90, 250, 255, 255, 255, 0, 255])?;
     let p = program(gl, n, VS, FS, &["pos"])?;
     buffer(gl, n, ARRAY_BUFFER, &f32s(&[-1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0]))?;
     attrib(gl, 0, 2, FLOAT, false, 0, 0)?;

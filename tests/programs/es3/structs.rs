@@ -54,8 +54,8 @@ fn vals(n: usize, seed: f32) -> Vec<f32> {
 
 /// Structure uniforms set by every name form, drawn; what the queries answer of their leaves.
 pub fn struct_uniforms(gl: Gl<'_>, n: &mut Names) -> R {
-    unit_texture(gl, n, 0, &[200, 40, 0, 255, 0, 180, 60, 255, 90, 90, 250, 255, 255, 255, 0, 255])?;
     unit_texture(gl, n, 2, &[10, 20, 30, 255, 60, 0, 120, 255, 0, 0, 0, 255, 30, 200, 90, 255])?;
+    unit_texture(gl, n, 0, &[200, 40, 0, 255, 0, 180, 60, 255, 90, 90, 250, 255, 255, 255, 0, 255])?;
     let p = super::language::screen(gl, n, super::language::VS_SCREEN, FS)?;
     let at = |gl: Gl<'_>, name: &str| gl.glGetUniformLocation(p, Text::borrowed(name));
     for (s, seed) in [("u", 0.1), ("v[0]", 0.4), ("v[1]", 0.7)] {
