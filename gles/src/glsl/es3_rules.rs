@@ -250,7 +250,14 @@ pub(super) fn check(stage: Stage, text: &str, tu: &ast::TranslationUnit) -> Resu
                 let names = b.fields.iter().flat_map(|f| f.identifiers.iter().map(|i| i.ident.0.to_string()));
                 match b.identifier {
                     Some(_) => members.extend(names),
-                    None => bare.extend(names),
+                    None => {
+                        for name in names {
+                            // Two blocks without instance names cannot both declare a name.
+                            if !bare.insert(name.clone()) {
+                                return Err(at(d.span, &format!("`{name}' redeclared")));
+                            }
+                        }
+                    }
                 }
             }
         }

@@ -122,3 +122,12 @@ fn block_structures_are_laid_out_leaf_by_leaf() {
         [(0, true), (32, false), (48, true), (160, false), (176, false), (192, false), (208, false)]
     );
 }
+
+#[test]
+fn blocks_without_instance_names_declare_their_members() {
+    let vs = |blocks: &str| {
+        compile(Stage::Vertex, &format!("#version 300 es\n{blocks}\nvoid main() {{ gl_Position = v; }}"))
+    };
+    vs("uniform A { vec4 v; }; uniform B { vec4 w; } b;").expect("`v' is declared by A");
+    vs("uniform A { vec4 v; }; uniform B { vec4 v; };").expect_err("`v' declared twice");
+}
