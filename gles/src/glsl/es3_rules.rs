@@ -242,11 +242,15 @@ pub(super) fn check(stage: Stage, text: &str, tu: &ast::TranslationUnit) -> Resu
         return Err(at(span, &msg));
     }
     // An instance-named block's members are no names of their own (a block without an
-    // instance name declares its members' names, though).
-    let (mut members, mut bare) = (HashSet::new(), HashSet::new());
+    // instance name declares its members' names, though, and a block its name).
+    let (mut members, mut bare, mut blocks) = (HashSet::new(), HashSet::new(), HashSet::new());
     for decl in &tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {
             if let ast::DeclarationData::Block(b) = &d.content {
+                // A shader declares a block of a name once.
+                if !blocks.insert(b.name.0.to_string()) {
+                    return Err(at(d.span, &format!("`{}' redeclared", b.name.0)));
+                }
                 let names = b.fields.iter().flat_map(|f| f.identifiers.iter().map(|i| i.ident.0.to_string()));
                 match b.identifier {
                     Some(_) => members.extend(names),

@@ -130,4 +130,5 @@ fn blocks_without_instance_names_declare_their_members() {
     };
     vs("uniform A { vec4 v; }; uniform B { vec4 w; } b;").expect("`v' is declared by A");
     vs("uniform A { vec4 v; }; uniform B { vec4 v; };").expect_err("`v' declared twice");
+    vs("uniform A { vec4 w; } a; uniform A { vec4 v; };").expect_err("`A' declared twice");
 }
