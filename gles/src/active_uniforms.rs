@@ -44,7 +44,7 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
         .uniforms
         .iter()
         .map(|u| Active {
-            name: if u.is_array { format!("{}[0]", u.name) } else { u.name.clone() },
+            name: if u.is_array { format!("{}[0]", u.gl_name) } else { u.gl_name.clone() },
             ty: u.ty,
             size: u.len,
             block: None,
@@ -75,10 +75,17 @@ pub(crate) fn active(info: &Linked) -> Vec<Active> {
     out
 }
 
-/// The active uniform `name` names: its GL name, or an array's without `[0]`.
+/// The active uniform `name` names: its GL name, or an array's without `[0]` or with another
+/// element's index (whatever the index, as Mesa finds it).
 fn index_of(list: &[Active], name: &str) -> u32 {
+    let element_of = |base: &str| {
+        name.strip_prefix(base)
+            .and_then(|rest| rest.strip_prefix('['))
+            .and_then(|rest| rest.strip_suffix(']'))
+            .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+    };
     list.iter()
-        .position(|a| a.name == name || a.name.strip_suffix("[0]").is_some_and(|base| base == name))
+        .position(|a| a.name == name || a.name.strip_suffix("[0]").is_some_and(|base| base == name || element_of(base)))
         .map_or(INVALID_INDEX, |i| i as u32)
 }
 

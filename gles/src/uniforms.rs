@@ -59,7 +59,8 @@ impl Shape {
     }
 }
 
-/// The location of uniform `name` (`name` or `name[i]`), -1 if the program has none.
+/// The location of uniform `name` (`name` or `name[i]`; a structure's leaf by its GL name,
+/// `u[1].a`), -1 if the program has none.
 fn uniform_location(l: &LinkedProgram, name: &str) -> i32 {
     let (base, index) = match name.strip_suffix(']').and_then(|n| n.rsplit_once('[')) {
         Some((b, i)) => match i.parse::<u32>() {
@@ -68,7 +69,7 @@ fn uniform_location(l: &LinkedProgram, name: &str) -> i32 {
         },
         None => (name, 0),
     };
-    let Some(u) = l.info.uniforms.iter().position(|u| u.name == base) else { return -1 };
+    let Some(u) = l.info.uniforms.iter().position(|u| u.gl_name == base) else { return -1 };
     if index >= l.info.uniforms[u].len || (index > 0 && !l.info.uniforms[u].is_array) {
         return -1;
     }

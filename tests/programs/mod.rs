@@ -299,6 +299,7 @@ mod read_depth;
 mod render_mipmap;
 mod s3tc_srgb;
 mod samplers;
+mod struct_uniforms;
 mod texture_3d;
 mod texture_rg;
 mod textures;
@@ -341,5 +342,6 @@ pub fn all() -> Vec<Case> {
     all.extend(astc::all());
     all.extend(read_depth::all());
     all.extend(depth_cube::all());
+    all.extend(struct_uniforms::all());
     all
 }

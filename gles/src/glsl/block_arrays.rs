@@ -18,7 +18,7 @@ fn ident(name: &str) -> ast::Identifier {
 }
 
 /// The values of the shader's global constants that fold, by name (with the built-in ones).
-fn global_ints(tu: &ast::TranslationUnit, version: u16) -> HashMap<String, Val> {
+pub(super) fn global_ints(tu: &ast::TranslationUnit, version: u16) -> HashMap<String, Val> {
     let mut consts = crate::glsl::consts::seeded(version);
     for decl in &tu.0 {
         let ast::ExternalDeclarationData::Declaration(d) = &decl.content else { continue };

@@ -5,11 +5,12 @@
 //! stored ([`declaration`]), and every read of one in the shader's code becomes the value it
 //! stands for ([`rewrite`]): `bool(m)`, `mat3x2(m[0].xy, m[1].xy, m[2].xy)`, `transpose(m)`.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeSpecifierNonArrayData as T};
 use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
+use crate::glsl::structs::ident;
 use crate::glsl::types::{Block, BlockMember, Scalar, Ty};
 
 /// The column-major matrix holding the same numbers as `ty` read row by row.
@@ -38,12 +39,13 @@ pub(super) fn storage(m: &BlockMember) -> Ty {
 /// How a member is stored, where not as declared: its stored name.
 fn stored_name(m: &BlockMember) -> Option<String> {
     let s = storage(m);
+    let name = ident(&m.name);
     if m.ty.scalar() == Scalar::Bool {
-        Some(format!("strata_b_{}", m.name))
+        Some(format!("strata_b_{name}"))
     } else if s.rows() == 2 {
-        Some(format!("strata_m2_{}", m.name))
+        Some(format!("strata_m2_{name}"))
     } else if m.row_major {
-        Some(format!("strata_t_{}", m.name))
+        Some(format!("strata_t_{name}"))
     } else {
         None
     }
@@ -60,7 +62,7 @@ pub(super) fn declaration(m: &BlockMember) -> String {
             format!("vec4 {name}[{}];", s.columns() as u32 * len)
         }
         Some(name) => format!("{} {name}{array};", s.glsl(true)),
-        None => format!("{} {}{array};", m.ty.glsl(true), m.name),
+        None => format!("{} {}{array};", m.ty.glsl(true), ident(&m.name)),
     }
 }
 
@@ -155,15 +157,15 @@ pub(super) fn rewrite(body: &mut ast::TranslationUnit, blocks: &[Block]) -> Resu
             let Some(stored) = stored_name(m) else { continue };
             let special = Special { member: m.clone(), stored };
             match &b.instance {
-                Some(i) => through.insert((i.clone(), m.name.clone()), special),
-                None => bare.insert(m.name.clone(), special),
+                Some(i) => through.insert((i.clone(), ident(&m.name)), special),
+                None => bare.insert(ident(&m.name), special),
             };
         }
     }
     if bare.is_empty() && through.is_empty() {
         return Ok(());
     }
-    let mut r = Reads { bare, through, error: None };
+    let mut r = Reads { bare, through, error: None, shadow: HashSet::new() };
     body.visit_mut(&mut r);
     r.error.map_or(Ok(()), Err)
 }
@@ -172,14 +174,18 @@ struct Reads {
     bare: HashMap<String, Special>,
     through: HashMap<(String, String), Special>,
     error: Option<String>,
+    /// The names the function visited declares, which hide the block's members of theirs.
+    shadow: HashSet<String>,
 }
 
 impl Reads {
     /// The member `e` names, with the expression of its storage.
     fn special(&self, e: &ast::Expr) -> Option<(Special, ast::Expr)> {
         match &e.content {
+            ExprData::Variable(id) if self.shadow.contains(id.0.as_str()) => None,
             ExprData::Variable(id) => self.bare.get(id.0.as_str()).map(|s| (s.clone(), var(&s.stored))),
             ExprData::Dot(base, field) => match &base.content {
+                ExprData::Variable(inst) if self.shadow.contains(inst.0.as_str()) => None,
                 ExprData::Variable(inst) => {
                     let s = self.through.get(&(inst.0.to_string(), field.0.to_string()))?;
                     let stored = ExprData::Dot(base.clone(), ast::IdentifierData(s.stored.as_str().into()).into());
@@ -193,6 +199,16 @@ impl Reads {
 }
 
 impl VisitorMut for Reads {
+    fn visit_external_declaration(&mut self, _: &mut ast::ExternalDeclaration) -> Visit {
+        self.shadow.clear();
+        Visit::Children
+    }
+
+    fn visit_function_definition(&mut self, f: &mut ast::FunctionDefinition) -> Visit {
+        self.shadow = crate::glsl::structs::locals(f);
+        Visit::Children
+    }
+
     fn visit_expr(&mut self, e: &mut ast::Expr) -> Visit {
         if let ExprData::Bracket(base, index) = &mut e.content {
             if let Some((s, stored)) = self.special(base).filter(|(s, _)| s.member.array.is_some()) {

@@ -9,7 +9,8 @@ use glsl_lang::ast::{self, TypeQualifierSpecData};
 
 use crate::glsl::consts::Val;
 use crate::glsl::linked::LinkedBlock;
-use crate::glsl::types::{Block, BlockMember, Shader, Ty};
+use crate::glsl::structs::{elements, FieldTy, Structs, MAX_DEPTH};
+use crate::glsl::types::{Block, BlockMember, Shader};
 
 /// `GL_MAX_UNIFORM_BLOCK_SIZE`: the bytes one block may hold (ES 3.0's minimum).
 pub const MAX_UNIFORM_BLOCK_SIZE: u32 = 16384;
@@ -86,12 +87,14 @@ pub(super) fn default_layout(q: &ast::TypeQualifier, row_major: &mut bool) -> Re
 
 /// Lifts a `uniform` block declaration (perhaps an element of an array of blocks, as
 /// `block_arrays` made it), its matrices row-major by default where `row_major`; `None` if the
-/// block is not a uniform block.
+/// block is not a uniform block. A member of structure type is laid out leaf by leaf
+/// ([`place`]; `block_structs` rewrites its reads).
 pub(super) fn lift(
     b: &ast::Block,
     consts: &HashMap<String, Val>,
     elements: &Elements,
     row_major: bool,
+    structs: &Structs,
 ) -> Result<Option<Block>, String> {
     let uniform = b.qualifier.qualifiers.iter().any(|s| {
         matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Uniform)
@@ -101,52 +104,96 @@ pub(super) fn lift(
     }
     let block_major = check_layout(Some(&b.qualifier))?.unwrap_or(row_major);
     let instance = b.identifier.as_ref().map(|id| id.ident.0.to_string());
-    let mut members = Vec::new();
-    for f in &b.fields {
-        let major = check_layout(f.qualifier.as_ref())?.unwrap_or(block_major);
-        let ty = Ty::from_spec(&f.ty.ty).filter(|t| !t.is_sampler()).ok_or_else(|| {
-            "0: uniform block members of this type (structures, samplers) are not supported yet".to_string()
-        })?;
-        for id in &f.identifiers {
-            let spec = id.array_spec.as_ref().or(f.ty.array_specifier.as_ref());
-            let array = crate::glsl::consts::array_len(spec, consts)?;
-            let row_major = major && ty.columns() > 0;
-            members.push(BlockMember { name: id.ident.0.to_string(), ty, array, row_major, offset: 0, stride: 0 });
-        }
-    }
     let (name, element, referenced) = match elements.get(b.name.0.as_str()) {
         Some(e) => (format!("{}[{}]", e.base, e.index), Some(e.index), e.referenced),
         None => (b.name.0.to_string(), None, true),
     };
-    let mut block = Block { name, instance, element, referenced, members, size: 0 };
-    lay_out(&mut block)?;
-    Ok(Some(block))
+    let mut members = Vec::new();
+    let mut struct_members = Vec::new();
+    let mut cursor = 0u32;
+    for f in &b.fields {
+        let major = check_layout(f.qualifier.as_ref())?.unwrap_or(block_major);
+        for field in crate::glsl::structs::fields(std::slice::from_ref(f), consts)? {
+            if let FieldTy::Struct(s) = &field.ty {
+                struct_members.push((field.name.clone(), s.clone(), field.array));
+            }
+            let (fname, ty, array) = (field.name, &field.ty, field.array);
+            place(structs, &name, fname, ty, array, major, &mut cursor, &mut members, 0)?;
+        }
+    }
+    let size = cursor.div_ceil(16) * 16;
+    Ok(Some(Block { name, instance, element, referenced, members, structs: struct_members, size }))
 }
 
-/// std140 (§2.12.6.4 of ES 3.0): each member's offset and array stride, and the block's size.
-fn lay_out(block: &mut Block) -> Result<(), String> {
-    let mut offset = 0u32;
-    for m in &mut block.members {
-        // A row-major matrix is laid out as its transpose (one row per 16 bytes).
-        let (size, align) = crate::glsl::block_members::storage(m).std140();
-        let (align, stride, total) = match m.array {
-            // An array's elements (and a matrix's columns) are 16 bytes apart at least.
-            Some(n) => {
-                let stride = size.div_ceil(16) * 16;
-                (16, stride, stride.checked_mul(n))
+/// std140's rounding of a structure's start and end, and of an array's stride: a `vec4`.
+fn round(n: u32) -> u32 {
+    n.div_ceil(16) * 16
+}
+
+/// Places a member named `name` (relative to its block: `s.x`, `a[1].m`) of type `ty` (an
+/// array where `array`), matrices row by row where `row_major`, at or after `cursor`, which it
+/// moves past the member; leaves go to `out`. `block` names the block in errors.
+#[allow(clippy::too_many_arguments)]
+fn place(
+    structs: &Structs,
+    block: &str,
+    name: String,
+    ty: &FieldTy,
+    array: Option<u32>,
+    row_major: bool,
+    cursor: &mut u32,
+    out: &mut Vec<BlockMember>,
+    depth: usize,
+) -> Result<(), String> {
+    let too_big = || format!("error: uniform block `{block}' needs more than {MAX_UNIFORM_BLOCK_SIZE} bytes");
+    match ty {
+        FieldTy::Basic(t, _) if t.is_sampler() => Err("0: samplers are not allowed in uniform blocks".into()),
+        FieldTy::Basic(t, _) => {
+            let mut m =
+                BlockMember { name, ty: *t, array, row_major: row_major && t.columns() > 0, offset: 0, stride: 0 };
+            // A row-major matrix is laid out as its transpose (one row per 16 bytes).
+            let (size, align) = crate::glsl::block_members::storage(&m).std140();
+            let (align, stride, total) = match array {
+                // An array's elements (and a matrix's columns) are 16 bytes apart at least.
+                Some(n) => (16, round(size), round(size).checked_mul(n)),
+                None => (align, 0, Some(size)),
+            };
+            m.offset = cursor.div_ceil(align) * align;
+            m.stride = stride;
+            *cursor = total
+                .and_then(|t| m.offset.checked_add(t))
+                .filter(|&o| o <= MAX_UNIFORM_BLOCK_SIZE)
+                .ok_or_else(too_big)?;
+            out.push(m);
+            Ok(())
+        }
+        FieldTy::Struct(s) => {
+            let fields =
+                structs.get(s).filter(|_| depth < MAX_DEPTH).ok_or_else(|| format!("0: unknown structure `{s}'"))?;
+            for e in elements(&name, array) {
+                *cursor = round(*cursor);
+                for f in fields {
+                    place(
+                        structs,
+                        block,
+                        format!("{e}.{}", f.name),
+                        &f.ty,
+                        f.array,
+                        row_major,
+                        cursor,
+                        out,
+                        depth + 1,
+                    )?;
+                }
+                *cursor = round(*cursor);
+                if *cursor > MAX_UNIFORM_BLOCK_SIZE {
+                    return Err(too_big());
+                }
             }
-            None => (align, 0, Some(size)),
-        };
-        offset = offset.div_ceil(align) * align;
-        m.offset = offset;
-        m.stride = stride;
-        offset =
-            total.and_then(|t| offset.checked_add(t)).filter(|&o| o <= MAX_UNIFORM_BLOCK_SIZE).ok_or_else(|| {
-                format!("error: uniform block `{}' needs more than {MAX_UNIFORM_BLOCK_SIZE} bytes", block.name)
-            })?;
+            Ok(())
+        }
+        FieldTy::Other(t) => Err(format!("0: uniform block members of type '{t}' are not supported")),
     }
-    block.size = offset.div_ceil(16) * 16;
-    Ok(())
 }
 
 /// The generated declaration of `block` at `binding`.
@@ -157,8 +204,17 @@ pub(super) fn declaration(block: &Block, binding: u32) -> String {
         None => block.name.clone(),
     };
     let mut out = format!("layout(std140, set = 0, binding = {binding}) uniform {ident} {{\n");
-    for m in &block.members {
+    // Where a member lies past where std140 would place it after the one before (after a
+    // structure's leaves), padding fills the gap.
+    let mut end = 0u32;
+    for (k, m) in block.members.iter().enumerate() {
+        let (size, align) = crate::glsl::block_members::storage(m).std140();
+        let natural = if m.array.is_some() { end.div_ceil(16) * 16 } else { end.div_ceil(align) * align };
+        for p in 0..m.offset.saturating_sub(natural) / 4 {
+            let _ = writeln!(out, "    float strata_pad{k}_{p};");
+        }
         let _ = writeln!(out, "    {}", crate::glsl::block_members::declaration(m));
+        end = m.offset + m.array.map_or(size, |n| n * m.stride);
     }
     let _ = writeln!(out, "}}{};", block.instance.as_deref().map_or(String::new(), |i| format!(" {i}")));
     out

@@ -241,19 +241,33 @@ pub(super) fn check(stage: Stage, text: &str, tu: &ast::TranslationUnit) -> Resu
     if let Some((span, msg)) = walk.error {
         return Err(at(span, &msg));
     }
-    // An instance-named block's members are no names of their own.
-    let mut members = HashSet::new();
+    // An instance-named block's members are no names of their own (a block without an
+    // instance name declares its members' names, though, and a block its name).
+    let (mut members, mut bare, mut blocks) = (HashSet::new(), HashSet::new(), HashSet::new());
     for decl in &tu.0 {
         if let ast::ExternalDeclarationData::Declaration(d) = &decl.content {
             if let ast::DeclarationData::Block(b) = &d.content {
-                if b.identifier.is_some() {
-                    members.extend(b.fields.iter().flat_map(|f| f.identifiers.iter().map(|i| i.ident.0.to_string())));
+                // A shader declares a block of a name once.
+                if !blocks.insert(b.name.0.to_string()) {
+                    return Err(at(d.span, &format!("`{}' redeclared", b.name.0)));
+                }
+                let names = b.fields.iter().flat_map(|f| f.identifiers.iter().map(|i| i.ident.0.to_string()));
+                match b.identifier {
+                    Some(_) => members.extend(names),
+                    None => {
+                        for name in names {
+                            // Two blocks without instance names cannot both declare a name.
+                            if !bare.insert(name.clone()) {
+                                return Err(at(d.span, &format!("`{name}' redeclared")));
+                            }
+                        }
+                    }
                 }
             }
         }
     }
     for (name, span) in &walk.used {
-        if members.contains(name) && !walk.declared.contains(name) {
+        if members.contains(name) && !walk.declared.contains(name) && !bare.contains(name) {
             return Err(at(*span, &format!("`{name}' undeclared")));
         }
     }

@@ -85,6 +85,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         elements = crate::glsl::block_arrays::split(&mut parsed.tu, version)?;
         crate::glsl::struct_varyings::flatten(stage, &mut parsed.tu)?;
     }
+    let (structs, struct_types) = crate::glsl::struct_uniforms::flatten(&mut parsed.tu, version)?;
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),
@@ -103,6 +104,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         has_main: false,
         lookups: Default::default(),
         polyfills: Default::default(),
+        structs,
         log: parsed.warnings.join("\n"),
         source: source.to_string(),
         facts,
@@ -119,7 +121,8 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
                 ast::DeclarationData::Precision(..) | ast::DeclarationData::Invariant(_) => continue,
                 ast::DeclarationData::InitDeclaratorList(list) => Some(list.clone()),
                 ast::DeclarationData::Block(b) if version == 300 => {
-                    if let Some(block) = crate::glsl::blocks::lift(b, &consts, &elements, row_major)? {
+                    if let Some(block) = crate::glsl::blocks::lift(b, &consts, &elements, row_major, &struct_types)? {
+                        shader.body.0.extend(crate::glsl::block_structs::privates(&block));
                         shader.blocks.push(block);
                         continue;
                     }
@@ -332,7 +335,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             .uniforms
             .iter()
             .filter(|u| u.ty.scalar() == Scalar::Bool)
-            .map(|u| (u.name.clone(), u.ty))
+            .map(|u| (u.name.clone(), (u.ty, u.array.is_some())))
             .collect(),
         mat2s: shader
             .uniforms
@@ -353,6 +356,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         secondary_color: false,
         secondary_data: false,
     };
+    crate::glsl::block_structs::rewrite(&mut shader.body, &shader.blocks, &struct_types, &consts)?;
     crate::glsl::block_members::rewrite(&mut shader.body, &shader.blocks)?;
     shader.body.visit_mut(&mut rewrite);
     crate::glsl::rewrite::hoist_global_initializers(&mut shader.body);

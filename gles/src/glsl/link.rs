@@ -162,6 +162,7 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             }
         }
     }
+    crate::glsl::struct_uniforms::check_link(vs, fs)?;
     // Uniforms: one program-wide namespace.
     let mut uniforms: Vec<UniformSlot> = Vec::new();
     let mut samplers = Vec::new();
@@ -193,7 +194,9 @@ fn generate(vs: &Shader, fs: &Shader, bindings: &HashMap<String, u32>, max_attri
             }
         };
         offset = offset.div_ceil(align) * align;
+        let names = vs.structs.names.get(&u.name).or_else(|| fs.structs.names.get(&u.name));
         uniforms.push(UniformSlot {
+            gl_name: names.unwrap_or(&u.name).clone(),
             name: u.name.clone(),
             ty: u.ty,
             len,

@@ -7,8 +7,10 @@ use crate::limits::MAX_DRAW_BUFFERS;
 /// A uniform's place in the program's block (or, for samplers, its binding).
 #[derive(Debug, Clone)]
 pub struct UniformSlot {
-    /// The name as declared.
+    /// The name as declared (a structure's leaf: the name of its generated uniform).
     pub name: String,
+    /// The name GL reports (a structure's leaf: `u[1].a`).
+    pub gl_name: String,
     /// Its type.
     pub ty: Ty,
     /// Array length (1 for non-arrays).

@@ -24,6 +24,7 @@
 mod attributes;
 mod block_arrays;
 mod block_members;
+mod block_structs;
 pub mod blocks;
 pub mod capture;
 mod checks;
@@ -42,7 +43,9 @@ mod rewrite;
 mod separate;
 mod shadow;
 mod sized_arrays;
+mod struct_uniforms;
 mod struct_varyings;
+mod structs;
 mod swizzle;
 mod translate;
 pub mod types;
@@ -52,7 +55,7 @@ mod writes;
 pub use link::{link, points_vertex};
 pub use linked::{Linked, OutputKind, UniformSlot};
 pub use separate::{fragment_uniform_name, interfaces_match, link_alone, rename_uniforms};
-pub use types::{Block, BlockMember, Scalar, Shader, Stage, Ty, Var};
+pub use types::{Block, BlockMember, Scalar, Shader, Stage, StructUniforms, Ty, Var};
 pub use variants::ClipZ;
 
 /// Compiles (parses and checks) a GLSL ES 1.00 shader. The error is the info log.
@@ -74,6 +77,8 @@ pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
 mod conformance_tests;
 #[cfg(test)]
 mod es3_tests;
+#[cfg(test)]
+mod struct_tests;
 
 #[cfg(test)]
 mod tests {

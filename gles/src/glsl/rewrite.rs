@@ -28,8 +28,9 @@ pub(super) struct Rewrite {
     /// `matCx2` uniforms (naga cannot lay them out in std140): stored as `vec4[C]` per matrix,
     /// with their type; the flag says whether it is an array.
     pub(super) mat2s: HashMap<String, (Ty, bool)>,
-    /// Boolean uniforms, stored as integers in the block.
-    pub(super) bools: HashMap<String, Ty>,
+    /// Boolean uniforms, stored as integers in the block, with their types; the flag says
+    /// whether it is an array.
+    pub(super) bools: HashMap<String, (Ty, bool)>,
     /// The first error found.
     pub(super) error: Option<String>,
     /// The stage rewritten.
@@ -76,6 +77,16 @@ fn var(name: &str) -> ast::Expr {
 /// 0, for a `matCx2` uniform of type `ty`.
 fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
     two_rows(var(&format!("strata_m2_{name}")), ty, index)
+}
+
+/// The type specifier of a boolean type.
+fn bool_spec(ty: Ty) -> T {
+    match ty {
+        Ty::BVec2 => T::BVec2,
+        Ty::BVec3 => T::BVec3,
+        Ty::BVec4 => T::BVec4,
+        _ => T::Bool,
+    }
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -364,14 +375,8 @@ impl VisitorMut for Rewrite {
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
                 } else if let Some(&(ty, false)) = self.mat2s.get(name) {
                     Some(mat2_of(name, ty, None))
-                } else if let Some(ty) = self.bools.get(name) {
-                    let t = match ty {
-                        Ty::BVec2 => T::BVec2,
-                        Ty::BVec3 => T::BVec3,
-                        Ty::BVec4 => T::BVec4,
-                        _ => T::Bool,
-                    };
-                    Some(ctor(t, vec![var(&format!("strata_b_{name}"))]))
+                } else if let Some(&(ty, false)) = self.bools.get(name) {
+                    Some(ctor(bool_spec(ty), vec![var(&format!("strata_b_{name}"))]))
                 } else {
                     None
                 }
@@ -385,6 +390,14 @@ impl VisitorMut for Rewrite {
                         self.error.get_or_insert(format!("0: array index must be < {len}"));
                     }
                     None
+                }
+                (ExprData::Variable(id), _) if self.bools.get(id.0.as_str()).is_some_and(|b| b.1) => {
+                    // An element of a boolean array: converted from the integers it is stored as.
+                    let mut idx = (**index).clone();
+                    idx.visit_mut(self);
+                    let ty = self.bools.get(id.0.as_str()).map_or(Ty::Bool, |b| b.0);
+                    let stored = var(&format!("strata_b_{}", id.0));
+                    Some(ctor(bool_spec(ty), vec![ExprData::Bracket(Box::new(stored), Box::new(idx)).into()]))
                 }
                 (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()).is_some_and(|m| m.1) => {
                     let mut idx = (**index).clone();

@@ -86,6 +86,8 @@ pub fn rename_uniforms(fs: &Shader, taken: &HashSet<String>) -> Shader {
     for u in &mut out.uniforms {
         u.name = fragment_uniform_name(&u.name, &clashes);
     }
+    let names = std::mem::take(&mut out.structs.names);
+    out.structs.names = names.into_iter().map(|(k, v)| (fragment_uniform_name(&k, &clashes), v)).collect();
     let facts = &mut out.facts;
     facts.uniform_precisions =
         facts.uniform_precisions.drain().map(|(k, v)| (fragment_uniform_name(&k, &clashes), v)).collect();
@@ -108,9 +110,10 @@ impl Rename<'_> {
                 }
             }
         }
-        // GLSL ES reserves `__`: a name with it is one the rewrite made from a sampler's.
-        let base = id.split_once("__").map_or(id, |(b, _)| b);
-        self.clashes.contains(base).then(|| format!("{FRAGMENT_PREFIX}{id}"))
+        // GLSL ES reserves `__`: a name with it is one the rewrite made from a sampler's (or a
+        // structure's leaf, `u__a`, itself a uniform whose sampler parts follow).
+        let derived = id.match_indices("__").any(|(at, _)| self.clashes.contains(&id[..at]));
+        (self.clashes.contains(id) || derived).then(|| format!("{FRAGMENT_PREFIX}{id}"))
     }
 }
 

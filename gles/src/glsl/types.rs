@@ -374,7 +374,7 @@ pub struct Var {
 /// A member of a uniform block, with its std140 place.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockMember {
-    /// Its name.
+    /// Its name (a structure's leaf: its access from the block, `s.x`, `a[1].m`).
     pub name: String,
     /// Its type.
     pub ty: Ty,
@@ -400,8 +400,10 @@ pub struct Block {
     /// Whether the stage's code uses it: an array's element only where indexed (a block of its
     /// own counts as used wherever declared).
     pub referenced: bool,
-    /// Its members, in order.
+    /// Its members, in order (a member of structure type as its leaves, `s.x`, `a[1].m`).
     pub members: Vec<BlockMember>,
+    /// Its members of structure types: each one's name, structure and array length.
+    pub structs: Vec<(String, String, Option<u32>)>,
     /// Its data size in bytes (`GL_UNIFORM_BLOCK_DATA_SIZE`).
     pub size: u32,
 }
@@ -414,6 +416,16 @@ impl Block {
             None => &self.name,
         }
     }
+}
+
+/// A shader's uniforms of structure types (`struct_uniforms`), each declared as one uniform
+/// per leaf.
+#[derive(Debug, Clone, Default)]
+pub struct StructUniforms {
+    /// The GL name of each leaf's uniform (`u[1].a`), by the uniform's name (`u__1__a`).
+    pub names: HashMap<String, String>,
+    /// Each structure uniform's type, as the other stage must declare it too.
+    pub types: HashMap<String, String>,
 }
 
 /// A successfully compiled shader, kept for linking.
@@ -457,6 +469,8 @@ pub struct Shader {
     /// whether 3D), each a call of a generated helper (`link::lookup_helpers`); `""` for a
     /// sampler parameter.
     pub lookups: std::collections::BTreeSet<(String, String, bool)>,
+    /// Its uniforms of structure types, as the link needs them.
+    pub structs: StructUniforms,
     /// The info log of a successful compile (warnings), empty if none.
     pub log: String,
     /// The source it was compiled from (what a program binary holds).

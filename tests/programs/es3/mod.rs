@@ -23,6 +23,7 @@ mod samplers;
 mod shadow;
 mod snorm;
 mod srgb;
+mod structs;
 mod swizzles;
 mod tex_storage;
 mod uniforms;
@@ -65,5 +66,7 @@ pub fn all() -> Vec<Case> {
         c("es3_integer_formats", integers::integers),
         c("es3_int_samplers", int_samplers::int_samplers),
         c("es3_packed_floats", packed_floats::packed_floats),
+        c("es3_struct_uniforms", structs::struct_uniforms),
+        c("es3_block_structs", structs::block_structs),
     ]
 }
