@@ -243,6 +243,22 @@ pub(crate) fn with_sampler_params<'c>(
     data
 }
 
+/// The blend constant a draw sets: the blend colour, clamped; but where the colour factors
+/// read only `GL_CONSTANT_ALPHA` (wgpu's constant factor reads the constant per channel), its
+/// alpha in every channel. Colour factors reading both the constant colour and its alpha
+/// cannot be given one constant: the colour wins.
+fn blend_constant(func: [u32; 4], color: [f32; 4]) -> [f64; 4] {
+    let c = color.map(|c| f64::from(c.clamp(0.0, 1.0)));
+    let alpha = |f: u32| matches!(f, CONSTANT_ALPHA | ONE_MINUS_CONSTANT_ALPHA);
+    let colour = |f: u32| matches!(f, CONSTANT_COLOR | ONE_MINUS_CONSTANT_COLOR);
+    let rgb = [func[0], func[1]];
+    if rgb.iter().any(|&f| alpha(f)) && !rgb.iter().any(|&f| colour(f)) {
+        [c[3]; 4]
+    } else {
+        c
+    }
+}
+
 /// A shadow sampler's comparison as `glsl::link::SHADOW_FNS` reads it: the function (1 to 8,
 /// `GL_NEVER` to `GL_ALWAYS`), the filters (1 where magnification is linear, 2 where
 /// minification is), whether the reference is clamped to [0, 1] (every depth format but the
@@ -420,7 +436,7 @@ pub(crate) fn plan_draw<'c>(
         viewport,
         scissor,
         stencil_ref: ctx.depth_stencil.stencil[0].reference.clamp(0, 255) as u32,
-        blend_color: ctx.blend.color.map(|c| f64::from(c.clamp(0.0, 1.0))),
+        blend_color: blend_constant(ctx.blend.func, ctx.blend.color),
         capture: None,
     }))
 }

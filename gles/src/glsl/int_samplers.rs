@@ -194,6 +194,27 @@ pub(super) fn texture_type(ty: Ty) -> Option<T> {
     })
 }
 
+/// Whether an integer lookup `function` that has no helper stays as it is (`texelFetch`,
+/// `texelFetchOffset`, `textureSize`), or the compile error for a lookup the sampler does not
+/// take.
+pub(super) fn kept(function: &str) -> Result<(), String> {
+    if crate::glsl::swizzle::returns_texels(function) && !function.starts_with("texelFetch") {
+        Err(format!("0: no matching overload of `{function}' for an integer sampler"))
+    } else {
+        Ok(())
+    }
+}
+
+/// `call`, a lookup `function` on integer sampler `sampler`, wrapped in the texture's swizzle
+/// when it returns texels.
+pub(super) fn swizzled(function: &str, sampler: &str, call: ast::Expr) -> ast::Expr {
+    if !crate::glsl::swizzle::returns_texels(function) {
+        return call;
+    }
+    let swizzle = FunIdentifierData::Expr(Box::new(var("strata_swizzle"))).into();
+    ExprData::FunCall(swizzle, vec![call, var(&format!("{sampler}__z"))]).into()
+}
+
 /// A type given by its name.
 fn named(name: &str) -> T {
     T::TypeName(ast::TypeNameData(name.into()).into())

@@ -9,6 +9,7 @@ use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, T
 use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
 
 use crate::glsl::block_members::{ctor, two_rows};
+use crate::glsl::int_samplers;
 use crate::glsl::types::{Stage, Ty};
 use crate::limits::MAX_DRAW_BUFFERS;
 
@@ -455,39 +456,25 @@ impl VisitorMut for Rewrite {
                             _ => None,
                         };
                         if let Some((sampler, ty)) = int {
-                            // An integer lookup: its other arguments rewritten, then the call
-                            // replaced by its fetching helper's (texelFetch and most size
-                            // queries stay as they are).
+                            // An integer lookup (`int_samplers`): its other arguments rewritten,
+                            // then the call replaced by its fetching helper's, or kept with its
+                            // sampler rewritten (texelFetch, most size queries).
                             args.iter_mut().skip(1).for_each(|a| {
                                 a.visit_mut(self);
                             });
-                            let fragment = self.stage == Stage::Fragment;
-                            let function = id.0.to_string();
-                            let helper =
-                                crate::glsl::int_samplers::lookup(&function, &sampler, ty, &args[1..], fragment);
-                            let texels = crate::glsl::swizzle::returns_texels(&function);
-                            let c = match helper {
-                                Some(c) => c,
-                                None if texels && !function.starts_with("texelFetch") => {
-                                    self.error.get_or_insert_with(|| {
-                                        format!("0: no matching overload of `{function}' for an integer sampler")
-                                    });
+                            let (function, fragment) = (id.0.to_string(), self.stage == Stage::Fragment);
+                            let helper = int_samplers::lookup(&function, &sampler, ty, &args[1..], fragment);
+                            if helper.is_none() {
+                                if let Err(message) = int_samplers::kept(&function) {
+                                    self.error.get_or_insert(message);
                                     return Visit::Parent;
                                 }
-                                None => {
-                                    // Only the sampler itself is left to rewrite.
-                                    if let Some(first) = args.first_mut() {
-                                        first.visit_mut(self);
-                                    }
-                                    std::mem::replace(e, ExprData::IntConst(0).into())
-                                }
-                            };
-                            *e = if texels {
-                                let swizzle = FunIdentifierData::Expr(Box::new(var("strata_swizzle"))).into();
-                                ExprData::FunCall(swizzle, vec![c, var(&format!("{sampler}__z"))]).into()
-                            } else {
-                                c
-                            };
+                                args.iter_mut().take(1).for_each(|a| {
+                                    a.visit_mut(self);
+                                });
+                            }
+                            let call = helper.unwrap_or_else(|| std::mem::replace(e, ExprData::IntConst(0).into()));
+                            *e = int_samplers::swizzled(&function, &sampler, call);
                             return Visit::Parent;
                         }
                         let shadow = match args.first().map(|a| &a.content) {

@@ -162,7 +162,15 @@ pub(super) fn blend_constant(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBlendFunc(0x8001, 0x8002)?;
     let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
     color(gl, p, [1.0, 1.0, 0.0, 1.0])?;
-    draw_positions(gl, n, &quad(-0.7, -0.7, 0.7, 0.7, 0.0), TRIANGLES)
+    draw_positions(gl, n, &quad(-0.7, -0.7, 0.7, 0.7, 0.0), TRIANGLES)?;
+    // The constant's alpha as the colour factor (CONSTANT_ALPHA, ONE_MINUS_CONSTANT_ALPHA),
+    // then beside the constant colour, whose alpha the alpha factor reads.
+    gl.glBlendColor(0.2, 0.4, 0.6, 0.8)?;
+    gl.glBlendFunc(0x8003, 0x8004)?;
+    color(gl, p, [0.0, 1.0, 1.0, 0.5])?;
+    draw_positions(gl, n, &quad(-0.9, -0.9, 0.0, 0.0, 0.0), TRIANGLES)?;
+    gl.glBlendFuncSeparate(0x8003, 0x8004, 0x8001, 0)?;
+    draw_positions(gl, n, &quad(0.0, 0.0, 0.9, 0.9, 0.0), TRIANGLES)
 }
 
 pub(super) fn stencil_mask(gl: Gl<'_>, n: &mut Names) -> R {
