@@ -16,10 +16,10 @@ pub(super) fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
     let components = match format {
         0x1906 | 0x1909 | 0x1902 => 1, // ALPHA, LUMINANCE, DEPTH_COMPONENT
         0x1901 => 1,                   // STENCIL_INDEX_OES (GL_NV_read_stencil)
-        0x1903 => 1,                   // RED_EXT
-        0x190A | 0x8227 => 2,          // LUMINANCE_ALPHA, RG_EXT
-        0x1907 => 3,                   // RGB
-        0x1908 | 0x80E1 => 4,          // RGBA, BGRA_EXT
+        0x1903 | 0x8D94 => 1,          // RED_EXT, RED_INTEGER
+        0x190A | 0x8227 | 0x8228 => 2, // LUMINANCE_ALPHA, RG_EXT, RG_INTEGER
+        0x1907 | 0x8D98 => 3,          // RGB, RGB_INTEGER
+        0x1908 | 0x80E1 | 0x8D99 => 4, // RGBA, BGRA_EXT, RGBA_INTEGER
         0x84F9 => 1,                   // DEPTH_STENCIL_OES (one packed 32-bit value)
         _ => return None,
     };
@@ -27,6 +27,10 @@ pub(super) fn pixel_size(format: GLenum, ty: GLenum) -> Option<usize> {
         // 5_6_5, 4_4_4_4, 5_5_5_1, and EXT_read_format_bgra's 4_4_4_4_REV and 1_5_5_5_REV.
         0x8363 | 0x8033 | 0x8034 | 0x8365 | 0x8366 => Some(2),
         0x84FA | 0x8368 => Some(4), // UNSIGNED_INT_24_8_OES, UNSIGNED_INT_2_10_10_10_REV_EXT
+        // ES 3.0: UNSIGNED_INT_10F_11F_11F_REV and UNSIGNED_INT_5_9_9_9_REV, one word;
+        // FLOAT_32_UNSIGNED_INT_24_8_REV, two.
+        0x8C3B | 0x8C3E => Some(4),
+        0x8DAD => Some(8),
         0x140B => Some(2 * components), // HALF_FLOAT: reads of half-float colour buffers
         _ => type_size(ty).map(|s| s * components),
     }
@@ -155,6 +159,13 @@ mod tests {
         assert_eq!(pixel_size(0x1903, 0x1401), Some(1)); // RED_EXT UNSIGNED_BYTE
         assert_eq!(pixel_size(0x8227, 0x1406), Some(8)); // RG_EXT FLOAT
         assert_eq!(pixel_size(0x1234, 0x1401), None);
+        // ES 3.0's integer, packed float and float depth-stencil data.
+        assert_eq!(pixel_size(0x8D94, 0x1403), Some(2)); // RED_INTEGER UNSIGNED_SHORT
+        assert_eq!(pixel_size(0x8D99, 0x1404), Some(16)); // RGBA_INTEGER INT
+        assert_eq!(pixel_size(0x8D98, 0x1400), Some(3)); // RGB_INTEGER BYTE
+        assert_eq!(pixel_size(0x8228, 0x1405), Some(8)); // RG_INTEGER UNSIGNED_INT
+        assert_eq!(pixel_size(0x1907, 0x8C3B), Some(4)); // RGB UNSIGNED_INT_10F_11F_11F_REV
+        assert_eq!(pixel_size(0x84F9, 0x8DAD), Some(8)); // DEPTH_STENCIL FLOAT_32_UNSIGNED_INT_24_8_REV
     }
 
     /// Rows go where `NV_pack_subimage` and `ANGLE_pack_reverse_row_order` put them: two rows of
