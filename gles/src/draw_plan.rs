@@ -243,6 +243,28 @@ pub(crate) fn with_sampler_params<'c>(
     data
 }
 
+/// The stencil reference a draw sets, and the back face's reference and masks where they
+/// differ from the front's (wgpu has one reference and one pair of masks: back-facing
+/// triangles then draw on their own, `Renderer::record`). Where only back faces are drawn
+/// (front faces culled), theirs are the draw's.
+fn stencil_faces(ctx: &Context, raster: &mut crate::render::RasterState) -> (u32, Option<(u32, u32, u32)>) {
+    let values = |f: &crate::context::StencilFace| (f.reference.clamp(0, 255) as u32, f.mask & 0xff, f.write & 0xff);
+    let (front, back) = (values(&ctx.depth_stencil.stencil[0]), values(&ctx.depth_stencil.stencil[1]));
+    let triangles = !raster.points
+        && matches!(raster.topology, wgpu::PrimitiveTopology::TriangleList | wgpu::PrimitiveTopology::TriangleStrip);
+    let Some(stencil) = raster.stencil.as_mut().filter(|_| front != back && triangles) else {
+        return (front.0, None);
+    };
+    match raster.cull {
+        None => (front.0, Some(back)),
+        Some(wgpu::Face::Front) => {
+            (stencil.read_mask, stencil.write_mask) = (back.1, back.2);
+            (back.0, None)
+        }
+        Some(wgpu::Face::Back) => (front.0, None),
+    }
+}
+
 /// The blend constant a draw sets: the blend colour, clamped; but where the colour factors
 /// read only `GL_CONSTANT_ALPHA` (wgpu's constant factor reads the constant per channel), its
 /// alpha in every channel. Colour factors reading both the constant colour and its alpha
@@ -420,6 +442,7 @@ pub(crate) fn plan_draw<'c>(
     } else {
         [0, 0, target.width, target.height]
     };
+    let (stencil_ref, back_stencil) = stencil_faces(ctx, &mut raster);
     Ok(Some(DrawSpec {
         vs: program.vs.clone(),
         fs: None,
@@ -435,7 +458,8 @@ pub(crate) fn plan_draw<'c>(
         raster,
         viewport,
         scissor,
-        stencil_ref: ctx.depth_stencil.stencil[0].reference.clamp(0, 255) as u32,
+        stencil_ref,
+        back_stencil,
         blend_color: blend_constant(ctx.blend.func, ctx.blend.color),
         capture: None,
     }))

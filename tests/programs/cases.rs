@@ -407,6 +407,7 @@ pub fn all() -> Vec<Case> {
         c("blend_separate_subtract", blend_separate_subtract, DEFAULT),
         c("blend_constant", blend_constant, DEFAULT),
         c("stencil_mask", stencil_mask, DEFAULT),
+        c("stencil_separate_faces", stencil_separate_faces, DEFAULT),
         c("polygon_offset", polygon_offset, DEFAULT),
         c("elements_ubyte", elements_ubyte, DEFAULT),
         c("elements_ushort", elements_ushort, DEFAULT),

@@ -102,6 +102,9 @@ pub struct DrawSpec<'a> {
     pub scissor: [u32; 4],
     /// Stencil reference.
     pub stencil_ref: u32,
+    /// The back face's stencil reference, read mask and write mask where they differ from the
+    /// front's: back-facing triangles are then drawn on their own with them.
+    pub back_stencil: Option<(u32, u32, u32)>,
     /// Blend constant.
     pub blend_color: [f64; 4],
     /// A capturing draw's numbers (the capture block's bytes) and its buffers, by binding

@@ -11,7 +11,7 @@ use crate::glsl::types::Ty;
 use crate::render::occlusion::{Occlusion, PassQueries};
 use crate::render::pass::{offset_of, Bind, Pass, Recorded};
 use crate::render::targets::stored;
-use crate::render::{DrawSpec, Renderer, SamplerState, Source, Target};
+use crate::render::{DrawSpec, RasterState, Renderer, SamplerState, Source, Target};
 
 impl Renderer {
     /// Whether draws are recorded but not yet submitted.
@@ -54,14 +54,30 @@ impl Renderer {
         }
     }
 
-    /// Records a validated draw into the target's pass.
-    fn record(&mut self, target: &Target, spec: DrawSpec<'_>) {
+    /// Records a validated draw into the target's pass: twice where the back face has stencil
+    /// values of its own (front faces, then back faces, each with theirs).
+    fn record(&mut self, target: &Target, mut spec: DrawSpec<'_>) {
         let depth_mask = spec
             .textures
             .iter()
             .enumerate()
             .filter(|(_, t)| t.as_ref().is_some_and(|t| t.3))
             .fold(0u32, |m, (i, _)| m | (1 << i));
+        // The back faces' pipeline (front faces culled, the back face's masks), where they
+        // have stencil values of their own; the draw itself then draws front faces only.
+        let back = match spec.back_stencil.filter(|_| spec.capture.is_none()) {
+            Some((reference, read, write)) => {
+                let front = spec.raster.clone();
+                spec.raster.cull = Some(wgpu::Face::Front);
+                if let Some(s) = spec.raster.stencil.as_mut() {
+                    (s.read_mask, s.write_mask) = (read, write);
+                }
+                let pipeline = self.pipeline(&spec, target, depth_mask);
+                spec.raster = RasterState { cull: Some(wgpu::Face::Back), ..front };
+                Some((pipeline, reference))
+            }
+            None => None,
+        };
         let pipeline = self.pipeline(&spec, target, depth_mask);
         let (layout, _) = self.layouts(&spec.program, depth_mask);
         // Open the target's pass first: switching targets flushes the previous pass, which
@@ -162,6 +178,12 @@ impl Renderer {
             blend_color: spec.blend_color,
             query: self.occlusion.clone(),
         };
+        if let Some((pipeline, stencil_ref)) = back {
+            let back = Recorded { pipeline, stencil_ref, ..rec.clone() };
+            self.pass_for(target).draws.push(rec);
+            self.pass_for(target).draws.push(back);
+            return;
+        }
         self.pass_for(target).draws.push(rec);
     }
 

@@ -173,6 +173,62 @@ pub(super) fn blend_constant(gl: Gl<'_>, n: &mut Names) -> R {
     draw_positions(gl, n, &quad(0.0, 0.0, 0.9, 0.9, 0.0), TRIANGLES)
 }
 
+/// Front- and back-facing triangles with stencil references, read masks and write masks of
+/// their own (`glStencilFuncSeparate`, `glStencilMaskSeparate`), the result shown by equality
+/// tests; the same with front faces culled.
+pub(super) fn stencil_separate_faces(gl: Gl<'_>, n: &mut Names) -> R {
+    const FRONT: u32 = 0x0404;
+    const BACK: u32 = 0x0405;
+    const FRONT_AND_BACK: u32 = 0x0408;
+    const ALWAYS: u32 = 0x0207;
+    const EQUAL: u32 = 0x0202;
+    const KEEP: u32 = 0x1E00;
+    const REPLACE: u32 = 0x1E01;
+    const INCR: u32 = 0x1E02;
+    gl.glClearStencil(0)?;
+    gl.glClearColor(0.0, 0.0, 0.0, 1.0)?;
+    gl.glClear(COLOR_BUFFER_BIT | STENCIL_BUFFER_BIT)?;
+    gl.glEnable(STENCIL_TEST)?;
+    let p = program(gl, n, VS_POS, FS_COLOR, &["pos"])?;
+    // Front faces write 0x11 through mask 0x0F, back faces 0x2C through 0xF0.
+    gl.glStencilFuncSeparate(FRONT, ALWAYS, 0x11, 0xFF)?;
+    gl.glStencilFuncSeparate(BACK, ALWAYS, 0x2C, 0xFF)?;
+    gl.glStencilOpSeparate(FRONT_AND_BACK, KEEP, KEEP, REPLACE)?;
+    gl.glStencilMaskSeparate(FRONT, 0x0F)?;
+    gl.glStencilMaskSeparate(BACK, 0xF0)?;
+    gl.glColorMask(false, false, false, false)?;
+    let mut back = quad(0.0, -1.0, 0.8, 0.5, 0.0);
+    back.reverse();
+    let back: Vec<f32> = back.chunks(3).flat_map(|c| [c[2], c[1], c[0]]).collect();
+    draw_positions(gl, n, &quad(-0.8, -0.5, 0.3, 0.8, 0.0), TRIANGLES)?;
+    draw_positions(gl, n, &back, TRIANGLES)?;
+    // Back faces only (front ones culled) count up where the stencil, read through 0x30, is
+    // 0x20; front faces would need 0x01 through 0x0F.
+    gl.glEnable(CULL_FACE)?;
+    gl.glCullFace(FRONT)?;
+    gl.glStencilFuncSeparate(FRONT, EQUAL, 0x01, 0x0F)?;
+    gl.glStencilFuncSeparate(BACK, EQUAL, 0x20, 0x30)?;
+    gl.glStencilOpSeparate(FRONT_AND_BACK, KEEP, KEEP, INCR)?;
+    gl.glStencilMaskSeparate(FRONT_AND_BACK, 0xFF)?;
+    draw_positions(gl, n, &back, TRIANGLES)?;
+    draw_positions(gl, n, &quad(-1.0, -1.0, 1.0, 1.0, 0.0), TRIANGLES)?;
+    gl.glDisable(CULL_FACE)?;
+    gl.glColorMask(true, true, true, true)?;
+    gl.glStencilMaskSeparate(FRONT_AND_BACK, 0)?;
+    for (value, c) in [
+        (0x01, [1.0, 0.0, 0.0, 1.0]),
+        (0x20, [0.0, 1.0, 0.0, 1.0]),
+        (0x21, [0.0, 0.0, 1.0, 1.0]),
+        (0x2D, [1.0, 1.0, 0.0, 1.0]),
+    ] {
+        gl.glStencilFunc(EQUAL, value, 0xFF)?;
+        color(gl, p, c)?;
+        draw_positions(gl, n, &quad(-1.0, -1.0, 1.0, 1.0, 0.0), TRIANGLES)?;
+    }
+    gl.glStencilMask(0xFF)?;
+    gl.glDisable(STENCIL_TEST)
+}
+
 pub(super) fn stencil_mask(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glClearStencil(0)?;
     gl.glClear(COLOR_BUFFER_BIT | STENCIL_BUFFER_BIT)?;
