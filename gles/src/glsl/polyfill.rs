@@ -1,6 +1,7 @@
 //! Built-in functions naga's GLSL front end lacks, each replaced by a generated function of the
 //! same overloads that computes what the specification defines: `modf` (GLSL ES 3.00 §8.3) and
-//! `matrixCompMult` (GLSL ES 1.00 §8.5, and for every matrix shape in 3.00 §8.6).
+//! `matrixCompMult` (GLSL ES 1.00 §8.5, and for every matrix shape in 3.00 §8.6); and
+//! `texelFetchOffset`, whose offset naga drops, as `texelFetch` of the offset coordinate.
 
 use std::fmt::Write as _;
 
@@ -37,4 +38,37 @@ pub(super) fn definitions(used: &std::collections::BTreeSet<&'static str>) -> St
         }
     }
     out
+}
+
+/// Makes a call of `texelFetchOffset(sampler, P, lod, offset)` one of `texelFetch(sampler,
+/// P + offset, lod)` (a 2D array's offset has no layer part): naga's front end drops the
+/// offset. `samplers` gives the sampler's type.
+pub(super) fn fetch_offset(
+    fun: &mut glsl_lang::ast::FunIdentifier,
+    args: &mut Vec<glsl_lang::ast::Expr>,
+    samplers: &std::collections::HashMap<String, crate::glsl::types::Ty>,
+) {
+    use glsl_lang::ast::{self, ExprData, FunIdentifierData};
+    let FunIdentifierData::Expr(f) = &mut fun.content else { return };
+    let ExprData::Variable(id) = &mut f.content else { return };
+    if id.0 != "texelFetchOffset" || args.len() != 4 {
+        return;
+    }
+    let array = match &args[0].content {
+        ExprData::Variable(v) => {
+            samplers.get(v.0.as_str()).is_some_and(|t| t.sampler_base() == crate::glsl::types::Ty::Sampler2DArray)
+        }
+        _ => false,
+    };
+    let Some(offset) = args.pop() else { return };
+    let offset = match array {
+        true => crate::glsl::block_members::ctor(
+            ast::TypeSpecifierNonArrayData::IVec3,
+            vec![offset, ExprData::IntConst(0).into()],
+        ),
+        false => offset,
+    };
+    let coordinate = std::mem::replace(&mut args[1], ExprData::IntConst(0).into());
+    args[1] = ExprData::Binary(ast::BinaryOpData::Add.into(), Box::new(coordinate), Box::new(offset)).into();
+    *id = ast::IdentifierData("texelFetch".into()).into();
 }

@@ -157,6 +157,14 @@ pub fn int_samplers(gl: Gl<'_>, n: &mut Names) -> R {
         screen(gl, n, VS_SCREEN, &show("uniform highp usampler2DArray s;", "texture(s, vec3(p, uv.x * 3.0))", 2100.0))?;
     unit(gl, p, 2)?;
     cell(gl, 14)?;
+    // texelFetchOffset (whose offset naga's front end drops) on the array and the 2D image.
+    let fetch = "texelFetchOffset(s, ivec3(ivec2(uv * 2.0) - ivec2(1, 0), 2), 0, ivec2(1, 0))";
+    let p = screen(gl, n, VS_SCREEN, &show("uniform highp usampler2DArray s;", fetch, 2100.0))?;
+    unit(gl, p, 2)?;
+    cell(gl, 20)?;
+    let fetch = "texelFetchOffset(s, ivec2(uv * 4.0) + ivec2(0, 2), 1, ivec2(-1, -2))";
+    screen(gl, n, VS_SCREEN, &show(u2, fetch, 255.0))?;
+    cell(gl, 21)?;
 
     // R8I cube, 2×2 faces: face f's texel (x, y) is (f * 20 + x * 5 + y) negated on odd faces.
     let tc = tex(gl, n)?;
