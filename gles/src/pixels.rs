@@ -56,6 +56,8 @@ enum ReadFormat {
     /// of a half-float colour buffer (`GL_EXT_color_buffer_half_float`), its implementation
     /// read format.
     Half(usize),
+    /// `GL_RGBA`, `GL_FLOAT` (ES 3.0): a float colour buffer's RGBA as 32-bit floats.
+    Float,
     /// Integers (ES 3.0): `GL_RGBA_INTEGER` as `GL_INT` or `GL_UNSIGNED_INT` from an integer
     /// colour buffer of the same signedness, or the buffer's own format and type (its
     /// implementation read format).
@@ -82,6 +84,7 @@ impl ReadFormat {
             (RED_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::R8),
             (RG_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Rg8),
             (RGBA, HALF_FLOAT) => Ok(ReadFormat::Half(4)),
+            (RGBA, FLOAT) if es3 => Ok(ReadFormat::Float),
             (RG_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(2)),
             (RED_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(1)),
             _ => {
@@ -110,6 +113,7 @@ impl ReadFormat {
             ReadFormat::R8 => 1,
             ReadFormat::Half(n) => 2 * n,
             ReadFormat::Int { format, ty } => crate::integer::pixel_bytes(format, ty),
+            ReadFormat::Float => 16,
         }
     }
 
@@ -127,7 +131,7 @@ impl ReadFormat {
             ReadFormat::Rg8 => out.copy_from_slice(&p[..2]),
             // Half-float and integer pixels are written from the image's own bytes
             // (`glReadPixels`).
-            ReadFormat::Half(_) | ReadFormat::Int { .. } => {}
+            ReadFormat::Half(_) | ReadFormat::Int { .. } | ReadFormat::Float => {}
             ReadFormat::Bgra4444Rev => {
                 let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
                 out.copy_from_slice(&v.to_ne_bytes());
@@ -210,6 +214,11 @@ impl GlesExecutor {
                 return Bytes(Vec::new());
             }
         }
+        // GL_FLOAT reads float buffers only (ES 3.0's format for them).
+        if matches!(how, Read::Color(ReadFormat::Float)) && !target.half_float() {
+            ctx.record(GlError::InvalidOperation);
+            return Bytes(Vec::new());
+        }
         // GL_HALF_FLOAT reads only the implementation read format of a half-float buffer.
         if let Read::Color(ReadFormat::Half(n)) = how {
             let absent = target.absent;
@@ -258,6 +267,19 @@ impl GlesExecutor {
             let rect = [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32];
             let rw = rect[2] as usize;
             match how {
+                Read::Color(ReadFormat::Float) => {
+                    if let Some(px) = self.r.read_half(&target, rect) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            let halves = px[r * rw * 8..(r + 1) * rw * 8].chunks_exact(2);
+                            let floats =
+                                halves.map(|h| half::f16::from_bits(u16::from_ne_bytes([h[0], h[1]])).to_f32());
+                            for (i, v) in floats.enumerate() {
+                                out[dst + i * 4..dst + (i + 1) * 4].copy_from_slice(&v.to_ne_bytes());
+                            }
+                        }
+                    }
+                }
                 Read::Color(ReadFormat::Half(_)) => {
                     if let Some(px) = self.r.read_half(&target, rect) {
                         for r in 0..rect[3] as usize {

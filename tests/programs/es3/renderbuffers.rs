@@ -11,6 +11,7 @@ const READ_FRAMEBUFFER: u32 = 0x8CA8;
 const DRAW_FRAMEBUFFER: u32 = 0x8CA9;
 const SRGB8_ALPHA8: u32 = 0x8C43;
 const RGBA8: u32 = 0x8058;
+const RG16F: u32 = 0x822F;
 const DEPTH_COMPONENT32F: u32 = 0x8CAC;
 const DEPTH32F_STENCIL8: u32 = 0x8CAD;
 const DEPTH_COMPONENT24: u32 = 0x81A6;
@@ -132,6 +133,22 @@ pub fn renderbuffers(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glReadPixels(2, 2, 1, 1, DEPTH_COMPONENT, FLOAT)?;
     marks.push(gl.glGetError()?);
     gl.glClearDepthf(1.0)?;
+    // A half-float buffer read as RGBA floats (ES 3.0's read format for float buffers), which
+    // an 8-bit buffer refuses.
+    let fb = n.next();
+    gl.glGenFramebuffers(Slice::new(&[fb]))?;
+    gl.glBindFramebuffer(FRAMEBUFFER, fb)?;
+    let rg = renderbuffer(gl, n, RG16F)?;
+    gl.glFramebufferRenderbuffer(FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, rg)?;
+    gl.glClearColor(0.25, 0.625, 0.5, 0.75)?;
+    gl.glClear(COLOR_BUFFER_BIT)?;
+    let px = gl.glReadPixels(1, 1, 1, 1, RGBA, FLOAT)?.0;
+    marks.extend(px.chunks_exact(4).map(|b| (f32::from_ne_bytes([b[0], b[1], b[2], b[3]]) * 1000.0) as u32));
+    let c = renderbuffer(gl, n, RGBA8)?;
+    gl.glFramebufferRenderbuffer(FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, c)?;
+    gl.glReadPixels(0, 0, 1, 1, RGBA, FLOAT)?;
+    marks.push(gl.glGetError()?);
+    gl.glClearColor(0.0, 0.0, 0.0, 1.0)?;
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glViewport(0, 0, W, H)?;
     marks.push(gl.glGetError()?);
