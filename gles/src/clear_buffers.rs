@@ -138,10 +138,16 @@ impl GlesExecutor {
         match cleared {
             Cleared::Color { slot, value } => {
                 let writes = color_writes(blend.color_mask);
-                let kind = target.slots().get(slot).copied().flatten().map(|s| s.2.sample_type(None, None));
-                let float = matches!(kind, Some(Some(wgpu::TextureSampleType::Float { .. })));
+                let format = target.slots().get(slot).copied().flatten().map(|s| s.2);
+                let float = matches!(
+                    format.map(|f| f.sample_type(None, None)),
+                    Some(Some(wgpu::TextureSampleType::Float { .. }))
+                );
+                // Fixed-point buffers clamp the value; float ones keep it (ES 3.0 §4.2.3).
+                let unclamped = format == Some(crate::formats::HALF_FORMAT);
                 if float && !writes.is_empty() {
-                    color = Some((value.map(|c| c.clamp(0.0, 1.0)), writes, Some(slot)));
+                    let value = if unclamped { value } else { value.map(|c| c.clamp(0.0, 1.0)) };
+                    color = Some((value, writes, Some(slot)));
                 }
             }
             Cleared::IntColor { slot, value, signed } => {

@@ -144,6 +144,10 @@ pub fn renderbuffers(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glClear(COLOR_BUFFER_BIT)?;
     let px = gl.glReadPixels(1, 1, 1, 1, RGBA, FLOAT)?.0;
     marks.extend(px.chunks_exact(4).map(|b| (f32::from_ne_bytes([b[0], b[1], b[2], b[3]]) * 1000.0) as u32));
+    // glClearBufferfv keeps values outside [0, 1] in a float buffer.
+    gl.glClearBufferfv(0x1800, 0, Slice::new(&[-2.5, 3.25, 0.5, 1.0]))?;
+    let px = gl.glReadPixels(1, 1, 1, 1, RGBA, FLOAT)?.0;
+    marks.extend(px.chunks_exact(4).map(|b| (f32::from_ne_bytes([b[0], b[1], b[2], b[3]]) * 1000.0) as i32 as u32));
     let c = renderbuffer(gl, n, RGBA8)?;
     gl.glFramebufferRenderbuffer(FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, c)?;
     gl.glReadPixels(0, 0, 1, 1, RGBA, FLOAT)?;
