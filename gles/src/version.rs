@@ -89,6 +89,20 @@ impl GlesExecutor {
             0x8C1D => ctx.bindings.units[ctx.bindings.active_unit][TextureTarget::TwoDArray.slot()] as i32,
             // GL_MAX_ARRAY_TEXTURE_LAYERS.
             0x88FF => crate::limits::max_array_layers(&self.gpu) as i32,
+            // GL_MAX_VERTEX_UNIFORM_COMPONENTS, GL_MAX_FRAGMENT_UNIFORM_COMPONENTS: the default
+            // block's 256 vectors.
+            0x8B4A | 0x8B49 => 4 * 256,
+            // GL_MAX_VARYING_COMPONENTS and GL_MAX_FRAGMENT_INPUT_COMPONENTS: the varyings;
+            // GL_MAX_VERTEX_OUTPUT_COMPONENTS: with the position (ES 3.0's minimums).
+            0x8B4B | 0x9125 => 4 * crate::limits::MAX_VARYING_VECTORS as i32,
+            0x9122 => 4 * crate::limits::MAX_VARYING_VECTORS as i32 + 4,
+            // GL_MAX_ELEMENTS_VERTICES, GL_MAX_ELEMENTS_INDICES: the counts drawn best, as Mesa
+            // recommends them.
+            0x80E8 | 0x80E9 => 3000,
+            // GL_MIN_PROGRAM_TEXEL_OFFSET, GL_MAX_PROGRAM_TEXEL_OFFSET: ES 3.0's range, which
+            // the shaders' offsets are held to.
+            0x8904 => -8,
+            0x8905 => 7,
             _ => return None,
         }])
     }

@@ -159,6 +159,15 @@ pub fn texture_arrays(gl: Gl<'_>, n: &mut Names) -> R {
 
     // The queries and errors.
     marks.push(u32::from(gl.glGetIntegerv(MAX_ARRAY_TEXTURE_LAYERS)?.first().is_some_and(|v| *v >= 256)));
+    // ES 3.0's other limits, each at least its minimum (table 6.31 and after): uniform
+    // components, varying, output and input components, the element counts, texel offsets.
+    let at_least = [(0x8B4A, 1024), (0x8B49, 896), (0x8B4B, 60), (0x9122, 64), (0x9125, 60), (0x80E8, 1), (0x80E9, 1)];
+    for (pname, min) in at_least {
+        marks.push(u32::from(gl.glGetIntegerv(pname)?.first().is_some_and(|v| *v >= min)));
+    }
+    marks.push(u32::from(gl.glGetIntegerv(0x8904)?.first().is_some_and(|v| *v <= -8)));
+    marks.push(u32::from(gl.glGetIntegerv(0x8905)?.first().is_some_and(|v| *v >= 7)));
+    marks.push(gl.glGetError()?);
     let flat = n.next();
     gl.glBindTexture(TEXTURE_2D, flat)?;
     gl.glTexImage2D(TEXTURE_2D, 0, RGBA as i32, 1, 1, 0, RGBA, UNSIGNED_BYTE, None)?;
