@@ -342,12 +342,21 @@ fn uses_client_arrays(st: &GlState) -> bool {
     st.attribs.iter().any(|a| a.enabled && a.client.is_some())
 }
 
-/// One more than the largest index in `data` (indices of type `ty`), 0 if empty.
-fn vertex_count(data: &[u8], ty: GLenum) -> u64 {
+/// One more than the largest index in `data` (indices of type `ty`) that reads a vertex (all of
+/// them, or with primitive restart (`restart`) all but the all-ones index), 0 if none.
+fn vertex_count(data: &[u8], ty: GLenum, restart: bool) -> u64 {
+    // With primitive restart, the type's all-ones index restarts and reads no vertex.
+    let read = |i: u32, all_ones: u32| !(restart && i == all_ones);
     let max = match ty {
-        GL_UNSIGNED_BYTE => data.iter().map(|&b| u32::from(b)).max(),
-        GL_UNSIGNED_SHORT => data.chunks_exact(2).map(|c| u32::from(u16::from_ne_bytes([c[0], c[1]]))).max(),
-        GL_UNSIGNED_INT => data.chunks_exact(4).map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]])).max(),
+        GL_UNSIGNED_BYTE => data.iter().map(|&b| u32::from(b)).filter(|&i| read(i, 0xFF)).max(),
+        GL_UNSIGNED_SHORT => {
+            data.chunks_exact(2).map(|c| u32::from(u16::from_ne_bytes([c[0], c[1]]))).filter(|&i| read(i, 0xFFFF)).max()
+        }
+        GL_UNSIGNED_INT => data
+            .chunks_exact(4)
+            .map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
+            .filter(|&i| read(i, u32::MAX))
+            .max(),
         _ => None,
     };
     max.map_or(0, |m| u64::from(m) + 1)
@@ -424,3 +433,18 @@ pub mod es3_calls;
 
 /// ES 3.0's sync objects (`glFenceSync` and the rest).
 pub mod sync_objects;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The all-ones index restarts only with primitive restart: it then reads no vertex.
+    #[test]
+    fn restart_indices_read_no_vertex() {
+        let ints: Vec<u8> = [3u32, u32::MAX, 7].iter().flat_map(|i| i.to_ne_bytes()).collect();
+        assert_eq!(vertex_count(&ints, GL_UNSIGNED_INT, true), 8);
+        assert_eq!(vertex_count(&ints, GL_UNSIGNED_INT, false), u64::from(u32::MAX) + 1);
+        assert_eq!(vertex_count(&[255, 4], GL_UNSIGNED_BYTE, true), 5);
+        assert_eq!(vertex_count(&[255], GL_UNSIGNED_BYTE, true), 0);
+    }
+}

@@ -84,6 +84,9 @@ pub(crate) struct GlState {
     /// work (in an ES 2.0 context they record `GL_INVALID_OPERATION`, as the daemon does for
     /// its own).
     pub es3: bool,
+    /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` (ES 3.0): the all-ones index restarts and reads no
+    /// vertex, so it does not count for the client arrays sent with a draw.
+    pub restart: bool,
 }
 
 impl Default for GlState {
@@ -105,6 +108,7 @@ impl Default for GlState {
             copy_buffers: [0; 2],
             xfb_buffer: 0,
             es3: false,
+            restart: false,
         }
     }
 }

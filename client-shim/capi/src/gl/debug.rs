@@ -74,6 +74,8 @@ fn set_enabled(name: &'static str, cap: GLenum, on: bool) {
         match cap {
             GL_DEBUG_OUTPUT => gl.st.debug.output = on,
             GL_DEBUG_OUTPUT_SYNCHRONOUS => gl.st.debug.synchronous = on,
+            // GL_PRIMITIVE_RESTART_FIXED_INDEX (ES 3.0).
+            0x8D69 => gl.st.restart = on,
             _ => {}
         }
         if on {

@@ -63,7 +63,7 @@ pub(super) fn draw_elements(
                 .shadows
                 .get(&gl.st.element_buffer)
                 .and_then(|b| b.get(offset..offset.checked_add(len)?))
-                .map_or(0, |d| vertex_count(d, ty));
+                .map_or(0, |d| vertex_count(d, ty, gl.st.restart));
             send_client_arrays(gl, reach(n), instances)?;
         }
         return draw_buffer(gl);
@@ -75,7 +75,7 @@ pub(super) fn draw_elements(
     // SAFETY: a client-side index array holds `count` indices.
     let data = unsafe { bytes(indices, len) };
     if uses_client_arrays(gl.st) {
-        send_client_arrays(gl, reach(vertex_count(data, ty)), instances)?;
+        send_client_arrays(gl, reach(vertex_count(data, ty, gl.st.restart)), instances)?;
     }
     let data = Blob::borrowed(data);
     match extra {
