@@ -334,8 +334,10 @@ impl VisitorMut for Rewrite {
                 } else if let Some(v) = crate::glsl::consts::builtin(name)
                     .or_else(|| crate::glsl::consts::builtin_es3(name).filter(|_| self.version == 300))
                 {
-                    // The built-in constants (§7.4), which naga does not know.
-                    Some(ExprData::IntConst(v as i32).into())
+                    // The built-in constants (§7.4), which naga does not know; a negative one
+                    // negated, so that a minus before it stays apart from its own.
+                    let k: ast::Expr = ExprData::IntConst((v as i32).wrapping_abs()).into();
+                    Some(if v < 0 { ExprData::Unary(ast::UnaryOpData::Minus.into(), Box::new(k)).into() } else { k })
                 } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
                     // Points are drawn as quads whose size the generated `main` reads from this.
                     Some(var("strata_PointSize"))
