@@ -31,6 +31,7 @@ mod consts;
 mod conversions;
 mod es3_rules;
 mod fields;
+mod hoist;
 mod int_samplers;
 mod interface;
 mod link;

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
-use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
+use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
 use crate::glsl::block_members::{ctor, two_rows};
 use crate::glsl::types::{Stage, Ty};
@@ -97,83 +97,7 @@ fn sampler_array_arg(arrays: &HashMap<String, u32>, args: &[ast::Expr]) -> Optio
     })
 }
 
-/// `+(a, b)` for a sequence `(a, b)`: the transpiler writes a sequence without parentheses, which
-/// in an argument or initializer would read as two; a unary plus makes it keep them.
-fn keep_sequence(e: &mut ast::Expr) {
-    if matches!(e.content, ExprData::Comma(..)) {
-        let seq = std::mem::replace(e, ExprData::IntConst(0).into());
-        *e = ExprData::Unary(ast::UnaryOpData::Add.into(), Box::new(seq)).into();
-    }
-}
-
-/// Whether an expression calls a function (a constructor is no call).
-fn calls_function(e: &ast::Expr) -> bool {
-    struct Finder(bool);
-    impl glsl_lang::visitor::Visitor for Finder {
-        fn visit_expr(&mut self, e: &ast::Expr) -> Visit {
-            if let ExprData::FunCall(f, _) = &e.content {
-                self.0 |= matches!(f.content, FunIdentifierData::Expr(_));
-            }
-            Visit::Children
-        }
-    }
-    let mut f = Finder(false);
-    e.visit(&mut f);
-    f.0
-}
-
-/// Global initialisers that call functions (GLSL ES 1.00 §5.10 allows built-in calls in constant
-/// expressions; naga evaluates none at global scope) become assignments at the start of `main`,
-/// before any of the shader's code runs; `const` goes, as the compile already checked writes.
-pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
-    let mut hoisted: Vec<ast::Statement> = Vec::new();
-    for decl in &mut tu.0 {
-        let ast::ExternalDeclarationData::Declaration(d) = &mut decl.content else { continue };
-        let ast::DeclarationData::InitDeclaratorList(list) = &mut d.content else { continue };
-        let mut take = |name: &str, init: &mut Option<ast::Initializer>| {
-            let Some(ast::InitializerData::Simple(e)) = init.as_deref() else { return false };
-            if !calls_function(e) {
-                return false;
-            }
-            let mut value: ast::Expr = (**e).clone();
-            keep_sequence(&mut value);
-            let assign: ast::Expr =
-                ExprData::Assignment(Box::new(var(name)), ast::AssignmentOpData::Equal.into(), Box::new(value)).into();
-            hoisted.push(ast::StatementData::Expression(ast::ExprStatementData(Some(assign)).into()).into());
-            *init = None;
-            true
-        };
-        let mut any = false;
-        if let Some(name) = list.head.name.clone() {
-            any |= take(name.0.as_str(), &mut list.head.initializer);
-        }
-        for t in &mut list.tail {
-            let name = t.ident.ident.0.to_string();
-            any |= take(&name, &mut t.initializer);
-        }
-        if any {
-            if let Some(q) = &mut list.head.ty.qualifier {
-                q.qualifiers.retain(|s| {
-                    !matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Const)
-                });
-                if q.qualifiers.is_empty() {
-                    list.head.ty.qualifier = None;
-                }
-            }
-        }
-    }
-    if hoisted.is_empty() {
-        return;
-    }
-    for decl in &mut tu.0 {
-        if let ast::ExternalDeclarationData::FunctionDefinition(f) = &mut decl.content {
-            if f.prototype.name.0 == "main" || f.prototype.name.0 == "strata_main" {
-                let body = &mut f.statement.statement_list;
-                body.splice(0..0, hoisted.iter().cloned());
-            }
-        }
-    }
-}
+pub(super) use crate::glsl::hoist::{hoist_global_initializers, keep_sequence};
 
 /// The parts a sampler is passed to a function as (naga takes no combined samplers): its
 /// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, its wrap
