@@ -332,7 +332,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             .uniforms
             .iter()
             .filter(|u| u.ty.scalar() == Scalar::Bool)
-            .map(|u| (u.name.clone(), u.ty))
+            .map(|u| (u.name.clone(), (u.ty, u.array)))
             .collect(),
         mat2s: shader
             .uniforms

@@ -28,8 +28,8 @@ pub(super) struct Rewrite {
     /// `matCx2` uniforms (naga cannot lay them out in std140): stored as `vec4[C]` per matrix,
     /// with their type; the flag says whether it is an array.
     pub(super) mat2s: HashMap<String, (Ty, bool)>,
-    /// Boolean uniforms, stored as integers in the block.
-    pub(super) bools: HashMap<String, Ty>,
+    /// Boolean uniforms, stored as integers in the block, with their array lengths.
+    pub(super) bools: HashMap<String, (Ty, Option<u32>)>,
     /// The first error found.
     pub(super) error: Option<String>,
     /// The stage rewritten.
@@ -76,6 +76,36 @@ fn var(name: &str) -> ast::Expr {
 /// 0, for a `matCx2` uniform of type `ty`.
 fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
     two_rows(var(&format!("strata_m2_{name}")), ty, index)
+}
+
+/// The boolean type of uniform type `ty`.
+fn bool_type(ty: Ty) -> T {
+    match ty {
+        Ty::BVec2 => T::BVec2,
+        Ty::BVec3 => T::BVec3,
+        Ty::BVec4 => T::BVec4,
+        _ => T::Bool,
+    }
+}
+
+/// Boolean uniform `name` of type `ty` read from its integers in the block: `bvecN(strata_b_NAME)`,
+/// or for an array of `len`, `bvecN[len](bvecN(strata_b_NAME[0]), …)`.
+fn bool_of(name: &str, ty: Ty, len: Option<u32>) -> ast::Expr {
+    let stored = var(&format!("strata_b_{name}"));
+    let Some(len) = len else { return ctor(bool_type(ty), vec![stored]) };
+    let elements = (0..len)
+        .map(|k| {
+            let at = ExprData::Bracket(Box::new(stored.clone()), Box::new(ExprData::IntConst(k as i32).into()));
+            ctor(bool_type(ty), vec![at.into()])
+        })
+        .collect();
+    let size: ast::Expr = ExprData::IntConst(len as i32).into();
+    let dims = vec![ast::ArraySpecifierDimensionData::ExplicitlySized(Box::new(size)).into()];
+    let spec = ast::TypeSpecifierData {
+        ty: bool_type(ty).into(),
+        array_specifier: Some(ast::ArraySpecifierData { dimensions: dims }.into()),
+    };
+    ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec.into())).into(), elements).into()
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -290,14 +320,8 @@ impl VisitorMut for Rewrite {
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
                 } else if let Some(&(ty, false)) = self.mat2s.get(name) {
                     Some(mat2_of(name, ty, None))
-                } else if let Some(ty) = self.bools.get(name) {
-                    let t = match ty {
-                        Ty::BVec2 => T::BVec2,
-                        Ty::BVec3 => T::BVec3,
-                        Ty::BVec4 => T::BVec4,
-                        _ => T::Bool,
-                    };
-                    Some(ctor(t, vec![var(&format!("strata_b_{name}"))]))
+                } else if let Some(&(ty, len)) = self.bools.get(name) {
+                    Some(bool_of(name, ty, len))
                 } else {
                     None
                 }
@@ -311,6 +335,13 @@ impl VisitorMut for Rewrite {
                         self.error.get_or_insert(format!("0: array index must be < {len}"));
                     }
                     None
+                }
+                (ExprData::Variable(id), _) if self.bools.get(id.0.as_str()).is_some_and(|b| b.1.is_some()) => {
+                    let mut idx = (**index).clone();
+                    idx.visit_mut(self);
+                    let ty = self.bools.get(id.0.as_str()).map_or(Ty::Bool, |b| b.0);
+                    let element = ExprData::Bracket(Box::new(var(&format!("strata_b_{}", id.0))), Box::new(idx));
+                    Some(ctor(bool_type(ty), vec![element.into()]))
                 }
                 (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()).is_some_and(|m| m.1) => {
                     let mut idx = (**index).clone();
