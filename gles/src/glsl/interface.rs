@@ -85,6 +85,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         elements = crate::glsl::block_arrays::split(&mut parsed.tu, version)?;
         crate::glsl::struct_varyings::flatten(stage, &mut parsed.tu)?;
     }
+    crate::glsl::operators::rewrite(&mut parsed.tu, &parsed.text)?;
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),

@@ -36,12 +36,14 @@ mod int_samplers;
 mod interface;
 mod link;
 pub mod linked;
+mod operators;
 mod polyfill;
 mod precision;
 mod preprocess;
 mod rewrite;
 mod separate;
 mod shadow;
+mod shapes;
 mod sized_arrays;
 mod struct_varyings;
 mod swizzle;
@@ -75,6 +77,8 @@ pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
 mod conformance_tests;
 #[cfg(test)]
 mod es3_tests;
+#[cfg(test)]
+mod operators_tests;
 
 #[cfg(test)]
 mod tests {
