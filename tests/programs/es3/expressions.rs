@@ -96,7 +96,7 @@ const FS: &str = "#version 300 es
             uint u = uint(k);
             u = -u;
             uvec2 w = -uvec2(3u, u);
-            c.rgb = vec3(u & 255u, w & 255u) / 255.0;
+            c.rgb = vec3(u & 15u, w & 15u) * 16.0 / 255.0;
         } else if (cell == 11) {
             c = vec4(same(flags[0], bvec4(true, false, true, false)), same(flags[k - 6], bvec4(false, false, true, true)),
                      same1(bits[1], false) * 0.5 + float(bits == bool[3](true, false, true)) * 0.25,
