@@ -104,7 +104,7 @@ fn es3_built_ins_compile() {
         "vec4(ivec4(1) / ivec4(2) + ivec4(3) % 2)",
         "vec4(uvec3(1u) << 2u, 0.0)",
         "vec4(mat3x2(1.0) * vec3(1.0), 0.0, 0.0)",
-        "vec4(outerProduct(vec2(1.0), vec3(1.0))[0], 0.0)",
+        "vec4(outerProduct(vec2(1.0), vec3(1.0))[0], 0.0, 0.0)",
         "vec4(transpose(mat4x2(1.0))[0], 0.0, 0.0)",
         "vec4(modf(vec2(1.5), v2), 0.0, 0.0)",
         "vec4(dFdx(f), fwidth(f), dFdy(f), 0.0)",

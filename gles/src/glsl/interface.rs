@@ -86,6 +86,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
         crate::glsl::struct_varyings::flatten(stage, &mut parsed.tu)?;
     }
     let (structs, struct_types) = crate::glsl::struct_uniforms::flatten(&mut parsed.tu, version)?;
+    crate::glsl::operators::rewrite(&mut parsed.tu, &parsed.text)?;
     let mut shader = Shader {
         stage,
         body: ast::TranslationUnit(Vec::new()),
@@ -335,7 +336,7 @@ pub(super) fn compile_inner(stage: Stage, source: &str) -> Result<Shader, String
             .uniforms
             .iter()
             .filter(|u| u.ty.scalar() == Scalar::Bool)
-            .map(|u| (u.name.clone(), (u.ty, u.array.is_some())))
+            .map(|u| (u.name.clone(), (u.ty, u.array)))
             .collect(),
         mat2s: shader
             .uniforms

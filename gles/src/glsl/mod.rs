@@ -32,16 +32,19 @@ mod consts;
 mod conversions;
 mod es3_rules;
 mod fields;
+mod hoist;
 mod int_samplers;
 mod interface;
 mod link;
 pub mod linked;
+mod operators;
 mod polyfill;
 mod precision;
 mod preprocess;
 mod rewrite;
 mod separate;
 mod shadow;
+mod shapes;
 mod sized_arrays;
 mod struct_uniforms;
 mod struct_varyings;
@@ -77,6 +80,8 @@ pub fn compile(stage: Stage, source: &str) -> Result<Shader, String> {
 mod conformance_tests;
 #[cfg(test)]
 mod es3_tests;
+#[cfg(test)]
+mod operators_tests;
 #[cfg(test)]
 mod struct_tests;
 

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use glsl_lang::ast::{self, ExprData, FunIdentifierData, TypeQualifierSpecData, TypeSpecifierNonArrayData as T};
-use glsl_lang::visitor::{Host, HostMut, Visit, VisitorMut};
+use glsl_lang::visitor::{HostMut, Visit, VisitorMut};
 
 use crate::glsl::block_members::{ctor, two_rows};
 use crate::glsl::int_samplers;
@@ -29,9 +29,8 @@ pub(super) struct Rewrite {
     /// `matCx2` uniforms (naga cannot lay them out in std140): stored as `vec4[C]` per matrix,
     /// with their type; the flag says whether it is an array.
     pub(super) mat2s: HashMap<String, (Ty, bool)>,
-    /// Boolean uniforms, stored as integers in the block, with their types; the flag says
-    /// whether it is an array.
-    pub(super) bools: HashMap<String, (Ty, bool)>,
+    /// Boolean uniforms, stored as integers in the block, with their array lengths.
+    pub(super) bools: HashMap<String, (Ty, Option<u32>)>,
     /// The first error found.
     pub(super) error: Option<String>,
     /// The stage rewritten.
@@ -80,14 +79,34 @@ fn mat2_of(name: &str, ty: Ty, index: Option<&ast::Expr>) -> ast::Expr {
     two_rows(var(&format!("strata_m2_{name}")), ty, index)
 }
 
-/// The type specifier of a boolean type.
-fn bool_spec(ty: Ty) -> T {
+/// The boolean type of uniform type `ty`.
+fn bool_type(ty: Ty) -> T {
     match ty {
         Ty::BVec2 => T::BVec2,
         Ty::BVec3 => T::BVec3,
         Ty::BVec4 => T::BVec4,
         _ => T::Bool,
     }
+}
+
+/// Boolean uniform `name` of type `ty` read from its integers in the block: `bvecN(strata_b_NAME)`,
+/// or for an array of `len`, `bvecN[len](bvecN(strata_b_NAME[0]), …)`.
+fn bool_of(name: &str, ty: Ty, len: Option<u32>) -> ast::Expr {
+    let stored = var(&format!("strata_b_{name}"));
+    let Some(len) = len else { return ctor(bool_type(ty), vec![stored]) };
+    let elements = (0..len)
+        .map(|k| {
+            let at = ExprData::Bracket(Box::new(stored.clone()), Box::new(ExprData::IntConst(k as i32).into()));
+            ctor(bool_type(ty), vec![at.into()])
+        })
+        .collect();
+    let size: ast::Expr = ExprData::IntConst(len as i32).into();
+    let dims = vec![ast::ArraySpecifierDimensionData::ExplicitlySized(Box::new(size)).into()];
+    let spec = ast::TypeSpecifierData {
+        ty: bool_type(ty).into(),
+        array_specifier: Some(ast::ArraySpecifierData { dimensions: dims }.into()),
+    };
+    ExprData::FunCall(FunIdentifierData::TypeSpecifier(Box::new(spec.into())).into(), elements).into()
 }
 
 /// The name of element `k` of sampler array `name`: each element is a sampler of its own.
@@ -109,83 +128,7 @@ fn sampler_array_arg(arrays: &HashMap<String, u32>, args: &[ast::Expr]) -> Optio
     })
 }
 
-/// `+(a, b)` for a sequence `(a, b)`: the transpiler writes a sequence without parentheses, which
-/// in an argument or initializer would read as two; a unary plus makes it keep them.
-fn keep_sequence(e: &mut ast::Expr) {
-    if matches!(e.content, ExprData::Comma(..)) {
-        let seq = std::mem::replace(e, ExprData::IntConst(0).into());
-        *e = ExprData::Unary(ast::UnaryOpData::Add.into(), Box::new(seq)).into();
-    }
-}
-
-/// Whether an expression calls a function (a constructor is no call).
-fn calls_function(e: &ast::Expr) -> bool {
-    struct Finder(bool);
-    impl glsl_lang::visitor::Visitor for Finder {
-        fn visit_expr(&mut self, e: &ast::Expr) -> Visit {
-            if let ExprData::FunCall(f, _) = &e.content {
-                self.0 |= matches!(f.content, FunIdentifierData::Expr(_));
-            }
-            Visit::Children
-        }
-    }
-    let mut f = Finder(false);
-    e.visit(&mut f);
-    f.0
-}
-
-/// Global initialisers that call functions (GLSL ES 1.00 §5.10 allows built-in calls in constant
-/// expressions; naga evaluates none at global scope) become assignments at the start of `main`,
-/// before any of the shader's code runs; `const` goes, as the compile already checked writes.
-pub(super) fn hoist_global_initializers(tu: &mut ast::TranslationUnit) {
-    let mut hoisted: Vec<ast::Statement> = Vec::new();
-    for decl in &mut tu.0 {
-        let ast::ExternalDeclarationData::Declaration(d) = &mut decl.content else { continue };
-        let ast::DeclarationData::InitDeclaratorList(list) = &mut d.content else { continue };
-        let mut take = |name: &str, init: &mut Option<ast::Initializer>| {
-            let Some(ast::InitializerData::Simple(e)) = init.as_deref() else { return false };
-            if !calls_function(e) {
-                return false;
-            }
-            let mut value: ast::Expr = (**e).clone();
-            keep_sequence(&mut value);
-            let assign: ast::Expr =
-                ExprData::Assignment(Box::new(var(name)), ast::AssignmentOpData::Equal.into(), Box::new(value)).into();
-            hoisted.push(ast::StatementData::Expression(ast::ExprStatementData(Some(assign)).into()).into());
-            *init = None;
-            true
-        };
-        let mut any = false;
-        if let Some(name) = list.head.name.clone() {
-            any |= take(name.0.as_str(), &mut list.head.initializer);
-        }
-        for t in &mut list.tail {
-            let name = t.ident.ident.0.to_string();
-            any |= take(&name, &mut t.initializer);
-        }
-        if any {
-            if let Some(q) = &mut list.head.ty.qualifier {
-                q.qualifiers.retain(|s| {
-                    !matches!(&s.content, TypeQualifierSpecData::Storage(st) if st.content == ast::StorageQualifierData::Const)
-                });
-                if q.qualifiers.is_empty() {
-                    list.head.ty.qualifier = None;
-                }
-            }
-        }
-    }
-    if hoisted.is_empty() {
-        return;
-    }
-    for decl in &mut tu.0 {
-        if let ast::ExternalDeclarationData::FunctionDefinition(f) = &mut decl.content {
-            if f.prototype.name.0 == "main" || f.prototype.name.0 == "strata_main" {
-                let body = &mut f.statement.statement_list;
-                body.splice(0..0, hoisted.iter().cloned());
-            }
-        }
-    }
-}
+pub(super) use crate::glsl::hoist::{hoist_global_initializers, keep_sequence};
 
 /// The parts a sampler is passed to a function as (naga takes no combined samplers): its
 /// texture (`None`: 2D or cube, as the sampler), its sampler, its border sampler, its wrap
@@ -346,8 +289,10 @@ impl VisitorMut for Rewrite {
                 } else if let Some(v) = crate::glsl::consts::builtin(name)
                     .or_else(|| crate::glsl::consts::builtin_es3(name).filter(|_| self.version == 300))
                 {
-                    // The built-in constants (§7.4), which naga does not know.
-                    Some(ExprData::IntConst(v as i32).into())
+                    // The built-in constants (§7.4), which naga does not know; a negative one
+                    // negated, so that a minus before it stays apart from its own.
+                    let k: ast::Expr = ExprData::IntConst((v as i32).wrapping_abs()).into();
+                    Some(if v < 0 { ExprData::Unary(ast::UnaryOpData::Minus.into(), Box::new(k)).into() } else { k })
                 } else if name == "gl_PointSize" && self.stage == Stage::Vertex {
                     // Points are drawn as quads whose size the generated `main` reads from this.
                     Some(var("strata_PointSize"))
@@ -376,8 +321,8 @@ impl VisitorMut for Rewrite {
                     Some(ctor(t, vec![var(&format!("{name}__t")), var(&format!("{name}__s"))]))
                 } else if let Some(&(ty, false)) = self.mat2s.get(name) {
                     Some(mat2_of(name, ty, None))
-                } else if let Some(&(ty, false)) = self.bools.get(name) {
-                    Some(ctor(bool_spec(ty), vec![var(&format!("strata_b_{name}"))]))
+                } else if let Some(&(ty, len)) = self.bools.get(name) {
+                    Some(bool_of(name, ty, len))
                 } else {
                     None
                 }
@@ -392,13 +337,12 @@ impl VisitorMut for Rewrite {
                     }
                     None
                 }
-                (ExprData::Variable(id), _) if self.bools.get(id.0.as_str()).is_some_and(|b| b.1) => {
-                    // An element of a boolean array: converted from the integers it is stored as.
+                (ExprData::Variable(id), _) if self.bools.get(id.0.as_str()).is_some_and(|b| b.1.is_some()) => {
                     let mut idx = (**index).clone();
                     idx.visit_mut(self);
                     let ty = self.bools.get(id.0.as_str()).map_or(Ty::Bool, |b| b.0);
-                    let stored = var(&format!("strata_b_{}", id.0));
-                    Some(ctor(bool_spec(ty), vec![ExprData::Bracket(Box::new(stored), Box::new(idx)).into()]))
+                    let element = ExprData::Bracket(Box::new(var(&format!("strata_b_{}", id.0))), Box::new(idx));
+                    Some(ctor(bool_type(ty), vec![element.into()]))
                 }
                 (ExprData::Variable(id), _) if self.mat2s.get(id.0.as_str()).is_some_and(|m| m.1) => {
                     let mut idx = (**index).clone();

@@ -38,7 +38,8 @@ fn emit(
     line: u32,
     show: impl FnOnce(&mut String, &mut FormattingState<'_>) -> std::fmt::Result,
 ) -> Result<(), String> {
-    let settings = FormattingSettings::minifying();
+    // Spaces around binary operators: `a - -1` written `a--1` would read as a decrement.
+    let settings = FormattingSettings { spaces_around_binary_ops: true, ..FormattingSettings::minifying() };
     let mut state = FormattingState::from(&settings);
     let start = out.text.len();
     show(&mut out.text, &mut state).map_err(|e| format!("internal: transpiling failed: {e}"))?;

@@ -10,6 +10,7 @@ mod blocks;
 mod depth_textures;
 mod divisors;
 mod etc2;
+mod expressions;
 mod float_textures;
 mod int_attributes;
 mod int_samplers;
@@ -40,6 +41,7 @@ pub fn all() -> Vec<Case> {
         c("es3_vertex_ids", language::vertex_ids),
         c("es3_outputs", language::outputs),
         c("es3_frag_depth", language::frag_depth),
+        c("es3_expressions", expressions::expressions),
         c("es3_uniforms", uniforms::uniforms),
         c("es3_uniform_blocks", blocks::uniform_blocks),
         c("es3_uniform_block_arrays", blocks::uniform_block_arrays),
