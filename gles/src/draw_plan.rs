@@ -13,6 +13,7 @@ use crate::draw_state::{bound_textures, raster_state, Bound};
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::formats::Storage;
+use crate::glsl::types::Ty;
 use crate::glsl::Scalar;
 use crate::indices::{index_values, plan_indices, robust_order, unrolled, IndexPlan, Indices};
 use crate::int_attribs::plan_integer;
@@ -176,20 +177,30 @@ pub(crate) fn plan_points(
 
 /// The uniform block with each sampler's wrap flags and border colour (`glsl::link`'s wrap
 /// offsets) where its texture wraps by `GL_MIRROR_CLAMP_TO_EDGE_EXT` or
-/// `GL_CLAMP_TO_BORDER_EXT`, and its swizzle where its texture has one; copied only where one
-/// does.
+/// `GL_CLAMP_TO_BORDER_EXT`, and its swizzle where its texture has one; a shadow sampler's
+/// comparison and levels; copied only where one does. `kinds`: each sampler's type.
 pub(crate) fn with_sampler_params<'c>(
     mut data: Cow<'c, [u8]>,
     bound: &[Option<Bound<'_>>],
     offsets: &[u32],
+    kinds: &[(Ty, u32)],
 ) -> Cow<'c, [u8]> {
-    for (b, &at) in bound.iter().zip(offsets) {
+    for ((b, &at), (ty, _)) in bound.iter().zip(offsets).zip(kinds) {
         let Some(Bound { texture: t, state, border: colour }) = b else { continue };
         let at = at as usize;
         if let Some(dst) = data.to_mut().get_mut(at + 48..at + 64).filter(|_| state.compare_mode != 0) {
             for (d, v) in dst.chunks_exact_mut(4).zip(shadow_params(t, state)) {
                 d.copy_from_slice(&v.to_ne_bytes());
             }
+        }
+        if ty.is_shadow() {
+            // Shadow lookups choose their levels themselves (`glsl::shadow`).
+            if let Some(dst) = data.to_mut().get_mut(at + 16..at + 32) {
+                for (d, v) in dst.chunks_exact_mut(4).zip(shadow_levels(t, state)) {
+                    d.copy_from_slice(&v.to_ne_bytes());
+                }
+            }
+            continue;
         }
         if t.swizzle != Default::default() {
             if let Some(dst) = data.to_mut().get_mut(at + 32..at + 48) {
@@ -290,6 +301,20 @@ fn shadow_params(t: &crate::objects::texture::Texture, state: &SamplerState) -> 
     let float = matches!(if t.sized != 0 { t.sized } else { t.format }, DEPTH_COMPONENT32F | DEPTH32F_STENCIL8);
     let func = state.compare_func.wrapping_sub(NEVER) as f32 + 1.0;
     [func, linear(state.mag) + 2.0 * linear(state.min), f32::from(u8::from(!float)), 1.0]
+}
+
+/// A shadow sampler's levels as `glsl::shadow` reads them: the level-of-detail clamps
+/// (`GL_TEXTURE_MIN_LOD`, `_MAX_LOD`), the last level it reads past the base level, and its
+/// mipmap filter (0 none, 1 nearest, 2 linear).
+fn shadow_levels(t: &crate::objects::texture::Texture, state: &SamplerState) -> [f32; 4] {
+    let (base, max) = t.level_range(state);
+    let last = t.gpu.as_ref().map_or(0, |img| max.min(img.mips.saturating_sub(1)).saturating_sub(base));
+    let filter = match state.min {
+        NEAREST_MIPMAP_NEAREST | LINEAR_MIPMAP_NEAREST => 1.0,
+        NEAREST_MIPMAP_LINEAR | LINEAR_MIPMAP_LINEAR => 2.0,
+        _ => 0.0,
+    };
+    [f32::from_bits(state.min_lod), f32::from_bits(state.max_lod), last as f32, filter]
 }
 
 /// Which instances one planned draw covers: points draw each instance on its own (`instance`);
@@ -402,7 +427,7 @@ pub(crate) fn plan_draw<'c>(
             Some((view, b.texture.uid, state, !img.filterable || ty.is_shadow()))
         })
         .collect();
-    let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets);
+    let uniforms = with_sampler_params(exe.data, &bound, &program.info.wrap_offsets, &program.info.samplers);
     let blocks = crate::uniform_blocks::block_buffers(ctx, &program, &exe.block_bindings);
     // GL_EXT_blend_func_extended: blending with the second colour allows one draw buffer.
     if ctx.blend.enabled && ctx.blend.func.iter().any(|f| reads_src1(*f)) && target.slots().len() > 1 {

@@ -132,8 +132,12 @@ impl GlesExecutor {
             return Err(GlError::InvalidOperation);
         }
         let layer = layer.unwrap_or(0);
-        // GL_OES_fbo_render_mipmap: any level a texture can have.
-        if !(0..max_3d_size(&self.gpu) as i32).contains(&layer) || !(0..=max_level(&self.gpu, image)).contains(&level) {
+        // GL_OES_fbo_render_mipmap: any level a texture can have (an immutable one: the
+        // levels it was given, as Mesa checks).
+        if !(0..max_3d_size(&self.gpu) as i32).contains(&layer)
+            || !(0..=max_level(&self.gpu, image)).contains(&level)
+            || beyond_immutable(t, level)
+        {
             return Err(GlError::InvalidValue);
         }
         let face = image.face + layer as u32;
@@ -166,7 +170,10 @@ impl GlesExecutor {
             }
             TEXTURE_2D_ARRAY => {
                 let layers = crate::limits::max_array_layers(&self.gpu) as i32;
-                if !(0..layers).contains(&layer) || !(0..=crate::limits::MAX_LEVEL).contains(&level) {
+                if !(0..layers).contains(&layer)
+                    || !(0..=crate::limits::MAX_LEVEL).contains(&level)
+                    || beyond_immutable(t, level)
+                {
                     return Err(GlError::InvalidValue);
                 }
                 let a = Attachment::Texture { name: texture, level: level as u32, face: layer as u32 };
@@ -427,4 +434,9 @@ impl GlesExecutor {
         }
         Ok(())
     }
+}
+
+/// Whether `level` lies past the levels immutable texture `t` was given.
+fn beyond_immutable(t: &crate::objects::texture::Texture, level: i32) -> bool {
+    t.immutable_levels > 0 && level >= t.immutable_levels as i32
 }

@@ -14,8 +14,9 @@ use crate::objects::image::Subresource;
 use crate::render::Target;
 use crate::GlesExecutor;
 
-/// A resolved depth/stencil attachment: view, format, image uid, width, height.
-type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, (wgpu::Texture, u32));
+/// A resolved depth/stencil attachment: view, format, image uid, width, height, and the image
+/// with its layer and level.
+type DepthAttachment = (wgpu::TextureView, wgpu::TextureFormat, u64, u32, u32, (wgpu::Texture, u32, u32));
 
 /// A resolved colour attachment.
 #[derive(Clone)]
@@ -99,7 +100,7 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
 fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<DepthAttachment>, u32> {
     match a {
         Attachment::None => Ok(None),
-        Attachment::Texture { name, face, .. } => {
+        Attachment::Texture { name, face, level } => {
             let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             // A depth texture is a depth attachment; a depth-stencil one is either.
@@ -111,18 +112,28 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
             if !fits {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            // A cube face's depth (OES_depth_texture_cube_map) must be defined.
-            if face >= img.layers() || t.defined[face as usize] & 1 == 0 {
+            // The level of a cube face (OES_depth_texture_cube_map) or of a 2D array's layer
+            // must be defined; a level above 0 only while the levels are complete.
+            let defined = if img.array { 0 } else { face };
+            let levels = t.defined.get(defined as usize).copied().unwrap_or(0);
+            if face >= img.layers()
+                || level >= img.mips
+                || levels & (1 << level) == 0
+                || (level > 0 && !t.levels_complete())
+            {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
             let view = img.texture.create_view(&wgpu::TextureViewDescriptor {
                 dimension: Some(wgpu::TextureViewDimension::D2),
                 base_array_layer: face,
                 array_layer_count: Some(1),
+                base_mip_level: level,
+                mip_level_count: Some(1),
                 ..Default::default()
             });
-            let id = t.uid ^ u64::from(face) << 56;
-            Ok(Some((view, img.storage.wgpu(), id, img.width, img.height, (img.texture.clone(), face))))
+            let id = t.uid ^ u64::from(face) << 56 ^ u64::from(level) << 48;
+            let (w, h) = img.level_size(level);
+            Ok(Some((view, img.storage.wgpu(), id, w, h, (img.texture.clone(), face, level))))
         }
         Attachment::Renderbuffer(name) => {
             let rb = ctx.objects.renderbuffers.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
@@ -130,7 +141,7 @@ fn depth_attachment(ctx: &Context, a: Attachment, ok: &[u32]) -> Result<Option<D
             if !ok.contains(&rb.format) {
                 return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
             }
-            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height, (tex.clone(), 0))))
+            Ok(Some((view.clone(), tex.format(), rb.uid, rb.width, rb.height, (tex.clone(), 0, 0))))
         }
     }
 }

@@ -88,7 +88,7 @@ impl GlesExecutor {
             slices: Vec::new(),
             srgb,
             depth,
-            depth_image: depth_tex.clone().map(|t| (t, 0)),
+            depth_image: depth_tex.clone().map(|t| (t, 0, 0)),
             width: w,
             height: h,
             absent,

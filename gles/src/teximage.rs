@@ -214,7 +214,7 @@ impl GlesExecutor {
         pixel_type: u32,
         pixels: Option<Blob<'_>>,
     ) -> GlResult {
-        // ES 3.0's float depth formats: level 0 of a 2D image, a cube face or a 2D array, as
+        // ES 3.0's float depth formats: a level of a 2D image, a cube face or a 2D array, as
         // the other depth images are.
         // Mesa takes float depths for the unsized depth format too.
         let unsized_float = (internalformat, format, pixel_type) == (DEPTH_COMPONENT, DEPTH_COMPONENT, FLOAT);
@@ -228,14 +228,16 @@ impl GlesExecutor {
                     _ => Err(GlError::InvalidOperation),
                 };
             }
-            if image.three_d || level != 0 {
+            if image.three_d {
                 return Err(GlError::InvalidOperation);
             }
             validate_size(&self.gpu, image, level, [width, height, depth], border)?;
             let storage = if format == DEPTH_COMPONENT { Storage::Depth } else { Storage::DepthStencil };
             let pixels = pixels.as_ref().map(|p| p.as_bytes());
-            let size = (width as u32, height as u32, depth as u32);
-            return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
+            let size = [width as u32, height as u32, depth as u32, level as u32];
+            // The unsized format with float depths keeps them as DEPTH_COMPONENT32F does.
+            let sized = if unsized_float { DEPTH_COMPONENT32F } else { internalformat };
+            return self.depth_tex_image(ctx, flushed, image, size, (format, sized), pixel_type, storage, pixels);
         }
         // ES 3.0's sized formats that ES 2.0's extensions do not name (the float ones): the
         // data ES 3.0's table gives the format, kept as the format keeps it.
@@ -278,15 +280,16 @@ impl GlesExecutor {
                 None => internalformat,
             };
             if storage.is_depth() {
-                // Depth formats have no mipmaps (OES_depth_texture), and no 3D images: it names 2D
-                // images and cube faces (OES_depth_texture_cube_map), and ES 3.0 2D arrays.
-                if image.three_d || internal != format || level != 0 {
+                // Depth formats have no mipmaps in ES 2.0 (OES_depth_texture; ES 3.0 has them),
+                // and no 3D images: it names 2D images and cube faces
+                // (OES_depth_texture_cube_map), and ES 3.0 2D arrays.
+                if image.three_d || internal != format || (level != 0 && !ctx.es3()) {
                     return Err(GlError::InvalidOperation);
                 }
                 validate_size(&self.gpu, image, level, [width, height, depth], border)?;
                 let pixels = pixels.as_ref().map(|p| p.as_bytes());
-                let size = (width as u32, height as u32, depth as u32);
-                return self.depth_tex_image(ctx, flushed, image, size, format, pixel_type, storage, pixels);
+                let size = [width as u32, height as u32, depth as u32, level as u32];
+                return self.depth_tex_image(ctx, flushed, image, size, (format, 0), pixel_type, storage, pixels);
             }
             if !internal_accepts(internal, format, self.gpu.features) {
                 return Err(GlError::InvalidOperation);
@@ -340,15 +343,16 @@ impl GlesExecutor {
     }
 
     /// `glTexImage2D` (`3D`) of a validated `DEPTH_COMPONENT` or `DEPTH_STENCIL_OES` image
-    /// (level 0 of a 2D texture, a cube face or a 2D array of `d` layers).
+    /// (level `level` of a 2D texture, a cube face or a 2D array of `d` layers; `sized`: its
+    /// float sized format, or 0).
     #[allow(clippy::too_many_arguments)]
     fn depth_tex_image(
         &mut self,
         ctx: &mut Context,
         flushed: &Flushed,
         image: ImageTarget,
-        (w, h, d): (u32, u32, u32),
-        format: u32,
+        [w, h, d, level]: [u32; 4],
+        (format, sized): (u32, u32),
         ty: u32,
         storage: Storage,
         pixels: Option<&[u8]>,
@@ -368,29 +372,33 @@ impl GlesExecutor {
         let name = image_texture(ctx, image);
         let t = ctx.objects.texture_mut(image.binding(), name).ok_or(GlError::InvalidOperation)?;
         mutable(t)?;
-        t.ensure_volume(gpu, &account, uid, (w, h, layers), storage)?;
-        if image.cube {
-            t.defined[image.face as usize] = 1;
-        } else {
-            t.defined = [1, 0, 0, 0, 0, 0];
+        if level == 0 {
+            t.ensure_volume(gpu, &account, uid, (w, h, layers), storage)?;
+            t.format = format;
+            t.sized = sized;
         }
-        t.format = format;
+        let same = t.gpu.as_ref().is_some_and(|img| img.storage == storage);
+        if !define_level(t, image.face, level, [w, h, layers], same) {
+            return Ok(());
+        }
         let Some(img) = &t.gpu else { return Ok(()) };
         let texture = img.texture.clone();
         if let Some((depths, stencil)) = values.filter(|_| w > 0 && h > 0) {
-            self.upload_depth_layers(flushed, &texture, image.face, (w, h), [0, 0, w, h], layers, (&depths, &stencil));
+            let at = (image.face, level);
+            self.upload_depth_layers(flushed, &texture, at, (w, h), [0, 0, w, h], layers, (&depths, &stencil));
         }
         Ok(())
     }
 
     /// Writes `layers` layers of depth (and stencil, where given) values, one after another,
-    /// into the rectangle `rect` of the layers from `first` on of a `size` depth texture.
+    /// into the rectangle `rect` of the layers from `first` on of level `level` (`size`) of a
+    /// depth texture.
     #[allow(clippy::too_many_arguments)]
     fn upload_depth_layers(
         &mut self,
         flushed: &Flushed,
         texture: &wgpu::Texture,
-        first: u32,
+        (first, level): (u32, u32),
         size: (u32, u32),
         rect: [u32; 4],
         layers: u32,
@@ -401,7 +409,7 @@ impl GlesExecutor {
             let (Some(d), s) = (depths.get(k * per..(k + 1) * per), stencil.get(k * per..(k + 1) * per)) else {
                 return;
             };
-            self.r.upload_depth(flushed, texture, first + k as u32, size, rect, d, s);
+            self.r.upload_depth(flushed, texture, (first + k as u32, level), size, rect, d, s);
         }
     }
 
@@ -491,7 +499,8 @@ impl GlesExecutor {
                 .ok_or(GlError::InvalidOperation)?;
             let texture = img.texture.clone();
             let rect = [region.x, region.y, w, h];
-            self.upload_depth_layers(flushed, &texture, region.face, size, rect, layers, (&depths, &stencil));
+            let at = (region.face, region.level);
+            self.upload_depth_layers(flushed, &texture, at, size, rect, layers, (&depths, &stencil));
             return Ok(());
         }
         let target_storage = if matches!(img.storage, Storage::Native(_)) { Storage::Rgba8 } else { img.storage };

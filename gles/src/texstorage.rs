@@ -109,11 +109,6 @@ impl GlesExecutor {
         if width > most || height > most || depth > most_layers || (cube && width != height) {
             return Err(GlError::InvalidValue);
         }
-        if storage.is_depth() && levels > 1 {
-            // Depth images are written by a draw into their first level only.
-            tracing::warn!(levels, "glTexStorage: mipmapped depth textures are not supported yet");
-            return Err(GlError::InvalidOperation);
-        }
         let size = (width as u32, height as u32, depth as u32);
         let levels = levels as u32;
         if let Some(c) = compressed {

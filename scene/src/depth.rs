@@ -63,17 +63,17 @@ impl DepthOn<'_> {
     /// Writes depth values (in [0, 1], rows in memory order) into a whole `width`×`height`
     /// depth texture.
     pub fn write(&self, tex: &wgpu::Texture, width: u32, height: u32, values: &[f32]) {
-        self.write_region(tex, 0, (width, height), [0, 0, width, height], values, None);
+        self.write_region(tex, (0, 0), (width, height), [0, 0, width, height], values, None);
     }
 
     /// Writes depth values (in [0, 1], rows in memory order) into the rectangle `[x, y, w, h]`
-    /// of array layer `layer` (a cube face) of a `width`×`height` depth or depth-stencil
-    /// texture, and stencil values (one byte per texel) if given. wgpu cannot copy into depth aspects, so the depths pass through a float
+    /// of array layer `layer` (a cube face) of mip level `level`, `width`×`height`, of a depth
+    /// or depth-stencil texture, and stencil values (one byte per texel) if given. wgpu cannot copy into depth aspects, so the depths pass through a float
     /// texture and a scissored pass that sets `frag_depth`; stencil is copied directly.
     pub fn write_region(
         &self,
         tex: &wgpu::Texture,
-        layer: u32,
+        (layer, level): (u32, u32),
         size: (u32, u32),
         rect: [u32; 4],
         depths: &[f32],
@@ -140,6 +140,8 @@ impl DepthOn<'_> {
             dimension: Some(wgpu::TextureViewDimension::D2),
             base_array_layer: layer,
             array_layer_count: Some(1),
+            base_mip_level: level,
+            mip_level_count: Some(1),
             ..Default::default()
         });
         let keep_depth = wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store };
@@ -168,7 +170,7 @@ impl DepthOn<'_> {
             gpu.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture: tex,
-                    mip_level: 0,
+                    mip_level: level,
                     origin: wgpu::Origin3d { x, y, z: layer },
                     aspect: wgpu::TextureAspect::StencilOnly,
                 },

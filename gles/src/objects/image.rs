@@ -102,7 +102,7 @@ impl TextureImage {
 
     /// [`Self::new`] with `levels` levels where given (immutable storage: exactly those levels
     /// are allocated, and they are the chain completeness is judged against), else GL's full
-    /// chain (one level for depth).
+    /// chain.
     pub(crate) fn with_levels(
         gpu: &Gpu,
         account: &Arc<Account>,
@@ -119,7 +119,7 @@ impl TextureImage {
         let full = 32 - width.max(height).max(if array { 1 } else { depth }).max(1).leading_zeros();
         let (levels, mips) = match levels {
             Some(n) => (n, n),
-            None => (full, if storage.is_depth() { 1 } else { full }),
+            None => (full, full),
         };
         let bytes = if three_d {
             crate::objects::image::volume_bytes(width, height, depth, mips, storage)

@@ -205,8 +205,8 @@ impl SamplerState {
 }
 
 impl Texture {
-    /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain
-    /// (one level for depth), unless it already has one of that size and storage; a new image
+    /// Gives the texture an image of `storage` of `width`×`height` with its full mip chain,
+    /// unless it already has one of that size and storage; a new image
     /// has no level defined. Beyond the client's quota the texture is left without an image.
     pub fn ensure_image(
         &mut self,

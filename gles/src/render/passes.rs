@@ -92,7 +92,13 @@ impl Renderer {
                 Some((view, uid, state, unfilterable)) => {
                     // Images that cannot be filtered are read with a non-filtering sampler:
                     // nearest filters, nearest mipmap.
-                    let state = if *unfilterable {
+                    let state = if ty.is_some_and(Ty::is_shadow) {
+                        // Shadow lookups clamp their levels of detail themselves and read the
+                        // level they choose (`glsl::shadow`).
+                        let min = if state.uses_mipmaps() { NEAREST_MIPMAP_NEAREST } else { NEAREST };
+                        let (min_lod, max_lod) = (0.0f32.to_bits(), 1000.0f32.to_bits());
+                        SamplerState { min, mag: NEAREST, min_lod, max_lod, ..*state }
+                    } else if *unfilterable {
                         let min = if state.uses_mipmaps() { NEAREST_MIPMAP_NEAREST } else { NEAREST };
                         SamplerState { min, mag: NEAREST, ..*state }
                     } else {

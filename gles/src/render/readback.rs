@@ -49,8 +49,8 @@ impl Renderer {
         stencil: bool,
     ) -> Option<(Vec<f32>, Vec<u8>)> {
         self.flush();
-        let (tex, layer) = target.depth_image.as_ref()?;
-        let layer = *layer;
+        let (tex, layer, level) = target.depth_image.as_ref()?;
+        let (layer, level) = (*layer, *level);
         let format = tex.format();
         let depths = if format.has_depth_aspect() {
             let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
@@ -63,6 +63,8 @@ impl Renderer {
                 dimension: Some(wgpu::TextureViewDimension::D2),
                 base_array_layer: layer,
                 array_layer_count: Some(1),
+                base_mip_level: level,
+                mip_level_count: Some(1),
                 ..Default::default()
             });
             let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -82,11 +84,11 @@ impl Renderer {
         let stencils = match stencil && format.has_stencil_aspect() {
             true => {
                 // wgpu copies depth-stencil aspects whole: the rectangle is cut out here.
-                let (tw, th) = (tex.width(), tex.height());
+                let (tw, th) = ((tex.width() >> level).max(1), (tex.height() >> level).max(1));
                 let all = self.gpu.read_texels(
                     &self.lane,
                     tex,
-                    (layer, 0),
+                    (layer, level),
                     [0, 0, tw, th],
                     wgpu::TextureAspect::StencilOnly,
                     1,
@@ -112,20 +114,19 @@ impl Renderer {
     }
 
     /// Writes depth values (normalised, rows bottom-up) and optionally stencil values into the
-    /// rectangle `[x, y, w, h]` of array layer `layer` (a cube face) of a `size` depth or
-    /// depth-stencil texture.
+    /// rectangle `[x, y, w, h]` of the array layer (a cube face) and mip level `at` of a `size`
+    /// (that level's) depth or depth-stencil texture.
     #[allow(clippy::too_many_arguments)]
     pub fn upload_depth(
         &mut self,
         _: &Flushed,
         tex: &wgpu::Texture,
-        layer: u32,
+        at: (u32, u32),
         size: (u32, u32),
         rect: [u32; 4],
         depths: &[f32],
         stencil: Option<&[u8]>,
     ) {
-        strata_scene::depth::Depth::for_lane(&self.gpu, &self.lane)
-            .write_region(tex, layer, size, rect, depths, stencil);
+        strata_scene::depth::Depth::for_lane(&self.gpu, &self.lane).write_region(tex, at, size, rect, depths, stencil);
     }
 }

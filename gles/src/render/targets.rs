@@ -26,9 +26,9 @@ pub struct Target {
     pub slices: Vec<Option<u32>>,
     /// Depth/stencil view and its format.
     pub depth: Option<(wgpu::TextureView, wgpu::TextureFormat)>,
-    /// The depth/stencil image itself and its array layer (a cube face), which reads of depth
-    /// and stencil address.
-    pub depth_image: Option<(wgpu::Texture, u32)>,
+    /// The depth/stencil image itself, its array layer (a cube face) and its mip level, which
+    /// reads of depth and stencil address.
+    pub depth_image: Option<(wgpu::Texture, u32, u32)>,
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.

@@ -7,6 +7,7 @@ mod arrays;
 mod attrib_types;
 mod blit;
 mod blocks;
+mod depth_mipmaps;
 mod depth_textures;
 mod divisors;
 mod etc2;
@@ -64,6 +65,7 @@ pub fn all() -> Vec<Case> {
         c("es3_etc2", etc2::etc2),
         c("es3_swizzles", swizzles::swizzles),
         c("es3_shadow", shadow::shadow),
+        c("es3_depth_mipmaps", depth_mipmaps::depth_mipmaps),
         c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
         c("es3_integer_formats", integers::integers),
         c("es3_int_samplers", int_samplers::int_samplers),
