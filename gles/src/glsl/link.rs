@@ -520,12 +520,14 @@ fn sampler_names(uniforms: &[UniformSlot]) -> Vec<String> {
     names
 }
 
-/// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` for a sampler's flags `w`:
+/// The coordinate wrap of `GL_EXT_texture_mirror_clamp_to_edge` for a sampler's flags `w` (and a 2D
+/// array's layer as GL rounds it, `polyfill::array_layer`):
 /// where x or y (and for a 3D image, w) is set, the sampler clamps to the edge and the
 /// coordinate is its magnitude, which mirrors it once exactly, filtering included.
 pub(super) const WRAP_FNS: &str =
     "vec2 strata_wrap(vec2 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xy, vec2(0.5))); }\n\
-     vec3 strata_wrap(vec3 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xyw, vec3(0.5))); }\n";
+     vec3 strata_wrap(vec3 c, vec4 w) { return mix(c, abs(c), greaterThan(w.xyw, vec3(0.5))); }\n\
+     vec3 strata_layer(vec3 c) { return vec3(c.xy, floor(c.z + 0.5)); }\n";
 
 /// The helpers the rewrite turns 2D and 3D lookups into (`Shader::lookups`), one per sampler
 /// uniform and function, and one per function for sampler parameters. Each wraps the

@@ -86,6 +86,35 @@ pub(super) fn definitions(used: &std::collections::BTreeSet<&'static str>) -> St
     out
 }
 
+/// Makes the layer of a lookup on a float 2D array (`texture`, `textureLod`, `textureGrad` and
+/// their offset forms) the one GL chooses, `floor(layer + 0.5)` (`strata_layer`, in
+/// `link::WRAP_FNS`): naga makes the layer an integer by truncation. `samplers` gives the
+/// sampler's type.
+pub(super) fn array_layer(
+    fun: &glsl_lang::ast::FunIdentifier,
+    args: &mut [glsl_lang::ast::Expr],
+    samplers: &std::collections::HashMap<String, crate::glsl::types::Ty>,
+) {
+    use glsl_lang::ast::{ExprData, FunIdentifierData};
+    let FunIdentifierData::Expr(f) = &fun.content else { return };
+    let ExprData::Variable(id) = &f.content else { return };
+    let lookup = matches!(
+        id.0.as_str(),
+        "texture" | "textureOffset" | "textureLod" | "textureLodOffset" | "textureGrad" | "textureGradOffset"
+    );
+    let array = match args.first().map(|a| &a.content) {
+        Some(ExprData::Variable(v)) => samplers.get(v.0.as_str()) == Some(&crate::glsl::types::Ty::Sampler2DArray),
+        _ => false,
+    };
+    if !lookup || !array || args.len() < 2 {
+        return;
+    }
+    let coordinate = std::mem::replace(&mut args[1], ExprData::IntConst(0).into());
+    let name = ExprData::Variable(glsl_lang::ast::IdentifierData("strata_layer".into()).into());
+    let call = FunIdentifierData::Expr(Box::new(name.into()));
+    args[1] = ExprData::FunCall(call.into(), vec![coordinate]).into();
+}
+
 /// Makes a call of `texelFetchOffset(sampler, P, lod, offset)` one of `texelFetch(sampler,
 /// P + offset, lod)` (a 2D array's offset has no layer part): naga's front end drops the
 /// offset. `samplers` gives the sampler's type.

@@ -355,6 +355,7 @@ impl VisitorMut for Rewrite {
             ExprData::FunCall(fun, args) => {
                 args.iter_mut().for_each(keep_sequence);
                 crate::glsl::polyfill::fetch_offset(fun, args, &self.samplers);
+                crate::glsl::polyfill::array_layer(fun, args, &self.samplers);
                 // A sampler array element (GLSL ES 1.00 Appendix A: indexed by a constant or a
                 // loop index) is one of the array's samplers: a constant index names it, any
                 // other index selects the whole call over the elements.

@@ -83,7 +83,7 @@ pub fn texture_arrays(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glTexImage3DOES(TEXTURE_2D_ARRAY, 0, RGBA, 4, 4, 3, 0, RGBA, UNSIGNED_BYTE, Some(Blob::borrowed(&data)))?;
     let patch = [250u8, 250, 0, 255].repeat(4);
     gl.glTexSubImage3DOES(TEXTURE_2D_ARRAY, 0, 2, 2, 1, 2, 2, 1, RGBA, UNSIGNED_BYTE, Blob::borrowed(&patch))?;
-    for (k, layer) in [0.0, 1.0, 2.0, 1.4, 5.0, -1.0].iter().enumerate() {
+    for (k, layer) in [0.6, 1.0, 2.0, 1.7, 5.0, -1.0].iter().enumerate() {
         cells.draw(gl, n, k, 0, [0.1, 0.1, *layer], 0.0)?;
     }
     cells.draw(gl, n, 6, 0, [0.9, 0.9, 1.0], 0.0)?;
@@ -103,7 +103,7 @@ pub fn texture_arrays(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBindFramebuffer(FRAMEBUFFER, 0)?;
     gl.glViewport(0, 0, W, H)?;
     cells.draw(gl, n, 10, 0, [0.5, 0.5, 2.0], 0.0)?;
-    // Window pixels (0..4, 0..4) are cell 0's: layer 0's first texel.
+    // Window pixels (0..4, 0..4) are cell 0's: layer 1's first texel (layer 0.6 rounded).
     gl.glCopyTexSubImage3DOES(TEXTURE_2D_ARRAY, 0, 0, 0, 1, 0, 0, 2, 2)?;
     cells.draw(gl, n, 11, 0, [0.1, 0.1, 1.0], 0.0)?;
 
