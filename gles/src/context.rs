@@ -340,8 +340,9 @@ pub struct PixelStore {
     /// `GL_PACK_REVERSE_ROW_ORDER_ANGLE`, kept as the byte Mesa keeps (nonzero: the top row
     /// first).
     pub pack_reverse: u8,
-    /// ES 3.0's `GL_UNPACK_IMAGE_HEIGHT` and `GL_UNPACK_SKIP_IMAGES`: kept and answered; a 3D
-    /// upload with either set is refused (not there yet).
+    /// ES 3.0's `GL_UNPACK_IMAGE_HEIGHT` and `GL_UNPACK_SKIP_IMAGES`: kept and answered; the
+    /// client library gathers a 3D upload's slices by them, so that they arrive as slices
+    /// without them.
     pub unpack_images: [i32; 2],
 }
 

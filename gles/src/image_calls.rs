@@ -36,13 +36,13 @@ image_calls! {
         => self.tex_image(ctx, f, ImageTarget::from_gl(target)?, level, internal as u32, [w, h, 1], border, format, ty, pixels);
     fn glTexImage3DOES(self, ctx: &mut Context, f: &Flushed, target: u32, level: i32, internal: u32, w: i32, h: i32,
         d: i32, border: i32, format: u32, ty: u32, pixels: Option<Blob<'_>>)
-        => images_unpacked(ctx, pixels.is_some()).and_then(|()| self.tex_image(ctx, f, layered_target(target, ctx.es3())?, level, internal, [w, h, d], border, format, ty, pixels));
+        => self.tex_image(ctx, f, layered_target(target, ctx.es3())?, level, internal, [w, h, d], border, format, ty, pixels);
     fn glTexSubImage2D(self, ctx: &mut Context, f: &Flushed, target: u32, level: i32, x: i32, y: i32, w: i32, h: i32,
         format: u32, ty: u32, pixels: Blob<'_>)
         => self.tex_sub_image(ctx, f, ImageTarget::from_gl(target)?, level, [x, y, 0], [w, h, 1], format, ty, pixels);
     fn glTexSubImage3DOES(self, ctx: &mut Context, f: &Flushed, target: u32, level: i32, x: i32, y: i32, z: i32,
         w: i32, h: i32, d: i32, format: u32, ty: u32, pixels: Blob<'_>)
-        => images_unpacked(ctx, true).and_then(|()| self.tex_sub_image(ctx, f, layered_target(target, ctx.es3())?, level, [x, y, z], [w, h, d], format, ty, pixels));
+        => self.tex_sub_image(ctx, f, layered_target(target, ctx.es3())?, level, [x, y, z], [w, h, d], format, ty, pixels);
     fn glCompressedTexImage2D(self, ctx: &mut Context, f: &Flushed, target: u32, level: i32, internal: u32, w: i32,
         h: i32, border: i32, data: Blob<'_>)
         => self.compressed_tex_image(ctx, f, ImageTarget::from_gl(target)?, level, internal, [w, h, 1], border, data);
@@ -71,17 +71,4 @@ image_calls! {
     fn glFramebufferTexture3DOES(self, ctx: &mut Context, target: u32, attachment: u32, textarget: u32, texture: u32,
         level: i32, z: i32)
         => self.framebuffer_texture(ctx, target, attachment, textarget, texture, level, Some(z));
-}
-
-/// `GL_INVALID_OPERATION` (and a log) for a 3D upload of data while `GL_UNPACK_IMAGE_HEIGHT` or
-/// `GL_UNPACK_SKIP_IMAGES` is set: the images would be read from the wrong places.
-fn images_unpacked(ctx: &Context, data: bool) -> GlResult {
-    if data && ctx.pixel_store.unpack_images != [0, 0] {
-        tracing::warn!(
-            images = ?ctx.pixel_store.unpack_images,
-            "glTex(Sub)Image3D with GL_UNPACK_IMAGE_HEIGHT or GL_UNPACK_SKIP_IMAGES set is not supported yet"
-        );
-        return Err(crate::error::GlError::InvalidOperation);
-    }
-    Ok(())
 }

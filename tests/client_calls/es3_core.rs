@@ -2,7 +2,8 @@
 //! context: vertex array objects (and ES 3.0's refusal of client arrays in one), instanced
 //! draws from client arrays and indices, mapped ranges written, flushed (whole: what an unflushed
 //! part holds is undefined, and Mesa and Strata differ there) and read back, draw and
-//! read buffers of a framebuffer, a 3D image, an occlusion query, and a 64-bit state query.
+//! read buffers of a framebuffer, a 3D image (and one read by `GL_UNPACK_IMAGE_HEIGHT` and
+//! `GL_UNPACK_SKIP_IMAGES`), an occlusion query, and a 64-bit state query.
 
 use super::*;
 
@@ -18,6 +19,9 @@ const BUFFER_MAP_POINTER: u32 = 0x88BD;
 const FRAMEBUFFER: u32 = 0x8D40;
 const COLOR_ATTACHMENT0: u32 = 0x8CE0;
 const TEXTURE_2D: u32 = 0x0DE1;
+const UNPACK_IMAGE_HEIGHT: u32 = 0x806E;
+const UNPACK_SKIP_IMAGES: u32 = 0x806D;
+const UNPACK_SKIP_ROWS: u32 = 0x0CF3;
 const TEXTURE_3D: u32 = 0x806F;
 const ANY_SAMPLES_PASSED: u32 = 0x8C2F;
 const QUERY_RESULT: u32 = 0x8866;
@@ -258,6 +262,17 @@ pub fn sequence(r: &mut Run) {
         (gl.vertex_attrib_pointer)(0, 2, FLOAT, 0, 0, quad.as_ptr().cast());
         (gl.draw_arrays)(0x0005, 0, 4);
         pixels(r, "the 3D image's middle slice");
+        // Its slices laid out three rows apart after one skipped image and one skipped row.
+        (gl.pixel_store_i)(UNPACK_IMAGE_HEIGHT, 3);
+        (gl.pixel_store_i)(UNPACK_SKIP_IMAGES, 1);
+        (gl.pixel_store_i)(UNPACK_SKIP_ROWS, 1);
+        let spaced: Vec<u8> = (0..128u32).map(|i| (i * 41 + 7) as u8).collect();
+        (gl.core_tex_image_3d)(TEXTURE_3D, 0, RGBA as i32, 2, 2, 3, 0, RGBA, UNSIGNED_BYTE, spaced.as_ptr().cast());
+        (gl.draw_arrays)(0x0005, 0, 4);
+        pixels(r, "a 3D image read by image height, skipped images and rows");
+        for p in [UNPACK_IMAGE_HEIGHT, UNPACK_SKIP_IMAGES, UNPACK_SKIP_ROWS] {
+            (gl.pixel_store_i)(p, 0);
+        }
 
         // An occlusion query around a draw that passes samples.
         let mut q = 0;

@@ -68,6 +68,9 @@ pub(crate) struct GlState {
     /// `GL_UNPACK_ROW_LENGTH_EXT`, `GL_UNPACK_SKIP_ROWS_EXT`, `GL_UNPACK_SKIP_PIXELS_EXT`
     /// (`EXT_unpack_subimage`): where an upload's rows lie in the application's memory.
     pub unpack_rows: [usize; 3],
+    /// `GL_UNPACK_IMAGE_HEIGHT` and `GL_UNPACK_SKIP_IMAGES` (ES 3.0): where a 3D upload's
+    /// images lie in the application's memory.
+    pub unpack_images: [usize; 2],
     /// Where `glReadPixels` puts its rows: see [`Pack`].
     pub pack: Pack,
     /// `GL_PIXEL_PACK_BUFFER_BINDING_NV` (`GL_NV_pixel_buffer_object`).
@@ -101,6 +104,7 @@ impl Default for GlState {
             debug: DebugClient::default(),
             unpack_alignment: 4,
             unpack_rows: [0; 3],
+            unpack_images: [0; 2],
             pack: Pack { alignment: 4, rows: [0; 3], reverse: false },
             pack_buffer: 0,
             unpack_buffer: 0,

@@ -397,6 +397,10 @@ crate::entry::entry_points! {
             if let (Some(i @ 0..=2), Ok(v)) = (pname.checked_sub(0x0CF2), usize::try_from(param)) {
                 gl.st.unpack_rows[i as usize] = v;
             }
+            // UNPACK_SKIP_IMAGES, UNPACK_IMAGE_HEIGHT (negative values are refused).
+            if let (Some(i @ 0..=1), Ok(v)) = (pname.checked_sub(0x806D), usize::try_from(param)) {
+                gl.st.unpack_images[1 - i as usize] = v;
+            }
             // PACK_ALIGNMENT; NV_pack_subimage's PACK_ROW_LENGTH_NV, PACK_SKIP_ROWS_NV,
             // PACK_SKIP_PIXELS_NV; ANGLE_pack_reverse_row_order's byte.
             let pack = &mut gl.st.pack;

@@ -1,12 +1,14 @@
 //! `GL_OES_texture_3D`: 3D images travel as their slices one after another, which the unpack
-//! state lays out as one image of `height` × `depth` rows (ES 2.0 has no image height).
+//! state lays out as one image of `height` × `depth` rows (ES 2.0 has no image height; ES 3.0's
+//! `GL_UNPACK_IMAGE_HEIGHT` and `GL_UNPACK_SKIP_IMAGES` are resolved here, the slices gathered
+//! into that layout).
 
 use std::ffi::c_void;
 
 use strata_protocol::{Blob, Calls};
 
 use super::pixel_buffer::{unpack, unpack_pixels};
-use super::pixels::tex_image_bytes;
+use super::pixels::{pixel_size, tex_image_bytes, upload_size};
 use super::{sized_bytes, with_gl, Gl};
 use crate::types::*;
 
@@ -30,6 +32,11 @@ fn volume_bytes(
     pixels: *const c_void,
 ) -> Option<Vec<u8>> {
     let rows = rows(width, height, depth);
+    let data = !pixels.is_null() || gl.st.unpack_buffer != 0;
+    if let Some(bpp) = pixel_size(format, ty).filter(|_| gl.st.unpack_images != [0, 0] && rows > 0 && data) {
+        // Short data (a pixel buffer too small) reads as none: the daemon then refuses it.
+        return Some(gathered(gl, [width, height, depth], (format, ty, bpp), pixels).unwrap_or_default());
+    }
     if let Some(from) = unpack_pixels(gl, pixels, [width, rows], format, ty) {
         return from;
     }
@@ -37,6 +44,41 @@ fn volume_bytes(
         return (!pixels.is_null()).then(Vec::new);
     }
     tex_image_bytes(gl.st, width, rows, format, ty, pixels).map(<[u8]>::to_vec)
+}
+
+/// The slices of a `width`×`height`×`depth` upload of `bpp`-byte pixels laid out by ES 3.0's
+/// image height and skipped images, gathered as the slices of an upload without them.
+fn gathered(
+    gl: &mut Gl<'_>,
+    [width, height, depth]: [GLsizei; 3],
+    (format, ty, bpp): (GLenum, GLenum, usize),
+    pixels: *const c_void,
+) -> Option<Vec<u8>> {
+    let [image_height, skip_images] = gl.st.unpack_images;
+    {
+        // The images as the application lays them out: `skip_images` of `image_height` rows
+        // first, then each slice that many rows after the last.
+        let per_image = if image_height > 0 { image_height } else { height as usize };
+        let span = skip_images.checked_add(depth as usize - 1)?.checked_mul(per_image)?.checked_add(height as usize)?;
+        let span = GLsizei::try_from(span).ok()?;
+        let source = match unpack_pixels(gl, pixels, [width, span], format, ty) {
+            Some(from) => from?,
+            None => tex_image_bytes(gl.st, width, span, format, ty, pixels)?.to_vec(),
+        };
+        let (align, [row_length, skip_rows, skip_pixels]) = (gl.st.unpack_alignment, gl.st.unpack_rows);
+        let stride = (if row_length > 0 { row_length } else { width as usize } * bpp).div_ceil(align) * align;
+        let mut out = vec![0; upload_size(width, height * depth, bpp, align, gl.st.unpack_rows)];
+        let row_bytes = width as usize * bpp;
+        for z in 0..depth as usize {
+            for y in 0..height as usize {
+                let from = ((skip_images + z) * per_image + skip_rows + y) * stride + skip_pixels * bpp;
+                let to = (skip_rows + z * height as usize + y) * stride + skip_pixels * bpp;
+                let row = source.get(from..from + row_bytes)?;
+                out.get_mut(to..to + row_bytes)?.copy_from_slice(row);
+            }
+        }
+        Some(out)
+    }
 }
 
 /// The bytes of compressed data the application passes: `image_size` of them; for a null
