@@ -64,7 +64,12 @@ pub(super) fn check(stage: Stage, parsed: &Parsed) -> Result<Facts, String> {
             return Err(at(*span, &format!("`{name}' undeclared")));
         }
     }
-    globals(&parsed.tu, &at)?;
+    globals(&parsed.tu, parsed.version, &at)?;
+    let mut loops = ForScopes::default();
+    parsed.tu.visit(&mut loops);
+    if let Some((span, name)) = loops.redeclared {
+        return Err(at(span, &format!("`{name}' redeclared")));
+    }
     crate::glsl::writes::check(stage, parsed.version, &parsed.tu, &at)?;
     crate::glsl::conversions::check(&parsed.tu, &at)?;
     // `sampler3D` is core in GLSL ES 3.00 (without a default precision, as with the extension).
@@ -132,6 +137,45 @@ impl Visitor for Calls {
     }
 }
 
+/// GLSL ES §6.3: a `for` loop's body shares the scope of its init declaration, so the body's
+/// own block may not declare a name the init declared (naga would take the block as a scope of
+/// its own): the first such declaration.
+#[derive(Default)]
+struct ForScopes {
+    redeclared: Option<(Option<ast::NodeSpan>, String)>,
+}
+
+/// The names a declaration list declares.
+fn declared(d: &ast::Declaration) -> Vec<String> {
+    match &d.content {
+        ast::DeclarationData::InitDeclaratorList(list) => {
+            let head = list.head.name.iter().map(|n| n.0.to_string());
+            head.chain(list.tail.iter().map(|t| t.ident.ident.0.to_string())).collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
+impl Visitor for ForScopes {
+    fn visit_iteration_statement(&mut self, it: &ast::IterationStatement) -> Visit {
+        let ast::IterationStatementData::For(init, _, body) = &it.content else { return Visit::Children };
+        let (ast::ForInitStatementData::Declaration(d), ast::StatementData::Compound(c)) =
+            (&init.content, &body.content)
+        else {
+            return Visit::Children;
+        };
+        let names = declared(d);
+        for st in &c.statement_list {
+            if let ast::StatementData::Declaration(inner) = &st.content {
+                if let Some(n) = declared(inner).into_iter().find(|n| names.contains(n)) {
+                    self.redeclared.get_or_insert((st.span, n));
+                }
+            }
+        }
+        Visit::Children
+    }
+}
+
 /// Whether a qualifier list declares a `const`.
 pub(super) fn is_const(q: Option<&ast::TypeQualifier>) -> bool {
     q.is_some_and(|q| {
@@ -183,7 +227,11 @@ fn initializer_exprs(i: &ast::Initializer) -> Vec<&ast::Expr> {
 }
 
 /// Global-scope rules: redeclarations, struct members, constant initialisers.
-fn globals(tu: &ast::TranslationUnit, at: &dyn Fn(Option<ast::NodeSpan>, &str) -> String) -> Result<(), String> {
+fn globals(
+    tu: &ast::TranslationUnit,
+    version: u16,
+    at: &dyn Fn(Option<ast::NodeSpan>, &str) -> String,
+) -> Result<(), String> {
     let mut defined: HashSet<String> = HashSet::new();
     let mut prototyped: HashSet<String> = HashSet::new();
     let mut functions: HashSet<String> = HashSet::new();
@@ -220,7 +268,8 @@ fn globals(tu: &ast::TranslationUnit, at: &dyn Fn(Option<ast::NodeSpan>, &str) -
                     if names.contains_key(&name) {
                         return Err(at(p.span, &format!("`{name}' redeclared as a function")));
                     }
-                    if !prototyped.insert(signature(p)) {
+                    // GLSL ES 3.00 lets a function be declared again; 1.00 does not.
+                    if !prototyped.insert(signature(p)) && version < 300 {
                         return Err(at(p.span, &format!("function `{name}' declared more than once")));
                     }
                     functions.insert(name);

@@ -399,3 +399,20 @@ void main() {{ vec2 p = uv * 3.0 - 1.0; vec4 v = vec4({expr}); o = v; }}"
         link(&vs, &fs, &HashMap::new(), 16).map_err(|e| format!("{expr}: {e}")).expect("link");
     }
 }
+
+/// GLSL ES 3.00 §6.3 scopes, as Mesa compiles them: a block's declaration hides an outer one,
+/// a body of one declaration is its own scope, a function may be declared twice, and a `for`
+/// body may not declare again what its init declared.
+#[test]
+fn statement_scopes() {
+    let fs = |body: &str| {
+        compile(Stage::Fragment, &format!("#version 300 es\nprecision mediump float;\nout vec4 o;\n{body}"))
+    };
+    fs("void main() { int a = 1; { int a = 2; } o = vec4(a); }").expect("a block hides a local");
+    fs("int a = 1; void main() { if (true) int a = 42; o = vec4(a); }").expect("an if body declares");
+    fs("int f(int x);\nint f(int);\nint f(int x) { return x; }\nvoid main() { o = vec4(f(1)); }")
+        .expect("a function declared twice");
+    let e = fs("void main() { for (int i = 0; i < 2; i++) { int i = 3; o = vec4(i); } }")
+        .expect_err("the for body shares the init's scope");
+    assert!(e.contains("`i' redeclared"), "{e}");
+}

@@ -147,3 +147,29 @@ pub(super) fn fetch_offset(
     args[1] = ExprData::Binary(ast::BinaryOpData::Add.into(), Box::new(coordinate), Box::new(offset)).into();
     *id = ast::IdentifierData("texelFetch".into()).into();
 }
+
+/// Gives the body of an `if`, `else`, `while`, `do` or `for` that is a declaration its own
+/// block: what it declares is scoped to it (GLSL ES 3.00 §6.3), which a bare declaration
+/// printed after the condition would not be.
+pub(super) fn scope_bodies(s: &mut glsl_lang::ast::Statement) {
+    use glsl_lang::ast::{self, IterationStatementData as I, SelectionRestStatementData as R, StatementData as S};
+    let wrap = |b: &mut Box<ast::Statement>| {
+        if matches!(b.content, S::Declaration(_)) {
+            let inner = std::mem::replace(&mut **b, S::Expression(ast::ExprStatementData(None).into()).into());
+            **b = S::Compound(ast::CompoundStatementData { statement_list: vec![inner] }.into()).into();
+        }
+    };
+    match &mut s.content {
+        S::Selection(sel) => match &mut sel.rest.content {
+            R::Statement(b) => wrap(b),
+            R::Else(a, b) => {
+                wrap(a);
+                wrap(b);
+            }
+        },
+        S::Iteration(it) => match &mut it.content {
+            I::While(_, b) | I::DoWhile(b, _) | I::For(_, _, b) => wrap(b),
+        },
+        _ => {}
+    }
+}

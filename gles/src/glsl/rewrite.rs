@@ -175,6 +175,11 @@ impl Rewrite {
 }
 
 impl VisitorMut for Rewrite {
+    fn visit_statement(&mut self, s: &mut ast::Statement) -> Visit {
+        crate::glsl::polyfill::scope_bodies(s);
+        Visit::Children
+    }
+
     fn visit_full_specified_type(&mut self, t: &mut ast::FullySpecifiedType) -> Visit {
         strip_precision(&mut t.qualifier);
         Visit::Children

@@ -38,8 +38,13 @@ fn emit(
     line: u32,
     show: impl FnOnce(&mut String, &mut FormattingState<'_>) -> std::fmt::Result,
 ) -> Result<(), String> {
-    // Spaces around binary operators: `a - -1` written `a--1` would read as a decrement.
-    let settings = FormattingSettings { spaces_around_binary_ops: true, ..FormattingSettings::minifying() };
+    // Spaces around binary operators: `a - -1` written `a--1` would read as a decrement; a
+    // block of one statement keeps its braces, which scope what it declares.
+    let settings = FormattingSettings {
+        spaces_around_binary_ops: true,
+        collapse_single_item_compound_statements: false,
+        ..FormattingSettings::minifying()
+    };
     let mut state = FormattingState::from(&settings);
     let start = out.text.len();
     show(&mut out.text, &mut state).map_err(|e| format!("internal: transpiling failed: {e}"))?;

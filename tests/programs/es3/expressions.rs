@@ -2,7 +2,8 @@
 //! arrays and structures, `%` of a vector and a scalar, shifts and bitwise operators of mixed
 //! operands, negated unsigned integers, numeric constructors of booleans of another size,
 //! non-square `outerProduct`, the geometric functions of scalars, boolean uniform arrays, and
-//! a subtraction of a negative literal. Each lights one cell of a 4×4 grid.
+//! a subtraction of a negative literal, and blocks and bodies that declare a name again (their
+//! own scopes). Each lights one cell of a 4×4 grid.
 
 use super::super::*;
 
@@ -110,6 +111,14 @@ const FS: &str = "#version 300 es
         } else if (cell == 14) {
             int d = k - -4;
             c = vec4(minus, float(d) / 16.0 - -0.25, float(-gl_MinProgramTexelOffset >= 8), twice.x / 4.0);
+        } else if (cell == 15) {
+            int a = k;
+            { int a = 2; a++; c.b = float(a) / 8.0; }
+            if (k > 0) int a = 42;
+            else int a = 43;
+            int b = 1;
+            while (b < 3) int a = b++;
+            c.rg = vec2(float(a) / 16.0, float(b) / 4.0);
         } else {
             c = vec4(uv, 0.5, 1.0);
         }
