@@ -25,7 +25,8 @@ pub enum GpuError {
 /// of RGBA32F (`OES_texture_float_linear`), and BC, ETC2 and ASTC block formats (compressed textures
 /// sampled natively instead of decoded on upload), and Depth32FloatStencil8 (`--depth-format
 /// 32float` for configs with stencil), timestamps (the composite's own device time), and
-/// depth clip control (`EXT_depth_clamp`), and border clamping (`EXT_texture_border_clamp`).
+/// depth clip control (`EXT_depth_clamp`), and border clamping (`EXT_texture_border_clamp`),
+/// and 32-bit float blending and packed float rendering (`EXT_color_buffer_float`).
 pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FILTERABLE
     .union(wgpu::Features::TIMESTAMP_QUERY)
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
@@ -36,7 +37,11 @@ pub(crate) const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::FLOAT32_FIL
     .union(wgpu::Features::DUAL_SOURCE_BLENDING)
     .union(wgpu::Features::ADDRESS_MODE_CLAMP_TO_BORDER)
     // ES 3.0's transform feedback: the vertex stage writes the captured varyings.
-    .union(wgpu::Features::VERTEX_WRITABLE_STORAGE);
+    .union(wgpu::Features::VERTEX_WRITABLE_STORAGE)
+    // ES 3.0's float colour buffers (EXT_color_buffer_float): blending into 32-bit float ones
+    // (EXT_float_blend), and R11F_G11F_B10F rendered in its own format.
+    .union(wgpu::Features::FLOAT32_BLENDABLE)
+    .union(wgpu::Features::RG11B10UFLOAT_RENDERABLE);
 
 /// What upper layers build once per device and share (their pipelines and fixed images), by type.
 type Shared = HashMap<std::any::TypeId, Arc<dyn std::any::Any + Send + Sync>>;

@@ -75,8 +75,8 @@ pub fn component_type(ctx: &Context, a: Attachment, stencil: bool) -> u32 {
     match (format, storage) {
         (DEPTH_COMPONENT32F | DEPTH32F_STENCIL8, _) => FLOAT,
         (R8_SNORM | RG8_SNORM | RGB8_SNORM | RGBA8_SNORM, _) => SIGNED_NORMALIZED,
-        (_, Some(Storage::Half | Storage::Float)) => FLOAT,
-        (f, None) if crate::channels::is_half_renderbuffer(f) => FLOAT,
+        (_, Some(Storage::Half | Storage::Float | Storage::Rg11b10)) => FLOAT,
+        (f, None) if crate::channels::is_half_renderbuffer(f) || crate::channels::is_float_renderbuffer(f) => FLOAT,
         _ => UNSIGNED_NORMALIZED,
     }
 }

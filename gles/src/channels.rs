@@ -14,6 +14,12 @@ pub fn color_bits(f: u32) -> [i32; 4] {
         RGB16F_EXT => [16, 16, 16, 0],
         RG16F_EXT => [16, 16, 0, 0],
         R16F_EXT => [16, 0, 0, 0],
+        // ES 3.0's (GL_EXT_color_buffer_float's) renderbuffer formats.
+        RGBA32F => [32; 4],
+        RG32F => [32, 32, 0, 0],
+        R32F => [32, 0, 0, 0],
+        crate::packed_float::R11F_G11F_B10F => [11, 11, 10, 0],
+        RGB10_A2_EXT => [10, 10, 10, 2],
         RGB | LUMINANCE | RGB565 | RGB8_OES => [8, 8, 8, 0],
         RED_EXT | R8_EXT => [8, 0, 0, 0],
         RG_EXT | RG8_EXT => [8, 8, 0, 0],
@@ -22,15 +28,25 @@ pub fn color_bits(f: u32) -> [i32; 4] {
 }
 
 /// The bits of a colour texture of format `f` stored as `storage`: half-float images hold 16
-/// per channel their format has.
+/// per channel their format has, float ones 32, the packed formats their own.
 pub fn texture_color_bits(f: u32, storage: Option<Storage>) -> [i32; 4] {
     let bits = color_bits(f);
     match storage {
         Some(Storage::Half) => bits.map(|b| if b == 0 { 0 } else { 16 }),
+        Some(Storage::Float) => bits.map(|b| if b == 0 { 0 } else { 32 }),
+        Some(Storage::Rgb10a2) => [10, 10, 10, 2],
+        Some(Storage::Rg11b10) => [11, 11, 10, 0],
         Some(Storage::Int { bits: 10, .. }) => [10, 10, 10, 2],
         Some(Storage::Int { bits: n, .. }) => bits.map(|b| if b == 0 { 0 } else { i32::from(n) }),
         _ => bits,
     }
+}
+
+/// Whether `f` is one of ES 3.0's float renderbuffer formats of `GL_EXT_color_buffer_float`
+/// beyond the half-float ones: 32-bit float red, red-green and RGBA, and packed
+/// `R11F_G11F_B10F`.
+pub fn is_float_renderbuffer(f: u32) -> bool {
+    matches!(f, R32F | RG32F | RGBA32F | crate::packed_float::R11F_G11F_B10F)
 }
 
 /// Whether `f` is a half-float renderbuffer format (`GL_EXT_color_buffer_half_float`).

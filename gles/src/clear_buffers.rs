@@ -144,7 +144,7 @@ impl GlesExecutor {
                     Some(Some(wgpu::TextureSampleType::Float { .. }))
                 );
                 // Fixed-point buffers clamp the value; float ones keep it (ES 3.0 §4.2.3).
-                let unclamped = format == Some(crate::formats::HALF_FORMAT);
+                let unclamped = format.is_some_and(crate::formats::is_float_color);
                 if float && !writes.is_empty() {
                     let value = if unclamped { value } else { value.map(|c| c.clamp(0.0, 1.0)) };
                     color = Some((value, writes, Some(slot)));

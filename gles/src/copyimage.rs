@@ -1,12 +1,14 @@
 //! Texture images copied from the framebuffer: `glCopyTexImage2D` and `glCopyTexSubImage2D`
-//! (into 8-bit colour images only: float, depth and compressed images are not copy targets).
+//! (in ES 2.0 into 8-bit colour images only; in ES 3.0 into float and 10-bit ones too, a new
+//! image of such a format from a buffer of its kind: `GL_EXT_color_buffer_float`; depth and
+//! compressed images are not copy targets).
 
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
-use crate::formats::{sized_color_base, Compressed, Storage};
-use crate::render::Target;
+use crate::formats::{immutable_storage, sized_color_base, Compressed, Storage};
+use crate::render::{Blit, Target};
 use crate::teximage::{image_texture, validate_box, validate_size};
 use crate::typed::ImageTarget;
 use crate::GlesExecutor;
@@ -20,7 +22,7 @@ impl GlesExecutor {
     pub(super) fn copy_tex(
         &mut self,
         ctx: &mut Context,
-        _flushed: &Flushed,
+        flushed: &Flushed,
         image: GlResult<ImageTarget>,
         level: i32,
         internal: Option<u32>,
@@ -41,9 +43,33 @@ impl GlesExecutor {
         if level < 0 || w < 0 || h < 0 || border != 0 || level > last {
             return Err(GlError::InvalidValue);
         }
+        let es3 = ctx.es3();
         // A half-float read buffer (GL_EXT_color_buffer_half_float) copies into no 8-bit image.
-        if src.half_float() {
+        if !es3 && src.half_float() {
             return Err(GlError::InvalidOperation);
+        }
+        // ES 3.0: a new image of a float or 10-bit format copies from a buffer of the same
+        // kind that has every channel it has; any other from an 8-bit one (as Mesa answers).
+        let float_image = internal.filter(|_| es3).and_then(float_copy_format);
+        if let Some(f) = internal.filter(|_| es3) {
+            let fits = match float_image {
+                Some(kind) => {
+                    let has = crate::channels::color_bits(f).map(|b| b != 0);
+                    let lacks = src.absent;
+                    let channels = [
+                        wgpu::ColorWrites::RED,
+                        wgpu::ColorWrites::GREEN,
+                        wgpu::ColorWrites::BLUE,
+                        wgpu::ColorWrites::ALPHA,
+                    ];
+                    copy_kind(src.color_format()) == Some(kind)
+                        && has.iter().zip(channels).all(|(h, c)| !h || !lacks.contains(c))
+                }
+                None => copy_kind(src.color_format()).is_none(),
+            };
+            if !fits {
+                return Err(GlError::InvalidOperation);
+            }
         }
         // As on Mesa: a new image copied from an sRGB surface (EGL_KHR_gl_colorspace) would
         // need an sRGB internal format, which ES 2.0 has none of.
@@ -54,7 +80,7 @@ impl GlesExecutor {
         // its components are as wide as the framebuffer's (always 8 bits here); depth formats,
         // narrower ones and the sized formats of extensions not offered are
         // GL_INVALID_OPERATION, as Mesa answers.
-        if let Some(f) = internal {
+        if let Some(f) = internal.filter(|_| float_image.is_none()) {
             let narrow = matches!(f, LUMINANCE4_ALPHA4_OES | RGB565 | RGB5_A1 | RGBA4 | RGB10_A2_EXT);
             let depth = matches!(
                 f,
@@ -69,11 +95,22 @@ impl GlesExecutor {
                 return Err(GlError::InvalidOperation);
             }
         }
-        let internal = internal.map(|f| sized_color_base(f).unwrap_or(f));
-        if let Some(f) = internal {
-            if !matches!(f, RGBA | RGB | LUMINANCE | LUMINANCE_ALPHA | ALPHA) {
-                return Err(GlError::InvalidEnum);
+        // The image a copy specifies: its unsized format, storage, sized format (0 for none)
+        // and whether it counts as half-float.
+        let new = match (internal, float_image) {
+            (Some(f), Some(_)) => {
+                immutable_storage(f, gpu.features).map(|(base, storage, half)| (base, storage, f, half))
             }
+            (Some(f), None) => {
+                let base = sized_color_base(f).unwrap_or(f);
+                if !matches!(base, RGBA | RGB | LUMINANCE | LUMINANCE_ALPHA | ALPHA) {
+                    return Err(GlError::InvalidEnum);
+                }
+                Some((base, Storage::Rgba8, 0, false))
+            }
+            (None, _) => None,
+        };
+        if new.is_some() {
             validate_size(gpu, image, level, [w, h, 1], border)?;
         }
         let name = image_texture(ctx, image);
@@ -82,24 +119,35 @@ impl GlesExecutor {
         if internal.is_some() {
             crate::texstorage::mutable(t)?;
         }
-        if let Some(f) = internal {
+        if let Some((base, storage, sized, half)) = new {
             if level == 0 {
-                t.ensure_image(gpu, &account, uid, w as u32, h as u32, Storage::Rgba8)?;
-                t.format = f;
+                t.ensure_image(gpu, &account, uid, w as u32, h as u32, storage)?;
+                t.format = base;
+                t.sized = sized;
+                t.half_float = half;
             }
         }
         let img = t.gpu.as_ref().ok_or(GlError::InvalidOperation)?;
-        if img.storage != Storage::Rgba8 || Compressed::from_gl(t.format).is_some() {
-            if internal.is_some() {
+        // ES 2.0 copies into 8-bit images only; ES 3.0 into float and 10-bit ones too,
+        // converting (as Mesa does, whatever the read buffer holds).
+        let copyable = match img.storage {
+            Storage::Rgba8 => true,
+            Storage::Half | Storage::Float | Storage::Rgb10a2 | Storage::Rg11b10 => es3,
+            _ => false,
+        };
+        let compressed = Compressed::from_gl(t.format).is_some();
+        if let Some((_, storage, _, _)) = new {
+            if img.storage != storage || compressed {
                 // A colour level of a float, depth or compressed texture: the texture is
                 // incomplete until its levels agree again.
                 t.defined[image.face as usize] &= !(1 << level);
                 return Ok(());
             }
+        } else if !copyable || compressed {
             return Err(GlError::InvalidOperation);
         }
         let (lw, lh) = img.level_size(level);
-        if internal.is_some() && (lw, lh) != (w as u32, h as u32) {
+        if new.is_some() && (lw, lh) != (w as u32, h as u32) {
             return Err(GlError::InvalidValue);
         }
         validate_box([lw, lh, img.level_depth(level)], [xo, yo, zo], [w, h, 1])?;
@@ -116,6 +164,26 @@ impl GlesExecutor {
         let dst_tex = img.texture.clone();
         let (from, to) = (src.color_at, img.at(image.face + zo as u32, level));
         let (view, slice) = img.attach_view(image.face + zo as u32, level);
+        let eight_bit =
+            matches!(src_tex.format(), wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb);
+        if img.storage != Storage::Rgba8 || !eight_bit {
+            // Between formats (ES 3.0): drawn, texel for texel, converting as a blit does; the
+            // channels the image's format lacks keep their values.
+            let format = img.storage.wgpu();
+            let writes = wgpu::ColorWrites::ALL - crate::channels::absent_channels(t.format);
+            let (sw, sh) = (sx1 - sx0, sy1 - sy0);
+            let [dx, dy, _, _] = dst.map(|v| v as i32);
+            let blit = Blit {
+                src: (src_tex, from, (src.width, src.height)),
+                dst: vec![(&view, format, writes, slice)],
+                src_rect: [sx0, sy0, sx0 + sw, sy0 + sh],
+                dst_rect: [dx, dy, dx + sw, dy + sh],
+                clip: dst,
+                linear: false,
+            };
+            self.r.blit(flushed, &blit);
+            return Ok(());
+        }
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         enc.copy_texture_to_texture(
             wgpu::TexelCopyTextureInfo {
@@ -144,5 +212,39 @@ impl GlesExecutor {
             self.r.clear(&level_target, alpha_one, None, None, Some(dst));
         }
         Ok(())
+    }
+}
+
+/// The kinds of colour a copy tells apart (ES 3.0): half floats, 32-bit floats, packed floats
+/// and 10-bit normalized values; `None` is 8-bit normalized colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum CopyKind {
+    Half,
+    Float,
+    Packed,
+    Ten,
+}
+
+/// The kind of a read buffer of `format`.
+fn copy_kind(format: Option<wgpu::TextureFormat>) -> Option<CopyKind> {
+    use wgpu::TextureFormat as F;
+    match format? {
+        F::Rgba16Float => Some(CopyKind::Half),
+        F::Rgba32Float => Some(CopyKind::Float),
+        F::Rg11b10Ufloat => Some(CopyKind::Packed),
+        F::Rgb10a2Unorm => Some(CopyKind::Ten),
+        _ => None,
+    }
+}
+
+/// The kind of ES 3.0's sized format `f` where it is a renderable float or 10-bit one, which a
+/// new image copies only from a buffer of that kind.
+fn float_copy_format(f: u32) -> Option<CopyKind> {
+    match f {
+        R16F_EXT | RG16F_EXT | RGB16F_EXT | RGBA16F_EXT => Some(CopyKind::Half),
+        R32F | RG32F | RGBA32F => Some(CopyKind::Float),
+        crate::packed_float::R11F_G11F_B10F => Some(CopyKind::Packed),
+        RGB10_A2_EXT => Some(CopyKind::Ten),
+        _ => None,
     }
 }

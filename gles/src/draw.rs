@@ -151,8 +151,9 @@ impl GlesExecutor {
         let (ds, blend) = (&ctx.depth_stencil, &ctx.blend);
         let writes = color_writes(blend.color_mask);
         let color = (mask & COLOR_BUFFER_BIT != 0 && target.has_color() && !writes.is_empty()).then(|| {
-            // A half-float buffer takes the colour as it is (ES 3.0 keeps it unclamped).
-            let c = if target.half_float() { blend.clear_color } else { blend.clear_color.map(|c| c.clamp(0.0, 1.0)) };
+            // A float buffer takes the colour as it is (ES 3.0 keeps it unclamped); fixed-point
+            // buffers beside it clamp what they store.
+            let c = if target.any_float() { blend.clear_color } else { blend.clear_color.map(|c| c.clamp(0.0, 1.0)) };
             (c, writes, None)
         });
         let clear_depth = if reversed { Mirror::depth(ds.clear_depth) } else { ds.clear_depth };

@@ -241,7 +241,8 @@ pub(crate) fn with_sampler_params<'c>(
         if !(ms || mt || mr || border) {
             continue;
         }
-        let float = t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float));
+        let float =
+            t.gpu.as_ref().is_some_and(|img| matches!(img.storage, Storage::Half | Storage::Float | Storage::Rg11b10));
         let color = if border { border_color(t.format, float, *colour) } else { [0.0; 4] };
         let flag = |on: bool| if on { 1.0f32 } else { 0.0 };
         let values = [flag(ms), flag(mt), flag(border), flag(mr), color[0], color[1], color[2], color[3]];

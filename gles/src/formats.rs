@@ -24,8 +24,14 @@ pub enum Storage {
     Srgb8,
     /// RGBA16F: `HALF_FLOAT_OES` uploads (`OES_texture_half_float`).
     Half,
-    /// RGBA32F: `FLOAT` uploads (`OES_texture_float`).
+    /// RGBA32F: `FLOAT` uploads (`OES_texture_float`), and ES 3.0's 32-bit float formats.
     Float,
+    /// 10-bit RGB and 2-bit alpha, normalized: ES 3.0's `RGB10_A2`, kept in its own precision
+    /// so that draws into it round as GL's 10- and 2-bit channels do.
+    Rgb10a2,
+    /// Unsigned 11-, 11- and 10-bit floats: ES 3.0's `R11F_G11F_B10F` on a device that renders
+    /// to that format (elsewhere it is kept as [`Storage::Half`]).
+    Rg11b10,
     /// Depth32Float: `DEPTH_COMPONENT` (`OES_depth_texture`).
     Depth,
     /// Depth24PlusStencil8: `DEPTH_STENCIL_OES` (`OES_packed_depth_stencil`).
@@ -50,6 +56,8 @@ impl Storage {
             Storage::Srgb8 => wgpu::TextureFormat::Rgba8UnormSrgb,
             Storage::Half => wgpu::TextureFormat::Rgba16Float,
             Storage::Float => wgpu::TextureFormat::Rgba32Float,
+            Storage::Rgb10a2 => wgpu::TextureFormat::Rgb10a2Unorm,
+            Storage::Rg11b10 => wgpu::TextureFormat::Rg11b10Ufloat,
             Storage::Depth => wgpu::TextureFormat::Depth32Float,
             Storage::DepthStencil => wgpu::TextureFormat::Depth24PlusStencil8,
             Storage::Native(c) => c.native_format().unwrap_or(COLOR_FORMAT),
@@ -80,18 +88,50 @@ impl Storage {
     /// Whether a framebuffer can render into it as its colour attachment, when its format is
     /// `f` and its data came as `GL_HALF_FLOAT_OES` (`half`): 8-bit images, and half-float
     /// RGBA, RGB, RG and RED ones (`GL_EXT_color_buffer_half_float`; not luminance or alpha,
-    /// nor 2_10_10_10 images, as on Mesa); compressed images never.
-    pub fn color_renderable(self, f: u32, half: bool) -> bool {
+    /// nor 2_10_10_10 images, as on Mesa); in ES 3.0 (`es3`) also `RGB10_A2` and
+    /// `R11F_G11F_B10F` images (`GL_EXT_color_buffer_float`; 32-bit float images are judged
+    /// by [`float_attachment`]); compressed images never.
+    pub fn color_renderable(self, f: u32, half: bool, es3: bool) -> bool {
         self == Storage::Rgba8
             || (self.is_int() && f != RGB)
             || (self == Storage::Srgb8 && f == RGBA)
             || (self == Storage::Half && half && matches!(f, RGBA | RGB | RG_EXT | RED_EXT))
+            || (es3 && matches!(self, Storage::Rgb10a2 | Storage::Rg11b10))
+    }
+
+    /// This storage as a device with `features` keeps it: `R11F_G11F_B10F` images as half
+    /// floats where the device cannot render to its packed format.
+    pub fn on(self, features: wgpu::Features) -> Storage {
+        match self {
+            Storage::Rg11b10 if !features.contains(wgpu::Features::RG11B10UFLOAT_RENDERABLE) => Storage::Half,
+            s => s,
+        }
     }
 
     /// Whether the image can be a render attachment in wgpu at all.
     pub fn attachable(self) -> bool {
         !matches!(self, Storage::Native(_))
     }
+}
+
+/// Whether an ES 3.0 context's framebuffer renders into a 32-bit float image of unsized format
+/// `base` made in sized format `sized` (0 for an unsized image), or the status that says why
+/// not, as Mesa answers (`GL_EXT_color_buffer_float`): `R32F`, `RG32F` and `RGBA32F`, and the
+/// unsized RED and RG float images, which Mesa makes those; RGB and RGBA ones unsized, and
+/// `RGB32F`, unsupported; luminance and alpha ones incomplete.
+pub fn float_attachment(base: u32, sized: u32) -> Result<(), u32> {
+    match (sized, base) {
+        (R32F | RG32F | RGBA32F, _) | (0, RED_EXT | RG_EXT) => Ok(()),
+        (RGB32F, _) | (0, RGB | RGBA) => Err(FRAMEBUFFER_UNSUPPORTED),
+        _ => Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT),
+    }
+}
+
+/// Whether a colour buffer of `format` holds floats that are not clamped to [0, 1]: half and
+/// 32-bit floats, and the packed 11- and 10-bit ones.
+pub fn is_float_color(format: wgpu::TextureFormat) -> bool {
+    use wgpu::TextureFormat as F;
+    matches!(format, F::Rgba16Float | F::Rgba32Float | F::Rg11b10Ufloat)
 }
 
 /// A compressed internal format offered by `glCompressedTexImage2D`.
@@ -433,8 +473,13 @@ pub fn sized_fits(internal: u32, format: u32, ty: u32) -> Option<bool> {
 /// `GL_EXT_color_buffer_half_float` has it). `None` for a format that is not sized, and for
 /// the sized formats Strata cannot keep yet (the packed 10-bit and shared-exponent formats,
 /// compressed formats).
-pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
+pub fn immutable_storage(internal: u32, features: wgpu::Features) -> Option<(u32, Storage, bool)> {
     Some(match internal {
+        // ES 3.0's renderable 10-bit format, kept at its precision.
+        RGB10_A2_EXT => (RGBA, Storage::Rgb10a2, false),
+        // Packed floats: the device's format where it renders to it, else half floats, which
+        // hold every value of it (`packed_float`).
+        crate::packed_float::R11F_G11F_B10F => (RGB, Storage::Rg11b10.on(features), false),
         RGBA8_OES | RGBA4 | RGB5_A1 => (RGBA, Storage::Rgba8, false),
         SRGB8_ALPHA8 => (RGBA, Storage::Srgb8, false),
         // Signed normalized: half floats hold every value of 8 signed bits within their
@@ -467,8 +512,8 @@ pub fn immutable_storage(internal: u32) -> Option<(u32, Storage, bool)> {
         LUMINANCE_ALPHA32F_EXT => (LUMINANCE_ALPHA, Storage::Float, false),
         DEPTH_COMPONENT16 | DEPTH_COMPONENT24_OES | DEPTH_COMPONENT32F => (DEPTH_COMPONENT, Storage::Depth, false),
         DEPTH24_STENCIL8_OES | DEPTH32F_STENCIL8 => (DEPTH_STENCIL_OES, Storage::DepthStencil, false),
-        // Every value of the packed float formats is a half float (`packed_float`).
-        crate::packed_float::R11F_G11F_B10F | crate::packed_float::RGB9_E5 => (RGB, Storage::Half, false),
+        // Every value of the shared-exponent format is a half float (`packed_float`).
+        crate::packed_float::RGB9_E5 => (RGB, Storage::Half, false),
         _ => {
             let f = crate::integer::IntFormat::from_gl(internal)?;
             (f.base, Storage::Int { signed: f.signed, bits: f.bits }, false)

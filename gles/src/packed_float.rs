@@ -55,6 +55,11 @@ pub fn decode_11_11_10(v: u32) -> [f32; 3] {
     [small_float(v & 0x7FF, 6), small_float((v >> 11) & 0x7FF, 6), small_float(v >> 22, 5)]
 }
 
+/// `rgb` as one `UNSIGNED_INT_10F_11F_11F_REV` value, each channel cut as Mesa cuts it.
+pub fn encode_11_11_10([r, g, b]: [f32; 3]) -> u32 {
+    to_small_float(r, 6) | to_small_float(g, 6) << 11 | to_small_float(b, 5) << 22
+}
+
 /// The red, green and blue of one `UNSIGNED_INT_5_9_9_9_REV` value.
 pub fn decode_rgb9e5(v: u32) -> [f32; 3] {
     let scale = 2f32.powi((v >> 27) as i32 - 15 - 9);

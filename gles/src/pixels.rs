@@ -56,8 +56,15 @@ enum ReadFormat {
     /// of a half-float colour buffer (`GL_EXT_color_buffer_half_float`), its implementation
     /// read format.
     Half(usize),
-    /// `GL_RGBA`, `GL_FLOAT` (ES 3.0): a float colour buffer's RGBA as 32-bit floats.
-    Float,
+    /// `GL_RGBA`, `GL_RG` or `GL_RED` as `GL_FLOAT` (ES 3.0): the first this many channels
+    /// of a float colour buffer as 32-bit floats (RGBA from any float buffer, fewer from a
+    /// 32-bit float buffer of that many, its implementation read format).
+    Float(usize),
+    /// `GL_RGBA`, `GL_UNSIGNED_INT_2_10_10_10_REV` (ES 3.0): an `RGB10_A2` buffer's own texels.
+    Rgb10a2,
+    /// `GL_RGB`, `GL_UNSIGNED_INT_10F_11F_11F_REV` (ES 3.0): an `R11F_G11F_B10F` buffer's own
+    /// texels.
+    Packed11,
     /// Integers (ES 3.0): `GL_RGBA_INTEGER` as `GL_INT` or `GL_UNSIGNED_INT` from an integer
     /// colour buffer of the same signedness, or the buffer's own format and type (its
     /// implementation read format).
@@ -84,7 +91,11 @@ impl ReadFormat {
             (RED_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::R8),
             (RG_EXT, UNSIGNED_BYTE) => Ok(ReadFormat::Rg8),
             (RGBA, HALF_FLOAT) => Ok(ReadFormat::Half(4)),
-            (RGBA, FLOAT) if es3 => Ok(ReadFormat::Float),
+            (RGBA, FLOAT) if es3 => Ok(ReadFormat::Float(4)),
+            (RG_EXT, FLOAT) if es3 => Ok(ReadFormat::Float(2)),
+            (RED_EXT, FLOAT) if es3 => Ok(ReadFormat::Float(1)),
+            (RGBA, UNSIGNED_INT_2_10_10_10_REV_EXT) if es3 => Ok(ReadFormat::Rgb10a2),
+            (RGB, crate::packed_float::UNSIGNED_INT_10F_11F_11F_REV) if es3 => Ok(ReadFormat::Packed11),
             (RG_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(2)),
             (RED_EXT, HALF_FLOAT) => Ok(ReadFormat::Half(1)),
             _ => {
@@ -113,7 +124,8 @@ impl ReadFormat {
             ReadFormat::R8 => 1,
             ReadFormat::Half(n) => 2 * n,
             ReadFormat::Int { format, ty } => crate::integer::pixel_bytes(format, ty),
-            ReadFormat::Float => 16,
+            ReadFormat::Float(n) => 4 * n,
+            ReadFormat::Rgb10a2 | ReadFormat::Packed11 => 4,
         }
     }
 
@@ -131,7 +143,11 @@ impl ReadFormat {
             ReadFormat::Rg8 => out.copy_from_slice(&p[..2]),
             // Half-float and integer pixels are written from the image's own bytes
             // (`glReadPixels`).
-            ReadFormat::Half(_) | ReadFormat::Int { .. } | ReadFormat::Float => {}
+            ReadFormat::Half(_)
+            | ReadFormat::Int { .. }
+            | ReadFormat::Float(_)
+            | ReadFormat::Rgb10a2
+            | ReadFormat::Packed11 => {}
             ReadFormat::Bgra4444Rev => {
                 let v = to(p[2], 4) | to(p[1], 4) << 4 | to(p[0], 4) << 8 | to(p[3], 4) << 12;
                 out.copy_from_slice(&v.to_ne_bytes());
@@ -214,22 +230,9 @@ impl GlesExecutor {
                 return Bytes(Vec::new());
             }
         }
-        // GL_FLOAT reads float buffers only (ES 3.0's format for them).
-        if matches!(how, Read::Color(ReadFormat::Float)) && !target.half_float() {
-            ctx.record(GlError::InvalidOperation);
-            return Bytes(Vec::new());
-        }
-        // GL_HALF_FLOAT reads only the implementation read format of a half-float buffer.
-        if let Read::Color(ReadFormat::Half(n)) = how {
-            let absent = target.absent;
-            let channels = if absent.contains(wgpu::ColorWrites::GREEN) {
-                1
-            } else if absent.contains(wgpu::ColorWrites::BLUE) {
-                2
-            } else {
-                4
-            };
-            if !target.half_float() || n != channels {
+        // Each colour buffer reads as the formats and types ES 3.0 gives it, as on Mesa.
+        if let Read::Color(c) = how {
+            if !color_read_fits(c, &target, ctx.es3()) {
                 ctx.record(GlError::InvalidOperation);
                 return Bytes(Vec::new());
             }
@@ -267,16 +270,25 @@ impl GlesExecutor {
             let rect = [x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32];
             let rw = rect[2] as usize;
             match how {
-                Read::Color(ReadFormat::Float) => {
-                    if let Some(px) = self.r.read_half(&target, rect) {
+                Read::Color(ReadFormat::Float(n)) => {
+                    if let Some(px) = self.r.read_floats(&target, rect) {
                         for r in 0..rect[3] as usize {
                             let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
-                            let halves = px[r * rw * 8..(r + 1) * rw * 8].chunks_exact(2);
-                            let floats =
-                                halves.map(|h| half::f16::from_bits(u16::from_ne_bytes([h[0], h[1]])).to_f32());
-                            for (i, v) in floats.enumerate() {
-                                out[dst + i * 4..dst + (i + 1) * 4].copy_from_slice(&v.to_ne_bytes());
+                            for (i, p) in px[r * rw..(r + 1) * rw].iter().enumerate() {
+                                for (k, v) in p[..n].iter().enumerate() {
+                                    let at = dst + i * bpp + k * 4;
+                                    out[at..at + 4].copy_from_slice(&v.to_ne_bytes());
+                                }
                             }
+                        }
+                    }
+                }
+                Read::Color(ReadFormat::Rgb10a2 | ReadFormat::Packed11) => {
+                    // The buffer's own 32-bit texels.
+                    if let Some(px) = self.r.read_stored(&target, rect) {
+                        for r in 0..rect[3] as usize {
+                            let dst = (r + (y0 - y) as usize) * row + (x0 - x) as usize * bpp;
+                            out[dst..dst + rw * 4].copy_from_slice(&px[r * rw * 4..(r + 1) * rw * 4]);
                         }
                     }
                 }
@@ -334,6 +346,36 @@ impl GlesExecutor {
             }
         }
         Bytes(out)
+    }
+}
+
+/// Whether colour read `c` may read `target`'s read buffer (integer reads are checked before):
+/// `GL_RGBA`/`GL_FLOAT` any float buffer, and each buffer its implementation read format (a
+/// half-float one's channels as `GL_HALF_FLOAT`, a 32-bit float one's as `GL_FLOAT`, the packed
+/// formats' own types); in ES 3.0 (`es3`) float and 10-bit buffers are not read as `GL_RGBA`
+/// (10-bit: but for `GL_RGBA`), `GL_RED` or `GL_RG` bytes, as on Mesa. The BGRA reads
+/// (`GL_EXT_read_format_bgra`) read every one.
+fn color_read_fits(c: ReadFormat, target: &crate::render::Target, es3: bool) -> bool {
+    use wgpu::TextureFormat as F;
+    let format = target.color_format();
+    let absent = target.absent;
+    let channels = if absent.contains(wgpu::ColorWrites::GREEN) {
+        1
+    } else if absent.contains(wgpu::ColorWrites::BLUE) {
+        2
+    } else {
+        4
+    };
+    let ten = format == Some(F::Rgb10a2Unorm);
+    match c {
+        ReadFormat::Float(4) => target.float(),
+        ReadFormat::Float(n) => format == Some(F::Rgba32Float) && n == channels,
+        ReadFormat::Half(n) => format == Some(F::Rgba16Float) && n == channels,
+        ReadFormat::Rgb10a2 => ten,
+        ReadFormat::Packed11 => format == Some(F::Rg11b10Ufloat),
+        ReadFormat::Rgba8 => !(es3 && target.float()),
+        ReadFormat::R8 | ReadFormat::Rg8 => !(es3 && (target.float() || ten)),
+        ReadFormat::Bgra8 | ReadFormat::Bgra4444Rev | ReadFormat::Bgra1555Rev | ReadFormat::Int { .. } => true,
     }
 }
 

@@ -266,6 +266,20 @@ fn get_state(ctx: &Context, gpu: &Gpu, pname: u32) -> Option<Value> {
     })
 }
 
+/// The implementation read format and type of `target`'s read buffer where it is a 32-bit
+/// float, packed float or 10-bit image; `None` for any other.
+fn es3_read_format(target: &crate::render::Target) -> Option<(u32, u32)> {
+    use wgpu::TextureFormat as F;
+    Some(match target.color_format()? {
+        F::Rgba32Float if target.absent.contains(wgpu::ColorWrites::GREEN) => (RED_EXT, FLOAT),
+        F::Rgba32Float if target.absent.contains(wgpu::ColorWrites::BLUE) => (RG_EXT, FLOAT),
+        F::Rgba32Float => (RGBA, FLOAT),
+        F::Rg11b10Ufloat => (RGB, crate::packed_float::UNSIGNED_INT_10F_11F_11F_REV),
+        F::Rgb10a2Unorm => (RGBA, UNSIGNED_INT_2_10_10_10_REV_EXT),
+        _ => return None,
+    })
+}
+
 #[allow(non_snake_case)]
 impl GlesExecutor {
     /// State `pname`, recording `GL_INVALID_ENUM` (and answering nothing) if there is none.
@@ -279,6 +293,14 @@ impl GlesExecutor {
         if read_format && ctx.bindings.read_framebuffer == 0 && ctx.surfaceless {
             ctx.record(GlError::InvalidOperation);
             return Value::Ints(vec![0]);
+        }
+        // The read formats of ES 3.0's float and 10-bit buffers (GL_EXT_color_buffer_float),
+        // as Mesa answers them: a 32-bit float buffer's channels as floats, the packed formats'
+        // own types.
+        if read_format && ctx.es3() {
+            if let Some((format, ty)) = self.read_target(ctx).ok().and_then(|t| es3_read_format(&t)) {
+                return Value::Ints(vec![(if pname == IMPLEMENTATION_COLOR_READ_FORMAT { format } else { ty }) as i32]);
+            }
         }
         let gpu = &self.gpu;
         get_state(ctx, gpu, pname).unwrap_or_else(|| {
@@ -297,7 +319,7 @@ impl GlesExecutor {
             RENDERER => format!("Strata on {}", self.gpu.info.name),
             VERSION => crate::version::version_string(ctx),
             SHADING_LANGUAGE_VERSION => crate::version::language_string(ctx).to_string(),
-            EXTENSIONS => self.extensions(),
+            EXTENSIONS => self.extensions(ctx),
             _ => {
                 ctx.record(GlError::InvalidEnum);
                 return None;
@@ -305,8 +327,11 @@ impl GlesExecutor {
         })
     }
 
-    /// `GL_EXTENSIONS`: what the executor implements on this device, separated by spaces.
-    pub(super) fn extensions(&self) -> String {
+    /// `GL_EXTENSIONS`: what the executor implements on this device for `ctx`'s version,
+    /// separated by spaces. An ES 3.0 context adds `GL_EXT_color_buffer_float` (and
+    /// `GL_EXT_float_blend` where the device blends 32-bit floats), as Mesa held to ES 3.0
+    /// does; an ES 2.0 context's list is Mesa's held to ES 2.0.
+    pub(super) fn extensions(&self, ctx: &Context) -> String {
         {
             let clamp = self.gpu.features.contains(wgpu::Features::DEPTH_CLIP_CONTROL);
             let depth_clamp = if clamp { " GL_EXT_depth_clamp" } else { "" };
@@ -318,8 +343,14 @@ impl GlesExecutor {
             let timers = if self.has_timers() { " GL_EXT_disjoint_timer_query" } else { "" };
             let border =
                 if self.has_border_clamp() { " GL_EXT_texture_border_clamp GL_OES_texture_border_clamp" } else { "" };
+            let float_blend = self.gpu.features.contains(wgpu::Features::FLOAT32_BLENDABLE);
+            let es3 = match (ctx.es3(), float_blend) {
+                (true, true) => " GL_EXT_color_buffer_float GL_EXT_float_blend",
+                (true, false) => " GL_EXT_color_buffer_float",
+                (false, _) => "",
+            };
             format!(
-                "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}{border}",
+                "{EXTENSIONS_STRING} {}{depth_clamp}{draw_buffers}{dual}{timers}{border}{es3}",
                 texture_extensions(self.gpu.features)
             )
         }

@@ -5,7 +5,7 @@ use crate::channels::{absent_channels, color_bits, is_half_renderbuffer};
 use crate::context::Context;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
-use crate::formats::{COLOR_FORMAT, HALF_FORMAT};
+use crate::formats::{Storage, COLOR_FORMAT, HALF_FORMAT};
 use crate::limits::MAX_TEXTURE;
 use crate::objects::framebuffer::Renderbuffer;
 use crate::render::Target;
@@ -74,6 +74,12 @@ impl GlesExecutor {
                 }
                 wgpu::TextureFormat::Depth32FloatStencil8
             }
+            // GL_EXT_color_buffer_float (ES 3.0): 32-bit float red, red-green and RGBA kept as
+            // RGBA32F, packed floats in the device's format where it renders to it (else as half
+            // floats), and ES 3.0's RGB10_A2 at its own precision.
+            R32F | RG32F | RGBA32F if es3 => wgpu::TextureFormat::Rgba32Float,
+            crate::packed_float::R11F_G11F_B10F if es3 => Storage::Rg11b10.on(self.gpu.features).wgpu(),
+            RGB10_A2_EXT if es3 => wgpu::TextureFormat::Rgb10a2Unorm,
             // ES 3.0's integer formats but the RGB ones.
             f if es3 && crate::integer::IntFormat::from_gl(f).is_some_and(|f| f.renderable()) => {
                 crate::integer::IntFormat::from_gl(f).map_or(COLOR_FORMAT, |f| f.wgpu())
@@ -109,7 +115,8 @@ impl GlesExecutor {
         let tex = gpu.texture_2d("renderbuffer", format, size, usage);
         let view = tex.create_view(&Default::default());
         let absent = absent_channels(internalformat);
-        if !absent.is_empty() && matches!(format, COLOR_FORMAT | HALF_FORMAT) && width > 0 && height > 0 {
+        let rgba = matches!(format, COLOR_FORMAT | HALF_FORMAT | wgpu::TextureFormat::Rgba32Float);
+        if !absent.is_empty() && rgba && width > 0 && height > 0 {
             // Absent channels read as 0 (alpha 1); draws never change them (see `Target`).
             let (w, h) = (width as u32, height as u32);
             let color = (tex.clone(), view.clone());
@@ -181,8 +188,22 @@ impl GlesExecutor {
 /// their formats name (none before storage is given).
 pub(super) fn renderbuffer_bits(format: u32) -> [i32; 6] {
     match format {
-        RGBA4 | RGB5_A1 | RGBA8_OES | RGB565 | RGB8_OES | R8_EXT | RG8_EXT | RGBA16F_EXT | RGB16F_EXT | RG16F_EXT
-        | R16F_EXT => {
+        RGBA4
+        | RGB5_A1
+        | RGBA8_OES
+        | RGB565
+        | RGB8_OES
+        | R8_EXT
+        | RG8_EXT
+        | RGBA16F_EXT
+        | RGB16F_EXT
+        | RG16F_EXT
+        | R16F_EXT
+        | R32F
+        | RG32F
+        | RGBA32F
+        | RGB10_A2_EXT
+        | crate::packed_float::R11F_G11F_B10F => {
             let [r, g, b, a] = color_bits(format);
             [r, g, b, a, 0, 0]
         }

@@ -45,12 +45,21 @@ fn color_attachment(ctx: &Context, a: Attachment) -> Result<Option<ColorImage>, 
             let t = ctx.objects.textures.get(&name).ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             let img = t.gpu.as_ref().ok_or(FRAMEBUFFER_INCOMPLETE_ATTACHMENT)?;
             // 8-bit and half-float colour (`GL_EXT_color_buffer_half_float`); as on Mesa, a
-            // float image is unsupported and a compressed one incomplete.
+            // float image is unsupported and a compressed one incomplete. ES 3.0 renders into
+            // 32-bit float, packed float and 10-bit images too (`GL_EXT_color_buffer_float`).
+            let es3 = ctx.es3();
             if img.storage == Storage::Float {
-                return Err(FRAMEBUFFER_UNSUPPORTED);
-            }
-            if !img.storage.color_renderable(t.format, t.half_float) || Compressed::from_gl(t.format).is_some() {
-                return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                if !es3 {
+                    return Err(FRAMEBUFFER_UNSUPPORTED);
+                }
+                crate::formats::float_attachment(t.format, t.sized)?;
+            } else {
+                // R11F_G11F_B10F kept as half floats (a device that cannot render to its
+                // packed format) renders as one.
+                let half = t.half_float || (es3 && t.sized == crate::packed_float::R11F_G11F_B10F);
+                if !img.storage.color_renderable(t.format, half, es3) || Compressed::from_gl(t.format).is_some() {
+                    return Err(FRAMEBUFFER_INCOMPLETE_ATTACHMENT);
+                }
             }
             // A level above 0 is attachable only while the texture's levels are complete (as
             // Mesa decides with GL_OES_fbo_render_mipmap). A 3D image's `face` is the slice,

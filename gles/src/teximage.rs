@@ -172,6 +172,8 @@ pub(super) fn blank(texels: usize, format: u32, storage: Storage) -> Vec<u8> {
         Storage::Int { bits, .. } => crate::integer::blank_texel(bits),
         Storage::Half => rgba.iter().flat_map(|v| half::f16::from_f32(*v).to_bits().to_ne_bytes()).collect(),
         Storage::Float => rgba.iter().flat_map(|v| v.to_ne_bytes()).collect(),
+        // Packed: zero, with the format's alpha (RGB10_A2 has its own; R11F_G11F_B10F none).
+        Storage::Rgb10a2 | Storage::Rg11b10 => 0u32.to_ne_bytes().to_vec(),
         _ => vec![0, 0, 0, (alpha * 255.0) as u8],
     };
     texel.repeat(texels)
@@ -241,8 +243,11 @@ impl GlesExecutor {
         }
         // ES 3.0's sized formats that ES 2.0's extensions do not name (the float ones): the
         // data ES 3.0's table gives the format, kept as the format keeps it.
-        let es3_sized = match ctx.es3() && sized_fits(internalformat, 0, 0).is_none() {
-            true => immutable_storage(internalformat).filter(|(_, s, _)| !s.is_depth()),
+        // ES 3.0's RGB10_A2 too, which is renderable there (ES 2.0's extensions keep it as
+        // half floats, as its unsized RGBA form still is).
+        let es3_format = sized_fits(internalformat, 0, 0).is_none() || internalformat == RGB10_A2_EXT;
+        let es3_sized = match ctx.es3() && es3_format {
+            true => immutable_storage(internalformat, self.gpu.features).filter(|(_, s, _)| !s.is_depth()),
             false => None,
         };
         let (data_type, storage, internal, half_float, sized) = if let Some((base, kept, half)) = es3_sized {

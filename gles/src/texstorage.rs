@@ -81,7 +81,8 @@ impl GlesExecutor {
         // A compressed image keeps its format as its own ("format"), decoded on upload where the
         // device lacks it (its blocks' storage is chosen below).
         let compressed = Compressed::offered_gl(internal, self.gpu.features, ctx.es3());
-        let sized = immutable_storage(internal).or(compressed.map(|c| (internal, c.decoded_storage(), false)));
+        let sized = immutable_storage(internal, self.gpu.features)
+            .or(compressed.map(|c| (internal, c.decoded_storage(), false)));
         let Some((format, mut storage, half_float)) = sized else {
             if !is_unsized(internal) {
                 tracing::warn!(internal, "glTexStorage: this sized internal format is not supported yet");
@@ -168,6 +169,7 @@ pub(crate) fn sized_accepts(sized: u32, format: u32, ty: u32) -> bool {
         RGB32F => format == RGB && ty == FLOAT,
         RG32F => format == RG_EXT && ty == FLOAT,
         R32F => format == RED_EXT && ty == FLOAT,
+        RGB10_A2_EXT => format == RGBA && ty == UNSIGNED_INT_2_10_10_10_REV_EXT,
         DEPTH_COMPONENT16 => format == DEPTH_COMPONENT && matches!(ty, UNSIGNED_SHORT | UNSIGNED_INT),
         DEPTH_COMPONENT24_OES => format == DEPTH_COMPONENT && ty == UNSIGNED_INT,
         DEPTH24_STENCIL8_OES => format == DEPTH_STENCIL_OES && ty == UNSIGNED_INT_24_8_OES,

@@ -197,6 +197,15 @@ pub fn to_storage_rounded(
                 Storage::Half => {
                     pixel(px).iter().for_each(|v| out.extend_from_slice(&f16::from_f32(*v).to_bits().to_ne_bytes()))
                 }
+                Storage::Rgb10a2 => out.extend_from_slice(&pack_rgb10a2(pixel(px)).to_ne_bytes()),
+                // Packed data as it came (its denormals too); other data cut to it.
+                Storage::Rg11b10 if ty == crate::packed_float::UNSIGNED_INT_10F_11F_11F_REV => {
+                    out.extend_from_slice(&px[..4])
+                }
+                Storage::Rg11b10 => {
+                    let [r, g, b, _] = pixel(px);
+                    out.extend_from_slice(&crate::packed_float::encode_11_11_10([r, g, b]).to_ne_bytes())
+                }
                 _ if float_input => {
                     out.extend(float_pixel(px, format, ty).map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
                 }
@@ -205,6 +214,16 @@ pub fn to_storage_rounded(
         }
     }
     Some(out)
+}
+
+/// RGBA as one `UNSIGNED_INT_2_10_10_10_REV` value (red in the low 10 bits, alpha in the top
+/// 2), each channel clamped to [0, 1] and rounded to its bits.
+pub fn pack_rgb10a2([r, g, b, a]: [f32; 4]) -> u32 {
+    let n = |v: f32, bits: u32| {
+        let max = ((1u32 << bits) - 1) as f32;
+        (if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) } * max).round() as u32
+    };
+    n(r, 10) | n(g, 10) << 10 | n(b, 10) << 20 | n(a, 2) << 30
 }
 
 /// Converts a `DEPTH_COMPONENT` upload of `UNSIGNED_SHORT` or `UNSIGNED_INT` values, or a

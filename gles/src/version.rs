@@ -80,7 +80,7 @@ impl GlesExecutor {
         Some(vec![match pname {
             MAJOR_VERSION => 3,
             MINOR_VERSION => 0,
-            NUM_EXTENSIONS => self.extensions().split_whitespace().count() as i32,
+            NUM_EXTENSIONS => self.extensions(ctx).split_whitespace().count() as i32,
             // Server waits (`glWaitSync`) take no timeout: the daemon runs commands in order.
             MAX_SERVER_WAIT_TIMEOUT => 0,
             // GL_SAMPLER_BINDING: the active unit's sampler object.
@@ -114,7 +114,7 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidEnum);
             return None;
         }
-        let all = self.extensions();
+        let all = self.extensions(ctx);
         let one = all.split_whitespace().nth(index as usize).map(str::to_string);
         if one.is_none() {
             ctx.record(GlError::InvalidValue);

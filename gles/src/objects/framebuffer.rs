@@ -96,6 +96,8 @@ impl Renderbuffer {
     pub fn is_color(&self) -> bool {
         matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT | SRGB8_ALPHA8)
             || is_half_renderbuffer(self.format)
+            || crate::channels::is_float_renderbuffer(self.format)
+            || self.format == RGB10_A2_EXT
             || crate::integer::IntFormat::from_gl(self.format).is_some()
             || (crate::formats::is_color_format(self.format) && self.gpu.is_some())
     }

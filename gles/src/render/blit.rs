@@ -25,21 +25,55 @@ pub struct Blit<'a> {
     pub linear: bool,
 }
 
+/// What a blit's source holds, which decides its shader.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// Filterable floats (normalized, half-float, packed float, and 32-bit float where the
+    /// device filters it): sampled.
+    Float,
+    /// Unsigned integers: fetched.
+    Uint,
+    /// Signed integers: fetched.
+    Sint,
+    /// 32-bit floats the device cannot filter, nearest: fetched.
+    UnfilterableNearest,
+    /// 32-bit floats the device cannot filter, linear: four texels fetched and weighed as a
+    /// linear filter weighs them.
+    UnfilterableLinear,
+}
+
+impl Source {
+    /// The kind of a source of `format` on a device with `features`, read with a linear
+    /// filter or not.
+    fn of(format: wgpu::TextureFormat, features: wgpu::Features, linear: bool) -> Source {
+        match format.sample_type(None, Some(features)) {
+            Some(wgpu::TextureSampleType::Sint) => Source::Sint,
+            Some(wgpu::TextureSampleType::Uint) => Source::Uint,
+            Some(wgpu::TextureSampleType::Float { filterable: false }) if linear => Source::UnfilterableLinear,
+            Some(wgpu::TextureSampleType::Float { filterable: false }) => Source::UnfilterableNearest,
+            _ => Source::Float,
+        }
+    }
+
+    /// Its slot among the shaders and in the pipelines' key.
+    fn slot(self) -> usize {
+        self as usize
+    }
+}
+
 impl Renderer {
-    /// The blit shader and layout for a source of floats (`kind` `None`), or of signed or
-    /// unsigned integers, made once.
-    fn blit_shader(&self, kind: Option<bool>) -> &(wgpu::ShaderModule, wgpu::BindGroupLayout) {
-        let slot = match kind {
-            None => &self.fixed.blit[0],
-            Some(false) => &self.fixed.blit[1],
-            Some(true) => &self.fixed.blit[2],
-        };
+    /// The blit shader and layout for a source of `kind`, made once.
+    fn blit_shader(&self, kind: Source) -> &(wgpu::ShaderModule, wgpu::BindGroupLayout) {
+        let slot = &self.fixed.blit[kind.slot()];
         slot.get_or_init(|| {
             let d = &self.gpu.device;
             let source = include_str!("../../../shaders/framebuffer_blit.wgsl");
             let source = match kind {
-                None => source.to_string(),
-                Some(signed) => int_blit_source(source, if signed { "i32" } else { "u32" }),
+                Source::Float => source.to_string(),
+                Source::Uint => int_blit_source(source, "u32"),
+                Source::Sint => int_blit_source(source, "i32"),
+                Source::UnfilterableNearest => int_blit_source(source, "f32"),
+                Source::UnfilterableLinear => unfilterable_linear_source(source),
             };
             let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("blit"),
@@ -53,9 +87,12 @@ impl Renderer {
             };
             let texture = wgpu::BindingType::Texture {
                 sample_type: match kind {
-                    None => wgpu::TextureSampleType::Float { filterable: true },
-                    Some(true) => wgpu::TextureSampleType::Sint,
-                    Some(false) => wgpu::TextureSampleType::Uint,
+                    Source::Float => wgpu::TextureSampleType::Float { filterable: true },
+                    Source::Sint => wgpu::TextureSampleType::Sint,
+                    Source::Uint => wgpu::TextureSampleType::Uint,
+                    Source::UnfilterableNearest | Source::UnfilterableLinear => {
+                        wgpu::TextureSampleType::Float { filterable: false }
+                    }
                 },
                 view_dimension: wgpu::TextureViewDimension::D2,
                 multisampled: false,
@@ -72,8 +109,8 @@ impl Renderer {
                     entry(
                         1,
                         wgpu::BindingType::Sampler(match kind {
-                            None => wgpu::SamplerBindingType::Filtering,
-                            Some(_) => wgpu::SamplerBindingType::NonFiltering,
+                            Source::Float => wgpu::SamplerBindingType::Filtering,
+                            _ => wgpu::SamplerBindingType::NonFiltering,
                         }),
                     ),
                     entry(2, uniform),
@@ -83,13 +120,18 @@ impl Renderer {
         })
     }
 
-    /// The blit pipeline writing the `writes` channels of `format`, compiled once for all
-    /// clients.
-    fn blit_pipeline(&self, format: wgpu::TextureFormat, writes: wgpu::ColorWrites) -> wgpu::RenderPipeline {
-        let (module, bgl) = self.blit_shader(int_kind(format));
+    /// The blit pipeline from a source of `kind` writing the `writes` channels of `format`,
+    /// compiled once for all clients.
+    fn blit_pipeline(
+        &self,
+        kind: Source,
+        format: wgpu::TextureFormat,
+        writes: wgpu::ColorWrites,
+    ) -> wgpu::RenderPipeline {
+        let (module, bgl) = self.blit_shader(kind);
         let mut shared = self.fixed.blit_pipelines.lock().unwrap_or_else(|e| e.into_inner());
         shared
-            .entry((format, writes.bits()))
+            .entry((format, writes.bits(), kind.slot()))
             .or_insert_with(|| {
                 let d = &self.gpu.device;
                 let layout = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -171,7 +213,9 @@ impl Renderer {
             mapped_at_creation: false,
         });
         self.gpu.write_buffer(&buffer, 0, bytemuck::cast_slice(&params));
-        let filter = if b.linear { LINEAR } else { NEAREST };
+        let kind = Source::of(tex.format(), self.gpu.features, b.linear);
+        // An unfilterable source is fetched (its linear filter computed in the shader).
+        let filter = if b.linear && kind == Source::Float { LINEAR } else { NEAREST };
         let state = SamplerState {
             min: filter,
             mag: filter,
@@ -182,7 +226,7 @@ impl Renderer {
         };
         let sampler = self.sampler(state, false);
         let view = copy.create_view(&Default::default());
-        let (_, bgl) = self.blit_shader(int_kind(tex.format()));
+        let (_, bgl) = self.blit_shader(kind);
         let group = self.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("blit"),
             layout: bgl,
@@ -193,7 +237,7 @@ impl Renderer {
             ],
         });
         for &(target, format, writes, slice) in &b.dst {
-            let pipeline = self.blit_pipeline(format, writes);
+            let pipeline = self.blit_pipeline(kind, format, writes);
             let mut rp = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("blit"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -216,17 +260,8 @@ impl Renderer {
     }
 }
 
-/// Whether `format` holds integers: `Some(signed)`.
-fn int_kind(format: wgpu::TextureFormat) -> Option<bool> {
-    match format.sample_type(None, None) {
-        Some(wgpu::TextureSampleType::Sint) => Some(true),
-        Some(wgpu::TextureSampleType::Uint) => Some(false),
-        _ => None,
-    }
-}
-
-/// The blit shader for integer texels of `scalar` (`i32` or `u32`): the nearest texel
-/// fetched, as integer images are never filtered.
+/// The blit shader for texels of `scalar` (`i32` or `u32`, or `f32` for floats the device
+/// cannot filter): the nearest texel fetched, as integer images are never filtered.
 fn int_blit_source(source: &str, scalar: &str) -> String {
     let body_at = source.find("@fragment").unwrap_or(source.len());
     let head = source[..body_at].replace("texture_2d<f32>", &format!("texture_2d<{scalar}>"));
@@ -238,5 +273,29 @@ fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<{scalar}> {{
     return textureLoad(src, clamp(vec2<i32>(floor(s)), vec2<i32>(0), size - 1), 0);
 }}
 "
+    )
+}
+
+/// The blit shader for 32-bit floats the device cannot filter, with a linear filter: the four
+/// texels around the point fetched (clamped to the edge) and weighed bilinearly.
+fn unfilterable_linear_source(source: &str) -> String {
+    let body_at = source.find("@fragment").unwrap_or(source.len());
+    format!(
+        "{}@fragment
+fn fs(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {{
+    let s = p.src0 + (pos.xy - p.dst0) * p.scale - vec2<f32>(0.5);
+    let size = vec2<i32>(textureDimensions(src));
+    let i = vec2<i32>(floor(s));
+    let f = s - floor(s);
+    let lo = vec2<i32>(0);
+    let hi = size - 1;
+    let a = textureLoad(src, clamp(i, lo, hi), 0);
+    let b = textureLoad(src, clamp(i + vec2<i32>(1, 0), lo, hi), 0);
+    let c = textureLoad(src, clamp(i + vec2<i32>(0, 1), lo, hi), 0);
+    let d = textureLoad(src, clamp(i + vec2<i32>(1, 1), lo, hi), 0);
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}}
+",
+        &source[..body_at]
     )
 }

@@ -194,12 +194,12 @@ pub struct Fixed {
     /// Mipmap pipelines by format and whether they filter 3D images, compiled once for all
     /// clients.
     mip_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>>,
-    /// The blit shaders and their layouts (`glBlitFramebuffer`) for float, unsigned and signed
-    /// integer sources, each made on its first blit.
-    blit: [std::sync::OnceLock<(wgpu::ShaderModule, wgpu::BindGroupLayout)>; 3],
-    /// Blit pipelines by destination format and written channels, compiled once for all
-    /// clients.
-    blit_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, u32), wgpu::RenderPipeline>>,
+    /// The blit shaders and their layouts (`glBlitFramebuffer`) for each kind of source
+    /// (`blit::Source`), each made on its first blit.
+    blit: [std::sync::OnceLock<(wgpu::ShaderModule, wgpu::BindGroupLayout)>; 5],
+    /// Blit pipelines by destination format, written channels and kind of source, compiled
+    /// once for all clients.
+    blit_pipelines: std::sync::Mutex<HashMap<(wgpu::TextureFormat, u32, usize), wgpu::RenderPipeline>>,
 }
 
 impl Fixed {

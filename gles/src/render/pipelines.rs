@@ -109,9 +109,15 @@ impl Renderer {
             .map(|s| {
                 s.map(|(absent, format)| wgpu::ColorTargetState {
                     format,
-                    // Integer colour buffers are never blended (ES 3.0 §4.1.7).
+                    // Integer colour buffers are never blended (ES 3.0 §4.1.7), nor 32-bit
+                    // float ones where the device cannot blend them (GL_EXT_float_blend is then
+                    // not offered).
                     blend: r.blend.filter(|_| {
                         matches!(format.sample_type(None, None), Some(wgpu::TextureSampleType::Float { .. }))
+                            && format
+                                .guaranteed_format_features(self.gpu.features)
+                                .flags
+                                .contains(wgpu::TextureFormatFeatureFlags::BLENDABLE)
                     }),
                     write_mask: r.write_mask - absent,
                 })

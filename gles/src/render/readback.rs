@@ -8,14 +8,13 @@ impl Renderer {
     /// Reads `[x, y, w, h]` of the target's colour image as tightly packed RGBA8 rows, bottom
     /// row first (GL order, which is also memory order here).
     pub fn read_rgba(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
-        if target.half_float() {
-            // Converted as GL converts a float to an 8-bit normalised value: clamped, rounded.
-            let half = self.read_half(target, rect)?;
-            let to_u8 = |h: &[u8]| {
-                let v = half::f16::from_bits(u16::from_ne_bytes([h[0], h[1]])).to_f32();
-                (v.clamp(0.0, 1.0) * 255.0).round() as u8
-            };
-            return Some(half.chunks_exact(2).map(to_u8).collect());
+        let format = target.color_format()?;
+        if !matches!(format, wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb) {
+            // Converted as GL converts a float (or a 10-bit value) to an 8-bit normalised one:
+            // clamped, rounded.
+            let floats = self.read_floats(target, rect)?;
+            let to_u8 = |v: f32| (if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) } * 255.0).round() as u8;
+            return Some(floats.into_iter().flat_map(|p| p.map(to_u8)).collect());
         }
         self.flush();
         let (tex, _) = target.color.as_ref()?;
@@ -27,6 +26,39 @@ impl Renderer {
     /// as four half floats per pixel, rows bottom first.
     pub fn read_half(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<u8>> {
         self.read_stored(target, rect)
+    }
+
+    /// Reads `[x, y, w, h]` of the target's colour image as RGBA floats, rows bottom first:
+    /// half-float, 32-bit float, packed float and 10-bit images as GL reads them as floats
+    /// (channels the format lacks 0, a lacking alpha 1), 8-bit ones as their bytes / 255.
+    pub fn read_floats(&mut self, target: &Target, rect: [u32; 4]) -> Option<Vec<[f32; 4]>> {
+        let format = target.color_format()?;
+        let stored = self.read_stored(target, rect)?;
+        let texel = format.block_copy_size(None)? as usize;
+        let word = |b: &[u8]| u32::from_ne_bytes([b[0], b[1], b[2], b[3]]);
+        let decode = |t: &[u8]| -> [f32; 4] {
+            use wgpu::TextureFormat as F;
+            match format {
+                F::Rgba16Float => {
+                    [0, 1, 2, 3].map(|i| half::f16::from_bits(u16::from_ne_bytes([t[2 * i], t[2 * i + 1]])).to_f32())
+                }
+                F::Rgba32Float => {
+                    [0, 1, 2, 3].map(|i| f32::from_ne_bytes([t[4 * i], t[4 * i + 1], t[4 * i + 2], t[4 * i + 3]]))
+                }
+                F::Rg11b10Ufloat => {
+                    let [r, g, b] = crate::packed_float::decode_11_11_10(word(t));
+                    [r, g, b, 1.0]
+                }
+                F::Rgb10a2Unorm => {
+                    let v = word(t);
+                    let unorm =
+                        |shift: u32, bits: u32| ((v >> shift) & ((1 << bits) - 1)) as f32 / ((1 << bits) - 1) as f32;
+                    [unorm(0, 10), unorm(10, 10), unorm(20, 10), unorm(30, 2)]
+                }
+                _ => [0, 1, 2, 3].map(|i| f32::from(t[i]) / 255.0),
+            }
+        };
+        Some(stored.chunks_exact(texel).map(|t| crate::render::targets::stored(target.absent, decode(t))).collect())
     }
 
     /// Reads `[x, y, w, h]` of the target's colour image as its texels are stored (integer

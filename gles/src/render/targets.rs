@@ -87,6 +87,22 @@ impl Target {
         self.color.as_ref().is_some_and(|(t, _)| t.format() == HALF_FORMAT)
     }
 
+    /// Whether the colour image (the read buffer, for reads) holds floats that are not
+    /// clamped: half-float, 32-bit float or packed float (`GL_EXT_color_buffer_float`).
+    pub fn float(&self) -> bool {
+        self.color_format().is_some_and(crate::formats::is_float_color)
+    }
+
+    /// Whether any colour slot holds unclamped floats (a clear then keeps its colour as given).
+    pub fn any_float(&self) -> bool {
+        self.slots().iter().flatten().any(|s| crate::formats::is_float_color(s.2))
+    }
+
+    /// The format of the colour image (the read buffer, for reads), as the image stores it.
+    pub fn color_format(&self) -> Option<wgpu::TextureFormat> {
+        self.color.as_ref().map(|(t, _)| t.format())
+    }
+
     /// Whether any slot has a colour image.
     pub fn has_color(&self) -> bool {
         self.color.is_some() || self.more.iter().any(Option::is_some)

@@ -7,6 +7,7 @@ mod arrays;
 mod attrib_types;
 mod blit;
 mod blocks;
+mod color_buffer_float;
 mod depth_mipmaps;
 mod depth_textures;
 mod divisors;
@@ -72,5 +73,7 @@ pub fn all() -> Vec<Case> {
         c("es3_packed_floats", packed_floats::packed_floats),
         c("es3_struct_uniforms", structs::struct_uniforms),
         c("es3_block_structs", structs::block_structs),
+        c("es3_color_buffer_float", color_buffer_float::color_buffer_float),
+        c("es3_color_buffer_float_images", color_buffer_float::color_buffer_float_images),
     ]
 }
