@@ -371,11 +371,16 @@ pub fn sampler_descriptor(s: SamplerState, white: bool) -> wgpu::SamplerDescript
     // Levels of detail count from the base level (the view's first); levels past
     // TEXTURE_MAX_LEVEL are never sampled; GL_TEXTURE_MIN_LOD and _MAX_LOD clamp within that
     // (a negative least level is the base level's).
+    // A device chooses between the magnification and minification filters by the clamped
+    // level of detail: a most of 0 would always magnify. Where one level is read (no mipmap
+    // filter, or a nearest one over one level) the most is a quarter, which still rounds to
+    // the first level.
     let lod_max = if s.uses_mipmaps() {
         let levels = s.max_level.saturating_sub(s.base_level) as f32;
-        levels.min(f32::from_bits(s.max_lod)).clamp(0.0, 32.0)
+        let one: f32 = if mip == wgpu::MipmapFilterMode::Nearest { 0.25 } else { 0.0 };
+        levels.min(f32::from_bits(s.max_lod)).clamp(0.0, 32.0).max(one.min(f32::from_bits(s.max_lod).max(0.0)))
     } else {
-        0.0
+        0.25f32.min(f32::from_bits(s.max_lod).max(0.0))
     };
     let least = f32::from_bits(s.min_lod);
     let lod_min = if least.is_nan() { 0.0 } else { least.clamp(0.0, lod_max) };

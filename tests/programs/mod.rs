@@ -280,6 +280,7 @@ mod depth_cube;
 mod derivatives;
 mod draw_buffers;
 pub mod es3;
+mod filter_choice;
 mod frag_depth;
 mod framebuffer_ext;
 mod half_float_color;
@@ -325,6 +326,7 @@ pub fn all() -> Vec<Case> {
     all.extend(read_buffer::all());
     all.extend(render_mipmap::all());
     all.extend(anisotropic::all());
+    all.extend(filter_choice::all());
     all.extend(derivatives::all());
     all.extend(samplers::all());
     all.extend(type_2_10_10_10::all());

@@ -67,6 +67,7 @@ pub fn all() -> Vec<Case> {
         c("es3_swizzles", swizzles::swizzles),
         c("es3_shadow", shadow::shadow),
         c("es3_depth_mipmaps", depth_mipmaps::depth_mipmaps),
+        c("es3_filter_choice", super::filter_choice::filter_choice_es3),
         c("es3_matrix_inputs", matrix_inputs::matrix_inputs),
         c("es3_integer_formats", integers::integers),
         c("es3_int_samplers", int_samplers::int_samplers),
