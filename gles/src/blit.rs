@@ -1,7 +1,8 @@
 //! ES 3.0's `glBlitFramebuffer`, colour only: checked in the order of Mesa's `blit.c`, the
 //! rectangles clipped to the pixels whose centres map inside the read buffer and fall inside
 //! the draw framebuffer and the scissor, then drawn by the renderer (`render::blit`) into every
-//! draw buffer. Depth and stencil blits are refused for now.
+//! draw buffer; a multisample read buffer is resolved first (`Renderer::resolve`). Depth and
+//! stencil blits are refused for now.
 
 use crate::context::Context;
 use crate::conv::clip_rect;
@@ -57,6 +58,15 @@ impl GlesExecutor {
         if depth_stencil != 0 && filter != NEAREST {
             return Err(GlError::InvalidOperation);
         }
+        // ES 3.0 §4.3.3: a multisample draw framebuffer is never blitted into, and a
+        // multisample read framebuffer is resolved region for region, never scaled or moved.
+        if draw.samples > 1 {
+            return Err(GlError::InvalidOperation);
+        }
+        let resolve = read.samples > 1;
+        if resolve && [src_x0, src_y0, src_x1, src_y1] != [dst_x0, dst_y0, dst_x1, dst_y1] {
+            return Err(GlError::InvalidOperation);
+        }
         // A buffer missing on either side is left out, silently (as GL says).
         let depth = mask & DEPTH_BUFFER_BIT != 0 && read.has_depth() && draw.has_depth();
         let stencil = mask & STENCIL_BUFFER_BIT != 0 && read.has_stencil() && draw.has_stencil();
@@ -82,6 +92,13 @@ impl GlesExecutor {
         if draw.slots().iter().flatten().any(|s| kind(s.2) != src_kind) || (src_kind.is_some() && filter == LINEAR) {
             return Err(GlError::InvalidOperation);
         }
+        // A resolve goes only into buffers of the read buffer's format (sRGB or not).
+        let same = |f: wgpu::TextureFormat, absent| {
+            f.remove_srgb_suffix() == src.format().remove_srgb_suffix() && absent == read.absent
+        };
+        if resolve && draw.slots().iter().flatten().any(|s| !same(s.2, s.1)) {
+            return Err(GlError::InvalidOperation);
+        }
         let empty = src_x0 == src_x1 || src_y0 == src_y1 || dst_x0 == dst_x1 || dst_y0 == dst_y1;
         if empty || ctx.conditional == Some(false) {
             return Ok(());
@@ -104,6 +121,12 @@ impl GlesExecutor {
                 Some((view, format, wgpu::ColorWrites::ALL - absent, draw.slices.get(i).copied().flatten()))
             })
             .collect();
+        // The samples of each pixel averaged first, into an image the blit then copies from.
+        let resolved = resolve.then(|| self.r.resolve(flushed, src));
+        let (src, at) = match &resolved {
+            Some(r) => (r, Default::default()),
+            None => (src, at),
+        };
         let blit = Blit {
             src: (src, at, size),
             dst,

@@ -17,6 +17,7 @@ mod int_samplers;
 mod integers;
 mod language;
 mod matrix_inputs;
+mod multisample;
 mod packed_floats;
 mod renderbuffers;
 mod restart;
@@ -70,5 +71,6 @@ pub fn all() -> Vec<Case> {
         c("es3_packed_floats", packed_floats::packed_floats),
         c("es3_struct_uniforms", structs::struct_uniforms),
         c("es3_block_structs", structs::block_structs),
+        c("es3_multisample", multisample::multisample),
     ]
 }
