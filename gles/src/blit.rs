@@ -9,6 +9,7 @@ use crate::conv::clip_rect;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
+use crate::objects::framebuffer::{Attachment, Framebuffer};
 use crate::render::Blit;
 use crate::GlesExecutor;
 
@@ -25,6 +26,39 @@ fn axis(s: [i32; 2], d: [i32; 2], src_size: u32, [lo, hi]: [i64; 2]) -> [i64; 2]
     let first = ((inside_lo - 0.5).ceil() as i64).max(i64::from(d[0].min(d[1]))).max(lo);
     let end = ((inside_hi - 0.5).ceil() as i64).min(i64::from(d[0].max(d[1]))).min(hi);
     [first, end.max(first)]
+}
+
+/// The internal format of the read buffer and of each draw buffer, as a resolve compares
+/// them (as Mesa's `compatible_resolve_formats` does): unsized formats as their 8-bit sized
+/// ones, sRGB as linear; `None` while the read framebuffer is the window's.
+fn resolve_formats(ctx: &Context) -> Option<(u32, Vec<u32>)> {
+    let of = |a: Attachment| {
+        let f = match a {
+            Attachment::Renderbuffer(n) => ctx.objects.renderbuffers.get(&n).map_or(0, |r| r.format),
+            Attachment::Texture { name, .. } => {
+                ctx.objects.textures.get(&name).map_or(0, |t| if t.sized != 0 { t.sized } else { t.format })
+            }
+            Attachment::None => 0,
+        };
+        match f {
+            RGBA | SRGB8_ALPHA8 => RGBA8_OES,
+            RGB | SRGB8 => RGB8_OES,
+            f => f,
+        }
+    };
+    let selected = |fb: &Framebuffer, buffer: u32| {
+        buffer.checked_sub(COLOR_ATTACHMENT0).and_then(|i| fb.colors.get(i as usize)).copied()
+    };
+    let read =
+        ctx.objects.framebuffers.get(&ctx.bindings.read_framebuffer).filter(|_| ctx.bindings.read_framebuffer != 0)?;
+    let read = of(selected(read, read.read)?);
+    let draw = match ctx.objects.framebuffers.get(&ctx.bindings.framebuffer).filter(|_| ctx.bindings.framebuffer != 0) {
+        Some(fb) => {
+            fb.draw_buffers.iter().filter_map(|b| selected(fb, *b)).filter(|a| *a != Attachment::None).map(of).collect()
+        }
+        None => vec![if ctx.config.rgba[3] == 0 { RGB8_OES } else { RGBA8_OES }],
+    };
+    Some((read, draw))
 }
 
 #[allow(non_snake_case)]
@@ -92,11 +126,8 @@ impl GlesExecutor {
         if draw.slots().iter().flatten().any(|s| kind(s.2) != src_kind) || (src_kind.is_some() && filter == LINEAR) {
             return Err(GlError::InvalidOperation);
         }
-        // A resolve goes only into buffers of the read buffer's format (sRGB or not).
-        let same = |f: wgpu::TextureFormat, absent| {
-            f.remove_srgb_suffix() == src.format().remove_srgb_suffix() && absent == read.absent
-        };
-        if resolve && draw.slots().iter().flatten().any(|s| !same(s.2, s.1)) {
+        // A resolve goes only into buffers of the read buffer's internal format (sRGB or not).
+        if resolve && resolve_formats(ctx).is_some_and(|(r, d)| d.iter().any(|f| *f != r)) {
             return Err(GlError::InvalidOperation);
         }
         let empty = src_x0 == src_x1 || src_y0 == src_y1 || dst_x0 == dst_x1 || dst_y0 == dst_y1;
