@@ -1,10 +1,11 @@
 //! Multisample renderbuffers: a 4-sample RGBA8 colour buffer with a 4-sample depth buffer,
 //! cleared, drawn into (triangles whose slanted edges are antialiased, a depth test between two
-//! of them, a quad at half sample coverage), resolved by `glBlitFramebuffer` into a texture's
+//! of them, a quad at half sample coverage, one at half alpha to coverage), resolved by `glBlitFramebuffer` into a texture's
 //! framebuffer and that shown in the window; the queries (`GL_MAX_SAMPLES`, `GL_SAMPLES`,
 //! `GL_SAMPLE_BUFFERS`, `GL_RENDERBUFFER_SAMPLES`, `glGetInternalformativ`) and the errors
 //! (reads and copies from a multisample framebuffer, a moved resolve, a multisample draw
-//! framebuffer, integer formats with samples, mixed sample counts) as marks.
+//! framebuffer, a resolve into another format, integer formats with samples, mixed sample
+//! counts) as marks.
 
 use super::super::multi_draw::mark_all;
 use super::super::*;
@@ -20,6 +21,8 @@ const SAMPLE_BUFFERS: u32 = 0x80A8;
 const NUM_SAMPLE_COUNTS: u32 = 0x9380;
 const RENDERBUFFER_SAMPLES: u32 = 0x8CAB;
 const SAMPLE_COVERAGE: u32 = 0x80A0;
+const SAMPLE_ALPHA_TO_COVERAGE: u32 = 0x809E;
+const RGBA4: u32 = 0x8056;
 const DEPTH_TEST_CAP: u32 = 0x0B71;
 
 /// A new `w`×`h` renderbuffer of `format` with `samples` samples, left bound; its name.
@@ -78,6 +81,9 @@ pub fn multisample(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glSampleCoverage(0.5, false)?;
     triangles(gl, n, p, &quad(0.4, -0.95, 0.95, -0.5, 0.0), [1.0, 1.0, 1.0, 1.0])?;
     gl.glDisable(SAMPLE_COVERAGE)?;
+    gl.glEnable(SAMPLE_ALPHA_TO_COVERAGE)?;
+    triangles(gl, n, p, &quad(-0.95, 0.5, -0.6, 0.95, 0.0), [1.0, 1.0, 0.0, 0.5])?;
+    gl.glDisable(SAMPLE_ALPHA_TO_COVERAGE)?;
 
     // Reads and copies refused.
     let scratch = n.next();
@@ -103,6 +109,14 @@ pub fn multisample(gl: Gl<'_>, n: &mut Names) -> R {
     gl.glBlitFramebuffer(0, 0, 8, 8, 0, 0, 8, 8, COLOR_BUFFER_BIT, NEAREST as u32)?;
     marks.push(gl.glGetError()?);
     gl.glBindFramebuffer(DRAW_FRAMEBUFFER, resolved)?;
+    gl.glBlitFramebuffer(0, 0, size.0, size.1, 0, 0, size.0, size.1, COLOR_BUFFER_BIT, NEAREST as u32)?;
+    marks.push(gl.glGetError()?);
+    // Into a buffer of another internal format: refused.
+    let other = renderbuffer(gl, n, 0, RGBA4, size)?;
+    let other_fb = n.next();
+    gl.glGenFramebuffers(Slice::new(&[other_fb]))?;
+    gl.glBindFramebuffer(DRAW_FRAMEBUFFER, other_fb)?;
+    gl.glFramebufferRenderbuffer(DRAW_FRAMEBUFFER, COLOR_ATTACHMENT0, RENDERBUFFER, other)?;
     gl.glBlitFramebuffer(0, 0, size.0, size.1, 0, 0, size.0, size.1, COLOR_BUFFER_BIT, NEAREST as u32)?;
     marks.push(gl.glGetError()?);
     // Shown in the window, one to one.
