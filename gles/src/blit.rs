@@ -1,13 +1,15 @@
 //! ES 3.0's `glBlitFramebuffer`, colour only: checked in the order of Mesa's `blit.c`, the
 //! rectangles clipped to the pixels whose centres map inside the read buffer and fall inside
 //! the draw framebuffer and the scissor, then drawn by the renderer (`render::blit`) into every
-//! draw buffer. Depth and stencil blits are refused for now.
+//! draw buffer; a multisample read buffer is resolved first (`Renderer::resolve`). Depth and
+//! stencil blits are refused for now.
 
 use crate::context::Context;
 use crate::conv::clip_rect;
 use crate::enums::*;
 use crate::error::{GlError, GlResult};
 use crate::flushed::Flushed;
+use crate::objects::framebuffer::{Attachment, Framebuffer};
 use crate::render::Blit;
 use crate::GlesExecutor;
 
@@ -24,6 +26,39 @@ fn axis(s: [i32; 2], d: [i32; 2], src_size: u32, [lo, hi]: [i64; 2]) -> [i64; 2]
     let first = ((inside_lo - 0.5).ceil() as i64).max(i64::from(d[0].min(d[1]))).max(lo);
     let end = ((inside_hi - 0.5).ceil() as i64).min(i64::from(d[0].max(d[1]))).min(hi);
     [first, end.max(first)]
+}
+
+/// The internal format of the read buffer and of each draw buffer, as a resolve compares
+/// them (as Mesa's `compatible_resolve_formats` does): unsized formats as their 8-bit sized
+/// ones, sRGB as linear; `None` while the read framebuffer is the window's.
+fn resolve_formats(ctx: &Context) -> Option<(u32, Vec<u32>)> {
+    let of = |a: Attachment| {
+        let f = match a {
+            Attachment::Renderbuffer(n) => ctx.objects.renderbuffers.get(&n).map_or(0, |r| r.format),
+            Attachment::Texture { name, .. } => {
+                ctx.objects.textures.get(&name).map_or(0, |t| if t.sized != 0 { t.sized } else { t.format })
+            }
+            Attachment::None => 0,
+        };
+        match f {
+            RGBA | SRGB8_ALPHA8 => RGBA8_OES,
+            RGB | SRGB8 => RGB8_OES,
+            f => f,
+        }
+    };
+    let selected = |fb: &Framebuffer, buffer: u32| {
+        buffer.checked_sub(COLOR_ATTACHMENT0).and_then(|i| fb.colors.get(i as usize)).copied()
+    };
+    let read =
+        ctx.objects.framebuffers.get(&ctx.bindings.read_framebuffer).filter(|_| ctx.bindings.read_framebuffer != 0)?;
+    let read = of(selected(read, read.read)?);
+    let draw = match ctx.objects.framebuffers.get(&ctx.bindings.framebuffer).filter(|_| ctx.bindings.framebuffer != 0) {
+        Some(fb) => {
+            fb.draw_buffers.iter().filter_map(|b| selected(fb, *b)).filter(|a| *a != Attachment::None).map(of).collect()
+        }
+        None => vec![if ctx.config.rgba[3] == 0 { RGB8_OES } else { RGBA8_OES }],
+    };
+    Some((read, draw))
 }
 
 #[allow(non_snake_case)]
@@ -57,6 +92,15 @@ impl GlesExecutor {
         if depth_stencil != 0 && filter != NEAREST {
             return Err(GlError::InvalidOperation);
         }
+        // ES 3.0 §4.3.3: a multisample draw framebuffer is never blitted into, and a
+        // multisample read framebuffer is resolved region for region, never scaled or moved.
+        if draw.samples > 1 {
+            return Err(GlError::InvalidOperation);
+        }
+        let resolve = read.samples > 1;
+        if resolve && [src_x0, src_y0, src_x1, src_y1] != [dst_x0, dst_y0, dst_x1, dst_y1] {
+            return Err(GlError::InvalidOperation);
+        }
         // A buffer missing on either side is left out, silently (as GL says).
         let depth = mask & DEPTH_BUFFER_BIT != 0 && read.has_depth() && draw.has_depth();
         let stencil = mask & STENCIL_BUFFER_BIT != 0 && read.has_stencil() && draw.has_stencil();
@@ -82,6 +126,10 @@ impl GlesExecutor {
         if draw.slots().iter().flatten().any(|s| kind(s.2) != src_kind) || (src_kind.is_some() && filter == LINEAR) {
             return Err(GlError::InvalidOperation);
         }
+        // A resolve goes only into buffers of the read buffer's internal format (sRGB or not).
+        if resolve && resolve_formats(ctx).is_some_and(|(r, d)| d.iter().any(|f| *f != r)) {
+            return Err(GlError::InvalidOperation);
+        }
         let empty = src_x0 == src_x1 || src_y0 == src_y1 || dst_x0 == dst_x1 || dst_y0 == dst_y1;
         if empty || ctx.conditional == Some(false) {
             return Ok(());
@@ -104,6 +152,12 @@ impl GlesExecutor {
                 Some((view, format, wgpu::ColorWrites::ALL - absent, draw.slices.get(i).copied().flatten()))
             })
             .collect();
+        // The samples of each pixel averaged first, into an image the blit then copies from.
+        let resolved = resolve.then(|| self.r.resolve(flushed, src));
+        let (src, at) = match &resolved {
+            Some(r) => (r, Default::default()),
+            None => (src, at),
+        };
         let blit = Blit {
             src: (src, at, size),
             dst,

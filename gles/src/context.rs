@@ -191,8 +191,8 @@ pub struct Raster {
     pub sample_coverage: bool,
     /// `GL_SAMPLE_ALPHA_TO_COVERAGE`.
     pub alpha_to_coverage: bool,
-    /// `GL_SAMPLE_COVERAGE_VALUE` and `GL_SAMPLE_COVERAGE_INVERT` (kept for queries: the
-    /// single-sampled targets have no coverage to mask).
+    /// `GL_SAMPLE_COVERAGE_VALUE` and `GL_SAMPLE_COVERAGE_INVERT` (multisample targets'
+    /// draws mask their samples with them; see `draw_state::raster_state`).
     pub coverage: (f32, bool),
 }
 

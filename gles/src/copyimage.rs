@@ -34,6 +34,10 @@ impl GlesExecutor {
         border: i32,
     ) -> GlResult {
         let src = self.read_target(ctx).map_err(|_| GlError::InvalidFramebufferOperation)?;
+        // ES 3.0 §3.8.5: a multisample read framebuffer is never copied from.
+        if src.samples > 1 {
+            return Err(GlError::InvalidOperation);
+        }
         crate::framebuffers::read_selected(ctx)?;
         let uid = self.next_uid();
         let account = self.account.clone();

@@ -328,6 +328,30 @@ pub(crate) fn raster_state(
         reversed_z: None,
         unclipped_depth: raster.depth_clamp,
         clip: raster.clip,
+        coverage_mask: coverage_mask(raster, target.samples),
+        // wgpu takes the coverage from output 0's alpha, so that output has a float image.
+        alpha_to_coverage: raster.alpha_to_coverage
+            && target.samples > 1
+            && target.color.as_ref().is_some_and(|(t, _)| {
+                matches!(t.format().sample_type(None, None), Some(wgpu::TextureSampleType::Float { .. }))
+            }),
+    }
+}
+
+/// The samples of a target of `samples` samples that draws may cover: with
+/// `GL_SAMPLE_COVERAGE` on, the first `value × samples` (truncated, as Mesa takes them), or the
+/// others if inverted; else all of them.
+fn coverage_mask(raster: &crate::context::Raster, samples: u32) -> u64 {
+    if !raster.sample_coverage || samples <= 1 {
+        return !0;
+    }
+    let (value, invert) = raster.coverage;
+    let n = (value * samples as f32) as u32;
+    let mask = (1u64 << n.min(samples)) - 1;
+    if invert {
+        !mask & ((1u64 << samples) - 1)
+    } else {
+        mask
     }
 }
 

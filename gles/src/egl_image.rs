@@ -96,14 +96,16 @@ fn texture_image(ctx: &Context, name: u32, cube: bool, face: u32, level: u32) ->
 }
 
 /// The image of renderbuffer `name` of `ctx`: its storage must be colour; a renderbuffer
-/// without storage is `EGL_BAD_ALLOC`, as Mesa answers, and name 0 `EGL_BAD_PARAMETER`.
+/// without storage is `EGL_BAD_ALLOC`, as Mesa answers, and name 0 or a multisample image
+/// `EGL_BAD_PARAMETER`.
 fn renderbuffer_image(ctx: &Context, name: u32) -> EglResult<EglImage> {
     if name == 0 {
         return Err(EGL_BAD_PARAMETER);
     }
     let rb = ctx.objects.renderbuffers.get(&name).ok_or(EGL_BAD_ALLOC)?;
     let ((texture, _), reserved) = rb.gpu.as_ref().zip(rb.reserved.as_ref()).ok_or(EGL_BAD_ALLOC)?;
-    if !rb.is_color() || texture.format() != COLOR_FORMAT || rb.width == 0 || rb.height == 0 {
+    let single = rb.samples() == 0;
+    if !rb.is_color() || !single || texture.format() != COLOR_FORMAT || rb.width == 0 || rb.height == 0 {
         return Err(EGL_BAD_PARAMETER);
     }
     Ok(EglImage {

@@ -106,3 +106,12 @@ pub const RGBA8I: u32 = 0x8D8E;
 pub const RGB8I: u32 = 0x8D8F;
 /// `GL_RGB10_A2UI` (ES 3.0): unsigned integers of 10, 10, 10 and 2 bits.
 pub const RGB10_A2UI: u32 = 0x906F;
+
+/// `GL_RENDERBUFFER_SAMPLES` (ES 3.0).
+pub const RENDERBUFFER_SAMPLES: u32 = 0x8CAB;
+/// `GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE` (ES 3.0): attachments of different sample counts.
+pub const FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: u32 = 0x8D56;
+/// `GL_MAX_SAMPLES` (ES 3.0).
+pub const MAX_SAMPLES: u32 = 0x8D57;
+/// `GL_NUM_SAMPLE_COUNTS` (ES 3.0's `glGetInternalformativ`).
+pub const NUM_SAMPLE_COUNTS: u32 = 0x9380;

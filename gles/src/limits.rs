@@ -77,5 +77,8 @@ pub const MAX_VARYING_ARRAY: u32 = 256;
 /// The largest uniform block: wgpu's guaranteed uniform binding size (64 KiB, 4096 vectors,
 /// far above the 512 that `MAX_VERTEX_UNIFORM_VECTORS` + `MAX_FRAGMENT_UNIFORM_VECTORS` allow).
 pub const MAX_BLOCK: u32 = 64 << 10;
+/// The samples of every multisample image (`GL_MAX_SAMPLES`, and the one count
+/// `glGetInternalformativ` lists): wgpu's one multisample count beyond 1 that every device has.
+pub const SAMPLES: u32 = 4;
 /// Samplers a program may declare (sampler sets are kept as 32-bit masks: depth-texture layouts).
 pub const MAX_SAMPLERS: usize = 32;

@@ -214,6 +214,11 @@ impl GlesExecutor {
             ctx.record(GlError::InvalidFramebufferOperation);
             return Bytes(Vec::new());
         };
+        // ES 3.0 §4.3.1: a multisample read framebuffer is never read.
+        if target.samples > 1 {
+            ctx.record(GlError::InvalidOperation);
+            return Bytes(Vec::new());
+        }
         // An integer colour buffer reads only as integers of its signedness, and integers
         // only from one.
         if let Read::Color(c) = how {

@@ -190,6 +190,13 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
     if let Some(d) = &depth {
         same((d.3, d.4))?;
     }
+    // ES 3.0 §4.4.4.2: every attachment has the same number of samples.
+    let counts = colors.iter().flatten().map(|c| c.texture.sample_count());
+    let mut counts = counts.chain(depth.iter().map(|d| d.5 .0.sample_count()));
+    let samples = counts.next().unwrap_or(1);
+    if counts.any(|n| n != samples) {
+        return Err(FRAMEBUFFER_INCOMPLETE_MULTISAMPLE);
+    }
     let (width, height) = size.ok_or(FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT)?;
     // Per slot (fragment output, or the one read slot), the attachment it addresses.
     let selected =
@@ -224,6 +231,7 @@ fn resolve_object(ctx: &Context, bound: u32, purpose: Purpose) -> Result<Target,
         depth: depth.map(|d| (d.0, d.1)),
         width,
         height,
+        samples,
     })
 }
 

@@ -300,7 +300,7 @@ impl GlesExecutor {
         Ok(())
     }
 
-    /// Multisampling is not implemented, so coverage parameters are only kept for queries.
+    /// The coverage parameters, which draws into multisample targets mask their samples with.
     pub(super) fn glSampleCoverage(&mut self, ctx: &mut Context, value: f32, invert: bool) -> GlResult {
         ctx.raster.coverage = (clampf(value), invert);
         Ok(())

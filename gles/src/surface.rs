@@ -92,6 +92,7 @@ impl GlesExecutor {
             width: w,
             height: h,
             absent,
+            samples: 1,
         };
         self.r.clear(
             &target,

@@ -83,6 +83,16 @@ impl GlesExecutor {
             NUM_EXTENSIONS => self.extensions(ctx).split_whitespace().count() as i32,
             // Server waits (`glWaitSync`) take no timeout: the daemon runs commands in order.
             MAX_SERVER_WAIT_TIMEOUT => 0,
+            MAX_SAMPLES => crate::limits::SAMPLES as i32,
+            // The draw framebuffer's samples, 0 for single-sampled (or incomplete) ones.
+            SAMPLES | SAMPLE_BUFFERS => {
+                let n = self.draw_target(ctx).map_or(1, |t| t.samples);
+                match pname {
+                    SAMPLES if n > 1 => n as i32,
+                    SAMPLE_BUFFERS => i32::from(n > 1),
+                    _ => 0,
+                }
+            }
             // GL_SAMPLER_BINDING: the active unit's sampler object.
             0x8919 => ctx.bindings.samplers[ctx.bindings.active_unit] as i32,
             // GL_TEXTURE_BINDING_2D_ARRAY: the active unit's 2D array.

@@ -487,6 +487,8 @@ command_set! {
         glGetSamplerParameteriv [Context, Es3] => GetSamplerParameteriv { sampler: GLuint, pname: GLenum } -> Vec<GLint>;
         /// The parameter's values (nothing on error).
         glGetSamplerParameterfv [Context, Es3] => GetSamplerParameterfv { sampler: GLuint, pname: GLenum } -> Vec<GLfloat>;
+        /// A renderable format's sample counts, or their number (nothing on error).
+        glGetInternalformativ [Context, Es3] => GetInternalformativ { target: GLenum, internalformat: GLenum, pname: GLenum, buf_size: GLsizei } -> Vec<GLint>;
     }
 }
 

@@ -92,6 +92,11 @@ pub struct Renderbuffer {
 }
 
 impl Renderbuffer {
+    /// `GL_RENDERBUFFER_SAMPLES`: the image's samples, 0 for a single-sample image.
+    pub fn samples(&self) -> u32 {
+        self.gpu.as_ref().map(|(t, _)| t.sample_count()).filter(|&n| n > 1).unwrap_or(0)
+    }
+
     /// Whether it holds colour: a colour format of its own, or an EGLImage's colour image.
     pub fn is_color(&self) -> bool {
         matches!(self.format, RGBA4 | RGB5_A1 | RGB565 | RGBA8_OES | RGB8_OES | R8_EXT | RG8_EXT | SRGB8_ALPHA8)

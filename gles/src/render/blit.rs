@@ -164,6 +164,41 @@ impl Renderer {
             .clone()
     }
 
+    /// The multisample image `src` resolved (each pixel's samples averaged) into a new
+    /// single-sample image of its size and format, after the pending pass (`[Flush]`).
+    pub fn resolve(&mut self, _: &Flushed, src: &wgpu::Texture) -> wgpu::Texture {
+        let d = &self.gpu.device;
+        let size = src.size();
+        let resolved = d.create_texture(&wgpu::TextureDescriptor {
+            label: Some("resolved"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: src.format(),
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = src.create_view(&Default::default());
+        let target = resolved.create_view(&Default::default());
+        let mut enc = d.create_command_encoder(&Default::default());
+        enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("resolve"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: Some(&target),
+                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        self.gpu.submit(&self.lane, vec![enc.finish()]);
+        resolved
+    }
+
     /// Draws blit `b` into each of its destination buffers, after the pending pass (`[Flush]`).
     pub fn blit(&mut self, _: &Flushed, b: &Blit<'_>) {
         let [x, y, w, h] = b.clip;

@@ -52,6 +52,7 @@ impl Renderer {
                 )
             }),
             slots: target.slots().iter().map(|s| s.map(|s| s.2)).collect(),
+            samples: target.samples,
         };
         let pipeline = self.clear_pipeline(&key);
         let mut params = [0u8; CLEAR_PARAMS as usize];
@@ -148,7 +149,7 @@ impl Renderer {
             },
             primitive: Default::default(),
             depth_stencil,
-            multisample: Default::default(),
+            multisample: wgpu::MultisampleState { count: key.samples, ..Default::default() },
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs"),

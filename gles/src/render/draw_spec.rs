@@ -65,6 +65,11 @@ pub struct RasterState {
     /// `GL_EXT_clip_control`: the vertex stage is its variant, and with the upper-left origin
     /// the winding as wgpu sees it is GL's reversed.
     pub clip: ClipControl,
+    /// The samples a multisample target's draws may cover (`GL_SAMPLE_COVERAGE`): all bits
+    /// set but where the coverage value masks them.
+    pub coverage_mask: u64,
+    /// `GL_SAMPLE_ALPHA_TO_COVERAGE` on a multisample target.
+    pub alpha_to_coverage: bool,
 }
 
 /// Everything a validated draw needs.

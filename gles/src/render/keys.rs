@@ -13,6 +13,8 @@ pub(crate) struct PipelineKey {
     /// Per colour slot, whether it has an image, the channels that image lacks, and its format.
     pub(crate) colors: Vec<Option<(wgpu::ColorWrites, wgpu::TextureFormat)>>,
     pub(crate) depth_format: Option<wgpu::TextureFormat>,
+    /// The target's samples (1: single-sampled).
+    pub(crate) samples: u32,
 }
 
 /// What selects a clear pipeline.
@@ -24,4 +26,6 @@ pub(crate) struct ClearKey {
     pub(crate) depth: Option<(wgpu::TextureFormat, bool, Option<u32>)>,
     /// Which colour slots have an image, and its format.
     pub(crate) slots: Vec<Option<wgpu::TextureFormat>>,
+    /// The target's samples (1: single-sampled).
+    pub(crate) samples: u32,
 }

@@ -55,6 +55,7 @@ impl Renderer {
             raster: spec.raster.clone(),
             colors: target.slots().iter().map(|s| s.map(|s| (s.1, s.2))).collect(),
             depth_format: target.depth.as_ref().map(|d| d.1),
+            samples: target.samples,
         };
         if let Some(p) = self.pipelines.get(&key) {
             return p.clone();
@@ -142,7 +143,11 @@ impl Renderer {
                 conservative: false,
             },
             depth_stencil,
-            multisample: Default::default(),
+            multisample: wgpu::MultisampleState {
+                count: key.samples,
+                mask: r.coverage_mask,
+                alpha_to_coverage_enabled: r.alpha_to_coverage,
+            },
             fragment: Some(wgpu::FragmentState {
                 module: spec.fs.as_ref().unwrap_or(&spec.program.fs),
                 entry_point: Some("main"),

@@ -37,6 +37,9 @@ pub struct Target {
     /// `GL_EXT_texture_rg`'s RED and RG): they read as 0 (colour) and 1 (alpha), so draws
     /// leave them alone and clears set them to those values.
     pub absent: wgpu::ColorWrites,
+    /// The samples of every image (a complete framebuffer's all have the same): 1 for
+    /// single-sample images, else `limits::SAMPLES`.
+    pub samples: u32,
 }
 
 impl Target {
@@ -60,6 +63,7 @@ impl Target {
             width,
             height,
             absent,
+            samples: 1,
         }
     }
 

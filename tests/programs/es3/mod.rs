@@ -19,6 +19,7 @@ mod int_samplers;
 mod integers;
 mod language;
 mod matrix_inputs;
+mod multisample;
 mod packed_floats;
 mod renderbuffers;
 mod restart;
@@ -76,5 +77,6 @@ pub fn all() -> Vec<Case> {
         c("es3_block_structs", structs::block_structs),
         c("es3_color_buffer_float", color_buffer_float::color_buffer_float),
         c("es3_color_buffer_float_images", color_buffer_float::color_buffer_float_images),
+        c("es3_multisample", multisample::multisample),
     ]
 }

@@ -7,6 +7,28 @@ use strata_protocol::wire::*;
 use super::*;
 
 impl Arms<'_> {
+    pub(super) fn glGetInternalformativ(
+        &mut self,
+        target: &GLenum,
+        internalformat: &GLenum,
+        pname: &GLenum,
+        buf_size: &GLsizei,
+    ) -> Result<Vec<GLint>, ClientError> {
+        let mut v = [INT_SENTINEL; 16];
+        let n = (*buf_size).min(16);
+        call!(
+            self,
+            "glGetInternalformativ",
+            fn(u32, u32, u32, i32, *mut i32) -> (),
+            *target,
+            *internalformat,
+            *pname,
+            n,
+            v.as_mut_ptr()
+        );
+        Ok(v.iter().copied().take_while(|x| *x != INT_SENTINEL).collect())
+    }
+
     pub(super) fn glDeleteFramebuffers(&mut self, names: &Slice<'_, GLuint>) -> Result<(), ClientError> {
         let v = names.to_vec();
         call!(self, "glDeleteFramebuffers", fn(i32, *const u32) -> (), v.len() as i32, v.as_ptr());

@@ -1,6 +1,7 @@
 //! ES 3.0 calls the library marshals by hand: `glClearBuffer*`, whose array holds four values
 //! for a colour and one for the depth or the stencil, `glGetFragDataLocation`, which takes a
-//! name, and `glTransformFeedbackVaryings`, which takes a list of them.
+//! name, `glTransformFeedbackVaryings`, which takes a list of them, and
+//! `glGetInternalformativ`, which writes at most the application's count.
 
 use strata_protocol::{Calls, Slice, Text};
 
@@ -72,6 +73,18 @@ crate::entry::entry_points! {
             // SAFETY: the application passes a NUL-terminated name.
             let Some(name) = (unsafe { c_name(name) }) else { return Ok(-1) };
             gl.conn.glGetFragDataLocation(program, Text::borrowed(name))
+        })
+    }
+
+    /// A format's sample counts (`GL_SAMPLES`) or how many there are (`GL_NUM_SAMPLE_COUNTS`):
+    /// at most `buf_size` values written (the daemon checks `buf_size` with the rest).
+    fn glGetInternalformativ(target: GLenum, internalformat: GLenum, pname: GLenum, buf_size: GLsizei, params: *mut GLint) {
+        with_gl("glGetInternalformativ", (), |gl| {
+            let v = gl.conn.glGetInternalformativ(target, internalformat, pname, buf_size)?;
+            let n = v.len().min(usize::try_from(buf_size).unwrap_or(0));
+            // SAFETY: `params` has room for `buf_size` values.
+            unsafe { super::write_out(params, &v[..n]) };
+            Ok(())
         })
     }
 }
