@@ -56,18 +56,11 @@ fn level_depth(l: i32) -> f32 {
     0.1 + 0.2 * l as f32
 }
 
-/// A depth texture of `target` on `unit`, comparing by `LEQUAL`, minified by `min`.
+/// A depth texture of `target` on `unit`, comparing by `LEQUAL`, minified by `min` (magnified
+/// nearest).
 fn depth_texture(gl: Gl<'_>, n: &mut Names, target: u32, unit: u32, min: i32) -> Result<u32, ClientError> {
-    let t = n.next();
-    gl.glActiveTexture(TEXTURE0 + unit)?;
-    gl.glGenTextures(Slice::new(&[t]))?;
-    gl.glBindTexture(target, t)?;
+    let t = super::shadow::depth_texture(gl, n, target, unit, LEQUAL, NEAREST)?;
     gl.glTexParameteri(target, TEXTURE_MIN_FILTER, min)?;
-    gl.glTexParameteri(target, TEXTURE_MAG_FILTER, NEAREST)?;
-    gl.glTexParameteri(target, TEXTURE_WRAP_S, CLAMP_TO_EDGE)?;
-    gl.glTexParameteri(target, TEXTURE_WRAP_T, CLAMP_TO_EDGE)?;
-    gl.glTexParameteri(target, COMPARE_MODE, COMPARE_REF_TO_TEXTURE)?;
-    gl.glTexParameteri(target, COMPARE_FUNC, LEQUAL)?;
     Ok(t)
 }
 

@@ -74,7 +74,7 @@ fn depths() -> Vec<f32> {
 }
 
 /// A new depth texture of `target` on `unit`, comparing by `func`, filtered by `filter`.
-fn depth_texture(
+pub(super) fn depth_texture(
     gl: Gl<'_>,
     n: &mut Names,
     target: u32,
